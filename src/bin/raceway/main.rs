@@ -1,0 +1,4 @@
+//! The `raceway` command-line program.
+fn main() {
+    println!("raceway");
+}

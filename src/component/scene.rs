@@ -1,0 +1,345 @@
+//! The scene: one serde schema (TOML for people, JSON for programs) that says everything a
+//! component needs. Anything a scene leaves out is not computed.
+
+use super::variables::{self, Causality};
+use crate::error::{Error, Result};
+use crate::geometry::{presets, Bearing, BearingSpec};
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+
+/// The embedded default scene (the README's main job runs it).
+pub const DEFAULT_SCENE: &str = include_str!("../../examples/scenes/default.toml");
+
+/// Model level.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum Level {
+    /// Constant K and C from the quasi-static linearisation at an operating point.
+    Linear,
+    /// Per-ball Jones–Harris equilibrium at the current motion, balls at the cage's
+    /// kinematic positions.
+    #[default]
+    QuasiStatic,
+    /// Ring on massless balls (physics.md §5.1).
+    Ring,
+}
+
+impl Level {
+    /// Scene spelling.
+    pub fn name(self) -> &'static str {
+        match self {
+            Level::Linear => "linear",
+            Level::QuasiStatic => "quasi_static",
+            Level::Ring => "ring",
+        }
+    }
+}
+
+/// How inputs move inside a step.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum InputRule {
+    /// Held at their values at the start of the step.
+    Hold,
+    /// Positions extrapolated with the given velocities: `q(t+s) = q + v s`.
+    #[default]
+    Velocity,
+    /// Taylor polynomial of the derivatives the host set (`fmi2SetRealInputDerivatives`).
+    Derivatives,
+}
+
+/// Race control assumption of the quasi-static model (Harris ch. 8).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum RaceControl {
+    /// Outer-race control: `lambda_o = 2`, `lambda_i = 0`.
+    #[default]
+    Outer,
+    /// No race control: `lambda_i = lambda_o = 1`.
+    None,
+}
+
+/// The operating point the `linear` level linearises about.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct OperatingPoint {
+    /// Shaft speed, rpm.
+    pub speed_rpm: f64,
+    /// Loads on the inner ring, N and N m.
+    pub fx: f64,
+    /// y load, N.
+    pub fy: f64,
+    /// z (axial) load, N.
+    pub fz: f64,
+    /// Moment about x, N m.
+    pub mx: f64,
+    /// Moment about y, N m.
+    pub my: f64,
+}
+
+impl Default for OperatingPoint {
+    fn default() -> Self {
+        OperatingPoint {
+            speed_rpm: 0.0,
+            fx: 0.0,
+            fy: 1000.0,
+            fz: 0.0,
+            mx: 0.0,
+            my: 0.0,
+        }
+    }
+}
+
+/// Model section.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct ModelSpec {
+    /// Level.
+    pub level: Level,
+    /// Causality.
+    pub causality: Causality,
+    /// Race control (quasi-static kernels).
+    pub race_control: RaceControl,
+    /// Ring level: 2 (radial x, y) or 5 (x, y, z, rx, ry) degrees of freedom.
+    pub ring_dof: u32,
+    /// Contact damping per loaded ball, N s/m (ring level; applied as `c d(delta)/dt`
+    /// scaled by the contact's load share so the force stays continuous).
+    pub contact_damping: f64,
+    /// Linear level: operating point.
+    pub operating_point: OperatingPoint,
+    /// Load-driven: mass attached to the inner ring, kg (added to the ring's own).
+    pub attached_mass_kg: f64,
+}
+
+impl Default for ModelSpec {
+    fn default() -> Self {
+        ModelSpec {
+            level: Level::default(),
+            causality: Causality::default(),
+            race_control: RaceControl::default(),
+            ring_dof: 2,
+            contact_damping: 0.0,
+            operating_point: OperatingPoint::default(),
+            attached_mass_kg: 0.0,
+        }
+    }
+}
+
+/// Integrator choice.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum Method {
+    /// The level's default.
+    #[default]
+    Auto,
+    /// Explicit Dormand–Prince 5(4) with dense output.
+    Dopri5,
+    /// Linearly implicit, L-stable Rosenbrock method.
+    Rosenbrock,
+}
+
+/// Solver section.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct SolverSpec {
+    /// Method.
+    pub method: Method,
+    /// Relative tolerance.
+    pub rtol: f64,
+    /// Absolute tolerance on displacements, m (other states are scaled to match).
+    pub atol_m: f64,
+    /// Largest internal sub-step, s (0: no limit beyond the communication step).
+    pub max_substep_s: f64,
+    /// Most internal steps in one communication step before the step fails.
+    pub max_substeps: u32,
+}
+
+impl Default for SolverSpec {
+    fn default() -> Self {
+        SolverSpec {
+            method: Method::Auto,
+            rtol: 1e-6,
+            atol_m: 1e-10,
+            max_substep_s: 0.0,
+            max_substeps: 100_000,
+        }
+    }
+}
+
+/// Inputs section: the rule and the values at the start.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+#[serde(deny_unknown_fields, default)]
+pub struct InputSpec {
+    /// How inputs move inside a step.
+    pub rule: InputRule,
+    /// Values at the start, by variable name (e.g. `"shaft.omega" = 183.26`).
+    pub initial: BTreeMap<String, f64>,
+}
+
+/// The bearing of a scene: a preset name, or a table with an optional `preset` and any
+/// bearing-file fields overriding it.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum BearingRef {
+    /// A preset name.
+    Preset(String),
+    /// A table.
+    Table(toml::Table),
+}
+
+impl BearingRef {
+    /// Resolve to a spec (preset plus overrides).
+    pub fn spec(&self) -> Result<BearingSpec> {
+        match self {
+            BearingRef::Preset(name) => presets::preset(name),
+            BearingRef::Table(t) => {
+                let mut table = t.clone();
+                let base = match table.remove("preset") {
+                    Some(toml::Value::String(name)) => {
+                        let spec = presets::preset(&name)?;
+                        toml::Table::try_from(&spec).map_err(|e| Error::Parse {
+                            what: "preset".into(),
+                            message: e.to_string(),
+                        })?
+                    }
+                    Some(other) => {
+                        return Err(Error::invalid(
+                            "bearing.preset",
+                            other,
+                            "a preset name (string)",
+                        ))
+                    }
+                    None => toml::Table::new(),
+                };
+                let mut merged = base;
+                for (k, v) in table {
+                    merged.insert(k, v);
+                }
+                toml::Value::Table(merged)
+                    .try_into::<BearingSpec>()
+                    .map_err(|e| Error::Parse {
+                        what: "scene [bearing]".into(),
+                        message: e.to_string(),
+                    })
+            }
+        }
+    }
+}
+
+/// A whole scene.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Scene {
+    /// Free title.
+    #[serde(default)]
+    pub title: String,
+    /// The bearing.
+    pub bearing: BearingRef,
+    /// Model.
+    #[serde(default)]
+    pub model: ModelSpec,
+    /// Solver.
+    #[serde(default)]
+    pub solver: SolverSpec,
+    /// Inputs.
+    #[serde(default)]
+    pub inputs: InputSpec,
+}
+
+impl Scene {
+    /// Parse TOML or JSON (JSON when the first non-blank character is `{`).
+    pub fn from_text(text: &str) -> Result<Scene> {
+        if text.trim_start().starts_with('{') {
+            serde_json::from_str(text).map_err(|e| Error::Parse {
+                what: "scene (JSON)".into(),
+                message: e.to_string(),
+            })
+        } else {
+            toml::from_str(text).map_err(|e| Error::Parse {
+                what: "scene (TOML)".into(),
+                message: e.to_string(),
+            })
+        }
+    }
+
+    /// The embedded default scene.
+    pub fn default_scene() -> Scene {
+        Scene::from_text(DEFAULT_SCENE).expect("the embedded default scene parses")
+    }
+
+    /// Resolve and validate the bearing.
+    pub fn build_bearing(&self) -> Result<Bearing> {
+        self.bearing.spec()?.build()
+    }
+
+    /// Validate everything; each refusal names the field, the value and the allowed range.
+    pub fn validate(&self) -> Result<Bearing> {
+        let b = self.build_bearing()?;
+        let s = &self.solver;
+        if !(s.rtol.is_finite() && s.rtol >= 1e-14 && s.rtol <= 0.1) {
+            return Err(Error::invalid("solver.rtol", s.rtol, "in [1e-14, 0.1]"));
+        }
+        if !(s.atol_m.is_finite() && s.atol_m > 0.0 && s.atol_m <= 1e-3) {
+            return Err(Error::invalid("solver.atol_m", s.atol_m, "in (0, 1e-3]"));
+        }
+        if !(s.max_substep_s.is_finite() && s.max_substep_s >= 0.0) {
+            return Err(Error::invalid(
+                "solver.max_substep_s",
+                s.max_substep_s,
+                ">= 0",
+            ));
+        }
+        if s.max_substeps == 0 {
+            return Err(Error::invalid("solver.max_substeps", 0, ">= 1"));
+        }
+        let m = &self.model;
+        if !(m.ring_dof == 2 || m.ring_dof == 5) {
+            return Err(Error::invalid("model.ring_dof", m.ring_dof, "2 or 5"));
+        }
+        if !(m.contact_damping.is_finite() && m.contact_damping >= 0.0) {
+            return Err(Error::invalid(
+                "model.contact_damping",
+                m.contact_damping,
+                ">= 0",
+            ));
+        }
+        if !(m.attached_mass_kg.is_finite() && m.attached_mass_kg >= 0.0) {
+            return Err(Error::invalid(
+                "model.attached_mass_kg",
+                m.attached_mass_kg,
+                ">= 0",
+            ));
+        }
+        let op = &m.operating_point;
+        for (f, v) in [
+            ("speed_rpm", op.speed_rpm),
+            ("fx", op.fx),
+            ("fy", op.fy),
+            ("fz", op.fz),
+            ("mx", op.mx),
+            ("my", op.my),
+        ] {
+            crate::error::finite(&format!("model.operating_point.{f}"), v)?;
+        }
+        for (name, value) in &self.inputs.initial {
+            let var = variables::by_name(name).ok_or_else(|| Error::Unknown {
+                what: "input variable",
+                name: name.clone(),
+                known: variables::SCALARS
+                    .iter()
+                    .filter(|v| v.is_input(m.causality))
+                    .map(|v| v.name.to_string())
+                    .collect(),
+            })?;
+            if !var.is_input(m.causality) {
+                return Err(Error::invalid(
+                    format!("inputs.initial.{name}"),
+                    value,
+                    "only inputs of this causality",
+                ));
+            }
+            crate::error::finite(&format!("inputs.initial.{name}"), *value)?;
+        }
+        Ok(b)
+    }
+}

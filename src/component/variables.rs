@@ -1,0 +1,418 @@
+//! The variable table: every name, value reference, unit and role of the co-simulation
+//! contract (`../shared/spec/cosim-interface.md`), once. The C header, the FMI model
+//! descriptions and the documentation tables are generated from this table.
+
+/// Which causality a scene runs in.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum Causality {
+    /// Shaft motion in, forces out (what rotor codes couple to).
+    #[default]
+    Motion,
+    /// Loads in; the inner ring (with an optional attached mass) is integrated inside;
+    /// motion and forces out.
+    Load,
+}
+
+/// What part a variable plays.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Role {
+    /// Inner-ring motion: an input when motion-driven, an output when load-driven.
+    Motion,
+    /// Shaft speed: an input in both causalities.
+    Speed,
+    /// External load: an input when load-driven, unused when motion-driven.
+    Load,
+    /// An output in both causalities.
+    Output,
+}
+
+/// One variable of the contract.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Variable {
+    /// Dotted name, e.g. `force.x`.
+    pub name: &'static str,
+    /// Value reference (stable across versions; FMI and C use it).
+    pub vr: u32,
+    /// SI unit.
+    pub unit: &'static str,
+    /// Role.
+    pub role: Role,
+    /// One-line meaning.
+    pub description: &'static str,
+}
+
+impl Variable {
+    /// Is this an input under `causality`?
+    pub fn is_input(&self, causality: Causality) -> bool {
+        matches!(
+            (self.role, causality),
+            (Role::Speed, _) | (Role::Motion, Causality::Motion) | (Role::Load, Causality::Load)
+        )
+    }
+    /// Is this an output under `causality`?
+    pub fn is_output(&self, causality: Causality) -> bool {
+        matches!(
+            (self.role, causality),
+            (Role::Output, _) | (Role::Motion, Causality::Load)
+        )
+    }
+}
+
+/// Generalised coordinates of the inner ring, in the order of the K and C matrices.
+pub const DOF: [&str; 5] = ["x", "y", "z", "rx", "ry"];
+
+const fn v(
+    name: &'static str,
+    vr: u32,
+    unit: &'static str,
+    role: Role,
+    description: &'static str,
+) -> Variable {
+    Variable {
+        name,
+        vr,
+        unit,
+        role,
+        description,
+    }
+}
+
+use Role::*;
+
+/// Value reference of `K.<i>.<j>`: `200 + 5 i + j`.
+pub const VR_K0: u32 = 200;
+/// Value reference of `C.<i>.<j>`: `300 + 5 i + j`.
+pub const VR_C0: u32 = 300;
+
+/// The scalar variables other than the K and C matrices.
+pub const SCALARS: &[Variable] = &[
+    v(
+        "shaft.x",
+        1,
+        "m",
+        Motion,
+        "inner-ring centre displacement x relative to the outer ring",
+    ),
+    v(
+        "shaft.y",
+        2,
+        "m",
+        Motion,
+        "inner-ring centre displacement y",
+    ),
+    v(
+        "shaft.z",
+        3,
+        "m",
+        Motion,
+        "inner-ring centre displacement z (axial)",
+    ),
+    v("shaft.rx", 4, "rad", Motion, "inner-ring tilt about x"),
+    v("shaft.ry", 5, "rad", Motion, "inner-ring tilt about y"),
+    v("shaft.vx", 6, "m/s", Motion, "inner-ring velocity x"),
+    v("shaft.vy", 7, "m/s", Motion, "inner-ring velocity y"),
+    v("shaft.vz", 8, "m/s", Motion, "inner-ring velocity z"),
+    v(
+        "shaft.wx",
+        9,
+        "rad/s",
+        Motion,
+        "inner-ring tilt rate about x",
+    ),
+    v(
+        "shaft.wy",
+        10,
+        "rad/s",
+        Motion,
+        "inner-ring tilt rate about y",
+    ),
+    v(
+        "shaft.omega",
+        11,
+        "rad/s",
+        Speed,
+        "inner-ring spin speed about z",
+    ),
+    v(
+        "load.x",
+        21,
+        "N",
+        Load,
+        "external force on the inner ring, x",
+    ),
+    v(
+        "load.y",
+        22,
+        "N",
+        Load,
+        "external force on the inner ring, y",
+    ),
+    v(
+        "load.z",
+        23,
+        "N",
+        Load,
+        "external force on the inner ring, z",
+    ),
+    v(
+        "load.mx",
+        24,
+        "N.m",
+        Load,
+        "external moment on the inner ring about x",
+    ),
+    v(
+        "load.my",
+        25,
+        "N.m",
+        Load,
+        "external moment on the inner ring about y",
+    ),
+    v(
+        "force.x",
+        101,
+        "N",
+        Output,
+        "force of the bearing on the shaft, x",
+    ),
+    v(
+        "force.y",
+        102,
+        "N",
+        Output,
+        "force of the bearing on the shaft, y",
+    ),
+    v(
+        "force.z",
+        103,
+        "N",
+        Output,
+        "force of the bearing on the shaft, z",
+    ),
+    v(
+        "moment.x",
+        104,
+        "N.m",
+        Output,
+        "moment of the bearing on the shaft about x",
+    ),
+    v(
+        "moment.y",
+        105,
+        "N.m",
+        Output,
+        "moment of the bearing on the shaft about y",
+    ),
+    v(
+        "torque.z",
+        106,
+        "N.m",
+        Output,
+        "friction (drag) torque on the shaft about z",
+    ),
+    v("cage.omega", 107, "rad/s", Output, "cage speed"),
+    v(
+        "cage.slip",
+        108,
+        "1",
+        Output,
+        "cage slip ratio 1 - omega_c/omega_c,kinematic",
+    ),
+    v(
+        "balls.loaded",
+        109,
+        "1",
+        Output,
+        "number of balls in contact",
+    ),
+    v(
+        "contact.max_load",
+        110,
+        "N",
+        Output,
+        "load of the most loaded contact",
+    ),
+    v(
+        "contact.max_pressure",
+        111,
+        "Pa",
+        Output,
+        "Hertz peak pressure of the most loaded contact",
+    ),
+    v(
+        "film.min_thickness",
+        112,
+        "m",
+        Output,
+        "thinnest EHL film (0 when lubrication is off)",
+    ),
+    v("power.loss", 113, "W", Output, "friction power"),
+    v(
+        "wear.max_depth",
+        114,
+        "m",
+        Output,
+        "deepest wear on any race",
+    ),
+];
+
+/// Unit of row `i` (force or moment) divided by column `j` (displacement or tilt).
+const fn k_unit(i: usize, j: usize) -> &'static str {
+    match (i < 3, j < 3) {
+        (true, true) => "N/m",
+        (true, false) => "N/rad",
+        (false, true) => "N",
+        (false, false) => "N.m/rad",
+    }
+}
+const fn c_unit(i: usize, j: usize) -> &'static str {
+    match (i < 3, j < 3) {
+        (true, true) => "N.s/m",
+        (true, false) => "N.s/rad",
+        (false, true) => "N.s",
+        (false, false) => "N.m.s/rad",
+    }
+}
+
+macro_rules! matrix_vars {
+    ($p:literal, $vr0:expr, $unit:ident, $desc:literal) => {
+        [
+            matrix_vars!(@row $p, $vr0, $unit, $desc, 0, "x"),
+            matrix_vars!(@row $p, $vr0, $unit, $desc, 1, "y"),
+            matrix_vars!(@row $p, $vr0, $unit, $desc, 2, "z"),
+            matrix_vars!(@row $p, $vr0, $unit, $desc, 3, "rx"),
+            matrix_vars!(@row $p, $vr0, $unit, $desc, 4, "ry"),
+        ]
+    };
+    (@row $p:literal, $vr0:expr, $unit:ident, $desc:literal, $i:expr, $ri:literal) => {
+        [
+            v(concat!($p, ".", $ri, ".x"), $vr0 + 5 * $i, $unit($i, 0), Output, $desc),
+            v(concat!($p, ".", $ri, ".y"), $vr0 + 5 * $i + 1, $unit($i, 1), Output, $desc),
+            v(concat!($p, ".", $ri, ".z"), $vr0 + 5 * $i + 2, $unit($i, 2), Output, $desc),
+            v(concat!($p, ".", $ri, ".rx"), $vr0 + 5 * $i + 3, $unit($i, 3), Output, $desc),
+            v(concat!($p, ".", $ri, ".ry"), $vr0 + 5 * $i + 4, $unit($i, 4), Output, $desc),
+        ]
+    };
+}
+
+/// `K.<i>.<j>`: stiffness `-dF_i/dq_j` at the current state.
+pub const STIFFNESS: [[Variable; 5]; 5] = matrix_vars!("K", VR_K0, k_unit, "stiffness -dF_i/dq_j");
+/// `C.<i>.<j>`: damping `-dF_i/dv_j` at the current state.
+pub const DAMPING: [[Variable; 5]; 5] = matrix_vars!("C", VR_C0, c_unit, "damping -dF_i/dv_j");
+
+/// Every variable, in a stable order: scalars, then K row by row, then C.
+pub fn all() -> impl Iterator<Item = &'static Variable> {
+    SCALARS
+        .iter()
+        .chain(STIFFNESS.iter().flatten())
+        .chain(DAMPING.iter().flatten())
+}
+
+/// Look a variable up by value reference.
+pub fn by_vr(vr: u32) -> Option<&'static Variable> {
+    all().find(|v| v.vr == vr)
+}
+
+/// Look a variable up by name.
+pub fn by_name(name: &str) -> Option<&'static Variable> {
+    all().find(|v| v.name == name)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_and_value_references_are_unique() {
+        let all: Vec<_> = all().collect();
+        for (i, a) in all.iter().enumerate() {
+            for b in &all[i + 1..] {
+                assert_ne!(a.vr, b.vr, "{} / {}", a.name, b.name);
+                assert_ne!(a.name, b.name);
+            }
+        }
+        assert_eq!(all.len(), SCALARS.len() + 50);
+        assert_eq!(by_name("K.rx.y").unwrap().vr, VR_K0 + 16);
+        assert_eq!(by_name("C.x.ry").unwrap().unit, "N.s/rad");
+    }
+}
+
+/// Type of a parameter.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ParamType {
+    /// A real number (SI unit given).
+    Real,
+    /// A string.
+    String,
+}
+
+/// A scene field exposed as a parameter (FMI parameters, C ABI setters).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Parameter {
+    /// Name.
+    pub name: &'static str,
+    /// Value reference.
+    pub vr: u32,
+    /// Type.
+    pub ty: ParamType,
+    /// SI unit ("" for strings).
+    pub unit: &'static str,
+    /// Start value as text (as it appears in a model description).
+    pub start: &'static str,
+    /// One-line meaning.
+    pub description: &'static str,
+}
+
+/// The scene fields exposed as parameters. A parameter the host never sets leaves the
+/// field as the scene (or the preset) has it; an empty string does the same.
+pub const PARAMETERS: &[Parameter] = &[
+    Parameter {
+        name: "scene",
+        vr: 1000,
+        ty: ParamType::String,
+        unit: "",
+        start: "",
+        description: "a whole scene as TOML or JSON text (empty: the default scene, or resources/scene.toml if the FMU carries one)",
+    },
+    Parameter {
+        name: "bearing",
+        vr: 1001,
+        ty: ParamType::String,
+        unit: "",
+        start: "",
+        description: "bearing preset name (overrides the scene's bearing)",
+    },
+    Parameter {
+        name: "level",
+        vr: 1002,
+        ty: ParamType::String,
+        unit: "",
+        start: "",
+        description: "model level: linear, quasi_static or ring",
+    },
+    Parameter {
+        name: "input_rule",
+        vr: 1003,
+        ty: ParamType::String,
+        unit: "",
+        start: "",
+        description: "how inputs move inside a step: hold, velocity or derivatives",
+    },
+    Parameter {
+        name: "clearance",
+        vr: 1004,
+        ty: ParamType::Real,
+        unit: "m",
+        start: "0",
+        description: "diametral clearance (applied only when set; otherwise as the bearing has it)",
+    },
+    Parameter {
+        name: "rtol",
+        vr: 1005,
+        ty: ParamType::Real,
+        unit: "1",
+        start: "1e-6",
+        description: "relative tolerance of the internal integrator (applied only when set)",
+    },
+];

@@ -1,0 +1,141 @@
+//! One error type for the whole library. Every message names its cause: the field, the
+//! value and the allowed range, or the call and the state it was refused in.
+
+use std::fmt;
+
+/// Result alias used throughout raceway.
+pub type Result<T, E = Error> = std::result::Result<T, E>;
+
+/// What went wrong. `Display` gives a one-line message meant for people.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Error {
+    /// A value outside its allowed range (or not finite).
+    Invalid {
+        /// Dotted path of the field, e.g. `bearing.inner_curvature`.
+        field: String,
+        /// The offending value as text.
+        value: String,
+        /// The allowed range or rule, e.g. `> 0.5`.
+        allowed: String,
+    },
+    /// A name that is not known (preset, material, variable, level).
+    Unknown {
+        /// What kind of name, e.g. `bearing preset`.
+        what: &'static str,
+        /// The name given.
+        name: String,
+        /// The names that are known.
+        known: Vec<String>,
+    },
+    /// Text that does not parse (scene, bearing file, state bytes).
+    Parse {
+        /// What was being parsed.
+        what: String,
+        /// The parser's message (with line and column where known).
+        message: String,
+    },
+    /// An iterative solve that did not converge: never returned as an answer.
+    NotConverged {
+        /// Which solve.
+        what: &'static str,
+        /// Iterations used.
+        iterations: usize,
+        /// Residual norm at the last iterate.
+        residual: f64,
+    },
+    /// A time step that failed; the component state is unchanged.
+    StepFailed {
+        /// Communication time at which the step started.
+        t: f64,
+        /// Why.
+        reason: String,
+    },
+    /// A call that is not allowed in the current state.
+    CallOrder {
+        /// The call.
+        call: &'static str,
+        /// Why it is refused now.
+        reason: String,
+    },
+    /// Input/output failure (files).
+    Io(String),
+}
+
+impl Error {
+    /// Shorthand for [`Error::Invalid`].
+    pub fn invalid(
+        field: impl Into<String>,
+        value: impl fmt::Display,
+        allowed: impl Into<String>,
+    ) -> Self {
+        Error::Invalid {
+            field: field.into(),
+            value: value.to_string(),
+            allowed: allowed.into(),
+        }
+    }
+}
+
+impl fmt::Display for Error {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Error::Invalid {
+                field,
+                value,
+                allowed,
+            } => {
+                write!(f, "invalid `{field}` = {value}: allowed {allowed}")
+            }
+            Error::Unknown { what, name, known } => {
+                write!(f, "unknown {what} `{name}`; known: {}", known.join(", "))
+            }
+            Error::Parse { what, message } => write!(f, "cannot parse {what}: {message}"),
+            Error::NotConverged {
+                what,
+                iterations,
+                residual,
+            } => write!(
+                f,
+                "{what} did not converge in {iterations} iterations (residual {residual:.3e})"
+            ),
+            Error::StepFailed { t, reason } => {
+                write!(f, "step from t = {t} s failed, state unchanged: {reason}")
+            }
+            Error::CallOrder { call, reason } => write!(f, "`{call}` refused: {reason}"),
+            Error::Io(m) => write!(f, "{m}"),
+        }
+    }
+}
+
+impl std::error::Error for Error {}
+
+/// Check that `value` is finite; the error names `field`.
+pub fn finite(field: &str, value: f64) -> Result<f64> {
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(Error::invalid(field, value, "a finite number"))
+    }
+}
+
+/// Check that `value` is finite and strictly positive.
+pub fn positive(field: &str, value: f64) -> Result<f64> {
+    if value.is_finite() && value > 0.0 {
+        Ok(value)
+    } else {
+        Err(Error::invalid(field, value, "a finite number > 0"))
+    }
+}
+
+/// Check that `value` is finite and in `[lo, hi]`.
+pub fn in_range(field: &str, value: f64, lo: f64, hi: f64) -> Result<f64> {
+    if value.is_finite() && value >= lo && value <= hi {
+        Ok(value)
+    } else {
+        Err(Error::invalid(
+            field,
+            value,
+            format!("a finite number in [{lo}, {hi}]"),
+        ))
+    }
+}

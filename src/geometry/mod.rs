@@ -1,0 +1,13 @@
+//! Bearing geometry, materials, presets and kinematics.
+
+pub mod bearing;
+pub mod kinematics;
+pub mod material;
+pub mod presets;
+
+pub use bearing::{
+    Bearing, BearingKind, BearingSpec, Cage, CageSpec, Guidance, MaterialSpec, MaterialsSpec,
+};
+pub use kinematics::{kinematics, kinematics_at, Kinematics};
+pub use material::{effective_modulus, Material};
+pub use presets::{preset, presets};

@@ -1,0 +1,31 @@
+//! # raceway
+//!
+//! Rolling-element (ball) bearing simulation as a co-simulation component.
+//!
+//! - [`geometry`]: bearing description, presets, materials, kinematics.
+//! - [`contact`]: Hertz point contact.
+//! - [`models`]: the physics ladder (quasi-static Jones–Harris, ring, ...).
+//! - [`solver`]: integrators and nonlinear solvers written for this problem.
+//! - [`component`]: the stepped co-simulation component, its scene and variable table.
+//! - `capi` (feature `capi`): the C ABI over the component.
+//! - `fmi` (feature `fmi`): FMI 2.0 / 3.0 co-simulation exports over the component.
+//!
+//! SI units everywhere inside; rpm, mm and degrees only at the edges.
+
+#![warn(missing_docs)]
+
+pub mod component;
+pub mod contact;
+pub mod error;
+pub mod geometry;
+pub mod models;
+pub mod solver;
+pub mod units;
+
+#[cfg(feature = "capi")]
+pub mod capi;
+#[cfg(feature = "fmi")]
+pub mod fmi;
+
+pub use component::{Component, Scene};
+pub use error::{Error, Result};

@@ -1,0 +1,3 @@
+//! The physics ladder: quasi-static equilibrium and the dynamic levels.
+
+pub mod quasi_static;

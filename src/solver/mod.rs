@@ -1,0 +1,1 @@
+//! Integrators and nonlinear solvers written for the bearing problem.
