@@ -206,6 +206,9 @@ impl Component {
         let (x, y) = (self.state.inputs[i(1)], self.state.inputs[i(2)]);
         self.state.outputs[i(101)] = -k * x;
         self.state.outputs[i(102)] = -k * y;
+        for d in 0..5 {
+            self.state.outputs[i(variables::VR_K0 + 6 * d as u32)] = k;
+        }
         self.state.t = t + h;
         self.state.started = true;
         Ok(())
@@ -279,8 +282,38 @@ impl Component {
                 "seed like knowns, out like unknowns",
             ));
         }
-        out.iter_mut().for_each(|o| *o = 0.0);
-        let _ = (unknowns, knowns, seed);
+        // Forces and moments: J = -K (displacement knowns), -C (velocity knowns), from the
+        // K and C outputs; other unknowns and knowns contribute zero.
+        for (o, &u) in out.iter_mut().zip(unknowns) {
+            let row = [101u32, 102, 103, 104, 105].iter().position(|&f| f == u);
+            *o = 0.0;
+            for (&k, &s) in knowns.iter().zip(seed) {
+                if variables::by_vr(k).is_none() {
+                    return Err(Error::invalid(
+                        "directional derivative known",
+                        k,
+                        "a variable of the table",
+                    ));
+                }
+                let Some(r) = row else { continue };
+                if (1..=5).contains(&k) {
+                    *o -= self.state.outputs
+                        [index_of(variables::VR_K0 + 5 * r as u32 + (k - 1)).unwrap()]
+                        * s;
+                } else if (6..=10).contains(&k) {
+                    *o -= self.state.outputs
+                        [index_of(variables::VR_C0 + 5 * r as u32 + (k - 6)).unwrap()]
+                        * s;
+                }
+            }
+            if variables::by_vr(u).is_none() {
+                return Err(Error::invalid(
+                    "directional derivative unknown",
+                    u,
+                    "a variable of the table",
+                ));
+            }
+        }
         Ok(())
     }
 }
