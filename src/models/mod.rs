@@ -1,3 +1,4 @@
 //! The physics ladder: quasi-static equilibrium and the dynamic levels.
 
 pub mod quasi_static;
+pub mod ring;

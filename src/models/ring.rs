@@ -1,0 +1,308 @@
+//! Ring on massless balls (physics.md §5.1; Sunnersjö, *J. Sound Vib.* 58(3) 1978; Harsha,
+//! *J. Sound Vib.* 290 (2006); study [4]).
+//!
+//! Balls carry no inertia; ball `j` sits at `psi_j = theta_c + 2 pi j / Z`, the cage angle
+//! `theta_c` turning at the kinematic cage speed. Two geometries:
+//!
+//! - **2-DOF radial**: `delta_j = x cos psi_j + y sin psi_j - Pd/2`, load along the radius.
+//! - **5-DOF Jones geometry** with no ball inertia (`omega_m = 0`): the inner groove
+//!   curvature centre sits at `A1 = A1_0 + z + Ri (rx sin psi - ry cos psi)` axially and
+//!   `A2 = A2_0 + x cos psi + y sin psi` radially from the outer one; a massless ball makes
+//!   both contacts collinear, so the total approach is `delta = |A| - A` along the unit
+//!   vector `n = A / |A|` (contact angle `atan2(A1, A2)`).
+//!
+//! Load `Q = K_n delta^1.5` for `delta > 0` with `K_n` the series constant of the inner
+//! and outer contacts at the nominal contact angle (massless-ball, low-speed model; the
+//! quasi-static level carries the angle dependence). The force on the shaft is
+//! `-sum_j Q_j grad(delta_j)`, a gradient, so the stiffness matrix is symmetric:
+//! `K = sum_j [Q'(delta_j) g g^T + Q_j H_j]` with `g = J^T n`, `H = J^T (I - n n^T) J / |A|`,
+//! `J = d(A1, A2)/dq`.
+//!
+//! Contact damping `c d(delta)/dt` acts on loaded balls only, blended in over the first
+//! `DAMPING_RAMP` of approach so the force stays continuous at contact onset (a
+//! Hunt–Crossley-like regularisation; numerics.md §1.3).
+
+use crate::contact::{series_constant, Curvature, PointContact, Race};
+use crate::geometry::Bearing;
+use std::f64::consts::PI;
+
+/// Approach over which contact damping is blended in, m.
+pub const DAMPING_RAMP: f64 = 1e-7;
+
+/// Radial (2) or full (5) degrees of freedom.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum RingDof {
+    /// x, y.
+    Two,
+    /// x, y, z, rx, ry.
+    Five,
+}
+
+/// A deflection offset per ball added to `delta_j` (defects subtract, waviness adds):
+/// `offset(psi_j, t)`; `None` costs nothing.
+pub type Profile<'a> = Option<&'a dyn Fn(f64, f64) -> f64>;
+
+/// What one evaluation returns.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct RingEval {
+    /// Force and moment on the shaft `(Fx, Fy, Fz, Mx, My)`.
+    pub wrench: [f64; 5],
+    /// Stiffness `-dF/dq` (filled when asked).
+    pub k: [[f64; 5]; 5],
+    /// Damping `-dF/dv` (filled when asked).
+    pub c: [[f64; 5]; 5],
+    /// Balls in contact.
+    pub loaded: usize,
+    /// Largest ball load, N.
+    pub max_load: f64,
+}
+
+/// The ring-on-massless-balls force law of one bearing.
+#[derive(Debug, Clone)]
+pub struct RingModel {
+    dof: RingDof,
+    z: usize,
+    kn: f64,
+    pd: f64,
+    a: f64,
+    a10: f64,
+    a20: f64,
+    ri: f64,
+    damping: f64,
+    inner: PointContact,
+    outer: PointContact,
+}
+
+impl RingModel {
+    /// Build for bearing `b`, `dof`, contact damping `c` (N s/m per loaded ball).
+    pub fn new(b: &Bearing, dof: RingDof, damping: f64) -> Self {
+        let alpha = b.nominal_contact_angle();
+        let inner = PointContact::new(
+            Curvature::ball_race(b.d, b.dm, alpha, b.fi, Race::Inner),
+            b.e_eff_inner(),
+        );
+        let outer = PointContact::new(
+            Curvature::ball_race(b.d, b.dm, alpha, b.fo, Race::Outer),
+            b.e_eff_outer(),
+        );
+        let (a10, a20) = b.reference_groove_offset();
+        RingModel {
+            dof,
+            z: b.z,
+            kn: series_constant(inner.kc, outer.kc),
+            pd: b.pd,
+            a: b.a(),
+            a10,
+            a20,
+            ri: b.inner_groove_centre_radius(),
+            damping,
+            inner,
+            outer,
+        }
+    }
+
+    /// Series load–deflection constant `K_n`, N/m^1.5.
+    pub fn kn(&self) -> f64 {
+        self.kn
+    }
+
+    /// Peak Hertz pressure of a ball carrying `q` (the larger of its two contacts), Pa.
+    pub fn peak_pressure(&self, q: f64) -> f64 {
+        self.inner.peak_pressure(q).max(self.outer.peak_pressure(q))
+    }
+
+    /// Forces at cage angle `theta_c` (rad), cage speed `omega_c` (rad/s), ring
+    /// displacement `q` and velocity `v`, time `t` (for the profile). With `jac` the
+    /// stiffness and damping matrices are filled too. Allocation-free.
+    #[allow(clippy::too_many_arguments)]
+    pub fn eval(
+        &self,
+        theta_c: f64,
+        omega_c: f64,
+        q: &[f64; 5],
+        v: &[f64; 5],
+        t: f64,
+        profile: Profile<'_>,
+        jac: bool,
+        out: &mut RingEval,
+    ) {
+        *out = RingEval::default();
+        let dpsi = 2.0 * PI / self.z as f64;
+        for j in 0..self.z {
+            let psi = theta_c + dpsi * j as f64;
+            let (s, c) = psi.sin_cos();
+            // g: gradient of delta w.r.t. q; rate: d(delta)/dt; plus what the Hessian needs.
+            let (delta, g, rate, n, l, jm) = match self.dof {
+                RingDof::Two => {
+                    let delta = q[0] * c + q[1] * s - 0.5 * self.pd;
+                    let g = [c, s, 0.0, 0.0, 0.0];
+                    let rate = v[0] * c + v[1] * s + omega_c * (-q[0] * s + q[1] * c);
+                    (delta, g, rate, [0.0, 1.0], f64::INFINITY, [[0.0; 5]; 2])
+                }
+                RingDof::Five => {
+                    let a1 = self.a10 + q[2] + self.ri * (q[3] * s - q[4] * c);
+                    let a2 = self.a20 + q[0] * c + q[1] * s;
+                    let l = a1.hypot(a2);
+                    let n = [a1 / l, a2 / l];
+                    let jm = [
+                        [0.0, 0.0, 1.0, self.ri * s, -self.ri * c],
+                        [c, s, 0.0, 0.0, 0.0],
+                    ];
+                    let g: [f64; 5] = std::array::from_fn(|k| jm[0][k] * n[0] + jm[1][k] * n[1]);
+                    let da1 = v[2]
+                        + self.ri * (v[3] * s - v[4] * c)
+                        + omega_c * self.ri * (q[3] * c + q[4] * s);
+                    let da2 = v[0] * c + v[1] * s + omega_c * (-q[0] * s + q[1] * c);
+                    (l - self.a, g, n[0] * da1 + n[1] * da2, n, l, jm)
+                }
+            };
+            let delta = delta + profile.map_or(0.0, |p| p(psi, t));
+            if delta <= 0.0 {
+                continue;
+            }
+            let sq = delta.sqrt();
+            let load = self.kn * delta * sq;
+            let dload = 1.5 * self.kn * sq;
+            let blend = (delta / DAMPING_RAMP).min(1.0);
+            let cd = self.damping * blend;
+            let fn_ = load + cd * rate;
+            for k in 0..5 {
+                out.wrench[k] -= fn_ * g[k];
+            }
+            out.loaded += 1;
+            out.max_load = out.max_load.max(load);
+            if jac {
+                for r in 0..5 {
+                    for col in 0..5 {
+                        out.k[r][col] += dload * g[r] * g[col];
+                        out.c[r][col] += cd * g[r] * g[col];
+                    }
+                }
+                if self.dof == RingDof::Five {
+                    // Geometric term Q J^T (I - n n^T) J / l.
+                    let p = [
+                        [1.0 - n[0] * n[0], -n[0] * n[1]],
+                        [-n[0] * n[1], 1.0 - n[1] * n[1]],
+                    ];
+                    for r in 0..5 {
+                        for col in 0..5 {
+                            let mut h = 0.0;
+                            for a in 0..2 {
+                                for b in 0..2 {
+                                    h += jm[a][r] * p[a][b] * jm[b][col];
+                                }
+                            }
+                            out.k[r][col] += load * h / l;
+                        }
+                    }
+                }
+            }
+        }
+        if self.dof == RingDof::Two {
+            // Moments and axial force are not modelled by the radial geometry.
+            for k in 2..5 {
+                out.wrench[k] = 0.0;
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::preset;
+
+    fn eval(m: &RingModel, q: [f64; 5], theta: f64) -> RingEval {
+        let mut out = RingEval::default();
+        m.eval(theta, 0.0, &q, &[0.0; 5], 0.0, None, true, &mut out);
+        out
+    }
+
+    /// Zero clearance, one ball under the load line: the static radial balance
+    /// `Fr = Kn sum_j (delta cos psi_j)^1.5 cos psi_j` (numerics.md §5.2's construction).
+    #[test]
+    fn two_dof_matches_hand_sum_and_pushes_back() {
+        let b = preset("209").unwrap().build().unwrap();
+        let mut m = RingModel::new(&b, RingDof::Two, 0.0);
+        m.pd = 0.0;
+        let x = 12e-6;
+        let out = eval(&m, [x, 0.0, 0.0, 0.0, 0.0], 0.0);
+        let mut fr = 0.0;
+        for j in 0..9 {
+            let p = 2.0 * PI * j as f64 / 9.0;
+            let d = x * p.cos();
+            if d > 0.0 {
+                fr += m.kn * d.powf(1.5) * p.cos();
+            }
+        }
+        assert!(
+            (out.wrench[0] + fr).abs() < 1e-9 * fr,
+            "{} vs {}",
+            out.wrench[0],
+            -fr
+        );
+        assert!(
+            out.wrench[1].abs() < 1e-9 * fr,
+            "symmetric balls give no y force"
+        );
+        assert_eq!(out.loaded, 5); // balls at 0, ±40°, ±80°
+    }
+
+    /// The stiffness matrix is minus the derivative of the force (central differences),
+    /// and symmetric, in the 5-DOF geometry under a combined load.
+    #[test]
+    fn five_dof_stiffness_matches_finite_differences() {
+        let b = preset("7008ce").unwrap().build().unwrap();
+        let m = RingModel::new(&b, RingDof::Five, 0.0);
+        let q = [3e-6, -2e-6, 8e-6, 1e-4, -5e-5];
+        let base = eval(&m, q, 0.3);
+        let steps = [1e-9, 1e-9, 1e-9, 1e-7, 1e-7];
+        for col in 0..5 {
+            let (mut qp, mut qm) = (q, q);
+            qp[col] += steps[col];
+            qm[col] -= steps[col];
+            let (fp, fm) = (eval(&m, qp, 0.3).wrench, eval(&m, qm, 0.3).wrench);
+            for r in 0..5 {
+                let fd = -(fp[r] - fm[r]) / (2.0 * steps[col]);
+                let scale = base.k[r][r].abs().max(base.k[col][col].abs()).max(1.0);
+                assert!(
+                    (fd - base.k[r][col]).abs() < 1e-4 * scale,
+                    "K[{r}][{col}] = {} vs fd {fd}",
+                    base.k[r][col]
+                );
+                assert!((base.k[r][col] - base.k[col][r]).abs() < 1e-9 * scale);
+            }
+        }
+    }
+
+    /// Pure axial push on an angular-contact bearing: every ball carries the same load and
+    /// `Fz = -Z Q sin(alpha)` with `alpha` from the Jones geometry.
+    #[test]
+    fn five_dof_pure_axial_is_uniform() {
+        let b = preset("218").unwrap().build().unwrap();
+        let m = RingModel::new(&b, RingDof::Five, 0.0);
+        let z = 20e-6;
+        let out = eval(&m, [0.0, 0.0, z, 0.0, 0.0], 0.1);
+        let (a10, a20) = b.reference_groove_offset();
+        let (a1, a2) = (a10 + z, a20);
+        let l = a1.hypot(a2);
+        let q = m.kn * (l - b.a()).powf(1.5);
+        assert!((out.wrench[2] + 16.0 * q * a1 / l).abs() < 1e-9 * out.wrench[2].abs());
+        assert!(out.wrench[0].abs() < 1e-6 && out.wrench[3].abs() < 1e-6);
+        assert_eq!(out.loaded, 16);
+    }
+
+    /// A profile that removes material (a defect) unloads the ball it passes.
+    #[test]
+    fn profile_offsets_the_deflection() {
+        let b = preset("6205").unwrap().build().unwrap();
+        let m = RingModel::new(&b, RingDof::Two, 0.0);
+        let q = [10e-6, 0.0, 0.0, 0.0, 0.0];
+        let plain = eval(&m, q, 0.0);
+        let dent = |psi: f64, _t: f64| if psi.cos() > 0.999 { -20e-6 } else { 0.0 };
+        let mut out = RingEval::default();
+        m.eval(0.0, 0.0, &q, &[0.0; 5], 0.0, Some(&dent), false, &mut out);
+        assert_eq!(out.loaded, plain.loaded - 1);
+        assert!(out.wrench[0] > plain.wrench[0]);
+    }
+}
