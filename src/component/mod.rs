@@ -5,6 +5,8 @@
 //! call either succeeds or returns an error that names the cause and leaves the component
 //! exactly as it was.
 
+pub mod level;
+pub mod levels;
 pub mod scene;
 pub mod state;
 pub mod variables;
@@ -15,6 +17,9 @@ pub use variables::{Causality, Variable};
 
 use crate::error::{Error, Result};
 use crate::geometry::Bearing;
+use crate::models::ring::RingDof;
+use level::{LevelModel, LevelOutputs, Motion};
+use variables::SCALARS;
 
 /// Cost counters of the internal integration.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -36,18 +41,27 @@ pub fn n_variables() -> usize {
     variables::all().count()
 }
 
-fn index_of(vr: u32) -> Option<usize> {
+/// Position of a value reference in [`variables::all`] (the index into the state's
+/// `inputs` and `outputs` vectors).
+pub fn index_of(vr: u32) -> Option<usize> {
     variables::all().position(|v| v.vr == vr)
 }
 
-/// A running bearing.
-#[derive(Debug, Clone)]
-pub struct Component {
-    scene: Scene,
-    bearing: Bearing,
-    state: State,
-    stats: Stats,
-}
+// Positions in the table of the variables the component reads and writes on its hot
+// path; `slots_match_the_table` checks them against the names.
+const I_Q: usize = 0; // shaft.x .. shaft.ry
+const I_V: usize = 5; // shaft.vx .. shaft.wy
+const I_OMEGA: usize = 10;
+const I_LOAD: usize = 11; // load.x .. load.my
+const I_FORCE: usize = 16; // force.x .. moment.y
+const I_TORQUE: usize = 21;
+const I_CAGE_OMEGA: usize = 22;
+const I_DIAG: usize = 23; // cage.slip, balls.loaded, contact.max_load, contact.max_pressure, film, power, wear
+const I_K: usize = 30;
+const I_C: usize = 55;
+
+/// Time offset of the central difference that gives output derivatives, s.
+const DT_DERIV: f64 = 1e-7;
 
 /// FNV-1a over bytes: a stable fingerprint (not cryptographic).
 pub fn fingerprint(bytes: &[u8]) -> u64 {
@@ -59,6 +73,60 @@ pub fn fingerprint(bytes: &[u8]) -> u64 {
     h
 }
 
+/// The inner ring as a body (load-driven causality).
+#[derive(Debug, Clone)]
+struct RingBody {
+    /// Coordinates integrated (indices into q).
+    dofs: &'static [usize],
+    /// Mass (translations) or transverse inertia (tilts) per coordinate of `q`.
+    inertia: [f64; 5],
+}
+
+/// Preallocated work space of a step (no allocation inside `do_step`).
+#[derive(Debug, Clone, Default)]
+struct Work {
+    k: [Vec<f64>; 4],
+    y: Vec<f64>,
+    aux_save: Vec<f64>,
+}
+
+/// A running bearing: created from a scene, stepped by a host.
+#[derive(Debug)]
+pub struct Component {
+    scene: Scene,
+    bearing: Bearing,
+    level: Box<dyn LevelModel>,
+    ring: Option<RingBody>,
+    n_level: usize,
+    n_level_aux: usize,
+    state: State,
+    scratch: State,
+    work: Work,
+    stats: Stats,
+    outputs_fresh: bool,
+}
+
+fn build_level(scene: &Scene, b: &Bearing) -> Result<Box<dyn LevelModel>> {
+    let m = &scene.model;
+    Ok(match m.level {
+        Level::Ring => {
+            let dof = if m.ring_dof == 5 {
+                RingDof::Five
+            } else {
+                RingDof::Two
+            };
+            Box::new(levels::RingLevel::new(b, dof, m.contact_damping))
+        }
+        Level::QuasiStatic | Level::Linear => {
+            return Err(Error::invalid(
+                "model.level",
+                m.level.name(),
+                "ring (the other levels are being wired)",
+            ))
+        }
+    })
+}
+
 impl Component {
     /// Create from scene text (TOML or JSON).
     pub fn from_text(text: &str) -> Result<Component> {
@@ -68,30 +136,80 @@ impl Component {
     /// Create from a scene. A bad scene is refused with a message naming the field.
     pub fn new(scene: Scene) -> Result<Component> {
         let bearing = scene.validate()?;
+        let mut level = build_level(&scene, &bearing)?;
         let n = n_variables();
         let fp = fingerprint(serde_json::to_string(&scene).unwrap_or_default().as_bytes());
+        let causality = scene.model.causality;
+        let ring = match causality {
+            Causality::Motion => None,
+            Causality::Load => {
+                let m = bearing.inner_ring_mass + scene.model.attached_mass_kg;
+                let ro = 0.5 * (bearing.dm - bearing.d);
+                let ri = 0.5 * bearing.bore;
+                let it = bearing.inner_ring_mass
+                    * (3.0 * (ro * ro + ri * ri) + bearing.width.powi(2))
+                    / 12.0;
+                Some(RingBody {
+                    dofs: level.ring_dofs(),
+                    inertia: [m, m, m, it, it],
+                })
+            }
+        };
+        let n_level = level.n_states();
+        let n_level_aux = level.n_aux();
+        let n_ring = ring.as_ref().map_or(0, |r| 2 * r.dofs.len());
         let mut state = State {
             scene_fingerprint: fp,
+            x: vec![0.0; n_level + n_ring],
+            aux: vec![0.0; n_level_aux + 1],
             inputs: vec![0.0; n],
             input_derivatives: vec![0.0; 3 * n],
             outputs: vec![0.0; n],
             output_derivatives: vec![0.0; n],
             ..State::default()
         };
-        let causality = scene.model.causality;
         for (name, value) in &scene.inputs.initial {
             let v = variables::by_name(name).expect("validated");
             let i = index_of(v.vr).expect("in table");
             state.inputs[i] = *value;
-            state.inputs_set |= 1 << input_bit(v.vr);
+            state.inputs_set |= 1 << i;
         }
-        let _ = causality;
-        Ok(Component {
+        let motion = motion_at(
+            &state,
+            scene.inputs.rule,
+            0.0,
+            causality,
+            ring.as_ref(),
+            n_level,
+        );
+        level.init(
+            &motion,
+            &mut state.x[..n_level],
+            &mut state.aux[..n_level_aux],
+        )?;
+        let dim = state.x.len();
+        let work = Work {
+            k: std::array::from_fn(|_| vec![0.0; dim]),
+            y: vec![0.0; dim],
+            aux_save: vec![0.0; n_level_aux + 1],
+        };
+        let mut c = Component {
             scene,
             bearing,
+            level,
+            ring,
+            n_level,
+            n_level_aux,
+            scratch: state.clone(),
             state,
+            work,
             stats: Stats::default(),
-        })
+            outputs_fresh: false,
+        };
+        if c.missing_inputs().is_empty() {
+            c.refresh_outputs()?;
+        }
+        Ok(c)
     }
 
     /// The scene.
@@ -115,7 +233,7 @@ impl Component {
         self.stats
     }
 
-    /// Set an input by value reference.
+    /// Set an input by value reference. Setting a value clears that input's derivatives.
     pub fn set_real(&mut self, vr: u32, value: f64) -> Result<()> {
         let v = variables::by_vr(vr)
             .ok_or_else(|| Error::invalid("value reference", vr, "a variable of the table"))?;
@@ -130,12 +248,14 @@ impl Component {
         }
         let i = index_of(vr).expect("in table");
         self.state.inputs[i] = value;
-        self.state.inputs_set |= 1 << input_bit(vr);
+        self.state.input_derivatives[3 * i..3 * i + 3].fill(0.0);
+        self.state.inputs_set |= 1 << i;
+        self.outputs_fresh = false;
         Ok(())
     }
 
-    /// Set the `order`-th time derivative (1..=3) of an input, used with
-    /// [`InputRule::Derivatives`]. Derivatives are reset to zero after each step.
+    /// Set the `order`-th time derivative (1..=3) of an input at the start of the next
+    /// step, used with [`InputRule::Derivatives`]. They hold until the input is set again.
     pub fn set_input_derivative(&mut self, vr: u32, order: u32, value: f64) -> Result<()> {
         let v = variables::by_vr(vr)
             .ok_or_else(|| Error::invalid("value reference", vr, "a variable of the table"))?;
@@ -156,7 +276,8 @@ impl Component {
         Ok(())
     }
 
-    /// Get an input or output by value reference.
+    /// Get an input or output by value reference. Outputs are those of the last step (or
+    /// of [`Component::refresh_outputs`]).
     pub fn get_real(&self, vr: u32) -> Result<f64> {
         let v = variables::by_vr(vr)
             .ok_or_else(|| Error::invalid("value reference", vr, "a variable of the table"))?;
@@ -181,7 +302,38 @@ impl Component {
         Ok(self.state.output_derivatives[index_of(vr).expect("in table")])
     }
 
-    /// Advance from `t` to `t + h`. On error the state is unchanged.
+    fn missing_inputs(&self) -> Vec<&'static str> {
+        SCALARS
+            .iter()
+            .enumerate()
+            .filter(|(i, v)| v.is_input(self.causality()) && self.state.inputs_set & (1 << i) == 0)
+            .map(|(_, v)| v.name)
+            .collect()
+    }
+
+    /// Evaluate the outputs at the current time and inputs (for hosts that read outputs
+    /// before the first step, e.g. in FMI initialisation mode). On error nothing changes.
+    pub fn refresh_outputs(&mut self) -> Result<()> {
+        let missing = self.missing_inputs();
+        if !missing.is_empty() {
+            return Err(Error::CallOrder {
+                call: "refresh_outputs",
+                reason: format!("inputs never set: {}", missing.join(", ")),
+            });
+        }
+        self.scratch.clone_from(&self.state);
+        let mut sc = std::mem::take(&mut self.scratch);
+        let r = self.compute_outputs(&mut sc, 0.0);
+        if r.is_ok() {
+            std::mem::swap(&mut self.state, &mut sc);
+            self.outputs_fresh = true;
+        }
+        self.scratch = sc;
+        r
+    }
+
+    /// Advance from `t` to `t + h`, sub-stepping inside. On error the state is unchanged
+    /// and the message says why.
     pub fn do_step(&mut self, t: f64, h: f64) -> Result<()> {
         if !(h.is_finite() && h > 0.0) {
             return Err(Error::invalid("h", h, "a finite number > 0"));
@@ -189,47 +341,225 @@ impl Component {
         if !t.is_finite() {
             return Err(Error::invalid("t", t, "a finite number"));
         }
-        let tol = 1e-9 * (1.0 + self.state.t.abs());
+        let tol = 1e-9 * (1.0 + self.state.t.abs()).max(h);
         if self.state.started && (t - self.state.t).abs() > tol {
             return Err(Error::CallOrder {
                 call: "do_step",
                 reason: format!(
-                    "t = {t} but the component is at {} (time must not jump or run backwards)",
+                    "t = {t} s but the component is at {} s (time must not jump or run backwards)",
                     self.state.t
                 ),
             });
         }
-        self.check_inputs_set()?;
-        // STUB physics: a linear spring, replaced by the model levels.
-        let k = 1e8;
-        let i = |vr| index_of(vr).unwrap();
-        let (x, y) = (self.state.inputs[i(1)], self.state.inputs[i(2)]);
-        self.state.outputs[i(101)] = -k * x;
-        self.state.outputs[i(102)] = -k * y;
-        for d in 0..5 {
-            self.state.outputs[i(variables::VR_K0 + 6 * d as u32)] = k;
+        let missing = self.missing_inputs();
+        if !missing.is_empty() {
+            return Err(Error::CallOrder {
+                call: "do_step",
+                reason: format!("inputs never set: {}", missing.join(", ")),
+            });
         }
-        self.state.t = t + h;
-        self.state.started = true;
+        self.scratch.clone_from(&self.state);
+        let mut sc = std::mem::take(&mut self.scratch);
+        // The host owns time: re-sync to its communication point (within the tolerance).
+        sc.t = t;
+        let r = self
+            .integrate(&mut sc, h)
+            .and_then(|_| self.compute_outputs(&mut sc, h));
+        if r.is_ok() {
+            sc.t = t + h;
+            sc.started = true;
+            std::mem::swap(&mut self.state, &mut sc);
+            self.outputs_fresh = true;
+        }
+        self.scratch = sc;
+        r.map_err(|e| match e {
+            Error::StepFailed { .. } => e,
+            other => Error::StepFailed {
+                t,
+                reason: other.to_string(),
+            },
+        })
+    }
+
+    /// Integrate the states of `sc` over `h` (classic RK4 on sub-steps; replaced by the
+    /// adaptive integrators).
+    fn integrate(&mut self, sc: &mut State, h: f64) -> Result<()> {
+        let n = sc.x.len();
+        if n == 0 {
+            return Ok(());
+        }
+        let max_sub = if self.scene.solver.max_substep_s > 0.0 {
+            self.scene.solver.max_substep_s
+        } else {
+            1e-5
+        };
+        let steps = (h / max_sub).ceil().max(1.0) as usize;
+        if steps > self.scene.solver.max_substeps as usize {
+            return Err(Error::StepFailed {
+                t: sc.t,
+                reason: format!("{steps} sub-steps needed, limit solver.max_substeps"),
+            });
+        }
+        let dt = h / steps as f64;
+        let mut w = std::mem::take(&mut self.work);
+        let mut r = Ok(());
+        'outer: for i in 0..steps {
+            let s0 = i as f64 * dt;
+            for stage in 0..4 {
+                let (c, a) = [(0.0, 0.0), (0.5, 0.5), (0.5, 0.5), (1.0, 1.0)][stage];
+                for j in 0..n {
+                    w.y[j] = sc.x[j]
+                        + if stage == 0 {
+                            0.0
+                        } else {
+                            a * dt * w.k[stage - 1][j]
+                        };
+                }
+                let (ks, rest) = w.k.split_at_mut(stage);
+                let _ = ks;
+                if let Err(e) = self.rhs(sc, s0 + c * dt, &w.y, &mut rest[0]) {
+                    r = Err(e);
+                    break 'outer;
+                }
+            }
+            for j in 0..n {
+                sc.x[j] += dt / 6.0 * (w.k[0][j] + 2.0 * w.k[1][j] + 2.0 * w.k[2][j] + w.k[3][j]);
+            }
+            self.stats.accepted += 1;
+        }
+        self.work = w;
+        r
+    }
+
+    /// Right-hand side of the whole system at `s` after the step start.
+    fn rhs(&mut self, sc: &mut State, s: f64, y: &[f64], dy: &mut [f64]) -> Result<()> {
+        self.stats.rhs += 1;
+        let nl = self.n_level;
+        let m = motion_at_y(
+            sc,
+            self.scene.inputs.rule,
+            s,
+            self.causality(),
+            self.ring.as_ref(),
+            nl,
+            y,
+        );
+        let t = sc.t + s;
+        let (aux, _) = sc.aux.split_at_mut(self.n_level_aux);
+        match &self.ring {
+            None => self.level.rhs(t, &m, &y[..nl], aux, &mut dy[..nl], None)?,
+            Some(ring) => {
+                let mut w = [0.0; 5];
+                self.level
+                    .rhs(t, &m, &y[..nl], aux, &mut dy[..nl], Some(&mut w))?;
+                let nd = ring.dofs.len();
+                for (k, &d) in ring.dofs.iter().enumerate() {
+                    let load = input_at(sc, I_LOAD + d, s, self.scene.inputs.rule);
+                    dy[nl + k] = y[nl + nd + k];
+                    dy[nl + nd + k] = (w[d] + load) / ring.inertia[d];
+                }
+            }
+        }
+        if dy.iter().any(|v| !v.is_finite()) {
+            return Err(Error::StepFailed {
+                t,
+                reason: "non-finite state derivative".into(),
+            });
+        }
         Ok(())
     }
 
-    fn check_inputs_set(&self) -> Result<()> {
-        let missing: Vec<&str> = variables::SCALARS
-            .iter()
-            .filter(|v| {
-                v.is_input(self.causality()) && self.state.inputs_set & (1 << input_bit(v.vr)) == 0
-            })
-            .map(|v| v.name)
-            .collect();
-        if missing.is_empty() {
-            Ok(())
-        } else {
-            Err(Error::CallOrder {
-                call: "do_step",
-                reason: format!("inputs never set: {}", missing.join(", ")),
-            })
+    /// Fill the outputs of `sc` at `s` after its time (`sc.x` already at that time).
+    fn compute_outputs(&mut self, sc: &mut State, s: f64) -> Result<()> {
+        let nl = self.n_level;
+        let rule = self.scene.inputs.rule;
+        let causality = self.causality();
+        let m = motion_at_y(sc, rule, s, causality, self.ring.as_ref(), nl, &sc.x);
+        let mut out = LevelOutputs::default();
+        {
+            let (aux, _) = sc.aux.split_at_mut(self.n_level_aux);
+            self.level
+                .outputs(sc.t + s, &m, &sc.x[..nl], aux, &mut out)?;
         }
+        let o = &mut sc.outputs;
+        o[I_FORCE..I_FORCE + 5].copy_from_slice(&out.wrench);
+        o[I_TORQUE] = out.torque;
+        o[I_CAGE_OMEGA] = out.cage_omega;
+        let diag = [
+            out.cage_slip,
+            out.balls_loaded,
+            out.max_load,
+            out.max_pressure,
+            out.film_min,
+            out.power_loss,
+            out.wear_max,
+        ];
+        o[I_DIAG..I_DIAG + 7].copy_from_slice(&diag);
+        for r in 0..5 {
+            o[I_K + 5 * r..I_K + 5 * r + 5].copy_from_slice(&out.k[r]);
+            o[I_C + 5 * r..I_C + 5 * r + 5].copy_from_slice(&out.c[r]);
+        }
+        if let Some(ring) = &self.ring {
+            o[I_Q..I_Q + 5].copy_from_slice(&m.q);
+            o[I_V..I_V + 5].copy_from_slice(&m.v);
+            for &d in ring.dofs {
+                let load = input_at(sc, I_LOAD + d, s, rule);
+                sc.output_derivatives[I_Q + d] = m.v[d];
+                sc.output_derivatives[I_V + d] = (out.wrench[d] + load) / ring.inertia[d];
+            }
+        }
+        // dF/dt by a central difference in time along the inputs' rule and the states' rates.
+        let n = sc.x.len();
+        let mut w = std::mem::take(&mut self.work);
+        w.aux_save.copy_from_slice(&sc.aux);
+        let mut fwd = [0.0; 5];
+        let mut bwd = [0.0; 5];
+        w.y.copy_from_slice(&sc.x);
+        let mut r = self.rhs(sc, s, &w.y, &mut w.k[0]);
+        for (sign, dest) in [(1.0, &mut fwd), (-1.0, &mut bwd)] {
+            if r.is_err() {
+                break;
+            }
+            for j in 0..n {
+                w.y[j] = sc.x[j] + sign * DT_DERIV * w.k[0][j];
+            }
+            let ms = motion_at_y(
+                sc,
+                rule,
+                s + sign * DT_DERIV,
+                causality,
+                self.ring.as_ref(),
+                nl,
+                &w.y,
+            );
+            let (aux, _) = sc.aux.split_at_mut(self.n_level_aux);
+            r = self.level.rhs(
+                sc.t + s + sign * DT_DERIV,
+                &ms,
+                &w.y[..nl],
+                aux,
+                &mut w.k[1][..nl],
+                Some(dest),
+            );
+        }
+        sc.aux.copy_from_slice(&w.aux_save);
+        self.work = w;
+        r?;
+        for k in 0..5 {
+            sc.output_derivatives[I_FORCE + k] = (fwd[k] - bwd[k]) / (2.0 * DT_DERIV);
+        }
+        if sc
+            .outputs
+            .iter()
+            .chain(&sc.output_derivatives)
+            .any(|v| !v.is_finite())
+        {
+            return Err(Error::StepFailed {
+                t: sc.t,
+                reason: "non-finite output".into(),
+            });
+        }
+        Ok(())
     }
 
     /// A copy of the complete state.
@@ -243,7 +573,9 @@ impl Component {
             || s.x.len() != self.state.x.len()
             || s.aux.len() != self.state.aux.len()
             || s.inputs.len() != self.state.inputs.len()
+            || s.input_derivatives.len() != self.state.input_derivatives.len()
             || s.outputs.len() != self.state.outputs.len()
+            || s.output_derivatives.len() != self.state.output_derivatives.len()
         {
             return Err(Error::CallOrder {
                 call: "set_state",
@@ -265,9 +597,10 @@ impl Component {
         self.set_state(&s)
     }
 
-    /// Directional derivative of outputs `unknowns` with respect to inputs `knowns` along
-    /// `seed` (`out = J seed`), at the current state: the stiffness and damping matrices
-    /// (and, for `shaft.omega`, a finite difference).
+    /// Directional derivative `out = J seed` of outputs `unknowns` with respect to inputs
+    /// `knowns`, at the current state. Forces and moments respond to displacements through
+    /// `-K` and to velocities through `-C` (motion-driven); other pairs have no direct
+    /// dependence and give 0.
     pub fn directional_derivative(
         &self,
         unknowns: &[u32],
@@ -279,49 +612,128 @@ impl Component {
             return Err(Error::invalid(
                 "directional derivative",
                 "lengths",
-                "seed like knowns, out like unknowns",
+                "seed as long as knowns, out as long as unknowns",
             ));
         }
-        // Forces and moments: J = -K (displacement knowns), -C (velocity knowns), from the
-        // K and C outputs; other unknowns and knowns contribute zero.
-        for (o, &u) in out.iter_mut().zip(unknowns) {
-            let row = [101u32, 102, 103, 104, 105].iter().position(|&f| f == u);
-            *o = 0.0;
-            for (&k, &s) in knowns.iter().zip(seed) {
-                if variables::by_vr(k).is_none() {
-                    return Err(Error::invalid(
-                        "directional derivative known",
-                        k,
-                        "a variable of the table",
-                    ));
-                }
-                let Some(r) = row else { continue };
-                if (1..=5).contains(&k) {
-                    *o -= self.state.outputs
-                        [index_of(variables::VR_K0 + 5 * r as u32 + (k - 1)).unwrap()]
-                        * s;
-                } else if (6..=10).contains(&k) {
-                    *o -= self.state.outputs
-                        [index_of(variables::VR_C0 + 5 * r as u32 + (k - 6)).unwrap()]
-                        * s;
-                }
-            }
-            if variables::by_vr(u).is_none() {
+        for &k in knowns {
+            if variables::by_vr(k).is_none() {
                 return Err(Error::invalid(
+                    "directional derivative known",
+                    k,
+                    "a variable of the table",
+                ));
+            }
+        }
+        let motion = self.causality() == Causality::Motion;
+        for (o, &u) in out.iter_mut().zip(unknowns) {
+            let ui = index_of(u).ok_or_else(|| {
+                Error::invalid(
                     "directional derivative unknown",
                     u,
                     "a variable of the table",
-                ));
+                )
+            })?;
+            *o = 0.0;
+            if !(motion && (I_FORCE..I_FORCE + 5).contains(&ui)) {
+                continue;
+            }
+            let r = ui - I_FORCE;
+            for (&k, &s) in knowns.iter().zip(seed) {
+                let ki = index_of(k).expect("checked");
+                if (I_Q..I_Q + 5).contains(&ki) {
+                    *o -= self.state.outputs[I_K + 5 * r + (ki - I_Q)] * s;
+                } else if (I_V..I_V + 5).contains(&ki) {
+                    *o -= self.state.outputs[I_C + 5 * r + (ki - I_V)] * s;
+                }
             }
         }
         Ok(())
     }
 }
 
-/// Bit of an input in the "inputs set" mask: its position among the scalar variables.
-fn input_bit(vr: u32) -> u32 {
-    variables::SCALARS
-        .iter()
-        .position(|v| v.vr == vr)
-        .unwrap_or(63) as u32
+/// Input `i` at `s` after the step start under `rule`.
+fn input_at(st: &State, i: usize, s: f64, rule: InputRule) -> f64 {
+    let u = st.inputs[i];
+    match rule {
+        InputRule::Hold => u,
+        InputRule::Velocity => {
+            if (I_Q..I_Q + 5).contains(&i) {
+                u + st.inputs[i - I_Q + I_V] * s
+            } else {
+                u
+            }
+        }
+        InputRule::Derivatives => {
+            let d = &st.input_derivatives[3 * i..3 * i + 3];
+            u + s * (d[0] + s * (d[1] / 2.0 + s * d[2] / 6.0))
+        }
+    }
+}
+
+fn motion_at(
+    st: &State,
+    rule: InputRule,
+    s: f64,
+    c: Causality,
+    ring: Option<&RingBody>,
+    nl: usize,
+) -> Motion {
+    motion_at_y(st, rule, s, c, ring, nl, &st.x)
+}
+
+/// The ring's motion at `s` after the step start: from the inputs (motion-driven) or from
+/// the states `y` (load-driven).
+fn motion_at_y(
+    st: &State,
+    rule: InputRule,
+    s: f64,
+    c: Causality,
+    ring: Option<&RingBody>,
+    nl: usize,
+    y: &[f64],
+) -> Motion {
+    let mut m = Motion {
+        omega: input_at(st, I_OMEGA, s, rule),
+        ..Motion::default()
+    };
+    match (c, ring) {
+        (Causality::Load, Some(r)) => {
+            let nd = r.dofs.len();
+            for (k, &d) in r.dofs.iter().enumerate() {
+                m.q[d] = y[nl + k];
+                m.v[d] = y[nl + nd + k];
+            }
+        }
+        _ => {
+            for k in 0..5 {
+                m.q[k] = input_at(st, I_Q + k, s, rule);
+                m.v[k] = input_at(st, I_V + k, s, rule);
+            }
+        }
+    }
+    m
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn slots_match_the_table() {
+        let at = |i: usize| variables::all().nth(i).unwrap().name;
+        assert_eq!(at(I_Q), "shaft.x");
+        assert_eq!(at(I_V + 4), "shaft.wy");
+        assert_eq!(at(I_OMEGA), "shaft.omega");
+        assert_eq!(at(I_LOAD + 4), "load.my");
+        assert_eq!(at(I_FORCE + 4), "moment.y");
+        assert_eq!(at(I_TORQUE), "torque.z");
+        assert_eq!(at(I_CAGE_OMEGA), "cage.omega");
+        assert_eq!(at(I_DIAG), "cage.slip");
+        assert_eq!(at(I_DIAG + 6), "wear.max_depth");
+        assert_eq!(at(I_K), "K.x.x");
+        assert_eq!(at(I_C + 24), "C.ry.ry");
+        assert_eq!(variables::by_vr(variables::VR_K0).unwrap().name, "K.x.x");
+        assert_eq!(variables::by_vr(variables::VR_C0).unwrap().name, "C.x.x");
+        assert!(SCALARS.len() <= 64, "the inputs-set mask is a u64");
+    }
 }

@@ -1,0 +1,86 @@
+//! The seam between the component and the physics: every model level implements
+//! [`LevelModel`]. The component owns time, inputs, the integrator, transactions and the
+//! variable table; a level owns its states and its physics. A new level (skidding, full
+//! dynamics) or effect (defects, waviness, EHL, wear, thermal) plugs in here and is seen
+//! by the C ABI and the FMUs without any change to them.
+
+use crate::error::Result;
+
+/// The inner ring's motion at one instant (SI): displacement `q = (x, y, z, rx, ry)`, its
+/// rate `v`, and the spin speed `omega`.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Motion {
+    /// Displacement and tilts.
+    pub q: [f64; 5],
+    /// Velocities and tilt rates.
+    pub v: [f64; 5],
+    /// Spin speed about z, rad/s.
+    pub omega: f64,
+}
+
+/// What a level reports at a communication point. Fields a level does not model stay 0.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct LevelOutputs {
+    /// `(Fx, Fy, Fz, Mx, My)` on the shaft.
+    pub wrench: [f64; 5],
+    /// Friction torque on the shaft about z, N m.
+    pub torque: f64,
+    /// Stiffness `-dF/dq`.
+    pub k: [[f64; 5]; 5],
+    /// Damping `-dF/dv`.
+    pub c: [[f64; 5]; 5],
+    /// Cage speed, rad/s.
+    pub cage_omega: f64,
+    /// Cage slip ratio.
+    pub cage_slip: f64,
+    /// Balls in contact.
+    pub balls_loaded: f64,
+    /// Largest contact load, N.
+    pub max_load: f64,
+    /// Largest Hertz peak pressure, Pa.
+    pub max_pressure: f64,
+    /// Thinnest EHL film, m.
+    pub film_min: f64,
+    /// Friction power, W.
+    pub power_loss: f64,
+    /// Deepest wear, m.
+    pub wear_max: f64,
+}
+
+/// One model level.
+pub trait LevelModel: Send + std::fmt::Debug {
+    /// Level name as a scene spells it.
+    fn name(&self) -> &'static str;
+    /// Number of continuous states the level integrates (cage angle, ball states, ...).
+    fn n_states(&self) -> usize;
+    /// Number of algebraic/memory values (warm starts) kept in the component state.
+    fn n_aux(&self) -> usize {
+        0
+    }
+    /// Which ring coordinates the level resolves (load-driven integrates only these).
+    fn ring_dofs(&self) -> &'static [usize] {
+        &[0, 1, 2, 3, 4]
+    }
+    /// Initial states at the start motion.
+    fn init(&mut self, m: &Motion, x: &mut [f64], aux: &mut [f64]) -> Result<()>;
+    /// Time derivatives of the level's states at `t`; when `wrench` is given, also the
+    /// force and moment on the shaft. Must not allocate.
+    fn rhs(
+        &mut self,
+        t: f64,
+        m: &Motion,
+        x: &[f64],
+        aux: &mut [f64],
+        dx: &mut [f64],
+        wrench: Option<&mut [f64; 5]>,
+    ) -> Result<()>;
+    /// Everything the level reports at `t`. Must not allocate.
+    fn outputs(
+        &mut self,
+        t: f64,
+        m: &Motion,
+        x: &[f64],
+        aux: &mut [f64],
+        out: &mut LevelOutputs,
+    ) -> Result<()>;
+}

@@ -1,0 +1,208 @@
+//! Behaviour of the co-simulation component: transactions, state round trips, bad input,
+//! and the ring level through the component against the physics directly.
+
+use raceway::component::{index_of, variables, Component};
+use raceway::error::Error;
+
+const RING_MOTION: &str = r#"
+bearing = "6205"
+[model]
+level = "ring"
+contact_damping = 200.0
+[inputs]
+initial = { "shaft.x" = 0.0, "shaft.y" = -8e-6, "shaft.z" = 0.0, "shaft.rx" = 0.0, "shaft.ry" = 0.0,
+            "shaft.vx" = 0.0, "shaft.vy" = 0.0, "shaft.vz" = 0.0, "shaft.wx" = 0.0, "shaft.wy" = 0.0,
+            "shaft.omega" = 183.26 }
+"#;
+
+const RING_LOAD: &str = r#"
+bearing = { preset = "6205", clearance_um = 10.0 }
+[model]
+level = "ring"
+causality = "load"
+contact_damping = 3000.0
+attached_mass_kg = 1.0
+[inputs]
+initial = { "load.x" = 0.0, "load.y" = -1000.0, "load.z" = 0.0, "load.mx" = 0.0, "load.my" = 0.0, "shaft.omega" = 183.26 }
+"#;
+
+fn vr(name: &str) -> u32 {
+    variables::by_name(name).unwrap().vr
+}
+
+fn outputs(c: &Component) -> Vec<u64> {
+    variables::all()
+        .map(|v| c.get_real(v.vr).unwrap().to_bits())
+        .collect()
+}
+
+#[test]
+fn restored_state_continues_bit_for_bit() {
+    let mut c = Component::from_text(RING_LOAD).unwrap();
+    let h = 1e-4;
+    for i in 0..20 {
+        c.do_step(i as f64 * h, h).unwrap();
+    }
+    let saved = c.get_state();
+    let bytes = c.serialize_state();
+    for i in 20..40 {
+        c.do_step(i as f64 * h, h).unwrap();
+    }
+    let a = outputs(&c);
+    c.set_state(&saved).unwrap();
+    for i in 20..40 {
+        c.do_step(i as f64 * h, h).unwrap();
+    }
+    assert_eq!(a, outputs(&c), "set_state continues identically");
+    // Another instance of the same scene, restored from bytes.
+    let mut d = Component::from_text(RING_LOAD).unwrap();
+    d.deserialize_state(&bytes).unwrap();
+    for i in 20..40 {
+        d.do_step(i as f64 * h, h).unwrap();
+    }
+    assert_eq!(a, outputs(&d), "deserialised state continues identically");
+    // A state of another scene is refused.
+    let mut other = Component::from_text(RING_MOTION).unwrap();
+    assert!(other.deserialize_state(&bytes).is_err());
+}
+
+#[test]
+fn failed_step_leaves_state_unchanged_and_says_why() {
+    let mut c = Component::from_text(RING_LOAD).unwrap();
+    c.do_step(0.0, 1e-4).unwrap();
+    let before = c.get_state();
+    // A huge step needs more sub-steps than the scene allows.
+    let e = c.do_step(1e-4, 1e3).unwrap_err();
+    assert!(matches!(e, Error::StepFailed { .. }), "{e}");
+    assert!(e.to_string().contains("max_substeps"), "{e}");
+    assert_eq!(c.get_state(), before);
+    // Still usable.
+    c.do_step(1e-4, 1e-4).unwrap();
+}
+
+#[test]
+fn bad_calls_are_refused_and_the_component_stays_usable() {
+    let mut c = Component::from_text(RING_MOTION).unwrap();
+    let before = c.get_state();
+    for (t, h, why) in [
+        (0.0, 0.0, "> 0"),
+        (0.0, -1e-3, "> 0"),
+        (0.0, f64::NAN, "finite"),
+        (f64::INFINITY, 1e-3, "finite"),
+    ] {
+        let e = c.do_step(t, h).unwrap_err().to_string();
+        assert!(e.contains(why), "{e}");
+    }
+    assert!(c
+        .set_real(vr("shaft.x"), f64::NAN)
+        .unwrap_err()
+        .to_string()
+        .contains("shaft.x"));
+    assert!(c
+        .set_real(vr("force.x"), 1.0)
+        .unwrap_err()
+        .to_string()
+        .contains("not an input"));
+    assert!(
+        c.set_real(vr("load.x"), 1.0).is_err(),
+        "load inputs are not inputs when motion-driven"
+    );
+    assert!(c.set_real(99_999, 1.0).is_err());
+    assert_eq!(c.get_state(), before);
+    c.do_step(0.0, 1e-3).unwrap();
+    let e = c.do_step(0.5e-3, 1e-3).unwrap_err().to_string();
+    assert!(e.contains("backwards") || e.contains("jump"), "{e}");
+    c.do_step(1e-3, 1e-3).unwrap();
+    assert!((c.time() - 2e-3).abs() < 1e-15);
+}
+
+#[test]
+fn do_step_before_inputs_names_the_missing_inputs() {
+    let mut c = Component::from_text("bearing = \"6205\"\n[model]\nlevel = \"ring\"\n").unwrap();
+    let e = c.do_step(0.0, 1e-3).unwrap_err().to_string();
+    assert!(e.contains("shaft.x") && e.contains("shaft.omega"), "{e}");
+}
+
+#[test]
+fn bad_scenes_name_the_field() {
+    for (text, field) in [
+        ("bearing = \"6309\"", "6309"),
+        ("bearing = \"6205\"\nbogus = 1", "bogus"),
+        ("bearing = \"6205\"\n[solver]\nrtol = -1.0", "solver.rtol"),
+        (
+            "bearing = { preset = \"6205\", inner_curvature = 0.4 }",
+            "bearing.inner_curvature",
+        ),
+        (
+            "bearing = { preset = \"6205\", ball_count = 40 }",
+            "bearing.ball_count",
+        ),
+        (
+            "bearing = \"6205\"\n[model]\nring_dof = 3",
+            "model.ring_dof",
+        ),
+        (
+            "bearing = \"6205\"\n[inputs]\ninitial = { \"force.x\" = 1.0 }",
+            "force.x",
+        ),
+        ("{ \"bearing\": 12 }", "scene"),
+        ("bearing = ", "scene"),
+    ] {
+        let e = Component::from_text(text).unwrap_err().to_string();
+        assert!(e.contains(field), "{text:?} -> {e}");
+    }
+}
+
+/// Motion-driven ring level: the component's forces equal the physics evaluated directly
+/// at the cage angle the component integrated, and K/C match the directional derivative.
+#[test]
+fn motion_driven_ring_matches_the_model() {
+    use raceway::models::ring::{RingDof, RingEval, RingModel};
+    let mut c = Component::from_text(RING_MOTION).unwrap();
+    let h = 1e-3;
+    c.do_step(0.0, h).unwrap();
+    let b = c.bearing().clone();
+    let m = RingModel::new(&b, RingDof::Two, 200.0);
+    let wc = raceway::component::levels::cage_speed(&b, 183.26);
+    let mut e = RingEval::default();
+    m.eval(
+        wc * h,
+        wc,
+        &[0.0, -8e-6, 0.0, 0.0, 0.0],
+        &[0.0; 5],
+        h,
+        None,
+        true,
+        &mut e,
+    );
+    let fy = c.get_real(vr("force.y")).unwrap();
+    assert!(
+        (fy - e.wrench[1]).abs() < 1e-9 * e.wrench[1].abs(),
+        "{fy} vs {}",
+        e.wrench[1]
+    );
+    assert!(fy > 0.0, "pushed down, the bearing pushes up");
+    assert_eq!(c.get_real(vr("balls.loaded")).unwrap(), e.loaded as f64);
+    let mut out = [0.0];
+    c.directional_derivative(&[vr("force.y")], &[vr("shaft.y")], &[1.0], &mut out)
+        .unwrap();
+    assert_eq!(out[0], -e.k[1][1]);
+    assert!(c.get_real(vr("contact.max_pressure")).unwrap() > 1e8);
+    assert!((c.get_real(vr("cage.omega")).unwrap() - wc).abs() < 1e-12);
+    assert!(index_of(vr("K.y.y")).is_some());
+}
+
+/// Load-driven ring level with damping settles where the bearing force balances the
+/// external load.
+#[test]
+fn load_driven_ring_settles_to_static_balance() {
+    let mut c = Component::from_text(RING_LOAD).unwrap();
+    let h = 1e-4;
+    for i in 0..600 {
+        c.do_step(i as f64 * h, h).unwrap();
+    }
+    let fy = c.get_real(vr("force.y")).unwrap();
+    let y = c.get_real(vr("shaft.y")).unwrap();
+    assert!((fy - 1000.0).abs() < 20.0, "force.y = {fy}");
+    assert!(y < -5e-6, "the ring sags through the clearance: y = {y}");
+}
