@@ -13,7 +13,7 @@ pub const FORMAT_VERSION: u32 = 1;
 
 /// Everything that changes while a component runs: restoring it makes the component
 /// continue bit for bit.
-#[derive(Debug, Clone, PartialEq, Default)]
+#[derive(Debug, PartialEq, Default)]
 pub struct State {
     /// Fingerprint of the scene the state belongs to.
     pub scene_fingerprint: u64,
@@ -35,6 +35,29 @@ pub struct State {
     pub outputs: Vec<f64>,
     /// Output time derivatives (indexed by output slot).
     pub output_derivatives: Vec<f64>,
+}
+
+impl Clone for State {
+    fn clone(&self) -> Self {
+        let mut s = State::default();
+        s.clone_from(self);
+        s
+    }
+
+    /// Field-wise, reusing this state's buffers: no allocation once the sizes match (the
+    /// component's transactional `do_step` relies on it).
+    fn clone_from(&mut self, o: &Self) {
+        self.scene_fingerprint = o.scene_fingerprint;
+        self.t = o.t;
+        self.started = o.started;
+        self.inputs_set = o.inputs_set;
+        self.x.clone_from(&o.x);
+        self.aux.clone_from(&o.aux);
+        self.inputs.clone_from(&o.inputs);
+        self.input_derivatives.clone_from(&o.input_derivatives);
+        self.outputs.clone_from(&o.outputs);
+        self.output_derivatives.clone_from(&o.output_derivatives);
+    }
 }
 
 fn put_vec(out: &mut Vec<u8>, v: &[f64]) {

@@ -369,14 +369,14 @@ impl BearingSpec {
         let width = opt_pos("bearing.width_mm", self.width_mm)?
             .map(mm)
             .unwrap_or(1.2 * d);
-        if !(bore < dm - d) {
+        if bore >= dm - d {
             return Err(Error::invalid(
                 "bearing.bore_mm",
                 bore * 1e3,
                 format!("< dm - D = {:.3} mm", (dm - d) * 1e3),
             ));
         }
-        if !(od > dm + d) {
+        if od <= dm + d {
             return Err(Error::invalid(
                 "bearing.outer_diameter_mm",
                 od * 1e3,

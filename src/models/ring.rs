@@ -166,8 +166,8 @@ impl RingModel {
             let blend = (delta / DAMPING_RAMP).min(1.0);
             let cd = self.damping * blend;
             let fn_ = load + cd * rate;
-            for k in 0..5 {
-                out.wrench[k] -= fn_ * g[k];
+            for (w, gk) in out.wrench.iter_mut().zip(g) {
+                *w -= fn_ * gk;
             }
             out.loaded += 1;
             out.max_load = out.max_load.max(load);
