@@ -244,6 +244,9 @@ pub struct Scene {
     /// Inputs.
     #[serde(default)]
     pub inputs: InputSpec,
+    /// Optional effects (defects, waviness, lubrication), all off by default.
+    #[serde(default)]
+    pub effects: crate::models::effects::Effects,
 }
 
 impl Scene {
@@ -292,6 +295,7 @@ impl Scene {
         if s.max_substeps == 0 {
             return Err(Error::invalid("solver.max_substeps", 0, ">= 1"));
         }
+        self.effects.validate()?;
         let m = &self.model;
         if !(m.ring_dof == 2 || m.ring_dof == 5) {
             return Err(Error::invalid("model.ring_dof", m.ring_dof, "2 or 5"));

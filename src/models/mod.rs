@@ -1,4 +1,5 @@
 //! The physics ladder: quasi-static equilibrium and the dynamic levels.
 
+pub mod effects;
 pub mod quasi_static;
 pub mod ring;

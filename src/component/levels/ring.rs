@@ -1,16 +1,10 @@
-//! The levels: glue between the [`LevelModel`] seam and the physics in `crate::models`.
+//! The `ring` level: ring on massless balls (physics.md §5.1) behind the level seam.
 
-use super::level::{LevelModel, LevelOutputs, Motion};
+use super::cage_speed;
+use crate::component::level::{LevelModel, LevelOutputs, Motion};
 use crate::error::Result;
 use crate::geometry::Bearing;
 use crate::models::ring::{RingDof, RingEval, RingModel};
-
-/// Kinematic cage speed for the nominal contact angle, outer ring fixed:
-/// `omega_c = omega (1 - gamma) / 2` (physics.md §1).
-pub fn cage_speed(b: &Bearing, omega: f64) -> f64 {
-    let gamma = b.d * b.nominal_contact_angle().cos() / b.dm;
-    0.5 * omega * (1.0 - gamma)
-}
 
 /// Ring on massless balls (physics.md §5.1). State: the cage angle.
 #[derive(Debug)]
