@@ -19,6 +19,8 @@ pub mod contact;
 pub mod error;
 pub mod geometry;
 pub mod models;
+#[cfg(feature = "plot")]
+pub mod plot;
 pub mod solver;
 pub mod units;
 
