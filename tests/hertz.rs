@@ -94,7 +94,11 @@ fn f_rho_0_9_reference() {
     let cv = Curvature::from_radii(1.0, 19.0);
     assert!((cv.f_rho() - 0.9).abs() < 1e-15);
     let el = Ellipse::exact(19.0);
-    assert!((1.0 / el.kappa - 0.1489585016).abs() < 6e-11, "{}", 1.0 / el.kappa);
+    assert!(
+        (1.0 / el.kappa - 0.1489585016).abs() < 6e-11,
+        "{}",
+        1.0 / el.kappa
+    );
     assert!((el.e - 1.0 - 0.0311638410).abs() < 6e-11, "{}", el.e - 1.0);
     // And the ellipticity equation in Harris's F(rho) form holds to rounding.
     let k2 = el.kappa * el.kappa;
@@ -227,7 +231,12 @@ fn bearing_209_matches_reference_table() {
     digits("209 K_n", both.series_constant(), 1.1702e10, 1e6);
     let per_mm = 1e-3_f64.powf(1.5);
     digits("209 K_i [N/mm^1.5]", both.inner.kc * per_mm, 1.018e6, 1e3);
-    digits("209 K_n [N/mm^1.5]", both.series_constant() * per_mm, 3.70e5, 1e3);
+    digits(
+        "209 K_n [N/mm^1.5]",
+        both.series_constant() * per_mm,
+        3.70e5,
+        1e3,
+    );
     let hybrid = BallRaceContacts::new(&bearing("209", true), 0.0);
     digits("209 K_n Si3N4", hybrid.series_constant(), 1.3901e10, 1e6);
 }
@@ -258,8 +267,28 @@ fn bearing_6205_matches_reference_table() {
         &b,
         0.0,
         &[
-            (Race::Inner, 0.32589, 0.94054, 32.638, 9.34125, 0.60179, 2.5423e10, 11.566, 2.567),
-            (Race::Outer, 0.21900, 0.91153, 21.606, 7.26532, 0.66098, 2.6941e10, 11.127, 2.128),
+            (
+                Race::Inner,
+                0.32589,
+                0.94054,
+                32.638,
+                9.34125,
+                0.60179,
+                2.5423e10,
+                11.566,
+                2.567,
+            ),
+            (
+                Race::Outer,
+                0.21900,
+                0.91153,
+                21.606,
+                7.26532,
+                0.66098,
+                2.6941e10,
+                11.127,
+                2.128,
+            ),
         ],
     );
     let steel = BallRaceContacts::new(&b, 0.0);
@@ -278,11 +307,36 @@ fn bearing_218_matches_reference_table() {
         &b,
         alpha,
         &[
-            (Race::Inner, 0.10811, 0.92620, 26.099, 8.15514, 0.63354, 4.0864e10, 8.429, 1.283),
-            (Race::Outer, 0.08319, 0.90409, 19.854, 6.89741, 0.67343, 4.2506e10, 8.210, 1.134),
+            (
+                Race::Inner,
+                0.10811,
+                0.92620,
+                26.099,
+                8.15514,
+                0.63354,
+                4.0864e10,
+                8.429,
+                1.283,
+            ),
+            (
+                Race::Outer,
+                0.08319,
+                0.90409,
+                19.854,
+                6.89741,
+                0.67343,
+                4.2506e10,
+                8.210,
+                1.134,
+            ),
         ],
     );
-    digits("218 K_n", BallRaceContacts::new(&b, alpha).series_constant(), 1.4733e10, 1e6);
+    digits(
+        "218 K_n",
+        BallRaceContacts::new(&b, alpha).series_constant(),
+        1.4733e10,
+        1e6,
+    );
     let hybrid = BallRaceContacts::new(&bearing("218", true), alpha);
     digits("218 K_n Si3N4", hybrid.series_constant(), 1.7503e10, 1e6);
 }
@@ -391,7 +445,198 @@ fn table_matches_exact_solve() {
             assert!(rel(t.eval(0.0).kc, c0.kc) < 1e-14);
         }
     }
-    println!("table max rel err Kc, ca, cb, dKc/dalpha (of max): {:?}", worst.map(|w| format!("{w:.2e}")));
-    assert!(worst[0] < 1e-10 && worst[1] < 1e-10 && worst[2] < 1e-10, "{worst:?}");
+    println!(
+        "table max rel err Kc, ca, cb, dKc/dalpha (of max): {:?}",
+        worst.map(|w| format!("{w:.2e}"))
+    );
+    assert!(
+        worst[0] < 1e-10 && worst[1] < 1e-10 && worst[2] < 1e-10,
+        "{worst:?}"
+    );
     assert!(worst[3] < 1e-7, "{worst:?}");
+}
+
+#[test]
+fn stiffness_matches_finite_difference_and_is_c1_at_zero() {
+    let c = PointContact::ball_race(&bearing("209", false), 0.0, Race::Inner);
+    for delta in [1e-7, 3e-6, 2e-5] {
+        let (q, k) = c.load_and_stiffness(delta);
+        assert_eq!(q, c.load(delta));
+        let h = 1e-4 * delta;
+        let fd = (c.load(delta + h) - c.load(delta - h)) / (2.0 * h);
+        assert!(rel(k, fd) < 1e-7, "{k} vs {fd}");
+        // Round trip load -> approach -> load.
+        assert!(rel(c.deflection(q), delta) < 1e-14);
+    }
+    // Zero for delta <= 0, and both Q and dQ/d delta tend to zero as delta -> 0+ (C¹).
+    assert_eq!(c.load_and_stiffness(0.0), (0.0, 0.0));
+    assert_eq!(c.load_and_stiffness(-1e-6), (0.0, 0.0));
+    let (q, k) = c.load_and_stiffness(1e-16);
+    assert!(q < 1e-12 && k < 1e3 * 1e-8 * c.kc, "{q} {k}");
+    assert!(k <= 1.5 * c.kc * 1e-8 * (1.0 + 1e-15));
+}
+
+#[test]
+fn ellipse_sensitivity_matches_finite_difference() {
+    for r in [1.0 + 1e-6, 1.3, 5.0, 32.3, 400.0, 0.05] {
+        let (_, s) = Ellipse::exact_with_sensitivity(r);
+        let h: f64 = 1e-6;
+        let p = Ellipse::exact(r * h.exp());
+        let m = Ellipse::exact(r * (-h).exp());
+        let fd = |f: fn(&Ellipse) -> f64| (f(&p).ln() - f(&m).ln()) / (2.0 * h);
+        let (fk, fkk, fe) = (fd(|e| e.kappa), fd(|e| e.k), fd(|e| e.e));
+        // kappa - 1 is tiny next to the ratio-1 limit: compare ln(kappa) derivatives there
+        // against the limits 2/3, 1/3, -1/3 instead.
+        let tol = if (r - 1.0).abs() < 1e-3 { 1e-5 } else { 1e-7 };
+        if (r - 1.0).abs() < 1e-3 {
+            assert!((s.kappa - 2.0 / 3.0).abs() < tol && (s.k - 1.0 / 3.0).abs() < tol);
+            assert!((s.e + 1.0 / 3.0).abs() < tol, "{s:?}");
+            continue;
+        }
+        assert!(
+            (s.kappa - fk).abs() < tol * fk.abs().max(1.0),
+            "{r}: {} vs {fk}",
+            s.kappa
+        );
+        assert!(
+            (s.k - fkk).abs() < tol * fkk.abs().max(1.0),
+            "{r}: {} vs {fkk}",
+            s.k
+        );
+        assert!(
+            (s.e - fe).abs() < tol * fe.abs().max(1.0),
+            "{r}: {} vs {fe}",
+            s.e
+        );
+    }
+    let (_, s) = Ellipse::exact_with_sensitivity(1.0);
+    assert_eq!((s.kappa, s.k, s.e), (2.0 / 3.0, 1.0 / 3.0, -1.0 / 3.0));
+}
+
+#[test]
+fn table_angle_derivative_matches_finite_difference() {
+    // dKc/d alpha from the table against a central difference of the exact solve, and the
+    // dQ/d alpha of `load_and_derivatives` against a difference of the table's own Q.
+    let b = preset("7004").unwrap().build().unwrap();
+    for race in [Race::Inner, Race::Outer] {
+        let t = ContactTable::new(&b, race);
+        for deg in [5.0, 24.0, 47.0, 79.0] {
+            let a = f64::to_radians(deg);
+            let h = 1e-5;
+            let kc = |a: f64| PointContact::ball_race(&b, a, race).kc;
+            let fd = (kc(a + h) - kc(a - h)) / (2.0 * h);
+            let c = t.eval(a);
+            assert!(
+                rel(c.dkc_dalpha, fd) < 1e-6,
+                "{race:?} {deg}: {} vs {fd}",
+                c.dkc_dalpha
+            );
+            let delta = 1e-5;
+            let (q, _, dqa) = c.load_and_derivatives(delta);
+            let fdq = (t.eval(a + h).load(delta) - t.eval(a - h).load(delta)) / (2.0 * h);
+            assert!(rel(dqa, fdq) < 1e-6, "{dqa} vs {fdq}");
+            assert!(rel(q, kc(a) * delta.powf(1.5)) < 1e-10);
+            // Semi-axes and peak pressure agree with the exact contact.
+            let ex = PointContact::ball_race(&b, a, race);
+            let (ea, eb) = ex.semi_axes(500.0);
+            let (ta, tb) = c.semi_axes(500.0);
+            assert!(rel(ta, ea) < 1e-10 && rel(tb, eb) < 1e-10);
+            assert!(rel(c.peak_pressure(500.0), ex.peak_pressure(500.0)) < 1e-10);
+            assert!(rel(c.deflection(500.0), ex.deflection(500.0)) < 1e-10);
+        }
+    }
+}
+
+#[test]
+fn warm_start_agrees_with_cold_and_is_short() {
+    // A slowly changing contact angle (0.01 deg per call) at the 218 inner race: the warm
+    // start from the previous kappa needs at most 2 AGM evaluations, the cold one 3–4, and
+    // both give the same ellipse to a few ulp.
+    let b = bearing("218", false);
+    let mut prev = PointContact::ball_race(&b, 0.6, Race::Inner);
+    for i in 1..200 {
+        let a = 0.6 + f64::to_radians(0.01) * i as f64;
+        let cv = Curvature::ball_race(b.d, b.dm, a, b.fi, Race::Inner);
+        let warm = PointContact::new_warm(cv, prev.e_eff, prev.ellipse.kappa);
+        let cold = PointContact::new(cv, prev.e_eff);
+        // Same root to the rounding of the residual (a few ulp of ln kappa).
+        assert!(rel(warm.ellipse.kappa, cold.ellipse.kappa) < 2e-15);
+        assert!(rel(warm.ellipse.k, cold.ellipse.k) < 2e-15);
+        assert!(rel(warm.ellipse.e, cold.ellipse.e) < 2e-15);
+        assert!(rel(warm.kc, cold.kc) < 4e-15);
+        assert!(Ellipse::exact_iterations(cv.ratio(), prev.ellipse.kappa) <= 2);
+        assert!(Ellipse::exact_iterations(cv.ratio(), f64::NAN) <= 4);
+        prev = warm;
+    }
+    // The solve is robust over a wide range of ratios and bad guesses: the ellipticity
+    // equation holds to rounding (near ratio 1 the back-substitution is ill-conditioned,
+    // so there kappa is compared with mpmath's root at 40 digits, 1.000066665555601850).
+    for guess in [f64::NAN, 1.0, 1.0001, 1e9, 0.3] {
+        let el = Ellipse::exact_from(1.0001, guess);
+        assert!(
+            rel(el.kappa, 1.000_066_665_555_601_8) < 1e-15,
+            "{guess}: {}",
+            el.kappa
+        );
+    }
+    for r in [1.7, 12.0, 3e3, 1e6, MAX_RATIO] {
+        for guess in [f64::NAN, 1.0, 1.0001, 1e9, 0.3] {
+            let el = Ellipse::exact_from(r, guess);
+            let back = (el.kappa * el.kappa * el.e - el.k) / (el.k - el.e);
+            assert!(rel(back, r) < 1e-12 * (1.0 + r.ln()), "{r} {guess}: {back}");
+            assert!(Ellipse::exact_iterations(r, guess) <= 60);
+        }
+    }
+}
+
+#[test]
+fn series_contacts_add_approaches() {
+    // delta_n(Q) = delta_i(Q) + delta_o(Q) for Q = K_n delta_n^1.5 (Harris & Kotzalas ch. 7).
+    let b = bearing("209", false);
+    let both = BallRaceContacts::at_angles(&b, 0.2, 0.15);
+    let kn = both.series_constant();
+    for q in [10.0, 1000.0, 5e4] {
+        let dn = (q / kn).powf(2.0 / 3.0);
+        let sum = both.inner.deflection(q) + both.outer.deflection(q);
+        assert!(rel(dn, sum) < 1e-14, "{dn} vs {sum}");
+    }
+    // Identical contacts in series: K_n = K / 2^1.5.
+    assert!(rel(series_constant(3e10, 3e10), 3e10 / 2f64.powf(1.5)) < 1e-14);
+}
+
+#[test]
+fn bad_input_is_refused_with_its_name() {
+    let e = PointContact::try_new(Curvature::from_radii(-1e-3, 1e-2), 2e11).unwrap_err();
+    assert!(e.to_string().contains("contact.curvature.rx"), "{e}");
+    let e = PointContact::try_new(Curvature::sphere_on_flat(1e-3), f64::NAN).unwrap_err();
+    assert!(e.to_string().contains("contact.e_eff"), "{e}");
+    let e = Ellipse::try_exact(f64::INFINITY).unwrap_err();
+    assert!(e.to_string().contains("contact.ratio"), "{e}");
+    let e = ContactTable::from_parts(0.01, 0.05, 0.45, 2e11, Race::Inner, 1.0, 32).unwrap_err();
+    assert!(e.to_string().contains("contact_table.f"), "{e}");
+    assert!(ContactTable::from_parts(0.01, 0.05, 0.52, 2e11, Race::Outer, 1.0, 8).is_ok());
+    // The unchecked solve gives NaN (not a panic, not a number) for meaningless input.
+    assert!(Ellipse::exact(f64::NAN).kappa.is_nan());
+    assert!(Ellipse::exact(-2.0).kappa.is_nan());
+}
+
+#[test]
+fn palmgren_line_contact() {
+    // Harris & Kotzalas Vol. 1 ch. 6: delta = 3.84e-5 Q^0.9 / l^0.8 (mm, N), steel.
+    let l = 0.012;
+    let c = LineContact::palmgren(l, E_EFF_STEEL_HARRIS);
+    for q in [100.0, 5000.0] {
+        let want_mm = 3.84e-5 * f64::powf(q, 0.9) / f64::powf(12.0, 0.8);
+        assert!(rel(c.deflection(q) * 1e3, want_mm) < 1e-12);
+        let (qq, k) = c.load_and_stiffness(c.deflection(q));
+        assert!(rel(qq, q) < 1e-12);
+        let d = c.deflection(q);
+        let fd =
+            (c.load_and_stiffness(d * 1.0001).0 - c.load_and_stiffness(d * 0.9999).0) / (2e-4 * d);
+        assert!(rel(k, fd) < 1e-7);
+    }
+    // A stiffer pair deflects less, as (E'_steel/E')^0.9.
+    let hard = LineContact::palmgren(l, 2.0 * E_EFF_STEEL_HARRIS);
+    assert!(rel(hard.deflection(1e3) / c.deflection(1e3), 0.5f64.powf(0.9)) < 1e-12);
+    assert_eq!(c.load_and_stiffness(-1.0), (0.0, 0.0));
 }

@@ -160,7 +160,10 @@ mod tests {
             let (k, e) = ellip_ke(m);
             let (k1, e1) = ellip_ke(1.0 - m);
             let l = e * k1 + e1 * k - k * k1;
-            assert!((l - FRAC_PI_2).abs() < 4e-15 * k.max(k1).powi(2), "m = {m}: {l}");
+            assert!(
+                (l - FRAC_PI_2).abs() < 4e-15 * k.max(k1).powi(2),
+                "m = {m}: {l}"
+            );
         }
     }
 
@@ -181,7 +184,10 @@ mod tests {
         let m = 1e-9;
         let (_, _, dk, de) = ellip_ke_with_derivatives(m);
         assert!(rel(dk, FRAC_PI_2 * (0.25 + 9.0 * m / 32.0)) < 1e-15, "{dk}");
-        assert!(rel(de, -FRAC_PI_2 * (0.25 + 3.0 * m / 32.0)) < 1e-15, "{de}");
+        assert!(
+            rel(de, -FRAC_PI_2 * (0.25 + 3.0 * m / 32.0)) < 1e-15,
+            "{de}"
+        );
         let (_, _, dk, de) = ellip_ke_with_derivatives(0.0);
         assert!(rel(dk, std::f64::consts::PI / 8.0) < 1e-15);
         assert!(rel(de, -std::f64::consts::PI / 8.0) < 1e-15);

@@ -110,7 +110,7 @@ impl Curvature {
         positive(&format!("{field}.ry"), self.ry)?;
         positive(&format!("{field}.sum_rho"), self.sum_rho)?;
         let r = self.ratio();
-        if !(r <= MAX_RATIO && r >= 1.0 / MAX_RATIO) {
+        if !(1.0 / MAX_RATIO..=MAX_RATIO).contains(&r) {
             return Err(Error::invalid(
                 format!("{field}.ratio"),
                 r,
@@ -157,7 +157,7 @@ struct KappaSolve {
 
 /// `ln ratio(s)` residual pieces at `s = ln kappa > 0`: returns `(m, agm, g, g')` with
 /// `g = ln((kappa² E - K)/(K - E))` written as `2s + ln(m - S) - ln S` (no cancellation:
-/// `m - S = m/2 - T`, `S = m/2 + T`) and `g' = dg/ds = 2 + (2T - S²)/(S (m - S))`
+/// `m - S = m/2 - T`, `S = m/2 + T`, and `ln((m - S)/S) = ln(1 - 2T/S)`) and `g' = dg/ds = 2 + (2T - S²)/(S (m - S))`
 /// (from `dK/dm`, `dE/dm` of A&S 17.3.29–30 and `dm/ds = 2(1 - m)`).
 fn ln_ratio_of(s: f64) -> (Agm, f64, f64) {
     let m1 = (-2.0 * s).exp();
@@ -165,7 +165,15 @@ fn ln_ratio_of(s: f64) -> (Agm, f64, f64) {
     let r = agm(m, m1);
     let ms = 0.5 * m - r.t;
     let sv = r.s;
-    let g = 2.0 * s + ms.ln() - sv.ln();
+    // ln((m - S)/S) = ln(1 - 2T/S): through ln_1p while 2T/S is small (near-circular
+    // contacts, where ln(m - S) and ln S are large and nearly cancel).
+    let x = 2.0 * r.t / sv;
+    let g = 2.0 * s
+        + if x < 0.5 {
+            (-x).ln_1p()
+        } else {
+            ms.ln() - sv.ln()
+        };
     let gp = 2.0 + (2.0 * r.t - sv * sv) / (sv * ms);
     (r, g, gp)
 }
@@ -216,7 +224,7 @@ fn solve_s(l: f64, s0: f64) -> KappaSolve {
             lo = s;
         }
         let mut next = s + step;
-        if !(next > lo && next < hi) || !gp.is_finite() || gp <= 0.0 {
+        if !(next > lo && next < hi && gp.is_finite() && gp > 0.0) {
             next = if hi.is_finite() {
                 0.5 * (lo + hi)
             } else {
@@ -607,6 +615,11 @@ pub struct ContactCoefficients {
 }
 
 impl ContactCoefficients {
+    /// Load `Kc delta^1.5` for approach `delta` (zero for `delta <= 0`), N.
+    pub fn load(&self, delta: f64) -> f64 {
+        hertz_load_and_stiffness(self.kc, delta).0
+    }
+
     /// `(Q, dQ/d delta)`; zero for `delta <= 0`, C¹ at zero.
     pub fn load_and_stiffness(&self, delta: f64) -> (f64, f64) {
         hertz_load_and_stiffness(self.kc, delta)
@@ -692,7 +705,10 @@ impl ContactTable {
 
     /// Tables for both races of `bearing`: `(inner, outer)`.
     pub fn for_bearing(bearing: &Bearing) -> (Self, Self) {
-        (Self::new(bearing, Race::Inner), Self::new(bearing, Race::Outer))
+        (
+            Self::new(bearing, Race::Inner),
+            Self::new(bearing, Race::Outer),
+        )
     }
 
     /// Checked general constructor: ball diameter `d` < pitch diameter `dm`, groove
@@ -733,15 +749,7 @@ impl ContactTable {
         Ok(Self::build(d, dm, f, e_eff, race, alpha_max, intervals))
     }
 
-    fn build(
-        d: f64,
-        dm: f64,
-        f: f64,
-        e_eff: f64,
-        race: Race,
-        alpha_max: f64,
-        n: usize,
-    ) -> Self {
+    fn build(d: f64, dm: f64, f: f64, e_eff: f64, race: Race, alpha_max: f64, n: usize) -> Self {
         let x_lo = alpha_max.cos();
         let h = (1.0 - x_lo) / n as f64;
         let nodes: Vec<[f64; 6]> = (0..=n)
@@ -880,11 +888,7 @@ impl LineContact {
         let c = c_steel * (E_EFF_STEEL_HARRIS / e_eff).powf(0.9);
         // Q = (delta l^0.8 / c)^(1/0.9) = K_l delta^(10/9).
         let kl = (length.powf(0.8) / c).powf(1.0 / 0.9);
-        LineContact {
-            length,
-            e_eff,
-            kl,
-        }
+        LineContact { length, e_eff, kl }
     }
 
     /// `(Q, dQ/d delta) = (K_l delta^(10/9), (10/9) K_l delta^(1/9))`, zero for
