@@ -20,7 +20,7 @@
 //! - Peak pressure `p0 = 3Q/(2 pi a b)`.
 //!
 //! Three ways to get the ellipse: [`Ellipse::exact`] (Newton on `ln kappa`, machine
-//! precision, 4–6 AGM evaluations; 1–3 when warm-started by [`Ellipse::exact_from`]),
+//! precision, 3–4 AGM evaluations; 2 when warm-started by [`Ellipse::exact_from`]),
 //! [`ellipse_fit`] (Brewe & Hamrock 1977, a few per cent off, measured errors in its doc),
 //! and for a bearing race whose contact angle changes [`ContactTable`] (loop-free cubic
 //! Hermite lookup of `Kc` and the semi-axis coefficients against `cos alpha`).
@@ -266,7 +266,10 @@ impl Ellipse {
     /// `ratio = (kappa² E - K)/(K - E)` (Harris & Kotzalas Vol. 1 eq. 6.x, Hamrock & Dowson
     /// ch. 3) by Newton on `ln kappa` from `kappa0 = ratio^(2/pi)` (Hamrock & Brewe 1983's
     /// estimate); `ratio = 1` gives exactly `kappa = 1`, `K = E = pi/2`. Machine precision
-    /// in 4–6 iterations for `ratio` in `[1.2, 1000]` (numerics.md §3.3).
+    /// with 3 AGM evaluations for `ratio` in `[1.2, 1000]` and at most 4 up to `1e12`
+    /// (measured on 4000 log-spaced ratios): Newton stops once its step on `ln kappa` is
+    /// below 1e-8 and finishes that last step by a first-order update of `K` and `E`
+    /// (error `O(step²)`, below rounding); agreement with mpmath at 40 digits is a few ulp.
     /// Input must be finite and positive (see [`Ellipse::try_exact`]); otherwise the
     /// fields are NaN.
     pub fn exact(ratio: f64) -> Ellipse {
@@ -274,7 +277,8 @@ impl Ellipse {
     }
 
     /// [`Ellipse::exact`] warm-started from a previous `kappa` (for a contact angle that
-    /// changes slowly between calls: 1–3 AGM evaluations instead of 4–6). A guess that is
+    /// changes slowly between calls: 2 AGM evaluations instead of 3–4 for a 0.01 deg
+    /// step, test `warm_start_agrees_with_cold_and_is_short`). A guess that is
     /// not finite or `<= 1` falls back to the cold start.
     pub fn exact_from(ratio: f64, kappa_guess: f64) -> Ellipse {
         Self::solve(ratio, kappa_guess).0
@@ -666,7 +670,7 @@ pub const TABLE_MAX_ANGLE: f64 = 80.0 * PI / 180.0;
 /// exact solve and [`Ellipse::exact_with_sensitivity`]; numerics.md §3.3). Lookup is
 /// loop-free (one index computation, three cubics). Even in `alpha` (the curvatures depend
 /// on `cos alpha` only). Angles with `|alpha| > alpha_max` fall back to the exact solve
-/// (about 10× slower, same values to the table's error).
+/// (several times slower, same values to the table's error).
 ///
 /// Measured maximum relative error against the exact solve with the default 32 intervals
 /// over `[0, 80 deg]` (test `table_matches_exact_solve` in tests/hertz.rs: every preset,
