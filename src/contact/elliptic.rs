@@ -7,8 +7,9 @@
 //! The AGM runs `a₀ = 1`, `b₀ = sqrt(1 - m)`, `c₀² = m`,
 //! `a_{n+1} = (a_n + b_n)/2`, `b_{n+1} = sqrt(a_n b_n)`, `c_{n+1} = c_n² / (4 a_{n+1})`
 //! (the last is the identity `c_{n+1} = (a_n - b_n)/2` written without cancellation), and
-//! gives `K = π / (2 a_N)` and `E = K (1 - S)` with `S = Σ_{n≥0} 2^{n-1} c_n²` (A&S 17.6.3–4).
-//! Convergence is quadratic: 4–6 iterations reach machine precision for `m <= 0.99999`.
+//! gives `K = π / (2 a_N)` and `E = K (1 - S)` with `S = Σ_{n≥0} 2^{n-1} c_n²`
+//! (A&S 17.6.3–4). Convergence is quadratic: 4–6 iterations reach machine precision for
+//! `m <= 0.99999` (numerics.md §3.2).
 //!
 //! `S = (K - E)/K` is returned as well: the Hertz ellipticity equation needs `K - E` and
 //! `κ²E - K`, both of which vanish like `m` at `m → 0`; `K S` and `K κ² (m - S)` give them
@@ -93,7 +94,8 @@ pub fn ellip_e(m: f64) -> f64 {
     ellip_ke(m).1
 }
 
-/// Derivatives `(dK/dm, dE/dm)` from the AGM result (A&S 17.3.29–30, numerics.md §3.1):
+/// Derivatives `(dK/dm, dE/dm)` from the AGM result (DLMF 19.4.1 with `m = k²`;
+/// numerics.md §3.1):
 /// `dK/dm = (E - (1-m) K) / (2 m (1-m)) = K (m - S) / (2 m (1-m))`,
 /// `dE/dm = (E - K) / (2m) = -K S / (2m)`; written with `S` and `T` so that they keep full
 /// precision at small `m` (the limits at `m = 0` are `π/8` and `-π/8`).

@@ -10,7 +10,7 @@
 //! `ratio = Ry/Rx`, `kappa = a/b >= 1`, `m = 1 - 1/kappa²`, `K = K(m)`, `E = E(m)` (complete
 //! elliptic integrals, [`super::elliptic`]), `E' = 2 / ((1-nu1²)/E1 + (1-nu2²)/E2)`.
 //!
-//! - Ellipticity equation (Harris eq. 6.x; numerics.md §3.1):
+//! - Ellipticity equation (Harris & Kotzalas Vol. 1 ch. 6; numerics.md §3.1):
 //!   `ratio = (kappa² E - K)/(K - E)`, the same as
 //!   `F(rho) = ((kappa²+1) E - 2K)/((kappa²-1) E)` with `F(rho) = (ratio-1)/(ratio+1)`.
 //! - Semi-axes `a = (6 kappa² E Q R/(pi E'))^(1/3)` (along the larger radius, i.e. across
@@ -155,10 +155,11 @@ struct KappaSolve {
     iterations: usize,
 }
 
-/// `ln ratio(s)` residual pieces at `s = ln kappa > 0`: returns `(m, agm, g, g')` with
+/// `ln ratio(s)` residual pieces at `s = ln kappa > 0`: returns `(agm, g, g')` with
 /// `g = ln((kappa² E - K)/(K - E))` written as `2s + ln(m - S) - ln S` (no cancellation:
-/// `m - S = m/2 - T`, `S = m/2 + T`, and `ln((m - S)/S) = ln(1 - 2T/S)`) and `g' = dg/ds = 2 + (2T - S²)/(S (m - S))`
-/// (from `dK/dm`, `dE/dm` of A&S 17.3.29–30 and `dm/ds = 2(1 - m)`).
+/// `m - S = m/2 - T`, `S = m/2 + T`, and `ln((m - S)/S) = ln(1 - 2T/S)`) and
+/// `g' = dg/ds = 2 + (2T - S²)/(S (m - S))` (from `dK/dm`, `dE/dm` of DLMF 19.4.1 and
+/// `dm/ds = 2(1 - m)`).
 fn ln_ratio_of(s: f64) -> (Agm, f64, f64) {
     let m1 = (-2.0 * s).exp();
     let m = -(-2.0 * s).exp_m1();
@@ -263,7 +264,7 @@ fn circular() -> Ellipse {
 impl Ellipse {
     /// Exact ellipse for `ratio = Ry/Rx` (or its inverse: the ellipse depends on
     /// `max(ratio, 1/ratio)`). Solves the Hertz ellipticity equation
-    /// `ratio = (kappa² E - K)/(K - E)` (Harris & Kotzalas Vol. 1 eq. 6.x, Hamrock & Dowson
+    /// `ratio = (kappa² E - K)/(K - E)` (Harris & Kotzalas Vol. 1 ch. 6, Hamrock & Dowson
     /// ch. 3) by Newton on `ln kappa` from `kappa0 = ratio^(2/pi)` (Hamrock & Brewe 1983's
     /// estimate); `ratio = 1` gives exactly `kappa = 1`, `K = E = pi/2`. Machine precision
     /// with 3 AGM evaluations for `ratio` in `[1.2, 1000]` and at most 4 up to `1e12`
@@ -338,7 +339,7 @@ impl Ellipse {
     /// The exact ellipse and its sensitivities `d ln(kappa, K, E)/d ln(ratio)` by implicit
     /// differentiation of the ellipticity equation: `d ln kappa/d ln ratio = 1/g'` with
     /// `g' = d ln ratio/d ln kappa`, `d ln K/d ln kappa = (m - S)/m`,
-    /// `d ln E/d ln kappa = -S(1-m)/(m(1-S))`, `S = 1 - E/K` (A&S 17.3.29–30). Limits at
+    /// `d ln E/d ln kappa = -S(1-m)/(m(1-S))`, `S = 1 - E/K` (DLMF 19.4.1). Limits at
     /// `ratio = 1`: `2/3`, `1/3`, `-1/3`. Used to build [`ContactTable`].
     pub fn exact_with_sensitivity(ratio: f64) -> (Ellipse, EllipseSensitivity) {
         let (el, _, sol) = Self::solve(ratio, f64::NAN);
@@ -406,10 +407,11 @@ impl Ellipse {
 ///
 /// Measured against [`Ellipse::exact`] (test `fit_error_is_as_documented` in
 /// tests/hertz.rs, 2000 log-spaced ratios): maximum relative error over `Ry/Rx` in
-/// `[1.5, 100]`: `kappa` 6.3 %, `K` 1.0 %, `E` 0.51 % (both at ratio 1.5), `a*` 4.2 %, `b*` 2.0 %, `delta*`
-/// 3.8 %, `Kc` 5.9 % (at ratio 100). At the 209 bearing's contacts (alpha = 0): inner
-/// `kappa` +1.55 %, `Kc` +1.64 %, `delta` -1.08 %; outer `kappa` +0.48 %, `Kc` +0.61 %,
-/// `delta` -0.40 %. Use [`Ellipse::exact`] or [`ContactTable`] in production.
+/// `[1.5, 100]`: `kappa` 6.3 %, `K` 1.0 %, `E` 0.51 % (both at ratio 1.5), `a*` 4.2 %,
+/// `b*` 2.0 %, `delta*` 3.8 %, `Kc` 5.9 %. At the 209 bearing's contacts (alpha = 0):
+/// inner `kappa` +1.55 %, `Kc` +1.64 %, `delta` -1.08 %; outer `kappa` +0.48 %, `Kc`
+/// +0.61 %, `delta` -0.40 % (as numerics.md §3.4). Use [`Ellipse::exact`] or
+/// [`ContactTable`] in production.
 pub fn ellipse_fit(ratio: f64) -> Ellipse {
     let r = ratio.max(1.0 / ratio);
     Ellipse {
@@ -422,7 +424,8 @@ pub fn ellipse_fit(ratio: f64) -> Ellipse {
 /// Hamrock & Brewe (1983) simplified fits ("HB83" in numerics.md §3.4):
 /// `kappa ~ (Ry/Rx)^(2/pi)`, `E ~ 1 + q Rx/Ry`, `K ~ pi/2 + q ln(Ry/Rx)`, `q = pi/2 - 1`.
 /// Exact at `ratio = 1`. Measured maximum relative error over `[1.5, 100]`: `kappa` 3.8 %,
-/// `K` 2.1 %, `E` 0.91 %, `a*` 2.7 %, `b*` 1.2 %, `delta*` 4.1 %, `Kc` 6.5 % (test `fit_error_is_as_documented`).
+/// `K` 2.1 %, `E` 0.91 %, `a*` 2.7 %, `b*` 1.2 %, `delta*` 4.1 %, `Kc` 6.5 % (test
+/// `fit_error_is_as_documented`).
 pub fn ellipse_fit_hb83(ratio: f64) -> Ellipse {
     let r = ratio.max(1.0 / ratio);
     let q = PI / 2.0 - 1.0;
@@ -549,7 +552,7 @@ impl PointContact {
     }
 }
 
-/// `(Q, dQ/d delta)` of `Q = kc delta^1.5` (Harris & Kotzalas Vol. 1 eq. 6.x), zero for
+/// `(Q, dQ/d delta)` of `Q = kc delta^1.5` (Harris & Kotzalas Vol. 1 ch. 6), zero for
 /// `delta <= 0`; C¹ at zero.
 pub fn hertz_load_and_stiffness(kc: f64, delta: f64) -> (f64, f64) {
     if delta > 0.0 {
