@@ -43,10 +43,7 @@ fn check_or_bless(rel: &str, generated: &str) {
         .lines()
         .zip(generated.lines())
         .position(|(a, b)| a != b)
-        .map_or_else(
-            || current.lines().count().min(generated.lines().count()),
-            |i| i,
-        );
+        .unwrap_or_else(|| current.lines().count().min(generated.lines().count()));
     panic!(
         "{rel} is stale (first difference at line {}): regenerate with \
          `RACEWAY_BLESS=1 cargo test --test capi_header`",
