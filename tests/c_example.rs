@@ -198,3 +198,24 @@ fn unbalance_orbit_converges_with_the_macro_step_at_least_at_the_coupling_order(
         assert!(((h3 - e) / e).abs() < 1e-2, "{axis}: {h3:e} against {e:e}");
     }
 }
+
+/// The measurement sees the coupling order: holding the bearing force over the macro step
+/// (explicit zero-order hold, no K and C) converges at first order only (each halving
+/// divides the difference by about 2; Kübler & Schiehlen 2000).
+#[test]
+fn zero_order_hold_coupling_converges_at_first_order_only() {
+    let amp = |steps: u32| {
+        let out = rotor(&[
+            "coupling=hold".into(),
+            format!("unbalance={UNBALANCE}"),
+            format!("steps_per_rev={steps}"),
+            "revs=20".into(),
+            "avg_revs=5".into(),
+        ]);
+        out["bearing.A.y.amplitude"]
+    };
+    let (a1, a2, a3) = (amp(256), amp(512), amp(1024));
+    let (d1, d2) = ((a1 - a2).abs(), (a2 - a3).abs());
+    eprintln!("hold: {a1:.9e} {a2:.9e} {a3:.9e}; ratio {:.2}", d1 / d2);
+    assert!((1.6..2.6).contains(&(d1 / d2)), "{d1:e} then {d2:e}");
+}

@@ -23,7 +23,10 @@
  * with the classical fourth-order Runge-Kutta method (Hairer, Norsett & Wanner, "Solving
  * Ordinary Differential Equations I", 1993, II.1), `substeps` steps per macro step.
  * The coupling error is second order in H for a nonlinear bearing (the linearisation
- * error is O(|q - q0|^2)) and zero for a linear one.
+ * error is O(|q - q0|^2)) and zero for a linear one. With coupling=hold the rotor uses F0
+ * alone over the step (the plain explicit zero-order-hold co-simulation, first order in
+ * H, and stable only while the bearing stiffness times H stays below the damping:
+ * Kuebler & Schiehlen, "Two methods of simulator coupling", 2000).
  *
  * The orbit is analysed over the last `avg_revs` revolutions (an integer number of macro
  * steps): the mean and the amplitude of the first harmonic (the discrete Fourier
@@ -54,6 +57,7 @@ static const char *DEFAULT_SCENE =
 typedef struct {
   double mass, span, com, it, ip, speed_rpm, unbalance, gravity, damping;
   int steps_per_rev, substeps, revs, avg_revs;
+  int hold; /* coupling=hold: the bearing force F0 held over the step (first order) */
   const char *scene_path, *csv_path;
 } Params;
 
@@ -128,7 +132,7 @@ static void rhs(const Params *p, const Bearing *b, double t, const double *s, do
     station(s, b[n].z, q, v);
     for (i = 0; i < NQ; i++) {
       f[i] = b[n].f0[i];
-      for (j = 0; j < NQ; j++)
+      for (j = 0; j < NQ && !p->hold; j++)
         f[i] -= b[n].k[i][j] * (q[j] - b[n].q0[j]) + b[n].cm[i][j] * (v[j] - b[n].v0[j]);
     }
     f[0] -= p->damping * v[0];
@@ -227,6 +231,10 @@ static int parse(Params *p, const char *arg) {
   INT("avg_revs", avg_revs)
   if (n == 5 && strncmp(arg, "scene", 5) == 0) return (p->scene_path = v), 1;
   if (n == 3 && strncmp(arg, "csv", 3) == 0) return (p->csv_path = v), 1;
+  if (n == 8 && strncmp(arg, "coupling", 8) == 0) {
+    if (strcmp(v, "linear") == 0) return (p->hold = 0), 1;
+    if (strcmp(v, "hold") == 0) return (p->hold = 1), 1;
+  }
   return 0;
 }
 
@@ -258,6 +266,7 @@ int main(int argc, char **argv) {
   p.avg_revs = 10;
   p.scene_path = NULL;
   p.csv_path = NULL;
+  p.hold = 0;
   for (i = 1; i < argc; i++)
     if (!parse(&p, argv[i])) {
       fprintf(stderr, "rotor: unknown argument %s\n", argv[i]);
