@@ -1,1 +1,961 @@
-//! The C ABI over [`crate::component::Component`]. Work in progress (issue 3).
+//! The C ABI over [`crate::component::Component`] (header: `include/raceway.h`, generated
+//! from this module by cbindgen; regenerate with `RACEWAY_BLESS=1 cargo test --test
+//! capi_header`).
+//!
+//! Conventions, the same for every function:
+//!
+//! - Functions return a [`RacewayStatus`]; results go through out-pointers. A refused call
+//!   changes nothing (a bulk call is all or nothing, a failed step leaves the state as it
+//!   was) and stores a message naming the cause in the instance, read with
+//!   [`raceway_last_error`] (valid until the next call on that instance).
+//! - Creation errors go to a caller-provided buffer (there is no instance yet).
+//! - No global mutable state: many instances may live in one process and be used from
+//!   several threads, each instance from one thread at a time.
+//! - Every body runs inside `catch_unwind`: a panic never crosses the boundary. After an
+//!   internal panic the instance is poisoned (every later call returns
+//!   [`RacewayStatus::Panic`]) because its state may be half-updated; free it.
+//! - NULL pointers, wrong lengths, unknown value references, non-finite values and calls
+//!   out of order are refused with a status and a message.
+
+use crate::component::{variables, Component, State};
+use crate::error::Error;
+use std::ffi::{c_char, CStr, CString};
+use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::sync::OnceLock;
+
+mod vr;
+pub use vr::*;
+
+/// Result of every call.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum RacewayStatus {
+    /// Success.
+    Ok = 0,
+    /// Any other failure (input/output).
+    Error = 1,
+    /// A value outside its allowed range, an unknown name or value reference, text that
+    /// does not parse, a length that does not fit.
+    InvalidArgument = 2,
+    /// A required pointer was NULL.
+    NullPointer = 3,
+    /// A call not allowed now (inputs never set, time running backwards, writing an
+    /// output, a state of another scene).
+    CallOrder = 4,
+    /// The internal integration failed; the state is unchanged.
+    StepFailed = 5,
+    /// A caller buffer is too small.
+    BufferTooSmall = 6,
+    /// An internal error (a caught panic); the instance is poisoned and must be freed.
+    Panic = 7,
+}
+
+/// Cost counters of the internal integration (see [`raceway_get_stats`]).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct RacewayStats {
+    /// Right-hand-side evaluations.
+    pub rhs: u64,
+    /// Jacobian evaluations.
+    pub jacobians: u64,
+    /// LU factorisations.
+    pub factorizations: u64,
+    /// Accepted internal steps.
+    pub accepted: u64,
+    /// Rejected internal steps.
+    pub rejected: u64,
+}
+
+/// An opaque bearing instance (from [`raceway_create`], freed by [`raceway_free`]).
+pub struct RacewayComponent {
+    component: Component,
+    last_error: CString,
+    poisoned: bool,
+}
+
+/// An opaque copy of an instance's complete state (from [`raceway_state_get`] or
+/// [`raceway_state_deserialize`], freed by [`raceway_state_free`]).
+pub struct RacewayState {
+    state: State,
+}
+
+/// A refusal: status and message.
+struct Failure {
+    status: RacewayStatus,
+    message: String,
+}
+
+impl Failure {
+    fn new(status: RacewayStatus, message: impl Into<String>) -> Failure {
+        Failure {
+            status,
+            message: message.into(),
+        }
+    }
+    fn null(arg: &str) -> Failure {
+        Failure::new(RacewayStatus::NullPointer, format!("`{arg}` is NULL"))
+    }
+}
+
+impl From<Error> for Failure {
+    fn from(e: Error) -> Failure {
+        let status = match &e {
+            Error::Invalid { .. } | Error::Unknown { .. } | Error::Parse { .. } => {
+                RacewayStatus::InvalidArgument
+            }
+            Error::CallOrder { .. } => RacewayStatus::CallOrder,
+            Error::StepFailed { .. } | Error::NotConverged { .. } => RacewayStatus::StepFailed,
+            Error::Io(_) => RacewayStatus::Error,
+        };
+        Failure::new(status, e.to_string())
+    }
+}
+
+type Outcome = Result<(), Failure>;
+
+/// A C string from a Rust one (interior NULs, impossible in our messages, become `?`).
+fn c_string(s: &str) -> CString {
+    CString::new(s.replace('\0', "?")).unwrap_or_default()
+}
+
+/// The text of a panic payload.
+fn panic_text(payload: &(dyn std::any::Any + Send)) -> String {
+    if let Some(s) = payload.downcast_ref::<&str>() {
+        (*s).to_string()
+    } else if let Some(s) = payload.downcast_ref::<String>() {
+        s.clone()
+    } else {
+        "unknown panic".into()
+    }
+}
+
+/// Run `f` on the instance behind `c`: refuse NULL and poisoned instances, clear the last
+/// error, store the new one, catch panics.
+///
+/// # Safety
+/// `c` is NULL or a live pointer from [`raceway_create`] not used by another thread now.
+unsafe fn with_instance(
+    c: *mut RacewayComponent,
+    call: &str,
+    f: impl FnOnce(&mut Component) -> Outcome,
+) -> RacewayStatus {
+    let run = catch_unwind(AssertUnwindSafe(|| {
+        // SAFETY: the caller passes NULL or a live, exclusively used instance.
+        let Some(inst) = (unsafe { c.as_mut() }) else {
+            return RacewayStatus::NullPointer;
+        };
+        if inst.poisoned {
+            inst.last_error = c_string(&format!(
+                "{call}: refused: the instance was poisoned by an earlier internal error; free it"
+            ));
+            return RacewayStatus::Panic;
+        }
+        inst.last_error = CString::default();
+        match f(&mut inst.component) {
+            Ok(()) => RacewayStatus::Ok,
+            Err(fail) => {
+                inst.last_error = c_string(&format!("{call}: {}", fail.message));
+                fail.status
+            }
+        }
+    }));
+    match run {
+        Ok(status) => status,
+        Err(payload) => {
+            // SAFETY: as above; the closure's borrow has ended.
+            if let Some(inst) = unsafe { c.as_mut() } {
+                inst.poisoned = true;
+                inst.last_error = c_string(&format!(
+                    "{call}: internal error (panic: {}); the instance is poisoned, free it",
+                    panic_text(payload.as_ref())
+                ));
+            }
+            RacewayStatus::Panic
+        }
+    }
+}
+
+/// Run `f` with no instance (catching panics).
+fn guarded<T>(on_panic: T, f: impl FnOnce() -> T) -> T {
+    catch_unwind(AssertUnwindSafe(f)).unwrap_or(on_panic)
+}
+
+/// A slice from a C pointer and a count (NULL allowed when `n == 0`).
+///
+/// # Safety
+/// `p` points to `n` valid values (or `n == 0`).
+unsafe fn slice<'a, T>(p: *const T, n: usize, name: &str) -> Result<&'a [T], Failure> {
+    if n == 0 {
+        return Ok(&[]);
+    }
+    if p.is_null() {
+        return Err(Failure::null(name));
+    }
+    if n > isize::MAX as usize / std::mem::size_of::<T>().max(1) {
+        return Err(Failure::new(
+            RacewayStatus::InvalidArgument,
+            format!("invalid `n` = {n}: allowed a length that fits in memory"),
+        ));
+    }
+    // SAFETY: non-NULL, length checked against isize::MAX, validity promised by the caller.
+    Ok(unsafe { std::slice::from_raw_parts(p, n) })
+}
+
+/// A mutable slice from a C pointer and a count (NULL allowed when `n == 0`).
+///
+/// # Safety
+/// `p` points to `n` writable values (or `n == 0`).
+unsafe fn slice_mut<'a, T>(p: *mut T, n: usize, name: &str) -> Result<&'a mut [T], Failure> {
+    if n == 0 {
+        return Ok(&mut []);
+    }
+    if p.is_null() {
+        return Err(Failure::null(name));
+    }
+    if n > isize::MAX as usize / std::mem::size_of::<T>().max(1) {
+        return Err(Failure::new(
+            RacewayStatus::InvalidArgument,
+            format!("invalid `n` = {n}: allowed a length that fits in memory"),
+        ));
+    }
+    // SAFETY: as in `slice`.
+    Ok(unsafe { std::slice::from_raw_parts_mut(p, n) })
+}
+
+/// Write through an out-pointer, refusing NULL.
+///
+/// # Safety
+/// `p` is NULL or valid for a write of `T`.
+unsafe fn put<T>(p: *mut T, name: &str, value: T) -> Outcome {
+    if p.is_null() {
+        return Err(Failure::null(name));
+    }
+    // SAFETY: non-NULL and valid by the caller's promise.
+    unsafe { p.write(value) };
+    Ok(())
+}
+
+/// Copy `msg` into a caller buffer of `len` bytes, truncated at a character boundary and
+/// NUL-terminated. Nothing is written when `buf` is NULL or `len` is 0.
+///
+/// # Safety
+/// `buf` is NULL or valid for `len` bytes.
+unsafe fn write_message(buf: *mut c_char, len: usize, msg: &str) {
+    if buf.is_null() || len == 0 {
+        return;
+    }
+    let mut n = msg.len().min(len - 1);
+    while !msg.is_char_boundary(n) {
+        n -= 1;
+    }
+    // SAFETY: `n + 1 <= len` bytes, valid by the caller's promise.
+    unsafe {
+        std::ptr::copy_nonoverlapping(msg.as_ptr() as *const c_char, buf, n);
+        buf.add(n).write(0);
+    }
+}
+
+/// The variable table as C strings (immutable once built).
+struct CVariable {
+    vr: u32,
+    name: CString,
+    unit: CString,
+    description: CString,
+}
+
+fn c_variables() -> &'static [CVariable] {
+    static TABLE: OnceLock<Vec<CVariable>> = OnceLock::new();
+    TABLE.get_or_init(|| {
+        variables::all()
+            .map(|v| CVariable {
+                vr: v.vr,
+                name: c_string(v.name),
+                unit: c_string(v.unit),
+                description: c_string(v.description),
+            })
+            .collect()
+    })
+}
+
+/// The C constant of a variable name in `include/raceway.h`: `"K.rx.y"` ->
+/// `RACEWAY_VR_K_RX_Y` (upper case, dots to underscores). `src/capi/vr.rs` holds one
+/// `pub const` per variable under this name, generated from the table.
+pub fn c_constant_name(name: &str) -> String {
+    format!("RACEWAY_VR_{}", name.to_uppercase().replace('.', "_"))
+}
+
+fn c_variable(vr: u32) -> Option<&'static CVariable> {
+    c_variables().iter().find(|v| v.vr == vr)
+}
+
+// ---------------------------------------------------------------------------------------
+// Library
+
+/// The library version, e.g. `"0.1.0"` (static; never freed).
+#[no_mangle]
+pub extern "C" fn raceway_version() -> *const c_char {
+    concat!(env!("CARGO_PKG_VERSION"), "\0").as_ptr() as *const c_char
+}
+
+/// The embedded default scene as TOML text (static; never freed).
+#[no_mangle]
+pub extern "C" fn raceway_default_scene() -> *const c_char {
+    static TEXT: OnceLock<CString> = OnceLock::new();
+    guarded(std::ptr::null(), || {
+        TEXT.get_or_init(|| c_string(crate::component::scene::DEFAULT_SCENE))
+            .as_ptr()
+    })
+}
+
+// ---------------------------------------------------------------------------------------
+// Variable table
+
+/// Number of variables in the table (`RACEWAY_VARIABLE_COUNT`).
+#[no_mangle]
+pub extern "C" fn raceway_variable_count() -> usize {
+    guarded(0, || c_variables().len())
+}
+
+/// The value reference of the `index`-th variable (`0 <= index < count`), for walking the
+/// table.
+///
+/// # Safety
+/// `vr` is NULL or valid for a write.
+#[no_mangle]
+pub unsafe extern "C" fn raceway_variable_at(index: usize, vr: *mut u32) -> RacewayStatus {
+    guarded(RacewayStatus::Panic, || {
+        let Some(v) = c_variables().get(index) else {
+            return RacewayStatus::InvalidArgument;
+        };
+        // SAFETY: promised by the caller.
+        match unsafe { put(vr, "vr", v.vr) } {
+            Ok(()) => RacewayStatus::Ok,
+            Err(f) => f.status,
+        }
+    })
+}
+
+/// The value reference of the variable called `name` (NUL-terminated, e.g.
+/// `"force.x"`); `RACEWAY_STATUS_INVALID_ARGUMENT` when there is none.
+///
+/// # Safety
+/// `name` is NULL or a NUL-terminated string; `vr` is NULL or valid for a write.
+#[no_mangle]
+pub unsafe extern "C" fn raceway_variable_vr(name: *const c_char, vr: *mut u32) -> RacewayStatus {
+    guarded(RacewayStatus::Panic, || {
+        if name.is_null() || vr.is_null() {
+            return RacewayStatus::NullPointer;
+        }
+        // SAFETY: non-NULL, NUL-terminated by the caller's promise.
+        let name = unsafe { CStr::from_ptr(name) };
+        match c_variables().iter().find(|v| v.name.as_c_str() == name) {
+            Some(v) => {
+                // SAFETY: non-NULL, valid by the caller's promise.
+                unsafe { vr.write(v.vr) };
+                RacewayStatus::Ok
+            }
+            None => RacewayStatus::InvalidArgument,
+        }
+    })
+}
+
+/// The name of variable `vr` (static), or NULL when `vr` is not in the table.
+#[no_mangle]
+pub extern "C" fn raceway_variable_name(vr: u32) -> *const c_char {
+    guarded(std::ptr::null(), || {
+        c_variable(vr).map_or(std::ptr::null(), |v| v.name.as_ptr())
+    })
+}
+
+/// The SI unit of variable `vr` (static, e.g. `"N/m"`), or NULL when unknown.
+#[no_mangle]
+pub extern "C" fn raceway_variable_unit(vr: u32) -> *const c_char {
+    guarded(std::ptr::null(), || {
+        c_variable(vr).map_or(std::ptr::null(), |v| v.unit.as_ptr())
+    })
+}
+
+/// The one-line description of variable `vr` (static), or NULL when unknown.
+#[no_mangle]
+pub extern "C" fn raceway_variable_description(vr: u32) -> *const c_char {
+    guarded(std::ptr::null(), || {
+        c_variable(vr).map_or(std::ptr::null(), |v| v.description.as_ptr())
+    })
+}
+
+// ---------------------------------------------------------------------------------------
+// Instances
+
+/// Create an instance from scene text (TOML or JSON, NUL-terminated UTF-8). Returns NULL
+/// when the scene is refused, with the message (naming the field, value and allowed
+/// range) copied into `error` (at most `error_len` bytes including the terminating NUL;
+/// `error` may be NULL).
+///
+/// # Safety
+/// `scene` is NULL or NUL-terminated; `error` is NULL or valid for `error_len` bytes.
+#[no_mangle]
+pub unsafe extern "C" fn raceway_create(
+    scene: *const c_char,
+    error: *mut c_char,
+    error_len: usize,
+) -> *mut RacewayComponent {
+    let made = catch_unwind(AssertUnwindSafe(|| -> Result<Component, String> {
+        if scene.is_null() {
+            return Err("raceway_create: `scene` is NULL".into());
+        }
+        // SAFETY: non-NULL and NUL-terminated by the caller's promise.
+        let bytes = unsafe { CStr::from_ptr(scene) }.to_bytes();
+        let text = std::str::from_utf8(bytes).map_err(|e| {
+            format!(
+                "raceway_create: the scene text is not UTF-8 (invalid byte at {})",
+                e.valid_up_to()
+            )
+        })?;
+        Component::from_text(text).map_err(|e| format!("raceway_create: {e}"))
+    }));
+    let message = match made {
+        Ok(Ok(component)) => {
+            return Box::into_raw(Box::new(RacewayComponent {
+                component,
+                last_error: CString::default(),
+                poisoned: false,
+            }))
+        }
+        Ok(Err(m)) => m,
+        Err(p) => format!(
+            "raceway_create: internal error (panic: {})",
+            panic_text(&*p)
+        ),
+    };
+    let _ = catch_unwind(AssertUnwindSafe(|| {
+        // SAFETY: promised by the caller.
+        unsafe { write_message(error, error_len, &message) }
+    }));
+    std::ptr::null_mut()
+}
+
+/// Free an instance (NULL is ignored). The pointer must not be used afterwards.
+///
+/// # Safety
+/// `c` is NULL or a pointer from [`raceway_create`] not freed before.
+#[no_mangle]
+pub unsafe extern "C" fn raceway_free(c: *mut RacewayComponent) {
+    if c.is_null() {
+        return;
+    }
+    let _ = catch_unwind(AssertUnwindSafe(|| {
+        // SAFETY: from `Box::into_raw` in `raceway_create`, freed once.
+        drop(unsafe { Box::from_raw(c) })
+    }));
+}
+
+/// The message of the last refused call on `c` (`""` when the last call succeeded). Valid
+/// until the next call on `c`. For a NULL `c`, a static message saying so.
+///
+/// # Safety
+/// `c` is NULL or a live instance.
+#[no_mangle]
+pub unsafe extern "C" fn raceway_last_error(c: *const RacewayComponent) -> *const c_char {
+    // SAFETY: promised by the caller.
+    match unsafe { c.as_ref() } {
+        Some(inst) => inst.last_error.as_ptr(),
+        None => c"raceway_last_error: the instance is NULL".as_ptr(),
+    }
+}
+
+/// Set one input by value reference. Refused: unknown references, outputs, non-finite
+/// values.
+///
+/// # Safety
+/// `c` is NULL or a live instance.
+#[no_mangle]
+pub unsafe extern "C" fn raceway_set_real(
+    c: *mut RacewayComponent,
+    vr: u32,
+    value: f64,
+) -> RacewayStatus {
+    // SAFETY: promised by the caller.
+    unsafe { with_instance(c, "raceway_set_real", |comp| Ok(comp.set_real(vr, value)?)) }
+}
+
+/// Set `n` inputs: `values[i]` to `vrs[i]`. All or nothing: when one is refused, none is
+/// set and the message names its index.
+///
+/// # Safety
+/// `c` is NULL or a live instance; `vrs` and `values` are NULL or hold `n` values.
+#[no_mangle]
+pub unsafe extern "C" fn raceway_set_reals(
+    c: *mut RacewayComponent,
+    vrs: *const u32,
+    values: *const f64,
+    n: usize,
+) -> RacewayStatus {
+    // SAFETY: promised by the caller.
+    unsafe {
+        with_instance(c, "raceway_set_reals", |comp| {
+            let vrs = slice(vrs, n, "vrs")?;
+            let values = slice(values, n, "values")?;
+            let before = comp.get_state();
+            for (i, (&vr, &v)) in vrs.iter().zip(values).enumerate() {
+                if let Err(e) = comp.set_real(vr, v) {
+                    comp.set_state(&before)?;
+                    let f = Failure::from(e);
+                    return Err(Failure::new(
+                        f.status,
+                        format!("values[{i}] (vr {vr}): {}", f.message),
+                    ));
+                }
+            }
+            Ok(())
+        })
+    }
+}
+
+/// Set the `order`-th time derivative (1, 2 or 3) of input `vr` (used by scenes with
+/// `inputs.rule = "derivatives"`; reset to zero after each step).
+///
+/// # Safety
+/// `c` is NULL or a live instance.
+#[no_mangle]
+pub unsafe extern "C" fn raceway_set_input_derivative(
+    c: *mut RacewayComponent,
+    vr: u32,
+    order: u32,
+    value: f64,
+) -> RacewayStatus {
+    // SAFETY: promised by the caller.
+    unsafe {
+        with_instance(c, "raceway_set_input_derivative", |comp| {
+            Ok(comp.set_input_derivative(vr, order, value)?)
+        })
+    }
+}
+
+/// Set the `order`-th derivatives of `n` inputs; all or nothing.
+///
+/// # Safety
+/// `c` is NULL or a live instance; `vrs` and `values` are NULL or hold `n` values.
+#[no_mangle]
+pub unsafe extern "C" fn raceway_set_input_derivatives(
+    c: *mut RacewayComponent,
+    vrs: *const u32,
+    order: u32,
+    values: *const f64,
+    n: usize,
+) -> RacewayStatus {
+    // SAFETY: promised by the caller.
+    unsafe {
+        with_instance(c, "raceway_set_input_derivatives", |comp| {
+            let vrs = slice(vrs, n, "vrs")?;
+            let values = slice(values, n, "values")?;
+            let before = comp.get_state();
+            for (i, (&vr, &v)) in vrs.iter().zip(values).enumerate() {
+                if let Err(e) = comp.set_input_derivative(vr, order, v) {
+                    comp.set_state(&before)?;
+                    let f = Failure::from(e);
+                    return Err(Failure::new(
+                        f.status,
+                        format!("values[{i}] (vr {vr}): {}", f.message),
+                    ));
+                }
+            }
+            Ok(())
+        })
+    }
+}
+
+/// Advance from `t` (the instance's current time) to `t + h`. Refused: `h <= 0` or not
+/// finite, `t` not the current time (time never jumps or runs backwards), inputs never
+/// set. A failed step leaves the state unchanged.
+///
+/// # Safety
+/// `c` is NULL or a live instance.
+#[no_mangle]
+pub unsafe extern "C" fn raceway_do_step(
+    c: *mut RacewayComponent,
+    t: f64,
+    h: f64,
+) -> RacewayStatus {
+    // SAFETY: promised by the caller.
+    unsafe { with_instance(c, "raceway_do_step", |comp| Ok(comp.do_step(t, h)?)) }
+}
+
+/// Get one input or output by value reference into `*value`.
+///
+/// # Safety
+/// `c` is NULL or a live instance; `value` is NULL or valid for a write.
+#[no_mangle]
+pub unsafe extern "C" fn raceway_get_real(
+    c: *mut RacewayComponent,
+    vr: u32,
+    value: *mut f64,
+) -> RacewayStatus {
+    // SAFETY: promised by the caller.
+    unsafe {
+        with_instance(c, "raceway_get_real", |comp| {
+            if value.is_null() {
+                return Err(Failure::null("value"));
+            }
+            let v = comp.get_real(vr)?;
+            put(value, "value", v)
+        })
+    }
+}
+
+/// Get `n` inputs or outputs: `values[i]` from `vrs[i]`. All or nothing: `values` is
+/// written only when every reference is valid.
+///
+/// # Safety
+/// `c` is NULL or a live instance; `vrs` is NULL or holds `n` values; `values` is NULL or
+/// has room for `n`.
+#[no_mangle]
+pub unsafe extern "C" fn raceway_get_reals(
+    c: *mut RacewayComponent,
+    vrs: *const u32,
+    values: *mut f64,
+    n: usize,
+) -> RacewayStatus {
+    // SAFETY: promised by the caller.
+    unsafe {
+        with_instance(c, "raceway_get_reals", |comp| {
+            let vrs = slice(vrs, n, "vrs")?;
+            let out = slice_mut(values, n, "values")?;
+            let got = vrs
+                .iter()
+                .enumerate()
+                .map(|(i, &vr)| {
+                    comp.get_real(vr).map_err(|e| {
+                        let f = Failure::from(e);
+                        Failure::new(f.status, format!("vrs[{i}] = {vr}: {}", f.message))
+                    })
+                })
+                .collect::<Result<Vec<f64>, Failure>>()?;
+            out.copy_from_slice(&got);
+            Ok(())
+        })
+    }
+}
+
+/// Get the `order`-th time derivative (only 1 now) of output `vr` at the current time.
+///
+/// # Safety
+/// `c` is NULL or a live instance; `value` is NULL or valid for a write.
+#[no_mangle]
+pub unsafe extern "C" fn raceway_get_output_derivative(
+    c: *mut RacewayComponent,
+    vr: u32,
+    order: u32,
+    value: *mut f64,
+) -> RacewayStatus {
+    // SAFETY: promised by the caller.
+    unsafe {
+        with_instance(c, "raceway_get_output_derivative", |comp| {
+            if value.is_null() {
+                return Err(Failure::null("value"));
+            }
+            let v = comp.get_output_derivative(vr, order)?;
+            put(value, "value", v)
+        })
+    }
+}
+
+/// Directional derivative `out = J seed` of outputs `unknowns` (`n_unknowns`) with
+/// respect to inputs `knowns` (`n_knowns`); `seed` holds `n_knowns` values and `out` has
+/// room for `n_unknowns`.
+///
+/// # Safety
+/// `c` is NULL or a live instance; the arrays are NULL or hold the stated counts.
+#[no_mangle]
+pub unsafe extern "C" fn raceway_directional_derivative(
+    c: *mut RacewayComponent,
+    unknowns: *const u32,
+    n_unknowns: usize,
+    knowns: *const u32,
+    n_knowns: usize,
+    seed: *const f64,
+    out: *mut f64,
+) -> RacewayStatus {
+    // SAFETY: promised by the caller.
+    unsafe {
+        with_instance(c, "raceway_directional_derivative", |comp| {
+            let unknowns = slice(unknowns, n_unknowns, "unknowns")?;
+            let knowns = slice(knowns, n_knowns, "knowns")?;
+            let seed = slice(seed, n_knowns, "seed")?;
+            let out = slice_mut(out, n_unknowns, "out")?;
+            if let Some(&s) = seed.iter().find(|s| !s.is_finite()) {
+                return Err(Error::invalid("seed", s, "finite numbers").into());
+            }
+            let mut tmp = vec![0.0; n_unknowns];
+            comp.directional_derivative(unknowns, knowns, seed, &mut tmp)?;
+            out.copy_from_slice(&tmp);
+            Ok(())
+        })
+    }
+}
+
+/// The instance's current time, s.
+///
+/// # Safety
+/// `c` is NULL or a live instance; `t` is NULL or valid for a write.
+#[no_mangle]
+pub unsafe extern "C" fn raceway_get_time(c: *mut RacewayComponent, t: *mut f64) -> RacewayStatus {
+    // SAFETY: promised by the caller.
+    unsafe { with_instance(c, "raceway_get_time", |comp| put(t, "t", comp.time())) }
+}
+
+/// The cost counters since creation.
+///
+/// # Safety
+/// `c` is NULL or a live instance; `stats` is NULL or valid for a write.
+#[no_mangle]
+pub unsafe extern "C" fn raceway_get_stats(
+    c: *mut RacewayComponent,
+    stats: *mut RacewayStats,
+) -> RacewayStatus {
+    // SAFETY: promised by the caller.
+    unsafe {
+        with_instance(c, "raceway_get_stats", |comp| {
+            let s = comp.stats();
+            put(
+                stats,
+                "stats",
+                RacewayStats {
+                    rhs: s.rhs,
+                    jacobians: s.jacobians,
+                    factorizations: s.factorizations,
+                    accepted: s.accepted,
+                    rejected: s.rejected,
+                },
+            )
+        })
+    }
+}
+
+// ---------------------------------------------------------------------------------------
+// State
+
+/// Copy the instance's complete state into `*state`: when `*state` is NULL a new state is
+/// allocated (free it with [`raceway_state_free`]); otherwise `*state` must be a state
+/// from this library and is overwritten in place.
+///
+/// # Safety
+/// `c` is NULL or a live instance; `state` is NULL or points to NULL or a live state.
+#[no_mangle]
+pub unsafe extern "C" fn raceway_state_get(
+    c: *mut RacewayComponent,
+    state: *mut *mut RacewayState,
+) -> RacewayStatus {
+    // SAFETY: promised by the caller.
+    unsafe {
+        with_instance(c, "raceway_state_get", |comp| {
+            if state.is_null() {
+                return Err(Failure::null("state"));
+            }
+            let s = comp.get_state();
+            match (*state).as_mut() {
+                Some(existing) => existing.state = s,
+                None => *state = Box::into_raw(Box::new(RacewayState { state: s })),
+            }
+            Ok(())
+        })
+    }
+}
+
+/// Restore a state taken from this instance (or one built from the same scene); the
+/// instance continues bit for bit as from the moment the state was taken. A state of
+/// another scene is refused.
+///
+/// # Safety
+/// `c` is NULL or a live instance; `state` is NULL or a live state.
+#[no_mangle]
+pub unsafe extern "C" fn raceway_state_set(
+    c: *mut RacewayComponent,
+    state: *const RacewayState,
+) -> RacewayStatus {
+    // SAFETY: promised by the caller.
+    unsafe {
+        with_instance(c, "raceway_state_set", |comp| {
+            let s = state.as_ref().ok_or_else(|| Failure::null("state"))?;
+            Ok(comp.set_state(&s.state)?)
+        })
+    }
+}
+
+/// Free a state (NULL is ignored).
+///
+/// # Safety
+/// `state` is NULL or a state from this library not freed before.
+#[no_mangle]
+pub unsafe extern "C" fn raceway_state_free(state: *mut RacewayState) {
+    if state.is_null() {
+        return;
+    }
+    let _ = catch_unwind(AssertUnwindSafe(|| {
+        // SAFETY: from `Box::into_raw`, freed once.
+        drop(unsafe { Box::from_raw(state) })
+    }));
+}
+
+/// The number of bytes [`raceway_state_serialize`] writes for `state`.
+///
+/// # Safety
+/// `c` is NULL or a live instance (it receives the error message); `state` is NULL or a
+/// live state; `size` is NULL or valid for a write.
+#[no_mangle]
+pub unsafe extern "C" fn raceway_state_size(
+    c: *mut RacewayComponent,
+    state: *const RacewayState,
+    size: *mut usize,
+) -> RacewayStatus {
+    // SAFETY: promised by the caller.
+    unsafe {
+        with_instance(c, "raceway_state_size", |_| {
+            let s = state.as_ref().ok_or_else(|| Failure::null("state"))?;
+            put(size, "size", s.state.byte_len())
+        })
+    }
+}
+
+/// Serialise `state` into `buffer` (`len` bytes, at least [`raceway_state_size`]). The
+/// bytes are versioned and hold no pointers: they may be stored and read back by another
+/// process of the same library version.
+///
+/// # Safety
+/// `c` is NULL or a live instance; `state` is NULL or a live state; `buffer` is NULL or
+/// valid for `len` bytes.
+#[no_mangle]
+pub unsafe extern "C" fn raceway_state_serialize(
+    c: *mut RacewayComponent,
+    state: *const RacewayState,
+    buffer: *mut u8,
+    len: usize,
+) -> RacewayStatus {
+    // SAFETY: promised by the caller.
+    unsafe {
+        with_instance(c, "raceway_state_serialize", |_| {
+            let s = state.as_ref().ok_or_else(|| Failure::null("state"))?;
+            let need = s.state.byte_len();
+            if len < need {
+                return Err(Failure::new(
+                    RacewayStatus::BufferTooSmall,
+                    format!("buffer of {len} bytes, the state needs {need}"),
+                ));
+            }
+            let out = slice_mut(buffer, need, "buffer")?;
+            out.copy_from_slice(&s.state.to_bytes());
+            Ok(())
+        })
+    }
+}
+
+/// Read a state from `len` bytes written by [`raceway_state_serialize`] into a new state
+/// `*state` (free it with [`raceway_state_free`]; restore it with [`raceway_state_set`]).
+/// Refused: damaged or truncated bytes, another format version, a state of another
+/// scene than `c`'s. `*state` is written only on success.
+///
+/// # Safety
+/// `c` is NULL or a live instance; `buffer` is NULL or valid for `len` bytes; `state` is
+/// NULL or valid for a write.
+#[no_mangle]
+pub unsafe extern "C" fn raceway_state_deserialize(
+    c: *mut RacewayComponent,
+    buffer: *const u8,
+    len: usize,
+    state: *mut *mut RacewayState,
+) -> RacewayStatus {
+    // SAFETY: promised by the caller.
+    unsafe {
+        with_instance(c, "raceway_state_deserialize", |comp| {
+            if state.is_null() {
+                return Err(Failure::null("state"));
+            }
+            let bytes = slice(buffer, len, "buffer")?;
+            let s = State::from_bytes(bytes)?;
+            // Check it fits this instance now rather than at `raceway_state_set`.
+            let mut trial = comp.clone();
+            trial.set_state(&s)?;
+            *state = Box::into_raw(Box::new(RacewayState { state: s }));
+            Ok(())
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn messages_are_truncated_at_character_boundaries_and_terminated() {
+        let mut buf = [0x55 as c_char; 6];
+        // "µ" is two bytes: 5 bytes of room would split it after "abcd".
+        unsafe { write_message(buf.as_mut_ptr(), 6, "abcdµef") };
+        let got = unsafe { CStr::from_ptr(buf.as_ptr()) }.to_str().unwrap();
+        assert_eq!(got, "abcd");
+        let mut one = [0x55 as c_char; 1];
+        unsafe { write_message(one.as_mut_ptr(), 1, "abc") };
+        assert_eq!(one[0], 0);
+    }
+
+    #[test]
+    fn a_panic_poisons_only_its_instance_and_is_reported() {
+        let text = std::ffi::CString::new(crate::component::scene::DEFAULT_SCENE).unwrap();
+        let c = unsafe { raceway_create(text.as_ptr(), std::ptr::null_mut(), 0) };
+        assert!(!c.is_null());
+        let status = unsafe { with_instance(c, "test", |_| panic!("boom")) };
+        assert_eq!(status, RacewayStatus::Panic);
+        let msg = unsafe { CStr::from_ptr(raceway_last_error(c)) };
+        assert!(msg.to_str().unwrap().contains("boom"), "{msg:?}");
+        let mut t = 0.0;
+        assert_eq!(unsafe { raceway_get_time(c, &mut t) }, RacewayStatus::Panic);
+        let msg = unsafe { CStr::from_ptr(raceway_last_error(c)) };
+        assert!(msg.to_str().unwrap().contains("poisoned"), "{msg:?}");
+        unsafe { raceway_free(c) };
+    }
+
+    #[test]
+    fn constant_names_are_unique_c_identifiers() {
+        let names: Vec<String> = variables::all().map(|v| c_constant_name(v.name)).collect();
+        for (i, n) in names.iter().enumerate() {
+            assert!(
+                n.chars()
+                    .all(|ch| ch.is_ascii_uppercase() || ch.is_ascii_digit() || ch == '_'),
+                "{n}"
+            );
+            assert!(!names[i + 1..].contains(n), "{n} twice");
+        }
+    }
+
+    #[test]
+    fn every_library_error_maps_to_a_status_other_than_ok() {
+        let errors = [
+            Error::invalid("a", 1, "b"),
+            Error::Parse {
+                what: "x".into(),
+                message: "y".into(),
+            },
+            Error::CallOrder {
+                call: "c",
+                reason: "r".into(),
+            },
+            Error::StepFailed {
+                t: 0.0,
+                reason: "r".into(),
+            },
+            Error::Io("io".into()),
+        ];
+        let statuses: Vec<_> = errors
+            .into_iter()
+            .map(|e| Failure::from(e).status)
+            .collect();
+        assert_eq!(
+            statuses,
+            [
+                RacewayStatus::InvalidArgument,
+                RacewayStatus::InvalidArgument,
+                RacewayStatus::CallOrder,
+                RacewayStatus::StepFailed,
+                RacewayStatus::Error
+            ]
+        );
+    }
+}

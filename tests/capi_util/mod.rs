@@ -1,0 +1,90 @@
+//! Helpers shared by the C ABI tests: where cargo put the cdylib, the system C compilers,
+//! running commands with their output in the failure message.
+
+#![allow(dead_code)]
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+/// The crate root.
+pub fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// The directory holding the cdylib cargo built for this test run:
+/// `target/<profile>/` is the parent of the test executable's `deps/`.
+pub fn lib_dir() -> PathBuf {
+    let exe = std::env::current_exe().expect("test executable path");
+    let dir = exe
+        .parent()
+        .and_then(Path::parent)
+        .expect("target/<profile>/deps/<test>")
+        .to_path_buf();
+    let lib = dir.join(format!(
+        "{}raceway{}",
+        std::env::consts::DLL_PREFIX,
+        std::env::consts::DLL_SUFFIX
+    ));
+    assert!(
+        lib.exists(),
+        "{} not found: cargo builds it with the library (crate-type cdylib)",
+        lib.display()
+    );
+    dir
+}
+
+/// A scratch directory for this test's build products.
+pub fn scratch(name: &str) -> PathBuf {
+    let d = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(name);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// The C compiler: `$CC` or `cc`.
+pub fn cc() -> String {
+    std::env::var("CC").unwrap_or_else(|_| "cc".into())
+}
+
+/// The C++ compiler: `$CXX` or `c++`.
+pub fn cxx() -> String {
+    std::env::var("CXX").unwrap_or_else(|_| "c++".into())
+}
+
+/// Run a command; panic with its output when it fails; return its stdout.
+pub fn run(cmd: &mut Command) -> String {
+    let out = cmd
+        .output()
+        .unwrap_or_else(|e| panic!("cannot start {cmd:?}: {e}"));
+    assert!(
+        out.status.success(),
+        "{cmd:?} failed ({}):\n{}\n{}",
+        out.status,
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8(out.stdout).expect("UTF-8 output")
+}
+
+/// Compile and link C sources against include/raceway.h and the cdylib (rpath set so the
+/// program runs in place) with `-std=c99 -Wall -Wextra -pedantic -Werror`.
+pub fn build_c_program(sources: &[PathBuf], exe: &Path) {
+    let lib = lib_dir();
+    let mut cmd = Command::new(cc());
+    cmd.args([
+        "-std=c99",
+        "-Wall",
+        "-Wextra",
+        "-pedantic",
+        "-Werror",
+        "-O2",
+    ])
+    .arg("-I")
+    .arg(root().join("include"))
+    .args(sources)
+    .arg("-o")
+    .arg(exe)
+    .arg(format!("-L{}", lib.display()))
+    .arg(format!("-Wl,-rpath,{}", lib.display()))
+    .args(["-lraceway", "-lm"]);
+    run(&mut cmd);
+}
