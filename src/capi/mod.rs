@@ -872,8 +872,7 @@ pub unsafe extern "C" fn raceway_state_deserialize(
             let bytes = slice(buffer, len, "buffer")?;
             let s = State::from_bytes(bytes)?;
             // Check it fits this instance now rather than at `raceway_state_set`.
-            let mut trial = comp.clone();
-            trial.set_state(&s)?;
+            comp.check_state(&s)?;
             *state = Box::into_raw(Box::new(RacewayState { state: s }));
             Ok(())
         })

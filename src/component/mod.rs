@@ -569,6 +569,13 @@ impl Component {
 
     /// Restore a state taken from this component (or one built from the same scene).
     pub fn set_state(&mut self, s: &State) -> Result<()> {
+        self.check_state(s)?;
+        self.state.clone_from(s);
+        Ok(())
+    }
+
+    /// Would [`Component::set_state`] accept `s`? (Same scene, same sizes.)
+    pub fn check_state(&self, s: &State) -> Result<()> {
         if s.scene_fingerprint != self.state.scene_fingerprint
             || s.x.len() != self.state.x.len()
             || s.aux.len() != self.state.aux.len()
@@ -582,7 +589,6 @@ impl Component {
                 reason: "the state belongs to another scene".into(),
             });
         }
-        self.state.clone_from(s);
         Ok(())
     }
 
