@@ -887,7 +887,10 @@ fn rodas4_with_block_arrowhead_solver_matches_dense_lu() {
     dp.integrate(&mut BallsAndRing { nb }, 0.0, 2.0, &mut y, &mut h, &opts)
         .unwrap();
     println!("DOPRI5 balls+ring: {:?}", dp.stats);
-    assert!(max_abs_diff(&y, &yd) < 1e-6);
+    let dd = max_abs_diff(&y, &yd);
+    println!("DOPRI5 vs RODAS4 max diff {dd:.2e}");
+    // both within their global error (rtol = 1e-6 on states up to ~0.7)
+    assert!(dd < 5e-5, "DOPRI5 and RODAS4 differ by {dd}");
     // DOPRI5 sits on its stability bound h ≈ 3.3/1e4 (2 s / 3.3e-4 ≈ 6000 steps); RODAS4 is
     // limited by accuracy on the 100 rad/s ring mode
     assert!(dp.stats.accepted > 3 * sb.accepted);
