@@ -322,7 +322,7 @@ impl Dopri5 {
                 reject = false;
                 h = h_new;
             } else {
-                h = h / (1.0 / FAC_MIN).min(fac11 / SAFE);
+                h /= (1.0 / FAC_MIN).min(fac11 / SAFE);
                 reject = true;
                 self.stats.rejected += 1;
             }

@@ -67,8 +67,7 @@ pub fn lu_factor(a: &mut [f64], n: usize, piv: &mut [usize]) -> Result<(), usize
 
 /// Solve with the factors of [`lu_factor`]: `b` is overwritten by `x`.
 pub fn lu_solve(a: &[f64], n: usize, piv: &[usize], b: &mut [f64]) {
-    for k in 0..n {
-        let p = piv[k];
+    for (k, &p) in piv.iter().enumerate().take(n) {
         if p != k {
             b.swap(k, p);
         }

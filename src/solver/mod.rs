@@ -82,7 +82,8 @@ pub struct Options {
     /// Largest step (`> 0`; `f64::INFINITY` for no limit).
     pub h_max: f64,
     /// Fixed-step mode: cover `[t0, t1]` with the fewest equal steps no longer than `h_max`,
-    /// without error control (for convergence studies and deterministic HIL runs).
+    /// without error control (for convergence studies and deterministic HIL runs). The
+    /// step-size memory returns the step used.
     pub fixed_step: bool,
 }
 
@@ -137,7 +138,7 @@ impl Options {
                 "a finite number > 0",
             ));
         }
-        if !(self.h_max > 0.0) || self.h_max.is_nan() {
+        if self.h_max.is_nan() || self.h_max <= 0.0 {
             return Err(SolverError::invalid("h_max", self.h_max, "> 0"));
         }
         if self.fixed_step && !self.h_max.is_finite() {

@@ -175,9 +175,8 @@ impl Rosenbrock {
         }
         let th = (t - self.t_old) / self.h_old;
         let th1 = 1.0 - th;
-        for i in 0..self.n {
-            out[i] =
-                th1 * self.y_old[i] + th * (self.y[i] + th1 * (self.kd1[i] + th * self.kd2[i]));
+        for (i, o) in out.iter_mut().enumerate() {
+            *o = th1 * self.y_old[i] + th * (self.y[i] + th1 * (self.kd1[i] + th * self.kd2[i]));
         }
         Ok(())
     }
@@ -200,7 +199,8 @@ impl Rosenbrock {
         let h_next = if opts.fixed_step {
             self.run_fixed(sys, t0, t1, opts)?
         } else {
-            let h0 = if h_trial.is_finite() && *h_trial > 0.0 {
+            let warm = h_trial.is_finite() && *h_trial > 0.0;
+            let h0 = if warm {
                 h_trial.min(opts.h_max)
             } else {
                 self.f_at_start(sys, t0)?;
@@ -216,7 +216,8 @@ impl Rosenbrock {
                     opts,
                 )?
             };
-            self.run_adaptive(sys, t0, t1, h0, opts)?
+            // a cold start evaluated f(t0, y0) for the initial step already
+            self.run_adaptive(sys, t0, t1, h0, opts, !warm)?
         };
         y.copy_from_slice(&self.y);
         *h_trial = h_next;
@@ -239,14 +240,17 @@ impl Rosenbrock {
         Ok(())
     }
 
-    /// `f0`, `J` and `∂f/∂t` at the accepted point `(t, y)`.
+    /// `f0` (unless `have_f0`), `J` and `∂f/∂t` at the accepted point `(t, y)`.
     fn linearise<S: OdeSystem + ?Sized>(
         &mut self,
         sys: &mut S,
         t: f64,
         opts: &Options,
+        have_f0: bool,
     ) -> Result<(), SolverError> {
-        self.f_at_start(sys, t)?;
+        if !have_f0 {
+            self.f_at_start(sys, t)?;
+        }
         let n = self.n;
         self.stats.jac_evals += 1;
         if !sys.jacobian(t, &self.y, &mut self.jac) {
@@ -311,7 +315,7 @@ impl Rosenbrock {
         let (steps, h) = fixed_steps(t0, t1, opts.h_max);
         for i in 0..steps {
             let t = t0 + i as f64 * h;
-            self.linearise(sys, t, opts)?;
+            self.linearise(sys, t, opts, false)?;
             match self.attempt(sys, t, h)? {
                 Attempt::Done => {}
                 Attempt::Singular => return Err(SolverError::Singular { t, h }),
@@ -335,6 +339,7 @@ impl Rosenbrock {
         t1: f64,
         h0: f64,
         opts: &Options,
+        mut have_f0: bool,
     ) -> Result<f64, SolverError> {
         let mut t = t0;
         let mut h = h0;
@@ -357,8 +362,9 @@ impl Rosenbrock {
                 return Err(underflow(t, h, last_nonfinite));
             }
             if need_linearise {
-                self.linearise(sys, t, opts)?;
+                self.linearise(sys, t, opts, have_f0)?;
                 need_linearise = false;
+                have_f0 = false;
             }
             attempts += 1;
             let h_prop = h;
