@@ -654,32 +654,38 @@ fn step_size_memory_carries_across_calls() {
             "{name}: halves differ from one call by {d}"
         );
 
-        // many communication steps: warm (memory carried) against cold (h reset each call)
-        let comm = 2.0 * PI / 50.0;
+        // many communication steps on a mildly stiff Van der Pol (ε = 1e-3, relaxation
+        // jumps): warm (memory carried) against cold (h reset at every call)
+        let comm = 0.02;
+        let vdp_opts = Options::new(2, 1e-6, 1e-6);
         let run = |warm: bool| {
-            let mut integ = make(4);
-            let mut y = Kepler::y0(0.5);
+            let mut integ = make(2);
+            let mut y = [2.0, 0.0];
             let mut h = 0.0;
-            for k in 0..50 {
+            for k in 0..100 {
                 if !warm {
                     h = 0.0;
                 }
                 integ
                     .integrate(
-                        &mut Kepler,
+                        &mut VanDerPol { eps: 1e-3 },
                         k as f64 * comm,
                         (k + 1) as f64 * comm,
                         &mut y,
                         &mut h,
-                        &opts,
+                        &vdp_opts,
                     )
                     .unwrap();
             }
-            (*integ.stats(), max_abs_diff(&y, &Kepler::y0(0.5)))
+            (*integ.stats(), y)
         };
-        let (warm, ew) = run(true);
-        let (cold, ec) = run(false);
-        println!("{name} 50 comm steps: warm {warm:?} err {ew:.2e}; cold {cold:?} err {ec:.2e}");
+        let (warm, yw) = run(true);
+        let (cold, yc) = run(false);
+        println!("{name} VdP eps=1e-3, 100 comm steps: warm {warm:?}; cold {cold:?}");
+        assert!(
+            max_abs_diff(&yw, &yc) < 1e-5,
+            "{name}: warm and cold disagree"
+        );
         assert!(
             warm.rhs_evals < cold.rhs_evals,
             "{name}: warm start should be cheaper"
@@ -688,7 +694,10 @@ fn step_size_memory_carries_across_calls() {
             warm.rejected <= cold.rejected,
             "{name}: warm start should reject less"
         );
-        assert!(ew < 1e3 * tol, "{name}: warm error {ew}");
+        if name == "DOPRI5" {
+            // the cold initial guess overshoots on the fast phases again and again
+            assert!(2 * warm.rejected < cold.rejected, "{name}: rejections");
+        }
     }
 }
 

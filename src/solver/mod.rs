@@ -296,6 +296,7 @@ impl From<SolverError> for crate::Error {
 }
 
 /// One of the integrators behind one calling convention.
+#[derive(Debug)]
 pub enum Integrator {
     /// Explicit Dormand–Prince 5(4).
     Dopri5(Dopri5),
@@ -523,4 +524,28 @@ fn fixed_steps(t0: f64, t1: f64, h_max: f64) -> (u64, f64) {
     let span = t1 - t0;
     let n = ((span / h_max) * (1.0 - 1e-12)).ceil().max(1.0) as u64;
     (n, span / n as f64)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn integrators_can_move_between_threads() {
+        fn is_send<T: Send>() {}
+        is_send::<Integrator>();
+    }
+
+    #[test]
+    fn step_memory_after_a_shortened_last_step() {
+        // shortened step that went well: the earlier, larger proposal stands
+        assert_eq!(carry_step(0.1, 0.5, 0.3, f64::INFINITY), 0.5);
+        // shortened step that was already too large: the smaller proposal wins
+        assert_eq!(carry_step(0.1, 0.5, 0.05, f64::INFINITY), 0.05);
+        assert_eq!(carry_step(0.1, 0.5, 0.3, 0.2), 0.2);
+        // fixed steps: fewest equal steps of at most h_max, tolerant to rounding in t1/h_max
+        assert_eq!(fixed_steps(0.0, 1.0, 0.1).0, 10);
+        assert_eq!(fixed_steps(0.0, 1.0, 0.3).0, 4);
+        assert_eq!(fixed_steps(0.0, 0.3, 0.1).0, 3);
+    }
 }
