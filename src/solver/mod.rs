@@ -1,1 +1,551 @@
 //! Integrators and nonlinear solvers written for the bearing problem.
+//!
+//! Two one-step integrators share one calling convention ([`Integrator::integrate`]):
+//!
+//! - [`Dopri5`]: explicit Dormand–Prince 5(4) with FSAL, Hairer's PI step-size controller,
+//!   4th-order dense output and Hairer's stiffness detection (Hairer, Nørsett & Wanner,
+//!   *Solving ODEs I*, 2nd ed., §II.4–II.6 and §IV.2; the code DOPRI5 is the model).
+//! - [`Rosenbrock`]: RODAS4, the L-stable, stiffly accurate 6-stage Rosenbrock method of
+//!   order 4(3) (Hairer & Wanner, *Solving ODEs II*, 2nd ed., §VI.4, Table 4.1 / the code
+//!   RODAS), one LU per step attempt, with a pluggable linear solver ([`LinearSolver`]:
+//!   [`DenseLu`] by default, [`BlockArrowhead`] for ball-structured systems).
+//!
+//! Conventions the co-simulation component relies on:
+//!
+//! - `integrate(sys, t0, t1, y, h_trial, opts)` integrates from `t0` to exactly `t1` with
+//!   adaptive internal sub-steps. `h_trial` is the step-size memory: on entry the first trial
+//!   step (`<= 0` or not finite: choose one automatically, Hairer's `HINIT`), on success the
+//!   proposal for the next call. It is a plain `f64` the caller stores in its serialisable
+//!   state; all other controller memory is reset at every call, so the result of a call is a
+//!   function of `(t0, t1, y, h_trial, opts)` only (bit-for-bit restartable).
+//! - Transaction: the integrator works in its own buffers and writes `y` and `h_trial` only
+//!   on success. On failure they are untouched and a [`SolverError`] names the cause.
+//! - No heap allocation while stepping: every work vector and matrix is allocated when the
+//!   integrator is created for a dimension `n`.
+//! - Error control with a per-component absolute tolerance vector and a scalar relative
+//!   tolerance, in Hairer's RMS norm
+//!   `err = sqrt(1/n · Σ (e_i / (atol_i + rtol·max(|y0_i|, |y1_i|)))²)`.
+//! - Work counters ([`Stats`]) accumulate across calls.
+
+mod dopri5;
+mod linalg;
+mod rosenbrock;
+
+pub use dopri5::Dopri5;
+pub use linalg::{lu_factor, lu_solve, BlockArrowhead, DenseLu, LinearSolver};
+pub use rosenbrock::Rosenbrock;
+
+use nalgebra::DMatrix;
+use std::fmt;
+
+/// Unit round-off of `f64` (Hairer's `UROUND`).
+pub(crate) const UROUND: f64 = f64::EPSILON;
+
+/// Most consecutive step attempts that may meet a non-finite right-hand side value (each
+/// one cuts the step by 5) before the integration gives up.
+const MAX_NONFINITE_RETRIES: u32 = 12;
+
+/// A system of ordinary differential equations `y' = f(t, y)` of fixed dimension.
+///
+/// Time-dependent inputs are the system's business: it knows `t`.
+pub trait OdeSystem {
+    /// Number of states `n`.
+    fn dim(&self) -> usize;
+
+    /// Evaluate `dy = f(t, y)`. An `Err` aborts the integration (state unchanged) and its
+    /// message is passed on in [`SolverError::Rhs`].
+    fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), String>;
+
+    /// Fill the Jacobian `∂f/∂y` at `(t, y)` into `jac` (n × n) and return `true`, or return
+    /// `false` (the default) to let the integrator build it by forward differences.
+    fn jacobian(&mut self, _t: f64, _y: &[f64], _jac: &mut DMatrix<f64>) -> bool {
+        false
+    }
+
+    /// Fill `∂f/∂t` at `(t, y)` and return `true`, or return `false` (the default) to let the
+    /// integrator build it by a forward difference. An autonomous system fills zeros.
+    fn time_derivative(&mut self, _t: f64, _y: &[f64], _dfdt: &mut [f64]) -> bool {
+        false
+    }
+}
+
+/// Settings of one `integrate` call.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Options {
+    /// Relative tolerance (`>= 0`, finite).
+    pub rtol: f64,
+    /// Absolute tolerance per state (length `n`, each `> 0`): the size below which a state's
+    /// error no longer matters.
+    pub atol: Vec<f64>,
+    /// Most step attempts (accepted plus rejected) in one call.
+    pub max_steps: u64,
+    /// Largest step (`> 0`; `f64::INFINITY` for no limit).
+    pub h_max: f64,
+    /// Fixed-step mode: cover `[t0, t1]` with the fewest equal steps no longer than `h_max`,
+    /// without error control (for convergence studies and deterministic HIL runs). The
+    /// step-size memory returns the step used.
+    pub fixed_step: bool,
+}
+
+impl Options {
+    /// Adaptive stepping with the same absolute tolerance for all `n` states.
+    pub fn new(n: usize, rtol: f64, atol: f64) -> Self {
+        Options {
+            rtol,
+            atol: vec![atol; n],
+            max_steps: 100_000,
+            h_max: f64::INFINITY,
+            fixed_step: false,
+        }
+    }
+
+    /// Fixed steps no longer than `h` (tolerances unused but kept valid).
+    pub fn fixed(n: usize, h: f64) -> Self {
+        Options {
+            rtol: 1e-6,
+            atol: vec![1e-6; n],
+            max_steps: u64::MAX,
+            h_max: h,
+            fixed_step: true,
+        }
+    }
+
+    /// Check the options against the dimension `n` (no allocation unless refused).
+    fn check(&self, n: usize) -> Result<(), SolverError> {
+        if !(self.rtol.is_finite() && self.rtol >= 0.0) {
+            return Err(SolverError::invalid(
+                "rtol",
+                self.rtol,
+                "a finite number >= 0",
+            ));
+        }
+        if self.atol.len() != n {
+            return Err(SolverError::invalid(
+                "atol.len()",
+                self.atol.len(),
+                format!("the system dimension {n}"),
+            ));
+        }
+        if let Some((i, a)) = self
+            .atol
+            .iter()
+            .enumerate()
+            .find(|(_, a)| !(a.is_finite() && **a > 0.0))
+        {
+            return Err(SolverError::invalid(
+                format!("atol[{i}]"),
+                a,
+                "a finite number > 0",
+            ));
+        }
+        if self.h_max.is_nan() || self.h_max <= 0.0 {
+            return Err(SolverError::invalid("h_max", self.h_max, "> 0"));
+        }
+        if self.fixed_step && !self.h_max.is_finite() {
+            return Err(SolverError::invalid(
+                "h_max",
+                self.h_max,
+                "a finite step in fixed-step mode",
+            ));
+        }
+        if self.max_steps == 0 {
+            return Err(SolverError::invalid("max_steps", 0, ">= 1"));
+        }
+        Ok(())
+    }
+}
+
+/// Work counters; they accumulate across calls (reset with `Stats::default()`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Stats {
+    /// Right-hand side evaluations (including those for finite-difference Jacobians).
+    pub rhs_evals: u64,
+    /// Jacobian evaluations (analytic or finite-difference).
+    pub jac_evals: u64,
+    /// LU factorisations.
+    pub lu_decomps: u64,
+    /// Accepted steps.
+    pub accepted: u64,
+    /// Rejected step attempts (error test failed, non-finite value, singular matrix).
+    pub rejected: u64,
+    /// DOPRI5 only: how often Hairer's stiffness test fired (15 tests in a row with
+    /// `h·|λ| > 3.25`, see [`Dopri5`]).
+    pub stiff_alarms: u64,
+}
+
+/// Why an integration failed. The caller's state and step-size memory are unchanged.
+#[derive(Debug, Clone, PartialEq)]
+pub enum SolverError {
+    /// A bad argument (tolerances, dimension, interval).
+    Invalid {
+        /// The argument.
+        field: String,
+        /// Its value as text.
+        value: String,
+        /// What is allowed.
+        allowed: String,
+    },
+    /// More than `max_steps` step attempts in one call.
+    TooManySteps {
+        /// Time reached.
+        t: f64,
+        /// The limit.
+        max_steps: u64,
+    },
+    /// The step size fell below the resolution of `t`.
+    StepSizeUnderflow {
+        /// Time reached.
+        t: f64,
+        /// The step size.
+        h: f64,
+    },
+    /// The right-hand side returned an error.
+    Rhs {
+        /// Time of the failing evaluation.
+        t: f64,
+        /// The system's message.
+        message: String,
+    },
+    /// A non-finite value that step-size reduction could not remove.
+    NonFinite {
+        /// Time of the offending evaluation.
+        t: f64,
+        /// Which quantity: `"right-hand side"`, `"jacobian"`, `"initial state"`.
+        what: &'static str,
+        /// The offending component (row for a Jacobian).
+        index: usize,
+    },
+    /// The Rosenbrock matrix `I/(hγ) − J` stayed singular after repeated step reductions.
+    Singular {
+        /// Time reached.
+        t: f64,
+        /// Last step size tried.
+        h: f64,
+    },
+}
+
+impl SolverError {
+    fn invalid(
+        field: impl Into<String>,
+        value: impl fmt::Display,
+        allowed: impl Into<String>,
+    ) -> Self {
+        SolverError::Invalid {
+            field: field.into(),
+            value: value.to_string(),
+            allowed: allowed.into(),
+        }
+    }
+}
+
+impl fmt::Display for SolverError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            SolverError::Invalid {
+                field,
+                value,
+                allowed,
+            } => write!(
+                f,
+                "invalid integrator argument `{field}` = {value}: allowed {allowed}"
+            ),
+            SolverError::TooManySteps { t, max_steps } => {
+                write!(f, "more than {max_steps} steps (max_steps) before t = {t}")
+            }
+            SolverError::StepSizeUnderflow { t, h } => {
+                write!(f, "step size underflow (h = {h:e}) at t = {t}")
+            }
+            SolverError::Rhs { t, message } => {
+                write!(f, "right-hand side failed at t = {t}: {message}")
+            }
+            SolverError::NonFinite { t, what, index } => {
+                write!(f, "{what} is not finite (component {index}) at t = {t}")
+            }
+            SolverError::Singular { t, h } => write!(
+                f,
+                "Rosenbrock matrix I/(h gamma) - J singular at t = {t} (h = {h:e})"
+            ),
+        }
+    }
+}
+
+impl std::error::Error for SolverError {}
+
+impl From<SolverError> for crate::Error {
+    fn from(e: SolverError) -> Self {
+        match e {
+            SolverError::Invalid {
+                field,
+                value,
+                allowed,
+            } => crate::Error::Invalid {
+                field: format!("solver.{field}"),
+                value,
+                allowed,
+            },
+            SolverError::TooManySteps { t, .. }
+            | SolverError::StepSizeUnderflow { t, .. }
+            | SolverError::Rhs { t, .. }
+            | SolverError::NonFinite { t, .. }
+            | SolverError::Singular { t, .. } => crate::Error::StepFailed {
+                t,
+                reason: e.to_string(),
+            },
+        }
+    }
+}
+
+/// One of the integrators behind one calling convention.
+#[derive(Debug)]
+pub enum Integrator {
+    /// Explicit Dormand–Prince 5(4).
+    Dopri5(Dopri5),
+    /// Linearly implicit RODAS4.
+    Rosenbrock(Rosenbrock),
+}
+
+impl Integrator {
+    /// Integrate `sys` from `t0` to exactly `t1` (`t1 >= t0`), see the [module docs](self).
+    pub fn integrate<S: OdeSystem + ?Sized>(
+        &mut self,
+        sys: &mut S,
+        t0: f64,
+        t1: f64,
+        y: &mut [f64],
+        h_trial: &mut f64,
+        opts: &Options,
+    ) -> Result<(), SolverError> {
+        match self {
+            Integrator::Dopri5(m) => m.integrate(sys, t0, t1, y, h_trial, opts),
+            Integrator::Rosenbrock(m) => m.integrate(sys, t0, t1, y, h_trial, opts),
+        }
+    }
+
+    /// Work counters (accumulated over all calls).
+    pub fn stats(&self) -> &Stats {
+        match self {
+            Integrator::Dopri5(m) => &m.stats,
+            Integrator::Rosenbrock(m) => &m.stats,
+        }
+    }
+
+    /// Mutable work counters (e.g. to reset them).
+    pub fn stats_mut(&mut self) -> &mut Stats {
+        match self {
+            Integrator::Dopri5(m) => &mut m.stats,
+            Integrator::Rosenbrock(m) => &mut m.stats,
+        }
+    }
+
+    /// Dense output at `t` inside the last accepted step (see [`Dopri5::dense`],
+    /// [`Rosenbrock::dense`]).
+    pub fn dense(&self, t: f64, out: &mut [f64]) -> Result<(), SolverError> {
+        match self {
+            Integrator::Dopri5(m) => m.dense(t, out),
+            Integrator::Rosenbrock(m) => m.dense(t, out),
+        }
+    }
+
+    /// The interval `[t_old, t_new]` of the last accepted step, if any.
+    pub fn last_step(&self) -> Option<(f64, f64)> {
+        match self {
+            Integrator::Dopri5(m) => m.last_step(),
+            Integrator::Rosenbrock(m) => m.last_step(),
+        }
+    }
+
+    /// The state dimension the integrator was built for.
+    pub fn dim(&self) -> usize {
+        match self {
+            Integrator::Dopri5(m) => m.dim(),
+            Integrator::Rosenbrock(m) => m.dim(),
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------------------
+// Shared pieces
+// ---------------------------------------------------------------------------------------
+
+/// Check the common arguments of `integrate`.
+fn check_call(
+    n: usize,
+    sys_dim: usize,
+    t0: f64,
+    t1: f64,
+    y: &[f64],
+    opts: &Options,
+) -> Result<(), SolverError> {
+    if sys_dim != n {
+        return Err(SolverError::invalid(
+            "system.dim()",
+            sys_dim,
+            format!("the integrator dimension {n}"),
+        ));
+    }
+    if y.len() != n {
+        return Err(SolverError::invalid(
+            "y.len()",
+            y.len(),
+            format!("the integrator dimension {n}"),
+        ));
+    }
+    if !t0.is_finite() {
+        return Err(SolverError::invalid("t0", t0, "a finite number"));
+    }
+    if !(t1.is_finite() && t1 >= t0) {
+        return Err(SolverError::invalid(
+            "t1",
+            t1,
+            format!("finite and >= t0 = {t0}"),
+        ));
+    }
+    if let Some(i) = y.iter().position(|v| !v.is_finite()) {
+        return Err(SolverError::NonFinite {
+            t: t0,
+            what: "initial state",
+            index: i,
+        });
+    }
+    opts.check(n)
+}
+
+/// Evaluate the right-hand side, count it, and report the first non-finite component.
+///
+/// `Ok(None)`: finite; `Ok(Some(i))`: component `i` is not finite; `Err`: the system failed.
+fn eval<S: OdeSystem + ?Sized>(
+    sys: &mut S,
+    stats: &mut Stats,
+    t: f64,
+    y: &[f64],
+    dy: &mut [f64],
+) -> Result<Option<usize>, SolverError> {
+    stats.rhs_evals += 1;
+    sys.rhs(t, y, dy)
+        .map_err(|message| SolverError::Rhs { t, message })?;
+    Ok(dy.iter().position(|v| !v.is_finite()))
+}
+
+/// Hairer's RMS error norm `sqrt(1/n Σ (e_i / sk_i)²)`, `sk_i = atol_i + rtol·max(|y0_i|,|y1_i|)`.
+fn error_norm(e: &[f64], y0: &[f64], y1: &[f64], opts: &Options) -> f64 {
+    let n = e.len();
+    let mut s = 0.0;
+    for i in 0..n {
+        let sk = opts.atol[i] + opts.rtol * y0[i].abs().max(y1[i].abs());
+        let r = e[i] / sk;
+        s += r * r;
+    }
+    (s / n.max(1) as f64).sqrt()
+}
+
+/// Initial step size, Hairer's `HINIT` (Hairer, Nørsett & Wanner I, §II.4, "Starting step
+/// size"): balance `h·‖f0‖` and `h²·‖f'‖` against the tolerance for a method of order
+/// `order`. Uses `y1`, `f1` as scratch and one extra right-hand side evaluation.
+#[allow(clippy::too_many_arguments)]
+fn initial_step<S: OdeSystem + ?Sized>(
+    sys: &mut S,
+    stats: &mut Stats,
+    t0: f64,
+    y0: &[f64],
+    f0: &[f64],
+    y1: &mut [f64],
+    f1: &mut [f64],
+    order: i32,
+    opts: &Options,
+) -> Result<f64, SolverError> {
+    let n = y0.len();
+    let (mut dnf, mut dny) = (0.0, 0.0);
+    for i in 0..n {
+        let sk = opts.atol[i] + opts.rtol * y0[i].abs();
+        dnf += (f0[i] / sk).powi(2);
+        dny += (y0[i] / sk).powi(2);
+    }
+    let mut h = if dnf <= 1e-10 || dny <= 1e-10 {
+        1e-6
+    } else {
+        (dny / dnf).sqrt() * 0.01
+    };
+    h = h.min(opts.h_max);
+    for i in 0..n {
+        y1[i] = y0[i] + h * f0[i];
+    }
+    let bad = eval(sys, stats, t0 + h, y1, f1)?;
+    if bad.is_some() {
+        // The explicit Euler probe left the domain: fall back to a tiny step; the
+        // controller grows it.
+        return Ok((h * 1e-3).min(opts.h_max));
+    }
+    let mut der2 = 0.0;
+    for i in 0..n {
+        let sk = opts.atol[i] + opts.rtol * y0[i].abs();
+        der2 += ((f1[i] - f0[i]) / sk).powi(2);
+    }
+    let der2 = der2.sqrt() / h;
+    let der12 = der2.abs().max(dnf.sqrt());
+    let h1 = if der12 <= 1e-15 {
+        (h * 1e-3).max(1e-6)
+    } else {
+        (0.01 / der12).powf(1.0 / order as f64)
+    };
+    Ok((100.0 * h).min(h1).min(opts.h_max))
+}
+
+/// The step-size proposal to store after the last (possibly shortened) step of a call.
+///
+/// `h_used` was the last step (shortened to land on `t1`), `h_prop` the step the controller
+/// had proposed before shortening, `h_new` the controller's proposal after the step. If the
+/// shortened step was no harder than asked (`h_new >= h_used`), the earlier, larger proposal
+/// still stands; otherwise the new, smaller one.
+fn carry_step(h_used: f64, h_prop: f64, h_new: f64, h_max: f64) -> f64 {
+    let h = if h_new >= h_used {
+        h_new.max(h_prop)
+    } else {
+        h_new
+    };
+    h.min(h_max)
+}
+
+/// The error for a step size that fell below the resolution of `t`: if non-finite values
+/// forced the reductions (the solution ran into a wall where `f` is not finite), that is the
+/// cause to name.
+fn underflow(t: f64, h: f64, last_nonfinite: Option<(f64, usize)>) -> SolverError {
+    match last_nonfinite {
+        Some((tb, index)) => SolverError::NonFinite {
+            t: tb,
+            what: "right-hand side",
+            index,
+        },
+        None => SolverError::StepSizeUnderflow { t, h },
+    }
+}
+
+/// Number and size of equal fixed steps no longer than `h_max` covering `[t0, t1]`.
+fn fixed_steps(t0: f64, t1: f64, h_max: f64) -> (u64, f64) {
+    let span = t1 - t0;
+    let n = ((span / h_max) * (1.0 - 1e-12)).ceil().max(1.0) as u64;
+    (n, span / n as f64)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn integrators_can_move_between_threads() {
+        fn is_send<T: Send>() {}
+        is_send::<Integrator>();
+    }
+
+    #[test]
+    fn step_memory_after_a_shortened_last_step() {
+        // shortened step that went well: the earlier, larger proposal stands
+        assert_eq!(carry_step(0.1, 0.5, 0.3, f64::INFINITY), 0.5);
+        // shortened step that was already too large: the smaller proposal wins
+        assert_eq!(carry_step(0.1, 0.5, 0.05, f64::INFINITY), 0.05);
+        assert_eq!(carry_step(0.1, 0.5, 0.3, 0.2), 0.2);
+        // fixed steps: fewest equal steps of at most h_max, tolerant to rounding in t1/h_max
+        assert_eq!(fixed_steps(0.0, 1.0, 0.1).0, 10);
+        assert_eq!(fixed_steps(0.0, 1.0, 0.3).0, 4);
+        assert_eq!(fixed_steps(0.0, 0.3, 0.1).0, 3);
+    }
+}

@@ -1,0 +1,448 @@
+//! Explicit Dormand–Prince 5(4) (Dormand & Prince, J. Comput. Appl. Math. 6 (1980) 19–26),
+//! organised as Hairer's code DOPRI5 (Hairer, Nørsett & Wanner, *Solving ODEs I*, 2nd ed.,
+//! §II.5 Table 5.2 for the coefficients, §II.4 for the PI step-size controller, §II.6 for the
+//! dense output, §IV.2 for the stiffness detection).
+
+use super::{
+    carry_step, check_call, error_norm, eval, fixed_steps, initial_step, underflow, OdeSystem,
+    Options, SolverError, Stats, MAX_NONFINITE_RETRIES, UROUND,
+};
+
+// Dormand–Prince coefficients (Hairer, Nørsett & Wanner I, Table II.5.2).
+const C2: f64 = 1.0 / 5.0;
+const C3: f64 = 3.0 / 10.0;
+const C4: f64 = 4.0 / 5.0;
+const C5: f64 = 8.0 / 9.0;
+const A21: f64 = 1.0 / 5.0;
+const A31: f64 = 3.0 / 40.0;
+const A32: f64 = 9.0 / 40.0;
+const A41: f64 = 44.0 / 45.0;
+const A42: f64 = -56.0 / 15.0;
+const A43: f64 = 32.0 / 9.0;
+const A51: f64 = 19372.0 / 6561.0;
+const A52: f64 = -25360.0 / 2187.0;
+const A53: f64 = 64448.0 / 6561.0;
+const A54: f64 = -212.0 / 729.0;
+const A61: f64 = 9017.0 / 3168.0;
+const A62: f64 = -355.0 / 33.0;
+const A63: f64 = 46732.0 / 5247.0;
+const A64: f64 = 49.0 / 176.0;
+const A65: f64 = -5103.0 / 18656.0;
+// 5th-order weights (= the last row, FSAL)
+const A71: f64 = 35.0 / 384.0;
+const A73: f64 = 500.0 / 1113.0;
+const A74: f64 = 125.0 / 192.0;
+const A75: f64 = -2187.0 / 6784.0;
+const A76: f64 = 11.0 / 84.0;
+// error weights: 5th-order minus 4th-order weights
+const E1: f64 = 71.0 / 57600.0;
+const E3: f64 = -71.0 / 16695.0;
+const E4: f64 = 71.0 / 1920.0;
+const E5: f64 = -17253.0 / 339200.0;
+const E6: f64 = 22.0 / 525.0;
+const E7: f64 = -1.0 / 40.0;
+// dense output (Hairer, Nørsett & Wanner I, §II.6, Dormand & Prince's continuous extension)
+const D1: f64 = -12715105075.0 / 11282082432.0;
+const D3: f64 = 87487479700.0 / 32700410799.0;
+const D4: f64 = -10690763975.0 / 1880347072.0;
+const D5: f64 = 701980252875.0 / 199316789632.0;
+const D6: f64 = -1453857185.0 / 822651844.0;
+const D7: f64 = 69997945.0 / 29380423.0;
+
+// Controller constants of DOPRI5: safety factor, step ratio bounds, PI exponent β.
+const SAFE: f64 = 0.9;
+const FAC_MIN: f64 = 0.2; // h_new / h >= 0.2
+const FAC_MAX: f64 = 10.0; // h_new / h <= 10
+const BETA: f64 = 0.04;
+const EXPO1: f64 = 0.2 - BETA * 0.75;
+
+/// Stiffness test threshold: `h·|λ|` beyond the border of the DOPRI5 stability region on
+/// the negative real axis (≈ 3.3), Hairer, Nørsett & Wanner I, §IV.2 (Eq. 2.6).
+const STIFF_HLAMBDA: f64 = 3.25;
+
+/// Explicit Dormand–Prince 5(4) integrator with FSAL, PI control, dense output and
+/// stiffness detection.
+///
+/// - Error estimate: the embedded 4th-order solution, weighted in Hairer's RMS norm.
+/// - Step control (Hairer's DOPRI5): `h_new = h / clamp(err^(0.2−0.75β) / err_old^β / 0.9,
+///   1/10, 5)` with `β = 0.04`; after a rejection the step does not grow.
+/// - Dense output [`Dopri5::dense`]: the 4th-order continuous extension of the last
+///   accepted step.
+/// - Stiffness detection: on every accepted step the estimate
+///   `h·|λ| ≈ h·‖k7 − k6‖ / ‖y1 − y6‖` (the two stages evaluated at `t + h`) is compared
+///   with 3.25; 15 exceedances in a row (without 6 non-stiff steps between) raise
+///   [`Stats::stiff_alarms`] by one. The integration goes on (it is a diagnosis).
+#[derive(Debug, Clone)]
+pub struct Dopri5 {
+    n: usize,
+    y: Vec<f64>,
+    y1: Vec<f64>,
+    ysti: Vec<f64>,
+    e: Vec<f64>,
+    k1: Vec<f64>,
+    k2: Vec<f64>,
+    k3: Vec<f64>,
+    k4: Vec<f64>,
+    k5: Vec<f64>,
+    k6: Vec<f64>,
+    k7: Vec<f64>,
+    /// Dense output coefficients of the last accepted step.
+    rcont: [Vec<f64>; 5],
+    t_old: f64,
+    h_old: f64,
+    dense_valid: bool,
+    /// Stiffness detector counters (consecutive stiff / non-stiff tests).
+    iasti: u32,
+    nonsti: u32,
+    /// Work counters, accumulated over calls.
+    pub stats: Stats,
+}
+
+impl Dopri5 {
+    /// Allocate every work vector for `n` states.
+    pub fn new(n: usize) -> Self {
+        let v = || vec![0.0; n];
+        Dopri5 {
+            n,
+            y: v(),
+            y1: v(),
+            ysti: v(),
+            e: v(),
+            k1: v(),
+            k2: v(),
+            k3: v(),
+            k4: v(),
+            k5: v(),
+            k6: v(),
+            k7: v(),
+            rcont: [v(), v(), v(), v(), v()],
+            t_old: 0.0,
+            h_old: 0.0,
+            dense_valid: false,
+            iasti: 0,
+            nonsti: 0,
+            stats: Stats::default(),
+        }
+    }
+
+    /// The state dimension.
+    pub fn dim(&self) -> usize {
+        self.n
+    }
+
+    /// The interval `[t_old, t_new]` of the last accepted step, if any.
+    pub fn last_step(&self) -> Option<(f64, f64)> {
+        self.dense_valid
+            .then_some((self.t_old, self.t_old + self.h_old))
+    }
+
+    /// Whether the stiffness detector is currently counting stiff steps.
+    pub fn looks_stiff(&self) -> bool {
+        self.iasti > 0
+    }
+
+    /// 4th-order dense output at `t` in the last accepted step `[t_old, t_new]` (Hairer's
+    /// `CONTD5`): `y(t_old + θh) = r1 + θ(r2 + (1−θ)(r3 + θ(r4 + (1−θ) r5)))`.
+    pub fn dense(&self, t: f64, out: &mut [f64]) -> Result<(), SolverError> {
+        let Some((a, b)) = self.last_step() else {
+            return Err(SolverError::invalid(
+                "t",
+                t,
+                "a time after an accepted step",
+            ));
+        };
+        let slack = 1e-12 * (b - a).abs().max(UROUND * b.abs());
+        if !(t >= a - slack && t <= b + slack) || out.len() != self.n {
+            return Err(SolverError::invalid(
+                "t",
+                t,
+                format!("in the last accepted step [{a}, {b}] with out.len() = n"),
+            ));
+        }
+        let th = (t - self.t_old) / self.h_old;
+        let th1 = 1.0 - th;
+        let [r1, r2, r3, r4, r5] = &self.rcont;
+        for i in 0..self.n {
+            out[i] = r1[i] + th * (r2[i] + th1 * (r3[i] + th * (r4[i] + th1 * r5[i])));
+        }
+        Ok(())
+    }
+
+    /// Integrate from `t0` to exactly `t1`; see the [module docs](super) for the contract.
+    pub fn integrate<S: OdeSystem + ?Sized>(
+        &mut self,
+        sys: &mut S,
+        t0: f64,
+        t1: f64,
+        y: &mut [f64],
+        h_trial: &mut f64,
+        opts: &Options,
+    ) -> Result<(), SolverError> {
+        check_call(self.n, sys.dim(), t0, t1, y, opts)?;
+        if t1 == t0 {
+            return Ok(());
+        }
+        self.y.copy_from_slice(y);
+        if let Some(i) = eval(sys, &mut self.stats, t0, &self.y, &mut self.k1)? {
+            return Err(SolverError::NonFinite {
+                t: t0,
+                what: "right-hand side",
+                index: i,
+            });
+        }
+        let h_next = if opts.fixed_step {
+            self.run_fixed(sys, t0, t1, opts)?
+        } else {
+            let h0 = if h_trial.is_finite() && *h_trial > 0.0 {
+                h_trial.min(opts.h_max)
+            } else {
+                initial_step(
+                    sys,
+                    &mut self.stats,
+                    t0,
+                    &self.y,
+                    &self.k1,
+                    &mut self.y1,
+                    &mut self.k2,
+                    5,
+                    opts,
+                )?
+            };
+            self.run_adaptive(sys, t0, t1, h0, opts)?
+        };
+        y.copy_from_slice(&self.y);
+        *h_trial = h_next;
+        Ok(())
+    }
+
+    fn run_fixed<S: OdeSystem + ?Sized>(
+        &mut self,
+        sys: &mut S,
+        t0: f64,
+        t1: f64,
+        opts: &Options,
+    ) -> Result<f64, SolverError> {
+        let (steps, h) = fixed_steps(t0, t1, opts.h_max);
+        for i in 0..steps {
+            let t = t0 + i as f64 * h;
+            if let Some((tb, idx)) = self.attempt(sys, t, h)? {
+                return Err(SolverError::NonFinite {
+                    t: tb,
+                    what: "right-hand side",
+                    index: idx,
+                });
+            }
+            self.accept(t, h, if i + 1 == steps { t1 } else { t + h });
+        }
+        Ok(h)
+    }
+
+    fn run_adaptive<S: OdeSystem + ?Sized>(
+        &mut self,
+        sys: &mut S,
+        t0: f64,
+        t1: f64,
+        h0: f64,
+        opts: &Options,
+    ) -> Result<f64, SolverError> {
+        let mut t = t0;
+        let mut h = h0;
+        let mut facold: f64 = 1e-4;
+        let mut reject = false;
+        let mut attempts: u64 = 0;
+        let mut nonfinite_streak = 0u32;
+        let mut last_nonfinite: Option<(f64, usize)> = None;
+        loop {
+            if attempts >= opts.max_steps {
+                return Err(SolverError::TooManySteps {
+                    t,
+                    max_steps: opts.max_steps,
+                });
+            }
+            if 0.1 * h <= t.abs() * UROUND || h < f64::MIN_POSITIVE {
+                return Err(underflow(t, h, last_nonfinite));
+            }
+            attempts += 1;
+            let h_prop = h;
+            let last = t + 1.01 * h >= t1;
+            if last {
+                h = t1 - t;
+            }
+            if let Some((tb, idx)) = self.attempt(sys, t, h)? {
+                // a stage left the domain where f is finite: retry with a much smaller step
+                self.stats.rejected += 1;
+                nonfinite_streak += 1;
+                last_nonfinite = Some((tb, idx));
+                if nonfinite_streak > MAX_NONFINITE_RETRIES {
+                    return Err(SolverError::NonFinite {
+                        t: tb,
+                        what: "right-hand side",
+                        index: idx,
+                    });
+                }
+                h *= 0.2;
+                reject = true;
+                continue;
+            }
+            // error estimate
+            for i in 0..self.n {
+                self.e[i] = h
+                    * (E1 * self.k1[i]
+                        + E3 * self.k3[i]
+                        + E4 * self.k4[i]
+                        + E5 * self.k5[i]
+                        + E6 * self.k6[i]
+                        + E7 * self.k7[i]);
+            }
+            let err = error_norm(&self.e, &self.y, &self.y1, opts);
+            if !err.is_finite() {
+                self.stats.rejected += 1;
+                h *= 0.2;
+                reject = true;
+                continue;
+            }
+            nonfinite_streak = 0;
+            let fac11 = err.powf(EXPO1);
+            // Lund-stabilisation (PI control): divide by err_old^β
+            let fac = (fac11 / facold.powf(BETA) / SAFE).clamp(1.0 / FAC_MAX, 1.0 / FAC_MIN);
+            let mut h_new = h / fac;
+            if err <= 1.0 {
+                facold = err.max(1e-4);
+                self.stiffness_test(h);
+                let t_new = if last { t1 } else { t + h };
+                self.accept(t, h, t_new);
+                t = t_new;
+                h_new = h_new.min(opts.h_max);
+                if reject {
+                    h_new = h_new.min(h);
+                }
+                if last {
+                    return Ok(carry_step(h, h_prop, h_new, opts.h_max));
+                }
+                reject = false;
+                h = h_new;
+            } else {
+                h /= (1.0 / FAC_MIN).min(fac11 / SAFE);
+                reject = true;
+                self.stats.rejected += 1;
+            }
+        }
+    }
+
+    /// One step attempt from `(t, self.y)` with `self.k1 = f(t, y)`: fills `k2..k7`, `ysti`
+    /// (the stage-6 argument) and `y1`. `Some((t, i))`: component `i` of an evaluation at `t`
+    /// was not finite.
+    fn attempt<S: OdeSystem + ?Sized>(
+        &mut self,
+        sys: &mut S,
+        t: f64,
+        h: f64,
+    ) -> Result<Option<(f64, usize)>, SolverError> {
+        let n = self.n;
+        let st = &mut self.stats;
+        let (y, y1) = (&self.y, &mut self.y1);
+        let (k1, k2, k3, k4, k5, k6, k7) = (
+            &self.k1,
+            &mut self.k2,
+            &mut self.k3,
+            &mut self.k4,
+            &mut self.k5,
+            &mut self.k6,
+            &mut self.k7,
+        );
+        for i in 0..n {
+            y1[i] = y[i] + h * A21 * k1[i];
+        }
+        if let Some(i) = eval(sys, st, t + C2 * h, y1, k2)? {
+            return Ok(Some((t + C2 * h, i)));
+        }
+        for i in 0..n {
+            y1[i] = y[i] + h * (A31 * k1[i] + A32 * k2[i]);
+        }
+        if let Some(i) = eval(sys, st, t + C3 * h, y1, k3)? {
+            return Ok(Some((t + C3 * h, i)));
+        }
+        for i in 0..n {
+            y1[i] = y[i] + h * (A41 * k1[i] + A42 * k2[i] + A43 * k3[i]);
+        }
+        if let Some(i) = eval(sys, st, t + C4 * h, y1, k4)? {
+            return Ok(Some((t + C4 * h, i)));
+        }
+        for i in 0..n {
+            y1[i] = y[i] + h * (A51 * k1[i] + A52 * k2[i] + A53 * k3[i] + A54 * k4[i]);
+        }
+        if let Some(i) = eval(sys, st, t + C5 * h, y1, k5)? {
+            return Ok(Some((t + C5 * h, i)));
+        }
+        let ysti = &mut self.ysti;
+        for i in 0..n {
+            ysti[i] =
+                y[i] + h * (A61 * k1[i] + A62 * k2[i] + A63 * k3[i] + A64 * k4[i] + A65 * k5[i]);
+        }
+        let tph = t + h;
+        if let Some(i) = eval(sys, st, tph, ysti, k6)? {
+            return Ok(Some((tph, i)));
+        }
+        for i in 0..n {
+            y1[i] =
+                y[i] + h * (A71 * k1[i] + A73 * k3[i] + A74 * k4[i] + A75 * k5[i] + A76 * k6[i]);
+        }
+        if let Some(i) = eval(sys, st, tph, y1, k7)? {
+            return Ok(Some((tph, i)));
+        }
+        Ok(None)
+    }
+
+    /// Hairer's stiffness test on an accepted step (before `k7` replaces `k1`).
+    fn stiffness_test(&mut self, h: f64) {
+        let (mut num, mut den) = (0.0, 0.0);
+        for i in 0..self.n {
+            num += (self.k7[i] - self.k6[i]).powi(2);
+            den += (self.y1[i] - self.ysti[i]).powi(2);
+        }
+        if den > 0.0 {
+            let hlamb = h * (num / den).sqrt();
+            if hlamb > STIFF_HLAMBDA {
+                self.nonsti = 0;
+                self.iasti += 1;
+                if self.iasti == 15 {
+                    self.stats.stiff_alarms += 1;
+                    self.iasti = 0;
+                }
+            } else {
+                self.nonsti += 1;
+                if self.nonsti == 6 {
+                    self.iasti = 0;
+                }
+            }
+        }
+    }
+
+    /// Accept the attempted step `[t, t_new]` (`t_new = t + h`, or exactly `t1` on the last
+    /// step): dense output coefficients, FSAL, new state.
+    fn accept(&mut self, t: f64, h: f64, t_new: f64) {
+        let n = self.n;
+        let [r1, r2, r3, r4, r5] = &mut self.rcont;
+        for i in 0..n {
+            let ydiff = self.y1[i] - self.y[i];
+            let bspl = h * self.k1[i] - ydiff;
+            r1[i] = self.y[i];
+            r2[i] = ydiff;
+            r3[i] = bspl;
+            r4[i] = ydiff - h * self.k7[i] - bspl;
+            r5[i] = h
+                * (D1 * self.k1[i]
+                    + D3 * self.k3[i]
+                    + D4 * self.k4[i]
+                    + D5 * self.k5[i]
+                    + D6 * self.k6[i]
+                    + D7 * self.k7[i]);
+        }
+        self.t_old = t;
+        self.h_old = t_new - t;
+        self.dense_valid = true;
+        std::mem::swap(&mut self.k1, &mut self.k7);
+        std::mem::swap(&mut self.y, &mut self.y1);
+        self.stats.accepted += 1;
+    }
+}

@@ -1,0 +1,378 @@
+//! Linear solves for the Rosenbrock matrix `W = σ·I − J` (`σ = 1/(hγ)`), in place and
+//! without allocation after construction.
+//!
+//! - [`DenseLu`]: Gaussian elimination with partial pivoting on the whole matrix
+//!   (Golub & Van Loan, *Matrix Computations*, 4th ed., Alg. 3.4.1).
+//! - [`BlockArrowhead`]: the same for a block-arrowhead matrix (independent diagonal blocks
+//!   coupled only through a border) by Schur-complement elimination of the blocks
+//!   (Golub & Van Loan §3.2.11 block LU; numerics.md §2.4 item 4).
+
+use nalgebra::DMatrix;
+
+/// A linear solver for `(σ·I − J)·x = b`, factored once per step attempt.
+pub trait LinearSolver: Send {
+    /// The dimension `n` it was built for.
+    fn dim(&self) -> usize;
+    /// Factor `σ·I − J` into the solver's own storage. `false`: singular (or not finite).
+    fn factor(&mut self, sigma: f64, jac: &DMatrix<f64>) -> bool;
+    /// Overwrite `b` with the solution `x` of `(σ·I − J)·x = b` for the last factorisation.
+    fn solve(&mut self, b: &mut [f64]);
+}
+
+/// In-place LU factorisation with partial pivoting of the column-major `n × n` matrix `a`
+/// (leading dimension `n`): on return `a` holds the unit lower factor `L` below the diagonal
+/// and `U` on and above it; `piv[k]` is the row swapped with row `k` at step `k`.
+/// `Err(k)`: the pivot in column `k` is zero or not finite (singular).
+pub fn lu_factor(a: &mut [f64], n: usize, piv: &mut [usize]) -> Result<(), usize> {
+    debug_assert!(a.len() >= n * n && piv.len() >= n);
+    for k in 0..n {
+        // pivot search in column k
+        let col = k * n;
+        let mut p = k;
+        let mut best = a[col + k].abs();
+        for i in k + 1..n {
+            let v = a[col + i].abs();
+            if v > best {
+                best = v;
+                p = i;
+            }
+        }
+        if best == 0.0 || !best.is_finite() {
+            return Err(k);
+        }
+        piv[k] = p;
+        if p != k {
+            for j in 0..n {
+                a.swap(j * n + k, j * n + p);
+            }
+        }
+        let inv = 1.0 / a[col + k];
+        for i in k + 1..n {
+            a[col + i] *= inv;
+        }
+        for j in k + 1..n {
+            let akj = a[j * n + k];
+            if akj != 0.0 {
+                let (left, right) = a.split_at_mut(j * n);
+                let lk = &left[col + k + 1..col + n];
+                let cj = &mut right[k + 1..n];
+                for (c, l) in cj.iter_mut().zip(lk) {
+                    *c -= l * akj;
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Solve with the factors of [`lu_factor`]: `b` is overwritten by `x`.
+pub fn lu_solve(a: &[f64], n: usize, piv: &[usize], b: &mut [f64]) {
+    for (k, &p) in piv.iter().enumerate().take(n) {
+        if p != k {
+            b.swap(k, p);
+        }
+    }
+    // forward substitution with the unit lower factor
+    for k in 0..n {
+        let bk = b[k];
+        if bk != 0.0 {
+            let col = &a[k * n + k + 1..k * n + n];
+            for (bi, l) in b[k + 1..n].iter_mut().zip(col) {
+                *bi -= l * bk;
+            }
+        }
+    }
+    // back substitution with U
+    for k in (0..n).rev() {
+        b[k] /= a[k * n + k];
+        let bk = b[k];
+        if bk != 0.0 {
+            let col = &a[k * n..k * n + k];
+            for (bi, u) in b[..k].iter_mut().zip(col) {
+                *bi -= u * bk;
+            }
+        }
+    }
+}
+
+/// Dense LU with partial pivoting (the default solver).
+#[derive(Debug, Clone)]
+pub struct DenseLu {
+    n: usize,
+    lu: Vec<f64>,
+    piv: Vec<usize>,
+}
+
+impl DenseLu {
+    /// Storage for dimension `n`.
+    pub fn new(n: usize) -> Self {
+        DenseLu {
+            n,
+            lu: vec![0.0; n * n],
+            piv: vec![0; n],
+        }
+    }
+}
+
+impl LinearSolver for DenseLu {
+    fn dim(&self) -> usize {
+        self.n
+    }
+
+    fn factor(&mut self, sigma: f64, jac: &DMatrix<f64>) -> bool {
+        let n = self.n;
+        debug_assert_eq!(jac.shape(), (n, n));
+        // DMatrix storage is column-major, like ours
+        for (w, j) in self.lu.iter_mut().zip(jac.as_slice()) {
+            *w = -j;
+        }
+        for i in 0..n {
+            self.lu[i * n + i] += sigma;
+        }
+        lu_factor(&mut self.lu, n, &mut self.piv).is_ok()
+    }
+
+    fn solve(&mut self, b: &mut [f64]) {
+        lu_solve(&self.lu, self.n, &self.piv, b);
+    }
+}
+
+/// Block-arrowhead solver for states ordered `[block_1 … block_nb | border]`: each diagonal
+/// block (`s × s`, e.g. one ball's states) couples to the other blocks only through the
+/// border (`m` states, e.g. rings and cage):
+///
+/// ```text
+/// W = | D_1          B_1 |      D_i = σI − J_ii (s×s),  B_i = −J_i,border (s×m)
+///     |     ⋱        ⋮   |      C_i = −J_border,i (m×s), E = σI − J_border,border (m×m)
+///     |        D_nb  B_nb|
+///     | C_1 … C_nb   E   |
+/// ```
+///
+/// Factor: `D_i = L_i U_i`, `G_i = D_i⁻¹ B_i`, Schur complement `S = E − Σ C_i G_i`, `S = LU`.
+/// Solve: `z_i = D_i⁻¹ b_i`, `x_b = S⁻¹ (b_b − Σ C_i z_i)`, `x_i = z_i − G_i x_b`.
+/// Cost `nb·(s³ + 2 s²m + s m²) + m³` flops against `(nb·s + m)³` for dense LU.
+///
+/// Entries of `J` coupling two different blocks are **ignored** (assumed zero); use
+/// [`BlockArrowhead::fits`] to check a Jacobian. The blocks must be non-singular by
+/// themselves (partial pivoting happens within a block and within `S`), which holds for
+/// `σ·I − J` when `h` is small enough; a singular block is reported like a singular matrix.
+#[derive(Debug, Clone)]
+pub struct BlockArrowhead {
+    nb: usize,
+    s: usize,
+    m: usize,
+    /// LU of the diagonal blocks, `nb` column-major `s × s` matrices.
+    d: Vec<f64>,
+    dpiv: Vec<usize>,
+    /// `G_i = D_i⁻¹ B_i`, `nb` column-major `s × m` matrices.
+    g: Vec<f64>,
+    /// `C_i`, `nb` column-major `m × s` matrices.
+    c: Vec<f64>,
+    /// LU of the Schur complement, column-major `m × m`.
+    schur: Vec<f64>,
+    spiv: Vec<usize>,
+}
+
+impl BlockArrowhead {
+    /// Storage for `nb` blocks of size `s` and a border of `m` states (`n = nb·s + m`).
+    pub fn new(nb: usize, s: usize, m: usize) -> Self {
+        BlockArrowhead {
+            nb,
+            s,
+            m,
+            d: vec![0.0; nb * s * s],
+            dpiv: vec![0; nb * s],
+            g: vec![0.0; nb * s * m],
+            c: vec![0.0; nb * m * s],
+            schur: vec![0.0; m * m],
+            spiv: vec![0; m],
+        }
+    }
+
+    /// Whether `jac` has the arrowhead pattern (no non-zero entry coupling two different
+    /// blocks), so that the solver is exact for it.
+    pub fn fits(&self, jac: &DMatrix<f64>) -> bool {
+        let n = self.nb * self.s;
+        if jac.shape() != (self.dim(), self.dim()) {
+            return false;
+        }
+        for j in 0..n {
+            for i in 0..n {
+                if i / self.s != j / self.s && jac[(i, j)] != 0.0 {
+                    return false;
+                }
+            }
+        }
+        true
+    }
+}
+
+impl LinearSolver for BlockArrowhead {
+    fn dim(&self) -> usize {
+        self.nb * self.s + self.m
+    }
+
+    fn factor(&mut self, sigma: f64, jac: &DMatrix<f64>) -> bool {
+        let (nb, s, m) = (self.nb, self.s, self.m);
+        let nb0 = nb * s; // first border index
+        debug_assert_eq!(jac.shape(), (nb0 + m, nb0 + m));
+        // E into the Schur storage
+        for j in 0..m {
+            for i in 0..m {
+                let v = -jac[(nb0 + i, nb0 + j)];
+                self.schur[j * m + i] = if i == j { v + sigma } else { v };
+            }
+        }
+        for b in 0..nb {
+            let o = b * s;
+            let d = &mut self.d[b * s * s..(b + 1) * s * s];
+            for j in 0..s {
+                for i in 0..s {
+                    let v = -jac[(o + i, o + j)];
+                    d[j * s + i] = if i == j { v + sigma } else { v };
+                }
+            }
+            let piv = &mut self.dpiv[b * s..(b + 1) * s];
+            if lu_factor(d, s, piv).is_err() {
+                return false;
+            }
+            // G_b = D_b⁻¹ B_b, column by column
+            let g = &mut self.g[b * s * m..(b + 1) * s * m];
+            for j in 0..m {
+                let col = &mut g[j * s..(j + 1) * s];
+                for (i, v) in col.iter_mut().enumerate() {
+                    *v = -jac[(o + i, nb0 + j)];
+                }
+                lu_solve(d, s, piv, col);
+            }
+            // C_b and S -= C_b G_b
+            let c = &mut self.c[b * m * s..(b + 1) * m * s];
+            for j in 0..s {
+                for i in 0..m {
+                    c[j * m + i] = -jac[(nb0 + i, o + j)];
+                }
+            }
+            for j in 0..m {
+                for k in 0..s {
+                    let gkj = g[j * s + k];
+                    if gkj != 0.0 {
+                        let ck = &c[k * m..(k + 1) * m];
+                        for (sv, cv) in self.schur[j * m..(j + 1) * m].iter_mut().zip(ck) {
+                            *sv -= cv * gkj;
+                        }
+                    }
+                }
+            }
+        }
+        lu_factor(&mut self.schur, m, &mut self.spiv).is_ok()
+    }
+
+    fn solve(&mut self, x: &mut [f64]) {
+        let (nb, s, m) = (self.nb, self.s, self.m);
+        let nb0 = nb * s;
+        let (xb, xr) = x.split_at_mut(nb0);
+        for b in 0..nb {
+            let z = &mut xb[b * s..(b + 1) * s];
+            lu_solve(
+                &self.d[b * s * s..(b + 1) * s * s],
+                s,
+                &self.dpiv[b * s..(b + 1) * s],
+                z,
+            );
+            let c = &self.c[b * m * s..(b + 1) * m * s];
+            for (k, zk) in z.iter().enumerate() {
+                for (r, cv) in xr.iter_mut().zip(&c[k * m..(k + 1) * m]) {
+                    *r -= cv * zk;
+                }
+            }
+        }
+        lu_solve(&self.schur, m, &self.spiv, xr);
+        for b in 0..nb {
+            let z = &mut xb[b * s..(b + 1) * s];
+            let g = &self.g[b * s * m..(b + 1) * s * m];
+            for (j, xj) in xr.iter().enumerate() {
+                for (zi, gv) in z.iter_mut().zip(&g[j * s..(j + 1) * s]) {
+                    *zi -= gv * xj;
+                }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Deterministic pseudo-random numbers in [-1, 1] (xorshift).
+    fn rng(seed: &mut u64) -> f64 {
+        *seed ^= *seed << 13;
+        *seed ^= *seed >> 7;
+        *seed ^= *seed << 17;
+        (*seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+    }
+
+    #[test]
+    fn dense_lu_solves_a_system_needing_pivoting() {
+        // zero leading pivot: fails without row exchanges
+        let j = DMatrix::from_row_slice(3, 3, &[0.0, -2.0, -1.0, -1.0, -1.0, 0.0, -3.0, 0.0, -2.0]);
+        // W = 0·I − J = -J
+        let mut lu = DenseLu::new(3);
+        assert!(lu.factor(0.0, &j));
+        let x_true = [1.0, -2.0, 0.5];
+        let w = -&j;
+        let mut b: Vec<f64> = (0..3)
+            .map(|i| (0..3).map(|k| w[(i, k)] * x_true[k]).sum())
+            .collect();
+        lu.solve(&mut b);
+        for i in 0..3 {
+            assert!((b[i] - x_true[i]).abs() < 1e-14, "{b:?}");
+        }
+        // singular matrix is reported
+        let s = DMatrix::from_row_slice(2, 2, &[1.0, 2.0, 2.0, 4.0]);
+        assert!(!DenseLu::new(2).factor(0.0, &s));
+    }
+
+    #[test]
+    fn block_arrowhead_matches_dense_lu() {
+        let (nb, s, m) = (5, 4, 3);
+        let n = nb * s + m;
+        let mut seed = 0x9E37_79B9_7F4A_7C15u64;
+        let mut j = DMatrix::zeros(n, n);
+        for c in 0..n {
+            for r in 0..n {
+                let same_block = r < nb * s && c < nb * s && r / s == c / s;
+                let border = r >= nb * s || c >= nb * s;
+                if same_block || border {
+                    j[(r, c)] = 3.0 * rng(&mut seed);
+                }
+            }
+        }
+        let mut blk = BlockArrowhead::new(nb, s, m);
+        assert!(blk.fits(&j));
+        let mut dense = DenseLu::new(n);
+        let sigma = 2.5;
+        assert!(blk.factor(sigma, &j));
+        assert!(dense.factor(sigma, &j));
+        let b: Vec<f64> = (0..n).map(|_| rng(&mut seed)).collect();
+        let (mut xb, mut xd) = (b.clone(), b.clone());
+        blk.solve(&mut xb);
+        dense.solve(&mut xd);
+        // residual of the block solution against W = σI − J
+        for i in 0..n {
+            let mut r = sigma * xb[i] - b[i];
+            for k in 0..n {
+                r -= j[(i, k)] * xb[k];
+            }
+            assert!(r.abs() < 1e-13, "residual {r} in row {i}");
+            assert!(
+                (xb[i] - xd[i]).abs() < 1e-13 * (1.0 + xd[i].abs()),
+                "{} vs {}",
+                xb[i],
+                xd[i]
+            );
+        }
+        // a coupling between two blocks breaks the pattern
+        j[(0, s)] = 1.0;
+        assert!(!blk.fits(&j));
+    }
+}
