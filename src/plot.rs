@@ -97,13 +97,21 @@ pub fn plot(path: &Path, axes: &Axes<'_>, series: &[Series<'_>], markers: &[Mark
     if axes.equal {
         let (cx, cy) = (0.5 * (x0 + x1), 0.5 * (y0 + y1));
         let half = 0.5 * (x1 - x0).max(y1 - y0) * 1.6;
-        (x0, x1, y0, y1) = (cx - half, cx + half, cy - 0.625 * half * 1.0, cy + 0.625 * half);
+        (x0, x1, y0, y1) = (
+            cx - half,
+            cx + half,
+            cy - 0.625 * half * 1.0,
+            cy + 0.625 * half,
+        );
         let _ = (&mut y0, &mut y1);
     }
     let root = BitMapBackend::new(path, (800, 500)).into_drawing_area();
     root.fill(&WHITE).map_err(io)?;
     let mut b = ChartBuilder::on(&root);
-    b.caption(axes.title, ("sans-serif", 20)).margin(12).x_label_area_size(40).y_label_area_size(70);
+    b.caption(axes.title, ("sans-serif", 20))
+        .margin(12)
+        .x_label_area_size(40)
+        .y_label_area_size(70);
     macro_rules! draw {
         ($chart:expr) => {{
             let mut chart = $chart;
@@ -117,28 +125,47 @@ pub fn plot(path: &Path, axes: &Axes<'_>, series: &[Series<'_>], markers: &[Mark
             for m in markers {
                 if m.x >= x0 && m.x <= x1 {
                     let c = RGBColor(150, 150, 150);
-                    chart.draw_series(LineSeries::new(vec![(m.x, y0), (m.x, y1)], c.stroke_width(1))).map_err(io)?;
                     chart
-                        .draw_series(std::iter::once(Text::new(m.label.clone(), (m.x, y1), ("sans-serif", 12).into_font())))
+                        .draw_series(LineSeries::new(
+                            vec![(m.x, y0), (m.x, y1)],
+                            c.stroke_width(1),
+                        ))
+                        .map_err(io)?;
+                    chart
+                        .draw_series(std::iter::once(Text::new(
+                            m.label.clone(),
+                            (m.x, y1),
+                            ("sans-serif", 12).into_font(),
+                        )))
                         .map_err(io)?;
                 }
             }
             for (i, s) in series.iter().enumerate() {
                 let c = COLORS[i % COLORS.len()];
-                let pts: Vec<(f64, f64)> = s
-                    .x
-                    .iter()
-                    .zip(s.y)
-                    .map(|(&x, &y)| (x, y))
-                    .filter(|(x, y)| x.is_finite() && y.is_finite() && (!axes.log_x || *x > 0.0) && (!axes.log_y || *y > 0.0))
-                    .collect();
+                let pts: Vec<(f64, f64)> =
+                    s.x.iter()
+                        .zip(s.y)
+                        .map(|(&x, &y)| (x, y))
+                        .filter(|(x, y)| {
+                            x.is_finite()
+                                && y.is_finite()
+                                && (!axes.log_x || *x > 0.0)
+                                && (!axes.log_y || *y > 0.0)
+                        })
+                        .collect();
                 let anno = if s.points {
-                    chart.draw_series(pts.iter().map(|&p| Circle::new(p, 3, c.filled()))).map_err(io)?
+                    chart
+                        .draw_series(pts.iter().map(|&p| Circle::new(p, 3, c.filled())))
+                        .map_err(io)?
                 } else {
-                    chart.draw_series(LineSeries::new(pts, c.stroke_width(2))).map_err(io)?
+                    chart
+                        .draw_series(LineSeries::new(pts, c.stroke_width(2)))
+                        .map_err(io)?
                 };
                 if !s.label.is_empty() {
-                    anno.label(s.label).legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(2)));
+                    anno.label(s.label).legend(move |(x, y)| {
+                        PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(2))
+                    });
                 }
             }
             if series.iter().any(|s| !s.label.is_empty()) {
@@ -154,9 +181,15 @@ pub fn plot(path: &Path, axes: &Axes<'_>, series: &[Series<'_>], markers: &[Mark
     }
     match (axes.log_x, axes.log_y) {
         (false, false) => draw!(b.build_cartesian_2d(x0..x1, y0..y1).map_err(io)?),
-        (true, false) => draw!(b.build_cartesian_2d((x0..x1).log_scale(), y0..y1).map_err(io)?),
-        (false, true) => draw!(b.build_cartesian_2d(x0..x1, (y0..y1).log_scale()).map_err(io)?),
-        (true, true) => draw!(b.build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale()).map_err(io)?),
+        (true, false) => draw!(b
+            .build_cartesian_2d((x0..x1).log_scale(), y0..y1)
+            .map_err(io)?),
+        (false, true) => draw!(b
+            .build_cartesian_2d(x0..x1, (y0..y1).log_scale())
+            .map_err(io)?),
+        (true, true) => draw!(b
+            .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())
+            .map_err(io)?),
     }
     root.present().map_err(io)?;
     Ok(())
@@ -173,15 +206,52 @@ mod tests {
         let x: Vec<f64> = (0..200).map(|i| i as f64 * 0.01).collect();
         let y: Vec<f64> = x.iter().map(|t| (10.0 * t).sin()).collect();
         let p = dir.join("sine.png");
-        let axes = Axes { title: "sine", x_label: "t (s)", y_label: "y", ..Axes::default() };
-        plot(&p, &axes, &[Series { label: "sin", x: &x, y: &y, points: false }], &[Marker { x: 1.0, label: "1 s".into() }])
-            .unwrap();
+        let axes = Axes {
+            title: "sine",
+            x_label: "t (s)",
+            y_label: "y",
+            ..Axes::default()
+        };
+        plot(
+            &p,
+            &axes,
+            &[Series {
+                label: "sin",
+                x: &x,
+                y: &y,
+                points: false,
+            }],
+            &[Marker {
+                x: 1.0,
+                label: "1 s".into(),
+            }],
+        )
+        .unwrap();
         let bytes = std::fs::read(&p).unwrap();
         assert_eq!(&bytes[1..4], b"PNG");
-        assert!(bytes.len() > 5000, "a drawn plot, not an empty image: {} bytes", bytes.len());
+        assert!(
+            bytes.len() > 5000,
+            "a drawn plot, not an empty image: {} bytes",
+            bytes.len()
+        );
         let p2 = dir.join("loglog.png");
-        let axes = Axes { log_x: true, log_y: true, ..axes };
-        plot(&p2, &axes, &[Series { label: "", x: &x[1..], y: &x[1..], points: true }], &[]).unwrap();
+        let axes = Axes {
+            log_x: true,
+            log_y: true,
+            ..axes
+        };
+        plot(
+            &p2,
+            &axes,
+            &[Series {
+                label: "",
+                x: &x[1..],
+                y: &x[1..],
+                points: true,
+            }],
+            &[],
+        )
+        .unwrap();
         assert!(std::fs::metadata(&p2).unwrap().len() > 2000);
     }
 }

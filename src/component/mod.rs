@@ -18,6 +18,7 @@ pub use variables::{Causality, Variable};
 use crate::error::{Error, Result};
 use crate::geometry::Bearing;
 use crate::models::ring::RingDof;
+use crate::solver::{Dopri5, Integrator, OdeSystem, Options, Rosenbrock, SolverError};
 use level::{LevelModel, LevelOutputs, Motion};
 use variables::SCALARS;
 
@@ -90,6 +91,64 @@ struct Work {
     aux_save: Vec<f64>,
 }
 
+/// The whole system a step integrates: the level's states and, load-driven, the ring's.
+struct Sys<'a> {
+    level: &'a mut dyn LevelModel,
+    st: &'a mut State,
+    ring: Option<&'a RingBody>,
+    rule: InputRule,
+    causality: Causality,
+    nl: usize,
+    naux: usize,
+    t0: f64,
+}
+
+impl Sys<'_> {
+    /// Right-hand side at `s` after the step start; with `wrench`, also the bearing force.
+    fn eval(
+        &mut self,
+        s: f64,
+        y: &[f64],
+        dy: &mut [f64],
+        wrench: Option<&mut [f64; 5]>,
+    ) -> Result<()> {
+        let nl = self.nl;
+        let m = motion_at_y(self.st, self.rule, s, self.causality, self.ring, nl, y);
+        let t = self.t0 + s;
+        let (aux, _) = self.st.aux.split_at_mut(self.naux);
+        match self.ring {
+            None => self
+                .level
+                .rhs(t, &m, &y[..nl], aux, &mut dy[..nl], wrench)?,
+            Some(ring) => {
+                let mut w = [0.0; 5];
+                self.level
+                    .rhs(t, &m, &y[..nl], aux, &mut dy[..nl], Some(&mut w))?;
+                let nd = ring.dofs.len();
+                for (k, &d) in ring.dofs.iter().enumerate() {
+                    let load = input_at(self.st, I_LOAD + d, s, self.rule);
+                    dy[nl + k] = y[nl + nd + k];
+                    dy[nl + nd + k] = (w[d] + load) / ring.inertia[d];
+                }
+                if let Some(out) = wrench {
+                    *out = w;
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+impl OdeSystem for Sys<'_> {
+    fn dim(&self) -> usize {
+        self.st.x.len()
+    }
+    fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) -> std::result::Result<(), String> {
+        self.eval(t - self.t0, y, dy, None)
+            .map_err(|e| e.to_string())
+    }
+}
+
 /// A running bearing: created from a scene, stepped by a host.
 #[derive(Debug)]
 pub struct Component {
@@ -102,8 +161,47 @@ pub struct Component {
     state: State,
     scratch: State,
     work: Work,
-    stats: Stats,
+    integrator: Integrator,
+    opts: Options,
     outputs_fresh: bool,
+}
+
+/// The scene's integrator and its options. `Auto` picks DOPRI5: the levels so far are not
+/// stiff (a massless-ball ring is a few-kHz oscillator, numerics.md §1.2).
+fn make_integrator(
+    scene: &Scene,
+    b: &Bearing,
+    nl: usize,
+    ring: Option<&RingBody>,
+) -> (Integrator, Options) {
+    let n = nl + ring.map_or(0, |r| 2 * r.dofs.len());
+    let integrator = match scene.solver.method {
+        Method::Auto | Method::Dopri5 => Integrator::Dopri5(Dopri5::new(n)),
+        Method::Rosenbrock => Integrator::Rosenbrock(Rosenbrock::new(n)),
+    };
+    let s = &scene.solver;
+    let mut opts = Options::new(n, s.rtol, s.atol_m);
+    // Angles (cage, shaft, balls): an angle error atol_m / (D/2) moves a ball surface by atol_m.
+    let angle = s.atol_m / (0.5 * b.d);
+    opts.atol[..nl].fill(angle);
+    if let Some(r) = ring {
+        let nd = r.dofs.len();
+        let rate = 2.0 * std::f64::consts::PI * 1e3; // velocities: atol over a 1 kHz period
+        for (k, &d) in r.dofs.iter().enumerate() {
+            let a = if d < 3 {
+                s.atol_m
+            } else {
+                s.atol_m / (0.5 * b.dm)
+            };
+            opts.atol[nl + k] = a;
+            opts.atol[nl + nd + k] = a * rate;
+        }
+    }
+    opts.max_steps = s.max_substeps as u64;
+    if s.max_substep_s > 0.0 {
+        opts.h_max = s.max_substep_s;
+    }
+    (integrator, opts)
 }
 
 fn build_level(scene: &Scene, b: &Bearing) -> Result<Box<dyn LevelModel>> {
@@ -188,6 +286,7 @@ impl Component {
             &mut state.aux[..n_level_aux],
         )?;
         let dim = state.x.len();
+        let (integrator, opts) = make_integrator(&scene, &bearing, n_level, ring.as_ref());
         let work = Work {
             k: std::array::from_fn(|_| vec![0.0; dim]),
             y: vec![0.0; dim],
@@ -203,7 +302,8 @@ impl Component {
             scratch: state.clone(),
             state,
             work,
-            stats: Stats::default(),
+            integrator,
+            opts,
             outputs_fresh: false,
         };
         if c.missing_inputs().is_empty() {
@@ -230,7 +330,14 @@ impl Component {
     }
     /// Cost counters since creation.
     pub fn stats(&self) -> Stats {
-        self.stats
+        let s = self.integrator.stats();
+        Stats {
+            rhs: s.rhs_evals,
+            jacobians: s.jac_evals,
+            factorizations: s.lu_decomps,
+            accepted: s.accepted,
+            rejected: s.rejected,
+        }
     }
 
     /// Set an input by value reference. Setting a value clears that input's derivatives.
@@ -381,91 +488,50 @@ impl Component {
         })
     }
 
-    /// Integrate the states of `sc` over `h` (classic RK4 on sub-steps; replaced by the
-    /// adaptive integrators).
+    /// Integrate the states of `sc` over `h` with the scene's integrator; `sc.t` is the
+    /// step start. The step-size memory lives in the last `aux` slot.
     fn integrate(&mut self, sc: &mut State, h: f64) -> Result<()> {
         let n = sc.x.len();
         if n == 0 {
             return Ok(());
         }
-        let max_sub = if self.scene.solver.max_substep_s > 0.0 {
-            self.scene.solver.max_substep_s
-        } else {
-            1e-5
+        let t0 = sc.t;
+        let naux = self.n_level_aux;
+        let mut h_trial = sc.aux[naux];
+        self.work.y.copy_from_slice(&sc.x);
+        let mut sys = Sys {
+            level: self.level.as_mut(),
+            st: sc,
+            ring: self.ring.as_ref(),
+            rule: self.scene.inputs.rule,
+            causality: self.scene.model.causality,
+            nl: self.n_level,
+            naux,
+            t0,
         };
-        let steps = (h / max_sub).ceil().max(1.0) as usize;
-        if steps > self.scene.solver.max_substeps as usize {
-            return Err(Error::StepFailed {
-                t: sc.t,
-                reason: format!("{steps} sub-steps needed, limit solver.max_substeps"),
-            });
-        }
-        let dt = h / steps as f64;
-        let mut w = std::mem::take(&mut self.work);
-        let mut r = Ok(());
-        'outer: for i in 0..steps {
-            let s0 = i as f64 * dt;
-            for stage in 0..4 {
-                let (c, a) = [(0.0, 0.0), (0.5, 0.5), (0.5, 0.5), (1.0, 1.0)][stage];
-                for j in 0..n {
-                    w.y[j] = sc.x[j]
-                        + if stage == 0 {
-                            0.0
-                        } else {
-                            a * dt * w.k[stage - 1][j]
-                        };
+        self.integrator
+            .integrate(
+                &mut sys,
+                t0,
+                t0 + h,
+                &mut self.work.y,
+                &mut h_trial,
+                &self.opts,
+            )
+            .map_err(|e| {
+                let hint = match e {
+                    SolverError::TooManySteps { .. } => {
+                        " (the scene's limit solver.max_substeps; raise it or shorten the step)"
+                    }
+                    _ => "",
+                };
+                Error::StepFailed {
+                    t: t0,
+                    reason: format!("{e}{hint}"),
                 }
-                let (ks, rest) = w.k.split_at_mut(stage);
-                let _ = ks;
-                if let Err(e) = self.rhs(sc, s0 + c * dt, &w.y, &mut rest[0]) {
-                    r = Err(e);
-                    break 'outer;
-                }
-            }
-            for j in 0..n {
-                sc.x[j] += dt / 6.0 * (w.k[0][j] + 2.0 * w.k[1][j] + 2.0 * w.k[2][j] + w.k[3][j]);
-            }
-            self.stats.accepted += 1;
-        }
-        self.work = w;
-        r
-    }
-
-    /// Right-hand side of the whole system at `s` after the step start.
-    fn rhs(&mut self, sc: &mut State, s: f64, y: &[f64], dy: &mut [f64]) -> Result<()> {
-        self.stats.rhs += 1;
-        let nl = self.n_level;
-        let m = motion_at_y(
-            sc,
-            self.scene.inputs.rule,
-            s,
-            self.causality(),
-            self.ring.as_ref(),
-            nl,
-            y,
-        );
-        let t = sc.t + s;
-        let (aux, _) = sc.aux.split_at_mut(self.n_level_aux);
-        match &self.ring {
-            None => self.level.rhs(t, &m, &y[..nl], aux, &mut dy[..nl], None)?,
-            Some(ring) => {
-                let mut w = [0.0; 5];
-                self.level
-                    .rhs(t, &m, &y[..nl], aux, &mut dy[..nl], Some(&mut w))?;
-                let nd = ring.dofs.len();
-                for (k, &d) in ring.dofs.iter().enumerate() {
-                    let load = input_at(sc, I_LOAD + d, s, self.scene.inputs.rule);
-                    dy[nl + k] = y[nl + nd + k];
-                    dy[nl + nd + k] = (w[d] + load) / ring.inertia[d];
-                }
-            }
-        }
-        if dy.iter().any(|v| !v.is_finite()) {
-            return Err(Error::StepFailed {
-                t,
-                reason: "non-finite state derivative".into(),
-            });
-        }
+            })?;
+        sc.x.copy_from_slice(&self.work.y);
+        sc.aux[naux] = h_trial;
         Ok(())
     }
 
@@ -508,42 +574,37 @@ impl Component {
                 sc.output_derivatives[I_V + d] = (out.wrench[d] + load) / ring.inertia[d];
             }
         }
-        // dF/dt by a central difference in time along the inputs' rule and the states' rates.
+        // dF/dt by a central difference in time along the inputs' rule and the states'
+        // rates; the level's memory (warm starts) is restored afterwards.
         let n = sc.x.len();
-        let mut w = std::mem::take(&mut self.work);
+        let w = &mut self.work;
         w.aux_save.copy_from_slice(&sc.aux);
+        w.y.copy_from_slice(&sc.x);
         let mut fwd = [0.0; 5];
         let mut bwd = [0.0; 5];
-        w.y.copy_from_slice(&sc.x);
-        let mut r = self.rhs(sc, s, &w.y, &mut w.k[0]);
+        let t0 = sc.t;
+        let mut sys = Sys {
+            level: self.level.as_mut(),
+            st: sc,
+            ring: self.ring.as_ref(),
+            rule,
+            causality,
+            nl,
+            naux: self.n_level_aux,
+            t0,
+        };
+        let mut r = sys.eval(s, &w.y, &mut w.k[0], None);
         for (sign, dest) in [(1.0, &mut fwd), (-1.0, &mut bwd)] {
             if r.is_err() {
                 break;
             }
             for j in 0..n {
-                w.y[j] = sc.x[j] + sign * DT_DERIV * w.k[0][j];
+                w.k[2][j] = w.y[j] + sign * DT_DERIV * w.k[0][j];
             }
-            let ms = motion_at_y(
-                sc,
-                rule,
-                s + sign * DT_DERIV,
-                causality,
-                self.ring.as_ref(),
-                nl,
-                &w.y,
-            );
-            let (aux, _) = sc.aux.split_at_mut(self.n_level_aux);
-            r = self.level.rhs(
-                sc.t + s + sign * DT_DERIV,
-                &ms,
-                &w.y[..nl],
-                aux,
-                &mut w.k[1][..nl],
-                Some(dest),
-            );
+            let [_, dk, yk, _] = &mut w.k;
+            r = sys.eval(s + sign * DT_DERIV, yk, dk, Some(dest));
         }
         sc.aux.copy_from_slice(&w.aux_save);
-        self.work = w;
         r?;
         for k in 0..5 {
             sc.output_derivatives[I_FORCE + k] = (fwd[k] - bwd[k]) / (2.0 * DT_DERIV);
