@@ -21,6 +21,7 @@ pub mod geometry;
 pub mod models;
 #[cfg(feature = "plot")]
 pub mod plot;
+pub mod runner;
 pub mod solver;
 pub mod units;
 
