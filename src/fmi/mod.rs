@@ -27,3 +27,6 @@ mod params;
 
 pub use instance::Status;
 pub use model_description::GUID;
+
+#[cfg(test)]
+mod tests;

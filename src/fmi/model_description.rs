@@ -14,7 +14,7 @@ use std::fmt::Write;
 /// The model identifier: the shared library's base name inside the FMUs.
 pub const MODEL_IDENTIFIER: &str = "raceway";
 
-/// Value reference of the independent variable `time`.
+/// Value reference of the independent variable `time` (FMI 3 only).
 pub const VR_TIME: u32 = 0;
 
 /// Bump when the generated XML changes in a way the variable table does not show.
@@ -253,13 +253,8 @@ pub fn fmi2() -> String {
     let mut input_idx = Vec::new();
     let mut output_idx = Vec::new();
     let mut param_idx = Vec::new();
-    index += 1;
-    let _ = writeln!(
-        x,
-        "    <!-- {index} --><ScalarVariable name=\"time\" valueReference=\"{VR_TIME}\" \
-         causality=\"independent\" variability=\"continuous\" description=\"simulation time\">\
-         <Real unit=\"s\"/></ScalarVariable>"
-    );
+    // No `time` variable in FMI 2: an independent variable has no start value (spec2
+    // 2_2_3), which the FMI Library (libcosim) nevertheless reports as an error.
     for v in io_variables() {
         index += 1;
         let input = v.is_input(Causality::Motion);
@@ -427,7 +422,7 @@ pub fn markdown_table() -> String {
     let _ = writeln!(t, "GUID / instantiationToken of this build: `{GUID}`\n");
     t.push_str("| name | value reference | causality | unit | start | description |\n");
     t.push_str("|---|---|---|---|---|---|\n");
-    t.push_str("| `time` | 0 | independent | s | | simulation time |\n");
+    t.push_str("| `time` (FMI 3 only) | 0 | independent | s | | simulation time |\n");
     for v in io_variables() {
         let (c, s) = if v.is_input(Causality::Motion) {
             ("input", "0")

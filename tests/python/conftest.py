@@ -124,6 +124,11 @@ class Host:
             return self.fmu.getReal(vrs)
         return self.fmu.getFloat64(vrs)
 
+    def time(self):
+        if self.version == "fmi2":
+            return self.fmu.getRealStatus(2)  # fmi2LastSuccessfulTime
+        return self.fmu.getFloat64([0])[0]
+
     def get_string(self, name):
         v = self.fmu.getString([self.vr[name]])[0]
         return v.decode("utf-8") if isinstance(v, bytes) else v

@@ -99,6 +99,20 @@ def test_archive_layout(version, platform):
         assert home not in xml
 
 
+def test_binary_carries_no_build_paths_and_stays_loaded(unzipped):
+    import os
+
+    so = unzipped["fmi2"] / "binaries/linux64/raceway.so"
+    data = so.read_bytes()
+    for path in (str(ROOT), os.path.expanduser("~/.cargo"), os.environ.get("CARGO_HOME", "")):
+        if path:
+            assert path.encode() not in data, path
+    # -z nodelete: hosts dlclose the library in freeInstance (fmi.md §4 #7)
+    dyn = subprocess.run(["readelf", "-d", str(so)], check=True, capture_output=True,
+                         text=True).stdout
+    assert "NODELETE" in dyn
+
+
 def test_one_guid_shared_by_both_descriptions_and_the_binary(unzipped):
     guids = []
     for v in VERSIONS:
@@ -215,7 +229,7 @@ def test_get_step_set_step_gives_identical_outputs(host, version):
     s = h.get_state()
     t1, first = run_steps(h, t, 5, names)
     h.set_state(s)
-    assert h.get(["time"])[0] == t
+    assert h.time() == t
     t2, again = run_steps(h, t, 5, names)
     assert t1 == t2
     assert np.array_equal(first, again)
@@ -385,7 +399,7 @@ def test_tiny_time_mismatch_warns_and_lands_on_t_plus_h(host, version):
     t, _ = run_steps(h, 0.0, 3, LOADS)
     h.step(t + 1e-11, H)  # 1e-7 of the step: accepted with a warning
     assert any(st == 1 and "differs from the FMU's time" in m for st, m in h.logs)
-    assert h.get(["time"])[0] == pytest.approx(t + 1e-11 + H, rel=0, abs=1e-15)
+    assert h.time() == pytest.approx(t + 1e-11 + H, rel=0, abs=1e-15)
     with pytest.raises(FMICallException):
         h.step(t + H + 1e-3 + 1e-11, H)  # a real jump
 
