@@ -10,5 +10,8 @@ if [ ! -x "$venv/bin/python" ]; then
 fi
 "$venv/bin/python" -m pip install --quiet --disable-pip-version-check -r tests/python/requirements.txt
 
+# unit tests of the FMI layer (the `fmi` feature is off in the main test run)
+cargo test --quiet -p raceway --features fmi --lib fmi::
+
 scripts/build-fmu --no-docs
 MPLBACKEND=Agg "$venv/bin/python" -m pytest -q tests/python

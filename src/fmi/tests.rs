@@ -11,7 +11,10 @@ use std::path::PathBuf;
 #[test]
 fn resource_uris_are_percent_decoded() {
     let p = |s: &str| uri_to_path(s).map(|p| p.to_string_lossy().into_owned());
-    assert_eq!(p("file:///tmp/a%20b/%C3%BC/resources").as_deref(), Some("/tmp/a b/ü/resources"));
+    assert_eq!(
+        p("file:///tmp/a%20b/%C3%BC/resources").as_deref(),
+        Some("/tmp/a b/ü/resources")
+    );
     assert_eq!(p("file://localhost/tmp/x").as_deref(), Some("/tmp/x"));
     assert_eq!(p("file:/tmp/x%25y").as_deref(), Some("/tmp/x%y"));
     assert_eq!(p("file:///C:/temp/res").as_deref(), Some("C:/temp/res"));
@@ -23,7 +26,9 @@ fn resource_uris_are_percent_decoded() {
 fn guid_is_a_braced_uuid_and_units_have_base_units() {
     assert_eq!(GUID.len(), 38);
     assert!(GUID.starts_with('{') && GUID.ends_with('}'));
-    assert!(GUID[1..37].chars().all(|c| c.is_ascii_hexdigit() || c == '-'));
+    assert!(GUID[1..37]
+        .chars()
+        .all(|c| c.is_ascii_hexdigit() || c == '-'));
     assert_eq!(base_unit("N.m.s/rad"), Some([1, 2, -1, -1]));
     assert_eq!(base_unit("Pa"), Some([1, -1, -2, 0]));
     assert_eq!(base_unit("furlong"), None);
@@ -80,13 +85,20 @@ fn parameters_map_onto_the_scene() {
     let (scene, _) = params::scene(&params::unset(), Some(1e-4), None).unwrap();
     assert_eq!(scene.solver.rtol, 1e-4);
     let (scene, _) = params::scene(&params::unset(), Some(0.5), None).unwrap();
-    assert_eq!(scene.solver.rtol, crate::component::scene::SolverSpec::default().rtol);
+    assert_eq!(
+        scene.solver.rtol,
+        crate::component::scene::SolverSpec::default().rtol
+    );
     // an empty string is "not set"; refusals name the parameter
     assert!(params::scene(&values(&[("level", s(""))]), None, None).is_ok());
     let e = params::scene(&values(&[("level", s("best"))]), None, None).unwrap_err();
     assert!(e.contains("parameter `level`") && e.contains("best"), "{e}");
-    let e = params::scene(&values(&[("clearance", ParamValue::Real(-1.0))]), None, None)
-        .unwrap_err();
+    let e = params::scene(
+        &values(&[("clearance", ParamValue::Real(-1.0))]),
+        None,
+        None,
+    )
+    .unwrap_err();
     assert!(e.contains("clearance"), "{e}");
     let resource = Ok("bearing = ".to_string());
     let e = params::scene(&params::unset(), None, Some(&resource)).unwrap_err();
@@ -94,7 +106,13 @@ fn parameters_map_onto_the_scene() {
 }
 
 fn instance() -> Instance {
-    Instance::new(2, "t", Logger::Fmi2(None, std::ptr::null_mut()), false, None::<&std::path::Path>)
+    Instance::new(
+        2,
+        "t",
+        Logger::Fmi2(None, std::ptr::null_mut()),
+        false,
+        None::<&std::path::Path>,
+    )
 }
 
 #[test]
@@ -113,7 +131,10 @@ fn fmu_state_bytes_round_trip_and_refuse_damage() {
     b.restore(&back).unwrap();
     assert_eq!(b.get_string(1003).unwrap(), "hold");
     assert_eq!(b.time, a.time);
-    assert_eq!(b.get_real(101).unwrap().to_bits(), a.get_real(101).unwrap().to_bits());
+    assert_eq!(
+        b.get_real(101).unwrap().to_bits(),
+        a.get_real(101).unwrap().to_bits()
+    );
     for cut in [0, 4, 20, bytes.len() - 1] {
         assert!(Snapshot::from_bytes(&bytes[..cut]).is_err(), "{cut}");
     }

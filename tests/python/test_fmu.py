@@ -182,12 +182,14 @@ def motion_table(t_end=0.02, n=21, all_inputs=True):
     return np.array(rows, dtype=[(nm, float) for nm in names])
 
 
-@pytest.mark.parametrize("version", VERSIONS)
-def test_simulate_a_stand_alone_bearing_from_a_motion_table(version):
+@pytest.mark.parametrize("version,event_mode", [("fmi2", False), ("fmi3", False),
+                                                ("fmi3", True)])
+def test_simulate_a_stand_alone_bearing_from_a_motion_table(version, event_mode):
     table = motion_table()
+    extra = {"use_event_mode": True} if event_mode else {}
     res = simulate_fmu(
         str(fmu_path(version)), stop_time=0.02, output_interval=5e-4, input=table,
-        output=["shaft.y", "force.x", "force.y", "K.y.y"],
+        output=["shaft.y", "force.x", "force.y", "K.y.y"], **extra,
     )
     assert res["time"][-1] == pytest.approx(0.02)
     for name in ("force.x", "force.y", "K.y.y"):

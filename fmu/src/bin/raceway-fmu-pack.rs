@@ -36,7 +36,11 @@ fn run() -> Result<(), String> {
     let mut args = std::env::args().skip(1);
     let (mut lib, mut out, mut scene, mut update, mut check) = (None, None, None, None, None);
     while let Some(a) = args.next() {
-        let mut val = || args.next().map(PathBuf::from).ok_or(format!("{a} needs a value"));
+        let mut val = || {
+            args.next()
+                .map(PathBuf::from)
+                .ok_or(format!("{a} needs a value"))
+        };
         match a.as_str() {
             "--lib" => lib = Some(val()?),
             "--out" => out = Some(val()?),
