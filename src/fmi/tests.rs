@@ -6,7 +6,6 @@ use super::model_description::{self as md, base_unit, GUID};
 use super::params::{self, ParamValue};
 use crate::component::scene::{BearingRef, InputRule, Level};
 use crate::component::variables::PARAMETERS;
-use std::path::PathBuf;
 
 #[test]
 fn resource_uris_are_percent_decoded() {
@@ -149,5 +148,4 @@ fn status_values_are_the_fmi_ones() {
     assert_eq!(Status::Ok as i32, 0);
     assert_eq!(Status::Discard as i32, 2);
     assert_eq!(Status::Error as i32, 3);
-    let _ = PathBuf::new();
 }

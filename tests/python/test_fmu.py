@@ -633,3 +633,12 @@ def test_ten_thousand_instantiate_free_cycles_do_not_leak(unzipped, version):
         if i == 100:
             before = rss_kib()
     assert rss_kib() - before < 4096
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+def test_percent_signs_reach_the_logger_verbatim(host, version):
+    """The FMI 2 logger is printf-like: the FMU must pass its message through "%s"."""
+    h = host(version)
+    with pytest.raises(FMICallException):
+        h.init(start_values={"bearing": "x%s%d%n%%y"})
+    assert "`x%s%d%n%%y`" in h.log_text()
