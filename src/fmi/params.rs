@@ -114,10 +114,13 @@ pub(crate) fn scene(
         scene.inputs.rule =
             parse_enum::<InputRule>("input_rule", rule, "hold, velocity or derivatives")?;
     }
-    if let Some(c) = real(values, "clearance") {
-        if !(c.is_finite() && c >= 0.0) {
+    // The start value -1 (no bearing has a metre of interference) means "as the bearing
+    // has it", so a host that pushes every start value changes nothing.
+    if let Some(c) = real(values, "clearance").filter(|&c| c != -1.0) {
+        if !(c.is_finite() && c.abs() < 1e-3) {
             return Err(format!(
-                "parameter `clearance` = {c} m: allowed a finite number >= 0"
+                "parameter `clearance` = {c} m: allowed a finite number in (-1e-3, 1e-3) m \
+                 (negative: preload), or -1 for the bearing's own"
             ));
         }
         let um = toml::Value::Float(c * 1e6);
