@@ -4,11 +4,12 @@
 //!   and derived quantities (free contact angle, `A`, ball mass, `Kc` at the nominal angle).
 //! - `raceway quasi-static [--bearing <preset|file.toml>] [--speed-rpm N] [--fx ..] [--fy ..]
 //!   [--fz ..] [--mx ..] [--my ..] [--race-control outer|none] [--json]`: the Jones–Harris
-//!   quasi-static equilibrium under an external load on the inner ring. Whatever is not
-//!   given comes from the embedded default scene (its bearing, `model.operating_point`,
-//!   `model.race_control`, and the speed from `inputs.initial["shaft.omega"]` when set, else
-//!   `model.operating_point.speed_rpm`), so `raceway quasi-static` alone solves the default
-//!   scene's operating point.
+//!   quasi-static equilibrium under an external load on the inner ring. With none of
+//!   `--bearing`, `--speed-rpm`, `--fx` .. `--my` it solves the embedded default scene's
+//!   operating point (its bearing, `model.operating_point`, and the speed from
+//!   `inputs.initial["shaft.omega"]` when set, else `model.operating_point.speed_rpm`).
+//!   Otherwise values not given are zero and the bearing defaults to the scene's. The race
+//!   control defaults to the scene's `model.race_control`.
 //!
 //! Every value is checked: non-finite numbers, a negative speed, an unknown preset or a
 //! malformed bearing file are refused with a message naming the cause and exit status 1
@@ -44,6 +45,9 @@ enum Cmd {
         json: bool,
     },
     /// Jones–Harris quasi-static equilibrium under an external load on the inner ring.
+    ///
+    /// Without --bearing, --speed-rpm and load flags it solves the embedded default scene's
+    /// operating point; otherwise what is not given is zero (bearing: the scene's).
     QuasiStatic(QsArgs),
 }
 
@@ -61,22 +65,22 @@ struct QsArgs {
     #[arg(long)]
     bearing: Option<String>,
     /// Shaft speed, rpm (>= 0; the outer ring is fixed).
-    #[arg(long, allow_negative_numbers = true)]
+    #[arg(long, allow_hyphen_values = true)]
     speed_rpm: Option<f64>,
     /// External radial load on the inner ring along x, N.
-    #[arg(long, allow_negative_numbers = true)]
+    #[arg(long, allow_hyphen_values = true)]
     fx: Option<f64>,
     /// External radial load along y, N.
-    #[arg(long, allow_negative_numbers = true)]
+    #[arg(long, allow_hyphen_values = true)]
     fy: Option<f64>,
     /// External axial load along z, N.
-    #[arg(long, allow_negative_numbers = true)]
+    #[arg(long, allow_hyphen_values = true)]
     fz: Option<f64>,
     /// External moment about x, N m.
-    #[arg(long, allow_negative_numbers = true)]
+    #[arg(long, allow_hyphen_values = true)]
     mx: Option<f64>,
     /// External moment about y, N m.
-    #[arg(long, allow_negative_numbers = true)]
+    #[arg(long, allow_hyphen_values = true)]
     my: Option<f64>,
     /// Race control assumption.
     #[arg(long, value_enum)]
@@ -151,12 +155,21 @@ fn problem(a: &QsArgs) -> Result<Problem> {
         Some(b) => load_bearing(b)?,
         None => scene.build_bearing()?,
     };
+    // No operating-point flag at all: the default scene's operating point. Otherwise what
+    // is not given is zero.
+    let given = [a.speed_rpm, a.fx, a.fy, a.fz, a.mx, a.my];
+    let from_scene = a.bearing.is_none() && given.iter().all(Option::is_none);
     let op = &scene.model.operating_point;
-    let scene_speed = match scene.inputs.initial.get("shaft.omega") {
-        Some(w) => rad_s_to_rpm(*w),
-        None => op.speed_rpm,
+    let (speed0, load0) = if from_scene {
+        let speed = match scene.inputs.initial.get("shaft.omega") {
+            Some(w) => rad_s_to_rpm(*w),
+            None => op.speed_rpm,
+        };
+        (speed, [op.fx, op.fy, op.fz, op.mx, op.my])
+    } else {
+        (0.0, [0.0; 5])
     };
-    let speed_rpm = check("--speed-rpm", a.speed_rpm.unwrap_or(scene_speed))?;
+    let speed_rpm = check("--speed-rpm", a.speed_rpm.unwrap_or(speed0))?;
     if speed_rpm < 0.0 {
         return Err(Error::invalid(
             "--speed-rpm",
@@ -165,11 +178,11 @@ fn problem(a: &QsArgs) -> Result<Problem> {
         ));
     }
     let load = [
-        check("--fx", a.fx.unwrap_or(op.fx))?,
-        check("--fy", a.fy.unwrap_or(op.fy))?,
-        check("--fz", a.fz.unwrap_or(op.fz))?,
-        check("--mx", a.mx.unwrap_or(op.mx))?,
-        check("--my", a.my.unwrap_or(op.my))?,
+        check("--fx", a.fx.unwrap_or(load0[0]))?,
+        check("--fy", a.fy.unwrap_or(load0[1]))?,
+        check("--fz", a.fz.unwrap_or(load0[2]))?,
+        check("--mx", a.mx.unwrap_or(load0[3]))?,
+        check("--my", a.my.unwrap_or(load0[4]))?,
     ];
     let race_control = match a.race_control {
         Some(RaceControlArg::Outer) => RaceControl::Outer,
