@@ -30,7 +30,10 @@ fn refused(args: &[&str], needles: &[&str]) {
     assert!(!out.status.success(), "{args:?} was accepted");
     let err = String::from_utf8_lossy(&out.stderr).to_lowercase();
     for n in needles {
-        assert!(err.contains(&n.to_lowercase()), "{args:?}: `{n}` not in: {err}");
+        assert!(
+            err.contains(&n.to_lowercase()),
+            "{args:?}: `{n}` not in: {err}"
+        );
     }
     assert!(out.stdout.is_empty(), "{args:?} printed a result");
 }
@@ -54,7 +57,11 @@ fn bearings_json_lists_every_preset_with_library_numbers() {
         assert_eq!(row["name"], b.name.as_str());
         assert_eq!(row["ball_count"].as_u64().unwrap() as usize, b.z);
         assert!(close(f(&row["ball_diameter_mm"]), b.d * 1e3, 1e-12));
-        assert!(close(f(&row["groove_centre_distance_mm"]), b.a() * 1e3, 1e-12));
+        assert!(close(
+            f(&row["groove_centre_distance_mm"]),
+            b.a() * 1e3,
+            1e-12
+        ));
         assert!(close(f(&row["ball_mass_kg"]), b.ball_mass(), 1e-12));
         assert!((f(&row["free_contact_angle_deg"]) - b.alpha0.to_degrees()).abs() < 1e-9);
         let kc = PointContact::new(
@@ -103,7 +110,11 @@ fn quasi_static_json_matches_the_library() {
     let sol = &v["solution"];
     for i in 0..5 {
         let qi = f(&sol["q"][i]);
-        assert!((qi - s.q[i]).abs() <= 1e-12 * s.q[i].abs() + 1e-18, "{i}: {qi} {}", s.q[i]);
+        assert!(
+            (qi - s.q[i]).abs() <= 1e-12 * s.q[i].abs() + 1e-18,
+            "{i}: {qi} {}",
+            s.q[i]
+        );
         assert!((f(&sol["forces"][i]) + load[i]).abs() < 1e-6);
     }
     let balls = sol["balls"].as_array().unwrap();
@@ -187,7 +198,11 @@ fn a_bearing_file_gives_the_same_answer_as_its_preset() {
         &["ball_diameter_mm"],
     );
     refused(
-        &["quasi-static", "--bearing", dir.join("missing.toml").to_str().unwrap()],
+        &[
+            "quasi-static",
+            "--bearing",
+            dir.join("missing.toml").to_str().unwrap(),
+        ],
         &["missing.toml"],
     );
     let _ = std::fs::remove_dir_all(&dir);
@@ -195,13 +210,25 @@ fn a_bearing_file_gives_the_same_answer_as_its_preset() {
 
 #[test]
 fn nonsense_is_refused_with_its_cause() {
-    refused(&["quasi-static", "--speed-rpm", "NaN"], &["--speed-rpm", "nan"]);
-    refused(&["quasi-static", "--speed-rpm", "-100"], &["--speed-rpm", ">= 0"]);
+    refused(
+        &["quasi-static", "--speed-rpm", "NaN"],
+        &["--speed-rpm", "nan"],
+    );
+    refused(
+        &["quasi-static", "--speed-rpm", "-100"],
+        &["--speed-rpm", ">= 0"],
+    );
     refused(&["quasi-static", "--fx", "inf"], &["--fx", "finite"]);
     refused(&["quasi-static", "--my", "-inf"], &["--my"]);
     refused(&["quasi-static", "--fz", "abc"], &["--fz"]);
-    refused(&["quasi-static", "--bearing", "nosuch"], &["nosuch", "6205"]);
-    refused(&["quasi-static", "--race-control", "sideways"], &["sideways"]);
+    refused(
+        &["quasi-static", "--bearing", "nosuch"],
+        &["nosuch", "6205"],
+    );
+    refused(
+        &["quasi-static", "--race-control", "sideways"],
+        &["sideways"],
+    );
     // A load no bearing can carry.
     refused(
         &["quasi-static", "--bearing", "7004", "--fz", "1e8"],

@@ -1,5 +1,6 @@
 //! Jones–Harris quasi-static model: closed forms, round trips, speed trends, conventions,
 //! convergence and the stiffness matrix.
+#![allow(clippy::needless_range_loop)] // index loops read best in matrix checks
 
 use raceway::contact::{series_constant, Curvature, PointContact, Race};
 use raceway::geometry::{preset, Bearing};
@@ -70,7 +71,11 @@ fn zero_speed_pure_thrust_matches_the_closed_form() {
     assert!(rel(s.q[2], z_disp) < 1e-6, "z {} vs {}", s.q[2], z_disp);
     for bl in &s.balls {
         assert!((bl.alpha_i - alpha).abs() < 1e-7 && (bl.alpha_o - alpha).abs() < 1e-7);
-        assert!(rel(bl.q_i, q_ball) < 1e-6 && rel(bl.q_o, q_ball) < 1e-6, "{}", bl.q_i);
+        assert!(
+            rel(bl.q_i, q_ball) < 1e-6 && rel(bl.q_o, q_ball) < 1e-6,
+            "{}",
+            bl.q_i
+        );
     }
     // The reaction on the shaft opposes the load.
     assert!(rel(-s.forces[2], fa) < 1e-9);
@@ -113,7 +118,12 @@ fn load_driven_then_motion_driven_returns_the_loads() {
     let ri = m.bearing().inner_groove_centre_radius();
     for i in 0..5 {
         let sc = if i < 3 { scale } else { scale * ri };
-        assert!((f[i] + load[i]).abs() < 1e-8 * sc, "{i}: {} vs {}", f[i], load[i]);
+        assert!(
+            (f[i] + load[i]).abs() < 1e-8 * sc,
+            "{i}: {} vs {}",
+            f[i],
+            load[i]
+        );
     }
 }
 
@@ -128,10 +138,20 @@ fn motion_driven_then_load_driven_returns_q() {
     let load = f.map(|v| -v);
     let s = m.solve(&load, w).unwrap();
     for i in 0..3 {
-        assert!((s.q[i] - q0[i]).abs() < 1e-11, "{i}: {} vs {}", s.q[i], q0[i]);
+        assert!(
+            (s.q[i] - q0[i]).abs() < 1e-11,
+            "{i}: {} vs {}",
+            s.q[i],
+            q0[i]
+        );
     }
     for i in 3..5 {
-        assert!((s.q[i] - q0[i]).abs() < 1e-9, "{i}: {} vs {}", s.q[i], q0[i]);
+        assert!(
+            (s.q[i] - q0[i]).abs() < 1e-9,
+            "{i}: {} vs {}",
+            s.q[i],
+            q0[i]
+        );
     }
 }
 
@@ -252,10 +272,14 @@ fn impossible_or_bad_input_is_an_error() {
         Err(Error::Invalid { field, .. }) => assert_eq!(field, "load[0]"),
         other => panic!("{other:?}"),
     }
-    assert!(m.solve(&[0.0, 0.0, 100.0, 0.0, 0.0], f64::INFINITY).is_err());
+    assert!(m
+        .solve(&[0.0, 0.0, 100.0, 0.0, 0.0], f64::INFINITY)
+        .is_err());
     let mut st = vec![BallState::default(); 6];
     let psi = azimuths(6, 0.0);
-    assert!(m.forces(&[0.0, f64::NAN, 0.0, 0.0, 0.0], 10.0, &psi, &mut st).is_err());
+    assert!(m
+        .forces(&[0.0, f64::NAN, 0.0, 0.0, 0.0], 10.0, &psi, &mut st)
+        .is_err());
     assert!(m.forces(&[0.0; 5], 10.0, &psi[..5], &mut st).is_err());
     // A load that pushes the contact angle past the shoulder limit.
     let opts = Options {

@@ -211,7 +211,8 @@ impl Geo {
 
         let zero = D4::cst(0.0);
         let (mut fc, mut fi, mut fo) = (zero, zero, zero);
-        let (mut mgv, mut wm, mut wr, mut beta, mut sr_i, mut sr_o) = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+        let (mut mgv, mut wm, mut wr, mut beta, mut sr_i, mut sr_o) =
+            (0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
         if omega != 0.0 {
             let g = self.g;
             let (sb, cb, b) = match self.control {

@@ -34,7 +34,12 @@ impl D4 {
     pub fn chain(self, f: f64, df: f64) -> Self {
         D4 {
             v: f,
-            d: [df * self.d[0], df * self.d[1], df * self.d[2], df * self.d[3]],
+            d: [
+                df * self.d[0],
+                df * self.d[1],
+                df * self.d[2],
+                df * self.d[3],
+            ],
         }
     }
 

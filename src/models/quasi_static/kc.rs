@@ -91,7 +91,10 @@ mod tests {
                 assert!((v / exact - 1.0).abs() < 1e-7, "c {c}: {v} vs {exact}");
                 let h = 1e-5;
                 let fd = (kc_exact(&b, race, c + h) - kc_exact(&b, race, c - h)) / (2.0 * h);
-                assert!((dv - fd).abs() <= 1e-4 * fd.abs() + 1e-6 * exact, "{dv} {fd}");
+                assert!(
+                    (dv - fd).abs() <= 1e-4 * fd.abs() + 1e-6 * exact,
+                    "{dv} {fd}"
+                );
             }
         }
     }

@@ -213,8 +213,11 @@ impl QuasiStatic {
         };
         pos("quasi_static.ball_tolerance", opts.ball_tolerance)?;
         pos("quasi_static.ring_tolerance", opts.ring_tolerance)?;
-        pos("quasi_static.max_deflection_ratio", opts.max_deflection_ratio)?;
-        if !(opts.gyro_traction > 0.0) {
+        pos(
+            "quasi_static.max_deflection_ratio",
+            opts.max_deflection_ratio,
+        )?;
+        if opts.gyro_traction.is_nan() || opts.gyro_traction <= 0.0 {
             return Err(Error::invalid(
                 "quasi_static.gyro_traction",
                 opts.gyro_traction,
@@ -751,7 +754,11 @@ mod tests {
         let sol = m.solve(&[0.0, 2000.0, 20000.0, 0.0, 0.0], 1047.0).unwrap();
         for b in &sol.balls {
             assert!(b.spin_roll_o.abs() < 1e-12, "{}", b.spin_roll_o);
-            assert!(b.spin_roll_i > 0.05 && b.spin_roll_i < 1.0, "{}", b.spin_roll_i);
+            assert!(
+                b.spin_roll_i > 0.05 && b.spin_roll_i < 1.0,
+                "{}",
+                b.spin_roll_i
+            );
         }
     }
 
