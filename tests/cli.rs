@@ -1,0 +1,238 @@
+//! The `raceway` program: output that parses and matches the library, and refusals that
+//! name their cause with a non-zero exit.
+
+use raceway::component::scene::Scene;
+use raceway::contact::{Curvature, PointContact, Race};
+use raceway::geometry::{preset, presets};
+use raceway::models::quasi_static::{Options, QuasiStatic, RaceControl};
+use raceway::units::{rad_s_to_rpm, rpm_to_rad_s};
+use std::process::{Command, Output};
+
+fn run(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_raceway"))
+        .args(args)
+        .output()
+        .expect("the raceway binary runs")
+}
+
+fn json(args: &[&str]) -> serde_json::Value {
+    let out = run(args);
+    assert!(
+        out.status.success(),
+        "{args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).expect("valid JSON")
+}
+
+fn refused(args: &[&str], needles: &[&str]) {
+    let out = run(args);
+    assert!(!out.status.success(), "{args:?} was accepted");
+    let err = String::from_utf8_lossy(&out.stderr).to_lowercase();
+    for n in needles {
+        assert!(
+            err.contains(&n.to_lowercase()),
+            "{args:?}: `{n}` not in: {err}"
+        );
+    }
+    assert!(out.stdout.is_empty(), "{args:?} printed a result");
+}
+
+fn f(v: &serde_json::Value) -> f64 {
+    v.as_f64().expect("a number")
+}
+
+fn close(a: f64, b: f64, rel: f64) -> bool {
+    (a - b).abs() <= rel * b.abs().max(1e-300)
+}
+
+#[test]
+fn bearings_json_lists_every_preset_with_library_numbers() {
+    let v = json(&["bearings", "--json"]);
+    let rows = v.as_array().unwrap();
+    let all = presets();
+    assert_eq!(rows.len(), all.len());
+    for (row, spec) in rows.iter().zip(&all) {
+        let b = spec.build().unwrap();
+        assert_eq!(row["name"], b.name.as_str());
+        assert_eq!(row["ball_count"].as_u64().unwrap() as usize, b.z);
+        assert!(close(f(&row["ball_diameter_mm"]), b.d * 1e3, 1e-12));
+        assert!(close(
+            f(&row["groove_centre_distance_mm"]),
+            b.a() * 1e3,
+            1e-12
+        ));
+        assert!(close(f(&row["ball_mass_kg"]), b.ball_mass(), 1e-12));
+        assert!((f(&row["free_contact_angle_deg"]) - b.alpha0.to_degrees()).abs() < 1e-9);
+        let kc = PointContact::new(
+            Curvature::ball_race(b.d, b.dm, b.nominal_contact_angle(), b.fi, Race::Inner),
+            b.e_eff_inner(),
+        )
+        .kc;
+        assert!(close(f(&row["kc_inner"]), kc, 1e-12));
+    }
+    let text = run(&["bearings"]);
+    assert!(text.status.success());
+    let t = String::from_utf8(text.stdout).unwrap();
+    assert!(all.iter().all(|s| t.contains(&s.name)));
+}
+
+#[test]
+fn quasi_static_json_matches_the_library() {
+    let v = json(&[
+        "quasi-static",
+        "--bearing",
+        "acbb16",
+        "--speed-rpm",
+        "10000",
+        "--fx",
+        "2000",
+        "--fz",
+        "20000",
+        "--my",
+        "-15",
+        "--race-control",
+        "none",
+        "--json",
+    ]);
+    let b = preset("acbb16").unwrap().build().unwrap();
+    let opts = Options {
+        race_control: RaceControl::None,
+        ..Options::default()
+    };
+    let load = [2000.0, 0.0, 20_000.0, 0.0, -15.0];
+    let s = QuasiStatic::new(&b, opts)
+        .unwrap()
+        .solve(&load, rpm_to_rad_s(10_000.0))
+        .unwrap();
+    assert_eq!(v["bearing"], "acbb16");
+    assert_eq!(v["race_control"], "none");
+    let sol = &v["solution"];
+    for i in 0..5 {
+        let qi = f(&sol["q"][i]);
+        assert!(
+            (qi - s.q[i]).abs() <= 1e-12 * s.q[i].abs() + 1e-18,
+            "{i}: {qi} {}",
+            s.q[i]
+        );
+        assert!((f(&sol["forces"][i]) + load[i]).abs() < 1e-6);
+    }
+    let balls = sol["balls"].as_array().unwrap();
+    assert_eq!(balls.len(), 16);
+    for (j, ball) in balls.iter().enumerate() {
+        assert!(close(f(&ball["q_i"]), s.balls[j].q_i, 1e-12));
+        assert!(close(f(&ball["alpha_o"]), s.balls[j].alpha_o, 1e-12));
+        assert!(close(f(&ball["p_o"]), s.balls[j].p_o, 1e-12));
+    }
+}
+
+/// With no flags the program solves the embedded default scene's operating point, with the
+/// speed taken from `inputs.initial["shaft.omega"]`.
+#[test]
+fn quasi_static_without_flags_solves_the_default_scene() {
+    let v = json(&["quasi-static", "--json"]);
+    let scene = Scene::default_scene();
+    let b = scene.build_bearing().unwrap();
+    let op = &scene.model.operating_point;
+    let w = scene.inputs.initial["shaft.omega"];
+    let load = [op.fx, op.fy, op.fz, op.mx, op.my];
+    let s = QuasiStatic::new(&b, Options::default())
+        .unwrap()
+        .solve(&load, w)
+        .unwrap();
+    assert_eq!(v["bearing"], b.name.as_str());
+    assert!(close(f(&v["speed_rpm"]), rad_s_to_rpm(w), 1e-12));
+    for i in 0..5 {
+        assert!((f(&v["solution"]["q"][i]) - s.q[i]).abs() <= 1e-12 * s.q[i].abs() + 1e-18);
+    }
+    // The text report carries the same displacement in µm.
+    let out = run(&["quasi-static"]);
+    assert!(out.status.success());
+    let t = String::from_utf8(out.stdout).unwrap();
+    assert!(t.contains(&format!("y {:.4} µm", s.q[1] * 1e6)), "{t}");
+    assert!(t.contains(&b.name));
+}
+
+#[test]
+fn a_bearing_file_gives_the_same_answer_as_its_preset() {
+    let dir = std::env::temp_dir().join(format!("raceway-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let good = dir.join("b7004.toml");
+    let spec = preset("7004").unwrap();
+    std::fs::write(&good, toml::to_string(&spec).unwrap()).unwrap();
+    let args = |bearing: &str| {
+        vec![
+            "quasi-static".to_string(),
+            "--bearing".into(),
+            bearing.into(),
+            "--speed-rpm".into(),
+            "30000".into(),
+            "--fz".into(),
+            "2000".into(),
+            "--fx".into(),
+            "400".into(),
+            "--fy".into(),
+            "0".into(),
+            "--json".into(),
+        ]
+    };
+    let a: Vec<String> = args(good.to_str().unwrap());
+    let from_file = json(&a.iter().map(String::as_str).collect::<Vec<_>>());
+    let a: Vec<String> = args("7004");
+    let from_preset = json(&a.iter().map(String::as_str).collect::<Vec<_>>());
+    assert_eq!(from_file["solution"], from_preset["solution"]);
+
+    // A malformed file and a file with a bad value are refused, naming the file or field.
+    let bad = dir.join("bad.toml");
+    std::fs::write(&bad, "name = \"x\"\nball_diameter_mm = [oops\n").unwrap();
+    refused(
+        &["quasi-static", "--bearing", bad.to_str().unwrap()],
+        &["bad.toml"],
+    );
+    let neg = dir.join("neg.toml");
+    let mut spec = preset("6205").unwrap();
+    spec.ball_diameter_mm = -1.0;
+    std::fs::write(&neg, toml::to_string(&spec).unwrap()).unwrap();
+    refused(
+        &["quasi-static", "--bearing", neg.to_str().unwrap()],
+        &["ball_diameter_mm"],
+    );
+    refused(
+        &[
+            "quasi-static",
+            "--bearing",
+            dir.join("missing.toml").to_str().unwrap(),
+        ],
+        &["missing.toml"],
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn nonsense_is_refused_with_its_cause() {
+    refused(
+        &["quasi-static", "--speed-rpm", "NaN"],
+        &["--speed-rpm", "nan"],
+    );
+    refused(
+        &["quasi-static", "--speed-rpm", "-100"],
+        &["--speed-rpm", ">= 0"],
+    );
+    refused(&["quasi-static", "--fx", "inf"], &["--fx", "finite"]);
+    refused(&["quasi-static", "--my", "-inf"], &["--my"]);
+    refused(&["quasi-static", "--fz", "abc"], &["--fz"]);
+    refused(
+        &["quasi-static", "--bearing", "nosuch"],
+        &["nosuch", "6205"],
+    );
+    refused(
+        &["quasi-static", "--race-control", "sideways"],
+        &["sideways"],
+    );
+    // A load no bearing can carry.
+    refused(
+        &["quasi-static", "--bearing", "7004", "--fz", "1e8"],
+        &["load"],
+    );
+    refused(&["no-such-command"], &["no-such-command"]);
+}
