@@ -376,7 +376,8 @@ impl QuasiStatic {
             f[3] += m * s;
             f[4] -= m * c;
             if let Some(k) = stiffness.as_deref_mut() {
-                self.add_ball_stiffness(&e, s, c, k);
+                let e4 = self.geo.eval::<4>(omega, st.x, a);
+                self.add_ball_stiffness(&e4, s, c, k);
             }
             if let Some(b) = balls.as_deref_mut() {
                 b[j] = self.ball_result(&e, p, st.x);
@@ -392,7 +393,7 @@ impl QuasiStatic {
 
     /// Add ball `e`'s contribution to `K = -dF/dq` (implicit-function theorem on the ball
     /// equations: `dX/dA = -(dg/dX)^-1 dg/dA`).
-    fn add_ball_stiffness(&self, e: &Eval, s: f64, c: f64, k: &mut [[f64; 5]; 5]) {
+    fn add_ball_stiffness(&self, e: &Eval<4>, s: f64, c: f64, k: &mut [[f64; 5]; 5]) {
         let gx = e.jac_x();
         let ga = [[e.g[0].d[2], e.g[0].d[3]], [e.g[1].d[2], e.g[1].d[3]]];
         // dX/dA columns: solve gx y = -ga[:, col].
@@ -430,7 +431,7 @@ impl QuasiStatic {
         }
     }
 
-    fn ball_result(&self, e: &Eval, psi: f64, x: [f64; 2]) -> BallResult {
+    fn ball_result(&self, e: &Eval<0>, psi: f64, x: [f64; 2]) -> BallResult {
         let b = &self.bearing;
         let contact = |alpha: f64, q: f64, race: Race| {
             if q > 0.0 {
@@ -445,14 +446,15 @@ impl QuasiStatic {
                 (0.0, 0.0, 0.0)
             }
         };
-        let (a_i, b_i, p_i) = contact(e.ai, e.qi, Race::Inner);
-        let (a_o, b_o, p_o) = contact(e.ao, e.qo, Race::Outer);
+        let (alpha_i, alpha_o) = (e.alpha_i(), e.alpha_o());
+        let (a_i, b_i, p_i) = contact(alpha_i, e.qi, Race::Inner);
+        let (a_o, b_o, p_o) = contact(alpha_o, e.qo, Race::Outer);
         BallResult {
             psi,
             q_i: e.qi,
             q_o: e.qo,
-            alpha_i: e.ai,
-            alpha_o: e.ao,
+            alpha_i,
+            alpha_o,
             delta_i: e.di,
             delta_o: e.do_,
             a_i,
@@ -465,7 +467,7 @@ impl QuasiStatic {
             mg: e.mg,
             omega_m: e.wm,
             omega_r: e.wr,
-            beta: e.beta,
+            beta: if e.wm == 0.0 { 0.0 } else { e.beta() },
             spin_roll_i: e.sr_i,
             spin_roll_o: e.sr_o,
             x,
@@ -772,7 +774,7 @@ mod tests {
         m.forces(&q, 8000.0, &psi, &mut st).unwrap();
         for (p, s) in psi.iter().zip(&st) {
             let a = m.groove_offset(&q, *p);
-            let e = m.geo.eval(8000.0, s.x, a);
+            let e = m.geo.eval::<0>(8000.0, s.x, a);
             assert!(e.norm() <= 1e-10 * e.scale(), "{}", e.norm());
             assert!(e.mg > 0.0 && e.fc > 0.0);
         }
