@@ -129,14 +129,9 @@ impl BallState {
 /// `dX/dA = -(dg/dX)^-1 dg/dA` from an `N = 4` evaluation (zero when singular).
 pub(crate) fn sensitivity(e: &Eval<4>) -> [[f64; 2]; 2] {
     let gx = e.jac_x();
-    let mut out = [[0.0; 2]; 2];
-    for col in 0..2 {
-        if let Some(y) = solve2(&gx, [-e.g[0].d[2 + col], -e.g[1].d[2 + col]]) {
-            out[0][col] = y[0];
-            out[1][col] = y[1];
-        }
-    }
-    out
+    let col = |c: usize| solve2(&gx, [-e.g[0].d[2 + c], -e.g[1].d[2 + c]]).unwrap_or([0.0; 2]);
+    let (c0, c1) = (col(0), col(1));
+    [[c0[0], c1[0]], [c0[1], c1[1]]]
 }
 
 /// Constants of the kernel, precomputed once per bearing and options.

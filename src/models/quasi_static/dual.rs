@@ -5,6 +5,8 @@
 //! (`u_o = (X1, X2)`) and of the inner groove centre relative to the ball centre
 //! (`u_i = (A1 - X1, A2 - X2)`); see [`super::ball`].
 
+#![allow(clippy::needless_range_loop)] // the slot loops read as the formulas
+
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
 /// A value and its gradient with respect to `N` seeds (`N = 0`: plain values).

@@ -394,16 +394,7 @@ impl QuasiStatic {
     /// Add ball `e`'s contribution to `K = -dF/dq` (implicit-function theorem on the ball
     /// equations: `dX/dA = -(dg/dX)^-1 dg/dA`).
     fn add_ball_stiffness(&self, e: &Eval<4>, s: f64, c: f64, k: &mut [[f64; 5]; 5]) {
-        let gx = e.jac_x();
-        let ga = [[e.g[0].d[2], e.g[0].d[3]], [e.g[1].d[2], e.g[1].d[3]]];
-        // dX/dA columns: solve gx y = -ga[:, col].
-        let mut dxda = [[0.0; 2]; 2]; // dxda[r][col] = dX_r / dA_col
-        for col in 0..2 {
-            if let Some(y) = ball::solve2(&gx, [-ga[0][col], -ga[1][col]]) {
-                dxda[0][col] = y[0];
-                dxda[1][col] = y[1];
-            }
-        }
+        let dxda = ball::sensitivity(e); // dxda[r][col] = dX_r / dA_col
         let total = |o: &dual::D4| -> [f64; 2] {
             let ox = [o.d[0] - o.d[2], o.d[1] - o.d[3]];
             [
