@@ -31,14 +31,16 @@
 //!   The radial motion of the groove centre caused by tilt (second order) and the tangential
 //!   part of the ring translation are neglected, as in Jones and Harris.
 //! - **Moment arms.** The inner normal force passes through the inner groove centre, at
-//!   radius `Ri` in the bearing plane, so a ball's axial force `F_a` on the shaft contributes
-//!   the ball-plane moment `Ri F_a`; the gyroscopic friction force acts at the contact point
-//!   and adds the couple `T_i f_i D` (see [`ball`](self) docs). A ball-plane moment `m` about
-//!   `e_t = (-sin psi, cos psi, 0)`... written out: `Mx = sum m_j sin psi_j`,
-//!   `My = -sum m_j cos psi_j`, with `Fx = sum F_r cos psi`, `Fy = sum F_r sin psi`,
-//!   `Fz = sum F_a`. These are exactly the generalised forces conjugate to `q` through the
-//!   map above (virtual work), so at zero speed `K` is symmetric and a tilt `rx > 0` of a
-//!   loaded angular-contact bearing gives `Mx < 0` (restoring, `K[rx][rx] > 0`).
+//!   radius `Ri` in the bearing plane, so a ball's axial force `F_a` on the shaft gives the
+//!   ball-plane moment `m = Ri F_a`; the gyroscopic friction force `T_i` acts at the contact
+//!   point, `f_i D` from that centre, and adds the couple `T_i f_i D` (`= lambda_i f_i Mg`,
+//!   Harris's term). With `F_r` the radial force on the shaft:
+//!   `Fx = sum F_r cos psi`, `Fy = sum F_r sin psi`, `Fz = sum F_a`,
+//!   `Mx = sum m sin psi`, `My = -sum m cos psi`. These are the generalised forces conjugate
+//!   to `q` through the map above (virtual work), so at zero speed `K` is symmetric (up to
+//!   the small non-conservative part from `Kc` depending on the contact angle) and a tilt
+//!   `rx > 0` of a loaded angular-contact bearing gives `Mx < 0` (restoring,
+//!   `K[rx][rx] > 0`).
 //!
 //! The per-ball physics (race control, gyroscopic sign, friction limit) is documented in
 //! `ball.rs`; the Hertz constant comes from one function, `kc.rs`.
@@ -768,6 +770,30 @@ mod tests {
             let e = m.geo.eval::<0>(8000.0, s.x, a);
             assert!(e.norm() <= 1e-10 * e.scale(), "{}", e.norm());
             assert!(e.mg > 0.0 && e.fc > 0.0);
+        }
+    }
+
+    /// With both contacts on one line (equal angles) the race-control speeds reduce to the
+    /// rigid rolling kinematics of physics.md §1: cage `omega (1 - gamma)/2` whatever the
+    /// attitude, and with `beta = alpha` the ball spin `dm/(2D) (1 - gamma^2) omega`.
+    #[test]
+    fn equal_angles_reduce_to_rolling_kinematics() {
+        let m = model("218");
+        let b = m.bearing.clone();
+        let w = 1000.0;
+        for alpha in [0.2f64, 0.7] {
+            let n = [alpha.sin(), alpha.cos()];
+            let la = m.geo.ri_free + m.geo.ro_free + 10e-6;
+            let a = [n[0] * la, n[1] * la];
+            let x = m.geo.static_position(a);
+            let e = m.geo.eval::<0>(w, x, a);
+            assert!((e.alpha_i() - alpha).abs() < 1e-12 && (e.alpha_o() - alpha).abs() < 1e-12);
+            let k = crate::geometry::kinematics_at(&b, alpha, w, 0.0);
+            assert!((e.wm - k.cage_speed).abs() < 1e-9 * w);
+            let g = b.d * alpha.cos() / b.dm;
+            let c = (alpha - e.beta()).cos();
+            let spin = b.dm / (2.0 * b.d) * (1.0 - g * g) * w / c;
+            assert!((e.wr + spin).abs() < 1e-9 * spin, "{} {}", e.wr, spin);
         }
     }
 }
