@@ -419,3 +419,23 @@ fn no_race_control_and_options() {
     .unwrap_err();
     assert!(e.to_string().contains("ball_tolerance"));
 }
+
+/// Directions without load: a deep-groove bearing with clearance under a pure radial load
+/// stays axially centred and untilted; zero load is answered by zero displacement; a pure
+/// moment on a deep-groove bearing tilts it without translating it axially.
+#[test]
+fn unloaded_directions_stay_put() {
+    let m = model("6012");
+    let s = m
+        .solve(&[0.0, 500.0, 0.0, 0.0, 0.0], rpm_to_rad_s(2000.0))
+        .unwrap();
+    assert!(s.q[1] > 5e-6 && s.q[2].abs() < 1e-12 && s.q[3].abs() < 1e-9);
+    assert!((s.forces[1] + 500.0).abs() < 1e-6);
+    let s = m.solve(&[0.0; 5], 0.0).unwrap();
+    assert_eq!(s.q, [0.0; 5]);
+    assert!(s.balls.iter().all(|b| b.q_i == 0.0 && b.q_o == 0.0));
+    let s = model("6205")
+        .solve(&[0.0, 0.0, 0.0, 5.0, 0.0], 0.0)
+        .unwrap();
+    assert!(s.q[3] > 0.0 && s.q[2].abs() < 1e-12 && (s.forces[3] + 5.0).abs() < 1e-8);
+}

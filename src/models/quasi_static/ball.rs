@@ -70,16 +70,24 @@
 //! centre at radius `Ri`; the friction force acts at the contact point, `f_i D` from it;
 //! with `T_i = lambda_i Mg/D` the last term is physics.md's `lambda_i f_i Mg` couple).
 
-use super::dual::D4;
+use super::dual::Dual;
 use super::kc::KcTable;
 use super::RaceControl;
 use crate::error::{Error, Result};
 
 /// Per-ball unknowns carried from one call to the next (warm start).
+///
+/// The next solve starts from the first-order prediction
+/// `X + dX/dA (A_new - A)`, so that in a time integration (small changes of `A` between
+/// calls) one Newton step usually converges.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct BallState {
     /// Ball centre relative to the outer groove curvature centre, `(X1, X2)`, m.
     pub x: [f64; 2],
+    /// Groove offset `(A1, A2)` at which `x` was solved, m.
+    pub a: [f64; 2],
+    /// Sensitivity `dX/dA` there (row `r`: `X_r`), from the last Newton Jacobian.
+    pub dxda: [[f64; 2]; 2],
     /// `false`: no previous solution; the solve starts from the static guess.
     pub warm: bool,
 }
@@ -88,9 +96,42 @@ impl Default for BallState {
     fn default() -> Self {
         BallState {
             x: [0.0, 0.0],
+            a: [0.0, 0.0],
+            dxda: [[0.0; 2]; 2],
             warm: false,
         }
     }
+}
+
+impl BallState {
+    /// The predicted start for groove offset `a`.
+    fn predict(&self, a: [f64; 2]) -> [f64; 2] {
+        let da = [a[0] - self.a[0], a[1] - self.a[1]];
+        let p = [
+            self.x[0] + self.dxda[0][0] * da[0] + self.dxda[0][1] * da[1],
+            self.x[1] + self.dxda[1][0] * da[0] + self.dxda[1][1] * da[1],
+        ];
+        if p[0].is_finite() && p[1].is_finite() {
+            p
+        } else {
+            self.x
+        }
+    }
+
+    fn store(&mut self, x: [f64; 2], a: [f64; 2], dxda: [[f64; 2]; 2]) {
+        self.x = x;
+        self.a = a;
+        self.dxda = dxda;
+        self.warm = true;
+    }
+}
+
+/// `dX/dA = -(dg/dX)^-1 dg/dA` from an `N = 4` evaluation (zero when singular).
+pub(crate) fn sensitivity(e: &Eval<4>) -> [[f64; 2]; 2] {
+    let gx = e.jac_x();
+    let col = |c: usize| solve2(&gx, [-e.g[0].d[2 + c], -e.g[1].d[2 + c]]).unwrap_or([0.0; 2]);
+    let (c0, c1) = (col(0), col(1));
+    [[c0[0], c1[0]], [c0[1], c1[1]]]
 }
 
 /// Constants of the kernel, precomputed once per bearing and options.
@@ -120,50 +161,94 @@ pub(crate) struct Geo {
     pub max_iter: usize,
 }
 
-/// Everything evaluated at one ball position. Duals carry d/d(u_o1, u_o2, u_i1, u_i2).
+/// Everything evaluated at one ball position. With `N = 4` the duals carry
+/// d/d(u_o1, u_o2, u_i1, u_i2) (for the stiffness), with `N = 2` d/d(X1, X2) (for the
+/// Newton step), with `N = 0` values only (line search, convergence check).
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct Eval {
-    pub g: [D4; 2],
+pub(crate) struct Eval<const N: usize> {
+    pub g: [Dual<N>; 2],
     /// Forces on the shaft: axial, radial, and the ball-plane moment.
-    pub fa: D4,
-    pub fr: D4,
-    pub m: D4,
+    pub fa: Dual<N>,
+    pub fr: Dual<N>,
+    pub m: Dual<N>,
     pub qi: f64,
     pub qo: f64,
     pub di: f64,
     pub do_: f64,
-    pub ai: f64,
-    pub ao: f64,
+    /// `(sin, cos)` of the inner and outer contact angles and of the attitude `beta`
+    /// (angles are formed only for reports: `atan2` is costly in the kernel).
+    pub sc_i: [f64; 2],
+    pub sc_o: [f64; 2],
+    pub sc_b: [f64; 2],
     pub fc: f64,
     pub mg: f64,
     pub wm: f64,
     pub wr: f64,
-    pub beta: f64,
     pub sr_i: f64,
     pub sr_o: f64,
 }
 
-impl Eval {
+impl<const N: usize> Eval<N> {
     /// Residual norm, N (infinite when not finite).
     pub fn norm(&self) -> f64 {
-        let n = self.g[0].v.hypot(self.g[1].v);
+        let n = (self.g[0].v * self.g[0].v + self.g[1].v * self.g[1].v).sqrt();
         if n.is_finite() {
             n
         } else {
             f64::INFINITY
         }
     }
+    /// Inner contact angle, rad.
+    pub fn alpha_i(&self) -> f64 {
+        self.sc_i[0].atan2(self.sc_i[1])
+    }
+    /// Outer contact angle, rad.
+    pub fn alpha_o(&self) -> f64 {
+        self.sc_o[0].atan2(self.sc_o[1])
+    }
+    /// Attitude angle, rad.
+    pub fn beta(&self) -> f64 {
+        self.sc_b[0].atan2(self.sc_b[1])
+    }
     /// Force scale for the convergence test.
     pub fn scale(&self) -> f64 {
         self.qi + self.qo + self.fc.abs() + 1e-9
     }
-    /// `dg/dX` (2x2, row-major).
+    /// `dg/dX` (2x2, row-major); zero for `N = 0`.
     pub fn jac_x(&self) -> [[f64; 2]; 2] {
         let r = |k: usize| {
-            let d = self.g[k].d;
-            [d[0] - d[2], d[1] - d[3]]
+            let d = &self.g[k].d;
+            match N {
+                4 => [d[0] - d[2], d[1] - d[3]],
+                2 => [d[0], d[1]],
+                _ => [0.0, 0.0],
+            }
         };
         [r(0), r(1)]
+    }
+
+    /// The values only.
+    pub fn values(&self) -> Eval<0> {
+        let c = |x: &Dual<N>| Dual::<0>::cst(x.v);
+        Eval {
+            g: [c(&self.g[0]), c(&self.g[1])],
+            fa: c(&self.fa),
+            fr: c(&self.fr),
+            m: c(&self.m),
+            qi: self.qi,
+            qo: self.qo,
+            di: self.di,
+            do_: self.do_,
+            sc_i: self.sc_i,
+            sc_o: self.sc_o,
+            sc_b: self.sc_b,
+            fc: self.fc,
+            mg: self.mg,
+            wm: self.wm,
+            wr: self.wr,
+            sr_i: self.sr_i,
+            sr_o: self.sr_o,
+        }
     }
 }
 
@@ -183,15 +268,30 @@ pub(crate) fn solve2(j: &[[f64; 2]; 2], r: [f64; 2]) -> Option<[f64; 2]> {
 
 impl Geo {
     /// Evaluate the ball at `x` for groove offset `a` and shaft speed `omega`.
-    pub fn eval(&self, omega: f64, x: [f64; 2], a: [f64; 2]) -> Eval {
-        let uo1 = D4::var(x[0], 0);
-        let uo2 = D4::var(x[1], 1);
-        let ui1 = D4::var(a[0] - x[0], 2);
-        let ui2 = D4::var(a[1] - x[1], 3);
+    pub fn eval<const N: usize>(&self, omega: f64, x: [f64; 2], a: [f64; 2]) -> Eval<N> {
+        let mut uo1 = Dual::<N>::cst(x[0]);
+        let mut uo2 = Dual::<N>::cst(x[1]);
+        let mut ui1 = Dual::<N>::cst(a[0] - x[0]);
+        let mut ui2 = Dual::<N>::cst(a[1] - x[1]);
+        match N {
+            4 => {
+                uo1.d[0] = 1.0;
+                uo2.d[1] = 1.0;
+                ui1.d[2] = 1.0;
+                ui2.d[3] = 1.0;
+            }
+            2 => {
+                uo1.d[0] = 1.0;
+                uo2.d[1] = 1.0;
+                ui1.d[0] = -1.0;
+                ui2.d[1] = -1.0;
+            }
+            _ => {}
+        }
         let lo = (uo1 * uo1 + uo2 * uo2).sqrt();
         let li = (ui1 * ui1 + ui2 * ui2).sqrt();
-        let lo_safe = if lo.v > 0.0 { lo } else { D4::cst(1e-300) };
-        let li_safe = if li.v > 0.0 { li } else { D4::cst(1e-300) };
+        let lo_safe = if lo.v > 0.0 { lo } else { Dual::cst(1e-300) };
+        let li_safe = if li.v > 0.0 { li } else { Dual::cst(1e-300) };
         let so = uo1 / lo_safe;
         let co = uo2 / lo_safe;
         let si = ui1 / li_safe;
@@ -209,24 +309,24 @@ impl Geo {
         let qo = kco * dlo.pos_pow15();
         let qi = kci * dli.pos_pow15();
 
-        let zero = D4::cst(0.0);
+        let zero = Dual::cst(0.0);
         let (mut fc, mut fi, mut fo) = (zero, zero, zero);
-        let (mut mgv, mut wm, mut wr, mut beta, mut sr_i, mut sr_o) =
-            (0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+        let (mut mgv, mut wm, mut wr, mut sr_i, mut sr_o) = (0.0, 0.0, 0.0, 0.0, 0.0);
+        let mut sc_b = [0.0, 1.0];
         if omega != 0.0 {
             let g = self.g;
-            let (sb, cb, b) = match self.control {
+            let (sb, cb) = match self.control {
                 RaceControl::Outer => {
                     let y = so;
                     let xx = co + g;
                     let n = (y * y + xx * xx).sqrt();
-                    (y / n, xx / n, y.v.atan2(xx.v))
+                    (y / n, xx / n)
                 }
                 RaceControl::None => {
-                    let bo = D4::atan2(so, co + g);
-                    let bi = D4::atan2(si, ci - g);
+                    let bo = Dual::atan2(so, co + g);
+                    let bi = Dual::atan2(si, ci - g);
                     let bb = (bo + bi) * 0.5;
-                    (bb.sin(), bb.cos(), bb.v)
+                    (bb.sin(), bb.cos())
                 }
             };
             let c_o = co * cb + so * sb;
@@ -236,14 +336,14 @@ impl Geo {
             let po = 1.0 + co * g;
             let pi = 1.0 - ci * g;
             let rm = pi * c_o / (pi * c_o + po * c_i);
-            let rr = D4::cst(-1.0) / ((c_o / po + c_i / pi) * g);
+            let rr = Dual::cst(-1.0) / ((c_o / po + c_i / pi) * g);
             let w2 = omega * omega;
             fc = rm * rm * (self.mass * 0.5 * self.dm * w2);
             let mg = -(rm * rr * sb) * (self.inertia * w2);
             // Friction couple with its traction limit (module docs).
             let fbase = mg / self.d;
             let phi = if fbase.v == 0.0 || !self.mu.is_finite() {
-                D4::cst(1.0)
+                Dual::cst(1.0)
             } else {
                 let sum = qi + qo;
                 let qh = if sum.v > 0.0 { qi * qo / sum } else { zero };
@@ -256,9 +356,9 @@ impl Geo {
             mgv = mg.v;
             wm = rm.v * omega;
             wr = rr.v * omega;
-            beta = b;
-            sr_o = (po * s_o / c_o - so * g).v;
-            sr_i = (pi * s_i / c_i + si * g).v;
+            sc_b = [sb.v, cb.v];
+            sr_o = po.v * s_o.v / c_o.v - so.v * g;
+            sr_i = pi.v * s_i.v / c_i.v + si.v * g;
         }
         let g1 = qi * si + fi * ci - qo * so - fo * co;
         let g2 = qi * ci - fi * si - qo * co + fo * so + fc;
@@ -274,13 +374,13 @@ impl Geo {
             qo: qo.v,
             di: dli.v,
             do_: dlo.v,
-            ai: si.v.atan2(ci.v),
-            ao: so.v.atan2(co.v),
+            sc_i: [si.v, ci.v],
+            sc_o: [so.v, co.v],
+            sc_b,
             fc: fc.v,
             mg: mgv,
             wm,
             wr,
-            beta,
             sr_i,
             sr_o,
         }
@@ -315,20 +415,22 @@ impl Geo {
         let mut x = [0.0, self.ro_free];
         let k = self.kc_o.eval(1.0).0;
         for _ in 0..4 {
-            let e = self.eval(omega, x, a);
+            let e = self.eval::<0>(omega, x, a);
             x[1] = self.ro_free + (e.fc.max(0.0) / k).powf(2.0 / 3.0);
         }
         x
     }
 
     /// Solve the ball's two equilibrium equations for groove offset `a` at shaft speed
-    /// `omega`, starting from (and updating) `state`.
-    pub fn solve(&self, omega: f64, a: [f64; 2], state: &mut BallState) -> Result<Eval> {
+    /// `omega`, starting from (and updating) `state`. Damped Newton: the step from the exact
+    /// 2x2 Jacobian (`N = 2` duals), back-tracking on the residual norm with value-only
+    /// evaluations; one restart from the static (or free-ball) position if a step fails or
+    /// the Jacobian is singular (no contact at all); then [`Error::NotConverged`].
+    pub fn solve(&self, omega: f64, a: [f64; 2], state: &mut BallState) -> Result<Eval<0>> {
         if omega == 0.0 {
             let x = self.static_position(a);
-            state.x = x;
-            state.warm = true;
-            return Ok(self.eval(0.0, x, a));
+            state.store(x, a, [[0.0; 2]; 2]);
+            return Ok(self.eval::<0>(0.0, x, a));
         }
         let la = a[0].hypot(a[1]);
         let loaded_static = la > self.ri_free + self.ro_free;
@@ -340,19 +442,18 @@ impl Geo {
             }
         };
         let mut x = if state.warm && state.x[0].is_finite() && state.x[1].is_finite() {
-            state.x
+            state.predict(a)
         } else {
             fallback(self)
         };
         let mut restarted = !state.warm;
-        let mut e = self.eval(omega, x, a);
+        let mut e = self.eval::<4>(omega, x, a);
         let mut it = 0;
         loop {
             let r = e.norm();
             if r <= self.tol * e.scale() + 1e-12 {
-                state.x = x;
-                state.warm = true;
-                return Ok(e);
+                state.store(x, a, sensitivity(&e));
+                return Ok(e.values());
             }
             let step = if it < self.max_iter {
                 solve2(&e.jac_x(), [-e.g[0].v, -e.g[1].v])
@@ -364,10 +465,15 @@ impl Geo {
                 let mut t = 1.0;
                 for _ in 0..40 {
                     let xn = [x[0] + t * dx[0], x[1] + t * dx[1]];
-                    let en = self.eval(omega, xn, a);
-                    if en.norm() <= (1.0 - 1e-4 * t) * r {
+                    let en = self.eval::<0>(omega, xn, a);
+                    let rn = en.norm();
+                    if rn <= (1.0 - 1e-4 * t) * r {
                         x = xn;
-                        e = en;
+                        if rn <= self.tol * en.scale() + 1e-12 {
+                            state.store(x, a, sensitivity(&e));
+                            return Ok(en);
+                        }
+                        e = self.eval::<4>(omega, x, a);
                         accepted = true;
                         break;
                     }
@@ -385,7 +491,7 @@ impl Geo {
                 }
                 restarted = true;
                 x = fallback(self);
-                e = self.eval(omega, x, a);
+                e = self.eval::<4>(omega, x, a);
                 it = 0;
             }
         }

@@ -5,41 +5,33 @@
 //! (`u_o = (X1, X2)`) and of the inner groove centre relative to the ball centre
 //! (`u_i = (A1 - X1, A2 - X2)`); see [`super::ball`].
 
+#![allow(clippy::needless_range_loop)] // the slot loops read as the formulas
+
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
-/// A value and its gradient with respect to four seeds.
+/// A value and its gradient with respect to `N` seeds (`N = 0`: plain values).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct D4 {
+pub(crate) struct Dual<const N: usize> {
     pub v: f64,
-    pub d: [f64; 4],
+    pub d: [f64; N],
 }
 
-impl D4 {
+/// Four slots: d/d(u_o1, u_o2, u_i1, u_i2).
+pub(crate) type D4 = Dual<4>;
+
+impl<const N: usize> Dual<N> {
     /// A constant.
     #[inline]
     pub fn cst(v: f64) -> Self {
-        D4 { v, d: [0.0; 4] }
-    }
-
-    /// The `i`-th independent variable.
-    #[inline]
-    pub fn var(v: f64, i: usize) -> Self {
-        let mut d = [0.0; 4];
-        d[i] = 1.0;
-        D4 { v, d }
+        Dual { v, d: [0.0; N] }
     }
 
     /// `f(self)` given `f` and `f'` at `self.v`.
     #[inline]
     pub fn chain(self, f: f64, df: f64) -> Self {
-        D4 {
+        Dual {
             v: f,
-            d: [
-                df * self.d[0],
-                df * self.d[1],
-                df * self.d[2],
-                df * self.d[3],
-            ],
+            d: self.d.map(|x| df * x),
         }
     }
 
@@ -57,7 +49,7 @@ impl D4 {
             let s = self.v.sqrt();
             self.chain(self.v * s, 1.5 * s)
         } else {
-            D4::cst(0.0)
+            Dual::cst(0.0)
         }
     }
 
@@ -82,160 +74,144 @@ impl D4 {
 
     /// `atan2(y, x)`.
     #[inline]
-    pub fn atan2(y: D4, x: D4) -> Self {
+    pub fn atan2(y: Self, x: Self) -> Self {
         let r2 = x.v * x.v + y.v * y.v;
         let v = y.v.atan2(x.v);
         if r2 > 0.0 {
-            let mut d = [0.0; 4];
+            let mut d = [0.0; N];
             for (k, dk) in d.iter_mut().enumerate() {
                 *dk = (x.v * y.d[k] - y.v * x.d[k]) / r2;
             }
-            D4 { v, d }
+            Dual { v, d }
         } else {
-            D4::cst(v)
+            Dual::cst(v)
         }
     }
 }
 
-impl Add for D4 {
-    type Output = D4;
+impl<const N: usize> Add for Dual<N> {
+    type Output = Self;
     #[inline]
-    fn add(self, o: D4) -> D4 {
-        D4 {
-            v: self.v + o.v,
-            d: [
-                self.d[0] + o.d[0],
-                self.d[1] + o.d[1],
-                self.d[2] + o.d[2],
-                self.d[3] + o.d[3],
-            ],
+    fn add(self, o: Self) -> Self {
+        let mut d = self.d;
+        for k in 0..N {
+            d[k] += o.d[k];
         }
+        Dual { v: self.v + o.v, d }
     }
 }
 
-impl Sub for D4 {
-    type Output = D4;
+impl<const N: usize> Sub for Dual<N> {
+    type Output = Self;
     #[inline]
-    fn sub(self, o: D4) -> D4 {
-        D4 {
-            v: self.v - o.v,
-            d: [
-                self.d[0] - o.d[0],
-                self.d[1] - o.d[1],
-                self.d[2] - o.d[2],
-                self.d[3] - o.d[3],
-            ],
+    fn sub(self, o: Self) -> Self {
+        let mut d = self.d;
+        for k in 0..N {
+            d[k] -= o.d[k];
         }
+        Dual { v: self.v - o.v, d }
     }
 }
 
-impl Mul for D4 {
-    type Output = D4;
+impl<const N: usize> Mul for Dual<N> {
+    type Output = Self;
     #[inline]
-    fn mul(self, o: D4) -> D4 {
+    fn mul(self, o: Self) -> Self {
         let (a, b) = (self.v, o.v);
-        D4 {
-            v: a * b,
-            d: [
-                self.d[0] * b + a * o.d[0],
-                self.d[1] * b + a * o.d[1],
-                self.d[2] * b + a * o.d[2],
-                self.d[3] * b + a * o.d[3],
-            ],
+        let mut d = [0.0; N];
+        for k in 0..N {
+            d[k] = self.d[k] * b + a * o.d[k];
         }
+        Dual { v: a * b, d }
     }
 }
 
-impl Div for D4 {
-    type Output = D4;
+impl<const N: usize> Div for Dual<N> {
+    type Output = Self;
     #[inline]
-    fn div(self, o: D4) -> D4 {
+    fn div(self, o: Self) -> Self {
         let inv = 1.0 / o.v;
         let q = self.v * inv;
-        D4 {
-            v: q,
-            d: [
-                (self.d[0] - q * o.d[0]) * inv,
-                (self.d[1] - q * o.d[1]) * inv,
-                (self.d[2] - q * o.d[2]) * inv,
-                (self.d[3] - q * o.d[3]) * inv,
-            ],
+        let mut d = [0.0; N];
+        for k in 0..N {
+            d[k] = (self.d[k] - q * o.d[k]) * inv;
         }
+        Dual { v: q, d }
     }
 }
 
-impl Neg for D4 {
-    type Output = D4;
+impl<const N: usize> Neg for Dual<N> {
+    type Output = Self;
     #[inline]
-    fn neg(self) -> D4 {
-        D4 {
+    fn neg(self) -> Self {
+        Dual {
             v: -self.v,
-            d: [-self.d[0], -self.d[1], -self.d[2], -self.d[3]],
+            d: self.d.map(|x| -x),
         }
     }
 }
 
-impl Add<f64> for D4 {
-    type Output = D4;
+impl<const N: usize> Add<f64> for Dual<N> {
+    type Output = Self;
     #[inline]
-    fn add(self, o: f64) -> D4 {
-        D4 {
+    fn add(self, o: f64) -> Self {
+        Dual {
             v: self.v + o,
-            ..self
+            d: self.d,
         }
     }
 }
 
-impl Sub<f64> for D4 {
-    type Output = D4;
+impl<const N: usize> Sub<f64> for Dual<N> {
+    type Output = Self;
     #[inline]
-    fn sub(self, o: f64) -> D4 {
-        D4 {
+    fn sub(self, o: f64) -> Self {
+        Dual {
             v: self.v - o,
-            ..self
+            d: self.d,
         }
     }
 }
 
-impl Mul<f64> for D4 {
-    type Output = D4;
+impl<const N: usize> Mul<f64> for Dual<N> {
+    type Output = Self;
     #[inline]
-    fn mul(self, o: f64) -> D4 {
-        D4 {
+    fn mul(self, o: f64) -> Self {
+        Dual {
             v: self.v * o,
-            d: [self.d[0] * o, self.d[1] * o, self.d[2] * o, self.d[3] * o],
+            d: self.d.map(|x| x * o),
         }
     }
 }
 
-impl Mul<D4> for f64 {
-    type Output = D4;
+impl<const N: usize> Mul<Dual<N>> for f64 {
+    type Output = Dual<N>;
     #[inline]
-    fn mul(self, o: D4) -> D4 {
+    fn mul(self, o: Dual<N>) -> Dual<N> {
         o * self
     }
 }
 
-impl Add<D4> for f64 {
-    type Output = D4;
+impl<const N: usize> Add<Dual<N>> for f64 {
+    type Output = Dual<N>;
     #[inline]
-    fn add(self, o: D4) -> D4 {
+    fn add(self, o: Dual<N>) -> Dual<N> {
         o + self
     }
 }
 
-impl Sub<D4> for f64 {
-    type Output = D4;
+impl<const N: usize> Sub<Dual<N>> for f64 {
+    type Output = Dual<N>;
     #[inline]
-    fn sub(self, o: D4) -> D4 {
+    fn sub(self, o: Dual<N>) -> Dual<N> {
         -o + self
     }
 }
 
-impl Div<f64> for D4 {
-    type Output = D4;
+impl<const N: usize> Div<f64> for Dual<N> {
+    type Output = Self;
     #[inline]
-    fn div(self, o: f64) -> D4 {
+    fn div(self, o: f64) -> Self {
         self * (1.0 / o)
     }
 }
@@ -251,7 +227,12 @@ mod tests {
             D4::atan2(y, x) * (x * y).sqrt() / (1.0 + x) + (y - x).pos_pow15() * x.cos() + y.sin()
         };
         let (x0, y0) = (0.7, 1.3);
-        let r = f(D4::var(x0, 0), D4::var(y0, 1));
+        let var = |v: f64, i: usize| {
+            let mut x = D4::cst(v);
+            x.d[i] = 1.0;
+            x
+        };
+        let r = f(var(x0, 0), var(y0, 1));
         let h = 1e-6;
         let v = |x: f64, y: f64| f(D4::cst(x), D4::cst(y)).v;
         let fx = (v(x0 + h, y0) - v(x0 - h, y0)) / (2.0 * h);

@@ -55,7 +55,7 @@ impl KcTable {
         let ca = c.abs().min(1.0);
         let h = 1.0 / N as f64;
         let s = ca * N as f64;
-        let k = (s.floor() as usize).min(N - 1);
+        let k = (s as usize).min(N - 1); // s >= 0: truncation is floor
         let t = s - k as f64;
         let (y0, y1) = (self.v[k], self.v[k + 1]);
         let (m0, m1) = (self.dv[k] * h, self.dv[k + 1] * h);

@@ -31,14 +31,16 @@
 //!   The radial motion of the groove centre caused by tilt (second order) and the tangential
 //!   part of the ring translation are neglected, as in Jones and Harris.
 //! - **Moment arms.** The inner normal force passes through the inner groove centre, at
-//!   radius `Ri` in the bearing plane, so a ball's axial force `F_a` on the shaft contributes
-//!   the ball-plane moment `Ri F_a`; the gyroscopic friction force acts at the contact point
-//!   and adds the couple `T_i f_i D` (see [`ball`](self) docs). A ball-plane moment `m` about
-//!   `e_t = (-sin psi, cos psi, 0)`... written out: `Mx = sum m_j sin psi_j`,
-//!   `My = -sum m_j cos psi_j`, with `Fx = sum F_r cos psi`, `Fy = sum F_r sin psi`,
-//!   `Fz = sum F_a`. These are exactly the generalised forces conjugate to `q` through the
-//!   map above (virtual work), so at zero speed `K` is symmetric and a tilt `rx > 0` of a
-//!   loaded angular-contact bearing gives `Mx < 0` (restoring, `K[rx][rx] > 0`).
+//!   radius `Ri` in the bearing plane, so a ball's axial force `F_a` on the shaft gives the
+//!   ball-plane moment `m = Ri F_a`; the gyroscopic friction force `T_i` acts at the contact
+//!   point, `f_i D` from that centre, and adds the couple `T_i f_i D` (`= lambda_i f_i Mg`,
+//!   Harris's term). With `F_r` the radial force on the shaft:
+//!   `Fx = sum F_r cos psi`, `Fy = sum F_r sin psi`, `Fz = sum F_a`,
+//!   `Mx = sum m sin psi`, `My = -sum m cos psi`. These are the generalised forces conjugate
+//!   to `q` through the map above (virtual work), so at zero speed `K` is symmetric (up to
+//!   the small non-conservative part from `Kc` depending on the contact angle) and a tilt
+//!   `rx > 0` of a loaded angular-contact bearing gives `Mx < 0` (restoring,
+//!   `K[rx][rx] > 0`).
 //!
 //! The per-ball physics (race control, gyroscopic sign, friction limit) is documented in
 //! `ball.rs`; the Hertz constant comes from one function, `kc.rs`.
@@ -376,7 +378,8 @@ impl QuasiStatic {
             f[3] += m * s;
             f[4] -= m * c;
             if let Some(k) = stiffness.as_deref_mut() {
-                self.add_ball_stiffness(&e, s, c, k);
+                let e4 = self.geo.eval::<4>(omega, st.x, a);
+                self.add_ball_stiffness(&e4, s, c, k);
             }
             if let Some(b) = balls.as_deref_mut() {
                 b[j] = self.ball_result(&e, p, st.x);
@@ -392,17 +395,8 @@ impl QuasiStatic {
 
     /// Add ball `e`'s contribution to `K = -dF/dq` (implicit-function theorem on the ball
     /// equations: `dX/dA = -(dg/dX)^-1 dg/dA`).
-    fn add_ball_stiffness(&self, e: &Eval, s: f64, c: f64, k: &mut [[f64; 5]; 5]) {
-        let gx = e.jac_x();
-        let ga = [[e.g[0].d[2], e.g[0].d[3]], [e.g[1].d[2], e.g[1].d[3]]];
-        // dX/dA columns: solve gx y = -ga[:, col].
-        let mut dxda = [[0.0; 2]; 2]; // dxda[r][col] = dX_r / dA_col
-        for col in 0..2 {
-            if let Some(y) = ball::solve2(&gx, [-ga[0][col], -ga[1][col]]) {
-                dxda[0][col] = y[0];
-                dxda[1][col] = y[1];
-            }
-        }
+    fn add_ball_stiffness(&self, e: &Eval<4>, s: f64, c: f64, k: &mut [[f64; 5]; 5]) {
+        let dxda = ball::sensitivity(e); // dxda[r][col] = dX_r / dA_col
         let total = |o: &dual::D4| -> [f64; 2] {
             let ox = [o.d[0] - o.d[2], o.d[1] - o.d[3]];
             [
@@ -430,7 +424,7 @@ impl QuasiStatic {
         }
     }
 
-    fn ball_result(&self, e: &Eval, psi: f64, x: [f64; 2]) -> BallResult {
+    fn ball_result(&self, e: &Eval<0>, psi: f64, x: [f64; 2]) -> BallResult {
         let b = &self.bearing;
         let contact = |alpha: f64, q: f64, race: Race| {
             if q > 0.0 {
@@ -445,14 +439,15 @@ impl QuasiStatic {
                 (0.0, 0.0, 0.0)
             }
         };
-        let (a_i, b_i, p_i) = contact(e.ai, e.qi, Race::Inner);
-        let (a_o, b_o, p_o) = contact(e.ao, e.qo, Race::Outer);
+        let (alpha_i, alpha_o) = (e.alpha_i(), e.alpha_o());
+        let (a_i, b_i, p_i) = contact(alpha_i, e.qi, Race::Inner);
+        let (a_o, b_o, p_o) = contact(alpha_o, e.qo, Race::Outer);
         BallResult {
             psi,
             q_i: e.qi,
             q_o: e.qo,
-            alpha_i: e.ai,
-            alpha_o: e.ao,
+            alpha_i,
+            alpha_o,
             delta_i: e.di,
             delta_o: e.do_,
             a_i,
@@ -465,7 +460,7 @@ impl QuasiStatic {
             mg: e.mg,
             omega_m: e.wm,
             omega_r: e.wr,
-            beta: e.beta,
+            beta: if e.wm == 0.0 { 0.0 } else { e.beta() },
             spin_roll_i: e.sr_i,
             spin_roll_o: e.sr_o,
             x,
@@ -772,9 +767,33 @@ mod tests {
         m.forces(&q, 8000.0, &psi, &mut st).unwrap();
         for (p, s) in psi.iter().zip(&st) {
             let a = m.groove_offset(&q, *p);
-            let e = m.geo.eval(8000.0, s.x, a);
+            let e = m.geo.eval::<0>(8000.0, s.x, a);
             assert!(e.norm() <= 1e-10 * e.scale(), "{}", e.norm());
             assert!(e.mg > 0.0 && e.fc > 0.0);
+        }
+    }
+
+    /// With both contacts on one line (equal angles) the race-control speeds reduce to the
+    /// rigid rolling kinematics of physics.md §1: cage `omega (1 - gamma)/2` whatever the
+    /// attitude, and with `beta = alpha` the ball spin `dm/(2D) (1 - gamma^2) omega`.
+    #[test]
+    fn equal_angles_reduce_to_rolling_kinematics() {
+        let m = model("218");
+        let b = m.bearing.clone();
+        let w = 1000.0;
+        for alpha in [0.2f64, 0.7] {
+            let n = [alpha.sin(), alpha.cos()];
+            let la = m.geo.ri_free + m.geo.ro_free + 10e-6;
+            let a = [n[0] * la, n[1] * la];
+            let x = m.geo.static_position(a);
+            let e = m.geo.eval::<0>(w, x, a);
+            assert!((e.alpha_i() - alpha).abs() < 1e-12 && (e.alpha_o() - alpha).abs() < 1e-12);
+            let k = crate::geometry::kinematics_at(&b, alpha, w, 0.0);
+            assert!((e.wm - k.cage_speed).abs() < 1e-9 * w);
+            let g = b.d * alpha.cos() / b.dm;
+            let c = (alpha - e.beta()).cos();
+            let spin = b.dm / (2.0 * b.d) * (1.0 - g * g) * w / c;
+            assert!((e.wr + spin).abs() < 1e-9 * spin, "{} {}", e.wr, spin);
         }
     }
 }
