@@ -215,13 +215,8 @@ fn build_level(scene: &Scene, b: &Bearing) -> Result<Box<dyn LevelModel>> {
             };
             Box::new(levels::RingLevel::new(b, dof, m.contact_damping))
         }
-        Level::QuasiStatic | Level::Linear => {
-            return Err(Error::invalid(
-                "model.level",
-                m.level.name(),
-                "ring (the other levels are being wired)",
-            ))
-        }
+        Level::QuasiStatic => Box::new(levels::QuasiStaticLevel::new(scene, b)?),
+        Level::Linear => Box::new(levels::LinearLevel::new(scene, b)?),
     })
 }
 

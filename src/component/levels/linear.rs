@@ -30,8 +30,17 @@ impl LinearLevel {
     /// Linearise at the scene's operating point.
     pub fn new(scene: &Scene, b: &Bearing) -> Result<Self> {
         let op = &scene.model.operating_point;
-        let qs = QuasiStatic::new(b, Options { race_control: scene.model.race_control, ..Options::default() })?;
-        let sol = qs.solve(&[op.fx, op.fy, op.fz, op.mx, op.my], rpm_to_rad_s(op.speed_rpm))?;
+        let qs = QuasiStatic::new(
+            b,
+            Options {
+                race_control: scene.model.race_control,
+                ..Options::default()
+            },
+        )?;
+        let sol = qs.solve(
+            &[op.fx, op.fy, op.fz, op.mx, op.my],
+            rpm_to_rad_s(op.speed_rpm),
+        )?;
         let ring = RingModel::new(b, RingDof::Five, scene.model.contact_damping);
         let mut e = RingEval::default();
         ring.eval(0.0, 0.0, &sol.q, &[0.0; 5], 0.0, None, true, &mut e);
@@ -59,7 +68,10 @@ impl LinearLevel {
 
     fn wrench(&self, m: &Motion) -> [f64; 5] {
         std::array::from_fn(|i| {
-            self.f0[i] - (0..5).map(|j| self.k[i][j] * (m.q[j] - self.q0[j]) + self.c[i][j] * m.v[j]).sum::<f64>()
+            self.f0[i]
+                - (0..5)
+                    .map(|j| self.k[i][j] * (m.q[j] - self.q0[j]) + self.c[i][j] * m.v[j])
+                    .sum::<f64>()
         })
     }
 }
@@ -74,13 +86,28 @@ impl LevelModel for LinearLevel {
     fn init(&mut self, _m: &Motion, _x: &mut [f64], _aux: &mut [f64]) -> Result<()> {
         Ok(())
     }
-    fn rhs(&mut self, _t: f64, m: &Motion, _x: &[f64], _aux: &mut [f64], _dx: &mut [f64], wrench: Option<&mut [f64; 5]>) -> Result<()> {
+    fn rhs(
+        &mut self,
+        _t: f64,
+        m: &Motion,
+        _x: &[f64],
+        _aux: &mut [f64],
+        _dx: &mut [f64],
+        wrench: Option<&mut [f64; 5]>,
+    ) -> Result<()> {
         if let Some(w) = wrench {
             *w = self.wrench(m);
         }
         Ok(())
     }
-    fn outputs(&mut self, _t: f64, m: &Motion, _x: &[f64], _aux: &mut [f64], out: &mut LevelOutputs) -> Result<()> {
+    fn outputs(
+        &mut self,
+        _t: f64,
+        m: &Motion,
+        _x: &[f64],
+        _aux: &mut [f64],
+        out: &mut LevelOutputs,
+    ) -> Result<()> {
         *out = LevelOutputs {
             wrench: self.wrench(m),
             k: self.k,

@@ -11,8 +11,9 @@ use crate::geometry::Bearing;
 use crate::models::quasi_static::{BallResult, BallState, Options, QuasiStatic};
 use std::f64::consts::PI;
 
-/// Values per ball in the component's `aux`: `X1`, `X2`, warm flag.
-const AUX_PER_BALL: usize = 3;
+/// Values per ball in the component's `aux`: `X` (2), the groove offset it was solved at
+/// (2), `dX/dA` (4), warm flag.
+const AUX_PER_BALL: usize = 9;
 
 /// The level.
 #[derive(Debug)]
@@ -27,7 +28,10 @@ pub struct QuasiStaticLevel {
 impl QuasiStaticLevel {
     /// Build for the scene's bearing and race control.
     pub fn new(scene: &Scene, b: &Bearing) -> Result<Self> {
-        let opts = Options { race_control: scene.model.race_control, ..Options::default() };
+        let opts = Options {
+            race_control: scene.model.race_control,
+            ..Options::default()
+        };
         let qs = QuasiStatic::new(b, opts)?;
         Ok(QuasiStaticLevel {
             qs,
@@ -43,13 +47,28 @@ impl QuasiStaticLevel {
         for j in 0..z {
             self.psi[j] = theta + 2.0 * PI * j as f64 / z as f64;
             let a = &aux[AUX_PER_BALL * j..AUX_PER_BALL * (j + 1)];
-            self.balls[j] = BallState { x: [a[0], a[1]], warm: a[2] != 0.0 };
+            self.balls[j] = BallState {
+                x: [a[0], a[1]],
+                a: [a[2], a[3]],
+                dxda: [[a[4], a[5]], [a[6], a[7]]],
+                warm: a[8] != 0.0,
+            };
         }
     }
 
     fn store_aux(&self, aux: &mut [f64]) {
         for (j, b) in self.balls.iter().enumerate() {
-            aux[AUX_PER_BALL * j..AUX_PER_BALL * (j + 1)].copy_from_slice(&[b.x[0], b.x[1], b.warm as u8 as f64]);
+            aux[AUX_PER_BALL * j..AUX_PER_BALL * (j + 1)].copy_from_slice(&[
+                b.x[0],
+                b.x[1],
+                b.a[0],
+                b.a[1],
+                b.dxda[0][0],
+                b.dxda[0][1],
+                b.dxda[1][0],
+                b.dxda[1][1],
+                b.warm as u8 as f64,
+            ]);
         }
     }
 }
@@ -69,19 +88,43 @@ impl LevelModel for QuasiStaticLevel {
         aux.fill(0.0);
         Ok(())
     }
-    fn rhs(&mut self, _t: f64, m: &Motion, x: &[f64], aux: &mut [f64], dx: &mut [f64], wrench: Option<&mut [f64; 5]>) -> Result<()> {
+    fn rhs(
+        &mut self,
+        _t: f64,
+        m: &Motion,
+        x: &[f64],
+        aux: &mut [f64],
+        dx: &mut [f64],
+        wrench: Option<&mut [f64; 5]>,
+    ) -> Result<()> {
         dx[0] = self.cage_ratio * m.omega;
         if let Some(w) = wrench {
             self.load_aux(x[0], aux);
-            *w = self.qs.evaluate(&m.q, m.omega, &self.psi, &mut self.balls, None, None)?;
+            *w = self
+                .qs
+                .evaluate(&m.q, m.omega, &self.psi, &mut self.balls, None, None)?;
             self.store_aux(aux);
         }
         Ok(())
     }
-    fn outputs(&mut self, _t: f64, m: &Motion, x: &[f64], aux: &mut [f64], out: &mut LevelOutputs) -> Result<()> {
+    fn outputs(
+        &mut self,
+        _t: f64,
+        m: &Motion,
+        x: &[f64],
+        aux: &mut [f64],
+        out: &mut LevelOutputs,
+    ) -> Result<()> {
         self.load_aux(x[0], aux);
         let mut k = [[0.0; 5]; 5];
-        let wrench = self.qs.evaluate(&m.q, m.omega, &self.psi, &mut self.balls, Some(&mut k), Some(&mut self.results))?;
+        let wrench = self.qs.evaluate(
+            &m.q,
+            m.omega,
+            &self.psi,
+            &mut self.balls,
+            Some(&mut k),
+            Some(&mut self.results),
+        )?;
         self.store_aux(aux);
         let (mut loaded, mut max_load, mut max_p) = (0usize, 0.0f64, 0.0f64);
         for r in &self.results {
