@@ -115,7 +115,12 @@ fn build_level(scene: &Scene, b: &Bearing) -> Result<Box<dyn LevelModel>> {
             } else {
                 RingDof::Two
             };
-            Box::new(levels::RingLevel::new(b, dof, m.contact_damping))
+            Box::new(levels::RingLevel::with_effects(
+                b,
+                dof,
+                m.contact_damping,
+                &scene.effects,
+            )?)
         }
         Level::QuasiStatic | Level::Linear => {
             return Err(Error::invalid(
