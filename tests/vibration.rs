@@ -15,7 +15,30 @@ use raceway::geometry::{kinematics, preset, Kinematics};
 use raceway::lubrication::{central_film, minimum_film, FilmModel, Lubricant};
 use raceway::models::defects::{edge_depth, Defect, DefectSite};
 use raceway::Component;
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::cell::Cell;
 use std::f64::consts::PI;
+
+// A per-thread counting allocator (tests run on threads; each counts its own).
+struct Counting;
+thread_local! {
+    static ALLOCS: Cell<usize> = const { Cell::new(0) };
+}
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, l: Layout) -> *mut u8 {
+        let _ = ALLOCS.try_with(|c| c.set(c.get() + 1));
+        unsafe { System.alloc(l) }
+    }
+    unsafe fn dealloc(&self, p: *mut u8, l: Layout) {
+        unsafe { System.dealloc(p, l) }
+    }
+    unsafe fn realloc(&self, p: *mut u8, l: Layout, n: usize) -> *mut u8 {
+        let _ = ALLOCS.try_with(|c| c.set(c.get() + 1));
+        unsafe { System.realloc(p, l, n) }
+    }
+}
+#[global_allocator]
+static A: Counting = Counting;
 
 const OMEGA: f64 = 183.259571; // 1750 rpm
 const H: f64 = 1e-4;
@@ -267,7 +290,7 @@ fn film_damping_vanishes_with_viscosity() {
             viscosity: eta,
             ..Lubricant::study2()
         };
-        let m = FilmModel::new(l, ci.clone(), co.clone(), kn, dm, gamma);
+        let m = FilmModel::new(l, ci, co, kn, dm, gamma);
         let b = m.solve(&m.at_speed(OMEGA), 10e-6).unwrap();
         println!(
             "eta = {eta:e} Pa s: ball damping {:.4e} N s/m, load {:.3} N",
@@ -434,5 +457,49 @@ fn bad_effects_name_the_field() {
         let e = Component::from_text(&scene(fx)).unwrap_err().to_string();
         println!("{e}");
         assert!(e.contains(field), "{fx} -> {e}");
+    }
+}
+
+/// The shipped scenes build and run, and with every effect on (defects on all three
+/// elements, waviness on all three, spacing scatter, EHL film; 2- and 5-DOF) `do_step`
+/// still performs no heap allocation.
+#[test]
+fn effects_do_not_allocate_in_do_step() {
+    let all = r#"
+defects = [{ race = "outer", angle_deg = 270.0, width_mm = 1.0, depth_um = 50.0 },
+           { race = "inner", angle_deg = 10.0, width_mm = 0.5, depth_um = 5.0 },
+           { race = "ball", ball = 3, width_mm = 0.5, depth_um = 20.0 }]
+waviness = [{ race = "outer", order = 9, amplitude_um = 0.2 },
+            { race = "inner", order = 10, amplitude_um = 0.2 },
+            { race = "ball", order = 2, amplitude_um = 0.1 }]
+ball_spacing = { scatter = 0.5, seed = 3 }
+lubrication = { film = "ehl" }
+"#;
+    let five = scene(all)
+        .replace("\"6205\"", "\"7008ce\"")
+        .replace("level = \"ring\"", "level = \"ring\"\nring_dof = 5")
+        .replace("\"load.z\" = 0.0", "\"load.z\" = 200.0");
+    let probe = ALLOCS.with(|a| a.get());
+    std::hint::black_box(Vec::<u8>::with_capacity(16));
+    assert!(ALLOCS.with(|a| a.get()) > probe, "the counter counts");
+    for text in [
+        scene(all),
+        five,
+        include_str!("../examples/scenes/6205-outer-spall.toml").to_string(),
+        include_str!("../examples/scenes/7008ce-waviness.toml").to_string(),
+    ] {
+        let mut c = Component::from_text(&text).unwrap();
+        for i in 0..3 {
+            c.do_step(i as f64 * H, H).unwrap();
+        }
+        let before = ALLOCS.with(|a| a.get());
+        for i in 3..30 {
+            c.do_step(i as f64 * H, H).unwrap();
+        }
+        assert_eq!(ALLOCS.with(|a| a.get()) - before, 0, "{text}");
+        let film = c.get_real(vr("film.min_thickness")).unwrap();
+        assert!(film > 0.0 && film < 2e-6, "{film}");
+        let fy = c.get_real(vr("force.y")).unwrap();
+        assert!(fy.is_finite() && fy > 0.0, "{fy}");
     }
 }

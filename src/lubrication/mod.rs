@@ -124,6 +124,12 @@ pub struct FilmModel {
     kn: f64,
     dm: f64,
     gamma: f64,
+    /// Precomputed: `Kn^-0.067`, `Q_MIN^-0.067`, `(Q_MIN/Kn)^(2/3)`, `K_i^(2/3)`, `K_o^(2/3)`.
+    kn_pow: f64,
+    qmin_pow: f64,
+    s_min: f64,
+    ki23: f64,
+    ko23: f64,
 }
 
 /// Film coefficients at one entrainment speed (computed once per evaluation).
@@ -165,6 +171,11 @@ impl FilmModel {
     ) -> Self {
         FilmModel {
             lubricant,
+            kn_pow: kn.powf(-0.067),
+            qmin_pow: Q_MIN.powf(-0.067),
+            s_min: (Q_MIN / kn).powf(2.0 / 3.0),
+            ki23: inner.kc.powf(2.0 / 3.0),
+            ko23: outer.kc.powf(2.0 / 3.0),
             inner,
             outer,
             kn,
@@ -197,40 +208,49 @@ impl FilmModel {
     pub fn solve(&self, f: &FilmAtSpeed, delta: f64) -> Option<BallFilm> {
         let a = f.a_i + f.a_o;
         let kn = self.kn;
-        let s_min = (Q_MIN / kn).powf(2.0 / 3.0);
-        let h_max = a * Q_MIN.powf(-0.067);
+        let s_min = self.s_min;
+        let h_max = a * self.qmin_pow;
         if delta + h_max <= 0.0 {
             return None;
         }
-        // g(s) = s - delta - B s^-0.1005 (increasing and concave: Newton from the left
-        // climbs monotonically to the root).
+        // g(s) = s - delta - B s^-0.1005 (increasing and concave: from any start, Newton's
+        // first iterate is left of the root, then the iterates climb monotonically to it).
         let e = 1.5 * 0.067;
-        let b = a * kn.powf(-0.067);
-        let (s, gp, frozen) = if delta + h_max <= s_min {
-            (delta + h_max, 1.0, true)
+        let b = a * self.kn_pow;
+        // q_pow = Q^-0.067 at the solution.
+        let (s, gp, q_pow) = if delta + h_max <= s_min {
+            (delta + h_max, 1.0, self.qmin_pow)
         } else {
-            let mut s = s_min;
-            let mut gp = 1.0;
+            // Start from the film at the rigid approach: s0 = delta + h(Q(delta)) lies just
+            // right of the root (more load, thinner film).
+            let mut s = if delta > s_min {
+                delta + b * delta.powf(-e)
+            } else {
+                s_min
+            };
+            let (mut gp, mut sp) = (1.0, s.powf(-e));
             for _ in 0..50 {
-                let t = b * s.powf(-e);
+                let t = b * sp;
                 let g = s - delta - t;
                 gp = 1.0 + e * t / s;
                 let ds = -g / gp;
                 s += ds;
+                sp = s.powf(-e);
                 if ds.abs() <= 1e-14 * s + 1e-18 {
                     break;
                 }
             }
-            (s, gp, false)
+            (s, gp, self.kn_pow * sp)
         };
+        let frozen = q_pow == self.qmin_pow;
         let sq = s.sqrt();
         let load = kn * s * sq;
         let stiffness = 1.5 * kn * sq / gp;
-        let qf = load.max(Q_MIN);
-        let (h_i, h_o) = (f.a_i * qf.powf(-0.067), f.a_o * qf.powf(-0.067));
+        let (h_i, h_o) = (f.a_i * q_pow, f.a_o * q_pow);
         // Contact stiffnesses (Hertz in series with the film) for the damper combination.
-        let contact_k = |c: &PointContact, h: f64| {
-            let kh = 1.5 * c.kc.powf(2.0 / 3.0) * load.cbrt();
+        let q13 = load.cbrt();
+        let contact_k = |k23: f64, h: f64| {
+            let kh = 1.5 * k23 * q13;
             if frozen || h <= 0.0 {
                 kh
             } else {
@@ -238,7 +258,7 @@ impl FilmModel {
                 kh * kf / (kh + kf)
             }
         };
-        let (k_i, k_o) = (contact_k(&self.inner, h_i), contact_k(&self.outer, h_o));
+        let (k_i, k_o) = (contact_k(self.ki23, h_i), contact_k(self.ko23, h_o));
         let l = &self.lubricant;
         let (c_i, c_o) = (
             squeeze_damping(l, &self.inner, h_i),

@@ -62,7 +62,8 @@ pub struct RingEval {
     pub loaded: usize,
     /// Largest ball load, N.
     pub max_load: f64,
-    /// Thinnest EHL film over the loaded balls, m (0 without a film or a loaded ball).
+    /// Thinnest EHL film over the loaded balls, m (0 without a film or a loaded ball;
+    /// filled with the matrices, when `jac` is asked).
     pub film_min: f64,
 }
 
@@ -133,8 +134,8 @@ impl RingModel {
         let one_minus_gamma = 2.0 / self.shaft_per_cage;
         self.film = Some(FilmModel::new(
             lubricant,
-            self.inner.clone(),
-            self.outer.clone(),
+            self.inner,
+            self.outer,
             self.kn,
             self.dm,
             1.0 - one_minus_gamma,
@@ -214,7 +215,9 @@ impl RingModel {
                     let Some(b) = film.solve(fs, delta) else {
                         continue;
                     };
-                    film_min = film_min.min(film.min_film(fs, b.load));
+                    if jac {
+                        film_min = film_min.min(film.min_film(fs, b.load));
+                    }
                     let blend = (b.hertz_approach / DAMPING_RAMP).min(1.0);
                     (b.load, b.stiffness, (self.damping + b.damping) * blend)
                 }
