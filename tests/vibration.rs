@@ -218,22 +218,27 @@ fn outer_race_waviness_of_order_pz_excites_p_bpfo() {
     assert!(ratio > 10.0, "{ratio}");
 }
 
-/// Inner-race waviness of orders k = pZ ± m (here p = 1, m = 1: k = 8 and 10) gives the
-/// lines p BPFI ± m fs.
+/// Inner-race waviness of order k = pZ ± m gives the line p BPFI ± m fs: here p = 1,
+/// k = 8 gives BPFI - fs and k = 10 gives BPFI + fs, each without its mirror line.
 #[test]
 fn inner_race_waviness_of_order_pz_pm_m_gives_bpfi_sidebands() {
     let (k, fs) = kin();
-    let (y, _) = run(&scene(
-        r#"waviness = [{ race = "inner", order = 8, amplitude_um = 0.5 },
-                       { race = "inner", order = 10, amplitude_um = 0.5, phase_deg = 45.0 }]"#,
-    ));
     let (yh, _) = run(&scene(""));
-    let (s, sh) = (spectrum(&y), spectrum(&yh));
-    for (label, f) in [("BPFI - fs", k.bpfi - fs), ("BPFI + fs", k.bpfi + fs)] {
-        assert_line(&s, label, f, 20.0);
+    let sh = spectrum(&yh);
+    for (order, label, f, mirror) in [
+        (8, "BPFI - fs", k.bpfi - fs, k.bpfi + fs),
+        (10, "BPFI + fs", k.bpfi + fs, k.bpfi - fs),
+    ] {
+        let (y, _) = run(&scene(&format!(
+            r#"waviness = [{{ race = "inner", order = {order}, amplitude_um = 0.5, phase_deg = 45.0 }}]"#
+        )));
+        let s = spectrum(&y);
+        assert_line(&s, label, f, 100.0);
         let ratio = s.at(f) / sh.at(f);
-        println!("{label}: wavy / healthy = {ratio:.1}");
-        assert!(ratio > 10.0, "{label}: {ratio}");
+        let mirror_ratio = s.at(f) / s.at(mirror);
+        println!("k = {order}, {label}: wavy / healthy = {ratio:.3e}, line / mirror line = {mirror_ratio:.3e}");
+        assert!(ratio > 100.0, "{label}: {ratio}");
+        assert!(mirror_ratio > 100.0, "{label}: {mirror_ratio}");
     }
 }
 

@@ -187,9 +187,15 @@ impl Spectrum {
 /// corrected for the window's coherent gain.
 pub fn amplitude_spectrum(x: &[f64], fs: f64, window: Window) -> Spectrum {
     let n = x.len();
-    let mean = x.iter().sum::<f64>() / n.max(1) as f64;
+    if n < 2 {
+        return Spectrum {
+            freq: vec![0.0; n],
+            amp: vec![0.0; n],
+        };
+    }
+    let mean = x.iter().sum::<f64>() / n as f64;
     let w = window.weights(n);
-    let gain: f64 = w.iter().sum::<f64>() / n.max(1) as f64;
+    let gain: f64 = w.iter().sum::<f64>() / n as f64;
     let buf: Vec<C64> = x
         .iter()
         .zip(&w)
