@@ -52,7 +52,7 @@ pub struct Lubricant {
 }
 
 impl Lubricant {
-    /// Study [2]'s oil (Cao et al.; physics.md §10): eta0 = 0.04667 Pa s,
+    /// Study \[2\]'s oil (Cao et al.; physics.md §10): eta0 = 0.04667 Pa s,
     /// alpha_p = 2.1e-8 m²/N, 860 kg/m³, 0.04 /K, roughness 0.2 and 0.42 µm.
     pub fn study2() -> Self {
         Lubricant {

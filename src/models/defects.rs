@@ -1,5 +1,5 @@
 //! Local defects (spalls): the depth loss `H_j` a ball sees as it crosses a rectangular
-//! pit (physics.md §5.3; study [4], Yan et al.; the finite-ball geometry of Moazen-Ahmadi &
+//! pit (physics.md §5.3; study \[4\], Yan et al.; the finite-ball geometry of Moazen-Ahmadi &
 //! Howard, *Mech. Syst. Signal Process.* 80 (2016) and Sawalhi & Randall,
 //! *Mech. Syst. Signal Process.* 22 (2008)).
 //!
@@ -12,7 +12,7 @@
 //! e(s) = 0                                                               |s| >= L/2
 //! ```
 //!
-//! The three arguments are the three phases study [4] names: entry (the ball pivots on the
+//! The three arguments are the three phases study \[4\] names: entry (the ball pivots on the
 //! entry edge), floor (it rests on the bottom), exit (it climbs out over the exit edge).
 //! The deepest it can go with edges only is `Hr = f(L/2) = D/2 - sqrt((D/2)² - (L/2)²)`:
 //! for `H >= Hr` it rides the two edges and `e` rises to `Hr` and back; for `H < Hr` it

@@ -67,7 +67,7 @@ pub struct WavinessSpec {
     pub ball: Option<u32>,
 }
 
-/// Seeded random scatter of the ball spacing within the pocket play (study [3]).
+/// Seeded random scatter of the ball spacing within the pocket play (study \[3\]).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SpacingSpec {

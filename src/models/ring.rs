@@ -1,5 +1,5 @@
 //! Ring on massless balls (physics.md §5.1; Sunnersjö, *J. Sound Vib.* 58(3) 1978; Harsha,
-//! *J. Sound Vib.* 290 (2006); study [4]).
+//! *J. Sound Vib.* 290 (2006); study \[4\]).
 //!
 //! Balls carry no inertia; ball `j` sits at `psi_j = theta_c + 2 pi j / Z`, the cage angle
 //! `theta_c` turning at the kinematic cage speed. Two geometries:

@@ -1,4 +1,4 @@
-//! Waviness and ball-spacing scatter (physics.md §5.4; study [3], Wang et al.; the
+//! Waviness and ball-spacing scatter (physics.md §5.4; study \[3\], Wang et al.; the
 //! harmonic description of Wardle, *Proc. IMechE C* 202 (1988) and Harsha, *J. Sound Vib.*
 //! 290 (2006)).
 //!
@@ -11,7 +11,7 @@
 //!   `w(phi) + w(phi + pi)` enters (odd orders cancel, as they must).
 //!
 //! The optional ball-spacing scatter moves each ball's azimuth by a fixed, seeded random
-//! fraction of its pocket play (study [3]); it is scene data, not state, so runs repeat.
+//! fraction of its pocket play (study \[3\]); it is scene data, not state, so runs repeat.
 
 /// Which element is wavy.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
