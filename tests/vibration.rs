@@ -508,3 +508,36 @@ lubrication = { film = "ehl" }
         assert!(fy.is_finite() && fy > 0.0, "{fy}");
     }
 }
+
+/// Several defects at once: an outer- and an inner-race spall together show both BPFO and
+/// BPFI in the envelope spectrum.
+#[test]
+fn outer_and_inner_defects_together_show_both_signatures() {
+    let (k, _) = kin();
+    let (_, f) = run(&scene(
+        r#"defects = [{ race = "outer", angle_deg = 250.0, width_mm = 0.8, depth_um = 50.0 },
+                      { race = "inner", angle_deg = 0.0, width_mm = 1.0, depth_um = 50.0 }]"#,
+    ));
+    let e = envelope(&f);
+    assert_line(&e, "BPFO", k.bpfo, 5.0);
+    assert_line(&e, "BPFI", k.bpfi, 5.0);
+}
+
+/// Ball-spacing scatter (seeded, within the pocket play) breaks the Z-fold symmetry: the
+/// load pattern then repeats once per cage turn, not once per ball pass, and lines appear
+/// at multiples of the cage frequency n FTF, absent from the evenly spaced bearing.
+#[test]
+fn spacing_scatter_adds_lines_at_multiples_of_the_cage_frequency() {
+    let (k, _) = kin();
+    let (y, _) = run(&scene("ball_spacing = { scatter = 1.0, seed = 7 }"));
+    let (yh, _) = run(&scene(""));
+    let (s, sh) = (spectrum(&y), spectrum(&yh));
+    for n in 1..=4 {
+        let f = n as f64 * k.ftf;
+        let label = format!("{n} FTF");
+        assert_line(&s, &label, f, 5.0);
+        let ratio = s.at(f) / sh.at(f);
+        println!("{label}: scattered / even = {ratio:.3e}");
+        assert!(ratio > 1000.0, "{label}: {ratio}");
+    }
+}
