@@ -15,14 +15,18 @@
 //!   Q / (0.067 h_c)` (physics.md §6; Wijnant, Wensing & van Nijen, *J. Sound Vib.* 222(4)
 //!   1999 note that it is far stiffer than Hertz). Below `Q_MIN` the film is frozen at its
 //!   `Q_MIN` value (the formula is for loaded EHL contacts, and `Q^-0.067` diverges at 0).
-//! - **Inlet damping in parallel**: the Reynolds squeeze film of a rigid paraboloid
-//!   approaching a plane, `F = 6 pi eta0 R² (dh/dt) / h` (Reynolds, *Phil. Trans. R. Soc.*
-//!   177 (1886); Hamrock, Schmid & Jacobson 2004, ch. 11, squeeze-film bearings), evaluated
-//!   at the central film `h_c` with the Gaussian-mean radius `R² = Rx Ry` (exact for a
-//!   circular contact; it overestimates long ellipses). The gap is floored at the composite
-//!   roughness so the damping stays finite at standstill. It is proportional to `eta0`, so
-//!   it vanishes with viscosity. The two contacts of a ball (each a Kelvin–Voigt pair) are
-//!   combined in series at low frequency: `c = (c_i k_o² + c_o k_i²) / (k_i + k_o)²`.
+//! - **Inlet damping in parallel**: the Reynolds squeeze film (Reynolds, *Phil. Trans. R.
+//!   Soc.* 177 (1886); Hamrock, Schmid & Jacobson 2004, ch. 11, squeeze-film bearings) of
+//!   a rigid elliptic paraboloid `h = h0 + x²/(2Rx) + y²/(2Ry)` approaching a plane at
+//!   speed `V`, evaluated at the central film `h0 = h_c`. `p = C/h²` solves Reynolds'
+//!   equation `div(h³ grad p) = 12 eta0 dh/dt` exactly (`div(h³ grad h^-2) = -2 (1/Rx +
+//!   1/Ry)`), with `C = 6 eta0 V Rx Ry/(Rx + Ry)`; integrating it gives
+//!   `F = 12 pi eta0 (Rx Ry)^1.5 / ((Rx + Ry) h0) V`, which is the classical
+//!   `6 pi eta0 R² V / h0` for a sphere (`Rx = Ry = R`). The gap is floored at the
+//!   composite roughness so the damping stays finite at standstill. It is proportional to
+//!   `eta0`, so it vanishes with viscosity. The two contacts of a ball (each a
+//!   Kelvin–Voigt pair) are combined in series at low frequency:
+//!   `c = (c_i k_o² + c_o k_i²) / (k_i + k_o)²`.
 //!
 //! The choice of the squeeze model: Wijnant's (1998) fitted EHL damping needs coefficients
 //! from his thesis that this crate could not verify; the Reynolds squeeze film is a closed
@@ -109,9 +113,11 @@ fn minimum_coefficient(l: &Lubricant, c: &PointContact, u: f64) -> f64 {
     3.63 * uu.powf(0.68) * g.powf(0.49) * (e * rx * rx).powf(0.073) * (1.0 - (-0.68 * k).exp()) * rx
 }
 
-/// Reynolds squeeze-film damping of one contact at gap `h`: `6 pi eta0 Rx Ry / h`, N s/m.
+/// Reynolds squeeze-film damping of one contact at gap `h` (floored at the roughness):
+/// `12 pi eta0 (Rx Ry)^1.5 / ((Rx + Ry) h)`, N s/m (module notes).
 pub fn squeeze_damping(l: &Lubricant, c: &PointContact, h: f64) -> f64 {
-    6.0 * PI * l.viscosity * c.curvature.rx * c.curvature.ry / h.max(l.roughness).max(H_FLOOR)
+    let (rx, ry) = (c.curvature.rx, c.curvature.ry);
+    12.0 * PI * l.viscosity * (rx * ry).powf(1.5) / ((rx + ry) * h.max(l.roughness).max(H_FLOOR))
 }
 
 /// The film law of one ball between two races.
@@ -323,5 +329,28 @@ mod tests {
         // The film lets a ball with a small gap carry load (it fills the gap).
         assert!(m.solve(&f, -0.3e-6).unwrap().load > 0.0);
         assert!(m.solve(&f, -5e-6).is_none());
+    }
+
+    /// The squeeze damping reduces to the sphere's `6 pi eta R² / h`, and for a long ellipse
+    /// grows as `Rx^1.5 Ry^0.5` (the line-contact limit), not as `Rx Ry`.
+    #[test]
+    fn squeeze_damping_limits() {
+        let l = Lubricant {
+            roughness: 0.0,
+            ..Lubricant::study2()
+        };
+        let r = 5e-3;
+        let sphere = PointContact::new(Curvature::sphere_on_flat(r), 2.3e11);
+        let h = 0.3e-6;
+        let want = 6.0 * PI * l.viscosity * r * r / h;
+        assert!((squeeze_damping(&l, &sphere, h) - want).abs() < 1e-12 * want);
+        let ellipse = |ry: f64| {
+            let mut c = sphere;
+            c.curvature.rx = r;
+            c.curvature.ry = ry;
+            squeeze_damping(&l, &c, h)
+        };
+        let ratio = ellipse(400.0 * r) / ellipse(100.0 * r);
+        assert!((ratio - 2.0).abs() < 0.02, "{ratio}");
     }
 }
