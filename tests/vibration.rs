@@ -558,3 +558,27 @@ fn effects_round_trip_through_json() {
     }
     assert_eq!(outputs(&a), outputs(&b));
 }
+
+/// Ball waviness: a ball's diameter varies with its even orders only (`w(phi) + w(phi+pi)`):
+/// order 2 on every ball (same phase) modulates the clearance at 2 BSF; order 3 does
+/// nothing at all.
+#[test]
+fn ball_waviness_of_even_order_excites_its_spin_harmonic() {
+    let (k, _) = kin();
+    let (y, _) = run(&scene(
+        r#"waviness = [{ race = "ball", order = 2, amplitude_um = 0.3 }]"#,
+    ));
+    let (yh, _) = run(&scene(""));
+    let (s, sh) = (spectrum(&y), spectrum(&yh));
+    assert_line(&s, "2 BSF", 2.0 * k.bsf, 100.0);
+    let ratio = s.at(2.0 * k.bsf) / sh.at(2.0 * k.bsf);
+    println!("ball order 2: y at 2 BSF, wavy / healthy = {ratio:.3e}");
+    assert!(ratio > 1000.0, "{ratio}");
+    let (y3, _) = run(&scene(
+        r#"waviness = [{ race = "ball", order = 3, amplitude_um = 0.3 }]"#,
+    ));
+    assert!(
+        y3.iter().zip(&yh).all(|(a, b)| (a - b).abs() < 1e-15),
+        "odd ball orders leave the response unchanged"
+    );
+}
