@@ -14,10 +14,12 @@
 
 #![warn(missing_docs)]
 
+pub mod analysis;
 pub mod component;
 pub mod contact;
 pub mod error;
 pub mod geometry;
+pub mod lubrication;
 pub mod models;
 #[cfg(feature = "plot")]
 pub mod plot;

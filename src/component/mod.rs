@@ -213,7 +213,12 @@ fn build_level(scene: &Scene, b: &Bearing) -> Result<Box<dyn LevelModel>> {
             } else {
                 RingDof::Two
             };
-            Box::new(levels::RingLevel::new(b, dof, m.contact_damping))
+            Box::new(levels::RingLevel::with_effects(
+                b,
+                dof,
+                m.contact_damping,
+                &scene.effects,
+            )?)
         }
         Level::QuasiStatic => Box::new(levels::QuasiStaticLevel::new(scene, b)?),
         Level::Linear => Box::new(levels::LinearLevel::new(scene, b)?),
