@@ -206,6 +206,13 @@ fn make_integrator(
 
 fn build_level(scene: &Scene, b: &Bearing) -> Result<Box<dyn LevelModel>> {
     let m = &scene.model;
+    if !scene.effects.is_off() && m.level != Level::Ring {
+        return Err(Error::invalid(
+            "effects",
+            format!("on with level {}", m.level.name()),
+            "only with level = \"ring\" (the levels that apply defects, waviness and films)",
+        ));
+    }
     Ok(match m.level {
         Level::Ring => {
             let dof = if m.ring_dof == 5 {
