@@ -236,3 +236,88 @@ fn nonsense_is_refused_with_its_cause() {
     );
     refused(&["no-such-command"], &["no-such-command"]);
 }
+
+/// `raceway run` on the default scene writes the series, a summary made from it, and
+/// five non-empty PNG plots; the ball-pass line of the default (varying-compliance) run is
+/// found at BPFO.
+#[test]
+fn run_writes_series_summary_and_plots_from_the_data() {
+    let dir = std::env::temp_dir().join(format!("raceway-run-{}", std::process::id()));
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_raceway"))
+        .args(["run", "--quiet", "--duration", "0.5", "--out"])
+        .arg(&dir)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let csv = std::fs::read_to_string(dir.join("series.csv")).unwrap();
+    let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    let fy_col = header
+        .iter()
+        .position(|h| h.starts_with("force.y"))
+        .unwrap();
+    let peak_fy = csv
+        .lines()
+        .skip(1)
+        .map(|l| {
+            l.split(',')
+                .nth(fy_col)
+                .unwrap()
+                .parse::<f64>()
+                .unwrap()
+                .abs()
+        })
+        .fold(0.0, f64::max);
+    assert_eq!(csv.lines().count(), 1 + 5001);
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
+    let reported = summary["peak_force_n"][1].as_f64().unwrap();
+    assert!(
+        (reported - peak_fy).abs() <= 1e-9 * peak_fy,
+        "summary {reported} vs series {peak_fy}"
+    );
+    let bpfo = summary["frequencies"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|f| f["label"] == "1xBPFO")
+        .unwrap()
+        .clone();
+    let (e, f) = (
+        bpfo["expected_hz"].as_f64().unwrap(),
+        bpfo["found_hz"].as_f64().unwrap(),
+    );
+    assert!((e - f).abs() < 4.0, "BPFO expected {e} Hz, found {f} Hz");
+    for png in [
+        "orbit.png",
+        "force.png",
+        "spectrum.png",
+        "ball-loads.png",
+        "cage-slip.png",
+    ] {
+        let b = std::fs::read(dir.join(png)).unwrap();
+        assert_eq!(&b[1..4], b"PNG", "{png}");
+        assert!(b.len() > 10_000, "{png} is only {} bytes", b.len());
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn run_refuses_a_bad_scene_with_its_cause() {
+    let dir = std::env::temp_dir().join(format!("raceway-bad-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let f = dir.join("bad.toml");
+    std::fs::write(&f, "bearing = \"6205\"\n[run]\nduration_s = -1.0\n").unwrap();
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_raceway"))
+        .arg("run")
+        .arg(&f)
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("run.duration_s"), "{err}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -58,6 +58,10 @@ fn values(set: &[(&str, ParamValue)]) -> params::ParamValues {
     v
 }
 
+fn raceway_default_bearing() -> crate::component::scene::BearingRef {
+    crate::component::Scene::default_scene().bearing
+}
+
 #[test]
 fn parameters_map_onto_the_scene() {
     let s = |x: &str| ParamValue::Str(x.into());
@@ -93,12 +97,20 @@ fn parameters_map_onto_the_scene() {
     let e = params::scene(&values(&[("level", s("best"))]), None, None).unwrap_err();
     assert!(e.contains("parameter `level`") && e.contains("best"), "{e}");
     let e = params::scene(
-        &values(&[("clearance", ParamValue::Real(-1.0))]),
+        &values(&[("clearance", ParamValue::Real(-0.5))]),
         None,
         None,
     )
     .unwrap_err();
     assert!(e.contains("clearance"), "{e}");
+    // -1, the start value, keeps the bearing's own clearance.
+    let (kept, _) = params::scene(
+        &values(&[("clearance", ParamValue::Real(-1.0))]),
+        None,
+        None,
+    )
+    .unwrap();
+    assert_eq!(kept.bearing, raceway_default_bearing());
     let resource = Ok("bearing = ".to_string());
     let e = params::scene(&params::unset(), None, Some(&resource)).unwrap_err();
     assert!(e.starts_with("resources/scene.toml"), "{e}");

@@ -16,6 +16,7 @@
 //! (clap's own usage errors exit with 2).
 
 mod report;
+mod run;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use raceway::component::scene::{RaceControl, Scene};
@@ -38,6 +39,9 @@ struct Cli {
 
 #[derive(Subcommand, Debug)]
 enum Cmd {
+    /// Run a scene stand-alone (the embedded default scene without a file): time series,
+    /// summary and plots into out/<scene>/.
+    Run(run::RunArgs),
     /// List the bearing presets and their data.
     Bearings {
         /// Machine-readable output.
@@ -95,6 +99,7 @@ fn main() -> ExitCode {
     let out = match cli.cmd {
         Cmd::Bearings { json } => report::bearings(json),
         Cmd::QuasiStatic(a) => quasi_static(a),
+        Cmd::Run(a) => run::run(a),
     };
     match out {
         Ok(text) => {
