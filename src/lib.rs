@@ -34,3 +34,8 @@ pub mod fmi;
 
 pub use component::{Component, Scene};
 pub use error::{Error, Result};
+
+/// The README's Rust examples, compiled and run as doc tests.
+#[doc = include_str!("../README.md")]
+#[cfg(doctest)]
+pub struct ReadmeDoctests;
