@@ -322,10 +322,7 @@ FULL = (LOADS, INPUTS)
 @pytest.mark.parametrize("version", VERSIONS)
 @pytest.mark.parametrize("block", [
     pytest.param(RADIAL, id="radial"),
-    # The component stub reports K.z.z, K.rx.rx, K.ry.ry = 1e8 without the matching force
-    # and moments; remove this mark when the physics lands.
-    pytest.param(FULL, id="full", marks=pytest.mark.xfail(
-        reason="component stub: z/tilt stiffness without z force and moments", strict=False)),
+    pytest.param(FULL, id="full"),
 ])
 def test_directional_derivatives_match_finite_differences_with_rollback(host, version, block):
     """J = d(loads)/d(inputs) from GetDirectionalDerivative against central differences of
