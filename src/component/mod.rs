@@ -767,7 +767,7 @@ fn static_start(
     let mut q = [0.0; 5];
     let mut out = LevelOutputs::default();
     let scale = loads.iter().map(|v| v.abs()).sum::<f64>() + 1.0;
-    let mut resid = |q: &[f64; 5],
+    let resid = |q: &[f64; 5],
                      out: &mut LevelOutputs,
                      level: &mut dyn LevelModel,
                      aux: &mut [f64]|
