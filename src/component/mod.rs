@@ -171,7 +171,6 @@ pub struct Component {
     work: Work,
     integrator: Integrator,
     opts: Options,
-    outputs_fresh: bool,
 }
 
 /// The scene's integrator and its options. `Auto` picks DOPRI5: the levels so far are not
@@ -333,7 +332,6 @@ impl Component {
             work,
             integrator,
             opts,
-            outputs_fresh: false,
         };
         if c.missing_inputs().is_empty() {
             c.refresh_outputs()?;
@@ -371,43 +369,37 @@ impl Component {
 
     /// Set an input by value reference. Setting a value clears that input's derivatives.
     pub fn set_real(&mut self, vr: u32, value: f64) -> Result<()> {
+        let i = self.input_slot("set_real", vr, value)?;
+        self.state.inputs[i] = value;
+        self.state.input_derivatives[3 * i..3 * i + 3].fill(0.0);
+        self.state.inputs_set |= 1 << i;
+        Ok(())
+    }
+
+    /// The slot of input `vr` if `call` may set it to `value` (an input of this causality,
+    /// a finite value).
+    fn input_slot(&self, call: &'static str, vr: u32, value: f64) -> Result<usize> {
         let v = variables::by_vr(vr)
             .ok_or_else(|| Error::invalid("value reference", vr, "a variable of the table"))?;
         if !v.is_input(self.causality()) {
             return Err(Error::CallOrder {
-                call: "set_real",
+                call,
                 reason: format!("`{}` is not an input of this causality", v.name),
             });
         }
         if !value.is_finite() {
             return Err(Error::invalid(v.name, value, "a finite number"));
         }
-        let i = index_of(vr).expect("in table");
-        self.state.inputs[i] = value;
-        self.state.input_derivatives[3 * i..3 * i + 3].fill(0.0);
-        self.state.inputs_set |= 1 << i;
-        self.outputs_fresh = false;
-        Ok(())
+        Ok(index_of(vr).expect("in table"))
     }
 
     /// Set the `order`-th time derivative (1..=3) of an input at the start of the next
     /// step, used with [`InputRule::Derivatives`]. They hold until the input is set again.
     pub fn set_input_derivative(&mut self, vr: u32, order: u32, value: f64) -> Result<()> {
-        let v = variables::by_vr(vr)
-            .ok_or_else(|| Error::invalid("value reference", vr, "a variable of the table"))?;
-        if !v.is_input(self.causality()) {
-            return Err(Error::CallOrder {
-                call: "set_input_derivative",
-                reason: format!("`{}` is not an input", v.name),
-            });
-        }
+        let i = self.input_slot("set_input_derivative", vr, value)?;
         if !(1..=3).contains(&order) {
             return Err(Error::invalid("order", order, "1, 2 or 3"));
         }
-        if !value.is_finite() {
-            return Err(Error::invalid(v.name, value, "a finite number"));
-        }
-        let i = index_of(vr).expect("in table");
         self.state.input_derivatives[3 * i + (order as usize - 1)] = value;
         Ok(())
     }
@@ -447,22 +439,27 @@ impl Component {
             .collect()
     }
 
+    /// Refuse `call` while some input of this causality was never set (names them).
+    fn require_inputs(&self, call: &'static str) -> Result<()> {
+        let missing = self.missing_inputs();
+        if missing.is_empty() {
+            return Ok(());
+        }
+        Err(Error::CallOrder {
+            call,
+            reason: format!("inputs never set: {}", missing.join(", ")),
+        })
+    }
+
     /// Evaluate the outputs at the current time and inputs (for hosts that read outputs
     /// before the first step, e.g. in FMI initialisation mode). On error nothing changes.
     pub fn refresh_outputs(&mut self) -> Result<()> {
-        let missing = self.missing_inputs();
-        if !missing.is_empty() {
-            return Err(Error::CallOrder {
-                call: "refresh_outputs",
-                reason: format!("inputs never set: {}", missing.join(", ")),
-            });
-        }
+        self.require_inputs("refresh_outputs")?;
         self.scratch.clone_from(&self.state);
         let mut sc = std::mem::take(&mut self.scratch);
         let r = self.compute_outputs(&mut sc, 0.0);
         if r.is_ok() {
             std::mem::swap(&mut self.state, &mut sc);
-            self.outputs_fresh = true;
         }
         self.scratch = sc;
         r
@@ -487,13 +484,7 @@ impl Component {
                 ),
             });
         }
-        let missing = self.missing_inputs();
-        if !missing.is_empty() {
-            return Err(Error::CallOrder {
-                call: "do_step",
-                reason: format!("inputs never set: {}", missing.join(", ")),
-            });
-        }
+        self.require_inputs("do_step")?;
         self.scratch.clone_from(&self.state);
         let mut sc = std::mem::take(&mut self.scratch);
         // The host owns time: re-sync to its communication point (within the tolerance).
@@ -505,7 +496,6 @@ impl Component {
             sc.t = t + h;
             sc.started = true;
             std::mem::swap(&mut self.state, &mut sc);
-            self.outputs_fresh = true;
         }
         self.scratch = sc;
         r.map_err(|e| match e {
@@ -768,9 +758,9 @@ fn static_start(
     let mut out = LevelOutputs::default();
     let scale = loads.iter().map(|v| v.abs()).sum::<f64>() + 1.0;
     let resid = |q: &[f64; 5],
-                     out: &mut LevelOutputs,
-                     level: &mut dyn LevelModel,
-                     aux: &mut [f64]|
+                 out: &mut LevelOutputs,
+                 level: &mut dyn LevelModel,
+                 aux: &mut [f64]|
      -> Result<f64> {
         let m = Motion {
             q: *q,
