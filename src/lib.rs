@@ -21,6 +21,7 @@ pub mod geometry;
 pub mod models;
 #[cfg(feature = "plot")]
 pub mod plot;
+pub mod report;
 pub mod solver;
 pub mod units;
 

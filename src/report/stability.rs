@@ -1,0 +1,1 @@
+//! Stability campaign (see below).
