@@ -1,8 +1,18 @@
 //! Work-precision study and stability campaign (what `raceway bench` runs).
 //!
-//! `cargo run --release --example bench -- --out docs [--quick] [--peer] [--stability-long]`
+//! - `cargo run --release --example bench -- --out docs` : work-precision
+//!   (docs/work-precision.{csv,md,png}); `--quick` for a 3-tolerance, 1-repeat sweep;
+//!   `--peer` also runs the SciPy peer (scripts/peer-scipy) and puts its ratio in the page.
+//! - `... -- --stability-long --out docs` : the long stability campaign (docs/stability.md);
+//!   `--stability` the sampled one that tests/stability.rs runs.
+use raceway::report::stability;
 use raceway::report::work_precision::{self as wp, Config};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
+
+fn fail(e: impl std::fmt::Display) -> ! {
+    eprintln!("bench: {e}");
+    std::process::exit(1)
+}
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
@@ -12,6 +22,24 @@ fn main() {
         .position(|a| a == "--out")
         .and_then(|i| args.get(i + 1))
         .map_or(PathBuf::from("docs"), PathBuf::from);
+    if has("--stability") || has("--stability-long") {
+        let long = has("--stability-long");
+        let t_base = if long { 0.02 } else { 0.005 };
+        let cells = stability::matrix(long);
+        println!("stability campaign: {} cells", cells.len());
+        let res = stability::run(&cells, t_base, true);
+        let cmd = if long {
+            "cargo run --release --example bench -- --stability-long --out docs"
+        } else {
+            "cargo run --release --example bench -- --stability --out docs"
+        };
+        let md = stability::markdown(&res, t_base, cmd);
+        std::fs::create_dir_all(&out).unwrap_or_else(|e| fail(e));
+        std::fs::write(out.join("stability.md"), md).unwrap_or_else(|e| fail(e));
+        let failed = res.iter().filter(|(_, o)| !o.passed()).count();
+        println!("wrote {}/stability.md ({failed} failed)", out.display());
+        return;
+    }
     let mut cfg = Config {
         verbose: true,
         ..Config::default()
@@ -20,16 +48,25 @@ fn main() {
         cfg.rtols = vec![1e-3, 1e-5, 1e-7];
         cfg.repeats = 1;
     }
-    let rep = match wp::run(&cfg) {
-        Ok(r) => r,
-        Err(e) => {
-            eprintln!("bench: {e}");
-            std::process::exit(1);
+    let mut rep = wp::run(&cfg).unwrap_or_else(|e| fail(e));
+    if has("--peer") {
+        let case = cfg
+            .cases
+            .iter()
+            .find(|c| c.name == "6205-2dof")
+            .unwrap_or_else(|| fail("no 6205-2dof case"));
+        wp::export_for_peer(&cfg, case, &cfg.cache_dir).unwrap_or_else(|e| fail(e));
+        let status = std::process::Command::new("scripts/peer-scipy")
+            .arg(&cfg.cache_dir)
+            .status()
+            .unwrap_or_else(|e| fail(format!("scripts/peer-scipy: {e}")));
+        if !status.success() {
+            fail("scripts/peer-scipy failed");
         }
-    };
-    if let Err(e) = rep.write(&out) {
-        eprintln!("bench: {e}");
-        std::process::exit(1);
+        let p = Path::new(&cfg.cache_dir).join("6205-2dof-scipy.csv");
+        let text = std::fs::read_to_string(&p).unwrap_or_else(|e| fail(format!("{}: {e}", p.display())));
+        rep.peer = wp::read_peer_csv(&text).unwrap_or_else(|e| fail(e));
     }
+    rep.write(&out).unwrap_or_else(|e| fail(e));
     println!("wrote {}/work-precision.{{csv,md,png}}", out.display());
 }
