@@ -214,6 +214,18 @@ pub enum Outcome {
         /// Largest peak pressure, Pa.
         max_pressure: f64,
     },
+    /// Finite outputs that agree pointwise only at rtol 1e-7 vs 1e-8 (`tight` true), or
+    /// only in statistics (`tight` false: mean and RMS of each force component agree within
+    /// [`STATISTICS_LIMIT`] while the trajectories separate, as impacting or chaotic motion
+    /// in the clearance does after a few Lyapunov times, numerics.md §6.4).
+    Statistical {
+        /// Pointwise difference rtol 1e-7 vs 1e-8 (tight) or of the statistics.
+        diff: f64,
+        /// Whether the tight pair converged pointwise.
+        tight: bool,
+        /// Largest peak pressure, Pa.
+        max_pressure: f64,
+    },
     /// A clean refusal (an `Err` with its message).
     CleanError(String),
     /// A panic, a non-finite output or no convergence under refinement.
@@ -229,6 +241,44 @@ impl Outcome {
 
 /// Refinement difference above which a cell counts as not converging.
 pub const CONVERGENCE_LIMIT: f64 = 1e-2;
+/// Largest relative difference of the force statistics (mean, RMS) in a statistical pass.
+pub const STATISTICS_LIMIT: f64 = 0.05;
+
+/// Relative RMS difference of two force series (over their RMS, or 1 N).
+fn pointwise(a: &Samples, b: &Samples) -> f64 {
+    let n = b.f.len().max(1) as f64;
+    let (mut d2, mut f2) = (0.0, 0.0);
+    for (x, y) in a.f.iter().zip(&b.f) {
+        for k in 0..3 {
+            d2 += (x[k] - y[k]).powi(2);
+            f2 += y[k] * y[k];
+        }
+    }
+    (d2 / n).sqrt() / (f2 / n).sqrt().max(1.0)
+}
+
+/// Largest relative difference of the per-component mean and RMS over the second half of
+/// the window (scale: the RMS force, or 1 N).
+fn statistics(a: &Samples, b: &Samples) -> f64 {
+    let stats = |s: &Samples| {
+        let h = &s.f[s.f.len() / 2..];
+        let n = h.len().max(1) as f64;
+        let mut m = [0.0; 3];
+        let mut r = [0.0; 3];
+        for f in h {
+            for k in 0..3 {
+                m[k] += f[k] / n;
+                r[k] += f[k] * f[k] / n;
+            }
+        }
+        (m, r.map(f64::sqrt))
+    };
+    let ((ma, ra), (mb, rb)) = (stats(a), stats(b));
+    let scale = rb.iter().map(|x| x * x).sum::<f64>().sqrt().max(1.0);
+    (0..3)
+        .map(|k| ((ma[k] - mb[k]).abs()).max((ra[k] - rb[k]).abs()) / scale)
+        .fold(0.0, f64::max)
+}
 
 /// The nominal cell of `base`.
 pub fn nominal(base: &'static Base) -> Cell {
@@ -394,28 +444,46 @@ impl Cell {
             Ok(Err(e)) => return Outcome::CleanError(e.to_string()),
             Ok(Ok(v)) => v,
         };
-        let all = sa.f.iter().chain(&sb.f).flatten();
-        if all.clone().any(|v| !v.is_finite()) || !(pa.is_finite() && pb.is_finite()) {
+        let finite = |s: &Samples, p: f64| s.f.iter().flatten().all(|v| v.is_finite()) && p.is_finite();
+        if !(finite(&sa, pa) && finite(&sb, pb)) {
             return Outcome::Failed("non-finite output".into());
         }
-        let n = sb.f.len().max(1) as f64;
-        let (mut d2, mut f2) = (0.0, 0.0);
-        for (x, y) in sa.f.iter().zip(&sb.f) {
-            for k in 0..3 {
-                d2 += (x[k] - y[k]).powi(2);
-                f2 += y[k] * y[k];
-            }
+        let diff = pointwise(&sa, &sb);
+        if diff <= CONVERGENCE_LIMIT {
+            return Outcome::Converged {
+                diff,
+                max_pressure: pa.max(pb),
+            };
         }
-        let diff = (d2 / n).sqrt() / (f2 / n).sqrt().max(1.0);
-        if diff > CONVERGENCE_LIMIT || !diff.is_finite() {
-            return Outcome::Failed(format!(
-                "no convergence: rtol 1e-6 vs 1e-7 differ by {diff:.2e} (relative RMS)"
-            ));
+        // One more refinement: converging late, or separating trajectories?
+        let (sc, pc) = match catch_unwind(AssertUnwindSafe(|| self.run_once(1e-8, t_end))) {
+            Ok(Ok(v)) => v,
+            Ok(Err(e)) => return Outcome::CleanError(e.to_string()),
+            Err(_) => return Outcome::Failed("panic at rtol 1e-8".into()),
+        };
+        if !finite(&sc, pc) {
+            return Outcome::Failed("non-finite output at rtol 1e-8".into());
         }
-        Outcome::Converged {
-            diff,
-            max_pressure: pa.max(pb),
+        let tight = pointwise(&sb, &sc);
+        let max_pressure = pa.max(pb).max(pc);
+        if tight <= CONVERGENCE_LIMIT {
+            return Outcome::Statistical {
+                diff: tight,
+                tight: true,
+                max_pressure,
+            };
         }
+        let st = statistics(&sb, &sc).max(statistics(&sa, &sc));
+        if st <= STATISTICS_LIMIT {
+            return Outcome::Statistical {
+                diff: st,
+                tight: false,
+                max_pressure,
+            };
+        }
+        Outcome::Failed(format!(
+            "no convergence: rtol 1e-6/1e-7/1e-8 differ pointwise by {diff:.2e}/{tight:.2e} and in mean/RMS by {st:.2e}"
+        ))
     }
 }
 
@@ -541,6 +609,19 @@ fn outcome_text(o: &Outcome) -> String {
         Outcome::Converged { diff, max_pressure } => {
             format!("converged | {diff:.1e} | {:.2}", max_pressure / 1e9)
         }
+        Outcome::Statistical {
+            diff,
+            tight,
+            max_pressure,
+        } => format!(
+            "{} | {diff:.1e} | {:.2}",
+            if *tight {
+                "converged from rtol 1e-7 (1e-7 vs 1e-8)"
+            } else {
+                "converged in mean/RMS only (trajectories separate)"
+            },
+            max_pressure / 1e9
+        ),
         Outcome::CleanError(m) => format!("clean error: {} | | ", m.replace('|', "/")),
         Outcome::Failed(m) => format!("**FAILED**: {} | | ", m.replace('|', "/")),
     }
@@ -557,7 +638,11 @@ pub fn markdown(results: &[(Cell, Outcome)], t_base: f64, command: &str) -> Stri
         .iter()
         .filter(|(_, o)| matches!(o, Outcome::CleanError(_)))
         .count();
-    let failed = n - conv - clean;
+    let stat = results
+        .iter()
+        .filter(|(_, o)| matches!(o, Outcome::Statistical { .. }))
+        .count();
+    let failed = n - conv - clean - stat;
     let mut s = String::new();
     let _ = writeln!(
         s,
@@ -576,7 +661,12 @@ pub fn markdown(results: &[(Cell, Outcome)], t_base: f64, command: &str) -> Stri
          the load axially); diametral clearance (-5 µm preload, 0, 40 µm); ball material \
          (steel, Si3N4, ZrO2, rings steel); macro step; a step input at mid-window (load \
          +1 kN or the shaft 5 µm further, and the speed reversed).\n\n\
-         **{n} cells: {conv} converged, {clean} clean errors, {failed} failed.**\n",
+         When rtol 1e-6 and 1e-7 disagree, a third run at 1e-8 decides: converged from \
+         1e-7 (1e-7 and 1e-8 agree pointwise), converged in statistics (mean and RMS of each \
+         force over the second half agree within {STATISTICS_LIMIT} of the RMS force while \
+         the trajectories separate: impacts in the clearance, numerics.md §6.4), or failed.\n\n\
+         **{n} cells: {conv} converged, {stat} converged late or in statistics, {clean} clean \
+         errors, {failed} failed.**\n",
         super::Machine::detect().describe()
     );
     s += "| level | speed (rpm) | load | clearance | ball | H (s) | step input | outcome | refinement diff | max pressure (GPa) |\n\

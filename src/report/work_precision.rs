@@ -98,11 +98,11 @@ initial = { "load.x" = 0.0, "load.y" = -1000.0, "load.z" = 500.0, "load.mx" = 0.
 /// through the clearance, hit the balls and ring down), one row per level and geometry.
 /// Levels that are not wired yet are skipped at run time with their error.
 pub fn cases() -> Vec<Case> {
-    let mk = |name, description, tpl: &str, level: &str| Case {
+    let mk = |name, description, tpl: &str, level: &str, t_end: f64| Case {
         name,
         description,
         scene: tpl.replace("LEVEL", level),
-        t_end: 0.02,
+        t_end,
         h: 1e-4,
     };
     vec![
@@ -111,24 +111,28 @@ pub fn cases() -> Vec<Case> {
             "6205, 10 µm clearance, 2-DOF ring + 1 kg, 1 kN radial load, 1750 rpm, contact damping 3000 N s/m",
             RING2_6205,
             "ring",
+            0.05,
         ),
         mk(
             "7008ce-5dof",
             "7008CE (ZrO2), 5-DOF ring + 1 kg, 1 kN radial + 500 N axial, 6000 rpm, contact damping 3000 N s/m",
             RING5_7008,
             "ring",
+            0.02,
         ),
         mk(
             "6205-qs",
             "as 6205-2dof, quasi-static level",
             RING2_6205,
             "quasi_static",
+            0.05,
         ),
         mk(
             "7008ce-qs",
             "as 7008ce-5dof, quasi-static level",
             RING5_7008,
             "quasi_static",
+            0.02,
         ),
     ]
 }
