@@ -64,7 +64,8 @@ fn main() {
             fail("scripts/peer-scipy failed");
         }
         let p = Path::new(&cfg.cache_dir).join("6205-2dof-scipy.csv");
-        let text = std::fs::read_to_string(&p).unwrap_or_else(|e| fail(format!("{}: {e}", p.display())));
+        let text =
+            std::fs::read_to_string(&p).unwrap_or_else(|e| fail(format!("{}: {e}", p.display())));
         rep.peer = wp::read_peer_csv(&text).unwrap_or_else(|e| fail(e));
     }
     rep.write(&out).unwrap_or_else(|e| fail(e));

@@ -38,7 +38,11 @@ fn errors(cfg: &Config, method: Method, rtols: &[f64]) -> Vec<f64> {
     let refs = references(cfg, &c).unwrap();
     rtols
         .iter()
-        .map(|&r| force_error(&c.run(method, r).unwrap().0, &refs.primary).unwrap().0)
+        .map(|&r| {
+            force_error(&c.run(method, r).unwrap().0, &refs.primary)
+                .unwrap()
+                .0
+        })
         .collect()
 }
 
@@ -87,12 +91,18 @@ fn tolerance_proportionality_roughly_holds() {
             .sum::<f64>()
             / xs.iter().map(|x| (x - mx).powi(2)).sum::<f64>();
         eprintln!("{m:?}: slope {slope:.2}, {e:?}");
-        assert!((0.5..=1.5).contains(&slope), "{m:?}: slope {slope:.2}, {e:?}");
+        assert!(
+            (0.5..=1.5).contains(&slope),
+            "{m:?}: slope {slope:.2}, {e:?}"
+        );
         // Calibration: the force error is within three decades above and two below the
         // tolerance asked for (forces amplify displacement errors: `Q ~ delta^1.5` with the
         // approach `delta` a fraction of the displacement, and the impact timing is sensitive).
         for (r, x) in rtols.iter().zip(&e) {
-            assert!(*x < 1e3 * r && *x > 1e-2 * r, "{m:?}: rtol {r:e} gave {x:.2e}");
+            assert!(
+                *x < 1e3 * r && *x > 1e-2 * r,
+                "{m:?}: rtol {r:e} gave {x:.2e}"
+            );
         }
     }
 }
@@ -116,7 +126,11 @@ fn reference_cache_round_trips_exactly() {
             .collect()
     };
     assert_eq!(bits(&first), bits(&direct), "the run is deterministic");
-    assert_eq!(bits(&cached), bits(&direct), "the cache gives back the same bits");
+    assert_eq!(
+        bits(&cached),
+        bits(&direct),
+        "the cache gives back the same bits"
+    );
     assert_eq!(Samples::from_csv(&direct.to_csv()).unwrap(), direct);
     // Different tolerance or scene: different file.
     assert_ne!(p, cache_path(&dir, &c, Method::Dopri5, 1e-10).unwrap());

@@ -82,10 +82,7 @@ pub fn force_error(run: &Samples, reference: &Samples) -> Result<(f64, f64)> {
         return Err(Error::invalid(
             "samples",
             run.t.len(),
-            format!(
-                "the reference's {} communication times",
-                reference.t.len()
-            ),
+            format!("the reference's {} communication times", reference.t.len()),
         ));
     }
     let (mut num, mut den, mut peak_e, mut peak_r) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
@@ -135,15 +132,16 @@ pub fn drive(
             .map(|v| v.vr)
             .ok_or_else(|| Error::invalid("variable", n, "a variable of the table"))
     };
-    let fvr = [vr(FORCE_NAMES[0])?, vr(FORCE_NAMES[1])?, vr(FORCE_NAMES[2])?];
+    let fvr = [
+        vr(FORCE_NAMES[0])?,
+        vr(FORCE_NAMES[1])?,
+        vr(FORCE_NAMES[2])?,
+    ];
     let ramp = match ramp {
         Some((n, rate)) => Some((vr(n)?, rate)),
         None => None,
     };
-    let evr: Vec<u32> = events
-        .iter()
-        .map(|e| vr(&e.name))
-        .collect::<Result<_>>()?;
+    let evr: Vec<u32> = events.iter().map(|e| vr(&e.name)).collect::<Result<_>>()?;
     let n = (t_end / h - 1e-9).ceil().max(1.0) as usize;
     let mut s = Samples {
         t: Vec::with_capacity(n),

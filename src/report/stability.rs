@@ -330,8 +330,8 @@ impl Cell {
     fn displacement(&self, c: &Component) -> Result<f64> {
         let b = c.bearing();
         let f = self.radial_load()?;
-        let kn = crate::models::ring::RingModel::new(b, crate::models::ring::RingDof::Two, 0.0)
-            .kn();
+        let kn =
+            crate::models::ring::RingModel::new(b, crate::models::ring::RingDof::Two, 0.0).kn();
         Ok(0.5 * b.pd + (f / (b.z as f64 * kn * 0.2288)).powf(2.0 / 3.0))
     }
 
@@ -444,7 +444,8 @@ impl Cell {
             Ok(Err(e)) => return Outcome::CleanError(e.to_string()),
             Ok(Ok(v)) => v,
         };
-        let finite = |s: &Samples, p: f64| s.f.iter().flatten().all(|v| v.is_finite()) && p.is_finite();
+        let finite =
+            |s: &Samples, p: f64| s.f.iter().flatten().all(|v| v.is_finite()) && p.is_finite();
         if !(finite(&sa, pa) && finite(&sb, pb)) {
             return Outcome::Failed("non-finite output".into());
         }
