@@ -14,14 +14,17 @@
 
 #![warn(missing_docs)]
 
+pub mod analysis;
 pub mod component;
 pub mod contact;
 pub mod error;
 pub mod geometry;
+pub mod lubrication;
 pub mod models;
 #[cfg(feature = "plot")]
 pub mod plot;
 pub mod report;
+pub mod runner;
 pub mod solver;
 pub mod units;
 
@@ -32,3 +35,8 @@ pub mod fmi;
 
 pub use component::{Component, Scene};
 pub use error::{Error, Result};
+
+/// The README's Rust examples, compiled and run as doc tests.
+#[doc = include_str!("../README.md")]
+#[cfg(doctest)]
+pub struct ReadmeDoctests;

@@ -206,6 +206,13 @@ fn make_integrator(
 
 fn build_level(scene: &Scene, b: &Bearing) -> Result<Box<dyn LevelModel>> {
     let m = &scene.model;
+    if !scene.effects.is_off() && m.level != Level::Ring {
+        return Err(Error::invalid(
+            "effects",
+            format!("on with level {}", m.level.name()),
+            "only with level = \"ring\" (the levels that apply defects, waviness and films)",
+        ));
+    }
     Ok(match m.level {
         Level::Ring => {
             let dof = if m.ring_dof == 5 {
@@ -213,15 +220,15 @@ fn build_level(scene: &Scene, b: &Bearing) -> Result<Box<dyn LevelModel>> {
             } else {
                 RingDof::Two
             };
-            Box::new(levels::RingLevel::new(b, dof, m.contact_damping))
+            Box::new(levels::RingLevel::with_effects(
+                b,
+                dof,
+                m.contact_damping,
+                &scene.effects,
+            )?)
         }
-        Level::QuasiStatic | Level::Linear => {
-            return Err(Error::invalid(
-                "model.level",
-                m.level.name(),
-                "ring (the other levels are being wired)",
-            ))
-        }
+        Level::QuasiStatic => Box::new(levels::QuasiStaticLevel::new(scene, b)?),
+        Level::Linear => Box::new(levels::LinearLevel::new(scene, b)?),
     })
 }
 

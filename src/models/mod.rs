@@ -1,5 +1,7 @@
 //! The physics ladder: quasi-static equilibrium and the dynamic levels.
 
+pub mod defects;
 pub mod effects;
 pub mod quasi_static;
 pub mod ring;
+pub mod waviness;
