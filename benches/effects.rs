@@ -44,6 +44,14 @@ fn pairs() -> Vec<(&'static str, String, String)> {
             scene("", ""),
         ),
         (
+            "1 mm outer spall (on) vs absent",
+            scene(
+                "",
+                "[effects]\ndefects = [{ race = \"outer\", angle_deg = 270.0, width_mm = 1.0, depth_um = 50.0 }]",
+            ),
+            scene("", ""),
+        ),
+        (
             "contact damping 3000 (on) vs absent",
             scene("contact_damping = 3000.0", ""),
             scene("", ""),

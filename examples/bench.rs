@@ -23,19 +23,8 @@ fn main() {
         .and_then(|i| args.get(i + 1))
         .map_or(PathBuf::from("docs"), PathBuf::from);
     if has("--stability") || has("--stability-long") {
-        let long = has("--stability-long");
-        let t_base = if long { 0.02 } else { 0.005 };
-        let cells = stability::matrix(long);
-        println!("stability campaign: {} cells", cells.len());
-        let res = stability::run(&cells, t_base, true);
-        let cmd = if long {
-            "cargo run --release --example bench -- --stability-long --out docs"
-        } else {
-            "cargo run --release --example bench -- --stability --out docs"
-        };
-        let md = stability::markdown(&res, t_base, cmd);
-        std::fs::create_dir_all(&out).unwrap_or_else(|e| fail(e));
-        std::fs::write(out.join("stability.md"), md).unwrap_or_else(|e| fail(e));
+        let res =
+            stability::campaign(has("--stability-long"), &out, true).unwrap_or_else(|e| fail(e));
         let failed = res.iter().filter(|(_, o)| !o.passed()).count();
         println!("wrote {}/stability.md ({failed} failed)", out.display());
         return;

@@ -180,3 +180,29 @@ fn time_at_error_interpolates_power_laws() {
     assert!((t - 2.0 * 3e-5f64.powf(-0.2)).abs() < 1e-12 * t);
     assert!(time_at_error(&curve, 1e-1).is_none());
 }
+
+/// The SciPy peer integrates the same equations: its solution converges to raceway's
+/// reference (Radau and LSODA at rtol 1e-4 land within 1e-2 of it). Needs Python and
+/// network for the venv: `cargo test --test report -- --ignored peer`.
+#[test]
+#[ignore]
+fn scipy_peer_solves_the_same_model() {
+    let cfg = config("peer");
+    let dir = cfg.cache_dir.clone();
+    wp::export_for_peer(&cfg, &case(), &dir).unwrap();
+    let root = env!("CARGO_MANIFEST_DIR");
+    let ok = std::process::Command::new(format!("{root}/scripts/peer-scipy"))
+        .arg(&dir)
+        .arg("--smoke")
+        .status()
+        .unwrap()
+        .success();
+    assert!(ok, "scripts/peer-scipy failed");
+    let rows =
+        wp::read_peer_csv(&std::fs::read_to_string(dir.join("6205-2dof-scipy.csv")).unwrap())
+            .unwrap();
+    assert_eq!(rows.len(), 2);
+    for r in rows {
+        assert!(r.err_l2 > 0.0 && r.err_l2 < 1e-2, "{r:?}");
+    }
+}

@@ -82,6 +82,14 @@ pub const BASES: &[Base] = &[
         axial_share: 0.0,
         clearance_axis: true,
     },
+    Base {
+        name: "linear/load",
+        preset: "6205",
+        model: "level = \"linear\"\ncausality = \"load\"\nattached_mass_kg = 1.0\n",
+        load_driven: true,
+        axial_share: 0.0,
+        clearance_axis: true,
+    },
 ];
 
 /// Shaft speed axis.
@@ -207,7 +215,8 @@ pub struct Cell {
 #[derive(Debug, Clone, PartialEq)]
 pub enum Outcome {
     /// Finite outputs; `diff` is the RMS difference of the forces between rtol and rtol/10
-    /// relative to their RMS (or 1 N); `max_pressure` the largest peak pressure seen, Pa.
+    /// relative to their RMS (or 1 N); `max_pressure` the `contact.max_pressure` output at
+    /// the end of the window (the larger of the runs), Pa.
     Converged {
         /// Refinement difference.
         diff: f64,
@@ -670,10 +679,29 @@ pub fn markdown(results: &[(Cell, Outcome)], t_base: f64, command: &str) -> Stri
          errors, {failed} failed.**\n",
         super::Machine::detect().describe()
     );
-    s += "| level | speed (rpm) | load | clearance | ball | H (s) | step input | outcome | refinement diff | max pressure (GPa) |\n\
+    s += "| level | speed (rpm) | load | clearance | ball | H (s) | step input | outcome | refinement diff | peak contact pressure at the end (GPa) |\n\
           |---|---|---|---|---|---|---|---|---|---|\n";
     for (c, o) in results {
         let _ = writeln!(s, "| {} | {} |", row_cells(c), outcome_text(o));
     }
     s
+}
+
+/// The whole campaign as the CLI runs it: the sampled (`long = false`, 5 ms windows) or
+/// the long matrix (20 ms windows), its page written to `dir/stability.md`. Returns the
+/// results (check [`Outcome::passed`]).
+pub fn campaign(long: bool, dir: &std::path::Path, verbose: bool) -> Result<Vec<(Cell, Outcome)>> {
+    let t_base = if long { 0.02 } else { 0.005 };
+    let cells = matrix(long);
+    if verbose {
+        println!("stability campaign: {} cells", cells.len());
+    }
+    let res = run(&cells, t_base, verbose);
+    let cmd = if long {
+        "cargo run --release --example bench -- --stability-long --out docs"
+    } else {
+        "cargo run --release --example bench -- --stability --out docs"
+    };
+    super::write_file(&dir.join("stability.md"), &markdown(&res, t_base, cmd))?;
+    Ok(res)
 }

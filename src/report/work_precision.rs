@@ -134,6 +134,13 @@ pub fn cases() -> Vec<Case> {
             "quasi_static",
             0.02,
         ),
+        mk(
+            "6205-linear",
+            "as 6205-2dof, linear level (K, C of the scene's operating point)",
+            RING2_6205,
+            "linear",
+            0.05,
+        ),
     ]
 }
 
