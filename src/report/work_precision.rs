@@ -775,31 +775,41 @@ impl Report {
     #[cfg(feature = "plot")]
     pub fn plot(&self, path: &Path) -> Result<bool> {
         use crate::plot::{plot, Axes, Series};
-        let mut data: Vec<(String, Vec<f64>, Vec<f64>)> = Vec::new();
-        for (name, _, _) in &self.cases {
-            for m in [Method::Dopri5, Method::Rosenbrock] {
+        // One colour per case (the plot colours series by position, 6 colours): DOPRI5 as
+        // lines first, a blank series to realign the palette, then RODAS4 as points.
+        let mut data: Vec<(String, Vec<f64>, Vec<f64>, bool)> = Vec::new();
+        for (k, m) in [Method::Dopri5, Method::Rosenbrock].into_iter().enumerate() {
+            if k == 1 {
+                let pad = (6 - data.len() % 6) % 6;
+                for _ in 0..pad {
+                    data.push((String::new(), Vec::new(), Vec::new(), false));
+                }
+            }
+            for (name, _, _) in &self.cases {
                 let pts: Vec<&Row> = self
                     .series(name, m)
                     .into_iter()
                     .filter(|r| r.err_l2 >= r.floor)
                     .collect();
-                if pts.is_empty() {
-                    continue;
-                }
+                let label = match m {
+                    Method::Rosenbrock => format!("{name} rodas4 (dots)"),
+                    _ => format!("{name} dopri5 (line)"),
+                };
                 data.push((
-                    format!("{name} {}", method_name(m)),
+                    label,
                     pts.iter().map(|r| r.err_l2).collect(),
                     pts.iter().map(|r| r.median_s).collect(),
+                    m == Method::Rosenbrock,
                 ));
             }
         }
         let series: Vec<Series<'_>> = data
             .iter()
-            .map(|(l, x, y)| Series {
+            .map(|(l, x, y, p)| Series {
                 label: l,
                 x,
                 y,
-                points: false,
+                points: *p,
             })
             .collect();
         let title = format!("Work-precision ({})", self.machine.cpu);
