@@ -198,6 +198,9 @@ pub struct Machine {
     pub version: &'static str,
     /// Build profile of the measuring binary.
     pub profile: &'static str,
+    /// 1-, 5- and 15-minute load averages when measured (/proc/loadavg): a shared machine
+    /// with a load above its core count makes timings noisy.
+    pub load: String,
 }
 
 impl Machine {
@@ -220,7 +223,11 @@ impl Machine {
             .map(|s| s.trim().to_string())
             .filter(|s| !s.is_empty())
             .unwrap_or_else(|| "unknown".into());
+        let load = std::fs::read_to_string("/proc/loadavg")
+            .map(|s| s.split_whitespace().take(3).collect::<Vec<_>>().join(" "))
+            .unwrap_or_else(|_| "unknown".into());
         Machine {
+            load,
             cpu,
             cores: std::thread::available_parallelism().map_or(1, |n| n.get()),
             rustc,
@@ -236,8 +243,8 @@ impl Machine {
     /// One line.
     pub fn describe(&self) -> String {
         format!(
-            "{} ({} logical cores), {}, raceway {} ({} build), single thread",
-            self.cpu, self.cores, self.rustc, self.version, self.profile
+            "{} ({} logical cores, load average {} when measured), {}, raceway {} ({} build), single thread",
+            self.cpu, self.cores, self.load, self.rustc, self.version, self.profile
         )
     }
 }
