@@ -61,6 +61,12 @@ pub trait LevelModel: Send + std::fmt::Debug {
     fn ring_dofs(&self) -> &'static [usize] {
         &[0, 1, 2, 3, 4]
     }
+    /// Absolute tolerances of the level's states, given the scene's displacement
+    /// tolerance `atol_m`: fill `atol` (length `n_states`) and return `true`, or return
+    /// `false` (the default) to let the component treat every state as an angle.
+    fn state_atol(&self, _atol_m: f64, _atol: &mut [f64]) -> bool {
+        false
+    }
     /// Initial states at the start motion.
     fn init(&mut self, m: &Motion, x: &mut [f64], aux: &mut [f64]) -> Result<()>;
     /// Time derivatives of the level's states at `t`; when `wrench` is given, also the

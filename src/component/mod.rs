@@ -171,19 +171,26 @@ pub struct Component {
 fn make_integrator(
     scene: &Scene,
     b: &Bearing,
+    level: &dyn LevelModel,
     nl: usize,
     ring: Option<&RingBody>,
 ) -> (Integrator, Options) {
     let n = nl + ring.map_or(0, |r| 2 * r.dofs.len());
+    // The skidding level is stiff (traction slope, numerics.md §1.2): RODAS4 by default.
+    let stiff = scene.model.level == Level::Skidding;
     let integrator = match scene.solver.method {
+        Method::Auto if stiff => Integrator::Rosenbrock(Rosenbrock::new(n)),
         Method::Auto | Method::Dopri5 => Integrator::Dopri5(Dopri5::new(n)),
         Method::Rosenbrock => Integrator::Rosenbrock(Rosenbrock::new(n)),
     };
     let s = &scene.solver;
     let mut opts = Options::new(n, s.rtol, s.atol_m);
-    // Angles (cage, shaft, balls): an angle error atol_m / (D/2) moves a ball surface by atol_m.
+    // Angles (cage, shaft, balls): an angle error atol_m / (D/2) moves a ball surface by
+    // atol_m; a level with other states gives its own scales.
     let angle = s.atol_m / (0.5 * b.d);
-    opts.atol[..nl].fill(angle);
+    if !level.state_atol(s.atol_m, &mut opts.atol[..nl]) {
+        opts.atol[..nl].fill(angle);
+    }
     if let Some(r) = ring {
         let nd = r.dofs.len();
         let rate = 2.0 * std::f64::consts::PI * 1e3; // velocities: atol over a 1 kHz period
@@ -215,6 +222,10 @@ fn build_level(scene: &Scene, b: &Bearing) -> Result<Box<dyn LevelModel>> {
             };
             Box::new(levels::RingLevel::new(b, dof, m.contact_damping))
         }
+        Level::Skidding => Box::new(levels::SkiddingLevel::new(
+            b,
+            m.skidding.params(b)?,
+        )?),
         Level::QuasiStatic | Level::Linear => {
             return Err(Error::invalid(
                 "model.level",
@@ -286,7 +297,7 @@ impl Component {
             &mut state.aux[..n_level_aux],
         )?;
         let dim = state.x.len();
-        let (integrator, opts) = make_integrator(&scene, &bearing, n_level, ring.as_ref());
+        let (integrator, opts) = make_integrator(&scene, &bearing, level.as_ref(), n_level, ring.as_ref());
         let work = Work {
             k: std::array::from_fn(|_| vec![0.0; dim]),
             y: vec![0.0; dim],

@@ -3,3 +3,4 @@
 pub mod effects;
 pub mod quasi_static;
 pub mod ring;
+pub mod skidding;

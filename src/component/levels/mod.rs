@@ -2,8 +2,10 @@
 //! physics in `crate::models`. One file per level.
 
 pub mod ring;
+pub mod skidding;
 
 pub use ring::RingLevel;
+pub use skidding::SkiddingLevel;
 
 use crate::geometry::Bearing;
 
