@@ -222,10 +222,11 @@ fn build_level(scene: &Scene, b: &Bearing) -> Result<Box<dyn LevelModel>> {
             };
             Box::new(levels::RingLevel::new(b, dof, m.contact_damping))
         }
-        Level::Skidding => Box::new(levels::SkiddingLevel::new(
-            b,
-            m.skidding.params(b)?,
-        )?),
+        Level::Skidding => {
+            let mut p = m.skidding.params(b)?;
+            p.contact_damping = m.contact_damping;
+            Box::new(levels::SkiddingLevel::new(b, p)?)
+        }
         Level::QuasiStatic | Level::Linear => {
             return Err(Error::invalid(
                 "model.level",

@@ -162,6 +162,7 @@ impl SkiddingSpec {
             cage_drag: in_range(&f("cage_drag"), self.cage_drag, 0.0, 1e3)?,
             spacing_scatter: in_range(&f("spacing_scatter"), self.spacing_scatter, 0.0, 1.0)?,
             seed: self.seed,
+            contact_damping: 0.0,
             ..Default::default()
         })
     }

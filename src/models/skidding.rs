@@ -107,6 +107,9 @@ pub struct SkiddingParams {
     pub seed: u64,
     /// Slip speed regularising the pocket friction, m/s.
     pub friction_v_s: f64,
+    /// Contact damping on the shaft, N s/m per loaded ball (as the ring level:
+    /// `c d(delta)/dt` blended in over [`crate::models::ring::DAMPING_RAMP`]).
+    pub contact_damping: f64,
 }
 
 impl Default for SkiddingParams {
@@ -125,6 +128,7 @@ impl Default for SkiddingParams {
             spacing_scatter: 0.0,
             seed: 1,
             friction_v_s: 0.05,
+            contact_damping: 0.0,
         }
     }
 }
@@ -397,7 +401,6 @@ impl SkiddingModel {
         x: &[f64],
         dx: &mut [f64],
     ) -> SkidTotals {
-        let _ = v;
         let mut tot = SkidTotals::default();
         let p = &self.p;
         let (theta_c, w_c) = (x[0], x[1]);
@@ -460,8 +463,15 @@ impl SkiddingModel {
                 n[0] * self.ri * s,
                 -n[0] * self.ri * c,
             ];
+            let mut fn_ = q_i;
+            if p.contact_damping > 0.0 && delta > 0.0 {
+                let da1 = v[2] + self.ri * (v[3] * s - v[4] * c) + w_b * self.ri * (q[3] * c + q[4] * s);
+                let da2 = v[0] * c + v[1] * s + w_b * (-q[0] * s + q[1] * c);
+                let blend = (delta / crate::models::ring::DAMPING_RAMP).min(1.0);
+                fn_ += p.contact_damping * blend * (n[0] * da1 + n[1] * da2);
+            }
             for (wk, gk) in tot.wrench.iter_mut().zip(g) {
-                *wk -= q_i * gk;
+                *wk -= fn_ * gk;
             }
             tot.wrench[0] += f_i * s;
             tot.wrench[1] -= f_i * c;

@@ -117,7 +117,10 @@ impl LevelModel for SkiddingLevel {
         self.rhs(t, m, x, aux, &mut buf[..n], Some(&mut w))?;
         let tot = self.last;
         let (wk, _) = self.model.kinematic(m.omega);
-        let slip = if wk.abs() > 1e-9 { 1.0 - x[1] / wk } else { 0.0 };
+        // 1 - w_c/w_k, regularised below 1 mrad/s of kinematic cage speed so that a
+        // bearing at rest reports 100 % slip and the output stays finite.
+        let eps = 1e-3;
+        let slip = 1.0 - x[1] * wk / (wk * wk + eps * eps);
         let mut max_p: f64 = 0.0;
         for b in &self.model.balls {
             if b.q_i > 0.0 || b.q_o > 0.0 {
