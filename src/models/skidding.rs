@@ -118,7 +118,7 @@ impl Default for SkiddingParams {
             traction: TractionLaw::default(),
             pocket_clearance: 0.1e-3,
             pocket_stiffness: 1e7,
-            pocket_damping: 20.0,
+            pocket_damping: 200.0,
             pocket_friction: 0.05,
             pocket_smoothing: 1e-6,
             drag_coefficient: 0.5,
