@@ -91,8 +91,18 @@ struct Work {
     aux_save: Vec<f64>,
 }
 
+/// Work space of the level Jacobians (see [`LevelModel::jacobian`]).
+#[derive(Debug, Clone, Default)]
+struct JacWork {
+    jx: Vec<f64>,
+    jm: Vec<f64>,
+    wx: Vec<f64>,
+    wm: Vec<f64>,
+}
+
 /// The whole system a step integrates: the level's states and, load-driven, the ring's.
 struct Sys<'a> {
+    jw: Option<&'a mut JacWork>,
     level: &'a mut dyn LevelModel,
     st: &'a mut State,
     ring: Option<&'a RingBody>,
@@ -147,6 +157,53 @@ impl OdeSystem for Sys<'_> {
         self.eval(t - self.t0, y, dy, None)
             .map_err(|e| e.to_string())
     }
+    fn jacobian(&mut self, t: f64, y: &[f64], jac: &mut nalgebra::DMatrix<f64>) -> bool {
+        let Some(jw) = self.jw.as_deref_mut() else {
+            return false;
+        };
+        let nl = self.nl;
+        let s = t - self.t0;
+        let m = motion_at_y(self.st, self.rule, s, self.causality, self.ring, nl, y);
+        let (aux, _) = self.st.aux.split_at_mut(self.naux);
+        if !self.level.jacobian(
+            t,
+            &m,
+            &y[..nl],
+            aux,
+            &mut jw.jx,
+            &mut jw.jm,
+            &mut jw.wx,
+            &mut jw.wm,
+        ) {
+            return false;
+        }
+        jac.fill(0.0);
+        for r in 0..nl {
+            for c in 0..nl {
+                jac[(r, c)] = jw.jx[r * nl + c];
+            }
+        }
+        if let Some(ring) = self.ring {
+            let nd = ring.dofs.len();
+            for (k, &d) in ring.dofs.iter().enumerate() {
+                let (iq, iv) = (nl + k, nl + nd + k);
+                let inv = 1.0 / ring.inertia[d];
+                for r in 0..nl {
+                    jac[(r, iq)] = jw.jm[r * 10 + d];
+                    jac[(r, iv)] = jw.jm[r * 10 + 5 + d];
+                }
+                jac[(iq, iv)] = 1.0;
+                for c in 0..nl {
+                    jac[(iv, c)] = jw.wx[d * nl + c] * inv;
+                }
+                for (k2, &d2) in ring.dofs.iter().enumerate() {
+                    jac[(iv, nl + k2)] = jw.wm[d * 10 + d2] * inv;
+                    jac[(iv, nl + nd + k2)] = jw.wm[d * 10 + 5 + d2] * inv;
+                }
+            }
+        }
+        true
+    }
 }
 
 /// A running bearing: created from a scene, stepped by a host.
@@ -161,6 +218,7 @@ pub struct Component {
     state: State,
     scratch: State,
     work: Work,
+    jwork: JacWork,
     integrator: Integrator,
     opts: Options,
     outputs_fresh: bool,
@@ -304,7 +362,14 @@ impl Component {
             y: vec![0.0; dim],
             aux_save: vec![0.0; n_level_aux + 1],
         };
+        let jwork = JacWork {
+            jx: vec![0.0; n_level * n_level],
+            jm: vec![0.0; n_level * 10],
+            wx: vec![0.0; 5 * n_level],
+            wm: vec![0.0; 50],
+        };
         let mut c = Component {
+            jwork,
             scene,
             bearing,
             level,
@@ -512,6 +577,7 @@ impl Component {
         let mut h_trial = sc.aux[naux];
         self.work.y.copy_from_slice(&sc.x);
         let mut sys = Sys {
+            jw: Some(&mut self.jwork),
             level: self.level.as_mut(),
             st: sc,
             ring: self.ring.as_ref(),
@@ -596,6 +662,7 @@ impl Component {
         let mut bwd = [0.0; 5];
         let t0 = sc.t;
         let mut sys = Sys {
+            jw: None,
             level: self.level.as_mut(),
             st: sc,
             ring: self.ring.as_ref(),

@@ -158,6 +158,27 @@ pub struct BallState {
     pub pocket: f64,
 }
 
+/// One ball's terms.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct BallOut {
+    /// Rates of `(psi, w_b, w_a)`.
+    pub dx: [f64; 3],
+    /// Torque on the cage about z, N m.
+    pub cage_torque: f64,
+    /// Wrench on the shaft.
+    pub wrench: [f64; 5],
+    /// Traction torque on the shaft about z, N m.
+    pub torque_shaft: f64,
+    /// Traction torque on the outer ring about z, N m.
+    pub torque_outer: f64,
+    /// Drag torque on the ball about z, N m.
+    pub torque_drag: f64,
+    /// Power dissipated in its race contacts, W.
+    pub power: f64,
+    /// Per-ball results.
+    pub state: BallState,
+}
+
 /// Totals of one evaluation.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct SkidTotals {
@@ -391,6 +412,112 @@ impl SkiddingModel {
         }
     }
 
+    /// One ball's contribution at shaft motion `(q, v, omega)`, cage `(theta_c, w_c)` and
+    /// ball states `(psi, w_b, w_a)`. Allocation-free.
+    #[allow(clippy::too_many_arguments)]
+    pub fn ball(
+        &self,
+        j: usize,
+        q: &[f64; 5],
+        v: &[f64; 5],
+        omega: f64,
+        theta_c: f64,
+        w_c: f64,
+        psi: f64,
+        w_b: f64,
+        w_a: f64,
+    ) -> BallOut {
+        let p = &self.p;
+        let r = 0.5 * self.dm;
+        let hd = 0.5 * self.d;
+        let (s, c) = psi.sin_cos();
+        // Normal loads (Jones geometry of the ring level).
+        let a1 = self.a10 + q[2] + self.ri * (q[3] * s - q[4] * c);
+        let a2 = self.a20 + q[0] * c + q[1] * s;
+        let l = a1.hypot(a2);
+        let n = [a1 / l, a2 / l];
+        let delta = l - self.a;
+        let fc = self.m * r * w_b * w_b;
+        let (q_i, q_o) = self.split(delta, fc * n[1]);
+        // Slip.
+        let dv_i = 0.5 * self.di * omega - (r * w_b - hd * w_a);
+        let dv_o = r * w_b + hd * w_a;
+        let u_i = 0.5 * (0.5 * self.di * (omega - w_b) + hd * (w_b * self.cos_a - w_a));
+        let u_o = 0.5 * (0.5 * self.do_ * w_b + hd * (w_b * self.cos_a - w_a));
+        let f_i = p
+            .traction
+            .force(dv_i, u_i, &Self::contact_state(&self.inner, q_i));
+        let f_o = p
+            .traction
+            .force(dv_o, u_o, &Self::contact_state(&self.outer, q_o));
+        // Pocket.
+        let pocket_angle = theta_c + 2.0 * PI * j as f64 / self.z as f64 + self.offsets[j];
+        let xi = r * (psi - pocket_angle);
+        let xi_dot = r * (w_b - w_c);
+        let cp = p.pocket_clearance;
+        let w = p.pocket_smoothing;
+        let (pl, bl) = Self::pen(xi - cp, w);
+        let (pt, bt) = Self::pen(-xi - cp, w);
+        let pocket = -p.pocket_stiffness * (pl - pt) - p.pocket_damping * (bl + bt) * xi_dot;
+        let slide = hd * (w_a * self.cos_a - w_c);
+        let m_fric = -hd * p.pocket_friction * pocket.abs() * (slide / p.friction_v_s).tanh();
+        // Drag.
+        let vb = r * w_b;
+        let f_d =
+            p.drag_coefficient * p.drag_density * PI * self.d * self.d * vb * vb.abs() / 8.0;
+        let m_d = PI * p.drag_viscosity * self.d.powi(3) * w_a;
+        let dx = [
+            w_b,
+            (f_i - f_o + pocket - f_d) / (self.m * r),
+            (-hd * (f_i + f_o) + m_fric * self.cos_a - m_d) / self.j,
+        ];
+        // On the shaft: normal load along -n through the groove centre, traction -f_i e_t
+        // at the inner contact.
+        let g = [
+            n[1] * c,
+            n[1] * s,
+            n[0],
+            n[0] * self.ri * s,
+            -n[0] * self.ri * c,
+        ];
+        let mut fn_ = q_i;
+        if p.contact_damping > 0.0 && delta > 0.0 {
+            let da1 = v[2]
+                + self.ri * (v[3] * s - v[4] * c)
+                + w_b * self.ri * (q[3] * c + q[4] * s);
+            let da2 = v[0] * c + v[1] * s + w_b * (-q[0] * s + q[1] * c);
+            let blend = (delta / crate::models::ring::DAMPING_RAMP).min(1.0);
+            fn_ += p.contact_damping * blend * (n[0] * da1 + n[1] * da2);
+        }
+        let mut wrench = [0.0; 5];
+        for (wk, gk) in wrench.iter_mut().zip(g) {
+            *wk = -fn_ * gk;
+        }
+        wrench[0] += f_i * s;
+        wrench[1] -= f_i * c;
+        BallOut {
+            dx,
+            cage_torque: -r * pocket - m_fric,
+            wrench,
+            torque_shaft: -0.5 * self.di * f_i,
+            torque_outer: 0.5 * self.do_ * f_o,
+            torque_drag: -(r * f_d + self.cos_a * m_d),
+            power: f_i * dv_i + f_o * dv_o,
+            state: BallState {
+                psi,
+                w_b,
+                w_s: w_b * self.cos_a - w_a,
+                q_i,
+                q_o,
+                dv_i,
+                dv_o,
+                f_i,
+                f_o,
+                pocket,
+            },
+        }
+    }
+
     /// Right-hand side at shaft motion `(q, v, omega)`: fills `dx` and the per-ball and
     /// total results (`self.balls`, return value). Allocation-free.
     pub fn eval(
@@ -402,103 +529,121 @@ impl SkiddingModel {
         dx: &mut [f64],
     ) -> SkidTotals {
         let mut tot = SkidTotals::default();
-        let p = &self.p;
         let (theta_c, w_c) = (x[0], x[1]);
-        let r = 0.5 * self.dm;
-        let hd = 0.5 * self.d;
-        let mut cage_torque = -p.cage_drag * w_c;
-        tot.torque_drag -= p.cage_drag * w_c;
+        let mut cage_torque = -self.p.cage_drag * w_c;
+        tot.torque_drag -= self.p.cage_drag * w_c;
         for j in 0..self.z {
             let k = BALL0 + 3 * j;
-            let (psi, w_b, w_a) = (x[k], x[k + 1], x[k + 2]);
-            let (s, c) = psi.sin_cos();
-            // Normal loads (Jones geometry of the ring level).
-            let a1 = self.a10 + q[2] + self.ri * (q[3] * s - q[4] * c);
-            let a2 = self.a20 + q[0] * c + q[1] * s;
-            let l = a1.hypot(a2);
-            let n = [a1 / l, a2 / l];
-            let delta = l - self.a;
-            let fc = self.m * r * w_b * w_b;
-            let (q_i, q_o) = self.split(delta, fc * n[1]);
-            // Slip.
-            let dv_i = 0.5 * self.di * omega - (r * w_b - hd * w_a);
-            let dv_o = r * w_b + hd * w_a;
-            let u_i = 0.5 * (0.5 * self.di * (omega - w_b) + hd * (w_b * self.cos_a - w_a));
-            let u_o = 0.5 * (0.5 * self.do_ * w_b + hd * (w_b * self.cos_a - w_a));
-            let f_i = p
-                .traction
-                .force(dv_i, u_i, &Self::contact_state(&self.inner, q_i));
-            let f_o = p
-                .traction
-                .force(dv_o, u_o, &Self::contact_state(&self.outer, q_o));
-            // Pocket.
-            let pocket_angle = theta_c + 2.0 * PI * j as f64 / self.z as f64 + self.offsets[j];
-            let xi = r * (psi - pocket_angle);
-            let xi_dot = r * (w_b - w_c);
-            let cp = p.pocket_clearance;
-            let w = p.pocket_smoothing;
-            let (pl, bl) = Self::pen(xi - cp, w);
-            let (pt, bt) = Self::pen(-xi - cp, w);
-            let pocket = -p.pocket_stiffness * (pl - pt) - p.pocket_damping * (bl + bt) * xi_dot;
-            let slide = hd * (w_a * self.cos_a - w_c);
-            let m_fric = -hd
-                * p.pocket_friction
-                * pocket.abs()
-                * (slide / p.friction_v_s).tanh();
-            // Drag.
-            let vb = r * w_b;
-            let f_d = p.drag_coefficient * p.drag_density * PI * self.d * self.d * vb * vb.abs()
-                / 8.0;
-            let m_d = PI * p.drag_viscosity * self.d.powi(3) * w_a;
-            dx[k] = w_b;
-            dx[k + 1] = (f_i - f_o + pocket - f_d) / (self.m * r);
-            dx[k + 2] = (-hd * (f_i + f_o) + m_fric * self.cos_a - m_d) / self.j;
-            cage_torque += -r * pocket - m_fric;
-            // On the shaft: normal load along -n through the groove centre, traction
-            // -f_i e_t at the inner contact.
-            let g = [
-                n[1] * c,
-                n[1] * s,
-                n[0],
-                n[0] * self.ri * s,
-                -n[0] * self.ri * c,
-            ];
-            let mut fn_ = q_i;
-            if p.contact_damping > 0.0 && delta > 0.0 {
-                let da1 = v[2] + self.ri * (v[3] * s - v[4] * c) + w_b * self.ri * (q[3] * c + q[4] * s);
-                let da2 = v[0] * c + v[1] * s + w_b * (-q[0] * s + q[1] * c);
-                let blend = (delta / crate::models::ring::DAMPING_RAMP).min(1.0);
-                fn_ += p.contact_damping * blend * (n[0] * da1 + n[1] * da2);
+            let b = self.ball(j, q, v, omega, theta_c, w_c, x[k], x[k + 1], x[k + 2]);
+            dx[k..k + 3].copy_from_slice(&b.dx);
+            cage_torque += b.cage_torque;
+            for (t, w) in tot.wrench.iter_mut().zip(b.wrench) {
+                *t += w;
             }
-            for (wk, gk) in tot.wrench.iter_mut().zip(g) {
-                *wk -= fn_ * gk;
-            }
-            tot.wrench[0] += f_i * s;
-            tot.wrench[1] -= f_i * c;
-            tot.torque_shaft -= 0.5 * self.di * f_i;
-            tot.torque_outer += 0.5 * self.do_ * f_o;
-            tot.torque_drag -= r * f_d + self.cos_a * m_d;
-            tot.power_contacts += f_i * dv_i + f_o * dv_o;
-            if q_i > 0.0 {
+            tot.torque_shaft += b.torque_shaft;
+            tot.torque_outer += b.torque_outer;
+            tot.torque_drag += b.torque_drag;
+            tot.power_contacts += b.power;
+            if b.state.q_i > 0.0 {
                 tot.loaded += 1;
             }
-            tot.max_load = tot.max_load.max(q_i).max(q_o);
-            self.balls[j] = BallState {
-                psi,
-                w_b,
-                w_s: w_b * self.cos_a - w_a,
-                q_i,
-                q_o,
-                dv_i,
-                dv_o,
-                f_i,
-                f_o,
-                pocket,
-            };
+            tot.max_load = tot.max_load.max(b.state.q_i).max(b.state.q_o);
+            self.balls[j] = b.state;
         }
         dx[0] = w_c;
         dx[1] = cage_torque / self.jc;
         tot
+    }
+
+    /// Jacobians by per-ball finite differences (each ball's terms depend only on its own
+    /// states, the cage's and the ring's, so a column costs one ball evaluation, not a
+    /// whole right-hand side): `jx = d(rates)/d(states)` (`n × n`, row-major),
+    /// `jm = d(rates)/d(q, v)` (`n × 10`), `wx = d(wrench)/d(states)` (`5 × n`),
+    /// `wm = d(wrench)/d(q, v)` (`5 × 10`). Allocation-free.
+    #[allow(clippy::too_many_arguments)]
+    pub fn jacobian(
+        &self,
+        q: &[f64; 5],
+        v: &[f64; 5],
+        omega: f64,
+        x: &[f64],
+        jx: &mut [f64],
+        jm: &mut [f64],
+        wx: &mut [f64],
+        wm: &mut [f64],
+    ) {
+        let n = self.n_states();
+        jx.fill(0.0);
+        jm.fill(0.0);
+        wx.fill(0.0);
+        wm.fill(0.0);
+        let (theta_c, w_c) = (x[0], x[1]);
+        let jc = self.jc;
+        jx[1] = 1.0; // d theta_c' / d w_c
+        jx[n + 1] = -self.p.cage_drag / jc;
+        let eps = f64::EPSILON.sqrt();
+        for j in 0..self.z {
+            let k = BALL0 + 3 * j;
+            let st = [x[k], x[k + 1], x[k + 2]];
+            let base = self.ball(j, q, v, omega, theta_c, w_c, st[0], st[1], st[2]);
+            // Ball columns.
+            for col in 0..3 {
+                let h = if col == 0 {
+                    1e-9
+                } else {
+                    eps * st[col].abs().max(1.0)
+                };
+                let mut sp = st;
+                sp[col] += h;
+                let b = self.ball(j, q, v, omega, theta_c, w_c, sp[0], sp[1], sp[2]);
+                let c = k + col;
+                for r in 0..3 {
+                    jx[(k + r) * n + c] = (b.dx[r] - base.dx[r]) / h;
+                }
+                jx[n + c] = (b.cage_torque - base.cage_torque) / (h * jc);
+                for r in 0..5 {
+                    wx[r * n + c] = (b.wrench[r] - base.wrench[r]) / h;
+                }
+            }
+            // Cage columns.
+            for col in 0..2 {
+                let (tc, wc, h) = if col == 0 {
+                    (theta_c + 1e-9, w_c, 1e-9)
+                } else {
+                    let h = eps * w_c.abs().max(1.0);
+                    (theta_c, w_c + h, h)
+                };
+                let b = self.ball(j, q, v, omega, tc, wc, st[0], st[1], st[2]);
+                for r in 0..3 {
+                    jx[(k + r) * n + col] = (b.dx[r] - base.dx[r]) / h;
+                }
+                jx[n + col] += (b.cage_torque - base.cage_torque) / (h * jc);
+            }
+            // Ring columns (q, then v).
+            for col in 0..10 {
+                let (mut qp, mut vp) = (*q, *v);
+                let h = if col < 3 {
+                    1e-11
+                } else if col < 5 {
+                    1e-9
+                } else {
+                    1e-4
+                };
+                if col < 5 {
+                    qp[col] += h;
+                } else {
+                    vp[col - 5] += h;
+                }
+                let b = self.ball(j, &qp, &vp, omega, theta_c, w_c, st[0], st[1], st[2]);
+                for r in 0..3 {
+                    jm[(k + r) * 10 + col] = (b.dx[r] - base.dx[r]) / h;
+                }
+                jm[10 + col] += (b.cage_torque - base.cage_torque) / (h * jc);
+                for r in 0..5 {
+                    wm[r * 10 + col] += (b.wrench[r] - base.wrench[r]) / h;
+                }
+            }
+        }
     }
 
     /// Peak Hertz pressure at the larger of a ball's two loads, Pa.

@@ -71,6 +71,27 @@ impl LevelModel for SkiddingLevel {
         }
         true
     }
+    fn jacobian(
+        &mut self,
+        _t: f64,
+        m: &Motion,
+        x: &[f64],
+        _aux: &mut [f64],
+        jx: &mut [f64],
+        jm: &mut [f64],
+        wx: &mut [f64],
+        wm: &mut [f64],
+    ) -> bool {
+        self.model
+            .jacobian(&m.q, &m.v, m.omega, x, jx, jm, wx, wm);
+        if self.dofs.len() == 2 {
+            // The radial level reports no axial force or moments.
+            let n = wx.len() / 5;
+            wx[2 * n..].fill(0.0);
+            wm[20..].fill(0.0);
+        }
+        true
+    }
     fn init(&mut self, m: &Motion, x: &mut [f64], _aux: &mut [f64]) -> Result<()> {
         if !m.omega.is_finite() {
             return Err(Error::invalid("shaft.omega", m.omega, "a finite number"));
