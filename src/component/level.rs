@@ -71,7 +71,7 @@ pub trait LevelModel: Send + std::fmt::Debug {
     /// difference the whole right-hand side). With `n = n_states`, all row-major:
     /// `jx = d(rates)/d(states)` (`n × n`), `jm = d(rates)/d(q, v)` (`n × 10`),
     /// `wx = d(wrench)/d(states)` (`5 × n`), `wm = d(wrench)/d(q, v)` (`5 × 10`).
-    /// Must not allocate.
+    /// Motion-driven, `jm`, `wx` and `wm` are empty (not needed). Must not allocate.
     #[allow(clippy::too_many_arguments)]
     fn jacobian(
         &mut self,

@@ -165,16 +165,12 @@ impl OdeSystem for Sys<'_> {
         let s = t - self.t0;
         let m = motion_at_y(self.st, self.rule, s, self.causality, self.ring, nl, y);
         let (aux, _) = self.st.aux.split_at_mut(self.naux);
-        if !self.level.jacobian(
-            t,
-            &m,
-            &y[..nl],
-            aux,
-            &mut jw.jx,
-            &mut jw.jm,
-            &mut jw.wx,
-            &mut jw.wm,
-        ) {
+        let (jm, wx, wm) = if self.ring.is_some() {
+            (&mut jw.jm[..], &mut jw.wx[..], &mut jw.wm[..])
+        } else {
+            (&mut [][..], &mut [][..], &mut [][..])
+        };
+        if !self.level.jacobian(t, &m, &y[..nl], aux, &mut jw.jx, jm, wx, wm) {
             return false;
         }
         jac.fill(0.0);

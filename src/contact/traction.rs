@@ -245,6 +245,11 @@ impl TractionLaw {
         Ok(())
     }
 
+    /// Does the law use the contact's semi-axes, radius and modulus (or only the load)?
+    pub fn needs_contact(&self) -> bool {
+        matches!(self, TractionLaw::MixedEhl(_))
+    }
+
     /// Tangential force, N, for slip `dv` (m/s), rolling speed `u` (m/s) and contact `c`.
     /// Odd in `dv`, zero when the contact carries no load.
     pub fn force(&self, dv: f64, u: f64, c: &ContactState) -> f64 {

@@ -175,6 +175,10 @@ pub struct BallOut {
     pub torque_drag: f64,
     /// Power dissipated in its race contacts, W.
     pub power: f64,
+    /// Gradient of the total approach with respect to `q`.
+    pub g: [f64; 5],
+    /// Effective contact damping (0 when unloaded), N s/m.
+    pub cd: f64,
     /// Per-ball results.
     pub state: BallState,
 }
@@ -221,6 +225,7 @@ pub struct SkiddingModel {
     ri: f64,
     inner: PointContact,
     outer: PointContact,
+    kratio: f64,
     /// Pocket centre offsets, rad.
     offsets: Vec<f64>,
     /// Per-ball results of the last evaluation.
@@ -276,6 +281,7 @@ impl SkiddingModel {
             a10,
             a20,
             ri: b.inner_groove_centre_radius(),
+            kratio: (inner.kc / outer.kc).powf(2.0 / 3.0),
             inner,
             outer,
             offsets,
@@ -353,11 +359,15 @@ impl SkiddingModel {
         let f = f.max(0.0);
         // Bracket [lo, hi]: g(0) <= 0, g(max(delta, 0) + (f/ko)^(2/3)) >= 0.
         let mut lo = 0.0;
-        let mut hi = delta.max(0.0) + (f / ko).powf(2.0 / 3.0);
+        let fo = {
+            let t = f / ko;
+            (t * t).cbrt()
+        };
+        let mut hi = delta.max(0.0) + fo;
         // Start from the f = 0 split (equal loads) or the outer-only contact.
         let mut x = if delta > 0.0 {
-            let r = (ki / ko).powf(2.0 / 3.0);
-            (delta * r / (1.0 + r) + (f / ko).powf(2.0 / 3.0) * 0.5).min(hi)
+            let r = self.kratio;
+            (delta * r / (1.0 + r) + fo * 0.5).min(hi)
         } else {
             hi
         };
@@ -444,12 +454,25 @@ impl SkiddingModel {
         let dv_o = r * w_b + hd * w_a;
         let u_i = 0.5 * (0.5 * self.di * (omega - w_b) + hd * (w_b * self.cos_a - w_a));
         let u_o = 0.5 * (0.5 * self.do_ * w_b + hd * (w_b * self.cos_a - w_a));
-        let f_i = p
-            .traction
-            .force(dv_i, u_i, &Self::contact_state(&self.inner, q_i));
-        let f_o = p
-            .traction
-            .force(dv_o, u_o, &Self::contact_state(&self.outer, q_o));
+        let (ci, co) = if p.traction.needs_contact() {
+            (
+                Self::contact_state(&self.inner, q_i),
+                Self::contact_state(&self.outer, q_o),
+            )
+        } else {
+            (
+                ContactState {
+                    q: q_i,
+                    ..ContactState::default()
+                },
+                ContactState {
+                    q: q_o,
+                    ..ContactState::default()
+                },
+            )
+        };
+        let f_i = p.traction.force(dv_i, u_i, &ci);
+        let f_o = p.traction.force(dv_o, u_o, &co);
         // Pocket.
         let pocket_angle = theta_c + 2.0 * PI * j as f64 / self.z as f64 + self.offsets[j];
         let xi = r * (psi - pocket_angle);
@@ -481,13 +504,15 @@ impl SkiddingModel {
             -n[0] * self.ri * c,
         ];
         let mut fn_ = q_i;
+        let mut cd = 0.0;
         if p.contact_damping > 0.0 && delta > 0.0 {
             let da1 = v[2]
                 + self.ri * (v[3] * s - v[4] * c)
                 + w_b * self.ri * (q[3] * c + q[4] * s);
             let da2 = v[0] * c + v[1] * s + w_b * (-q[0] * s + q[1] * c);
             let blend = (delta / crate::models::ring::DAMPING_RAMP).min(1.0);
-            fn_ += p.contact_damping * blend * (n[0] * da1 + n[1] * da2);
+            cd = p.contact_damping * blend;
+            fn_ += cd * (n[0] * da1 + n[1] * da2);
         }
         let mut wrench = [0.0; 5];
         for (wk, gk) in wrench.iter_mut().zip(g) {
@@ -503,6 +528,8 @@ impl SkiddingModel {
             torque_outer: 0.5 * self.do_ * f_o,
             torque_drag: -(r * f_d + self.cos_a * m_d),
             power: f_i * dv_i + f_o * dv_o,
+            g,
+            cd,
             state: BallState {
                 psi,
                 w_b,
@@ -571,6 +598,7 @@ impl SkiddingModel {
         jm: &mut [f64],
         wx: &mut [f64],
         wm: &mut [f64],
+        q_cols: &[usize],
     ) {
         let n = self.n_states();
         jx.fill(0.0);
@@ -601,8 +629,10 @@ impl SkiddingModel {
                     jx[(k + r) * n + c] = (b.dx[r] - base.dx[r]) / h;
                 }
                 jx[n + c] = (b.cage_torque - base.cage_torque) / (h * jc);
-                for r in 0..5 {
-                    wx[r * n + c] = (b.wrench[r] - base.wrench[r]) / h;
+                if !wx.is_empty() {
+                    for r in 0..5 {
+                        wx[r * n + c] = (b.wrench[r] - base.wrench[r]) / h;
+                    }
                 }
             }
             // Cage columns.
@@ -619,21 +649,23 @@ impl SkiddingModel {
                 }
                 jx[n + col] += (b.cage_torque - base.cage_torque) / (h * jc);
             }
-            // Ring columns (q, then v).
-            for col in 0..10 {
-                let (mut qp, mut vp) = (*q, *v);
-                let h = if col < 3 {
-                    1e-11
-                } else if col < 5 {
-                    1e-9
-                } else {
-                    1e-4
-                };
-                if col < 5 {
-                    qp[col] += h;
-                } else {
-                    vp[col - 5] += h;
+            if jm.is_empty() {
+                continue;
+            }
+            // Velocity columns: only the contact damping `-cd g g^T` depends on v.
+            for r in 0..5 {
+                for c in 0..5 {
+                    wm[r * 10 + 5 + c] -= base.cd * base.g[r] * base.g[c];
                 }
+            }
+            // Displacement columns.
+            for col in 0..5 {
+                let (mut qp, vp) = (*q, *v);
+                if !q_cols.contains(&col) {
+                    continue;
+                }
+                let h = if col < 3 { 1e-11 } else { 1e-9 };
+                qp[col] += h;
                 let b = self.ball(j, &qp, &vp, omega, theta_c, w_c, st[0], st[1], st[2]);
                 for r in 0..3 {
                     jm[(k + r) * 10 + col] = (b.dx[r] - base.dx[r]) / h;

@@ -83,8 +83,8 @@ impl LevelModel for SkiddingLevel {
         wm: &mut [f64],
     ) -> bool {
         self.model
-            .jacobian(&m.q, &m.v, m.omega, x, jx, jm, wx, wm);
-        if self.dofs.len() == 2 {
+            .jacobian(&m.q, &m.v, m.omega, x, jx, jm, wx, wm, self.dofs);
+        if self.dofs.len() == 2 && !wm.is_empty() {
             // The radial level reports no axial force or moments.
             let n = wx.len() / 5;
             wx[2 * n..].fill(0.0);
