@@ -11,7 +11,10 @@ fn main() {
     let vr = |n: &str| variables::by_name(n).unwrap().vr;
     let omega = 6000.0 * std::f64::consts::PI / 30.0;
     // Start at speed: a fresh component at 6000 rpm starts at the kinematic speeds.
-    let text = text.replace("\"shaft.omega\" = 0.0", &format!("\"shaft.omega\" = {omega}"));
+    let text = text.replace(
+        "\"shaft.omega\" = 0.0",
+        &format!("\"shaft.omega\" = {omega}"),
+    );
     c = Component::from_text(&text).unwrap_or(c);
     let h = 1e-3;
     // Settle 50 ms (not timed).

@@ -94,7 +94,10 @@ fn slip_small_under_load_larger_when_light_and_fast() {
     let slip_l = mean(rl[20..].iter().map(|x| x.1));
     println!("cage slip: heavy 2000 rpm {slip_h:.5}, light 10000 rpm {slip_l:.5}");
     assert!(slip_h.abs() < 0.01, "heavy-load slip {slip_h}");
-    assert!(slip_l > 1.5 * slip_h.abs() && slip_l > 0.0, "light-load slip {slip_l}");
+    assert!(
+        slip_l > 1.5 * slip_h.abs() && slip_l > 0.0,
+        "light-load slip {slip_l}"
+    );
 }
 
 /// The ball-pass line `Z w_cage / 2 pi` sits slightly below the kinematic BPFO.
@@ -109,7 +112,10 @@ fn ball_pass_frequency_slightly_below_kinematic() {
     let bpf = b.z as f64 * wc / (2.0 * PI);
     let kin = kinematics(&b, w).bpfo;
     let shift = 1.0 - bpf / kin;
-    println!("BPFO kinematic {kin:.3} Hz, from the cage {bpf:.3} Hz, shift {:.3} %", 100.0 * shift);
+    println!(
+        "BPFO kinematic {kin:.3} Hz, from the cage {bpf:.3} Hz, shift {:.3} %",
+        100.0 * shift
+    );
     assert!(shift > 0.0 && shift < 0.03, "shift {shift}");
 }
 
@@ -131,7 +137,10 @@ drag_density = 0.0"#;
     let fy_ring = mean(rr[20..].iter().map(|x| x.3));
     println!("stiff traction: slip {slip:.2e}, Fy {fy:.2} vs ring level {fy_ring:.2}");
     assert!(slip.abs() < 1e-3, "cage slip {slip}");
-    assert!((fy - fy_ring).abs() < 0.01 * fy_ring.abs(), "{fy} vs {fy_ring}");
+    assert!(
+        (fy - fy_ring).abs() < 0.01 * fy_ring.abs(),
+        "{fy} vs {fy_ring}"
+    );
 }
 
 /// Balls plus cage as an ODE with one more state: the time integral of the external
@@ -149,7 +158,9 @@ impl OdeSystem for Balance {
     }
     fn rhs(&mut self, _t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), String> {
         let n = self.m.n_states();
-        let tot = self.m.eval(&self.q, &[0.0; 5], self.omega, &y[..n], &mut dy[..n]);
+        let tot = self
+            .m
+            .eval(&self.q, &[0.0; 5], self.omega, &y[..n], &mut dy[..n]);
         dy[n] = -tot.torque_shaft - tot.torque_outer + tot.torque_drag;
         Ok(())
     }
@@ -180,13 +191,21 @@ fn angular_momentum_balance_closes() {
     let mut opts = Options::new(n + 1, 1e-6, 1e-10);
     opts.max_steps = 1_000_000;
     let mut h = 0.0;
-    integ.integrate(&mut sys, 0.0, 0.01, &mut y, &mut h, &opts).unwrap();
+    integ
+        .integrate(&mut sys, 0.0, 0.01, &mut y, &mut h, &opts)
+        .unwrap();
     let l1 = sys.m.angular_momentum(&y[..n]);
     let ext = y[n];
     let scale = sys.m.z() as f64 * 1e-3; // |L| scale of the spun-up set
-    println!("L0 {l0:e}, L1 {l1:e}, integral of torques {ext:e}, residual {:e}", l1 - l0 - ext);
+    println!(
+        "L0 {l0:e}, L1 {l1:e}, integral of torques {ext:e}, residual {:e}",
+        l1 - l0 - ext
+    );
     assert!(l1 > 0.0, "the shaft spun the balls up");
-    assert!((l1 - l0 - ext).abs() < 1e-6 * l1.abs().max(scale), "balance");
+    assert!(
+        (l1 - l0 - ext).abs() < 1e-6 * l1.abs().max(scale),
+        "balance"
+    );
 }
 
 #[test]

@@ -170,7 +170,10 @@ impl OdeSystem for Sys<'_> {
         } else {
             (&mut [][..], &mut [][..], &mut [][..])
         };
-        if !self.level.jacobian(t, &m, &y[..nl], aux, &mut jw.jx, jm, wx, wm) {
+        if !self
+            .level
+            .jacobian(t, &m, &y[..nl], aux, &mut jw.jx, jm, wx, wm)
+        {
             return false;
         }
         jac.fill(0.0);
@@ -352,7 +355,8 @@ impl Component {
             &mut state.aux[..n_level_aux],
         )?;
         let dim = state.x.len();
-        let (integrator, opts) = make_integrator(&scene, &bearing, level.as_ref(), n_level, ring.as_ref());
+        let (integrator, opts) =
+            make_integrator(&scene, &bearing, level.as_ref(), n_level, ring.as_ref());
         let work = Work {
             k: std::array::from_fn(|_| vec![0.0; dim]),
             y: vec![0.0; dim],

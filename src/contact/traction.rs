@@ -133,7 +133,9 @@ impl MixedEhl {
         if uu <= 0.0 || w <= 0.0 {
             return 0.0;
         }
-        2.69 * uu.powf(0.67) * g.powf(0.53) * w.powf(-0.067)
+        2.69 * uu.powf(0.67)
+            * g.powf(0.53)
+            * w.powf(-0.067)
             * (1.0 - 0.61 * (-0.73 * c.kappa).exp())
             * c.rx
     }
@@ -360,8 +362,10 @@ mod tests {
         m.roughness = 0.0;
         assert_eq!(m.asperity_load_ratio(&c, 5.0), 0.0);
         // Dry (La = 100): pure boundary friction f_c Q at large slip.
-        let mut dry = MixedEhl::default();
-        dry.roughness = 1e-3;
+        let dry = MixedEhl {
+            roughness: 1e-3,
+            ..MixedEhl::default()
+        };
         let f = TractionLaw::MixedEhl(dry).force(10.0, 1e-12, &c);
         assert!((f / c.q - dry.f_c).abs() < 1e-6, "{}", f / c.q);
     }
@@ -370,8 +374,10 @@ mod tests {
     #[test]
     fn film_share_saturates_at_limiting_shear() {
         let c = contact();
-        let mut m = MixedEhl::default();
-        m.roughness = 0.0;
+        let m = MixedEhl {
+            roughness: 0.0,
+            ..MixedEhl::default()
+        };
         let f = TractionLaw::MixedEhl(m).force(50.0, 5.0, &c);
         assert!((f / c.q - m.lambda_lim).abs() < 1e-3, "{}", f / c.q);
     }

@@ -384,7 +384,11 @@ impl SkiddingModel {
             } else {
                 lo = x;
             }
-            let mut xn = if dr > 0.0 { x - r / dr } else { 0.5 * (lo + hi) };
+            let mut xn = if dr > 0.0 {
+                x - r / dr
+            } else {
+                0.5 * (lo + hi)
+            };
             if !(xn > lo && xn < hi) {
                 xn = 0.5 * (lo + hi);
             }
@@ -486,8 +490,7 @@ impl SkiddingModel {
         let m_fric = -hd * p.pocket_friction * pocket.abs() * (slide / p.friction_v_s).tanh();
         // Drag.
         let vb = r * w_b;
-        let f_d =
-            p.drag_coefficient * p.drag_density * PI * self.d * self.d * vb * vb.abs() / 8.0;
+        let f_d = p.drag_coefficient * p.drag_density * PI * self.d * self.d * vb * vb.abs() / 8.0;
         let m_d = PI * p.drag_viscosity * self.d.powi(3) * w_a;
         let dx = [
             w_b,
@@ -506,9 +509,8 @@ impl SkiddingModel {
         let mut fn_ = q_i;
         let mut cd = 0.0;
         if p.contact_damping > 0.0 && delta > 0.0 {
-            let da1 = v[2]
-                + self.ri * (v[3] * s - v[4] * c)
-                + w_b * self.ri * (q[3] * c + q[4] * s);
+            let da1 =
+                v[2] + self.ri * (v[3] * s - v[4] * c) + w_b * self.ri * (q[3] * c + q[4] * s);
             let da2 = v[0] * c + v[1] * s + w_b * (-q[0] * s + q[1] * c);
             let blend = (delta / crate::models::ring::DAMPING_RAMP).min(1.0);
             cd = p.contact_damping * blend;
@@ -719,7 +721,10 @@ mod tests {
         let m = SkiddingModel::new(&b, SkiddingParams::default()).unwrap();
         for (delta, f) in [(5e-6, 3.0), (5e-6, 0.0), (-2e-6, 3.0), (1e-7, 50.0)] {
             let (qi, qo) = m.split(delta, f);
-            assert!((qo - qi - f).abs() < 1e-8 * (1.0 + qo), "{delta} {f}: {qi} {qo}");
+            assert!(
+                (qo - qi - f).abs() < 1e-8 * (1.0 + qo),
+                "{delta} {f}: {qi} {qo}"
+            );
             if qi > 0.0 {
                 let sum = m.inner.deflection(qi) + m.outer.deflection(qo);
                 assert!((sum - delta).abs() < 1e-12, "{sum} vs {delta}");

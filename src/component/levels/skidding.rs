@@ -38,7 +38,10 @@ impl SkiddingLevel {
     /// Per-ball slip velocities `(dv_i, dv_o)` of the last evaluation, m/s (positive: the
     /// inner race drags the ball forward / the ball slides forward over the outer race).
     pub fn slip_velocities(&self) -> impl Iterator<Item = (f64, f64)> + '_ {
-        self.model.balls.iter().map(|b: &BallState| (b.dv_i, b.dv_o))
+        self.model
+            .balls
+            .iter()
+            .map(|b: &BallState| (b.dv_i, b.dv_o))
     }
 
     /// Totals of the last evaluation.
@@ -133,7 +136,11 @@ impl LevelModel for SkiddingLevel {
         // Fixed-size scratch (no allocation): rates are discarded.
         let mut buf = [0.0; 2 + 3 * MAX_BALLS];
         if n > buf.len() {
-            return Err(Error::invalid("bearing.ball_count", self.model.z(), "<= 64 for the skidding level"));
+            return Err(Error::invalid(
+                "bearing.ball_count",
+                self.model.z(),
+                "<= 64 for the skidding level",
+            ));
         }
         self.rhs(t, m, x, aux, &mut buf[..n], Some(&mut w))?;
         let tot = self.last;
