@@ -6,7 +6,30 @@ use raceway::component::{variables, Component};
 use raceway::geometry::{kinematics::kinematics, preset};
 use raceway::models::skidding::{SkiddingModel, SkiddingParams};
 use raceway::solver::{OdeSystem, Options, Rosenbrock};
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::cell::Cell;
 use std::f64::consts::PI;
+
+// A per-thread allocation counter (tests run on threads; only the calling thread counts).
+thread_local! {
+    static ALLOCS: Cell<usize> = const { Cell::new(0) };
+}
+struct Counting;
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, l: Layout) -> *mut u8 {
+        let _ = ALLOCS.try_with(|c| c.set(c.get() + 1));
+        unsafe { System.alloc(l) }
+    }
+    unsafe fn dealloc(&self, p: *mut u8, l: Layout) {
+        unsafe { System.dealloc(p, l) }
+    }
+    unsafe fn realloc(&self, p: *mut u8, l: Layout, n: usize) -> *mut u8 {
+        let _ = ALLOCS.try_with(|c| c.set(c.get() + 1));
+        unsafe { System.realloc(p, l, n) }
+    }
+}
+#[global_allocator]
+static A: Counting = Counting;
 
 fn vr(name: &str) -> u32 {
     variables::by_name(name).unwrap().vr
@@ -154,7 +177,7 @@ struct Balance {
 
 impl OdeSystem for Balance {
     fn dim(&self) -> usize {
-        self.m.n_states() + 1
+        self.m.n_states() + 2
     }
     fn rhs(&mut self, _t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), String> {
         let n = self.m.n_states();
@@ -162,12 +185,21 @@ impl OdeSystem for Balance {
             .m
             .eval(&self.q, &[0.0; 5], self.omega, &y[..n], &mut dy[..n]);
         dy[n] = -tot.torque_shaft - tot.torque_outer + tot.torque_drag;
+        // Shaft power in, minus everything dissipated.
+        dy[n + 1] = -tot.torque_shaft * self.omega - tot.power_contacts - tot.power_other;
         Ok(())
     }
 }
 
+/// Kinetic plus pocket-spring energy of balls and cage.
+fn energy(m: &mut SkiddingModel, q: &[f64; 5], omega: f64, x: &[f64]) -> f64 {
+    let mut dx = vec![0.0; x.len()];
+    let tot = m.eval(q, &[0.0; 5], omega, x, &mut dx);
+    m.kinetic_energy(x) + tot.pocket_energy
+}
+
 #[test]
-fn angular_momentum_balance_closes() {
+fn angular_momentum_and_energy_balances_close() {
     let b = preset("6012").unwrap().build().unwrap();
     let p = SkiddingParams {
         spacing_scatter: 0.5,
@@ -178,17 +210,15 @@ fn angular_momentum_balance_closes() {
     let m = SkiddingModel::new(&b, p).unwrap();
     let n = m.n_states();
     let omega = 200.0;
-    let mut y = vec![0.0; n + 1];
+    let mut y = vec![0.0; n + 2];
     // Start from rest: strong spin-up, pocket impacts.
     m.init(0.0, &mut y[..n]);
     let l0 = m.angular_momentum(&y[..n]);
-    let mut sys = Balance {
-        m,
-        q: [0.0, -12e-6, 0.0, 0.0, 0.0],
-        omega,
-    };
-    let mut integ = Rosenbrock::new(n + 1);
-    let mut opts = Options::new(n + 1, 1e-6, 1e-10);
+    let q = [0.0, -12e-6, 0.0, 0.0, 0.0];
+    let mut sys = Balance { m, q, omega };
+    let e0 = energy(&mut sys.m, &q, omega, &y[..n]);
+    let mut integ = Rosenbrock::new(n + 2);
+    let mut opts = Options::new(n + 2, 1e-6, 1e-10);
     opts.max_steps = 1_000_000;
     let mut h = 0.0;
     integ
@@ -206,6 +236,66 @@ fn angular_momentum_balance_closes() {
         (l1 - l0 - ext).abs() < 1e-6 * l1.abs().max(scale),
         "balance"
     );
+    // Energy: kinetic + pocket springs = start + work in - dissipated, to the tolerance.
+    let e1 = energy(&mut sys.m, &q, omega, &y[..n]);
+    let work = y[n + 1];
+    println!(
+        "E0 {e0:e}, E1 {e1:e}, net work {work:e}, residual {:e}",
+        e1 - e0 - work
+    );
+    assert!(e1 > 0.0);
+    assert!((e1 - e0 - work).abs() < 1e-4 * e1, "energy balance");
+}
+
+/// Load-driven (the 6012 scene of study [2]): the ring settles where the bearing carries
+/// the 500 N load, and stepping allocates nothing.
+#[test]
+fn load_driven_6012_carries_its_load_without_allocating() {
+    let text = include_str!("../examples/scenes/6012-skidding.toml");
+    let mut c = Component::from_text(text).unwrap();
+    let r = run(&mut c, 40, 1e-3);
+    let fy = mean(r[20..].iter().map(|x| x.3));
+    let before = ALLOCS.with(|a| a.get());
+    let r2 = run_steps_only(&mut c, 10, 1e-3);
+    let allocs = ALLOCS.with(|a| a.get()) - before;
+    let slip = c.get_real(vr("cage.slip")).unwrap();
+    println!(
+        "6012 load-driven: mean Fy {fy:.2} N, slip {slip:.4}, {r2} steps, {allocs} allocations"
+    );
+    assert!((fy - 500.0).abs() < 10.0, "Fy {fy}");
+    assert_eq!(allocs, 0);
+    assert!(
+        c.get_real(vr("torque.z")).unwrap() < 0.0,
+        "friction resists the shaft"
+    );
+    assert!(c.get_real(vr("power.loss")).unwrap() > 0.0);
+}
+
+fn run_steps_only(c: &mut Component, n: usize, h: f64) -> usize {
+    for _ in 0..n {
+        let t = c.time();
+        c.do_step(t, h).unwrap();
+    }
+    n
+}
+
+/// The 7008CE of study [3] under 300 N axial at constant speeds: print the cage slip.
+#[test]
+#[ignore]
+fn explore_7008ce_speeds() {
+    let text = include_str!("../examples/scenes/7008ce-runup.toml");
+    for rpm in [6000.0, 12000.0, 18000.0, 24000.0] {
+        let w = rpm * PI / 30.0;
+        let t = text.replace("\"shaft.omega\" = 0.0", &format!("\"shaft.omega\" = {w}"));
+        let mut c = Component::from_text(&t).unwrap();
+        let r = run(&mut c, 60, 5e-4);
+        let slip = mean(r[20..].iter().map(|x| x.1));
+        println!(
+            "{rpm} rpm: cage slip {slip:.3e}, torque {:.3e}, {:?}",
+            c.get_real(vr("torque.z")).unwrap(),
+            c.stats()
+        );
+    }
 }
 
 #[test]
@@ -217,4 +307,63 @@ fn explore_runup() {
         println!("{x:?} omega {}", 500.0 * x.0);
     }
     println!("{:?}", c.stats());
+}
+
+#[test]
+#[ignore]
+fn explore_7008ce_balls() {
+    let b = preset("7008ce").unwrap().build().unwrap();
+    let p = SkiddingParams {
+        drag_coefficient: 15.0,
+        drag_density: 10.0,
+        traction: raceway::contact::traction::TractionLaw::Coulomb {
+            mu_max: 0.02,
+            v_s: 0.05,
+        },
+        ..SkiddingParams::default()
+    };
+    let m = SkiddingModel::new(&b, p).unwrap();
+    let n = m.n_states();
+    let w = 6000.0 * PI / 30.0;
+    let mut y = vec![0.0; n + 2];
+    m.init(w, &mut y[..n]);
+    let mut sys = Balance {
+        m,
+        q: [0.0, 0.0, 12e-6, 0.0, 0.0],
+        omega: w,
+    };
+    let mut integ = Rosenbrock::new(n + 2);
+    let opts = Options::new(n + 2, 1e-6, 1e-10);
+    let mut h = 0.0;
+    integ
+        .integrate(&mut sys, 0.0, 0.02, &mut y, &mut h, &opts)
+        .unwrap();
+    let mut dy = vec![0.0; n + 2];
+    sys.rhs(0.0, &y, &mut dy).unwrap();
+    let (wk, _) = sys.m.kinematic(w);
+    println!("wk {wk} wc {} ", y[1]);
+    for b in sys.m.balls.iter().take(3) {
+        println!("{b:?}");
+    }
+}
+
+/// The 7008CE run-up scene (study [3]): load-driven from rest at 500 rad/s².
+#[test]
+fn runup_7008ce_scene_from_rest() {
+    let text = include_str!("../examples/scenes/7008ce-runup.toml");
+    let mut c = Component::from_text(text).unwrap();
+    let r = run_ramp(&mut c, 60, 1e-3, 500.0);
+    let fz = mean(r[40..].iter().map(|_| c.get_real(vr("force.z")).unwrap()));
+    println!(
+        "7008CE run-up: slip at 1 ms {:.3}, at 60 ms {:.4}, Fz {fz:.1}, {:?}",
+        r[0].1,
+        r[59].1,
+        c.stats()
+    );
+    assert!(r[0].1 > 0.5);
+    assert!(r[59].1 < 0.2 && r[59].1 < r[0].1);
+    assert!(
+        (fz + 300.0).abs() < 15.0,
+        "the ring carries the axial load: {fz}"
+    );
 }

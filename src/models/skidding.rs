@@ -175,6 +175,10 @@ pub struct BallOut {
     pub torque_drag: f64,
     /// Power dissipated in its race contacts, W.
     pub power: f64,
+    /// Energy stored in the pocket contact spring, J.
+    pub pocket_energy: f64,
+    /// Power dissipated by the pocket damping and friction and the ball's drag, W.
+    pub dissipation: f64,
     /// Gradient of the total approach with respect to `q`.
     pub g: [f64; 5],
     /// Effective contact damping (0 when unloaded), N s/m.
@@ -196,6 +200,10 @@ pub struct SkidTotals {
     pub torque_drag: f64,
     /// Power dissipated in the race contacts, W.
     pub power_contacts: f64,
+    /// Power dissipated by pockets and drag (balls and cage), W.
+    pub power_other: f64,
+    /// Energy stored in the pocket springs, J.
+    pub pocket_energy: f64,
     /// Balls in contact with the inner race.
     pub loaded: usize,
     /// Largest inner or outer load, N.
@@ -530,6 +538,12 @@ impl SkiddingModel {
             torque_outer: 0.5 * self.do_ * f_o,
             torque_drag: -(r * f_d + self.cos_a * m_d),
             power: f_i * dv_i + f_o * dv_o,
+            pocket_energy: p.pocket_stiffness
+                * (Self::pen_energy(xi - cp, w) + Self::pen_energy(-xi - cp, w)),
+            dissipation: p.pocket_damping * (bl + bt) * xi_dot * xi_dot
+                - m_fric * (w_a * self.cos_a - w_c)
+                + f_d * vb
+                + m_d * w_a,
             g,
             cd,
             state: BallState {
@@ -547,6 +561,17 @@ impl SkiddingModel {
         }
     }
 
+    /// Integral of [`Self::pen`]: the pocket spring's energy per unit stiffness.
+    fn pen_energy(x: f64, w: f64) -> f64 {
+        if x <= 0.0 {
+            0.0
+        } else if x < w {
+            x * x * x / (6.0 * w)
+        } else {
+            0.5 * x * x - 0.5 * w * x + w * w / 6.0
+        }
+    }
+
     /// Right-hand side at shaft motion `(q, v, omega)`: fills `dx` and the per-ball and
     /// total results (`self.balls`, return value). Allocation-free.
     pub fn eval(
@@ -561,6 +586,7 @@ impl SkiddingModel {
         let (theta_c, w_c) = (x[0], x[1]);
         let mut cage_torque = -self.p.cage_drag * w_c;
         tot.torque_drag -= self.p.cage_drag * w_c;
+        tot.power_other += self.p.cage_drag * w_c * w_c;
         for j in 0..self.z {
             let k = BALL0 + 3 * j;
             let b = self.ball(j, q, v, omega, theta_c, w_c, x[k], x[k + 1], x[k + 2]);
@@ -573,6 +599,8 @@ impl SkiddingModel {
             tot.torque_outer += b.torque_outer;
             tot.torque_drag += b.torque_drag;
             tot.power_contacts += b.power;
+            tot.power_other += b.dissipation;
+            tot.pocket_energy += b.pocket_energy;
             if b.state.q_i > 0.0 {
                 tot.loaded += 1;
             }
