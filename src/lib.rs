@@ -14,13 +14,16 @@
 
 #![warn(missing_docs)]
 
+pub mod analysis;
 pub mod component;
 pub mod contact;
 pub mod error;
 pub mod geometry;
+pub mod lubrication;
 pub mod models;
 #[cfg(feature = "plot")]
 pub mod plot;
+pub mod runner;
 pub mod solver;
 pub mod units;
 
@@ -31,3 +34,8 @@ pub mod fmi;
 
 pub use component::{Component, Scene};
 pub use error::{Error, Result};
+
+/// The README's Rust examples, compiled and run as doc tests.
+#[doc = include_str!("../README.md")]
+#[cfg(doctest)]
+pub struct ReadmeDoctests;

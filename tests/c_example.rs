@@ -12,6 +12,7 @@ mod capi_util;
 
 use capi_util::*;
 use raceway::component::variables::{self, VR_C0, VR_K0};
+use raceway::models::quasi_static::{Options, QuasiStatic};
 use raceway::Component;
 use std::collections::BTreeMap;
 use std::path::PathBuf;
@@ -80,31 +81,18 @@ fn bearing_at(c: &mut Component, y: f64, omega: f64) -> (f64, f64) {
     )
 }
 
-/// The bearing's static solution: the displacement `y` (negative: downward) at which the
-/// bearing pushes the shaft up with `load`, found through the Rust API by Newton's method
-/// on `force.y(y) = load` with the published stiffness `K.y.y` (safeguarded by halving).
-/// With the stub spring this is `-load / k`; the lead may switch it to the quasi-static
-/// solver's load-driven equilibrium.
-fn expected_static_sag(scene: &str, load: f64, omega: f64) -> f64 {
-    let mut c = Component::from_text(scene).unwrap();
-    let mut y = -1e-6;
-    let (mut f, mut k) = bearing_at(&mut c, y, omega);
-    for _ in 0..100 {
-        if (f - load).abs() <= 1e-12 * load {
-            return y;
-        }
-        // Inside a clearance K is zero: go down until the balls touch.
-        let mut dy = if k > 0.0 { (f - load) / k } else { -y.abs() };
-        loop {
-            let (f1, k1) = bearing_at(&mut c, y + dy, omega);
-            if (f1 - load).abs() < (f - load).abs() || dy.abs() < 1e-15 {
-                (y, f, k) = (y + dy, f1, k1);
-                break;
-            }
-            dy *= 0.5;
-        }
-    }
-    panic!("no static solution for load {load} N: force {f} N at y = {y} m");
+/// The bearing's static solution: the Jones–Harris quasi-static equilibrium under half
+/// the rotor's weight (external load `-load` along y on the inner ring) at the shaft speed,
+/// balls at their reference azimuths; returns the displacement `(x, y)`.
+fn expected_static_sag(scene: &str, load: f64, omega: f64) -> (f64, f64) {
+    let c = Component::from_text(scene).unwrap();
+    let opts = Options {
+        race_control: c.scene().model.race_control,
+        ..Options::default()
+    };
+    let qs = QuasiStatic::new(c.bearing(), opts).unwrap();
+    let sol = qs.solve(&[0.0, -load, 0.0, 0.0, 0.0], omega).unwrap();
+    (sol.q[0], sol.q[1])
 }
 
 /// The steady unbalance orbit the bearing's linearisation at the static sag predicts for
@@ -148,39 +136,68 @@ fn expected_orbit_amplitudes(scene: &str, sag: f64, omega: f64) -> (f64, f64) {
 
 #[test]
 fn static_sag_under_gravity_is_the_bearings_static_solution() {
-    let out = rotor(&["unbalance=0".into(), "revs=30".into(), "avg_revs=5".into()]);
+    // The quasi-static level: balls pass under the load, so the sag carries the
+    // varying-compliance ripple (a few per cent of the deflection, numerics.md §5.2); its
+    // mean is the static solution.
+    let out = rotor(&["unbalance=0".into(), "revs=30".into(), "avg_revs=10".into()]);
     let scene = std::fs::read_to_string(scene_path()).unwrap();
     let half = MASS * GRAVITY / 2.0;
-    let expected = expected_static_sag(&scene, half, omega());
-    assert!(expected < 0.0);
+    let (ex, ey) = expected_static_sag(&scene, half, omega());
+    assert!(ey < 0.0);
     for ab in ["A", "B"] {
         let y = out[&format!("bearing.{ab}.y.mean")];
         let x = out[&format!("bearing.{ab}.x.mean")];
         let fy = out[&format!("bearing.{ab}.force.y.mean")];
-        // At a static equilibrium the coupling is exact, whatever the macro step.
+        eprintln!("{ab}: sag ({x:.4e}, {y:.4e}) m, static solution ({ex:.4e}, {ey:.4e}) m, force.y {fy} N");
         assert!(
-            ((y - expected) / expected).abs() < 1e-7,
-            "{ab}: sag {y} m, the bearing's static solution {expected} m"
+            ((y - ey) / ey).abs() < 0.02,
+            "{ab}: sag {y} m, the bearing's static solution {ey} m"
         );
-        assert!(x.abs() < 1e-7 * expected.abs(), "{ab}: x = {x}");
-        assert!(((fy - half) / half).abs() < 1e-7, "{ab}: force.y {fy} N");
-        // Settled: no orbit left.
-        assert!(out[&format!("bearing.{ab}.y.amplitude")] < 1e-7 * expected.abs());
+        // Across the load line the static solution at fixed ball positions leans a little
+        // (Z = 9 is not symmetric about y); over a cage revolution that averages out.
+        assert!(
+            x.abs() < 0.01 * ey.abs() && ex.abs() < 0.05 * ey.abs(),
+            "{ab}: x = {x}, static {ex}"
+        );
+        assert!(
+            ((fy - half) / half).abs() < 1e-3,
+            "{ab}: mean force.y {fy} N balances {half} N"
+        );
+    }
+    // The linear level at the same operating point: the coupling is exact at equilibrium,
+    // so the sag equals the static solution to the solver's precision, whatever the step.
+    let lin = scene_path().with_file_name("bearing-linear.toml");
+    let out = rotor(&[
+        "unbalance=0".into(),
+        "revs=30".into(),
+        "avg_revs=5".into(),
+        format!("scene={}", lin.display()),
+    ]);
+    for ab in ["A", "B"] {
+        let y = out[&format!("bearing.{ab}.y.mean")];
+        assert!(
+            ((y - ey) / ey).abs() < 1e-6,
+            "{ab}: linear-level sag {y} m vs {ey} m"
+        );
+        assert!(out[&format!("bearing.{ab}.y.amplitude")] < 1e-6 * ey.abs());
     }
 }
 
 #[test]
 fn unbalance_orbit_converges_with_the_macro_step_at_least_at_the_coupling_order() {
+    // The linear level: the orbit has a closed-form prediction to converge to.
+    let lin = scene_path().with_file_name("bearing-linear.toml");
     let amp = |steps: u32| {
         let out = rotor(&[
             format!("unbalance={UNBALANCE}"),
             format!("steps_per_rev={steps}"),
+            format!("scene={}", lin.display()),
         ]);
         (out["bearing.A.x.amplitude"], out["bearing.A.y.amplitude"])
     };
     let (a1, a2, a3) = (amp(32), amp(64), amp(128));
-    let scene = std::fs::read_to_string(scene_path()).unwrap();
-    let sag = expected_static_sag(&scene, MASS * GRAVITY / 2.0, omega());
+    let scene = std::fs::read_to_string(&lin).unwrap();
+    let (_, sag) = expected_static_sag(&scene, MASS * GRAVITY / 2.0, omega());
     let (ex, ey) = expected_orbit_amplitudes(&scene, sag, omega());
     for (axis, h1, h2, h3, e) in [("x", a1.0, a2.0, a3.0, ex), ("y", a1.1, a2.1, a3.1, ey)] {
         let (d1, d2) = ((h1 - h2).abs(), (h2 - h3).abs());

@@ -206,3 +206,14 @@ fn load_driven_ring_settles_to_static_balance() {
     assert!((fy - 1000.0).abs() < 20.0, "force.y = {fy}");
     assert!(y < -5e-6, "the ring sags through the clearance: y = {y}");
 }
+
+/// An effect a level does not apply is refused, never silently ignored.
+#[test]
+fn effects_on_a_level_that_ignores_them_are_refused() {
+    let e = Component::from_text(
+        "bearing = \"6205\"\n[model]\nlevel = \"quasi_static\"\n[effects]\ndefects = [{ race = \"outer\", angle_deg = 0.0, width_mm = 1.0, depth_um = 20.0 }]\n",
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("effects") && e.contains("ring"), "{e}");
+}

@@ -62,6 +62,17 @@ pub enum RaceControl {
     None,
 }
 
+/// Where a load-driven inner ring starts.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum Start {
+    /// At rest in static equilibrium under the initial loads (no start-up transient).
+    #[default]
+    Equilibrium,
+    /// At rest at zero displacement (the ring falls into its contacts).
+    Rest,
+}
+
 /// The operating point the `linear` level linearises about.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -189,6 +200,8 @@ pub struct ModelSpec {
     pub attached_mass_kg: f64,
     /// Skidding level options.
     pub skidding: SkiddingSpec,
+    /// Load-driven: where the inner ring starts.
+    pub start: Start,
 }
 
 impl Default for ModelSpec {
@@ -202,6 +215,7 @@ impl Default for ModelSpec {
             operating_point: OperatingPoint::default(),
             attached_mass_kg: 0.0,
             skidding: SkiddingSpec::default(),
+            start: Start::default(),
         }
     }
 }
@@ -255,6 +269,39 @@ pub struct InputSpec {
     pub rule: InputRule,
     /// Values at the start, by variable name (e.g. `"shaft.omega" = 183.26`).
     pub initial: BTreeMap<String, f64>,
+}
+
+/// The `[run]` section: what a stand-alone run (`raceway run`) does with the scene. Hosts
+/// that step the component themselves ignore it.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct RunSpec {
+    /// Simulated time, s.
+    pub duration_s: f64,
+    /// Communication (output) step, s.
+    pub step_s: f64,
+    /// Shaft speed ramp, rpm/s, added to the initial `shaft.omega` (start from rest: initial
+    /// speed 0 and a ramp).
+    pub speed_ramp_rpm_per_s: f64,
+    /// Motion-driven: radius of a circular shaft orbit added to the initial displacement, µm.
+    pub orbit_um: f64,
+    /// Motion-driven: orbit frequency, Hz (0: once per shaft revolution, i.e. synchronous).
+    pub orbit_hz: f64,
+    /// Load-driven: a load rotating with the shaft (unbalance), N, added to the initial load.
+    pub rotating_load_n: f64,
+}
+
+impl Default for RunSpec {
+    fn default() -> Self {
+        RunSpec {
+            duration_s: 0.2,
+            step_s: 1e-4,
+            speed_ramp_rpm_per_s: 0.0,
+            orbit_um: 0.0,
+            orbit_hz: 0.0,
+            rotating_load_n: 0.0,
+        }
+    }
 }
 
 /// The bearing of a scene: a preset name, or a table with an optional `preset` and any
@@ -328,6 +375,9 @@ pub struct Scene {
     /// Optional effects (defects, waviness, lubrication), all off by default.
     #[serde(default)]
     pub effects: crate::models::effects::Effects,
+    /// Stand-alone run settings.
+    #[serde(default)]
+    pub run: RunSpec,
 }
 
 impl Scene {
@@ -377,6 +427,36 @@ impl Scene {
             return Err(Error::invalid("solver.max_substeps", 0, ">= 1"));
         }
         self.effects.validate()?;
+        let r = &self.run;
+        if !(r.duration_s.is_finite() && r.duration_s > 0.0 && r.duration_s <= 1e4) {
+            return Err(Error::invalid(
+                "run.duration_s",
+                r.duration_s,
+                "in (0, 1e4] s",
+            ));
+        }
+        if !(r.step_s.is_finite() && r.step_s > 0.0 && r.step_s <= r.duration_s) {
+            return Err(Error::invalid(
+                "run.step_s",
+                r.step_s,
+                format!("in (0, run.duration_s = {}] s", r.duration_s),
+            ));
+        }
+        if r.duration_s / r.step_s > 1e7 {
+            return Err(Error::invalid(
+                "run.step_s",
+                r.step_s,
+                "at least run.duration_s / 1e7 (at most 1e7 output steps)",
+            ));
+        }
+        for (f, v) in [
+            ("run.speed_ramp_rpm_per_s", r.speed_ramp_rpm_per_s),
+            ("run.orbit_um", r.orbit_um),
+            ("run.orbit_hz", r.orbit_hz),
+            ("run.rotating_load_n", r.rotating_load_n),
+        ] {
+            crate::error::finite(f, v)?;
+        }
         let m = &self.model;
         if !(m.ring_dof == 2 || m.ring_dof == 5) {
             return Err(Error::invalid("model.ring_dof", m.ring_dof, "2 or 5"));

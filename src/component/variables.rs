@@ -404,8 +404,8 @@ pub const PARAMETERS: &[Parameter] = &[
         vr: 1004,
         ty: ParamType::Real,
         unit: "m",
-        start: "0",
-        description: "diametral clearance (applied only when set; otherwise as the bearing has it)",
+        start: "-1",
+        description: "diametral clearance, negative for preload (-1: as the bearing has it)",
     },
     Parameter {
         name: "rtol",

@@ -1,16 +1,426 @@
-//! Optional effects a scene can switch on (defects, waviness, lubrication). Every effect
-//! is off unless the scene names it, and costs nothing when off.
+//! Optional effects a scene can switch on (defects, waviness, ball-spacing scatter,
+//! lubrication). Every effect is off unless the scene names it, and costs nothing when off:
+//! a scene without an `[effects]` section (or with empty lists and a dry film) evaluates
+//! exactly the plain model, bit for bit.
+//!
+//! ```toml
+//! [effects]
+//! defects = [{ race = "outer", angle_deg = 270.0, width_mm = 1.0, depth_um = 50.0 }]
+//! waviness = [{ race = "inner", order = 10, amplitude_um = 0.5, phase_deg = 0.0 }]
+//! ball_spacing = { scatter = 0.5, seed = 7 }
+//! lubrication = { film = "ehl", lubricant = "study2", viscosity_pa_s = 0.05 }
+//! ```
 
+use super::defects::{Defect, DefectSite};
+use super::waviness::{spacing_offsets, Harmonic, WavySite};
+use crate::error::{Error, Result};
+use crate::geometry::{kinematics, Bearing};
+use crate::lubrication::Lubricant;
 use serde::{Deserialize, Serialize};
+
+/// Which element a defect or a waviness sits on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Element {
+    /// Outer race (fixed).
+    Outer,
+    /// Inner race (turns with the shaft).
+    Inner,
+    /// A ball (spins).
+    Ball,
+}
+
+/// One local defect (spall).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DefectSpec {
+    /// Element: `outer`, `inner` or `ball`.
+    pub race: Element,
+    /// Angle of the defect centre at t = 0, degrees: azimuth from +x on a race; on a ball,
+    /// spin angle from its outer-race contact point.
+    #[serde(default)]
+    pub angle_deg: f64,
+    /// Circumferential width, mm (< ball diameter).
+    pub width_mm: f64,
+    /// Depth, µm.
+    pub depth_um: f64,
+    /// Ball carrying the defect (0-based; `race = "ball"` only).
+    #[serde(default)]
+    pub ball: Option<u32>,
+}
+
+/// One waviness harmonic `A sin(k theta + beta)`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct WavinessSpec {
+    /// Element: `outer`, `inner` or `ball`.
+    pub race: Element,
+    /// Order `k` (>= 1).
+    pub order: u32,
+    /// Amplitude `A`, µm.
+    pub amplitude_um: f64,
+    /// Phase `beta`, degrees.
+    #[serde(default)]
+    pub phase_deg: f64,
+    /// Ball (0-based) for `race = "ball"`; absent: every ball.
+    #[serde(default)]
+    pub ball: Option<u32>,
+}
+
+/// Seeded random scatter of the ball spacing within the pocket play (study \[3\]).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SpacingSpec {
+    /// Fraction of the pocket play `±c_p/2`, in [0, 1].
+    pub scatter: f64,
+    /// Seed of the SplitMix64 generator.
+    #[serde(default)]
+    pub seed: u64,
+}
+
+/// Film law.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum FilmKind {
+    /// Hamrock–Dowson film in series with Hertz, squeeze damping in parallel.
+    #[default]
+    Ehl,
+    /// No film (the plain dry contact).
+    Dry,
+}
+
+/// Lubrication: a lubricant preset with optional overrides.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LubricationSpec {
+    /// `ehl` or `dry`.
+    #[serde(default)]
+    pub film: FilmKind,
+    /// Preset: `study2` (physics.md §10).
+    #[serde(default = "default_lubricant")]
+    pub lubricant: String,
+    /// Inlet viscosity, Pa s.
+    #[serde(default)]
+    pub viscosity_pa_s: Option<f64>,
+    /// Pressure–viscosity coefficient, m²/N.
+    #[serde(default)]
+    pub pressure_viscosity_m2_per_n: Option<f64>,
+    /// Density, kg/m³.
+    #[serde(default)]
+    pub density_kg_m3: Option<f64>,
+    /// Composite rms roughness of ball and race, µm.
+    #[serde(default)]
+    pub roughness_um: Option<f64>,
+}
+
+fn default_lubricant() -> String {
+    "study2".into()
+}
 
 /// The `[effects]` section of a scene.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
 #[serde(deny_unknown_fields, default)]
-pub struct Effects {}
+pub struct Effects {
+    /// Local defects, any number.
+    pub defects: Vec<DefectSpec>,
+    /// Waviness harmonics, any number.
+    pub waviness: Vec<WavinessSpec>,
+    /// Ball-spacing scatter.
+    pub ball_spacing: Option<SpacingSpec>,
+    /// Lubrication.
+    pub lubrication: Option<LubricationSpec>,
+}
+
+fn check(field: String, v: f64, ok: bool, allowed: &str) -> Result<()> {
+    if v.is_finite() && ok {
+        Ok(())
+    } else {
+        Err(Error::invalid(field, v, allowed))
+    }
+}
+
+impl LubricationSpec {
+    /// The lubricant: preset plus overrides.
+    pub fn lubricant(&self) -> Result<Lubricant> {
+        let mut l = match self.lubricant.as_str() {
+            "study2" => Lubricant::study2(),
+            other => {
+                return Err(Error::Unknown {
+                    what: "lubricant preset (effects.lubrication.lubricant)",
+                    name: other.into(),
+                    known: vec!["study2".into()],
+                })
+            }
+        };
+        if let Some(v) = self.viscosity_pa_s {
+            l.viscosity = v;
+        }
+        if let Some(v) = self.pressure_viscosity_m2_per_n {
+            l.pressure_viscosity = v;
+        }
+        if let Some(v) = self.density_kg_m3 {
+            l.density = v;
+        }
+        if let Some(v) = self.roughness_um {
+            l.roughness = v * 1e-6;
+        }
+        Ok(l)
+    }
+}
 
 impl Effects {
-    /// Validate; errors name `effects.<field>`.
-    pub fn validate(&self) -> crate::error::Result<()> {
+    /// Nothing switched on (the plain model).
+    pub fn is_off(&self) -> bool {
+        self.defects.is_empty()
+            && self.waviness.is_empty()
+            && self.ball_spacing.is_none()
+            && self
+                .lubrication
+                .as_ref()
+                .is_none_or(|l| l.film == FilmKind::Dry)
+    }
+
+    /// Validate; errors name `effects.<field>` and the allowed range. Bounds that depend on
+    /// the bearing (width below the ball diameter, ball index below Z) are checked by
+    /// [`Effects::validate_for`].
+    pub fn validate(&self) -> Result<()> {
+        for (i, d) in self.defects.iter().enumerate() {
+            let p = format!("effects.defects[{i}]");
+            check(
+                format!("{p}.angle_deg"),
+                d.angle_deg,
+                true,
+                "a finite number",
+            )?;
+            check(
+                format!("{p}.width_mm"),
+                d.width_mm,
+                d.width_mm > 0.0,
+                "> 0 and < the ball diameter",
+            )?;
+            check(
+                format!("{p}.depth_um"),
+                d.depth_um,
+                d.depth_um > 0.0 && d.depth_um <= 5000.0,
+                "in (0, 5000]",
+            )?;
+            if d.race != Element::Ball && d.ball.is_some() {
+                return Err(Error::invalid(
+                    format!("{p}.ball"),
+                    d.ball.unwrap_or(0),
+                    "only with race = \"ball\"",
+                ));
+            }
+        }
+        for (i, w) in self.waviness.iter().enumerate() {
+            let p = format!("effects.waviness[{i}]");
+            if !(1..=10_000).contains(&w.order) {
+                return Err(Error::invalid(
+                    format!("{p}.order"),
+                    w.order,
+                    "an integer in [1, 10000]",
+                ));
+            }
+            check(
+                format!("{p}.amplitude_um"),
+                w.amplitude_um,
+                w.amplitude_um.abs() <= 100.0,
+                "in [-100, 100]",
+            )?;
+            check(
+                format!("{p}.phase_deg"),
+                w.phase_deg,
+                true,
+                "a finite number",
+            )?;
+            if w.race != Element::Ball && w.ball.is_some() {
+                return Err(Error::invalid(
+                    format!("{p}.ball"),
+                    w.ball.unwrap_or(0),
+                    "only with race = \"ball\"",
+                ));
+            }
+        }
+        if let Some(s) = &self.ball_spacing {
+            check(
+                "effects.ball_spacing.scatter".into(),
+                s.scatter,
+                (0.0..=1.0).contains(&s.scatter),
+                "in [0, 1]",
+            )?;
+        }
+        if let Some(l) = &self.lubrication {
+            let p = "effects.lubrication";
+            if let Some(v) = l.viscosity_pa_s {
+                check(
+                    format!("{p}.viscosity_pa_s"),
+                    v,
+                    (0.0..=100.0).contains(&v),
+                    "in [0, 100]",
+                )?;
+            }
+            if let Some(v) = l.pressure_viscosity_m2_per_n {
+                check(
+                    format!("{p}.pressure_viscosity_m2_per_n"),
+                    v,
+                    (0.0..=1e-6).contains(&v),
+                    "in [0, 1e-6]",
+                )?;
+            }
+            if let Some(v) = l.density_kg_m3 {
+                check(
+                    format!("{p}.density_kg_m3"),
+                    v,
+                    v > 0.0 && v <= 1e5,
+                    "in (0, 1e5]",
+                )?;
+            }
+            if let Some(v) = l.roughness_um {
+                check(
+                    format!("{p}.roughness_um"),
+                    v,
+                    (0.0..=100.0).contains(&v),
+                    "in [0, 100]",
+                )?;
+            }
+            l.lubricant()?;
+        }
         Ok(())
+    }
+
+    /// Validate the bearing-dependent bounds.
+    pub fn validate_for(&self, b: &Bearing) -> Result<()> {
+        self.validate()?;
+        let dmm = b.d * 1e3;
+        for (i, d) in self.defects.iter().enumerate() {
+            if d.width_mm >= dmm {
+                return Err(Error::invalid(
+                    format!("effects.defects[{i}].width_mm"),
+                    d.width_mm,
+                    format!("> 0 and < the ball diameter {dmm} mm"),
+                ));
+            }
+            if d.race == Element::Ball && d.ball.unwrap_or(0) as usize >= b.z {
+                return Err(Error::invalid(
+                    format!("effects.defects[{i}].ball"),
+                    d.ball.unwrap_or(0),
+                    format!("a ball index in [0, {}]", b.z - 1),
+                ));
+            }
+        }
+        for (i, w) in self.waviness.iter().enumerate() {
+            if let Some(j) = w.ball {
+                if j as usize >= b.z {
+                    return Err(Error::invalid(
+                        format!("effects.waviness[{i}].ball"),
+                        j,
+                        format!("a ball index in [0, {}]", b.z - 1),
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The effects of a scene compiled for one bearing (SI), evaluated per ball.
+#[derive(Debug, Clone, Default)]
+pub struct RingEffects {
+    /// Defects.
+    pub defects: Vec<Defect>,
+    /// Waviness harmonics.
+    pub waviness: Vec<Harmonic>,
+    /// Ball azimuth offsets, rad (empty: none).
+    pub spacing: Vec<f64>,
+    /// Lubricant when the EHL film is on.
+    pub lubricant: Option<Lubricant>,
+    /// Ball spin angle per radian of shaft angle (kinematic, relative to the cage).
+    pub spin_ratio: f64,
+    /// Whether some effect turns with the shaft or the balls (needs the shaft angle).
+    pub needs_shaft_angle: bool,
+}
+
+impl RingEffects {
+    /// Compile the scene's effects for bearing `b`.
+    pub fn new(e: &Effects, b: &Bearing) -> Result<RingEffects> {
+        e.validate_for(b)?;
+        let alpha = b.nominal_contact_angle();
+        let (r_in, r_out) = (
+            0.5 * (b.dm - b.d * alpha.cos()),
+            0.5 * (b.dm + b.d * alpha.cos()),
+        );
+        let r = 0.5 * b.d;
+        let defects: Vec<Defect> = e
+            .defects
+            .iter()
+            .map(|d| {
+                let (site, r_arc) = match d.race {
+                    Element::Outer => (DefectSite::Outer, r_out),
+                    Element::Inner => (DefectSite::Inner, r_in),
+                    Element::Ball => (DefectSite::Ball(d.ball.unwrap_or(0) as usize), r),
+                };
+                Defect::new(
+                    site,
+                    d.angle_deg.to_radians(),
+                    d.width_mm * 1e-3,
+                    d.depth_um * 1e-6,
+                    r,
+                    r_arc,
+                )
+            })
+            .collect();
+        let waviness: Vec<Harmonic> = e
+            .waviness
+            .iter()
+            .map(|w| Harmonic {
+                site: match w.race {
+                    Element::Outer => WavySite::Outer,
+                    Element::Inner => WavySite::Inner,
+                    Element::Ball => WavySite::Ball(w.ball.map(|j| j as usize)),
+                },
+                order: w.order,
+                amplitude: w.amplitude_um * 1e-6,
+                phase: w.phase_deg.to_radians(),
+            })
+            .collect();
+        let spacing = e
+            .ball_spacing
+            .as_ref()
+            .map(|s| spacing_offsets(b.z, s.scatter, b.cage.pocket_clearance, b.dm, s.seed))
+            .unwrap_or_default();
+        let lubricant = match &e.lubrication {
+            Some(l) if l.film == FilmKind::Ehl => Some(l.lubricant()?),
+            _ => None,
+        };
+        let needs_shaft_angle = defects.iter().any(|d| d.site != DefectSite::Outer)
+            || waviness.iter().any(|w| w.site != WavySite::Outer);
+        Ok(RingEffects {
+            defects,
+            waviness,
+            spacing,
+            lubricant,
+            spin_ratio: kinematics(b, 1.0).ball_spin_speed,
+            needs_shaft_angle,
+        })
+    }
+
+    /// Whether a deflection profile is needed (defects or waviness).
+    pub fn has_profile(&self) -> bool {
+        !(self.defects.is_empty() && self.waviness.is_empty())
+    }
+
+    /// Deflection offset of ball `j` at azimuth `psi` with the shaft turned by `theta_s`:
+    /// waviness interference minus defect depth loss (physics.md §5.1: `- H_j + w_j`), m.
+    #[inline]
+    pub fn offset(&self, j: usize, psi: f64, theta_s: f64) -> f64 {
+        let phi = self.spin_ratio * theta_s;
+        let mut o = 0.0;
+        for w in &self.waviness {
+            o += w.interference(j, psi, theta_s, phi);
+        }
+        for d in &self.defects {
+            o -= d.loss(j, psi, theta_s, phi);
+        }
+        o
     }
 }

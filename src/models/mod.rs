@@ -1,6 +1,8 @@
 //! The physics ladder: quasi-static equilibrium and the dynamic levels.
 
+pub mod defects;
 pub mod effects;
 pub mod quasi_static;
 pub mod ring;
 pub mod skidding;
+pub mod waviness;

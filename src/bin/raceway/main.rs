@@ -1,4 +1,218 @@
 //! The `raceway` command-line program.
-fn main() {
-    println!("raceway");
+//!
+//! - `raceway bearings [--json]`: the bearing presets with their data (mm, degrees, µm)
+//!   and derived quantities (free contact angle, `A`, ball mass, `Kc` at the nominal angle).
+//! - `raceway quasi-static [--bearing <preset|file.toml>] [--speed-rpm N] [--fx ..] [--fy ..]
+//!   [--fz ..] [--mx ..] [--my ..] [--race-control outer|none] [--json]`: the Jones–Harris
+//!   quasi-static equilibrium under an external load on the inner ring. With none of
+//!   `--bearing`, `--speed-rpm`, `--fx` .. `--my` it solves the embedded default scene's
+//!   operating point (its bearing, `model.operating_point`, and the speed from
+//!   `inputs.initial["shaft.omega"]` when set, else `model.operating_point.speed_rpm`).
+//!   Otherwise values not given are zero and the bearing defaults to the scene's. The race
+//!   control defaults to the scene's `model.race_control`.
+//!
+//! Every value is checked: non-finite numbers, a negative speed, an unknown preset or a
+//! malformed bearing file are refused with a message naming the cause and exit status 1
+//! (clap's own usage errors exit with 2).
+
+mod report;
+mod run;
+
+use clap::{Args, Parser, Subcommand, ValueEnum};
+use raceway::component::scene::{RaceControl, Scene};
+use raceway::geometry::{preset, Bearing, BearingSpec};
+use raceway::models::quasi_static::{Options, QuasiStatic};
+use raceway::units::{rad_s_to_rpm, rpm_to_rad_s};
+use raceway::{Error, Result};
+use std::process::ExitCode;
+
+#[derive(Parser, Debug)]
+#[command(
+    name = "raceway",
+    version,
+    about = "Rolling-element bearing simulation: presets, quasi-static equilibrium"
+)]
+struct Cli {
+    #[command(subcommand)]
+    cmd: Cmd,
+}
+
+#[derive(Subcommand, Debug)]
+enum Cmd {
+    /// Run a scene stand-alone (the embedded default scene without a file): time series,
+    /// summary and plots into out/<scene>/.
+    Run(run::RunArgs),
+    /// List the bearing presets and their data.
+    Bearings {
+        /// Machine-readable output.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Jones–Harris quasi-static equilibrium under an external load on the inner ring.
+    ///
+    /// Without --bearing, --speed-rpm and load flags it solves the embedded default scene's
+    /// operating point; otherwise what is not given is zero (bearing: the scene's).
+    QuasiStatic(QsArgs),
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug)]
+enum RaceControlArg {
+    /// Outer-race control (lambda_o = 2, lambda_i = 0).
+    Outer,
+    /// No race control (lambda_i = lambda_o = 1).
+    None,
+}
+
+#[derive(Args, Debug)]
+struct QsArgs {
+    /// Bearing: a preset name (see `raceway bearings`) or a TOML bearing file.
+    #[arg(long)]
+    bearing: Option<String>,
+    /// Shaft speed, rpm (>= 0; the outer ring is fixed).
+    #[arg(long, allow_hyphen_values = true)]
+    speed_rpm: Option<f64>,
+    /// External radial load on the inner ring along x, N.
+    #[arg(long, allow_hyphen_values = true)]
+    fx: Option<f64>,
+    /// External radial load along y, N.
+    #[arg(long, allow_hyphen_values = true)]
+    fy: Option<f64>,
+    /// External axial load along z, N.
+    #[arg(long, allow_hyphen_values = true)]
+    fz: Option<f64>,
+    /// External moment about x, N m.
+    #[arg(long, allow_hyphen_values = true)]
+    mx: Option<f64>,
+    /// External moment about y, N m.
+    #[arg(long, allow_hyphen_values = true)]
+    my: Option<f64>,
+    /// Race control assumption.
+    #[arg(long, value_enum)]
+    race_control: Option<RaceControlArg>,
+    /// Machine-readable output (SI units).
+    #[arg(long)]
+    json: bool,
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let out = match cli.cmd {
+        Cmd::Bearings { json } => report::bearings(json),
+        Cmd::QuasiStatic(a) => quasi_static(a),
+        Cmd::Run(a) => run::run(a),
+    };
+    match out {
+        Ok(text) => {
+            print!("{text}");
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::from(1)
+        }
+    }
+}
+
+/// A bearing from a preset name or a TOML file.
+fn load_bearing(arg: &str) -> Result<Bearing> {
+    match preset(arg) {
+        Ok(spec) => spec.build(),
+        Err(unknown) => {
+            let path = std::path::Path::new(arg);
+            if path.exists() || arg.ends_with(".toml") {
+                let text = std::fs::read_to_string(path)
+                    .map_err(|e| Error::Io(format!("cannot read bearing file `{arg}`: {e}")))?;
+                let spec = BearingSpec::from_toml(&text).map_err(|e| match e {
+                    Error::Parse { message, .. } => Error::Parse {
+                        what: format!("bearing file `{arg}`"),
+                        message,
+                    },
+                    other => other,
+                })?;
+                spec.build()
+            } else {
+                Err(unknown)
+            }
+        }
+    }
+}
+
+fn check(flag: &str, v: f64) -> Result<f64> {
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(Error::invalid(flag, v, "a finite number"))
+    }
+}
+
+/// The problem the `quasi-static` subcommand solves, after defaults and checks.
+#[derive(Debug, Clone)]
+pub(crate) struct Problem {
+    pub bearing: Bearing,
+    pub speed_rpm: f64,
+    pub load: [f64; 5],
+    pub race_control: RaceControl,
+}
+
+fn problem(a: &QsArgs) -> Result<Problem> {
+    let scene = Scene::default_scene();
+    let bearing = match &a.bearing {
+        Some(b) => load_bearing(b)?,
+        None => scene.build_bearing()?,
+    };
+    // No operating-point flag at all: the default scene's operating point. Otherwise what
+    // is not given is zero.
+    let given = [a.speed_rpm, a.fx, a.fy, a.fz, a.mx, a.my];
+    let from_scene = a.bearing.is_none() && given.iter().all(Option::is_none);
+    let op = &scene.model.operating_point;
+    let (speed0, load0) = if from_scene {
+        let speed = match scene.inputs.initial.get("shaft.omega") {
+            Some(w) => rad_s_to_rpm(*w),
+            None => op.speed_rpm,
+        };
+        (speed, [op.fx, op.fy, op.fz, op.mx, op.my])
+    } else {
+        (0.0, [0.0; 5])
+    };
+    let speed_rpm = check("--speed-rpm", a.speed_rpm.unwrap_or(speed0))?;
+    if speed_rpm < 0.0 {
+        return Err(Error::invalid(
+            "--speed-rpm",
+            speed_rpm,
+            ">= 0 (the inner ring turns, the outer ring is fixed; the direction does not change the equilibrium)",
+        ));
+    }
+    let load = [
+        check("--fx", a.fx.unwrap_or(load0[0]))?,
+        check("--fy", a.fy.unwrap_or(load0[1]))?,
+        check("--fz", a.fz.unwrap_or(load0[2]))?,
+        check("--mx", a.mx.unwrap_or(load0[3]))?,
+        check("--my", a.my.unwrap_or(load0[4]))?,
+    ];
+    let race_control = match a.race_control {
+        Some(RaceControlArg::Outer) => RaceControl::Outer,
+        Some(RaceControlArg::None) => RaceControl::None,
+        None => scene.model.race_control,
+    };
+    Ok(Problem {
+        bearing,
+        speed_rpm,
+        load,
+        race_control,
+    })
+}
+
+fn quasi_static(a: QsArgs) -> Result<String> {
+    let p = problem(&a)?;
+    let opts = Options {
+        race_control: p.race_control,
+        ..Options::default()
+    };
+    let model = QuasiStatic::new(&p.bearing, opts)?;
+    let sol = model.solve(&p.load, rpm_to_rad_s(p.speed_rpm))?;
+    if a.json {
+        report::quasi_static_json(&p, &sol)
+    } else {
+        Ok(report::quasi_static_text(&p, &sol))
+    }
 }

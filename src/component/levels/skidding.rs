@@ -13,6 +13,11 @@ pub struct SkiddingLevel {
     model: SkiddingModel,
     dofs: &'static [usize],
     last: SkidTotals,
+    /// Jacobian scratch for the outputs' stiffness and damping (allocated once).
+    jx: Vec<f64>,
+    jm: Vec<f64>,
+    wx: Vec<f64>,
+    wm: Vec<f64>,
 }
 
 impl SkiddingLevel {
@@ -23,10 +28,16 @@ impl SkiddingLevel {
             crate::geometry::BearingKind::DeepGroove => &[0, 1],
             _ => &[0, 1, 2, 3, 4],
         };
+        let model = SkiddingModel::new(b, p)?;
+        let n = model.n_states();
         Ok(SkiddingLevel {
-            model: SkiddingModel::new(b, p)?,
+            model,
             dofs,
             last: SkidTotals::default(),
+            jx: vec![0.0; n * n],
+            jm: vec![0.0; n * 10],
+            wx: vec![0.0; 5 * n],
+            wm: vec![0.0; 50],
         })
     }
 
@@ -155,8 +166,30 @@ impl LevelModel for SkiddingLevel {
                 max_p = max_p.max(self.model.peak_pressure(b.q_i, b.q_o));
             }
         }
+        // Stiffness -dF/dq and damping -dF/dv at the current ball positions (balls held).
+        self.model.jacobian(
+            &m.q,
+            &m.v,
+            m.omega,
+            x,
+            &mut self.jx,
+            &mut self.jm,
+            &mut self.wx,
+            &mut self.wm,
+            self.dofs,
+        );
+        let mut k = [[0.0; 5]; 5];
+        let mut c = [[0.0; 5]; 5];
+        for &r in self.dofs {
+            for &col in self.dofs {
+                k[r][col] = -self.wm[r * 10 + col];
+                c[r][col] = -self.wm[r * 10 + 5 + col];
+            }
+        }
         *out = LevelOutputs {
             wrench: w,
+            k,
+            c,
             torque: tot.torque_shaft,
             cage_omega: x[1],
             cage_slip: slip,

@@ -1,0 +1,114 @@
+//! Stages the two FMUs (the archives are zipped by `scripts/build-fmu`) and regenerates the
+//! variable table of `docs/fmi.md`, all from `raceway::component::variables`.
+//!
+//! ```text
+//! raceway-fmu-pack --lib <libraceway_fmu.so> --out <dir> [--scene <scene.toml>]
+//!                  [--update-doc <docs/fmi.md>] [--check-doc <docs/fmi.md>]
+//! ```
+//!
+//! Writes `<dir>/fmi2/` and `<dir>/fmi3/` (modelDescription.xml, binaries/<platform>/
+//! raceway.so, resources/scene.toml when `--scene` is given) and `<dir>/variables.md`.
+
+use raceway_core::fmi::model_description as md;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+fn platforms() -> Result<(&'static str, &'static str, &'static str), String> {
+    // (FMI 2 folder, FMI 3 platform tuple, library extension); spec2 2_3, spec3 2_5.
+    match (std::env::consts::ARCH, std::env::consts::OS) {
+        ("x86_64", "linux") => Ok(("linux64", "x86_64-linux", "so")),
+        ("aarch64", "linux") => Ok(("aarch64-linux", "aarch64-linux", "so")),
+        ("x86_64", "macos") => Ok(("darwin64", "x86_64-darwin", "dylib")),
+        ("aarch64", "macos") => Ok(("aarch64-darwin", "aarch64-darwin", "dylib")),
+        ("x86_64", "windows") => Ok(("win64", "x86_64-windows", "dll")),
+        (a, o) => Err(format!("no FMI platform name for {a}-{o}")),
+    }
+}
+
+fn write(path: &Path, bytes: &[u8]) -> Result<(), String> {
+    if let Some(d) = path.parent() {
+        std::fs::create_dir_all(d).map_err(|e| format!("{}: {e}", d.display()))?;
+    }
+    std::fs::write(path, bytes).map_err(|e| format!("{}: {e}", path.display()))
+}
+
+fn run() -> Result<(), String> {
+    let mut args = std::env::args().skip(1);
+    let (mut lib, mut out, mut scene, mut update, mut check) = (None, None, None, None, None);
+    while let Some(a) = args.next() {
+        let mut val = || {
+            args.next()
+                .map(PathBuf::from)
+                .ok_or(format!("{a} needs a value"))
+        };
+        match a.as_str() {
+            "--lib" => lib = Some(val()?),
+            "--out" => out = Some(val()?),
+            "--scene" => scene = Some(val()?),
+            "--update-doc" => update = Some(val()?),
+            "--check-doc" => check = Some(val()?),
+            _ => return Err(format!("unknown argument `{a}`")),
+        }
+    }
+    let out = out.ok_or("--out is required")?;
+    let table = md::markdown_table();
+    write(&out.join("variables.md"), table.as_bytes())?;
+    if let Some(lib) = lib {
+        let so = std::fs::read(&lib).map_err(|e| format!("{}: {e}", lib.display()))?;
+        let scene_text = match &scene {
+            Some(s) => {
+                let t = std::fs::read_to_string(s).map_err(|e| format!("{}: {e}", s.display()))?;
+                // refuse a broken scene at packing time rather than in the host
+                raceway_core::Component::from_text(&t)
+                    .map_err(|e| format!("{}: {e}", s.display()))?;
+                Some(t)
+            }
+            None => None,
+        };
+        let (p2, p3, ext) = platforms()?;
+        let file = format!("{}.{ext}", md::MODEL_IDENTIFIER);
+        for (dir, xml, platform) in [("fmi2", md::fmi2(), p2), ("fmi3", md::fmi3(), p3)] {
+            let root = out.join(dir);
+            if root.exists() {
+                std::fs::remove_dir_all(&root).map_err(|e| format!("{}: {e}", root.display()))?;
+            }
+            write(&root.join("modelDescription.xml"), xml.as_bytes())?;
+            write(&root.join("binaries").join(platform).join(&file), &so)?;
+            if let Some(t) = &scene_text {
+                write(&root.join("resources").join("scene.toml"), t.as_bytes())?;
+            }
+        }
+    }
+    for (path, fix) in [(update, true), (check, false)] {
+        let Some(path) = path else { continue };
+        let doc = std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
+        let new = md::update_doc(&doc).ok_or(format!(
+            "{}: the markers `{}` / `{}` are missing",
+            path.display(),
+            md::DOC_BEGIN,
+            md::DOC_END
+        ))?;
+        if new != doc {
+            if fix {
+                write(&path, new.as_bytes())?;
+                eprintln!("updated the variable table in {}", path.display());
+            } else {
+                return Err(format!(
+                    "{}: the variable table is out of date; run scripts/build-fmu",
+                    path.display()
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+fn main() -> ExitCode {
+    match run() {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("raceway-fmu-pack: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}

@@ -1,0 +1,423 @@
+//! Spectra of simulated signals: windowed amplitude spectrum, envelope spectrum (Hilbert
+//! transform), and the bearing's characteristic frequencies with the nearest peaks
+//! (physics.md §9; Randall & Antoni, *Mech. Syst. Signal Process.* 25 (2011), "Rolling
+//! element bearing diagnostics—a tutorial").
+//!
+//! The FFT is a small iterative radix-2 Cooley–Tukey transform, with Bluestein's chirp-z
+//! algorithm for other lengths (Bluestein, *IEEE Trans. Audio Electroacoust.* 18 (1970);
+//! Oppenheim & Schafer, *Discrete-Time Signal Processing*, §9.6). Written here rather than
+//! pulling in a crate: these helpers run on short records outside the hot path.
+
+use crate::geometry::Kinematics;
+use nalgebra::Complex;
+use std::f64::consts::PI;
+
+/// A complex sample.
+pub type C64 = Complex<f64>;
+
+fn fft_pow2(a: &mut [C64], inverse: bool) {
+    let n = a.len();
+    debug_assert!(n.is_power_of_two());
+    let mut j = 0usize;
+    for i in 1..n {
+        let mut bit = n >> 1;
+        while j & bit != 0 {
+            j ^= bit;
+            bit >>= 1;
+        }
+        j |= bit;
+        if i < j {
+            a.swap(i, j);
+        }
+    }
+    let sign = if inverse { 1.0 } else { -1.0 };
+    let mut len = 2;
+    while len <= n {
+        let ang = sign * 2.0 * PI / len as f64;
+        let half = len / 2;
+        for start in (0..n).step_by(len) {
+            for k in 0..half {
+                let w = C64::from_polar(1.0, ang * k as f64);
+                let u = a[start + k];
+                let v = a[start + k + half] * w;
+                a[start + k] = u + v;
+                a[start + k + half] = u - v;
+            }
+        }
+        len <<= 1;
+    }
+}
+
+/// Discrete Fourier transform `X_k = sum_n x_n e^(-2 pi i k n / N)` of any length
+/// (`inverse`: the `+i` kernel, unscaled).
+pub fn fft(x: &[C64], inverse: bool) -> Vec<C64> {
+    let n = x.len();
+    if n <= 1 {
+        return x.to_vec();
+    }
+    if n.is_power_of_two() {
+        let mut a = x.to_vec();
+        fft_pow2(&mut a, inverse);
+        return a;
+    }
+    // Bluestein: nk = (n² + k² - (k - n)²)/2 turns the DFT into a convolution.
+    let sign = if inverse { 1.0 } else { -1.0 };
+    let m = (2 * n - 1).next_power_of_two();
+    let chirp: Vec<C64> = (0..n)
+        .map(|k| {
+            let kk = (k as u128 * k as u128 % (2 * n as u128)) as f64;
+            C64::from_polar(1.0, sign * PI * kk / n as f64)
+        })
+        .collect();
+    let mut a = vec![C64::new(0.0, 0.0); m];
+    for k in 0..n {
+        a[k] = x[k] * chirp[k];
+    }
+    let mut b = vec![C64::new(0.0, 0.0); m];
+    b[0] = chirp[0].conj();
+    for k in 1..n {
+        b[k] = chirp[k].conj();
+        b[m - k] = chirp[k].conj();
+    }
+    fft_pow2(&mut a, false);
+    fft_pow2(&mut b, false);
+    for (ai, bi) in a.iter_mut().zip(&b) {
+        *ai *= bi;
+    }
+    fft_pow2(&mut a, true);
+    let scale = 1.0 / m as f64;
+    (0..n).map(|k| a[k] * scale * chirp[k]).collect()
+}
+
+/// Window applied before the transform.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Window {
+    /// No window.
+    Rectangular,
+    /// Hann (periodic): low leakage, amplitude corrected by its coherent gain 1/2.
+    Hann,
+}
+
+impl Window {
+    fn weights(self, n: usize) -> Vec<f64> {
+        match self {
+            Window::Rectangular => vec![1.0; n],
+            Window::Hann => (0..n)
+                .map(|i| 0.5 - 0.5 * (2.0 * PI * i as f64 / n as f64).cos())
+                .collect(),
+        }
+    }
+}
+
+/// A single-sided amplitude spectrum.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Spectrum {
+    /// Frequencies, Hz (bin `k` at `k fs / N`).
+    pub freq: Vec<f64>,
+    /// Amplitudes (same unit as the signal; a sine of amplitude `A` on a bin reads `A`).
+    pub amp: Vec<f64>,
+}
+
+impl Spectrum {
+    /// Bin spacing, Hz.
+    pub fn resolution(&self) -> f64 {
+        if self.freq.len() > 1 {
+            self.freq[1] - self.freq[0]
+        } else {
+            0.0
+        }
+    }
+
+    /// Amplitude at the bin nearest `f`.
+    pub fn at(&self, f: f64) -> f64 {
+        let df = self.resolution();
+        if df <= 0.0 {
+            return 0.0;
+        }
+        let i = ((f / df).round() as usize).min(self.amp.len() - 1);
+        self.amp[i]
+    }
+
+    /// The largest local maximum within `[lo, hi]` Hz: `(frequency, amplitude)`, with the
+    /// frequency refined by a parabola through the three bins around it.
+    pub fn peak_in(&self, lo: f64, hi: f64) -> Option<(f64, f64)> {
+        let n = self.amp.len();
+        let mut best: Option<usize> = None;
+        for i in 1..n.saturating_sub(1) {
+            let f = self.freq[i];
+            if f < lo || f > hi {
+                continue;
+            }
+            let a = self.amp[i];
+            if a >= self.amp[i - 1] && a >= self.amp[i + 1] && best.is_none_or(|b| a > self.amp[b])
+            {
+                best = Some(i);
+            }
+        }
+        best.map(|i| {
+            let (y0, y1, y2) = (self.amp[i - 1], self.amp[i], self.amp[i + 1]);
+            let den = y0 - 2.0 * y1 + y2;
+            let p = if den.abs() > 0.0 {
+                0.5 * (y0 - y2) / den
+            } else {
+                0.0
+            };
+            (self.freq[i] + p.clamp(-0.5, 0.5) * self.resolution(), y1)
+        })
+    }
+
+    /// Median amplitude within `[lo, hi]` Hz (a noise-floor estimate).
+    pub fn median_in(&self, lo: f64, hi: f64) -> f64 {
+        let mut v: Vec<f64> = self
+            .freq
+            .iter()
+            .zip(&self.amp)
+            .filter(|(f, _)| **f >= lo && **f <= hi)
+            .map(|(_, a)| *a)
+            .collect();
+        if v.is_empty() {
+            return 0.0;
+        }
+        v.sort_by(|a, b| a.total_cmp(b));
+        v[v.len() / 2]
+    }
+}
+
+/// Amplitude spectrum of `x` sampled at `fs` Hz: mean removed, windowed, single-sided,
+/// corrected for the window's coherent gain.
+pub fn amplitude_spectrum(x: &[f64], fs: f64, window: Window) -> Spectrum {
+    let n = x.len();
+    if n < 2 {
+        return Spectrum {
+            freq: vec![0.0; n],
+            amp: vec![0.0; n],
+        };
+    }
+    let mean = x.iter().sum::<f64>() / n as f64;
+    let w = window.weights(n);
+    let gain: f64 = w.iter().sum::<f64>() / n as f64;
+    let buf: Vec<C64> = x
+        .iter()
+        .zip(&w)
+        .map(|(v, wi)| C64::new((v - mean) * wi, 0.0))
+        .collect();
+    let xf = fft(&buf, false);
+    let half = n / 2 + 1;
+    let scale = 2.0 / (n as f64 * gain);
+    Spectrum {
+        freq: (0..half).map(|k| k as f64 * fs / n as f64).collect(),
+        amp: (0..half)
+            .map(|k| xf[k].norm() * if k == 0 { 0.5 * scale } else { scale })
+            .collect(),
+    }
+}
+
+/// Envelope `|x + i H[x]|` of `x` by the Hilbert transform (analytic signal by FFT:
+/// negative frequencies removed, positive doubled; Marple, *IEEE Trans. Signal Process.*
+/// 47 (1999)). With `band = Some((lo, hi))` Hz (and `fs`) the signal is band-passed first,
+/// as envelope analysis does around a structural resonance.
+pub fn envelope(x: &[f64], fs: f64, band: Option<(f64, f64)>) -> Vec<f64> {
+    let n = x.len();
+    if n == 0 {
+        return Vec::new();
+    }
+    let mean = x.iter().sum::<f64>() / n as f64;
+    let buf: Vec<C64> = x.iter().map(|v| C64::new(v - mean, 0.0)).collect();
+    let mut xf = fft(&buf, false);
+    for (k, v) in xf.iter_mut().enumerate() {
+        let f = k as f64 * fs / n as f64;
+        let keep = band.is_none_or(|(lo, hi)| f >= lo && f <= hi);
+        let h = if k == 0 || (n % 2 == 0 && k == n / 2) {
+            if band.is_some() {
+                0.0
+            } else {
+                1.0
+            }
+        } else if k < n.div_ceil(2) {
+            2.0
+        } else {
+            0.0
+        };
+        *v *= if keep { h } else { 0.0 };
+    }
+    let a = fft(&xf, true);
+    a.iter().map(|v| v.norm() / n as f64).collect()
+}
+
+/// Envelope spectrum: the amplitude spectrum of [`envelope`] (Hann window).
+pub fn envelope_spectrum(x: &[f64], fs: f64, band: Option<(f64, f64)>) -> Spectrum {
+    amplitude_spectrum(&envelope(x, fs, band), fs, Window::Hann)
+}
+
+/// A characteristic frequency to look for.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Mark {
+    /// Label, e.g. `2xBPFO`, `BPFI+1fs`, `2BSF-1FTF`.
+    pub label: String,
+    /// Frequency, Hz.
+    pub freq: f64,
+}
+
+/// The characteristic frequencies of `k` (computed at shaft speed `shaft_hz`): shaft
+/// speed, FTF, BSF, and `harmonics` multiples of BPFO, BPFI and 2 BSF, with `sidebands`
+/// side bands at the shaft speed around the BPFI lines and at FTF around the 2 BSF lines
+/// (the modulations of physics.md §5.3–5.4).
+pub fn characteristic_marks(
+    k: &Kinematics,
+    shaft_hz: f64,
+    harmonics: usize,
+    sidebands: usize,
+) -> Vec<Mark> {
+    let mut v = vec![
+        Mark {
+            label: "fs".into(),
+            freq: shaft_hz,
+        },
+        Mark {
+            label: "FTF".into(),
+            freq: k.ftf,
+        },
+        Mark {
+            label: "BSF".into(),
+            freq: k.bsf,
+        },
+    ];
+    for h in 1..=harmonics {
+        let hf = h as f64;
+        v.push(Mark {
+            label: format!("{h}xBPFO"),
+            freq: hf * k.bpfo,
+        });
+        v.push(Mark {
+            label: format!("{h}xBPFI"),
+            freq: hf * k.bpfi,
+        });
+        v.push(Mark {
+            label: format!("{h}x2BSF"),
+            freq: hf * 2.0 * k.bsf,
+        });
+        for m in 1..=sidebands {
+            let mf = m as f64;
+            for (s, sign) in [("+", 1.0), ("-", -1.0)] {
+                v.push(Mark {
+                    label: format!("{h}xBPFI{s}{m}fs"),
+                    freq: hf * k.bpfi + sign * mf * shaft_hz,
+                });
+                v.push(Mark {
+                    label: format!("{h}x2BSF{s}{m}FTF"),
+                    freq: hf * 2.0 * k.bsf + sign * mf * k.ftf,
+                });
+            }
+        }
+    }
+    v
+}
+
+/// A mark and the peak found nearest to it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FoundPeak {
+    /// The mark.
+    pub label: String,
+    /// Expected frequency, Hz.
+    pub expected: f64,
+    /// Frequency of the largest local maximum within the tolerance, Hz (NaN if none).
+    pub found: f64,
+    /// Its amplitude (0 if none).
+    pub amplitude: f64,
+    /// Its amplitude over the spectrum's median in `[expected/2, 2 expected]`.
+    pub over_floor: f64,
+}
+
+/// For each mark, the largest local maximum within `tol` Hz.
+pub fn find_peaks(s: &Spectrum, marks: &[Mark], tol: f64) -> Vec<FoundPeak> {
+    marks
+        .iter()
+        .map(|m| {
+            let floor = s.median_in(0.5 * m.freq, 2.0 * m.freq);
+            let (found, amplitude) = s
+                .peak_in(m.freq - tol, m.freq + tol)
+                .unwrap_or((f64::NAN, 0.0));
+            FoundPeak {
+                label: m.label.clone(),
+                expected: m.freq,
+                found,
+                amplitude,
+                over_floor: if floor > 0.0 {
+                    amplitude / floor
+                } else {
+                    f64::INFINITY
+                },
+            }
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn naive_dft(x: &[C64]) -> Vec<C64> {
+        let n = x.len();
+        (0..n)
+            .map(|k| {
+                (0..n)
+                    .map(|j| x[j] * C64::from_polar(1.0, -2.0 * PI * (k * j) as f64 / n as f64))
+                    .sum()
+            })
+            .collect()
+    }
+
+    #[test]
+    fn fft_matches_the_definition_for_any_length() {
+        for n in [1usize, 2, 8, 12, 17, 64, 100] {
+            let x: Vec<C64> = (0..n)
+                .map(|i| C64::new((i as f64 * 0.37).sin(), (i as f64 * 1.3).cos()))
+                .collect();
+            let a = fft(&x, false);
+            let b = naive_dft(&x);
+            for (u, v) in a.iter().zip(&b) {
+                assert!((u - v).norm() < 1e-9 * (n as f64), "n = {n}");
+            }
+            // Round trip.
+            let back = fft(&a, true);
+            for (u, v) in back.iter().zip(&x) {
+                assert!((u / n as f64 - v).norm() < 1e-12, "n = {n}");
+            }
+        }
+    }
+
+    #[test]
+    fn sine_amplitude_and_frequency_are_read_back() {
+        let fs = 1000.0;
+        let n = 1000; // not a power of two: Bluestein
+        let x: Vec<f64> = (0..n)
+            .map(|i| 3.0 + 2.0 * (2.0 * PI * 50.0 * i as f64 / fs).sin())
+            .collect();
+        let s = amplitude_spectrum(&x, fs, Window::Hann);
+        let (f, a) = s.peak_in(10.0, 400.0).unwrap();
+        assert!((f - 50.0).abs() < 1e-9 && (a - 2.0).abs() < 1e-9, "{f} {a}");
+        assert!(s.amp[0] < 1e-9, "mean removed");
+    }
+
+    /// The envelope of an amplitude-modulated carrier is the modulation.
+    #[test]
+    fn envelope_recovers_the_modulation() {
+        let fs = 8192.0;
+        let n = 8192;
+        let x: Vec<f64> = (0..n)
+            .map(|i| {
+                let t = i as f64 / fs;
+                (1.0 + 0.5 * (2.0 * PI * 16.0 * t).cos()) * (2.0 * PI * 1024.0 * t).sin()
+            })
+            .collect();
+        let e = envelope(&x, fs, None);
+        for i in (100..n - 100).step_by(97) {
+            let t = i as f64 / fs;
+            let want = 1.0 + 0.5 * (2.0 * PI * 16.0 * t).cos();
+            assert!((e[i] - want).abs() < 1e-9, "{} vs {want}", e[i]);
+        }
+        let s = envelope_spectrum(&x, fs, Some((900.0, 1150.0)));
+        let (f, a) = s.peak_in(5.0, 100.0).unwrap();
+        assert!((f - 16.0).abs() < 0.1 && (a - 0.5).abs() < 1e-6, "{f} {a}");
+    }
+}

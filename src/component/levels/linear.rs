@@ -1,0 +1,123 @@
+//! The `linear` level: constant stiffness and damping from the quasi-static linearisation
+//! at the scene's operating point, `F = F0 - K (q - q0) - C v`. No states; the cheapest
+//! level with a physical stiffness (rotor-dynamics eigenvalue and unbalance studies).
+//! `K` is the exact Jones–Harris stiffness at the operating point; `C` is the contact
+//! damping of the ring level (`model.contact_damping` per loaded ball) at `q0`.
+
+use super::cage_speed;
+use crate::component::level::{LevelModel, LevelOutputs, Motion};
+use crate::component::scene::Scene;
+use crate::error::Result;
+use crate::geometry::Bearing;
+use crate::models::quasi_static::{Options, QuasiStatic};
+use crate::models::ring::{RingDof, RingEval, RingModel};
+use crate::units::rpm_to_rad_s;
+
+/// The level.
+#[derive(Debug)]
+pub struct LinearLevel {
+    q0: [f64; 5],
+    f0: [f64; 5],
+    k: [[f64; 5]; 5],
+    c: [[f64; 5]; 5],
+    loaded: f64,
+    max_load: f64,
+    max_pressure: f64,
+    cage_ratio: f64,
+}
+
+impl LinearLevel {
+    /// Linearise at the scene's operating point.
+    pub fn new(scene: &Scene, b: &Bearing) -> Result<Self> {
+        let op = &scene.model.operating_point;
+        let qs = QuasiStatic::new(
+            b,
+            Options {
+                race_control: scene.model.race_control,
+                ..Options::default()
+            },
+        )?;
+        let sol = qs.solve(
+            &[op.fx, op.fy, op.fz, op.mx, op.my],
+            rpm_to_rad_s(op.speed_rpm),
+        )?;
+        let ring = RingModel::new(b, RingDof::Five, scene.model.contact_damping);
+        let mut e = RingEval::default();
+        ring.eval(0.0, 0.0, &sol.q, &[0.0; 5], 0.0, None, true, &mut e);
+        let mut max_p: f64 = 0.0;
+        let mut max_load: f64 = 0.0;
+        let mut loaded = 0.0;
+        for r in &sol.balls {
+            max_p = max_p.max(r.p_i).max(r.p_o);
+            max_load = max_load.max(r.q_i).max(r.q_o);
+            if r.q_i > 0.0 {
+                loaded += 1.0;
+            }
+        }
+        Ok(LinearLevel {
+            q0: sol.q,
+            f0: sol.forces,
+            k: sol.stiffness,
+            c: e.c,
+            loaded,
+            max_load,
+            max_pressure: max_p,
+            cage_ratio: cage_speed(b, 1.0),
+        })
+    }
+
+    fn wrench(&self, m: &Motion) -> [f64; 5] {
+        std::array::from_fn(|i| {
+            self.f0[i]
+                - (0..5)
+                    .map(|j| self.k[i][j] * (m.q[j] - self.q0[j]) + self.c[i][j] * m.v[j])
+                    .sum::<f64>()
+        })
+    }
+}
+
+impl LevelModel for LinearLevel {
+    fn name(&self) -> &'static str {
+        "linear"
+    }
+    fn n_states(&self) -> usize {
+        0
+    }
+    fn init(&mut self, _m: &Motion, _x: &mut [f64], _aux: &mut [f64]) -> Result<()> {
+        Ok(())
+    }
+    fn rhs(
+        &mut self,
+        _t: f64,
+        m: &Motion,
+        _x: &[f64],
+        _aux: &mut [f64],
+        _dx: &mut [f64],
+        wrench: Option<&mut [f64; 5]>,
+    ) -> Result<()> {
+        if let Some(w) = wrench {
+            *w = self.wrench(m);
+        }
+        Ok(())
+    }
+    fn outputs(
+        &mut self,
+        _t: f64,
+        m: &Motion,
+        _x: &[f64],
+        _aux: &mut [f64],
+        out: &mut LevelOutputs,
+    ) -> Result<()> {
+        *out = LevelOutputs {
+            wrench: self.wrench(m),
+            k: self.k,
+            c: self.c,
+            cage_omega: self.cage_ratio * m.omega,
+            balls_loaded: self.loaded,
+            max_load: self.max_load,
+            max_pressure: self.max_pressure,
+            ..LevelOutputs::default()
+        };
+        Ok(())
+    }
+}

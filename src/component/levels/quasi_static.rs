@@ -1,0 +1,148 @@
+//! The `quasi_static` level: Jones–Harris equilibrium of every ball at the current ring
+//! motion (physics.md §4), balls at the cage's kinematic positions so the force varies as
+//! balls pass. State: the cage angle. Memory (in the component state, so a restored state
+//! continues bit for bit): each ball's warm start.
+
+use super::cage_speed;
+use crate::component::level::{LevelModel, LevelOutputs, Motion};
+use crate::component::scene::Scene;
+use crate::error::Result;
+use crate::geometry::Bearing;
+use crate::models::quasi_static::{BallResult, BallState, Options, QuasiStatic};
+use std::f64::consts::PI;
+
+/// Values per ball in the component's `aux`: `X` (2), the groove offset it was solved at
+/// (2), `dX/dA` (4), warm flag.
+const AUX_PER_BALL: usize = 9;
+
+/// The level.
+#[derive(Debug)]
+pub struct QuasiStaticLevel {
+    qs: QuasiStatic,
+    cage_ratio: f64,
+    psi: Vec<f64>,
+    balls: Vec<BallState>,
+    results: Vec<BallResult>,
+}
+
+impl QuasiStaticLevel {
+    /// Build for the scene's bearing and race control.
+    pub fn new(scene: &Scene, b: &Bearing) -> Result<Self> {
+        let opts = Options {
+            race_control: scene.model.race_control,
+            ..Options::default()
+        };
+        let qs = QuasiStatic::new(b, opts)?;
+        Ok(QuasiStaticLevel {
+            qs,
+            cage_ratio: cage_speed(b, 1.0),
+            psi: vec![0.0; b.z],
+            balls: vec![BallState::default(); b.z],
+            results: vec![BallResult::default(); b.z],
+        })
+    }
+
+    fn load_aux(&mut self, theta: f64, aux: &[f64]) {
+        let z = self.psi.len();
+        for j in 0..z {
+            self.psi[j] = theta + 2.0 * PI * j as f64 / z as f64;
+            let a = &aux[AUX_PER_BALL * j..AUX_PER_BALL * (j + 1)];
+            self.balls[j] = BallState {
+                x: [a[0], a[1]],
+                a: [a[2], a[3]],
+                dxda: [[a[4], a[5]], [a[6], a[7]]],
+                warm: a[8] != 0.0,
+            };
+        }
+    }
+
+    fn store_aux(&self, aux: &mut [f64]) {
+        for (j, b) in self.balls.iter().enumerate() {
+            aux[AUX_PER_BALL * j..AUX_PER_BALL * (j + 1)].copy_from_slice(&[
+                b.x[0],
+                b.x[1],
+                b.a[0],
+                b.a[1],
+                b.dxda[0][0],
+                b.dxda[0][1],
+                b.dxda[1][0],
+                b.dxda[1][1],
+                b.warm as u8 as f64,
+            ]);
+        }
+    }
+}
+
+impl LevelModel for QuasiStaticLevel {
+    fn name(&self) -> &'static str {
+        "quasi_static"
+    }
+    fn n_states(&self) -> usize {
+        1
+    }
+    fn n_aux(&self) -> usize {
+        AUX_PER_BALL * self.psi.len()
+    }
+    fn init(&mut self, _m: &Motion, x: &mut [f64], aux: &mut [f64]) -> Result<()> {
+        x[0] = 0.0;
+        aux.fill(0.0);
+        Ok(())
+    }
+    fn rhs(
+        &mut self,
+        _t: f64,
+        m: &Motion,
+        x: &[f64],
+        aux: &mut [f64],
+        dx: &mut [f64],
+        wrench: Option<&mut [f64; 5]>,
+    ) -> Result<()> {
+        dx[0] = self.cage_ratio * m.omega;
+        if let Some(w) = wrench {
+            self.load_aux(x[0], aux);
+            *w = self
+                .qs
+                .evaluate(&m.q, m.omega, &self.psi, &mut self.balls, None, None)?;
+            self.store_aux(aux);
+        }
+        Ok(())
+    }
+    fn outputs(
+        &mut self,
+        _t: f64,
+        m: &Motion,
+        x: &[f64],
+        aux: &mut [f64],
+        out: &mut LevelOutputs,
+    ) -> Result<()> {
+        self.load_aux(x[0], aux);
+        let mut k = [[0.0; 5]; 5];
+        let wrench = self.qs.evaluate(
+            &m.q,
+            m.omega,
+            &self.psi,
+            &mut self.balls,
+            Some(&mut k),
+            Some(&mut self.results),
+        )?;
+        self.store_aux(aux);
+        let (mut loaded, mut max_load, mut max_p) = (0usize, 0.0f64, 0.0f64);
+        for r in &self.results {
+            if r.q_i > 0.0 {
+                loaded += 1;
+            }
+            max_load = max_load.max(r.q_i).max(r.q_o);
+            max_p = max_p.max(r.p_i).max(r.p_o);
+        }
+        *out = LevelOutputs {
+            wrench,
+            k,
+            cage_omega: self.cage_ratio * m.omega,
+            balls_loaded: loaded as f64,
+            max_load,
+            max_pressure: max_p,
+            ..LevelOutputs::default()
+        };
+        Ok(())
+    }
+}

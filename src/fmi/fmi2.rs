@@ -1,0 +1,711 @@
+//! FMI 2.0 co-simulation: the 25 common and 9 co-simulation functions
+//! (spec2 `2_1_common_api.adoc`, `4_2_co-simulation_api.adoc`), thin over [`Instance`].
+//!
+//! - `fmi2DoStep` failure returns `fmi2Error` with the component unchanged: the master may
+//!   `fmi2SetFMUstate` back and retry (the FMU state carries the FMI state too).
+//! - `fmi2SetRealInputDerivatives` goes to `Component::set_input_derivative`; it acts when
+//!   `input_rule` = `derivatives`.
+//! - `fmi2CancelStep` and the asynchronous status queries are not supported (no
+//!   asynchronous steps): they log and return `fmi2Error`.
+#![allow(non_snake_case)]
+
+use super::instance::{
+    guard, no_panic, slice, slice_mut, str_arg, Fail, Fmi2Logger, Instance, Logger, Snapshot,
+    Status, ANY, ERROR, INIT, INSTANTIATED, STEP, TERMINATED,
+};
+use std::ffi::{c_char, c_void};
+use std::ptr::null_mut;
+
+/// `fmi2Component`.
+pub type Fmi2Component = *mut c_void;
+/// `fmi2FMUstate`.
+pub type Fmi2FmuState = *mut c_void;
+
+/// `fmi2CallbackFunctions`, copied at instantiation (its pointer is valid only during the
+/// call). Every member may be NULL (`canNotUseMemoryManagementFunctions="true"`).
+#[repr(C)]
+pub struct Fmi2CallbackFunctions {
+    /// Printf-like logger.
+    pub logger: Option<Fmi2Logger>,
+    /// Not used.
+    pub allocate_memory: Option<unsafe extern "C" fn(usize, usize) -> *mut c_void>,
+    /// Not used.
+    pub free_memory: Option<unsafe extern "C" fn(*mut c_void)>,
+    /// Not used (no asynchronous steps).
+    pub step_finished: Option<unsafe extern "C" fn(*mut c_void, i32)>,
+    /// Passed back to the logger.
+    pub component_environment: *mut c_void,
+}
+
+const GET: u32 = INIT | STEP | TERMINATED | ERROR;
+const SET: u32 = INSTANTIATED | INIT | STEP;
+const STATUS: u32 = STEP | TERMINATED;
+
+/// `fmi2GetTypesPlatform`.
+#[no_mangle]
+pub extern "C" fn fmi2GetTypesPlatform() -> *const c_char {
+    c"default".as_ptr()
+}
+
+/// `fmi2GetVersion`.
+#[no_mangle]
+pub extern "C" fn fmi2GetVersion() -> *const c_char {
+    c"2.0".as_ptr()
+}
+
+/// `fmi2SetDebugLogging`.
+///
+/// # Safety
+/// FMI 2 calling convention.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2SetDebugLogging(
+    c: Fmi2Component,
+    logging_on: i32,
+    n_categories: usize,
+    categories: *const *const c_char,
+) -> Status {
+    guard(c, "fmi2SetDebugLogging", ANY, |inst| {
+        let cats = slice(categories, n_categories, "categories")?;
+        let cats: Vec<String> = cats
+            .iter()
+            .map(|&p| str_arg(p).unwrap_or_default())
+            .collect();
+        inst.set_debug_logging(logging_on != 0, &cats)
+    })
+}
+
+/// `fmi2Instantiate`: NULL (with a logged reason) for a wrong GUID, Model Exchange, an empty
+/// instance name or missing callbacks.
+///
+/// # Safety
+/// FMI 2 calling convention.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2Instantiate(
+    instance_name: *const c_char,
+    fmu_type: i32,
+    guid: *const c_char,
+    resource_location: *const c_char,
+    functions: *const Fmi2CallbackFunctions,
+    _visible: i32,
+    logging_on: i32,
+) -> Fmi2Component {
+    no_panic(null_mut(), || {
+        if functions.is_null() {
+            return null_mut();
+        }
+        let f = &*functions;
+        let logger = Logger::Fmi2(f.logger, f.component_environment);
+        let name = str_arg(instance_name).unwrap_or_default();
+        let refuse = |msg: String| {
+            logger.emit(
+                &std::ffi::CString::new(name.replace('\0', " ")).unwrap_or_default(),
+                Status::Error,
+                &format!("fmi2Instantiate: {msg}"),
+            );
+            null_mut()
+        };
+        if name.is_empty() {
+            return refuse("instanceName is NULL or empty".into());
+        }
+        if fmu_type != 1 {
+            return refuse(format!(
+                "fmuType = {fmu_type}: raceway is a co-simulation FMU (fmi2CoSimulation = 1)"
+            ));
+        }
+        if let Err(msg) = super::instance::check_guid(str_arg(guid).as_deref()) {
+            return refuse(msg);
+        }
+        let dir = str_arg(resource_location).and_then(|u| super::instance::uri_to_path(&u));
+        Instance::new(2, &name, logger, logging_on != 0, dir.as_deref()).into_raw()
+    })
+}
+
+/// `fmi2FreeInstance` (NULL is ignored).
+///
+/// # Safety
+/// FMI 2 calling convention.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2FreeInstance(c: Fmi2Component) {
+    no_panic((), || Instance::free(c))
+}
+
+/// `fmi2SetupExperiment`.
+///
+/// # Safety
+/// FMI 2 calling convention.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2SetupExperiment(
+    c: Fmi2Component,
+    tolerance_defined: i32,
+    tolerance: f64,
+    start_time: f64,
+    stop_time_defined: i32,
+    stop_time: f64,
+) -> Status {
+    guard(c, "fmi2SetupExperiment", INSTANTIATED, |inst| {
+        inst.setup(
+            (tolerance_defined != 0).then_some(tolerance),
+            start_time,
+            (stop_time_defined != 0).then_some(stop_time),
+        )
+    })
+}
+
+/// `fmi2EnterInitializationMode`.
+///
+/// # Safety
+/// FMI 2 calling convention.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2EnterInitializationMode(c: Fmi2Component) -> Status {
+    guard(c, "fmi2EnterInitializationMode", INSTANTIATED, |inst| {
+        inst.mode = INIT;
+        Ok(Status::Ok)
+    })
+}
+
+/// `fmi2ExitInitializationMode`: builds the component (a bad scene fails here).
+///
+/// # Safety
+/// FMI 2 calling convention.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2ExitInitializationMode(c: Fmi2Component) -> Status {
+    guard(c, "fmi2ExitInitializationMode", INIT, |inst| {
+        let s = inst.exit_initialization()?;
+        inst.mode = STEP;
+        Ok(s)
+    })
+}
+
+/// `fmi2Terminate`.
+///
+/// # Safety
+/// FMI 2 calling convention.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2Terminate(c: Fmi2Component) -> Status {
+    guard(c, "fmi2Terminate", STEP, |inst| {
+        inst.mode = TERMINATED;
+        Ok(Status::Ok)
+    })
+}
+
+/// `fmi2Reset`.
+///
+/// # Safety
+/// FMI 2 calling convention.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2Reset(c: Fmi2Component) -> Status {
+    guard(c, "fmi2Reset", ANY, |inst| {
+        inst.reset();
+        Ok(Status::Ok)
+    })
+}
+
+/// `fmi2GetReal`.
+///
+/// # Safety
+/// FMI 2 calling convention.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2GetReal(
+    c: Fmi2Component,
+    vr: *const u32,
+    nvr: usize,
+    value: *mut f64,
+) -> Status {
+    guard(c, "fmi2GetReal", GET, |inst| {
+        let vr = slice(vr, nvr, "vr")?;
+        let out = slice_mut(value, nvr, "value")?;
+        for (o, &r) in out.iter_mut().zip(vr) {
+            *o = inst.get_real(r)?;
+        }
+        Ok(Status::Ok)
+    })
+}
+
+/// `fmi2SetReal`.
+///
+/// # Safety
+/// FMI 2 calling convention.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2SetReal(
+    c: Fmi2Component,
+    vr: *const u32,
+    nvr: usize,
+    value: *const f64,
+) -> Status {
+    guard(c, "fmi2SetReal", SET, |inst| {
+        let vr = slice(vr, nvr, "vr")?;
+        let vals = slice(value, nvr, "value")?;
+        for (&r, &x) in vr.iter().zip(vals) {
+            inst.set_real(r, x)?;
+        }
+        Ok(Status::Ok)
+    })
+}
+
+fn no_such(kind: &str, vr: &[u32]) -> Result<Status, Fail> {
+    match vr.first() {
+        None => Ok(Status::Ok),
+        Some(r) => Err(Fail::from(format!(
+            "no {kind} variable with value reference {r} (raceway has Real and String variables only)"
+        ))),
+    }
+}
+
+/// `fmi2GetInteger`: raceway has no Integer variables.
+///
+/// # Safety
+/// FMI 2 calling convention.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2GetInteger(
+    c: Fmi2Component,
+    vr: *const u32,
+    nvr: usize,
+    _value: *mut i32,
+) -> Status {
+    guard(c, "fmi2GetInteger", GET, |_| {
+        no_such("Integer", slice(vr, nvr, "vr")?)
+    })
+}
+
+/// `fmi2GetBoolean`: raceway has no Boolean variables.
+///
+/// # Safety
+/// FMI 2 calling convention.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2GetBoolean(
+    c: Fmi2Component,
+    vr: *const u32,
+    nvr: usize,
+    _value: *mut i32,
+) -> Status {
+    guard(c, "fmi2GetBoolean", GET, |_| {
+        no_such("Boolean", slice(vr, nvr, "vr")?)
+    })
+}
+
+/// `fmi2GetString`: the returned strings stay valid until the next `fmi2GetString`.
+///
+/// # Safety
+/// FMI 2 calling convention.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2GetString(
+    c: Fmi2Component,
+    vr: *const u32,
+    nvr: usize,
+    value: *mut *const c_char,
+) -> Status {
+    guard(c, "fmi2GetString", GET, |inst| {
+        let vr = slice(vr, nvr, "vr")?;
+        let out = slice_mut(value, nvr, "value")?;
+        let strings = vr
+            .iter()
+            .map(|&r| inst.get_string(r))
+            .collect::<Result<Vec<_>, _>>()?;
+        inst.strings = strings
+            .into_iter()
+            .map(|s| std::ffi::CString::new(s.replace('\0', " ")).unwrap_or_default())
+            .collect();
+        for (o, s) in out.iter_mut().zip(&inst.strings) {
+            *o = s.as_ptr();
+        }
+        Ok(Status::Ok)
+    })
+}
+
+/// `fmi2SetInteger`: raceway has no Integer variables.
+///
+/// # Safety
+/// FMI 2 calling convention.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2SetInteger(
+    c: Fmi2Component,
+    vr: *const u32,
+    nvr: usize,
+    _value: *const i32,
+) -> Status {
+    guard(c, "fmi2SetInteger", SET, |_| {
+        no_such("Integer", slice(vr, nvr, "vr")?)
+    })
+}
+
+/// `fmi2SetBoolean`: raceway has no Boolean variables.
+///
+/// # Safety
+/// FMI 2 calling convention.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2SetBoolean(
+    c: Fmi2Component,
+    vr: *const u32,
+    nvr: usize,
+    _value: *const i32,
+) -> Status {
+    guard(c, "fmi2SetBoolean", SET, |_| {
+        no_such("Boolean", slice(vr, nvr, "vr")?)
+    })
+}
+
+/// `fmi2SetString` (the string parameters; copied).
+///
+/// # Safety
+/// FMI 2 calling convention.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2SetString(
+    c: Fmi2Component,
+    vr: *const u32,
+    nvr: usize,
+    value: *const *const c_char,
+) -> Status {
+    guard(c, "fmi2SetString", SET, |inst| {
+        let vr = slice(vr, nvr, "vr")?;
+        let vals = slice(value, nvr, "value")?;
+        for (&r, &p) in vr.iter().zip(vals) {
+            inst.set_string(r, str_arg(p))?;
+        }
+        Ok(Status::Ok)
+    })
+}
+
+/// `fmi2GetFMUstate`: a new state, or `*state` overwritten when it is not NULL.
+///
+/// # Safety
+/// FMI 2 calling convention.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2GetFMUstate(c: Fmi2Component, state: *mut Fmi2FmuState) -> Status {
+    guard(c, "fmi2GetFMUstate", ANY, |inst| get_state(inst, state))
+}
+
+pub(crate) unsafe fn get_state(
+    inst: &mut Instance,
+    state: *mut *mut c_void,
+) -> Result<Status, Fail> {
+    if state.is_null() {
+        return Err(Fail::from("FMUstate pointer is NULL".to_string()));
+    }
+    let snap = inst.snapshot();
+    if (*state).is_null() {
+        *state = snap.into_raw();
+    } else {
+        *Instance::snapshot_ref(*state)? = snap;
+    }
+    Ok(Status::Ok)
+}
+
+/// `fmi2SetFMUstate` (also from the error state: rollback after a failed step).
+///
+/// # Safety
+/// FMI 2 calling convention.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2SetFMUstate(c: Fmi2Component, state: Fmi2FmuState) -> Status {
+    guard(c, "fmi2SetFMUstate", ANY, |inst| {
+        let s = Instance::snapshot_ref(state)?;
+        inst.restore(s)?;
+        Ok(Status::Ok)
+    })
+}
+
+/// `fmi2FreeFMUstate` (NULL is ignored).
+///
+/// # Safety
+/// FMI 2 calling convention.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2FreeFMUstate(c: Fmi2Component, state: *mut Fmi2FmuState) -> Status {
+    guard(c, "fmi2FreeFMUstate", ANY, |_| {
+        if !state.is_null() && !(*state).is_null() {
+            Snapshot::free(*state);
+            *state = null_mut();
+        }
+        Ok(Status::Ok)
+    })
+}
+
+/// `fmi2SerializedFMUstateSize`.
+///
+/// # Safety
+/// FMI 2 calling convention.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2SerializedFMUstateSize(
+    c: Fmi2Component,
+    state: Fmi2FmuState,
+    size: *mut usize,
+) -> Status {
+    guard(c, "fmi2SerializedFMUstateSize", ANY, |_| {
+        let s = Instance::snapshot_ref(state)?;
+        *slice_mut(size, 1, "size")?.first_mut().expect("one") = s.to_bytes().len();
+        Ok(Status::Ok)
+    })
+}
+
+/// `fmi2SerializeFMUstate`: `size` must be what `fmi2SerializedFMUstateSize` gave.
+///
+/// # Safety
+/// FMI 2 calling convention.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2SerializeFMUstate(
+    c: Fmi2Component,
+    state: Fmi2FmuState,
+    bytes: *mut c_char,
+    size: usize,
+) -> Status {
+    guard(c, "fmi2SerializeFMUstate", ANY, |_| {
+        serialize(state, bytes as *mut u8, size)
+    })
+}
+
+pub(crate) unsafe fn serialize(
+    state: *mut c_void,
+    bytes: *mut u8,
+    size: usize,
+) -> Result<Status, Fail> {
+    let b = Instance::snapshot_ref(state)?.to_bytes();
+    if size != b.len() {
+        return Err(Fail::from(format!(
+            "buffer of {size} bytes, the serialised state has {} (ask SerializedFMUstateSize)",
+            b.len()
+        )));
+    }
+    slice_mut(bytes, size, "serializedState")?.copy_from_slice(&b);
+    Ok(Status::Ok)
+}
+
+/// `fmi2DeSerializeFMUstate`: checks magic, format, GUID and sizes.
+///
+/// # Safety
+/// FMI 2 calling convention.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2DeSerializeFMUstate(
+    c: Fmi2Component,
+    bytes: *const c_char,
+    size: usize,
+    state: *mut Fmi2FmuState,
+) -> Status {
+    guard(c, "fmi2DeSerializeFMUstate", ANY, |_| {
+        deserialize(bytes as *const u8, size, state)
+    })
+}
+
+pub(crate) unsafe fn deserialize(
+    bytes: *const u8,
+    size: usize,
+    state: *mut *mut c_void,
+) -> Result<Status, Fail> {
+    if state.is_null() {
+        return Err(Fail::from("FMUstate pointer is NULL".to_string()));
+    }
+    let snap = Snapshot::from_bytes(slice(bytes, size, "serializedState")?)?;
+    if (*state).is_null() {
+        *state = snap.into_raw();
+    } else {
+        *Instance::snapshot_ref(*state)? = snap;
+    }
+    Ok(Status::Ok)
+}
+
+/// `fmi2GetDirectionalDerivative`: outputs by inputs (the bearing's `-K`, `-C`).
+///
+/// # Safety
+/// FMI 2 calling convention.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2GetDirectionalDerivative(
+    c: Fmi2Component,
+    v_unknown: *const u32,
+    n_unknown: usize,
+    v_known: *const u32,
+    n_known: usize,
+    dv_known: *const f64,
+    dv_unknown: *mut f64,
+) -> Status {
+    guard(c, "fmi2GetDirectionalDerivative", GET, |inst| {
+        let u = slice(v_unknown, n_unknown, "vUnknown_ref")?;
+        let k = slice(v_known, n_known, "vKnown_ref")?;
+        let seed = slice(dv_known, n_known, "dvKnown")?;
+        let out = slice_mut(dv_unknown, n_unknown, "dvUnknown")?;
+        inst.directional_derivative(u, k, seed, out)?;
+        Ok(Status::Ok)
+    })
+}
+
+/// `fmi2SetRealInputDerivatives` (`canInterpolateInputs`; used with
+/// `input_rule` = `derivatives`).
+///
+/// # Safety
+/// FMI 2 calling convention.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2SetRealInputDerivatives(
+    c: Fmi2Component,
+    vr: *const u32,
+    nvr: usize,
+    order: *const i32,
+    value: *const f64,
+) -> Status {
+    guard(c, "fmi2SetRealInputDerivatives", SET, |inst| {
+        let vr = slice(vr, nvr, "vr")?;
+        let order = slice(order, nvr, "order")?;
+        let value = slice(value, nvr, "value")?;
+        for i in 0..nvr {
+            inst.set_input_derivative(vr[i], order[i] as i64, value[i])?;
+        }
+        Ok(Status::Ok)
+    })
+}
+
+/// `fmi2GetRealOutputDerivatives` (order 1).
+///
+/// # Safety
+/// FMI 2 calling convention.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2GetRealOutputDerivatives(
+    c: Fmi2Component,
+    vr: *const u32,
+    nvr: usize,
+    order: *const i32,
+    value: *mut f64,
+) -> Status {
+    guard(
+        c,
+        "fmi2GetRealOutputDerivatives",
+        STEP | TERMINATED | ERROR,
+        |inst| {
+            let vr = slice(vr, nvr, "vr")?;
+            let order = slice(order, nvr, "order")?;
+            let out = slice_mut(value, nvr, "value")?;
+            for i in 0..nvr {
+                out[i] = inst.get_output_derivative(vr[i], order[i] as i64)?;
+            }
+            Ok(Status::Ok)
+        },
+    )
+}
+
+/// `fmi2DoStep`: failure gives `fmi2Error` with the component unchanged.
+///
+/// # Safety
+/// FMI 2 calling convention.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2DoStep(
+    c: Fmi2Component,
+    t: f64,
+    h: f64,
+    _no_set_fmu_state_prior: i32,
+) -> Status {
+    guard(c, "fmi2DoStep", STEP, |inst| {
+        inst.do_step(t, h).map_err(|(_, f)| f)
+    })
+}
+
+/// `fmi2CancelStep`: no asynchronous steps.
+///
+/// # Safety
+/// FMI 2 calling convention.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2CancelStep(c: Fmi2Component) -> Status {
+    guard(c, "fmi2CancelStep", STEP, |_| {
+        Err(Fail::from(
+            "not supported: raceway steps synchronously (canRunAsynchronuously = false)"
+                .to_string(),
+        ))
+    })
+}
+
+fn status_kind(kind: i32) -> &'static str {
+    match kind {
+        0 => "fmi2DoStepStatus",
+        1 => "fmi2PendingStatus",
+        2 => "fmi2LastSuccessfulTime",
+        3 => "fmi2Terminated",
+        _ => "an unknown fmi2StatusKind",
+    }
+}
+
+/// `fmi2GetStatus`: `fmi2DoStepStatus` is always `fmi2OK` (no asynchronous steps).
+///
+/// # Safety
+/// FMI 2 calling convention.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2GetStatus(c: Fmi2Component, kind: i32, value: *mut i32) -> Status {
+    guard(c, "fmi2GetStatus", STATUS, |_| {
+        if kind != 0 {
+            return Err(Fail::from(format!(
+                "{} is not a Status kind",
+                status_kind(kind)
+            )));
+        }
+        slice_mut(value, 1, "value")?[0] = Status::Ok as i32;
+        Ok(Status::Ok)
+    })
+}
+
+/// `fmi2GetRealStatus`: `fmi2LastSuccessfulTime`.
+///
+/// # Safety
+/// FMI 2 calling convention.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2GetRealStatus(c: Fmi2Component, kind: i32, value: *mut f64) -> Status {
+    guard(c, "fmi2GetRealStatus", STATUS, |inst| {
+        if kind != 2 {
+            return Err(Fail::from(format!(
+                "{} is not a Real status kind",
+                status_kind(kind)
+            )));
+        }
+        slice_mut(value, 1, "value")?[0] = inst.time;
+        Ok(Status::Ok)
+    })
+}
+
+/// `fmi2GetIntegerStatus`: no Integer status.
+///
+/// # Safety
+/// FMI 2 calling convention.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2GetIntegerStatus(
+    c: Fmi2Component,
+    kind: i32,
+    _value: *mut i32,
+) -> Status {
+    guard(c, "fmi2GetIntegerStatus", STATUS, |_| {
+        Err(Fail::from(format!(
+            "{} is not an Integer status kind",
+            status_kind(kind)
+        )))
+    })
+}
+
+/// `fmi2GetBooleanStatus`: `fmi2Terminated` is always false.
+///
+/// # Safety
+/// FMI 2 calling convention.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2GetBooleanStatus(
+    c: Fmi2Component,
+    kind: i32,
+    value: *mut i32,
+) -> Status {
+    guard(c, "fmi2GetBooleanStatus", STATUS, |_| {
+        if kind != 3 {
+            return Err(Fail::from(format!(
+                "{} is not a Boolean status kind",
+                status_kind(kind)
+            )));
+        }
+        slice_mut(value, 1, "value")?[0] = 0;
+        Ok(Status::Ok)
+    })
+}
+
+/// `fmi2GetStringStatus`: no asynchronous steps, so no pending status.
+///
+/// # Safety
+/// FMI 2 calling convention.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2GetStringStatus(
+    c: Fmi2Component,
+    kind: i32,
+    _value: *mut *const c_char,
+) -> Status {
+    guard(c, "fmi2GetStringStatus", STATUS, |_| {
+        Err(Fail::from(format!(
+            "{} is not supported: raceway steps synchronously",
+            status_kind(kind)
+        )))
+    })
+}

@@ -1,0 +1,1087 @@
+//! One FMU instance, shared by the FMI 2 and FMI 3 exports: the state machine, logging,
+//! buffered parameters and inputs, the component, and the FMU state with its byte form.
+//!
+//! State masks follow the Reference FMUs (`src/fmi2Functions.c`, `src/fmi3Functions.c`):
+//! a call outside its states logs "Illegal call sequence" and returns Error. After an Error
+//! the instance goes to the error state (FMI 2, spec2 `4_2`) or to Terminated (FMI 3,
+//! spec3 `2_3`: "If any function called in super state FMUStateSettable returns
+//! fmi3Error, the FMU enters state Terminated"); the host may still roll back with
+//! `SetFMUstate`, `Reset` or free the instance.
+
+use super::model_description::{self as md, GUID, VR_TIME};
+use super::params::{self, ParamValue, ParamValues};
+use crate::component::variables::{ParamType, PARAMETERS};
+use crate::component::{Component, State};
+use std::ffi::{c_char, c_void, CStr, CString};
+use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::path::{Path, PathBuf};
+
+/// `fmi2Status` / `fmi3Status` (the same values; `fmi2Pending` is never returned).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Status {
+    /// All well.
+    Ok = 0,
+    /// Done, but something should be looked at (logged).
+    Warning = 1,
+    /// FMI 3 `DoStep`: the step was not done, the state is as before the call.
+    Discard = 2,
+    /// The call failed (logged); the instance is in the error / terminated state.
+    Error = 3,
+    /// Not used by raceway (no error corrupts other instances).
+    Fatal = 4,
+}
+
+// State bits.
+pub(crate) const INSTANTIATED: u32 = 1 << 0;
+pub(crate) const INIT: u32 = 1 << 1;
+/// FMI 2 stepComplete, FMI 3 Step Mode.
+pub(crate) const STEP: u32 = 1 << 2;
+pub(crate) const EVENT: u32 = 1 << 3;
+pub(crate) const TERMINATED: u32 = 1 << 4;
+/// FMI 2 error state.
+pub(crate) const ERROR: u32 = 1 << 5;
+/// Every state an instance can be in.
+pub(crate) const ANY: u32 = INSTANTIATED | INIT | STEP | EVENT | TERMINATED | ERROR;
+
+fn mode_name(mode: u32, version: u8) -> &'static str {
+    match mode {
+        INSTANTIATED => "Instantiated",
+        INIT => "Initialization Mode",
+        STEP if version == 2 => "stepComplete",
+        STEP => "Step Mode",
+        EVENT => "Event Mode",
+        TERMINATED => "Terminated",
+        ERROR => "Error",
+        _ => "unknown",
+    }
+}
+
+/// The FMI 2 logger (printf-like; always called with `"%s"`).
+pub(crate) type Fmi2Logger =
+    unsafe extern "C" fn(*mut c_void, *const c_char, i32, *const c_char, *const c_char, ...);
+/// The FMI 3 `fmi3LogMessageCallback`.
+pub(crate) type Fmi3Logger = unsafe extern "C" fn(*mut c_void, i32, *const c_char, *const c_char);
+
+/// The host's logger, copied at instantiation.
+#[derive(Clone, Copy)]
+pub(crate) enum Logger {
+    Fmi2(Option<Fmi2Logger>, *mut c_void),
+    Fmi3(Option<Fmi3Logger>, *mut c_void),
+}
+
+fn cstring(s: &str) -> CString {
+    CString::new(s.replace('\0', " ")).unwrap_or_default()
+}
+
+fn category(status: Status) -> &'static str {
+    match status {
+        Status::Ok => "logAll",
+        Status::Warning => "logStatusWarning",
+        Status::Discard => "logStatusDiscard",
+        Status::Error => "logStatusError",
+        Status::Fatal => "logStatusFatal",
+    }
+}
+
+impl Logger {
+    /// Send one message (no filtering here).
+    pub(crate) fn emit(&self, instance_name: &CStr, status: Status, message: &str) {
+        let cat = cstring(category(status));
+        let msg = cstring(message);
+        // SAFETY: the callbacks were given by the host for this purpose; every pointer
+        // passed is valid for the duration of the call.
+        unsafe {
+            match *self {
+                Logger::Fmi2(Some(f), env) => f(
+                    env,
+                    instance_name.as_ptr(),
+                    status as i32,
+                    cat.as_ptr(),
+                    c"%s".as_ptr(),
+                    msg.as_ptr(),
+                ),
+                Logger::Fmi3(Some(f), env) => f(env, status as i32, cat.as_ptr(), msg.as_ptr()),
+                _ => {}
+            }
+        }
+    }
+}
+
+/// A failed call: status and message (logged by [`guard`]).
+#[derive(Debug)]
+pub(crate) struct Fail {
+    pub status: Status,
+    pub msg: String,
+}
+
+impl From<String> for Fail {
+    fn from(msg: String) -> Fail {
+        Fail {
+            status: Status::Error,
+            msg,
+        }
+    }
+}
+
+impl From<crate::Error> for Fail {
+    fn from(e: crate::Error) -> Fail {
+        Fail::from(e.to_string())
+    }
+}
+
+pub(crate) type Outcome = Result<Status, Fail>;
+
+/// What the instance knows of a value reference.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Var {
+    Time,
+    /// Input, with its slot in the input buffer.
+    Input(usize),
+    Output,
+    /// Parameter, with its index in `PARAMETERS`.
+    Param(usize),
+}
+
+pub(crate) fn classify(vr: u32) -> Option<Var> {
+    if vr == VR_TIME {
+        return Some(Var::Time);
+    }
+    if let Some(i) = md::inputs().position(|v| v.vr == vr) {
+        return Some(Var::Input(i));
+    }
+    if md::outputs().any(|v| v.vr == vr) {
+        return Some(Var::Output);
+    }
+    params::index(vr).map(Var::Param)
+}
+
+fn name_of(vr: u32) -> String {
+    match classify(vr) {
+        Some(Var::Time) => "time".into(),
+        Some(Var::Param(i)) => PARAMETERS[i].name.into(),
+        Some(_) => md::io_variables()
+            .find(|v| v.vr == vr)
+            .map(|v| v.name.to_string())
+            .unwrap_or_default(),
+        None => format!("#{vr}"),
+    }
+}
+
+const TAG: u64 = 0x5241_4345_5741_5931; // "RACEWAY1"
+const SNAP_TAG: u64 = 0x5241_4345_5741_5953; // "RACEWAYS"
+
+/// Everything that defines an instance's behaviour from now on.
+#[derive(Clone)]
+pub(crate) struct Snapshot {
+    tag: u64,
+    mode: u32,
+    time: f64,
+    start_time: f64,
+    stop_time: Option<f64>,
+    tolerance: Option<f64>,
+    params: ParamValues,
+    inputs: Vec<f64>,
+    inputs_set: u64,
+    pending_derivatives: Vec<(u32, u32, f64)>,
+    component: Option<State>,
+}
+
+/// One FMU instance (FMI 2 or FMI 3).
+pub(crate) struct Instance {
+    tag: u64,
+    pub version: u8,
+    pub name: CString,
+    pub logger: Logger,
+    pub logging_on: bool,
+    pub mode: u32,
+    /// `resources/scene.toml`: `None` when absent, `Err` when present but unreadable.
+    resource_scene: Option<Result<String, String>>,
+    params: ParamValues,
+    tolerance: Option<f64>,
+    pub start_time: f64,
+    pub stop_time: Option<f64>,
+    /// Current communication time.
+    pub time: f64,
+    inputs: Vec<f64>,
+    inputs_set: u64,
+    pending_derivatives: Vec<(u32, u32, f64)>,
+    /// Built from `params`/`tolerance` when needed; `None` again when they change.
+    component: Option<Component>,
+    pub event_mode_used: bool,
+    /// Strings returned to the host, valid until the next call that returns strings.
+    pub strings: Vec<CString>,
+}
+
+/// Percent-decode a `file:` URI (FMI 2 `fmuResourceLocation`) to a path; a string that is
+/// not a URI is taken as a path.
+pub(crate) fn uri_to_path(uri: &str) -> Option<PathBuf> {
+    let rest = if let Some(r) = uri.strip_prefix("file://localhost/") {
+        format!("/{r}")
+    } else if let Some(r) = uri.strip_prefix("file:///") {
+        format!("/{r}")
+    } else if let Some(r) = uri.strip_prefix("file://") {
+        // a host name other than localhost: a UNC path
+        format!("//{r}")
+    } else if let Some(r) = uri.strip_prefix("file:") {
+        r.to_string()
+    } else {
+        return Some(PathBuf::from(uri));
+    };
+    let b = rest.as_bytes();
+    let mut out = Vec::with_capacity(b.len());
+    let mut i = 0;
+    while i < b.len() {
+        if b[i] == b'%' && i + 2 < b.len() {
+            let hex = std::str::from_utf8(&b[i + 1..i + 3]).ok()?;
+            out.push(u8::from_str_radix(hex, 16).ok()?);
+            i += 3;
+        } else {
+            out.push(b[i]);
+            i += 1;
+        }
+    }
+    let mut s = String::from_utf8(out).ok()?;
+    // file:///C:/dir -> C:/dir
+    let sb = s.as_bytes();
+    if sb.len() >= 3 && sb[0] == b'/' && sb[2] == b':' && sb[1].is_ascii_alphabetic() {
+        s.remove(0);
+    }
+    Some(PathBuf::from(s))
+}
+
+/// Read `<dir>/scene.toml` if the FMU carries one.
+pub(crate) fn read_resource_scene(dir: Option<&Path>) -> Option<Result<String, String>> {
+    let file = dir?.join("scene.toml");
+    match std::fs::read_to_string(&file) {
+        Ok(t) => Some(Ok(t)),
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => None,
+        Err(e) => Some(Err(format!("cannot read {}: {e}", file.display()))),
+    }
+}
+
+/// A C string argument, copied; `None` when NULL or not UTF-8.
+///
+/// # Safety
+/// `p` is NULL or a NUL-terminated string.
+pub(crate) unsafe fn str_arg(p: *const c_char) -> Option<String> {
+    if p.is_null() {
+        None
+    } else {
+        CStr::from_ptr(p).to_str().ok().map(str::to_string)
+    }
+}
+
+/// A slice argument; `n == 0` gives an empty slice whatever the pointer.
+///
+/// # Safety
+/// `p` points to `n` values (or is NULL).
+pub(crate) unsafe fn slice<'a, T>(p: *const T, n: usize, what: &str) -> Result<&'a [T], Fail> {
+    if n == 0 {
+        Ok(&[])
+    } else if p.is_null() {
+        Err(Fail::from(format!(
+            "`{what}` is NULL but {n} values were announced"
+        )))
+    } else {
+        Ok(std::slice::from_raw_parts(p, n))
+    }
+}
+
+/// A mutable slice argument; see [`slice`].
+///
+/// # Safety
+/// `p` points to `n` writable values (or is NULL).
+pub(crate) unsafe fn slice_mut<'a, T>(
+    p: *mut T,
+    n: usize,
+    what: &str,
+) -> Result<&'a mut [T], Fail> {
+    if n == 0 {
+        Ok(&mut [])
+    } else if p.is_null() {
+        Err(Fail::from(format!(
+            "`{what}` is NULL but {n} values were announced"
+        )))
+    } else {
+        Ok(std::slice::from_raw_parts_mut(p, n))
+    }
+}
+
+/// Run `body` on the instance behind `ptr` if `mask` allows the current state; log and map
+/// failures and panics.
+///
+/// # Safety
+/// `ptr` is NULL or an instance returned by an instantiate function and not yet freed.
+pub(crate) unsafe fn guard(
+    ptr: *mut c_void,
+    func: &str,
+    mask: u32,
+    body: impl FnOnce(&mut Instance) -> Outcome,
+) -> Status {
+    let Some(inst) = instance(ptr) else {
+        return Status::Error;
+    };
+    if inst.mode & mask == 0 {
+        let msg = format!(
+            "{func}: Illegal call sequence: not allowed in state {}",
+            mode_name(inst.mode, inst.version)
+        );
+        inst.fail(Status::Error, &msg);
+        return Status::Error;
+    }
+    match catch_unwind(AssertUnwindSafe(|| body(&mut *inst))) {
+        Ok(Ok(s)) => s,
+        Ok(Err(f)) => {
+            inst.fail(f.status, &format!("{func}: {}", f.msg));
+            f.status
+        }
+        Err(panic) => {
+            let what = panic
+                .downcast_ref::<&str>()
+                .map(|s| s.to_string())
+                .or_else(|| panic.downcast_ref::<String>().cloned())
+                .unwrap_or_default();
+            inst.fail(Status::Error, &format!("{func}: internal error: {what}"));
+            Status::Error
+        }
+    }
+}
+
+/// The instance behind a host pointer (NULL and foreign pointers give `None`).
+///
+/// # Safety
+/// As [`guard`].
+pub(crate) unsafe fn instance<'a>(ptr: *mut c_void) -> Option<&'a mut Instance> {
+    if ptr.is_null() || (ptr as usize) % std::mem::align_of::<Instance>() != 0 {
+        return None;
+    }
+    let inst = &mut *(ptr as *mut Instance);
+    (inst.tag == TAG).then_some(inst)
+}
+
+/// Run `f` catching panics; `default` on panic.
+pub(crate) fn no_panic<T>(default: T, f: impl FnOnce() -> T) -> T {
+    catch_unwind(AssertUnwindSafe(f)).unwrap_or(default)
+}
+
+/// The GUID check of both instantiate functions.
+pub(crate) fn check_guid(given: Option<&str>) -> Result<(), String> {
+    match given {
+        Some(g) if g == GUID => Ok(()),
+        Some(g) => Err(format!(
+            "wrong GUID / instantiationToken `{g}`: this binary is `{GUID}` (the \
+             modelDescription.xml and the binary do not belong to the same build)"
+        )),
+        None => Err(format!(
+            "GUID / instantiationToken is NULL: this binary is `{GUID}`"
+        )),
+    }
+}
+
+impl Instance {
+    pub(crate) fn new(
+        version: u8,
+        name: &str,
+        logger: Logger,
+        logging_on: bool,
+        resource_dir: Option<&Path>,
+    ) -> Instance {
+        let inst = Instance {
+            tag: TAG,
+            version,
+            name: cstring(name),
+            logger,
+            logging_on,
+            mode: INSTANTIATED,
+            resource_scene: read_resource_scene(resource_dir),
+            params: params::unset(),
+            tolerance: None,
+            start_time: 0.0,
+            stop_time: None,
+            time: 0.0,
+            inputs: vec![0.0; md::inputs().count()],
+            inputs_set: 0,
+            pending_derivatives: Vec::new(),
+            component: None,
+            event_mode_used: false,
+            strings: Vec::new(),
+        };
+        let res = match (&inst.resource_scene, resource_dir) {
+            (Some(_), Some(d)) => format!("scene from {}", d.join("scene.toml").display()),
+            (None, Some(d)) => format!("no scene.toml in {}", d.display()),
+            _ => "no resource folder".into(),
+        };
+        inst.debug(&format!("instantiated (FMI {version}.0, {GUID}); {res}"));
+        inst
+    }
+
+    /// Into a raw pointer for the host.
+    pub(crate) fn into_raw(self) -> *mut c_void {
+        Box::into_raw(Box::new(self)) as *mut c_void
+    }
+
+    /// Free an instance given back by the host.
+    ///
+    /// # Safety
+    /// As [`guard`]; the pointer is not used again.
+    pub(crate) unsafe fn free(ptr: *mut c_void) {
+        if let Some(inst) = instance(ptr) {
+            inst.tag = 0;
+            drop(Box::from_raw(inst as *mut Instance));
+        }
+    }
+
+    /// Log a message (warnings and errors always; `Ok` only with debug logging on).
+    pub(crate) fn log(&self, status: Status, msg: &str) {
+        if status > Status::Ok || self.logging_on {
+            self.logger.emit(&self.name, status, msg);
+        }
+    }
+
+    pub(crate) fn debug(&self, msg: &str) {
+        self.log(Status::Ok, msg);
+    }
+
+    /// Log a failure and move to the error state (Error/Fatal).
+    pub(crate) fn fail(&mut self, status: Status, msg: &str) {
+        self.log(status, msg);
+        if status >= Status::Error {
+            self.mode = if self.version == 2 { ERROR } else { TERMINATED };
+        }
+    }
+
+    /// `SetDebugLogging`: categories must be known.
+    pub(crate) fn set_debug_logging(&mut self, on: bool, categories: &[String]) -> Outcome {
+        for c in categories {
+            if !md::LOG_CATEGORIES.iter().any(|(n, _)| n == c) {
+                return Err(Fail::from(format!(
+                    "unknown log category `{c}`; known: {}",
+                    md::LOG_CATEGORIES.map(|(n, _)| n).join(", ")
+                )));
+            }
+        }
+        self.logging_on = on;
+        Ok(Status::Ok)
+    }
+
+    /// `Reset`: back to Instantiated with start values.
+    pub(crate) fn reset(&mut self) {
+        self.mode = INSTANTIATED;
+        self.params = params::unset();
+        self.tolerance = None;
+        self.start_time = 0.0;
+        self.stop_time = None;
+        self.time = 0.0;
+        self.inputs.iter_mut().for_each(|x| *x = 0.0);
+        self.inputs_set = 0;
+        self.pending_derivatives.clear();
+        self.component = None;
+        self.strings.clear();
+    }
+
+    /// `SetupExperiment` / the arguments of `fmi3EnterInitializationMode`.
+    pub(crate) fn setup(
+        &mut self,
+        tolerance: Option<f64>,
+        start: f64,
+        stop: Option<f64>,
+    ) -> Outcome {
+        if !start.is_finite() {
+            return Err(Fail::from(format!("startTime = {start}: must be finite")));
+        }
+        if let Some(s) = stop {
+            if !(s.is_finite() && s >= start) {
+                return Err(Fail::from(format!(
+                    "stopTime = {s}: must be finite and >= startTime = {start}"
+                )));
+            }
+        }
+        if self.tolerance != tolerance {
+            self.component = None;
+        }
+        self.tolerance = tolerance;
+        self.start_time = start;
+        self.time = start;
+        self.stop_time = stop;
+        Ok(Status::Ok)
+    }
+
+    fn build(
+        &self,
+        values: &ParamValues,
+        tolerance: Option<f64>,
+        inputs: &[f64],
+        inputs_set: u64,
+        derivatives: &[(u32, u32, f64)],
+    ) -> Result<Component, String> {
+        let (mut c, source) = params::component(values, tolerance, self.resource_scene.as_ref())?;
+        for (i, v) in md::inputs().enumerate() {
+            if inputs_set & (1 << i) != 0 {
+                c.set_real(v.vr, inputs[i]).map_err(|e| e.to_string())?;
+            } else if !c.scene().inputs.initial.contains_key(v.name) {
+                c.set_real(v.vr, 0.0).map_err(|e| e.to_string())?;
+            }
+        }
+        for &(vr, order, value) in derivatives {
+            c.set_input_derivative(vr, order, value)
+                .map_err(|e| e.to_string())?;
+        }
+        self.debug(&format!(
+            "component built from {source} (level {}, bearing {}, clearance {:e} m)",
+            c.scene().model.level.name(),
+            c.bearing().name,
+            c.bearing().pd
+        ));
+        Ok(c)
+    }
+
+    /// The component, built from the current parameters if needed.
+    pub(crate) fn component(&mut self) -> Result<&mut Component, Fail> {
+        if self.component.is_none() {
+            let c = self.build(
+                &self.params,
+                self.tolerance,
+                &self.inputs,
+                self.inputs_set,
+                &self.pending_derivatives,
+            )?;
+            self.component = Some(c);
+        }
+        Ok(self.component.as_mut().expect("just built"))
+    }
+
+    /// `ExitInitializationMode`: build the component (a bad scene or parameter fails here).
+    pub(crate) fn exit_initialization(&mut self) -> Outcome {
+        self.component()?;
+        self.pending_derivatives.clear();
+        Ok(Status::Ok)
+    }
+
+    pub(crate) fn get_real(&mut self, vr: u32) -> Result<f64, Fail> {
+        match classify(vr) {
+            Some(Var::Time) => Ok(self.time),
+            Some(Var::Input(i)) => match &self.component {
+                Some(c) => Ok(c.get_real(vr)?),
+                None => Ok(self.inputs[i]),
+            },
+            Some(Var::Output) => Ok(self.component()?.get_real(vr)?),
+            Some(Var::Param(i)) if PARAMETERS[i].ty == ParamType::Real => {
+                match self.params[i].clone().unwrap_or_else(|| params::start(i)) {
+                    ParamValue::Real(x) => Ok(x),
+                    ParamValue::Str(_) => unreachable!("a real parameter"),
+                }
+            }
+            _ => Err(Fail::from(format!(
+                "no Real / Float64 variable with value reference {vr}"
+            ))),
+        }
+    }
+
+    fn parameter_settable(&self, i: usize) -> Result<(), Fail> {
+        if self.mode & (INSTANTIATED | INIT) == 0 {
+            return Err(Fail::from(format!(
+                "parameter `{}` is fixed: set it before initialisation ends (state {})",
+                PARAMETERS[i].name,
+                mode_name(self.mode, self.version)
+            )));
+        }
+        Ok(())
+    }
+
+    pub(crate) fn set_real(&mut self, vr: u32, value: f64) -> Result<(), Fail> {
+        match classify(vr) {
+            Some(Var::Input(i)) => {
+                if !value.is_finite() {
+                    return Err(Fail::from(format!(
+                        "input `{}` = {value}: allowed a finite number",
+                        name_of(vr)
+                    )));
+                }
+                if let Some(c) = &mut self.component {
+                    c.set_real(vr, value)?;
+                }
+                self.inputs[i] = value;
+                self.inputs_set |= 1 << i;
+                Ok(())
+            }
+            Some(Var::Param(i)) if PARAMETERS[i].ty == ParamType::Real => {
+                self.parameter_settable(i)?;
+                if !value.is_finite() {
+                    return Err(Fail::from(format!(
+                        "parameter `{}` = {value}: allowed a finite number",
+                        PARAMETERS[i].name
+                    )));
+                }
+                self.params[i] = Some(ParamValue::Real(value));
+                self.component = None;
+                Ok(())
+            }
+            Some(Var::Output) | Some(Var::Time) => Err(Fail::from(format!(
+                "`{}` (value reference {vr}) is not an input or parameter: it cannot be set",
+                name_of(vr)
+            ))),
+            _ => Err(Fail::from(format!(
+                "no Real / Float64 variable with value reference {vr}"
+            ))),
+        }
+    }
+
+    pub(crate) fn get_string(&self, vr: u32) -> Result<String, Fail> {
+        match classify(vr) {
+            Some(Var::Param(i)) if PARAMETERS[i].ty == ParamType::String => {
+                match self.params[i].clone().unwrap_or_else(|| params::start(i)) {
+                    ParamValue::Str(s) => Ok(s),
+                    ParamValue::Real(_) => unreachable!("a string parameter"),
+                }
+            }
+            _ => Err(Fail::from(format!(
+                "no String variable with value reference {vr}"
+            ))),
+        }
+    }
+
+    pub(crate) fn set_string(&mut self, vr: u32, value: Option<String>) -> Result<(), Fail> {
+        match classify(vr) {
+            Some(Var::Param(i)) if PARAMETERS[i].ty == ParamType::String => {
+                self.parameter_settable(i)?;
+                let Some(value) = value else {
+                    return Err(Fail::from(format!(
+                        "parameter `{}`: the value is NULL or not UTF-8",
+                        PARAMETERS[i].name
+                    )));
+                };
+                self.params[i] = Some(ParamValue::Str(value));
+                self.component = None;
+                Ok(())
+            }
+            _ => Err(Fail::from(format!(
+                "no String variable with value reference {vr}"
+            ))),
+        }
+    }
+
+    /// FMI 2 `SetRealInputDerivatives` (input interpolation).
+    pub(crate) fn set_input_derivative(
+        &mut self,
+        vr: u32,
+        order: i64,
+        value: f64,
+    ) -> Result<(), Fail> {
+        if !matches!(classify(vr), Some(Var::Input(_))) {
+            return Err(Fail::from(format!(
+                "`{}` (value reference {vr}) is not an input",
+                name_of(vr)
+            )));
+        }
+        if !(1..=3).contains(&order) {
+            return Err(Fail::from(format!(
+                "derivative order {order} of `{}`: allowed 1, 2 or 3",
+                name_of(vr)
+            )));
+        }
+        if !value.is_finite() {
+            return Err(Fail::from(format!(
+                "derivative of `{}` = {value}: allowed a finite number",
+                name_of(vr)
+            )));
+        }
+        if let Some(c) = &mut self.component {
+            c.set_input_derivative(vr, order as u32, value)?;
+        } else {
+            self.pending_derivatives.push((vr, order as u32, value));
+        }
+        Ok(())
+    }
+
+    /// `GetRealOutputDerivatives` / `fmi3GetOutputDerivatives`.
+    pub(crate) fn get_output_derivative(&mut self, vr: u32, order: i64) -> Result<f64, Fail> {
+        if classify(vr) != Some(Var::Output) {
+            return Err(Fail::from(format!(
+                "`{}` (value reference {vr}) is not an output",
+                name_of(vr)
+            )));
+        }
+        if order != 1 {
+            return Err(Fail::from(format!(
+                "derivative order {order} of `{}`: maxOutputDerivativeOrder is 1",
+                name_of(vr)
+            )));
+        }
+        Ok(self.component()?.get_output_derivative(vr, 1)?)
+    }
+
+    /// Directional derivative of outputs by inputs at the current state.
+    pub(crate) fn directional_derivative(
+        &mut self,
+        unknowns: &[u32],
+        knowns: &[u32],
+        seed: &[f64],
+        out: &mut [f64],
+    ) -> Result<(), Fail> {
+        for &u in unknowns {
+            if classify(u) != Some(Var::Output) {
+                return Err(Fail::from(format!(
+                    "unknown `{}` (value reference {u}) is not an output",
+                    name_of(u)
+                )));
+            }
+        }
+        for (&k, &s) in knowns.iter().zip(seed) {
+            if !matches!(classify(k), Some(Var::Input(_))) {
+                return Err(Fail::from(format!(
+                    "known `{}` (value reference {k}) is not an input",
+                    name_of(k)
+                )));
+            }
+            if !s.is_finite() {
+                return Err(Fail::from(format!(
+                    "seed for `{}` = {s}: not finite",
+                    name_of(k)
+                )));
+            }
+        }
+        self.component()?
+            .directional_derivative(unknowns, knowns, seed, out)?;
+        Ok(())
+    }
+
+    /// `DoStep` from `t` over `h`. On failure the state is unchanged; the flag says whether
+    /// it was numerical (a failed integration: FMI 3 Discard) rather than an error.
+    pub(crate) fn do_step(&mut self, t: f64, h: f64) -> Result<Status, (bool, Fail)> {
+        let err = |m: String| (false, Fail::from(m));
+        if !t.is_finite() {
+            return Err(err(format!("communication point t = {t}: must be finite")));
+        }
+        if !(h.is_finite() && h > 0.0) {
+            return Err(err(format!(
+                "communication step size h = {h}: must be finite and > 0"
+            )));
+        }
+        let tc = self.time;
+        let mismatch = (t - tc).abs();
+        // Relative tolerance on the communication point (fmi.md §4 #9): a mismatch within
+        // 1e-6 of the step (or 1e-12 of the time) re-syncs to the FMU's time and lands on
+        // t + h; rounding noise (a few ulps) passes silently, more is a warning.
+        let tol = (1e-6 * h).max(1e-12 * tc.abs());
+        let mut status = Status::Ok;
+        let (t0, h0) = if mismatch == 0.0 {
+            (t, h)
+        } else if mismatch <= tol && t + h > tc {
+            if mismatch > 8.0 * f64::EPSILON * tc.abs().max(t.abs()) {
+                self.log(
+                    Status::Warning,
+                    &format!(
+                        "fmiDoStep: communication point t = {t} differs from the FMU's time \
+                         {tc} by {mismatch:e} s (within the tolerance {tol:e} s): stepping \
+                         from {tc} to t + h"
+                    ),
+                );
+                status = Status::Warning;
+            }
+            (tc, (t + h) - tc)
+        } else {
+            return Err(err(format!(
+                "communication point t = {t} but the FMU is at {tc} (tolerance {tol:e} s); \
+                 time must not jump or run backwards (use SetFMUstate to go back)"
+            )));
+        };
+        if let Some(stop) = self.stop_time {
+            if t0 + h0 > stop + 1e-9 * h0.max(stop.abs() * 1e-3) {
+                return Err(err(format!(
+                    "t + h = {} is beyond stopTime = {stop}",
+                    t0 + h0
+                )));
+            }
+        }
+        let c = self.component().map_err(|f| (false, f))?;
+        match c.do_step(t0, h0) {
+            Ok(()) => {
+                self.time = c.time();
+                Ok(status)
+            }
+            Err(e) => {
+                let numerical = matches!(
+                    e,
+                    crate::Error::StepFailed { .. } | crate::Error::NotConverged { .. }
+                );
+                Err((numerical, Fail::from(e)))
+            }
+        }
+    }
+
+    pub(crate) fn snapshot(&self) -> Snapshot {
+        Snapshot {
+            tag: SNAP_TAG,
+            mode: self.mode,
+            time: self.time,
+            start_time: self.start_time,
+            stop_time: self.stop_time,
+            tolerance: self.tolerance,
+            params: self.params.clone(),
+            inputs: self.inputs.clone(),
+            inputs_set: self.inputs_set,
+            pending_derivatives: self.pending_derivatives.clone(),
+            component: self.component.as_ref().map(Component::get_state),
+        }
+    }
+
+    /// Restore a snapshot (of this instance, another instance or another process). The
+    /// instance is unchanged if this fails.
+    pub(crate) fn restore(&mut self, s: &Snapshot) -> Result<(), Fail> {
+        if s.tag != SNAP_TAG {
+            return Err(Fail::from("not an FMU state of this FMU".to_string()));
+        }
+        match &s.component {
+            Some(state) => {
+                let same_build = self.component.is_some()
+                    && self.params == s.params
+                    && self.tolerance == s.tolerance;
+                if same_build {
+                    self.component.as_mut().expect("checked").set_state(state)?;
+                } else {
+                    let mut c = self.build(
+                        &s.params,
+                        s.tolerance,
+                        &s.inputs,
+                        s.inputs_set,
+                        &s.pending_derivatives,
+                    )?;
+                    c.set_state(state)?;
+                    self.component = Some(c);
+                }
+            }
+            None => self.component = None,
+        }
+        self.mode = s.mode;
+        self.time = s.time;
+        self.start_time = s.start_time;
+        self.stop_time = s.stop_time;
+        self.tolerance = s.tolerance;
+        self.params = s.params.clone();
+        self.inputs.clone_from(&s.inputs);
+        self.inputs_set = s.inputs_set;
+        self.pending_derivatives.clone_from(&s.pending_derivatives);
+        Ok(())
+    }
+
+    /// A snapshot given back by the host.
+    ///
+    /// # Safety
+    /// `p` is NULL or a pointer returned by [`Snapshot::into_raw`] and not yet freed.
+    pub(crate) unsafe fn snapshot_ref<'a>(p: *mut c_void) -> Result<&'a mut Snapshot, Fail> {
+        if p.is_null() || (p as usize) % std::mem::align_of::<Snapshot>() != 0 {
+            return Err(Fail::from("the FMU state is NULL".to_string()));
+        }
+        let s = &mut *(p as *mut Snapshot);
+        if s.tag != SNAP_TAG {
+            return Err(Fail::from("not an FMU state of this FMU".to_string()));
+        }
+        Ok(s)
+    }
+}
+
+const STATE_MAGIC: &[u8; 4] = b"RWFU";
+const STATE_FORMAT: u32 = 1;
+
+impl Snapshot {
+    pub(crate) fn into_raw(self) -> *mut c_void {
+        Box::into_raw(Box::new(self)) as *mut c_void
+    }
+
+    /// # Safety
+    /// As [`Instance::snapshot_ref`]; the pointer is not used again.
+    pub(crate) unsafe fn free(p: *mut c_void) {
+        if let Ok(s) = Instance::snapshot_ref(p) {
+            s.tag = 0;
+            drop(Box::from_raw(s as *mut Snapshot));
+        }
+    }
+
+    /// Byte form: magic `RWFU`, format `u32`, the GUID, then every field little-endian; the
+    /// component state as its own versioned bytes (`component::State::to_bytes`).
+    pub(crate) fn to_bytes(&self) -> Vec<u8> {
+        let mut b = Vec::new();
+        let bytes = |b: &mut Vec<u8>, x: &[u8]| {
+            b.extend_from_slice(&(x.len() as u64).to_le_bytes());
+            b.extend_from_slice(x);
+        };
+        let opt = |b: &mut Vec<u8>, x: Option<f64>| {
+            b.push(x.is_some() as u8);
+            b.extend_from_slice(&x.unwrap_or(0.0).to_le_bytes());
+        };
+        b.extend_from_slice(STATE_MAGIC);
+        b.extend_from_slice(&STATE_FORMAT.to_le_bytes());
+        bytes(&mut b, GUID.as_bytes());
+        b.extend_from_slice(&self.mode.to_le_bytes());
+        b.extend_from_slice(&self.time.to_le_bytes());
+        b.extend_from_slice(&self.start_time.to_le_bytes());
+        opt(&mut b, self.stop_time);
+        opt(&mut b, self.tolerance);
+        b.extend_from_slice(&(self.params.len() as u64).to_le_bytes());
+        for p in &self.params {
+            match p {
+                None => b.push(0),
+                Some(ParamValue::Real(x)) => {
+                    b.push(1);
+                    b.extend_from_slice(&x.to_le_bytes());
+                }
+                Some(ParamValue::Str(s)) => {
+                    b.push(2);
+                    bytes(&mut b, s.as_bytes());
+                }
+            }
+        }
+        b.extend_from_slice(&(self.inputs.len() as u64).to_le_bytes());
+        for x in &self.inputs {
+            b.extend_from_slice(&x.to_le_bytes());
+        }
+        b.extend_from_slice(&self.inputs_set.to_le_bytes());
+        b.extend_from_slice(&(self.pending_derivatives.len() as u64).to_le_bytes());
+        for (vr, o, x) in &self.pending_derivatives {
+            b.extend_from_slice(&vr.to_le_bytes());
+            b.extend_from_slice(&o.to_le_bytes());
+            b.extend_from_slice(&x.to_le_bytes());
+        }
+        match &self.component {
+            None => b.push(0),
+            Some(s) => {
+                b.push(1);
+                bytes(&mut b, &s.to_bytes());
+            }
+        }
+        b
+    }
+
+    pub(crate) fn from_bytes(b: &[u8]) -> Result<Snapshot, String> {
+        let mut r = Reader { b, at: 0 };
+        if r.take(4)? != STATE_MAGIC {
+            return Err("serialised FMU state: not a raceway FMU state (bad magic)".into());
+        }
+        let ver = r.u32()?;
+        if ver != STATE_FORMAT {
+            return Err(format!(
+                "serialised FMU state: format {ver}, this binary reads {STATE_FORMAT}"
+            ));
+        }
+        let guid = r.bytes()?;
+        if guid != GUID.as_bytes() {
+            return Err(format!(
+                "serialised FMU state: written by FMU `{}`, this binary is `{GUID}`",
+                String::from_utf8_lossy(guid)
+            ));
+        }
+        let mode = r.u32()?;
+        if mode.count_ones() != 1 || mode & ANY == 0 {
+            return Err(format!("serialised FMU state: bad mode {mode}"));
+        }
+        let time = r.f64()?;
+        let start_time = r.f64()?;
+        let stop_time = r.opt()?;
+        let tolerance = r.opt()?;
+        let n = r.u64()? as usize;
+        if n != PARAMETERS.len() {
+            return Err(format!(
+                "serialised FMU state: {n} parameters, this binary has {}",
+                PARAMETERS.len()
+            ));
+        }
+        let mut params = Vec::with_capacity(n);
+        for _ in 0..n {
+            params.push(match r.take(1)?[0] {
+                0 => None,
+                1 => Some(ParamValue::Real(r.f64()?)),
+                2 => Some(ParamValue::Str(
+                    String::from_utf8(r.bytes()?.to_vec())
+                        .map_err(|_| "serialised FMU state: parameter not UTF-8".to_string())?,
+                )),
+                k => return Err(format!("serialised FMU state: bad parameter tag {k}")),
+            });
+        }
+        let ni = r.u64()? as usize;
+        if ni != md::inputs().count() {
+            return Err(format!("serialised FMU state: {ni} inputs"));
+        }
+        let inputs = (0..ni).map(|_| r.f64()).collect::<Result<Vec<_>, _>>()?;
+        let inputs_set = r.u64()?;
+        let nd = r.u64()? as usize;
+        if nd > b.len() / 16 {
+            return Err("serialised FMU state: too many input derivatives".into());
+        }
+        let mut pending_derivatives = Vec::with_capacity(nd);
+        for _ in 0..nd {
+            pending_derivatives.push((r.u32()?, r.u32()?, r.f64()?));
+        }
+        let component = match r.take(1)?[0] {
+            0 => None,
+            1 => Some(
+                State::from_bytes(r.bytes()?).map_err(|e| format!("serialised FMU state: {e}"))?,
+            ),
+            k => return Err(format!("serialised FMU state: bad component tag {k}")),
+        };
+        if r.at != b.len() {
+            return Err(format!(
+                "serialised FMU state: {} trailing bytes",
+                b.len() - r.at
+            ));
+        }
+        Ok(Snapshot {
+            tag: SNAP_TAG,
+            mode,
+            time,
+            start_time,
+            stop_time,
+            tolerance,
+            params,
+            inputs,
+            inputs_set,
+            pending_derivatives,
+            component,
+        })
+    }
+}
+
+struct Reader<'a> {
+    b: &'a [u8],
+    at: usize,
+}
+
+impl<'a> Reader<'a> {
+    fn take(&mut self, n: usize) -> Result<&'a [u8], String> {
+        if n > self.b.len() - self.at {
+            return Err(format!(
+                "serialised FMU state: truncated at byte {} of {}",
+                self.at,
+                self.b.len()
+            ));
+        }
+        let s = &self.b[self.at..self.at + n];
+        self.at += n;
+        Ok(s)
+    }
+    fn u32(&mut self) -> Result<u32, String> {
+        Ok(u32::from_le_bytes(
+            self.take(4)?.try_into().expect("4 bytes"),
+        ))
+    }
+    fn u64(&mut self) -> Result<u64, String> {
+        Ok(u64::from_le_bytes(
+            self.take(8)?.try_into().expect("8 bytes"),
+        ))
+    }
+    fn f64(&mut self) -> Result<f64, String> {
+        Ok(f64::from_bits(self.u64()?))
+    }
+    fn opt(&mut self) -> Result<Option<f64>, String> {
+        let some = self.take(1)?[0] != 0;
+        let x = self.f64()?;
+        Ok(some.then_some(x))
+    }
+    fn bytes(&mut self) -> Result<&'a [u8], String> {
+        let n = self.u64()?;
+        if n > (self.b.len() - self.at) as u64 {
+            return Err("serialised FMU state: length exceeds the data".into());
+        }
+        self.take(n as usize)
+    }
+}

@@ -1,0 +1,356 @@
+//! Elastohydrodynamic lubrication of the ball–race contacts (physics.md §6).
+//!
+//! - **Film thickness**: the isothermal Hamrock–Dowson formulas for elliptical contacts
+//!   (Hamrock & Dowson, *J. Lubr. Technol.* 99(2) 1977, 264–276; Hamrock, Schmid &
+//!   Jacobson, *Fundamentals of Fluid Film Lubrication*, 2nd ed. 2004, ch. 18):
+//!   `h_c/Rx = 2.69 U^0.67 G^0.53 W^-0.067 (1 - 0.61 e^(-0.73 k))`,
+//!   `h_min/Rx = 3.63 U^0.68 G^0.49 W^-0.073 (1 - e^(-0.68 k))`, with
+//!   `U = eta0 u / (E' Rx)`, `G = alpha_p E'`, `W = Q / (E' Rx²)`, `k = a/b` the ellipticity
+//!   and `u` the mean entrainment speed, `u = dm |omega_i - omega_o| (1 - gamma²) / 4` for
+//!   pure rolling (the same at both races).
+//! - **Film stiffness in series with Hertz**: the film keeps the surfaces `h_c` apart, so the
+//!   Hertz approach is `delta_H = delta + h_c,i(Q) + h_c,o(Q)` where `delta` is the rigid
+//!   (geometric) approach. Solving that for `Q` gives exactly the series compliance
+//!   `1/k = 1/k_Hertz + 1/k_film` with the film's own stiffness `k_film = -dQ/dh =
+//!   Q / (0.067 h_c)` (physics.md §6; Wijnant, Wensing & van Nijen, *J. Sound Vib.* 222(4)
+//!   1999 note that it is far stiffer than Hertz). Below `Q_MIN` the film is frozen at its
+//!   `Q_MIN` value (the formula is for loaded EHL contacts, and `Q^-0.067` diverges at 0).
+//! - **Inlet damping in parallel**: the Reynolds squeeze film (Reynolds, *Phil. Trans. R.
+//!   Soc.* 177 (1886); Hamrock, Schmid & Jacobson 2004, ch. 11, squeeze-film bearings) of
+//!   a rigid elliptic paraboloid `h = h0 + x²/(2Rx) + y²/(2Ry)` approaching a plane at
+//!   speed `V`, evaluated at the central film `h0 = h_c`. `p = C/h²` solves Reynolds'
+//!   equation `div(h³ grad p) = 12 eta0 dh/dt` exactly (`div(h³ grad h^-2) = -2 (1/Rx +
+//!   1/Ry)`), with `C = 6 eta0 V Rx Ry/(Rx + Ry)`; integrating it gives
+//!   `F = 12 pi eta0 (Rx Ry)^1.5 / ((Rx + Ry) h0) V`, which is the classical
+//!   `6 pi eta0 R² V / h0` for a sphere (`Rx = Ry = R`). The gap is floored at the
+//!   composite roughness so the damping stays finite at standstill. It is proportional to
+//!   `eta0`, so it vanishes with viscosity. The two contacts of a ball (each a
+//!   Kelvin–Voigt pair) are combined in series at low frequency:
+//!   `c = (c_i k_o² + c_o k_i²) / (k_i + k_o)²`.
+//!
+//! The choice of the squeeze model: Wijnant's (1998) fitted EHL damping needs coefficients
+//! from his thesis that this crate could not verify; the Reynolds squeeze film is a closed
+//! form that can be checked by hand.
+
+use crate::contact::PointContact;
+use std::f64::consts::PI;
+
+/// Load below which the film thickness is frozen, N.
+pub const Q_MIN: f64 = 0.1;
+/// Smallest gap used by the squeeze damping when the roughness is zero, m.
+pub const H_FLOOR: f64 = 1e-9;
+
+/// Lubricant data (SI).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Lubricant {
+    /// Dynamic viscosity at the inlet temperature `eta0`, Pa s.
+    pub viscosity: f64,
+    /// Pressure–viscosity coefficient `alpha_p`, m²/N (1/Pa).
+    pub pressure_viscosity: f64,
+    /// Density, kg/m³.
+    pub density: f64,
+    /// Viscosity–temperature coefficient, 1/K.
+    pub viscosity_temperature: f64,
+    /// Composite rms roughness `sqrt(s1² + s2²)` of the ball and race, m.
+    pub roughness: f64,
+}
+
+impl Lubricant {
+    /// Study \[2\]'s oil (Cao et al.; physics.md §10): eta0 = 0.04667 Pa s,
+    /// alpha_p = 2.1e-8 m²/N, 860 kg/m³, 0.04 /K, roughness 0.2 and 0.42 µm.
+    pub fn study2() -> Self {
+        Lubricant {
+            viscosity: 0.04667,
+            pressure_viscosity: 2.1e-8,
+            density: 860.0,
+            viscosity_temperature: 0.04,
+            roughness: (0.2e-6f64).hypot(0.42e-6),
+        }
+    }
+}
+
+/// Mean entrainment (rolling) speed at both races for pure rolling with the outer ring
+/// fixed: `u = dm |omega| (1 - gamma²) / 4` (Hamrock & Dowson 1981, ch. 7), m/s.
+pub fn entrainment_speed(dm: f64, gamma: f64, omega: f64) -> f64 {
+    0.25 * dm * omega.abs() * (1.0 - gamma * gamma)
+}
+
+/// Hamrock–Dowson central film thickness, m (see the module notes).
+pub fn central_film(l: &Lubricant, c: &PointContact, u: f64, q: f64) -> f64 {
+    central_coefficient(l, c, u) * q.max(Q_MIN).powf(-0.067)
+}
+
+/// Hamrock–Dowson minimum film thickness, m.
+pub fn minimum_film(l: &Lubricant, c: &PointContact, u: f64, q: f64) -> f64 {
+    minimum_coefficient(l, c, u) * q.max(Q_MIN).powf(-0.073)
+}
+
+/// `a` in `h_c = a Q^-0.067`.
+fn central_coefficient(l: &Lubricant, c: &PointContact, u: f64) -> f64 {
+    let (rx, e) = (c.curvature.rx, c.e_eff);
+    let uu = l.viscosity * u / (e * rx);
+    if uu <= 0.0 {
+        return 0.0;
+    }
+    let g = l.pressure_viscosity * e;
+    let k = c.ellipse.kappa;
+    2.69 * uu.powf(0.67)
+        * g.powf(0.53)
+        * (e * rx * rx).powf(0.067)
+        * (1.0 - 0.61 * (-0.73 * k).exp())
+        * rx
+}
+
+/// `m` in `h_min = m Q^-0.073`.
+fn minimum_coefficient(l: &Lubricant, c: &PointContact, u: f64) -> f64 {
+    let (rx, e) = (c.curvature.rx, c.e_eff);
+    let uu = l.viscosity * u / (e * rx);
+    if uu <= 0.0 {
+        return 0.0;
+    }
+    let g = l.pressure_viscosity * e;
+    let k = c.ellipse.kappa;
+    3.63 * uu.powf(0.68) * g.powf(0.49) * (e * rx * rx).powf(0.073) * (1.0 - (-0.68 * k).exp()) * rx
+}
+
+/// Reynolds squeeze-film damping of one contact at gap `h` (floored at the roughness):
+/// `12 pi eta0 (Rx Ry)^1.5 / ((Rx + Ry) h)`, N s/m (module notes).
+pub fn squeeze_damping(l: &Lubricant, c: &PointContact, h: f64) -> f64 {
+    let (rx, ry) = (c.curvature.rx, c.curvature.ry);
+    12.0 * PI * l.viscosity * (rx * ry).powf(1.5) / ((rx + ry) * h.max(l.roughness).max(H_FLOOR))
+}
+
+/// The film law of one ball between two races.
+#[derive(Debug, Clone)]
+pub struct FilmModel {
+    /// Lubricant.
+    pub lubricant: Lubricant,
+    inner: PointContact,
+    outer: PointContact,
+    kn: f64,
+    dm: f64,
+    gamma: f64,
+    /// Precomputed: `Kn^-0.067`, `Q_MIN^-0.067`, `(Q_MIN/Kn)^(2/3)`, `K_i^(2/3)`, `K_o^(2/3)`.
+    kn_pow: f64,
+    qmin_pow: f64,
+    s_min: f64,
+    ki23: f64,
+    ko23: f64,
+}
+
+/// Film coefficients at one entrainment speed (computed once per evaluation).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct FilmAtSpeed {
+    /// Entrainment speed, m/s.
+    pub u: f64,
+    a_i: f64,
+    a_o: f64,
+    m_i: f64,
+    m_o: f64,
+}
+
+/// What the film law gives for one ball.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct BallFilm {
+    /// Hertz approach (sum of both contacts), m.
+    pub hertz_approach: f64,
+    /// Ball load, N.
+    pub load: f64,
+    /// `dQ/d(delta)` with respect to the rigid approach (Hertz and film in series), N/m.
+    pub stiffness: f64,
+    /// Inlet squeeze damping of the ball (both contacts in series), N s/m.
+    pub damping: f64,
+    /// Central films at the inner and outer contact, m.
+    pub central: [f64; 2],
+}
+
+impl FilmModel {
+    /// For the contacts `inner`, `outer` (series constant `kn`), pitch diameter `dm`,
+    /// `gamma = D cos(alpha)/dm`.
+    pub fn new(
+        lubricant: Lubricant,
+        inner: PointContact,
+        outer: PointContact,
+        kn: f64,
+        dm: f64,
+        gamma: f64,
+    ) -> Self {
+        FilmModel {
+            lubricant,
+            kn_pow: kn.powf(-0.067),
+            qmin_pow: Q_MIN.powf(-0.067),
+            s_min: (Q_MIN / kn).powf(2.0 / 3.0),
+            ki23: inner.kc.powf(2.0 / 3.0),
+            ko23: outer.kc.powf(2.0 / 3.0),
+            inner,
+            outer,
+            kn,
+            dm,
+            gamma,
+        }
+    }
+
+    /// Coefficients at shaft speed `omega` (rad/s, outer ring fixed).
+    pub fn at_speed(&self, omega: f64) -> FilmAtSpeed {
+        let u = entrainment_speed(self.dm, self.gamma, omega);
+        let l = &self.lubricant;
+        FilmAtSpeed {
+            u,
+            a_i: central_coefficient(l, &self.inner, u),
+            a_o: central_coefficient(l, &self.outer, u),
+            m_i: minimum_coefficient(l, &self.inner, u),
+            m_o: minimum_coefficient(l, &self.outer, u),
+        }
+    }
+
+    /// Thinnest film of a ball carrying `q`, m.
+    pub fn min_film(&self, f: &FilmAtSpeed, q: f64) -> f64 {
+        let p = q.max(Q_MIN).powf(-0.073);
+        f.m_i.min(f.m_o) * p
+    }
+
+    /// Solve `delta_H = delta + h_i(Q) + h_o(Q)`, `Q = Kn delta_H^1.5` for a ball whose
+    /// rigid approach is `delta`; `None` when it carries no load.
+    pub fn solve(&self, f: &FilmAtSpeed, delta: f64) -> Option<BallFilm> {
+        let a = f.a_i + f.a_o;
+        let kn = self.kn;
+        let s_min = self.s_min;
+        let h_max = a * self.qmin_pow;
+        if delta + h_max <= 0.0 {
+            return None;
+        }
+        // g(s) = s - delta - B s^-0.1005 (increasing and concave: from any start, Newton's
+        // first iterate is left of the root, then the iterates climb monotonically to it).
+        let e = 1.5 * 0.067;
+        let b = a * self.kn_pow;
+        // q_pow = Q^-0.067 at the solution.
+        let (s, gp, q_pow) = if delta + h_max <= s_min {
+            (delta + h_max, 1.0, self.qmin_pow)
+        } else {
+            // Start from the film at the rigid approach: s0 = delta + h(Q(delta)) lies just
+            // right of the root (more load, thinner film).
+            let mut s = if delta > s_min {
+                delta + b * delta.powf(-e)
+            } else {
+                s_min
+            };
+            let (mut gp, mut sp) = (1.0, s.powf(-e));
+            for _ in 0..50 {
+                let t = b * sp;
+                let g = s - delta - t;
+                gp = 1.0 + e * t / s;
+                let ds = -g / gp;
+                s += ds;
+                sp = s.powf(-e);
+                if ds.abs() <= 1e-14 * s + 1e-18 {
+                    break;
+                }
+            }
+            (s, gp, self.kn_pow * sp)
+        };
+        let frozen = q_pow == self.qmin_pow;
+        let sq = s.sqrt();
+        let load = kn * s * sq;
+        let stiffness = 1.5 * kn * sq / gp;
+        let (h_i, h_o) = (f.a_i * q_pow, f.a_o * q_pow);
+        // Contact stiffnesses (Hertz in series with the film) for the damper combination.
+        let q13 = load.cbrt();
+        let contact_k = |k23: f64, h: f64| {
+            let kh = 1.5 * k23 * q13;
+            if frozen || h <= 0.0 {
+                kh
+            } else {
+                let kf = load / (0.067 * h);
+                kh * kf / (kh + kf)
+            }
+        };
+        let (k_i, k_o) = (contact_k(self.ki23, h_i), contact_k(self.ko23, h_o));
+        let l = &self.lubricant;
+        let (c_i, c_o) = (
+            squeeze_damping(l, &self.inner, h_i),
+            squeeze_damping(l, &self.outer, h_o),
+        );
+        let ks = k_i + k_o;
+        let damping = if ks > 0.0 {
+            (c_i * k_o * k_o + c_o * k_i * k_i) / (ks * ks)
+        } else {
+            0.5 * (c_i + c_o)
+        };
+        Some(BallFilm {
+            hertz_approach: s,
+            load,
+            stiffness,
+            damping,
+            central: [h_i, h_o],
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::contact::{series_constant, Curvature, Race};
+    use crate::geometry::preset;
+
+    fn model(l: Lubricant) -> (FilmModel, f64) {
+        let b = preset("6205").unwrap().build().unwrap();
+        let ci = PointContact::new(
+            Curvature::ball_race(b.d, b.dm, 0.0, b.fi, Race::Inner),
+            b.e_eff_inner(),
+        );
+        let co = PointContact::new(
+            Curvature::ball_race(b.d, b.dm, 0.0, b.fo, Race::Outer),
+            b.e_eff_outer(),
+        );
+        let kn = series_constant(ci.kc, co.kc);
+        (FilmModel::new(l, ci, co, kn, b.dm, b.d / b.dm), kn)
+    }
+
+    /// The solved ball satisfies its defining equation and the series stiffness matches a
+    /// finite difference.
+    #[test]
+    fn solve_satisfies_the_film_equation() {
+        let (m, kn) = model(Lubricant::study2());
+        let f = m.at_speed(183.26);
+        for delta in [-0.3e-6, 1e-6, 10e-6] {
+            let r = m.solve(&f, delta).unwrap();
+            let h = r.central[0] + r.central[1];
+            assert!((r.hertz_approach - delta - h).abs() < 1e-15, "{r:?}");
+            assert!((r.load - kn * r.hertz_approach.powf(1.5)).abs() < 1e-9 * r.load);
+            let d = 1e-10;
+            let fd = (m.solve(&f, delta + d).unwrap().load - m.solve(&f, delta - d).unwrap().load)
+                / (2.0 * d);
+            assert!(
+                (fd - r.stiffness).abs() < 1e-5 * r.stiffness,
+                "{fd} vs {}",
+                r.stiffness
+            );
+        }
+        // The film lets a ball with a small gap carry load (it fills the gap).
+        assert!(m.solve(&f, -0.3e-6).unwrap().load > 0.0);
+        assert!(m.solve(&f, -5e-6).is_none());
+    }
+
+    /// The squeeze damping reduces to the sphere's `6 pi eta R² / h`, and for a long ellipse
+    /// grows as `Rx^1.5 Ry^0.5` (the line-contact limit), not as `Rx Ry`.
+    #[test]
+    fn squeeze_damping_limits() {
+        let l = Lubricant {
+            roughness: 0.0,
+            ..Lubricant::study2()
+        };
+        let r = 5e-3;
+        let sphere = PointContact::new(Curvature::sphere_on_flat(r), 2.3e11);
+        let h = 0.3e-6;
+        let want = 6.0 * PI * l.viscosity * r * r / h;
+        assert!((squeeze_damping(&l, &sphere, h) - want).abs() < 1e-12 * want);
+        let ellipse = |ry: f64| {
+            let mut c = sphere;
+            c.curvature.rx = r;
+            c.curvature.ry = ry;
+            squeeze_damping(&l, &c, h)
+        };
+        let ratio = ellipse(400.0 * r) / ellipse(100.0 * r);
+        assert!((ratio - 2.0).abs() < 0.02, "{ratio}");
+    }
+}

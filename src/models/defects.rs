@@ -1,0 +1,187 @@
+//! Local defects (spalls): the depth loss `H_j` a ball sees as it crosses a rectangular
+//! pit (physics.md §5.3; study \[4\], Yan et al.; the finite-ball geometry of Moazen-Ahmadi &
+//! Howard, *Mech. Syst. Signal Process.* 80 (2016) and Sawalhi & Randall,
+//! *Mech. Syst. Signal Process.* 22 (2008)).
+//!
+//! A pit of circumferential width `L` and depth `H` on a race (or on a ball). A rigid ball
+//! of radius `R = D/2` whose contact point sits at arc position `s` from the pit centre
+//! sinks by the largest `e` that keeps it clear of both edges and of the floor:
+//!
+//! ```text
+//! e(s) = min( f(L/2 - s), f(L/2 + s), H ),   f(d) = R - sqrt(R² - d²),   |s| < L/2
+//! e(s) = 0                                                               |s| >= L/2
+//! ```
+//!
+//! The three arguments are the three phases study \[4\] names: entry (the ball pivots on the
+//! entry edge), floor (it rests on the bottom), exit (it climbs out over the exit edge).
+//! The deepest it can go with edges only is `Hr = f(L/2) = D/2 - sqrt((D/2)² - (L/2)²)`:
+//! for `H >= Hr` it rides the two edges and `e` rises to `Hr` and back; for `H < Hr` it
+//! reaches the floor and `e` is capped at `H`. `f` has zero slope at `d = 0`, so the entry
+//! and exit are C¹; the corners where two phases meet are rounded with a quadratic smooth
+//! minimum of width `SMOOTH * min(H, Hr)` (C¹, lowers the corners by at most a quarter of
+//! that width), so an integrator never meets a slope jump.
+//!
+//! The same sagitta applies to a pit on a ball crossed by a (locally flat) race: the race
+//! bridges the chord `L` of the ball's circle.
+
+use std::f64::consts::PI;
+
+/// Width of the smooth minimum at the phase corners, as a fraction of `min(H, Hr)`.
+pub const SMOOTH: f64 = 0.1;
+
+/// Which element carries a defect.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DefectSite {
+    /// Outer race, fixed in the housing.
+    Outer,
+    /// Inner race, turning with the shaft.
+    Inner,
+    /// Ball number `j` (0-based), turning with the ball's spin.
+    Ball(usize),
+}
+
+/// One pit, ready to evaluate (SI).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Defect {
+    /// Element.
+    pub site: DefectSite,
+    /// Angle of the pit centre at `t = 0`: on a race, azimuth from `+x`; on a ball, the
+    /// spin angle from the outer contact point, rad.
+    pub angle: f64,
+    /// Circumferential width `L`, m.
+    pub width: f64,
+    /// Depth `H`, m.
+    pub depth: f64,
+    /// Ball radius `R = D/2`, m.
+    pub r_ball: f64,
+    /// Radius on which the pit's arc is measured (race contact radius, or `D/2`), m.
+    pub r_arc: f64,
+    /// Edge-limited depth `Hr`, m.
+    pub hr: f64,
+    /// Smooth-minimum width, m.
+    k: f64,
+}
+
+/// Quadratic smooth minimum (C¹): equals `min(a, b)` when `|a - b| >= k`, and lies at most
+/// `k/4` below it otherwise.
+#[inline]
+fn smin(a: f64, b: f64, k: f64) -> f64 {
+    let h = (k - (a - b).abs()).max(0.0) / k;
+    a.min(b) - h * h * k * 0.25
+}
+
+/// Wrap an angle to `(-pi, pi]`.
+#[inline]
+pub fn wrap(a: f64) -> f64 {
+    let t = a.rem_euclid(2.0 * PI);
+    if t > PI {
+        t - 2.0 * PI
+    } else {
+        t
+    }
+}
+
+/// `Hr = R - sqrt(R² - (L/2)²)`: how far a ball of radius `r` sinks into a slot of width
+/// `l` when it rides on both edges (physics.md §5.3).
+pub fn edge_depth(r: f64, l: f64) -> f64 {
+    sagitta(r, 0.5 * l)
+}
+
+#[inline]
+fn sagitta(r: f64, d: f64) -> f64 {
+    let d = d.clamp(0.0, r);
+    // r - sqrt(r² - d²), written without cancellation.
+    d * d / (r + (r * r - d * d).sqrt())
+}
+
+impl Defect {
+    /// A pit of width `width` and depth `depth` (m) centred at `angle` (rad) on `site`,
+    /// for balls of radius `r_ball`; `r_arc` is the radius its arc length is measured on.
+    /// Callers validate `0 < width < 2 r_ball` and `depth > 0`.
+    pub fn new(
+        site: DefectSite,
+        angle: f64,
+        width: f64,
+        depth: f64,
+        r_ball: f64,
+        r_arc: f64,
+    ) -> Self {
+        let hr = edge_depth(r_ball, width);
+        Defect {
+            site,
+            angle,
+            width,
+            depth,
+            r_ball,
+            r_arc,
+            hr,
+            k: SMOOTH * hr.min(depth),
+        }
+    }
+
+    /// Largest depth loss: `min(H, Hr)` (before corner rounding).
+    pub fn max_loss(&self) -> f64 {
+        self.hr.min(self.depth)
+    }
+
+    /// Depth loss `e(s)` at arc position `s` (m) of the contact point from the pit centre.
+    #[inline]
+    pub fn loss_at(&self, s: f64) -> f64 {
+        let half = 0.5 * self.width;
+        if s.abs() >= half {
+            return 0.0;
+        }
+        let entry = sagitta(self.r_ball, half + s);
+        let exit = sagitta(self.r_ball, half - s);
+        let e = smin(smin(entry, exit, self.k), self.depth, self.k);
+        e.max(0.0)
+    }
+
+    /// Depth loss at the angle `a` (rad) of the contact point relative to the pit centre.
+    #[inline]
+    pub fn loss_at_angle(&self, a: f64) -> f64 {
+        let s = self.r_arc * wrap(a);
+        self.loss_at(s)
+    }
+
+    /// Depth loss of ball `j` at azimuth `psi`, with the shaft turned by `theta_s` and the
+    /// balls spun (relative to the cage) by `phi` since `t = 0`. A ball pit meets the outer
+    /// race at spin angle 0 and the inner race half a turn later; both losses add.
+    #[inline]
+    pub fn loss(&self, j: usize, psi: f64, theta_s: f64, phi: f64) -> f64 {
+        match self.site {
+            DefectSite::Outer => self.loss_at_angle(psi - self.angle),
+            DefectSite::Inner => self.loss_at_angle(psi - theta_s - self.angle),
+            DefectSite::Ball(b) => {
+                if b != j {
+                    return 0.0;
+                }
+                let a = phi + self.angle;
+                self.loss_at_angle(a) + self.loss_at_angle(a - PI)
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn smooth_min_is_min_far_apart_and_c1() {
+        assert_eq!(smin(1.0, 3.0, 0.5), 1.0);
+        assert!((smin(1.0, 1.0, 0.4) - 0.9).abs() < 1e-15);
+        // Slope continuity across the blend boundary |a - b| = k.
+        let k = 0.2;
+        let f = |x: f64| smin(x, 0.0, k);
+        let d = 1e-7;
+        let slope = |x: f64| (f(x + d) - f(x - d)) / (2.0 * d);
+        assert!((slope(k - 1e-5) - slope(k + 1e-5)).abs() < 1e-3);
+    }
+
+    #[test]
+    fn sagitta_is_exact() {
+        let (r, d) = (3.97e-3, 0.5e-3);
+        assert!((sagitta(r, d) - (r - (r * r - d * d).sqrt())).abs() < 1e-18);
+    }
+}

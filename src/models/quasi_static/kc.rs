@@ -1,0 +1,101 @@
+//! The Hertz load–deflection constant `Kc` as a function of the contact angle, for one race.
+//!
+//! This is the ONE place the quasi-static model gets `Kc(alpha)` from. It samples
+//! [`PointContact::new`]`(Curvature::ball_race(D, dm, alpha, f, race), E').kc` (physics.md
+//! §3; Harris & Kotzalas Vol. 1 ch. 6) on a uniform grid in `c = cos(alpha)` once per bearing
+//! and interpolates with cubic Hermite polynomials (node slopes by central differences of the
+//! exact function), so the per-ball kernel gets `Kc` and `dKc/dc` without solving the
+//! ellipticity equation. Swapping in the contact module's own fast table means changing
+//! [`KcTable::new`] and [`KcTable::eval`] only.
+
+use crate::contact::{Curvature, PointContact, Race};
+use crate::geometry::Bearing;
+
+/// Number of grid intervals over `c in [0, 1]`.
+const N: usize = 128;
+
+/// `Kc(cos alpha)` for one race of one bearing.
+#[derive(Debug, Clone)]
+pub(crate) struct KcTable {
+    v: Vec<f64>,
+    dv: Vec<f64>,
+}
+
+/// The exact constant at `cos(alpha) = c` (through the contact module).
+pub(crate) fn kc_exact(b: &Bearing, race: Race, c: f64) -> f64 {
+    let (f, e) = match race {
+        Race::Inner => (b.fi, b.e_eff_inner()),
+        Race::Outer => (b.fo, b.e_eff_outer()),
+    };
+    let alpha = c.clamp(0.0, 1.0).acos();
+    PointContact::new(Curvature::ball_race(b.d, b.dm, alpha, f, race), e).kc
+}
+
+impl KcTable {
+    /// Sample the exact constant.
+    pub fn new(b: &Bearing, race: Race) -> Self {
+        let h = 1.0 / N as f64;
+        let eps = 1e-4 * h;
+        let mut v = Vec::with_capacity(N + 1);
+        let mut dv = Vec::with_capacity(N + 1);
+        for k in 0..=N {
+            let c = k as f64 * h;
+            v.push(kc_exact(b, race, c));
+            // One-sided at the ends of [0, 1], central inside.
+            let (lo, hi) = ((c - eps).max(0.0), (c + eps).min(1.0));
+            dv.push((kc_exact(b, race, hi) - kc_exact(b, race, lo)) / (hi - lo));
+        }
+        KcTable { v, dv }
+    }
+
+    /// `(Kc, dKc/dc)` at `c = cos(alpha)`; `Kc` depends on `|c|` (clamped to 1).
+    #[inline]
+    pub fn eval(&self, c: f64) -> (f64, f64) {
+        let sign = if c < 0.0 { -1.0 } else { 1.0 };
+        let ca = c.abs().min(1.0);
+        let h = 1.0 / N as f64;
+        let s = ca * N as f64;
+        let k = (s as usize).min(N - 1); // s >= 0: truncation is floor
+        let t = s - k as f64;
+        let (y0, y1) = (self.v[k], self.v[k + 1]);
+        let (m0, m1) = (self.dv[k] * h, self.dv[k + 1] * h);
+        let t2 = t * t;
+        let t3 = t2 * t;
+        let val = (2.0 * t3 - 3.0 * t2 + 1.0) * y0
+            + (t3 - 2.0 * t2 + t) * m0
+            + (-2.0 * t3 + 3.0 * t2) * y1
+            + (t3 - t2) * m1;
+        let dval = ((6.0 * t2 - 6.0 * t) * y0
+            + (3.0 * t2 - 4.0 * t + 1.0) * m0
+            + (-6.0 * t2 + 6.0 * t) * y1
+            + (3.0 * t2 - 2.0 * t) * m1)
+            / h;
+        (val, sign * dval)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::preset;
+
+    #[test]
+    fn table_matches_the_exact_constant_between_nodes() {
+        let b = preset("acbb16").unwrap().build().unwrap();
+        for race in [Race::Inner, Race::Outer] {
+            let t = KcTable::new(&b, race);
+            for k in 0..57 {
+                let c = (k as f64 + 0.37) / 57.0;
+                let exact = kc_exact(&b, race, c);
+                let (v, dv) = t.eval(c);
+                assert!((v / exact - 1.0).abs() < 1e-7, "c {c}: {v} vs {exact}");
+                let h = 1e-5;
+                let fd = (kc_exact(&b, race, c + h) - kc_exact(&b, race, c - h)) / (2.0 * h);
+                assert!(
+                    (dv - fd).abs() <= 1e-4 * fd.abs() + 1e-6 * exact,
+                    "{dv} {fd}"
+                );
+            }
+        }
+    }
+}

@@ -1,0 +1,799 @@
+//! Jones–Harris quasi-static equilibrium of a ball bearing (physics.md §4; Harris &
+//! Kotzalas, *Rolling Bearing Analysis* 5th ed., Vol. 2 ch. 3; Jones, *A general theory for
+//! elastically constrained ball and radial roller bearings under arbitrary load and speed
+//! conditions*, ASME J. Basic Eng. 1960).
+//!
+//! Every ball is in force equilibrium; inertia enters as its centrifugal force and
+//! gyroscopic moment. Two ways to drive it:
+//!
+//! - **motion-driven** ([`QuasiStatic::evaluate`], [`QuasiStatic::forces`]): given the
+//!   inner-ring displacement `q`, the shaft speed and the ball azimuths, solve each ball's two
+//!   equations (warm-started from caller-owned [`BallState`]s, no allocation) and sum the
+//!   forces and moments on the shaft; optionally the exact 5x5 stiffness `K = -dF/dq` by the
+//!   implicit-function theorem on the ball equations;
+//! - **load-driven** ([`QuasiStatic::solve`]): given the external load on the inner ring,
+//!   find `q` and every ball by a damped Newton–Raphson on the five ring equations with the
+//!   ball equations solved inside (nested).
+//!
+//! # Conventions (physics.md §0)
+//!
+//! Fixed frame, `z` along the shaft axis, ball `j` at azimuth `psi_j` from `+x` toward `+y`.
+//! `q = (x, y, z, rx, ry)`: translation of the inner-ring centre and small rotations about
+//! `x` and `y` (right-hand rule). Forces and moments are those the bearing exerts **on the
+//! shaft**, `F = (Fx, Fy, Fz, Mx, My)`, moments about the centre of the circle of inner
+//! groove curvature centres (the bearing centre).
+//!
+//! - **Tilt.** A rotation `(rx, ry, 0)` moves a ring point `Ri (cos psi, sin psi, 0)` by
+//!   `(rx, ry, 0) x Ri (cos psi, sin psi, 0) = Ri (rx sin psi - ry cos psi) e_z`, so
+//!   `A1_j = A1_0 + z + Ri (rx sin psi_j - ry cos psi_j)`,
+//!   `A2_j = A2_0 + x cos psi_j + y sin psi_j` (`(A1_0, A2_0)` from
+//!   [`Bearing::reference_groove_offset`], `Ri` = [`Bearing::inner_groove_centre_radius`]).
+//!   The radial motion of the groove centre caused by tilt (second order) and the tangential
+//!   part of the ring translation are neglected, as in Jones and Harris.
+//! - **Moment arms.** The inner normal force passes through the inner groove centre, at
+//!   radius `Ri` in the bearing plane, so a ball's axial force `F_a` on the shaft gives the
+//!   ball-plane moment `m = Ri F_a`; the gyroscopic friction force `T_i` acts at the contact
+//!   point, `f_i D` from that centre, and adds the couple `T_i f_i D` (`= lambda_i f_i Mg`,
+//!   Harris's term). With `F_r` the radial force on the shaft:
+//!   `Fx = sum F_r cos psi`, `Fy = sum F_r sin psi`, `Fz = sum F_a`,
+//!   `Mx = sum m sin psi`, `My = -sum m cos psi`. These are the generalised forces conjugate
+//!   to `q` through the map above (virtual work), so at zero speed `K` is symmetric (up to
+//!   the small non-conservative part from `Kc` depending on the contact angle) and a tilt
+//!   `rx > 0` of a loaded angular-contact bearing gives `Mx < 0` (restoring,
+//!   `K[rx][rx] > 0`).
+//!
+//! The per-ball physics (race control, gyroscopic sign, friction limit) is documented in
+//! `ball.rs`; the Hertz constant comes from one function, `kc.rs`.
+
+mod ball;
+mod dual;
+mod kc;
+
+pub use crate::component::scene::RaceControl;
+pub use ball::BallState;
+
+use crate::contact::{Curvature, PointContact, Race};
+use crate::error::{Error, Result};
+use crate::geometry::Bearing;
+use ball::{Eval, Geo};
+use kc::KcTable;
+use nalgebra::{Matrix5, Vector5};
+use serde::{Deserialize, Serialize};
+use std::f64::consts::PI;
+
+/// Model and solver options.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct Options {
+    /// Race control: outer (`lambda_o = 2`, `lambda_i = 0`) or none (1 and 1).
+    pub race_control: RaceControl,
+    /// Include the gyroscopic moment (false: `Mg = 0`).
+    pub gyroscopic: bool,
+    /// Traction coefficient that limits the gyroscopic friction couple (`ball.rs` docs);
+    /// `f64::INFINITY` gives Harris's unlimited couple.
+    pub gyro_traction: f64,
+    /// Relative tolerance of each ball's force balance (residual / (Q_i + Q_o + Fc)).
+    pub ball_tolerance: f64,
+    /// Relative tolerance of the ring force balance in the load-driven solve.
+    pub ring_tolerance: f64,
+    /// Newton iterations allowed per ball solve and per ring solve.
+    pub max_iterations: usize,
+    /// Largest contact angle the groove can carry (its shoulder), rad; a load-driven answer
+    /// beyond it is refused.
+    pub max_contact_angle: f64,
+    /// Largest contact deflection as a fraction of `D` (Hertz theory is far outside its
+    /// range beyond); a load-driven answer beyond it is refused.
+    pub max_deflection_ratio: f64,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Options {
+            race_control: RaceControl::Outer,
+            gyroscopic: true,
+            gyro_traction: 0.3,
+            ball_tolerance: 1e-11,
+            ring_tolerance: 1e-10,
+            max_iterations: 60,
+            max_contact_angle: 80f64.to_radians(),
+            max_deflection_ratio: 0.02,
+        }
+    }
+}
+
+/// Everything about one ball at an equilibrium (SI: N, m, rad, rad/s, Pa, N m).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
+pub struct BallResult {
+    /// Azimuth, rad.
+    pub psi: f64,
+    /// Inner contact load, N.
+    pub q_i: f64,
+    /// Outer contact load, N.
+    pub q_o: f64,
+    /// Inner contact angle, rad.
+    pub alpha_i: f64,
+    /// Outer contact angle, rad.
+    pub alpha_o: f64,
+    /// Inner approach (negative: gap), m.
+    pub delta_i: f64,
+    /// Outer approach (negative: gap), m.
+    pub delta_o: f64,
+    /// Inner contact semi-axis across the rolling direction, m.
+    pub a_i: f64,
+    /// Inner contact semi-axis along the rolling direction, m.
+    pub b_i: f64,
+    /// Inner peak (Hertz) pressure, Pa.
+    pub p_i: f64,
+    /// Outer semi-axis across the rolling direction, m.
+    pub a_o: f64,
+    /// Outer semi-axis along the rolling direction, m.
+    pub b_o: f64,
+    /// Outer peak pressure, Pa.
+    pub p_o: f64,
+    /// Centrifugal force, N.
+    pub fc: f64,
+    /// Gyroscopic moment, N m.
+    pub mg: f64,
+    /// Orbital (cage) speed, rad/s.
+    pub omega_m: f64,
+    /// Spin speed relative to the cage, rad/s (signed as in `ball.rs`).
+    pub omega_r: f64,
+    /// Spin-axis attitude `beta`, rad.
+    pub beta: f64,
+    /// Spin-to-roll ratio at the inner contact.
+    pub spin_roll_i: f64,
+    /// Spin-to-roll ratio at the outer contact.
+    pub spin_roll_o: f64,
+    /// Ball centre relative to the outer groove centre `(X1, X2)`, m.
+    pub x: [f64; 2],
+}
+
+/// A load-driven equilibrium.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Solution {
+    /// Shaft speed, rad/s.
+    pub omega: f64,
+    /// External load on the inner ring `(Fx, Fy, Fz, Mx, My)`, N and N m.
+    pub load: [f64; 5],
+    /// Inner-ring displacement `(x, y, z, rx, ry)`, m and rad.
+    pub q: [f64; 5],
+    /// Forces and moments of the bearing on the shaft at `q` (= `-load` to the tolerance).
+    pub forces: [f64; 5],
+    /// Stiffness `K = -dF/dq` (row `i`: force `i`), SI.
+    pub stiffness: [[f64; 5]; 5],
+    /// Ball azimuths, rad.
+    pub psi: Vec<f64>,
+    /// Per-ball results.
+    pub balls: Vec<BallResult>,
+    /// Per-ball states (to warm-start a motion-driven run from here).
+    pub states: Vec<BallState>,
+    /// Ring Newton iterations (all stages).
+    pub iterations: usize,
+}
+
+/// The quasi-static model of one bearing, with everything that can be precomputed.
+#[derive(Debug, Clone)]
+pub struct QuasiStatic {
+    bearing: Bearing,
+    opts: Options,
+    geo: Geo,
+    a_ref: [f64; 2],
+    ri: f64,
+    /// Scale for rotations (m): `q_s = (x, y, z, Ri rx, Ri ry)`.
+    t: [f64; 5],
+}
+
+/// Equally spaced azimuths `psi_j = phase + 2 pi j / Z` (ball 0 at `phase`).
+pub fn azimuths(z: usize, phase: f64) -> Vec<f64> {
+    (0..z)
+        .map(|j| phase + 2.0 * PI * j as f64 / z as f64)
+        .collect()
+}
+
+fn check_finite(what: &str, v: &[f64]) -> Result<()> {
+    for (k, x) in v.iter().enumerate() {
+        if !x.is_finite() {
+            return Err(Error::invalid(format!("{what}[{k}]"), x, "a finite number"));
+        }
+    }
+    Ok(())
+}
+
+fn norm(v: &[f64]) -> f64 {
+    v.iter().map(|x| x * x).sum::<f64>().sqrt()
+}
+
+impl QuasiStatic {
+    /// Precompute the model for `bearing`.
+    pub fn new(bearing: &Bearing, opts: Options) -> Result<Self> {
+        let pos = |f: &str, v: f64| {
+            if v.is_finite() && v > 0.0 {
+                Ok(())
+            } else {
+                Err(Error::invalid(f, v, "a finite number > 0"))
+            }
+        };
+        pos("quasi_static.ball_tolerance", opts.ball_tolerance)?;
+        pos("quasi_static.ring_tolerance", opts.ring_tolerance)?;
+        pos(
+            "quasi_static.max_deflection_ratio",
+            opts.max_deflection_ratio,
+        )?;
+        if opts.gyro_traction.is_nan() || opts.gyro_traction <= 0.0 {
+            return Err(Error::invalid(
+                "quasi_static.gyro_traction",
+                opts.gyro_traction,
+                "> 0 (inf: unlimited)",
+            ));
+        }
+        if !(opts.max_contact_angle > 0.0 && opts.max_contact_angle <= 0.5 * PI) {
+            return Err(Error::invalid(
+                "quasi_static.max_contact_angle",
+                opts.max_contact_angle,
+                "in (0, pi/2] rad",
+            ));
+        }
+        if opts.max_iterations == 0 {
+            return Err(Error::invalid("quasi_static.max_iterations", 0, ">= 1"));
+        }
+        let (lam_i, lam_o) = match opts.race_control {
+            RaceControl::Outer => (0.0, 2.0),
+            RaceControl::None => (1.0, 1.0),
+        };
+        let ri = bearing.inner_groove_centre_radius();
+        let geo = Geo {
+            d: bearing.d,
+            dm: bearing.dm,
+            ri_free: (bearing.fi - 0.5) * bearing.d,
+            ro_free: (bearing.fo - 0.5) * bearing.d,
+            fid: bearing.fi * bearing.d,
+            ri,
+            g: bearing.d / bearing.dm,
+            mass: bearing.ball_mass(),
+            inertia: if opts.gyroscopic {
+                bearing.ball_inertia()
+            } else {
+                0.0
+            },
+            lam_i,
+            lam_o,
+            mu: opts.gyro_traction,
+            control: opts.race_control,
+            kc_i: KcTable::new(bearing, Race::Inner),
+            kc_o: KcTable::new(bearing, Race::Outer),
+            tol: opts.ball_tolerance,
+            max_iter: opts.max_iterations,
+        };
+        let (a1, a2) = bearing.reference_groove_offset();
+        Ok(QuasiStatic {
+            bearing: bearing.clone(),
+            opts,
+            geo,
+            a_ref: [a1, a2],
+            ri,
+            t: [1.0, 1.0, 1.0, ri, ri],
+        })
+    }
+
+    /// The bearing.
+    pub fn bearing(&self) -> &Bearing {
+        &self.bearing
+    }
+
+    /// The options.
+    pub fn options(&self) -> &Options {
+        &self.opts
+    }
+
+    /// `Kc(alpha)` of the inner and outer contacts, N/m^1.5 (the model's one source of it).
+    pub fn kc(&self, alpha: f64) -> (f64, f64) {
+        let c = alpha.cos();
+        (self.geo.kc_i.eval(c).0, self.geo.kc_o.eval(c).0)
+    }
+
+    /// Offset `(A1, A2)` of the inner groove centre from the outer one for ball azimuth
+    /// `psi` at displacement `q` (module docs).
+    pub fn groove_offset(&self, q: &[f64; 5], psi: f64) -> [f64; 2] {
+        let (s, c) = psi.sin_cos();
+        [
+            self.a_ref[0] + q[2] + self.ri * (q[3] * s - q[4] * c),
+            self.a_ref[1] + q[0] * c + q[1] * s,
+        ]
+    }
+
+    /// Motion-driven forces on the shaft. See [`QuasiStatic::evaluate`].
+    pub fn forces(
+        &self,
+        q: &[f64; 5],
+        omega: f64,
+        psi: &[f64],
+        state: &mut [BallState],
+    ) -> Result<[f64; 5]> {
+        self.evaluate(q, omega, psi, state, None, None)
+    }
+
+    /// Motion-driven forces and the stiffness `K = -dF/dq` at fixed ball azimuths.
+    pub fn forces_and_stiffness(
+        &self,
+        q: &[f64; 5],
+        omega: f64,
+        psi: &[f64],
+        state: &mut [BallState],
+        k: &mut [[f64; 5]; 5],
+    ) -> Result<[f64; 5]> {
+        self.evaluate(q, omega, psi, state, Some(k), None)
+    }
+
+    /// The motion-driven kernel: ring displacement `q` (m, rad), shaft speed `omega` (rad/s,
+    /// outer ring fixed), ball azimuths `psi` (rad) → forces and moments on the shaft
+    /// `(Fx, Fy, Fz, Mx, My)`. `state` (one per ball, caller-owned) holds the warm starts and
+    /// is updated; `stiffness` and `balls` are filled when given. Does not allocate.
+    ///
+    /// Errors: non-finite input, mismatched slice lengths, a ball solve that does not
+    /// converge. On error `state` may hold partial updates (still valid warm starts).
+    pub fn evaluate(
+        &self,
+        q: &[f64; 5],
+        omega: f64,
+        psi: &[f64],
+        state: &mut [BallState],
+        mut stiffness: Option<&mut [[f64; 5]; 5]>,
+        mut balls: Option<&mut [BallResult]>,
+    ) -> Result<[f64; 5]> {
+        check_finite("q", q)?;
+        if !omega.is_finite() {
+            return Err(Error::invalid("omega", omega, "a finite number"));
+        }
+        if state.len() != psi.len() {
+            return Err(Error::invalid(
+                "state.len()",
+                state.len(),
+                format!("= psi.len() = {}", psi.len()),
+            ));
+        }
+        if let Some(b) = balls.as_deref() {
+            if b.len() != psi.len() {
+                return Err(Error::invalid(
+                    "balls.len()",
+                    b.len(),
+                    format!("= psi.len() = {}", psi.len()),
+                ));
+            }
+        }
+        if let Some(k) = stiffness.as_deref_mut() {
+            *k = [[0.0; 5]; 5];
+        }
+        let mut f = [0.0; 5];
+        for (j, (&p, st)) in psi.iter().zip(state.iter_mut()).enumerate() {
+            if !p.is_finite() {
+                return Err(Error::invalid(format!("psi[{j}]"), p, "a finite number"));
+            }
+            let (s, c) = p.sin_cos();
+            let a = self.groove_offset(q, p);
+            let e = self.geo.solve(omega, a, st)?;
+            let (fa, fr, m) = (e.fa.v, e.fr.v, e.m.v);
+            f[0] += fr * c;
+            f[1] += fr * s;
+            f[2] += fa;
+            f[3] += m * s;
+            f[4] -= m * c;
+            if let Some(k) = stiffness.as_deref_mut() {
+                let e4 = self.geo.eval::<4>(omega, st.x, a);
+                self.add_ball_stiffness(&e4, s, c, k);
+            }
+            if let Some(b) = balls.as_deref_mut() {
+                b[j] = self.ball_result(&e, p, st.x);
+            }
+        }
+        check_finite("forces", &f).map_err(|_| Error::NotConverged {
+            what: "quasi-static ring forces (non-finite)",
+            iterations: 0,
+            residual: f64::NAN,
+        })?;
+        Ok(f)
+    }
+
+    /// Add ball `e`'s contribution to `K = -dF/dq` (implicit-function theorem on the ball
+    /// equations: `dX/dA = -(dg/dX)^-1 dg/dA`).
+    fn add_ball_stiffness(&self, e: &Eval<4>, s: f64, c: f64, k: &mut [[f64; 5]; 5]) {
+        let dxda = ball::sensitivity(e); // dxda[r][col] = dX_r / dA_col
+        let total = |o: &dual::D4| -> [f64; 2] {
+            let ox = [o.d[0] - o.d[2], o.d[1] - o.d[3]];
+            [
+                o.d[2] + ox[0] * dxda[0][0] + ox[1] * dxda[1][0],
+                o.d[3] + ox[0] * dxda[0][1] + ox[1] * dxda[1][1],
+            ]
+        };
+        let dfa = total(&e.fa);
+        let dfr = total(&e.fr);
+        let dm = total(&e.m);
+        let ri = self.ri;
+        let da1 = [0.0, 0.0, 1.0, ri * s, -ri * c];
+        let da2 = [c, s, 0.0, 0.0, 0.0];
+        let rows = [
+            [dfr[0] * c, dfr[1] * c],
+            [dfr[0] * s, dfr[1] * s],
+            dfa,
+            [dm[0] * s, dm[1] * s],
+            [-dm[0] * c, -dm[1] * c],
+        ];
+        for (i, r) in rows.iter().enumerate() {
+            for jj in 0..5 {
+                k[i][jj] -= r[0] * da1[jj] + r[1] * da2[jj];
+            }
+        }
+    }
+
+    fn ball_result(&self, e: &Eval<0>, psi: f64, x: [f64; 2]) -> BallResult {
+        let b = &self.bearing;
+        let contact = |alpha: f64, q: f64, race: Race| {
+            if q > 0.0 {
+                let (f, ee) = match race {
+                    Race::Inner => (b.fi, b.e_eff_inner()),
+                    Race::Outer => (b.fo, b.e_eff_outer()),
+                };
+                let pc = PointContact::new(Curvature::ball_race(b.d, b.dm, alpha, f, race), ee);
+                let (a, bb) = pc.semi_axes(q);
+                (a, bb, pc.peak_pressure(q))
+            } else {
+                (0.0, 0.0, 0.0)
+            }
+        };
+        let (alpha_i, alpha_o) = (e.alpha_i(), e.alpha_o());
+        let (a_i, b_i, p_i) = contact(alpha_i, e.qi, Race::Inner);
+        let (a_o, b_o, p_o) = contact(alpha_o, e.qo, Race::Outer);
+        BallResult {
+            psi,
+            q_i: e.qi,
+            q_o: e.qo,
+            alpha_i,
+            alpha_o,
+            delta_i: e.di,
+            delta_o: e.do_,
+            a_i,
+            b_i,
+            p_i,
+            a_o,
+            b_o,
+            p_o,
+            fc: e.fc,
+            mg: e.mg,
+            omega_m: e.wm,
+            omega_r: e.wr,
+            beta: if e.wm == 0.0 { 0.0 } else { e.beta() },
+            spin_roll_i: e.sr_i,
+            spin_roll_o: e.sr_o,
+            x,
+        }
+    }
+
+    /// Load-driven equilibrium with the balls at `psi_j = 2 pi j / Z`.
+    pub fn solve(&self, load: &[f64; 5], omega: f64) -> Result<Solution> {
+        self.solve_at(load, omega, &azimuths(self.bearing.z, 0.0))
+    }
+
+    /// Load-driven equilibrium: find `q` such that the bearing's forces on the shaft balance
+    /// the external load on the inner ring, `F(q) + load = 0`, at shaft speed `omega`.
+    ///
+    /// Method: (1) zero-speed start: a 1-D bracketing search along the load direction (in
+    /// scaled coordinates `(x, y, z, Ri rx, Ri ry)`) for the displacement whose reaction
+    /// balances the load's magnitude, then (2) damped Newton–Raphson on the five ring
+    /// equations with the exact `K` (nested ball solves) and a back-tracking line search on
+    /// the scaled residual norm; (3) at speed, Newton from the static answer, falling back to
+    /// continuation in speed. Singular directions (no stiffness, e.g. tilt about the load
+    /// line when only the balls on it carry load, or every direction at zero load) are
+    /// regularised Levenberg–Marquardt fashion, `(K_s + mu I) dq = r` with
+    /// `mu = 1e-12 max diag K_s`: a direction with neither stiffness nor residual stays at
+    /// its start value (zero). Non-convergence is [`Error::NotConverged`]; an answer with a
+    /// contact angle beyond [`Options::max_contact_angle`] or a deflection beyond
+    /// [`Options::max_deflection_ratio`] `D` is refused as [`Error::Invalid`].
+    pub fn solve_at(&self, load: &[f64; 5], omega: f64, psi: &[f64]) -> Result<Solution> {
+        check_finite("load", load)?;
+        check_finite("psi", psi)?;
+        if !omega.is_finite() {
+            return Err(Error::invalid("omega", omega, "a finite number"));
+        }
+        let n = psi.len();
+        let mut state = vec![BallState::default(); n];
+        let mut trial = vec![BallState::default(); n];
+        let mut q = self.static_start(load, psi, &mut state)?;
+        let mut iterations = self.ring_newton(load, 0.0, psi, &mut q, &mut state, &mut trial)?;
+        if omega != 0.0 {
+            let q_static = q;
+            let s_static = state.clone();
+            let mut done = false;
+            let mut last_err = None;
+            for steps in [1usize, 4, 16] {
+                q = q_static;
+                state.copy_from_slice(&s_static);
+                let mut ok = true;
+                for k in 1..=steps {
+                    let w = omega * k as f64 / steps as f64;
+                    match self.ring_newton(load, w, psi, &mut q, &mut state, &mut trial) {
+                        Ok(it) => iterations += it,
+                        Err(e) => {
+                            last_err = Some(e);
+                            ok = false;
+                            break;
+                        }
+                    }
+                }
+                if ok {
+                    done = true;
+                    break;
+                }
+            }
+            if !done {
+                return Err(last_err.unwrap_or(Error::NotConverged {
+                    what: "quasi-static ring equilibrium",
+                    iterations,
+                    residual: f64::NAN,
+                }));
+            }
+        }
+        let mut k = [[0.0; 5]; 5];
+        let mut balls = vec![BallResult::default(); n];
+        let forces = self.evaluate(&q, omega, psi, &mut state, Some(&mut k), Some(&mut balls))?;
+        self.check_validity(load, &balls)?;
+        Ok(Solution {
+            omega,
+            load: *load,
+            q,
+            forces,
+            stiffness: k,
+            psi: psi.to_vec(),
+            balls,
+            states: state,
+            iterations,
+        })
+    }
+
+    fn check_validity(&self, load: &[f64; 5], balls: &[BallResult]) -> Result<()> {
+        let dmax = self.opts.max_deflection_ratio * self.bearing.d;
+        for (j, b) in balls.iter().enumerate() {
+            for (name, alpha, q, delta) in [
+                ("inner", b.alpha_i, b.q_i, b.delta_i),
+                ("outer", b.alpha_o, b.q_o, b.delta_o),
+            ] {
+                let bad_angle = q > 0.0 && alpha.abs() > self.opts.max_contact_angle;
+                if bad_angle || delta > dmax {
+                    return Err(Error::invalid(
+                        "load",
+                        format!(
+                            "({:.6e}, {:.6e}, {:.6e}) N, ({:.6e}, {:.6e}) N m",
+                            load[0], load[1], load[2], load[3], load[4]
+                        ),
+                        format!(
+                            "loads the bearing can carry: ball {j} {name} contact at {:.2} deg \
+                             (limit {:.1} deg, the groove shoulder) with deflection {:.3} µm \
+                             (limit {:.3} µm = {} D)",
+                            alpha.to_degrees(),
+                            self.opts.max_contact_angle.to_degrees(),
+                            delta * 1e6,
+                            dmax * 1e6,
+                            self.opts.max_deflection_ratio
+                        ),
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Scaled residual `T^-1 (F + load)`.
+    fn residual(&self, f: &[f64; 5], load: &[f64; 5]) -> [f64; 5] {
+        let mut r = [0.0; 5];
+        for i in 0..5 {
+            r[i] = (f[i] + load[i]) / self.t[i];
+        }
+        r
+    }
+
+    fn load_scale(&self, load: &[f64; 5]) -> f64 {
+        let ls: Vec<f64> = (0..5).map(|i| load[i] / self.t[i]).collect();
+        norm(&ls) + 1e-9
+    }
+
+    /// Zero-speed start: bracket and bisect along the load direction.
+    fn static_start(
+        &self,
+        load: &[f64; 5],
+        psi: &[f64],
+        state: &mut [BallState],
+    ) -> Result<[f64; 5]> {
+        let ls: [f64; 5] = std::array::from_fn(|i| load[i] / self.t[i]);
+        let lmag = norm(&ls);
+        if lmag == 0.0 {
+            return Ok([0.0; 5]);
+        }
+        let u: [f64; 5] = std::array::from_fn(|i| ls[i] / lmag);
+        let q_of = |t: f64| -> [f64; 5] { std::array::from_fn(|i| t * u[i] / self.t[i]) };
+        let phi = |t: f64, state: &mut [BallState]| -> Result<f64> {
+            let f = self.forces(&q_of(t), 0.0, psi, state)?;
+            let proj: f64 = (0..5).map(|i| u[i] * f[i] / self.t[i]).sum();
+            Ok(-proj - lmag)
+        };
+        let d = self.bearing.d;
+        let (mut lo, mut hi) = (0.0, 1e-8 * d);
+        loop {
+            if phi(hi, state)? > 0.0 {
+                break;
+            }
+            lo = hi;
+            hi *= 2.0;
+            if hi > 0.5 * d {
+                return Err(Error::invalid(
+                    "load",
+                    format!("{lmag:.6e} N (scaled magnitude)"),
+                    "a load the bearing can carry (no equilibrium within half a ball diameter of displacement)",
+                ));
+            }
+        }
+        for _ in 0..50 {
+            let mid = 0.5 * (lo + hi);
+            if phi(mid, state)? > 0.0 {
+                hi = mid;
+            } else {
+                lo = mid;
+            }
+            if hi - lo <= 1e-6 * hi {
+                break;
+            }
+        }
+        Ok(q_of(hi))
+    }
+
+    /// Damped, regularised Newton on `F(q) + load = 0` at speed `omega`; `q` and `state`
+    /// are updated in place (to the answer on success). Returns the iterations used.
+    fn ring_newton(
+        &self,
+        load: &[f64; 5],
+        omega: f64,
+        psi: &[f64],
+        q: &mut [f64; 5],
+        state: &mut [BallState],
+        trial: &mut [BallState],
+    ) -> Result<usize> {
+        let scale = self.load_scale(load);
+        let tol = self.opts.ring_tolerance * scale;
+        let dstep = 0.25 * self.bearing.a();
+        let mut k = [[0.0; 5]; 5];
+        let f = self.evaluate(q, omega, psi, state, Some(&mut k), None)?;
+        let mut r = self.residual(&f, load);
+        let mut rn = norm(&r);
+        let max_it = self.opts.max_iterations.max(20) * 2;
+        for it in 0..max_it {
+            if rn <= tol {
+                return Ok(it);
+            }
+            let ks = Matrix5::from_fn(|i, j| k[i][j] / (self.t[i] * self.t[j]));
+            let dmax = (0..5).map(|i| ks[(i, i)].abs()).fold(0.0, f64::max);
+            let mut mu = 1e-12 * dmax + f64::MIN_POSITIVE;
+            let rv = Vector5::from_column_slice(&r);
+            let mut dq_s = None;
+            for _ in 0..8 {
+                let a = ks + Matrix5::identity() * mu;
+                if let Some(x) = a.lu().solve(&rv) {
+                    if x.iter().all(|v| v.is_finite()) {
+                        dq_s = Some(x);
+                        break;
+                    }
+                }
+                mu = (mu * 1e3).max(1e-9 * dmax);
+            }
+            let Some(mut dq_s) = dq_s else {
+                return Err(Error::NotConverged {
+                    what: "quasi-static ring equilibrium (singular stiffness)",
+                    iterations: it,
+                    residual: rn,
+                });
+            };
+            let big = dq_s.amax();
+            if big > dstep {
+                dq_s *= dstep / big;
+            }
+            let mut tau = 1.0;
+            let mut accepted = false;
+            for _ in 0..30 {
+                let qn: [f64; 5] = std::array::from_fn(|i| q[i] + tau * dq_s[i] / self.t[i]);
+                trial.copy_from_slice(state);
+                let mut kn = [[0.0; 5]; 5];
+                if let Ok(fnew) = self.evaluate(&qn, omega, psi, trial, Some(&mut kn), None) {
+                    let rnew = self.residual(&fnew, load);
+                    let rnn = norm(&rnew);
+                    if rnn <= (1.0 - 1e-4 * tau) * rn {
+                        *q = qn;
+                        state.copy_from_slice(trial);
+                        k = kn;
+                        r = rnew;
+                        rn = rnn;
+                        accepted = true;
+                        break;
+                    }
+                }
+                tau *= 0.5;
+            }
+            if !accepted {
+                return Err(Error::NotConverged {
+                    what: "quasi-static ring equilibrium (line search)",
+                    iterations: it,
+                    residual: rn,
+                });
+            }
+        }
+        if rn <= tol {
+            return Ok(max_it);
+        }
+        Err(Error::NotConverged {
+            what: "quasi-static ring equilibrium",
+            iterations: max_it,
+            residual: rn,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::preset;
+
+    fn model(name: &str) -> QuasiStatic {
+        QuasiStatic::new(&preset(name).unwrap().build().unwrap(), Options::default()).unwrap()
+    }
+
+    /// Under outer-race control the spin at the outer contact vanishes (the attitude formula
+    /// is exactly the no-spin condition of the kinematics used).
+    #[test]
+    fn outer_race_control_has_no_outer_spin() {
+        let m = model("acbb16");
+        let sol = m.solve(&[0.0, 2000.0, 20000.0, 0.0, 0.0], 1047.0).unwrap();
+        for b in &sol.balls {
+            assert!(b.spin_roll_o.abs() < 1e-12, "{}", b.spin_roll_o);
+            assert!(
+                b.spin_roll_i > 0.05 && b.spin_roll_i < 1.0,
+                "{}",
+                b.spin_roll_i
+            );
+        }
+    }
+
+    /// Ball equations are met at the returned state and the friction couple provides +Mg.
+    #[test]
+    fn ball_residual_and_gyroscopic_couple() {
+        let m = model("7004");
+        let psi = azimuths(6, 0.1);
+        let mut st = vec![BallState::default(); 6];
+        let q = [5e-6, -3e-6, 20e-6, 1e-4, 0.0];
+        m.forces(&q, 8000.0, &psi, &mut st).unwrap();
+        for (p, s) in psi.iter().zip(&st) {
+            let a = m.groove_offset(&q, *p);
+            let e = m.geo.eval::<0>(8000.0, s.x, a);
+            assert!(e.norm() <= 1e-10 * e.scale(), "{}", e.norm());
+            assert!(e.mg > 0.0 && e.fc > 0.0);
+        }
+    }
+
+    /// With both contacts on one line (equal angles) the race-control speeds reduce to the
+    /// rigid rolling kinematics of physics.md §1: cage `omega (1 - gamma)/2` whatever the
+    /// attitude, and with `beta = alpha` the ball spin `dm/(2D) (1 - gamma^2) omega`.
+    #[test]
+    fn equal_angles_reduce_to_rolling_kinematics() {
+        let m = model("218");
+        let b = m.bearing.clone();
+        let w = 1000.0;
+        for alpha in [0.2f64, 0.7] {
+            let n = [alpha.sin(), alpha.cos()];
+            let la = m.geo.ri_free + m.geo.ro_free + 10e-6;
+            let a = [n[0] * la, n[1] * la];
+            let x = m.geo.static_position(a);
+            let e = m.geo.eval::<0>(w, x, a);
+            assert!((e.alpha_i() - alpha).abs() < 1e-12 && (e.alpha_o() - alpha).abs() < 1e-12);
+            let k = crate::geometry::kinematics_at(&b, alpha, w, 0.0);
+            assert!((e.wm - k.cage_speed).abs() < 1e-9 * w);
+            let g = b.d * alpha.cos() / b.dm;
+            let c = (alpha - e.beta()).cos();
+            let spin = b.dm / (2.0 * b.d) * (1.0 - g * g) * w / c;
+            assert!((e.wr + spin).abs() < 1e-9 * spin, "{} {}", e.wr, spin);
+        }
+    }
+}

@@ -1,0 +1,323 @@
+//! The `raceway` program: output that parses and matches the library, and refusals that
+//! name their cause with a non-zero exit.
+
+use raceway::component::scene::Scene;
+use raceway::contact::{Curvature, PointContact, Race};
+use raceway::geometry::{preset, presets};
+use raceway::models::quasi_static::{Options, QuasiStatic, RaceControl};
+use raceway::units::{rad_s_to_rpm, rpm_to_rad_s};
+use std::process::{Command, Output};
+
+fn run(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_raceway"))
+        .args(args)
+        .output()
+        .expect("the raceway binary runs")
+}
+
+fn json(args: &[&str]) -> serde_json::Value {
+    let out = run(args);
+    assert!(
+        out.status.success(),
+        "{args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).expect("valid JSON")
+}
+
+fn refused(args: &[&str], needles: &[&str]) {
+    let out = run(args);
+    assert!(!out.status.success(), "{args:?} was accepted");
+    let err = String::from_utf8_lossy(&out.stderr).to_lowercase();
+    for n in needles {
+        assert!(
+            err.contains(&n.to_lowercase()),
+            "{args:?}: `{n}` not in: {err}"
+        );
+    }
+    assert!(out.stdout.is_empty(), "{args:?} printed a result");
+}
+
+fn f(v: &serde_json::Value) -> f64 {
+    v.as_f64().expect("a number")
+}
+
+fn close(a: f64, b: f64, rel: f64) -> bool {
+    (a - b).abs() <= rel * b.abs().max(1e-300)
+}
+
+#[test]
+fn bearings_json_lists_every_preset_with_library_numbers() {
+    let v = json(&["bearings", "--json"]);
+    let rows = v.as_array().unwrap();
+    let all = presets();
+    assert_eq!(rows.len(), all.len());
+    for (row, spec) in rows.iter().zip(&all) {
+        let b = spec.build().unwrap();
+        assert_eq!(row["name"], b.name.as_str());
+        assert_eq!(row["ball_count"].as_u64().unwrap() as usize, b.z);
+        assert!(close(f(&row["ball_diameter_mm"]), b.d * 1e3, 1e-12));
+        assert!(close(
+            f(&row["groove_centre_distance_mm"]),
+            b.a() * 1e3,
+            1e-12
+        ));
+        assert!(close(f(&row["ball_mass_kg"]), b.ball_mass(), 1e-12));
+        assert!((f(&row["free_contact_angle_deg"]) - b.alpha0.to_degrees()).abs() < 1e-9);
+        let kc = PointContact::new(
+            Curvature::ball_race(b.d, b.dm, b.nominal_contact_angle(), b.fi, Race::Inner),
+            b.e_eff_inner(),
+        )
+        .kc;
+        assert!(close(f(&row["kc_inner"]), kc, 1e-12));
+    }
+    let text = run(&["bearings"]);
+    assert!(text.status.success());
+    let t = String::from_utf8(text.stdout).unwrap();
+    assert!(all.iter().all(|s| t.contains(&s.name)));
+}
+
+#[test]
+fn quasi_static_json_matches_the_library() {
+    let v = json(&[
+        "quasi-static",
+        "--bearing",
+        "acbb16",
+        "--speed-rpm",
+        "10000",
+        "--fx",
+        "2000",
+        "--fz",
+        "20000",
+        "--my",
+        "-15",
+        "--race-control",
+        "none",
+        "--json",
+    ]);
+    let b = preset("acbb16").unwrap().build().unwrap();
+    let opts = Options {
+        race_control: RaceControl::None,
+        ..Options::default()
+    };
+    let load = [2000.0, 0.0, 20_000.0, 0.0, -15.0];
+    let s = QuasiStatic::new(&b, opts)
+        .unwrap()
+        .solve(&load, rpm_to_rad_s(10_000.0))
+        .unwrap();
+    assert_eq!(v["bearing"], "acbb16");
+    assert_eq!(v["race_control"], "none");
+    let sol = &v["solution"];
+    for i in 0..5 {
+        let qi = f(&sol["q"][i]);
+        assert!(
+            (qi - s.q[i]).abs() <= 1e-12 * s.q[i].abs() + 1e-18,
+            "{i}: {qi} {}",
+            s.q[i]
+        );
+        assert!((f(&sol["forces"][i]) + load[i]).abs() < 1e-6);
+    }
+    let balls = sol["balls"].as_array().unwrap();
+    assert_eq!(balls.len(), 16);
+    for (j, ball) in balls.iter().enumerate() {
+        assert!(close(f(&ball["q_i"]), s.balls[j].q_i, 1e-12));
+        assert!(close(f(&ball["alpha_o"]), s.balls[j].alpha_o, 1e-12));
+        assert!(close(f(&ball["p_o"]), s.balls[j].p_o, 1e-12));
+    }
+}
+
+/// With no flags the program solves the embedded default scene's operating point, with the
+/// speed taken from `inputs.initial["shaft.omega"]`.
+#[test]
+fn quasi_static_without_flags_solves_the_default_scene() {
+    let v = json(&["quasi-static", "--json"]);
+    let scene = Scene::default_scene();
+    let b = scene.build_bearing().unwrap();
+    let op = &scene.model.operating_point;
+    let w = scene.inputs.initial["shaft.omega"];
+    let load = [op.fx, op.fy, op.fz, op.mx, op.my];
+    let s = QuasiStatic::new(&b, Options::default())
+        .unwrap()
+        .solve(&load, w)
+        .unwrap();
+    assert_eq!(v["bearing"], b.name.as_str());
+    assert!(close(f(&v["speed_rpm"]), rad_s_to_rpm(w), 1e-12));
+    for i in 0..5 {
+        assert!((f(&v["solution"]["q"][i]) - s.q[i]).abs() <= 1e-12 * s.q[i].abs() + 1e-18);
+    }
+    // The text report carries the same displacement in µm.
+    let out = run(&["quasi-static"]);
+    assert!(out.status.success());
+    let t = String::from_utf8(out.stdout).unwrap();
+    assert!(t.contains(&format!("y {:.4} µm", s.q[1] * 1e6)), "{t}");
+    assert!(t.contains(&b.name));
+}
+
+#[test]
+fn a_bearing_file_gives_the_same_answer_as_its_preset() {
+    let dir = std::env::temp_dir().join(format!("raceway-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let good = dir.join("b7004.toml");
+    let spec = preset("7004").unwrap();
+    std::fs::write(&good, toml::to_string(&spec).unwrap()).unwrap();
+    let args = |bearing: &str| {
+        vec![
+            "quasi-static".to_string(),
+            "--bearing".into(),
+            bearing.into(),
+            "--speed-rpm".into(),
+            "30000".into(),
+            "--fz".into(),
+            "2000".into(),
+            "--fx".into(),
+            "400".into(),
+            "--fy".into(),
+            "0".into(),
+            "--json".into(),
+        ]
+    };
+    let a: Vec<String> = args(good.to_str().unwrap());
+    let from_file = json(&a.iter().map(String::as_str).collect::<Vec<_>>());
+    let a: Vec<String> = args("7004");
+    let from_preset = json(&a.iter().map(String::as_str).collect::<Vec<_>>());
+    assert_eq!(from_file["solution"], from_preset["solution"]);
+
+    // A malformed file and a file with a bad value are refused, naming the file or field.
+    let bad = dir.join("bad.toml");
+    std::fs::write(&bad, "name = \"x\"\nball_diameter_mm = [oops\n").unwrap();
+    refused(
+        &["quasi-static", "--bearing", bad.to_str().unwrap()],
+        &["bad.toml"],
+    );
+    let neg = dir.join("neg.toml");
+    let mut spec = preset("6205").unwrap();
+    spec.ball_diameter_mm = -1.0;
+    std::fs::write(&neg, toml::to_string(&spec).unwrap()).unwrap();
+    refused(
+        &["quasi-static", "--bearing", neg.to_str().unwrap()],
+        &["ball_diameter_mm"],
+    );
+    refused(
+        &[
+            "quasi-static",
+            "--bearing",
+            dir.join("missing.toml").to_str().unwrap(),
+        ],
+        &["missing.toml"],
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn nonsense_is_refused_with_its_cause() {
+    refused(
+        &["quasi-static", "--speed-rpm", "NaN"],
+        &["--speed-rpm", "nan"],
+    );
+    refused(
+        &["quasi-static", "--speed-rpm", "-100"],
+        &["--speed-rpm", ">= 0"],
+    );
+    refused(&["quasi-static", "--fx", "inf"], &["--fx", "finite"]);
+    refused(&["quasi-static", "--my", "-inf"], &["--my"]);
+    refused(&["quasi-static", "--fz", "abc"], &["--fz"]);
+    refused(
+        &["quasi-static", "--bearing", "nosuch"],
+        &["nosuch", "6205"],
+    );
+    refused(
+        &["quasi-static", "--race-control", "sideways"],
+        &["sideways"],
+    );
+    // A load no bearing can carry.
+    refused(
+        &["quasi-static", "--bearing", "7004", "--fz", "1e8"],
+        &["load"],
+    );
+    refused(&["no-such-command"], &["no-such-command"]);
+}
+
+/// `raceway run` on the default scene writes the series, a summary made from it, and
+/// five non-empty PNG plots; the ball-pass line of the default (varying-compliance) run is
+/// found at BPFO.
+#[test]
+fn run_writes_series_summary_and_plots_from_the_data() {
+    let dir = std::env::temp_dir().join(format!("raceway-run-{}", std::process::id()));
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_raceway"))
+        .args(["run", "--quiet", "--duration", "0.5", "--out"])
+        .arg(&dir)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let csv = std::fs::read_to_string(dir.join("series.csv")).unwrap();
+    let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    let fy_col = header
+        .iter()
+        .position(|h| h.starts_with("force.y"))
+        .unwrap();
+    let peak_fy = csv
+        .lines()
+        .skip(1)
+        .map(|l| {
+            l.split(',')
+                .nth(fy_col)
+                .unwrap()
+                .parse::<f64>()
+                .unwrap()
+                .abs()
+        })
+        .fold(0.0, f64::max);
+    assert_eq!(csv.lines().count(), 1 + 5001);
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
+    let reported = summary["peak_force_n"][1].as_f64().unwrap();
+    assert!(
+        (reported - peak_fy).abs() <= 1e-9 * peak_fy,
+        "summary {reported} vs series {peak_fy}"
+    );
+    let bpfo = summary["frequencies"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|f| f["label"] == "1xBPFO")
+        .unwrap()
+        .clone();
+    let (e, f) = (
+        bpfo["expected_hz"].as_f64().unwrap(),
+        bpfo["found_hz"].as_f64().unwrap(),
+    );
+    assert!((e - f).abs() < 4.0, "BPFO expected {e} Hz, found {f} Hz");
+    for png in [
+        "orbit.png",
+        "force.png",
+        "spectrum.png",
+        "ball-loads.png",
+        "cage-slip.png",
+    ] {
+        let b = std::fs::read(dir.join(png)).unwrap();
+        assert_eq!(&b[1..4], b"PNG", "{png}");
+        assert!(b.len() > 10_000, "{png} is only {} bytes", b.len());
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn run_refuses_a_bad_scene_with_its_cause() {
+    let dir = std::env::temp_dir().join(format!("raceway-bad-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let f = dir.join("bad.toml");
+    std::fs::write(&f, "bearing = \"6205\"\n[run]\nduration_s = -1.0\n").unwrap();
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_raceway"))
+        .arg("run")
+        .arg(&f)
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("run.duration_s"), "{err}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -1,0 +1,184 @@
+"""Fixtures for the FMU tests: the built archives, extracted once, and small host helpers
+that capture the FMU's log messages (fmpy's own slaves, with our logger callbacks)."""
+
+import os
+import pathlib
+import shutil
+import zipfile
+from ctypes import byref
+
+import pytest
+from fmpy import read_model_description
+from fmpy.fmi2 import FMU2Slave, fmi2CallbackFunctions, fmi2CallbackLoggerTYPE
+from fmpy.fmi3 import FMU3Slave
+from fmpy.logging import addLoggerProxy
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+FMU_DIR = pathlib.Path(
+    os.environ.get("RACEWAY_FMU_DIR", ROOT / os.environ.get("CARGO_TARGET_DIR", "target") / "fmu")
+)
+VERSIONS = ("fmi2", "fmi3")
+
+
+def fmu_path(version):
+    p = FMU_DIR / f"raceway-{version}.fmu"
+    if not p.exists():
+        pytest.fail(f"{p} is missing: run scripts/build-fmu first")
+    return p
+
+
+@pytest.fixture(scope="session")
+def unzipped(tmp_path_factory):
+    """{version: directory} of the extracted archives."""
+    out = {}
+    for v in VERSIONS:
+        d = tmp_path_factory.mktemp(f"raceway-{v}")
+        with zipfile.ZipFile(fmu_path(v)) as z:
+            z.extractall(d)
+        out[v] = d
+    return out
+
+
+class Host:
+    """One FMU instance driven through fmpy's FMU2Slave / FMU3Slave, logging captured.
+
+    Calls that fail raise fmpy's FMICallException (status > Warning); `self.logs` holds
+    (status, message) of every message the FMU sent."""
+
+    def __init__(self, version, unzipdir, guid=None, name="bearing", logging_on=False):
+        self.version = version
+        self.md = read_model_description(str(unzipdir))
+        self.vr = {v.name: v.valueReference for v in self.md.modelVariables}
+        self.logs = []
+        token = guid if guid is not None else self.md.guid
+        cls = FMU2Slave if version == "fmi2" else FMU3Slave
+        self.fmu = cls(
+            guid=token,
+            unzipDirectory=str(unzipdir),
+            modelIdentifier=self.md.coSimulation.modelIdentifier,
+            instanceName=name,
+        )
+        self.logging_on = logging_on
+        self.freed = False
+
+    # logging ---------------------------------------------------------------------------
+    def _log2(self, env, name, status, category, message):
+        self.logs.append((status, message.decode("utf-8")))
+
+    def _log3(self, env, status, category, message):
+        self.logs.append((status, message.decode("utf-8")))
+
+    def log_text(self):
+        return "\n".join(m for _, m in self.logs)
+
+    # life cycle ------------------------------------------------------------------------
+    def instantiate(self, event_mode=False):
+        if self.version == "fmi2":
+            cb = fmi2CallbackFunctions()
+            cb.logger = fmi2CallbackLoggerTYPE(self._log2)
+            addLoggerProxy(byref(cb))
+            self._callbacks = cb
+            self.fmu.instantiate(callbacks=cb, loggingOn=self.logging_on)
+        else:
+            self.fmu.instantiate(
+                loggingOn=self.logging_on, eventModeUsed=event_mode, logMessage=self._log3
+            )
+        return self
+
+    def init(self, start_values=None, start_time=0.0, stop_time=None, tolerance=None):
+        """Instantiate-state parameters/inputs, then initialise."""
+        for name, value in (start_values or {}).items():
+            self.set(name, value)
+        if self.version == "fmi2":
+            self.fmu.setupExperiment(tolerance=tolerance, startTime=start_time, stopTime=stop_time)
+            self.fmu.enterInitializationMode()
+            self.fmu.exitInitializationMode()
+        else:
+            self.fmu.enterInitializationMode(
+                tolerance=tolerance, startTime=start_time, stopTime=stop_time
+            )
+            self.fmu.exitInitializationMode()
+        return self
+
+    def free(self):
+        self.freed = True
+        self.fmu.freeInstance()
+
+    # values ----------------------------------------------------------------------------
+    def set(self, name, value):
+        vr = [self.vr[name]]
+        if isinstance(value, str):
+            self.fmu.setString(vr, [value])
+        elif self.version == "fmi2":
+            self.fmu.setReal(vr, [value])
+        else:
+            self.fmu.setFloat64(vr, [value])
+
+    def set_many(self, values):
+        for k, v in values.items():
+            self.set(k, v)
+
+    def get(self, names):
+        vrs = [self.vr[n] for n in names]
+        if self.version == "fmi2":
+            return self.fmu.getReal(vrs)
+        return self.fmu.getFloat64(vrs)
+
+    def time(self):
+        if self.version == "fmi2":
+            return self.fmu.getRealStatus(2)  # fmi2LastSuccessfulTime
+        return self.fmu.getFloat64([0])[0]
+
+    def get_string(self, name):
+        v = self.fmu.getString([self.vr[name]])[0]
+        return v.decode("utf-8") if isinstance(v, bytes) else v
+
+    def step(self, t, h):
+        r = self.fmu.doStep(t, h)
+        return r
+
+    def get_state(self):
+        return self.fmu.getFMUState()
+
+    def set_state(self, s):
+        self.fmu.setFMUState(s)
+
+    def free_state(self, s):
+        self.fmu.freeFMUState(s)
+
+    def serialize(self, s):
+        return self.fmu.serializeFMUState(s)
+
+    def deserialize(self, b):
+        return self.fmu.deserializeFMUState(b)
+
+    def directional_derivative(self, unknowns, knowns, seed):
+        return self.fmu.getDirectionalDerivative(
+            [self.vr[u] for u in unknowns], [self.vr[k] for k in knowns], list(seed)
+        )
+
+
+@pytest.fixture
+def host(unzipped):
+    """Factory: host(version, **kw) -> an instantiated Host; all are freed at teardown."""
+    made = []
+
+    def make(version, instantiate=True, **kw):
+        h = Host(version, unzipped[version], **kw)
+        if instantiate:
+            h.instantiate()
+        made.append(h)
+        return h
+
+    yield make
+    for h in made:
+        if h.fmu.component and not h.freed:
+            try:
+                h.free()
+            except Exception:
+                pass
+
+
+def copy_fmu_dir(src, dst):
+    shutil.copytree(src, dst)
+    return dst
