@@ -108,17 +108,19 @@ fn runup_from_rest_slip_starts_at_one_and_falls() {
 #[test]
 fn slip_small_under_load_larger_when_light_and_fast() {
     let w_lo = 2000.0 * PI / 30.0;
-    let mut heavy = Component::from_text(&scene_6012(-12e-6, w_lo, "")).unwrap();
+    let mut heavy =
+        Component::from_text(&scene_6012(-12e-6, w_lo, "drag_coefficient = 15.0")).unwrap();
     let rh = run(&mut heavy, 60, 1e-3);
     let slip_h = mean(rh[20..].iter().map(|x| x.1));
     let w_hi = 10000.0 * PI / 30.0;
-    let mut light = Component::from_text(&scene_6012(-5.05e-6, w_hi, "")).unwrap();
+    let mut light =
+        Component::from_text(&scene_6012(-5.05e-6, w_hi, "drag_coefficient = 15.0")).unwrap();
     let rl = run(&mut light, 60, 2e-4);
     let slip_l = mean(rl[20..].iter().map(|x| x.1));
     println!("cage slip: heavy 2000 rpm {slip_h:.5}, light 10000 rpm {slip_l:.5}");
     assert!(slip_h.abs() < 0.01, "heavy-load slip {slip_h}");
     assert!(
-        slip_l > 1.5 * slip_h.abs() && slip_l > 0.0,
+        slip_l > 5.0 * slip_h.abs() && slip_l > 0.0,
         "light-load slip {slip_l}"
     );
 }
@@ -222,7 +224,7 @@ fn angular_momentum_and_energy_balances_close() {
     opts.max_steps = 1_000_000;
     let mut h = 0.0;
     integ
-        .integrate(&mut sys, 0.0, 0.01, &mut y, &mut h, &opts)
+        .integrate(&mut sys, 0.0, 0.005, &mut y, &mut h, &opts)
         .unwrap();
     let l1 = sys.m.angular_momentum(&y[..n]);
     let ext = y[n];
