@@ -40,7 +40,7 @@
 //! ```text
 //! m (dm/2) w_b'  = f_i - f_o + P - F_d
 //! J w_a'         = -(D/2)(f_i + f_o) + M_pocket - M_drag
-//! J_c w_c'       = -(dm/2) sum_j P_j - sum_j M_pocket,j / cos(alpha) ... (see below) - M_cage
+//! J_c w_c'       = -(dm/2) sum_j P_j - sum_j M_z,j - M_cage
 //! ```
 //!
 //! Angular momentum about `z` of balls and cage,
@@ -55,7 +55,8 @@
 //! `c_p xi'` blended in over the same width. The friction at the pocket face is radial and
 //! opposes the ball's surface sliding there, `(D/2)(w_a cos(alpha) - w_c)`; it gives the ball the
 //! moment `M_z = -(D/2) mu_c |P| tanh((D/2)(w_a cos(alpha) - w_c)/v_s)` about `z` and the
-//! cage the opposite one. Only its component along `a` (`M_z cos(alpha)`) turns the
+//! cage the opposite one (`M_pocket = M_z cos(alpha)` above). Only its component along
+//! `a` turns the
 //! ball's rolling spin (the rest would turn the pivoting spin, not modelled).
 //!
 //! Normal loads: ball `j`'s inner groove curvature centre moves with the ring exactly as in
@@ -386,7 +387,7 @@ impl SkiddingModel {
         };
         let tol = 1e-13 * hi.max(1e-9);
         for _ in 0..60 {
-            let (r, dr, qi, qo) = g(x);
+            let (r, dr, _, _) = g(x);
             if r > 0.0 {
                 hi = x;
             } else {
@@ -401,9 +402,8 @@ impl SkiddingModel {
                 xn = 0.5 * (lo + hi);
             }
             if (xn - x).abs() <= tol || hi - lo <= tol {
-                let (_, _, qi2, qo2) = g(xn);
-                let _ = (qi, qo);
-                return (qi2, qo2);
+                let (_, _, qi, qo) = g(xn);
+                return (qi, qo);
             }
             x = xn;
         }
