@@ -296,7 +296,7 @@ pub const TABLE: &[Field] = &[
     f("effects.lubrication.density_kg_m3", Float, "kg/m³", between(0.0, false, 1e5, true), "absent: the preset's", "lubricant density"),
     f("effects.lubrication.roughness_um", Float, "µm", between(0.0, true, 100.0, true), "absent: the preset's", "composite rms roughness of ball and race"),
     // Run.
-    f("run.duration_s", Float, "s", between(0.0, false, 1e4, true), "", "simulated time of `raceway run`"),
+    f("run.duration_s", Float, "s", between(0.0, false, 1e4, true), "at most 1e7 steps of step_s", "simulated time of `raceway run`"),
     f("run.step_s", Float, "s", gt(0.0), "<= duration_s, at most 1e7 steps", "communication (output) step"),
     f("run.speed_ramp_rpm_per_s", Float, "rpm/s", ANY, "", "shaft speed ramp added to the initial shaft.omega"),
     f("run.orbit_um", Float, "µm", ANY, "", "motion-driven: radius of a circular shaft orbit"),
@@ -519,6 +519,10 @@ impl Default_ {
             Default_::Absent => "absent".into(),
             Default_::Value(v) => match v {
                 toml::Value::String(s) => format!("\"{s}\""),
+                toml::Value::Float(x) if *x != 0.0 && !(1e-3..1e5).contains(&x.abs()) => {
+                    format!("{x:e}")
+                }
+                toml::Value::Float(x) => format!("{x:?}"),
                 other => other.to_string(),
             },
         }
