@@ -351,3 +351,28 @@ fn table_ranges_and_spellings_agree_with_the_library() {
     }
     assert!(disagreements.is_empty(), "{disagreements:#?}");
 }
+
+#[test]
+fn inline_material_fields_are_required_and_located() {
+    let text = "bearing = { preset = \"6205\", materials = { ball = { name = \"x\", youngs_modulus = 3e11, poisson_ratio = 0.26 } } }\n";
+    let problems = schema::check(text);
+    let missing: BTreeSet<&str> = problems.iter().map(|p| p.path.as_str()).collect();
+    assert_eq!(
+        missing,
+        BTreeSet::from([
+            "bearing.materials.ball.density",
+            "bearing.materials.ball.thermal_expansion",
+            "bearing.materials.ball.conductivity",
+            "bearing.materials.ball.heat_capacity",
+        ]),
+        "{problems:#?}"
+    );
+    // At the inline table that lacks them.
+    let at = place(text, "{ name");
+    assert!(
+        problems
+            .iter()
+            .all(|p| p.line_col.map(|(l, c)| format!("{l}:{c}")) == Some(at.clone())),
+        "{problems:#?}"
+    );
+}

@@ -488,13 +488,14 @@ ball_spacing = { scatter = 0.0 }
 lubrication = {}
 "#;
 
-/// The fields a bearing table without `preset` must give.
+/// The fields a bearing table without `preset` must give, and those of an inline material
+/// (required whenever a material is given as a table).
 pub const MINIMAL_BEARING: &str = r#"
 name = "x"
 ball_diameter_mm = 1.0
 pitch_diameter_mm = 10.0
 ball_count = 3
-materials = { }
+materials = { ball = { name = "m", youngs_modulus = 2e11, poisson_ratio = 0.3, density = 7800.0, thermal_expansion = 0.0, conductivity = 0.0, heat_capacity = 0.0 } }
 "#;
 
 /// A field's default as documented.
@@ -639,6 +640,8 @@ pub fn defaults() -> BTreeMap<String, Default_> {
         .map(|path| {
             let d = if req_scene.contains(&path) {
                 Default_::Required
+            } else if req_bearing.contains(&path) && path.starts_with("bearing.materials.<body>.") {
+                Default_::Required
             } else if req_bearing.contains(&path) {
                 Default_::RequiredWithoutPreset
             } else {
@@ -780,9 +783,8 @@ pub struct Problem {
 
 impl std::fmt::Display for Problem {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self.line_col {
-            Some((l, c)) => write!(f, "{l}:{c}: ")?,
-            None => {}
+        if let Some((l, c)) = self.line_col {
+            write!(f, "{l}:{c}: ")?;
         }
         if self.path.is_empty() {
             write!(f, "{}", self.message)
@@ -1016,7 +1018,11 @@ impl Checker<'_> {
         }
         // Missing required fields.
         let req = required();
-        if let Some(keys) = req.get(norm) {
+        let group = match norm.strip_prefix("bearing.materials.") {
+            Some(b) if BODIES.contains(&b) => "bearing.materials.<body>",
+            _ => norm,
+        };
+        if let Some(keys) = req.get(group) {
             if norm == "bearing" && has_preset {
                 return;
             }
