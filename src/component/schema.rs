@@ -275,13 +275,13 @@ pub const TABLE: &[Field] = &[
     f("solver.max_substeps", Int, "-", between(1.0, true, u32::MAX as f64, true), "", "most internal steps per communication step"),
     // Inputs.
     f("inputs.rule", Enum(RULES), "-", ANY, "", "how inputs move inside a step"),
-    f("inputs.initial.<variable>", Float, "SI unit of the variable", ANY, "only inputs of the scene's causality", "input value at the start, by variable name (e.g. \"shaft.omega\" in rad/s)"),
+    f("inputs.initial.<variable>", Float, "SI unit of the variable", ANY, "only inputs of the scene's causality; absent: 0", "input value at the start, by variable name (e.g. \"shaft.omega\" in rad/s)"),
     // Effects.
     f("effects.defects[].race", Enum(ELEMENTS), "-", ANY, "", "element carrying the defect"),
     f("effects.defects[].angle_deg", Float, "deg", ANY, "", "defect centre at t = 0: azimuth from +x on a race, spin angle on a ball"),
     f("effects.defects[].width_mm", Float, "mm", gt(0.0), "< ball diameter", "circumferential width"),
     f("effects.defects[].depth_um", Float, "µm", between(0.0, false, 5000.0, true), "", "depth"),
-    f("effects.defects[].ball", Int, "-", ge(0.0), "< Z; race = \"ball\" only", "ball carrying the defect (0-based)"),
+    f("effects.defects[].ball", Int, "-", ge(0.0), "< Z; race = \"ball\" only (absent: ball 0)", "ball carrying the defect (0-based)"),
     f("effects.waviness[].race", Enum(ELEMENTS), "-", ANY, "", "element carrying the waviness"),
     f("effects.waviness[].order", Int, "-", between(1.0, true, 10000.0, true), "", "order k of A sin(k theta + beta)"),
     f("effects.waviness[].amplitude_um", Float, "µm", between(-100.0, true, 100.0, true), "", "amplitude A"),

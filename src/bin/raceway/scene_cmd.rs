@@ -39,13 +39,12 @@ pub fn scene(a: SceneArgs) -> Result<String> {
             schema::summary(&scene)
         ));
     }
-    let mut lines: Vec<String> = problems
-        .iter()
-        .map(|p| format!("{}:{p}", path.display()))
-        .collect();
-    lines.push(format!("{} problem(s)", problems.len()));
+    let mut message = format!("{} problem(s)", problems.len());
+    for p in &problems {
+        message += &format!("\n{}:{p}", path.display());
+    }
     Err(Error::Parse {
         what: format!("scene `{}`", path.display()),
-        message: format!("\n{}", lines.join("\n")),
+        message,
     })
 }
