@@ -638,9 +638,9 @@ pub fn defaults() -> BTreeMap<String, Default_> {
     schema_paths()
         .into_keys()
         .map(|path| {
-            let d = if req_scene.contains(&path) {
-                Default_::Required
-            } else if req_bearing.contains(&path) && path.starts_with("bearing.materials.<body>.") {
+            let inline_material = path.starts_with("bearing.materials.<body>.");
+            let d = if req_scene.contains(&path) || (inline_material && req_bearing.contains(&path))
+            {
                 Default_::Required
             } else if req_bearing.contains(&path) {
                 Default_::RequiredWithoutPreset
