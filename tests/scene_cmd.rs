@@ -376,3 +376,20 @@ fn inline_material_fields_are_required_and_located() {
         "{problems:#?}"
     );
 }
+
+#[test]
+fn check_json_lists_the_problems_and_still_fails() {
+    let text = "bearing = \"6250\"\n[run]\nstep_s = -1.0\n";
+    let p = write_tmp("two.toml", text);
+    let out = raceway(&["scene", "--check", p.to_str().unwrap(), "--json"]);
+    assert!(!out.status.success());
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["ok"], false);
+    let problems = v["problems"].as_array().unwrap();
+    assert_eq!(problems.len(), 2, "{v}");
+    assert_eq!(problems[0]["path"], "bearing");
+    assert_eq!(problems[0]["line_col"], serde_json::json!([1, 11]));
+    assert!(problems[0]["message"].as_str().unwrap().contains("6205"));
+    assert_eq!(problems[1]["path"], "run.step_s");
+    assert_eq!(problems[1]["line_col"], serde_json::json!([3, 10]));
+}

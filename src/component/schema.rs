@@ -771,7 +771,7 @@ pub fn explain(json: bool) -> String {
 // Check.
 
 /// One problem of a scene.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct Problem {
     /// Field path (`""`: the whole scene).
     pub path: String,

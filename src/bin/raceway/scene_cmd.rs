@@ -17,8 +17,9 @@ pub struct SceneArgs {
     /// Check a scene file (TOML or JSON): every problem with its line:column.
     #[arg(long, value_name = "FILE")]
     pub check: Option<PathBuf>,
-    /// Machine-readable output (with --explain).
-    #[arg(long, requires = "explain")]
+    /// Machine-readable output: the field table (--explain), or the problems (--check,
+    /// on standard output; the exit status is still 1 when there is any).
+    #[arg(long)]
     pub json: bool,
 }
 
@@ -31,6 +32,21 @@ pub fn scene(a: SceneArgs) -> Result<String> {
     let text = std::fs::read_to_string(&path)
         .map_err(|e| Error::Io(format!("cannot read scene `{}`: {e}", path.display())))?;
     let problems = schema::check(&text);
+    if a.json {
+        let out = serde_json::json!({ "ok": problems.is_empty(), "problems": problems });
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&out).expect("serialises")
+        );
+        return if problems.is_empty() {
+            Ok(String::new())
+        } else {
+            Err(Error::Parse {
+                what: format!("scene `{}`", path.display()),
+                message: format!("{} problem(s)", problems.len()),
+            })
+        };
+    }
     if problems.is_empty() {
         let scene = Scene::from_text(&text)?;
         return Ok(format!(
