@@ -1,6 +1,6 @@
 //! The scene schema, documented and checked.
 //!
-//! - [`rows`] (from [`TABLE`] and the serde schema) lists every field a scene may hold (dotted paths; `[]` stands for any item of
+//! - [`rows`] lists every field a scene may hold (dotted paths; `[]` stands for any item of
 //!   an array of tables, `<variable>` for a key of `inputs.initial`, `<body>` for one of the
 //!   four material bodies) with its type, unit, default, allowed range and meaning. The list
 //!   of paths is not written by hand: it is enumerated from the serde serialisation of a
