@@ -59,6 +59,17 @@ pub enum RaceControl {
     None,
 }
 
+/// Where a load-driven inner ring starts.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum Start {
+    /// At rest in static equilibrium under the initial loads (no start-up transient).
+    #[default]
+    Equilibrium,
+    /// At rest at zero displacement (the ring falls into its contacts).
+    Rest,
+}
+
 /// The operating point the `linear` level linearises about.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -109,6 +120,8 @@ pub struct ModelSpec {
     pub operating_point: OperatingPoint,
     /// Load-driven: mass attached to the inner ring, kg (added to the ring's own).
     pub attached_mass_kg: f64,
+    /// Load-driven: where the inner ring starts.
+    pub start: Start,
 }
 
 impl Default for ModelSpec {
@@ -121,6 +134,7 @@ impl Default for ModelSpec {
             contact_damping: 0.0,
             operating_point: OperatingPoint::default(),
             attached_mass_kg: 0.0,
+            start: Start::default(),
         }
     }
 }
