@@ -210,6 +210,7 @@ const KINDS: &[&str] = &["deep_groove", "angular_contact"];
 const GUIDANCE: &[&str] = &["outer_ring", "inner_ring", "ball"];
 const ELEMENTS: &[&str] = &["outer", "inner", "ball"];
 const FILMS: &[&str] = &["ehl", "dry"];
+const STARTS: &[&str] = &["equilibrium", "rest"];
 
 use Kind::*;
 
@@ -266,6 +267,7 @@ pub const TABLE: &[Field] = &[
     f("model.operating_point.fz", Float, "N", ANY, "", "linear level: axial load z"),
     f("model.operating_point.mx", Float, "N m", ANY, "", "linear level: moment about x"),
     f("model.operating_point.my", Float, "N m", ANY, "", "linear level: moment about y"),
+    f("model.start", Enum(STARTS), "-", ANY, "", "load-driven: the inner ring starts at rest in static equilibrium under the initial loads (equilibrium) or at zero displacement (rest)"),
     f("model.attached_mass_kg", Float, "kg", ge(0.0), "", "load-driven: mass attached to the inner ring (added to its own)"),
     // Solver.
     f("solver.method", Enum(METHODS), "-", ANY, "", "integrator (auto: the level's default)"),
