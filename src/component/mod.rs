@@ -92,8 +92,18 @@ struct Work {
     aux_save: Vec<f64>,
 }
 
+/// Work space of the level Jacobians (see [`LevelModel::jacobian`]).
+#[derive(Debug, Clone, Default)]
+struct JacWork {
+    jx: Vec<f64>,
+    jm: Vec<f64>,
+    wx: Vec<f64>,
+    wm: Vec<f64>,
+}
+
 /// The whole system a step integrates: the level's states and, load-driven, the ring's.
 struct Sys<'a> {
+    jw: Option<&'a mut JacWork>,
     level: &'a mut dyn LevelModel,
     st: &'a mut State,
     ring: Option<&'a RingBody>,
@@ -156,6 +166,52 @@ impl OdeSystem for Sys<'_> {
         }
         Ok(())
     }
+    fn jacobian(&mut self, t: f64, y: &[f64], jac: &mut nalgebra::DMatrix<f64>) -> bool {
+        let Some(jw) = self.jw.as_deref_mut() else {
+            return false;
+        };
+        let nl = self.nl;
+        let s = t - self.t0;
+        let m = motion_at_y(self.st, self.rule, s, self.causality, self.ring, nl, y);
+        let (aux, _) = self.st.aux.split_at_mut(self.naux);
+        let (jm, wx, wm) = if self.ring.is_some() {
+            (&mut jw.jm[..], &mut jw.wx[..], &mut jw.wm[..])
+        } else {
+            (&mut [][..], &mut [][..], &mut [][..])
+        };
+        if !self
+            .level
+            .jacobian(t, &m, &y[..nl], aux, &mut jw.jx, jm, wx, wm)
+        {
+            return false;
+        }
+        jac.fill(0.0);
+        for r in 0..nl {
+            for c in 0..nl {
+                jac[(r, c)] = jw.jx[r * nl + c];
+            }
+        }
+        if let Some(ring) = self.ring {
+            let nd = ring.dofs.len();
+            for (k, &d) in ring.dofs.iter().enumerate() {
+                let (iq, iv) = (nl + k, nl + nd + k);
+                let inv = 1.0 / ring.inertia[d];
+                for r in 0..nl {
+                    jac[(r, iq)] = jw.jm[r * 10 + d];
+                    jac[(r, iv)] = jw.jm[r * 10 + 5 + d];
+                }
+                jac[(iq, iv)] = 1.0;
+                for c in 0..nl {
+                    jac[(iv, c)] = jw.wx[d * nl + c] * inv;
+                }
+                for (k2, &d2) in ring.dofs.iter().enumerate() {
+                    jac[(iv, nl + k2)] = jw.wm[d * 10 + d2] * inv;
+                    jac[(iv, nl + nd + k2)] = jw.wm[d * 10 + 5 + d2] * inv;
+                }
+            }
+        }
+        true
+    }
 }
 
 /// A running bearing: created from a scene, stepped by a host.
@@ -170,6 +226,7 @@ pub struct Component {
     state: State,
     scratch: State,
     work: Work,
+    jwork: JacWork,
     integrator: Integrator,
     opts: Options,
 }
@@ -179,19 +236,26 @@ pub struct Component {
 fn make_integrator(
     scene: &Scene,
     b: &Bearing,
+    level: &dyn LevelModel,
     nl: usize,
     ring: Option<&RingBody>,
 ) -> (Integrator, Options) {
     let n = nl + ring.map_or(0, |r| 2 * r.dofs.len());
+    // The skidding level is stiff (traction slope, numerics.md §1.2): RODAS4 by default.
+    let stiff = scene.model.level == Level::Skidding;
     let integrator = match scene.solver.method {
+        Method::Auto if stiff => Integrator::Rosenbrock(Rosenbrock::new(n)),
         Method::Auto | Method::Dopri5 => Integrator::Dopri5(Dopri5::new(n)),
         Method::Rosenbrock => Integrator::Rosenbrock(Rosenbrock::new(n)),
     };
     let s = &scene.solver;
     let mut opts = Options::new(n, s.rtol, s.atol_m);
-    // Angles (cage, shaft, balls): an angle error atol_m / (D/2) moves a ball surface by atol_m.
+    // Angles (cage, shaft, balls): an angle error atol_m / (D/2) moves a ball surface by
+    // atol_m; a level with other states gives its own scales.
     let angle = s.atol_m / (0.5 * b.d);
-    opts.atol[..nl].fill(angle);
+    if !level.state_atol(s.atol_m, &mut opts.atol[..nl]) {
+        opts.atol[..nl].fill(angle);
+    }
     if let Some(r) = ring {
         let nd = r.dofs.len();
         let rate = 2.0 * std::f64::consts::PI * 1e3; // velocities: atol over a 1 kHz period
@@ -234,6 +298,11 @@ fn build_level(scene: &Scene, b: &Bearing) -> Result<Box<dyn LevelModel>> {
                 m.contact_damping,
                 &scene.effects,
             )?)
+        }
+        Level::Skidding => {
+            let mut p = m.skidding.params(b)?;
+            p.contact_damping = m.contact_damping;
+            Box::new(levels::SkiddingLevel::new(b, p)?)
         }
         Level::QuasiStatic => Box::new(levels::QuasiStaticLevel::new(scene, b)?),
         Level::Linear => Box::new(levels::LinearLevel::new(scene, b)?),
@@ -315,13 +384,21 @@ impl Component {
             }
         }
         let dim = state.x.len();
-        let (integrator, opts) = make_integrator(&scene, &bearing, n_level, ring.as_ref());
+        let (integrator, opts) =
+            make_integrator(&scene, &bearing, level.as_ref(), n_level, ring.as_ref());
         let work = Work {
             k: std::array::from_fn(|_| vec![0.0; dim]),
             y: vec![0.0; dim],
             aux_save: vec![0.0; n_level_aux + 1],
         };
+        let jwork = JacWork {
+            jx: vec![0.0; n_level * n_level],
+            jm: vec![0.0; n_level * 10],
+            wx: vec![0.0; 5 * n_level],
+            wm: vec![0.0; 50],
+        };
         let mut c = Component {
+            jwork,
             scene,
             bearing,
             level,
@@ -520,6 +597,7 @@ impl Component {
         let mut h_trial = sc.aux[naux];
         self.work.y.copy_from_slice(&sc.x);
         let mut sys = Sys {
+            jw: Some(&mut self.jwork),
             level: self.level.as_mut(),
             st: sc,
             ring: self.ring.as_ref(),
@@ -608,6 +686,7 @@ impl Component {
         let mut bwd = [0.0; 5];
         let t0 = sc.t;
         let mut sys = Sys {
+            jw: None,
             level: self.level.as_mut(),
             st: sc,
             ring: self.ring.as_ref(),

@@ -4,4 +4,5 @@ pub mod defects;
 pub mod effects;
 pub mod quasi_static;
 pub mod ring;
+pub mod skidding;
 pub mod waviness;
