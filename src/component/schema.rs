@@ -17,8 +17,9 @@
 //!   field path their message names. TOML spans come from the `toml` crate's spanned
 //!   document tables ([`toml::de::DeTable::parse_recoverable`]).
 
-use super::scene::{BearingRef, InputSpec, ModelSpec, RunSpec, Scene, SolverSpec};
+use super::scene::{BearingRef, InputSpec, ModelSpec, RunSpec, Scene, SkiddingSpec, SolverSpec};
 use super::variables;
+use crate::contact::traction::TractionLaw;
 use crate::geometry::bearing::{CageSpec, MaterialSpec, MaterialsSpec};
 use crate::geometry::{presets, BearingSpec, Material};
 use crate::models::effects::{
@@ -201,7 +202,7 @@ const fn f(
     }
 }
 
-const LEVELS: &[&str] = &["linear", "quasi_static", "ring"];
+const LEVELS: &[&str] = &["linear", "quasi_static", "ring", "skidding"];
 const CAUSALITIES: &[&str] = &["motion", "load"];
 const RACE_CONTROL: &[&str] = &["outer", "none"];
 const METHODS: &[&str] = &["auto", "dopri5", "rosenbrock"];
@@ -211,6 +212,7 @@ const GUIDANCE: &[&str] = &["outer_ring", "inner_ring", "ball"];
 const ELEMENTS: &[&str] = &["outer", "inner", "ball"];
 const FILMS: &[&str] = &["ehl", "dry"];
 const STARTS: &[&str] = &["equilibrium", "rest"];
+const LAWS: &[&str] = &["coulomb", "fitted", "mixed_ehl"];
 
 use Kind::*;
 
@@ -256,7 +258,7 @@ pub const TABLE: &[Field] = &[
     f("bearing.materials.<body>.heat_capacity", Float, "J/(kg K)", ge(0.0), "", "specific heat capacity"),
     f("bearing.source", Text, "-", ANY, "", "where the data come from"),
     // Model.
-    f("model.level", Enum(LEVELS), "-", ANY, "effects need `ring`", "model level: constant K and C (linear), per-ball equilibrium at kinematic cage positions (quasi_static), ring on massless balls (ring)"),
+    f("model.level", Enum(LEVELS), "-", ANY, "effects need `ring`", "model level: constant K and C (linear), per-ball equilibrium at kinematic cage positions (quasi_static), ring on massless balls (ring), ball orbit and spin with cage, traction and drag (skidding)"),
     f("model.causality", Enum(CAUSALITIES), "-", ANY, "", "motion: shaft motion in, forces out; load: loads in, the inner ring is integrated inside"),
     f("model.race_control", Enum(RACE_CONTROL), "-", ANY, "", "race control of the quasi-static kernels (Harris ch. 8)"),
     f("model.ring_dof", IntChoice(&[2, 5]), "-", ANY, "", "ring level: 2 (x, y) or 5 (x, y, z, rx, ry) degrees of freedom"),
@@ -267,6 +269,38 @@ pub const TABLE: &[Field] = &[
     f("model.operating_point.fz", Float, "N", ANY, "", "linear level: axial load z"),
     f("model.operating_point.mx", Float, "N m", ANY, "", "linear level: moment about x"),
     f("model.operating_point.my", Float, "N m", ANY, "", "linear level: moment about y"),
+    f("model.skidding.traction.law", Enum(LAWS), "-", ANY, "the other traction fields belong to one law each", "skidding level: traction law at the race contacts"),
+    f("model.skidding.traction.mu_max", Float, "-", ANY, "law = \"coulomb\", required there", "largest traction coefficient of mu = mu_max tanh(dv/v_s)"),
+    f("model.skidding.traction.v_s", Float, "m/s", gt(0.0), "law = \"coulomb\" (required) or \"mixed_ehl\" (default 0.01)", "regularising slip speed"),
+    f("model.skidding.traction.a", Float, "-", ANY, "law = \"fitted\", required there", "A of mu = tanh(s/s_reg) [(A + B|s|) exp(-C|s|) + D]"),
+    f("model.skidding.traction.b", Float, "-", ANY, "law = \"fitted\", required there", "B of the fitted law"),
+    f("model.skidding.traction.c", Float, "-", between(0.0, true, 1e6, true), "law = \"fitted\", required there", "C of the fitted law"),
+    f("model.skidding.traction.d", Float, "-", ANY, "law = \"fitted\", required there", "D of the fitted law"),
+    f("model.skidding.traction.s_reg", Float, "-", gt(0.0), "law = \"fitted\", required there", "regularising slide-to-roll ratio"),
+    f("model.skidding.traction.u_min", Float, "m/s", gt(0.0), "law = \"fitted\", required there", "smallest rolling speed in the slide-to-roll ratio"),
+    f("model.skidding.traction.viscosity", Float, "Pa s", gt(0.0), "law = \"mixed_ehl\" (default 0.04667)", "inlet viscosity of the mixed-EHL law"),
+    f("model.skidding.traction.alpha_p", Float, "1/Pa", between(0.0, true, 1e-6, true), "law = \"mixed_ehl\" (default 2.1e-8)", "pressure-viscosity coefficient"),
+    f("model.skidding.traction.lambda_lim", Float, "-", gt(0.0), "law = \"mixed_ehl\" (default 0.04)", "limiting-shear coefficient"),
+    f("model.skidding.traction.f_c", Float, "-", between(0.0, true, 2.0, true), "law = \"mixed_ehl\" (default 0.1)", "boundary (asperity) friction coefficient"),
+    f("model.skidding.traction.roughness", Float, "m", between(0.0, true, 1e-3, true), "law = \"mixed_ehl\" (default 4.65e-7)", "composite rms roughness"),
+    f("model.skidding.traction.hardness", Float, "Pa", gt(0.0), "law = \"mixed_ehl\" (default 2.39e9)", "hardness"),
+    f("model.skidding.traction.fit.c", Float, "-", ANY, "law = \"mixed_ehl\"", "asperity load ratio regression: leading constant"),
+    f("model.skidding.traction.fit.e_kappa", Float, "-", ANY, "law = \"mixed_ehl\"", "asperity regression: exponent of the ellipticity"),
+    f("model.skidding.traction.fit.e_w", Float, "-", ANY, "law = \"mixed_ehl\"", "asperity regression: exponent of the load parameter W"),
+    f("model.skidding.traction.fit.e_u", Float, "-", ANY, "law = \"mixed_ehl\"", "asperity regression: exponent of the speed parameter U"),
+    f("model.skidding.traction.fit.e_g", Float, "-", ANY, "law = \"mixed_ehl\"", "asperity regression: exponent of the material parameter G"),
+    f("model.skidding.traction.fit.e_sigma", Float, "-", ANY, "law = \"mixed_ehl\"", "asperity regression: exponent of the roughness sigma/Rx"),
+    f("model.skidding.traction.fit.e_v", Float, "-", ANY, "law = \"mixed_ehl\"", "asperity regression: exponent of the hardness ratio H/E'"),
+    f("model.skidding.pocket_clearance_mm", Float, "mm", gt(0.0), "absent: the bearing's cage pocket clearance", "skidding level: pocket clearance per side"),
+    f("model.skidding.pocket_stiffness", Float, "N/m", gt(0.0), "", "skidding level: pocket contact stiffness"),
+    f("model.skidding.pocket_damping", Float, "N s/m", between(0.0, true, 1e9, true), "", "skidding level: pocket contact damping"),
+    f("model.skidding.pocket_friction", Float, "-", between(0.0, true, 2.0, true), "", "skidding level: pocket friction coefficient"),
+    f("model.skidding.drag_coefficient", Float, "-", between(0.0, true, 1e3, true), "", "skidding level: drag coefficient of an orbiting ball"),
+    f("model.skidding.drag_density", Float, "kg/m³", between(0.0, true, 1e4, true), "", "skidding level: density of the oil–air mixture around the balls"),
+    f("model.skidding.drag_viscosity", Float, "Pa s", between(0.0, true, 10.0, true), "", "skidding level: oil viscosity of the ball spin drag"),
+    f("model.skidding.cage_drag", Float, "N m s", between(0.0, true, 1e3, true), "", "skidding level: cage drag"),
+    f("model.skidding.spacing_scatter", Float, "-", between(0.0, true, 1.0, true), "", "skidding level: ball spacing scatter as a fraction of the pocket clearance"),
+    f("model.skidding.seed", Int, "-", ge(0.0), "", "skidding level: seed of the scatter"),
     f("model.start", Enum(STARTS), "-", ANY, "", "load-driven: the inner ring starts at rest in static equilibrium under the initial loads (equilibrium) or at zero displacement (rest)"),
     f("model.attached_mass_kg", Float, "kg", ge(0.0), "", "load-driven: mass attached to the inner ring (added to its own)"),
     // Solver.
@@ -373,15 +407,36 @@ fn full_bearing(materials: MaterialsSpec) -> BearingSpec {
 
 /// A scene with every optional section, field, list and map filled (two list items per
 /// effect would add nothing: the paths of items are normalised to `[]`).
-fn full_scene(bearing: BearingRef) -> Scene {
+fn full_scene(bearing: BearingRef, traction: TractionLaw) -> Scene {
     let mut initial = BTreeMap::new();
     initial.insert("shaft.omega".to_string(), 100.0);
+    let d = ModelSpec::default();
+    let sk = SkiddingSpec::default();
     Scene {
         title: "full".into(),
         bearing,
         model: ModelSpec {
             level: super::Level::Ring,
-            ..ModelSpec::default()
+            causality: d.causality,
+            race_control: d.race_control,
+            ring_dof: d.ring_dof,
+            contact_damping: d.contact_damping,
+            operating_point: d.operating_point,
+            attached_mass_kg: d.attached_mass_kg,
+            skidding: SkiddingSpec {
+                traction,
+                pocket_clearance_mm: Some(0.1),
+                pocket_stiffness: sk.pocket_stiffness,
+                pocket_damping: sk.pocket_damping,
+                pocket_friction: sk.pocket_friction,
+                drag_coefficient: sk.drag_coefficient,
+                drag_density: sk.drag_density,
+                drag_viscosity: sk.drag_viscosity,
+                cage_drag: sk.cage_drag,
+                spacing_scatter: sk.spacing_scatter,
+                seed: sk.seed,
+            },
+            start: d.start,
         },
         solver: SolverSpec::default(),
         inputs: InputSpec {
@@ -429,7 +484,8 @@ fn bearing_table(spec: &BearingSpec, preset: Option<&str>) -> toml::Table {
 }
 
 /// Full scenes covering every form: bearing as a table (with inline and preset
-/// materials) and as a preset name. Every one is a valid scene (`tests`).
+/// materials) and as a preset name, each traction law. Every one is a valid scene
+/// (`tests`).
 pub fn full_scenes() -> Vec<Scene> {
     let inline = MaterialsSpec {
         ball: steel_inline(),
@@ -437,16 +493,27 @@ pub fn full_scenes() -> Vec<Scene> {
         outer_ring: steel_inline(),
         cage: MaterialSpec::Custom(Material::by_name("phenolic").expect("preset")),
     };
+    let fitted = TractionLaw::Fitted {
+        a: -0.01,
+        b: 0.1,
+        c: 10.0,
+        d: 0.02,
+        s_reg: 0.01,
+        u_min: 0.1,
+    };
     vec![
-        full_scene(BearingRef::Table(bearing_table(
-            &full_bearing(inline),
-            Some("6205"),
-        ))),
-        full_scene(BearingRef::Table(bearing_table(
-            &full_bearing(MaterialsSpec::default()),
-            None,
-        ))),
-        full_scene(BearingRef::Preset("6205".into())),
+        full_scene(
+            BearingRef::Table(bearing_table(&full_bearing(inline), Some("6205"))),
+            TractionLaw::default(),
+        ),
+        full_scene(
+            BearingRef::Table(bearing_table(&full_bearing(MaterialsSpec::default()), None)),
+            fitted,
+        ),
+        full_scene(
+            BearingRef::Preset("6205".into()),
+            TractionLaw::MixedEhl(Default::default()),
+        ),
     ]
 }
 
