@@ -444,3 +444,12 @@ fn check_json_lists_the_problems_and_still_fails() {
     assert_eq!(problems[1]["path"], "run.step_s");
     assert_eq!(problems[1]["line_col"], serde_json::json!([3, 10]));
 }
+
+#[test]
+fn a_field_of_another_traction_law_is_located_by_the_parser() {
+    let text = "bearing = \"6012\"\n[model]\nlevel = \"skidding\"\n[model.skidding]\ntraction = { law = \"fitted\", mu_max = 0.1 }\n";
+    let problems = schema::check(text);
+    assert_eq!(problems.len(), 1, "{problems:#?}");
+    assert_eq!(problems[0].line_col.map(|l| l.0), Some(5), "{problems:#?}");
+    assert!(problems[0].message.contains("mu_max"), "{problems:#?}");
+}

@@ -1330,9 +1330,33 @@ pub fn check(text: &str) -> Vec<Problem> {
             .as_deref()
             .map(|f| c.locate(f))
             .unwrap_or((String::new(), None));
+        // A serde refusal the structural pass cannot see (e.g. a traction field of another
+        // law): TOML's own message carries its line and column.
+        let from_message = match (&e, ofs) {
+            (crate::Error::Parse { message, .. }, None) => line_col_in(message),
+            _ => None,
+        };
         c.report(&path, ofs, e.to_string());
+        if let (Some(lc), Some(last)) = (from_message, c.problems.last_mut()) {
+            last.line_col = Some(lc);
+            last.message = e
+                .to_string()
+                .lines()
+                .last()
+                .unwrap_or("")
+                .trim()
+                .to_string();
+        }
     }
     c.problems
+}
+
+/// `line L, column C` in a parser's message.
+fn line_col_in(message: &str) -> Option<(usize, usize)> {
+    let rest = &message[message.find("line ")? + 5..];
+    let (l, rest) = rest.split_once(", column ")?;
+    let c: String = rest.chars().take_while(char::is_ascii_digit).collect();
+    Some((l.trim().parse().ok()?, c.parse().ok()?))
 }
 
 /// One-line summary of a clean scene.
