@@ -376,6 +376,7 @@ impl Component {
                 r.dofs,
                 &loads,
                 motion.omega,
+                0.5 * bearing.dm,
                 &state.x[..n_level],
                 &mut state.aux[..n_level_aux],
             )?;
@@ -824,19 +825,73 @@ impl Component {
 
 /// The inner ring's static equilibrium under `loads` (external, on the ring) at speed
 /// `omega`: damped Newton on `F(q) + load = 0` over the level's ring coordinates with the
-/// level's stiffness; inside a clearance (no stiffness yet) it steps along the residual with
-/// a nominal 1e8 N/m. Refuses (naming the loads) when it finds no equilibrium.
+/// level's stiffness, moments weighed as forces at the lever `lever` (m); directions with
+/// no stiffness yet (inside a clearance, an unloaded tilt) are regularised. When the full
+/// load fails from the centre, the load is applied in stages (continuation). Refuses with
+/// the residual when it finds no equilibrium.
 fn static_start(
     level: &mut dyn LevelModel,
     dofs: &[usize],
     loads: &[f64; 5],
     omega: f64,
+    lever: f64,
     x: &[f64],
     aux: &mut [f64],
 ) -> Result<[f64; 5]> {
-    let mut q = [0.0; 5];
+    let scale = loads
+        .iter()
+        .enumerate()
+        .map(|(d, v)| if d < 3 { v.abs() } else { v.abs() / lever })
+        .sum::<f64>()
+        + 1.0;
+    let mut last = f64::INFINITY;
+    for stages in [1usize, 4, 16] {
+        let mut q = [0.0; 5];
+        let mut ok = true;
+        for k in 1..=stages {
+            let f = k as f64 / stages as f64;
+            let part: [f64; 5] = std::array::from_fn(|d| f * loads[d]);
+            match newton_static(level, dofs, &part, omega, lever, x, aux, &mut q, scale) {
+                Ok(r) if r <= 1e-6 * scale => last = r,
+                Ok(r) => {
+                    last = r;
+                    ok = false;
+                    break;
+                }
+                Err(_) => {
+                    ok = false;
+                    break;
+                }
+            }
+        }
+        if ok {
+            return Ok(q);
+        }
+    }
+    Err(Error::NotConverged {
+        what: "static start of the load-driven inner ring (try model.start = \"rest\")",
+        iterations: 100,
+        residual: last,
+    })
+}
+
+/// Newton iterations from `q` towards `F(q) + loads = 0`; returns the final residual (forces
+/// in N, moments divided by `lever`).
+#[allow(clippy::too_many_arguments)]
+fn newton_static(
+    level: &mut dyn LevelModel,
+    dofs: &[usize],
+    loads: &[f64; 5],
+    omega: f64,
+    lever: f64,
+    x: &[f64],
+    aux: &mut [f64],
+    q: &mut [f64; 5],
+    scale: f64,
+) -> Result<f64> {
+    // Scaled coordinates: translations in m, tilts times the lever.
+    let w = |d: usize| if d < 3 { 1.0 } else { lever };
     let mut out = LevelOutputs::default();
-    let scale = loads.iter().map(|v| v.abs()).sum::<f64>() + 1.0;
     let resid = |q: &[f64; 5],
                  out: &mut LevelOutputs,
                  level: &mut dyn LevelModel,
@@ -850,38 +905,40 @@ fn static_start(
         level.outputs(0.0, &m, x, aux, out)?;
         Ok(dofs
             .iter()
-            .map(|&d| (out.wrench[d] + loads[d]).powi(2))
+            .map(|&d| ((out.wrench[d] + loads[d]) / w(d)).powi(2))
             .sum::<f64>()
             .sqrt())
     };
-    let mut r = resid(&q, &mut out, level, aux)?;
+    let mut r = resid(q, &mut out, level, aux)?;
     let n = dofs.len();
     for _ in 0..100 {
         if r <= 1e-9 * scale {
-            return Ok(q);
+            break;
         }
         let mut a = nalgebra::DMatrix::<f64>::zeros(n, n);
         let mut b = nalgebra::DVector::<f64>::zeros(n);
-        let kmax = dofs.iter().map(|&d| out.k[d][d].abs()).fold(0.0, f64::max);
+        let mut kmax: f64 = 0.0;
         for (i, &di) in dofs.iter().enumerate() {
-            b[i] = out.wrench[di] + loads[di];
+            b[i] = (out.wrench[di] + loads[di]) / w(di);
             for (j, &dj) in dofs.iter().enumerate() {
-                a[(i, j)] = out.k[di][dj];
+                a[(i, j)] = out.k[di][dj] / (w(di) * w(dj));
+                kmax = kmax.max(a[(i, j)].abs());
             }
-            // Regularise directions with no stiffness (inside a clearance, unloaded tilt).
-            a[(i, i)] += 1e-9 * kmax + if di < 3 { 1e3 } else { 1e-3 };
+        }
+        for i in 0..n {
+            a[(i, i)] += 1e-9 * kmax + 1e3;
         }
         let Some(dq) = a.lu().solve(&b) else { break };
         let mut step = 1.0;
         let mut accepted = false;
         for _ in 0..40 {
-            let mut trial = q;
+            let mut trial = *q;
             for (i, &d) in dofs.iter().enumerate() {
-                trial[d] += step * dq[i];
+                trial[d] += step * dq[i] / w(d);
             }
             if let Ok(rt) = resid(&trial, &mut out, level, aux) {
                 if rt < r {
-                    (q, r, accepted) = (trial, rt, true);
+                    (*q, r, accepted) = (trial, rt, true);
                     break;
                 }
             }
@@ -890,17 +947,9 @@ fn static_start(
         if !accepted {
             break;
         }
-        // Restore `out` at the accepted point for the next Jacobian.
-        resid(&q, &mut out, level, aux)?;
+        resid(q, &mut out, level, aux)?;
     }
-    if r <= 1e-6 * scale {
-        return Ok(q);
-    }
-    Err(Error::NotConverged {
-        what: "static start of the load-driven inner ring (try model.start = \"rest\")",
-        iterations: 100,
-        residual: r,
-    })
+    Ok(r)
 }
 
 /// Input `i` at `s` after the step start under `rule`.
