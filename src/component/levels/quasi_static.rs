@@ -85,8 +85,8 @@ impl QuasiStaticLevel {
             let jac = c.is_some();
             with.eval(theta, wc, &m.q, &m.v, 0.0, None, jac, e1);
             without.eval(theta, wc, &m.q, &m.v, 0.0, None, false, e0);
-            for k in 0..5 {
-                w[k] += e1.wrench[k] - e0.wrench[k];
+            for ((w, a), b) in w.iter_mut().zip(e1.wrench).zip(e0.wrench) {
+                *w += a - b;
             }
             if let Some(c) = c {
                 *c = e1.c;
