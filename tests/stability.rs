@@ -1,6 +1,6 @@
 //! Stability campaign, CI sample (one factor at a time around each level's nominal cell,
 //! plus corners; short windows). The long campaign:
-//! `cargo run --release --example bench -- --stability-long --out docs`.
+//! `cargo run --release -- bench --stability --long`.
 //! Every cell must converge under refinement or refuse cleanly: never a panic or a NaN.
 
 use raceway::report::stability::{self, Cell, Clearance, Load, Outcome, Speed, BASES};

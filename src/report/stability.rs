@@ -698,9 +698,9 @@ pub fn campaign(long: bool, dir: &std::path::Path, verbose: bool) -> Result<Vec<
     }
     let res = run(&cells, t_base, verbose);
     let cmd = if long {
-        "cargo run --release --example bench -- --stability-long --out docs"
+        "cargo run --release -- bench --stability --long"
     } else {
-        "cargo run --release --example bench -- --stability --out docs"
+        "cargo run --release -- bench --stability"
     };
     super::write_file(&dir.join("stability.md"), &markdown(&res, t_base, cmd))?;
     Ok(res)

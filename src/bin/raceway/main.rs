@@ -15,6 +15,7 @@
 //! malformed bearing file are refused with a message naming the cause and exit status 1
 //! (clap's own usage errors exit with 2).
 
+mod bench;
 mod report;
 mod run;
 mod scene_cmd;
@@ -40,6 +41,9 @@ struct Cli {
 
 #[derive(Subcommand, Debug)]
 enum Cmd {
+    /// Work-precision study (error against CPU time per level and integrator) or, with
+    /// --stability, the stability campaign; results into docs/.
+    Bench(bench::BenchArgs),
     /// Run a scene stand-alone (the embedded default scene without a file): time series,
     /// summary and plots into out/<scene>/.
     Run(run::RunArgs),
@@ -103,6 +107,7 @@ fn main() -> ExitCode {
         Cmd::Bearings { json } => report::bearings(json),
         Cmd::QuasiStatic(a) => quasi_static(a),
         Cmd::Run(a) => run::run(a),
+        Cmd::Bench(a) => bench::bench(a),
         Cmd::Scene(a) => scene_cmd::scene(a),
     };
     match out {

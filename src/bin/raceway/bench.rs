@@ -1,0 +1,80 @@
+//! `raceway bench`: the work-precision study (error of the reaction forces against a tight
+//! two-method reference, against CPU time, for every level and integrator) and the
+//! stability campaign. Writes into `--out` (default `docs/`).
+//!
+//! - `raceway bench [--out docs] [--quick] [--peer]`: docs/work-precision.{csv,md,png};
+//!   `--quick`: three tolerances, one repeat; `--peer`: also the SciPy peer
+//!   (scripts/peer-scipy) with its speed ratio at equal error.
+//! - `raceway bench --stability [--long] [--out docs]`: docs/stability.md.
+
+use raceway::report::stability;
+use raceway::report::work_precision::{self as wp, Config};
+use raceway::{Error, Result};
+use std::path::{Path, PathBuf};
+
+/// Options of `raceway bench`.
+#[derive(clap::Args, Debug)]
+pub struct BenchArgs {
+    /// Output folder.
+    #[arg(long, default_value = "docs")]
+    pub out: PathBuf,
+    /// Three tolerances and one repeat (a quick look).
+    #[arg(long)]
+    pub quick: bool,
+    /// Also run the SciPy peer (needs Python; scripts/peer-scipy makes its venv).
+    #[arg(long)]
+    pub peer: bool,
+    /// Run the stability campaign instead of the work-precision study.
+    #[arg(long)]
+    pub stability: bool,
+    /// With --stability: the long matrix.
+    #[arg(long)]
+    pub long: bool,
+}
+
+/// Run; returns what to print.
+pub fn bench(a: BenchArgs) -> Result<String> {
+    let out = a.out;
+    if a.stability {
+        let res = stability::campaign(a.long, &out, true)?;
+        let failed = res.iter().filter(|(_, o)| !o.passed()).count();
+        return Ok(format!(
+            "wrote {}/stability.md ({} cells, {failed} failed)\n",
+            out.display(),
+            res.len()
+        ));
+    }
+    let mut cfg = Config {
+        verbose: true,
+        ..Config::default()
+    };
+    if a.quick {
+        cfg.rtols = vec![1e-3, 1e-5, 1e-7];
+        cfg.repeats = 1;
+    }
+    let mut rep = wp::run(&cfg)?;
+    if a.peer {
+        let case = cfg
+            .cases
+            .iter()
+            .find(|c| c.name == "6205-2dof")
+            .ok_or_else(|| Error::Io("no 6205-2dof case".into()))?;
+        wp::export_for_peer(&cfg, case, &cfg.cache_dir)?;
+        let status = std::process::Command::new("scripts/peer-scipy")
+            .arg(&cfg.cache_dir)
+            .status()
+            .map_err(|e| Error::Io(format!("scripts/peer-scipy: {e}")))?;
+        if !status.success() {
+            return Err(Error::Io("scripts/peer-scipy failed".into()));
+        }
+        let p = Path::new(&cfg.cache_dir).join("6205-2dof-scipy.csv");
+        let text =
+            std::fs::read_to_string(&p).map_err(|e| Error::Io(format!("{}: {e}", p.display())))?;
+        rep.peer = wp::read_peer_csv(&text)?;
+    }
+    rep.write(&out)?;
+    Ok(format!(
+        "wrote {}/work-precision.{{csv,md,png}}\n",
+        out.display()
+    ))
+}
