@@ -9,9 +9,11 @@ cargo run -q --example vibration -- examples/scenes/6205-outer-spall.toml 0.3 0.
 cargo run -q --example vibration -- examples/scenes/7008ce-waviness.toml 0.1 0.02
 for s in examples/scenes/*.toml; do
   name=$(basename "$s" .toml)
+  cargo run -q -- scene --check "$s" > /dev/null
   cargo run -q -- run "$s" --quiet --duration 0.05 --out "$out/$name"
   test -s "$out/$name/spectrum.png"
 done
 cargo run -q -- run --quiet --duration 0.05 --out "$out/default-scene"
 cargo run -q -- bearings > /dev/null
 cargo run -q -- quasi-static > /dev/null
+cargo run -q -- scene --explain > /dev/null
