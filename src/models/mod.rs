@@ -4,4 +4,6 @@ pub mod defects;
 pub mod effects;
 pub mod quasi_static;
 pub mod ring;
+pub mod thermal;
 pub mod waviness;
+pub mod wear;
