@@ -208,6 +208,9 @@ pub struct ThermalSpec {
     pub oil_conductance_w_k: f64,
     /// Heat capacity of the oil in the bearing, J/K.
     pub oil_heat_capacity_j_k: f64,
+    /// Ball–ring conductance per race, W/K (absent: Holm constriction of the loaded
+    /// contacts, a static lower bound; rolling contacts conduct more).
+    pub contact_conductance_w_k: Option<f64>,
     /// Slow (thermal) time step, s.
     pub dt_s: f64,
     /// Thermal seconds per second of dynamics (time-scale separation).
@@ -225,10 +228,11 @@ impl Default for ThermalSpec {
             spin_friction: 0.03,
             hysteresis_loss: 0.01,
             ambient_c: 20.0,
-            shaft_conductance_w_k: 2.0,
-            housing_conductance_w_k: 5.0,
-            oil_conductance_w_k: 2.0,
+            shaft_conductance_w_k: 5.0,
+            housing_conductance_w_k: 10.0,
+            oil_conductance_w_k: 5.0,
             oil_heat_capacity_j_k: 20.0,
+            contact_conductance_w_k: None,
             dt_s: 0.5,
             time_scale: 1.0,
             growth: true,
@@ -436,6 +440,9 @@ impl Effects {
             nonneg("shaft_conductance_w_k", t.shaft_conductance_w_k)?;
             nonneg("housing_conductance_w_k", t.housing_conductance_w_k)?;
             nonneg("oil_conductance_w_k", t.oil_conductance_w_k)?;
+            if let Some(v) = t.contact_conductance_w_k {
+                nonneg("contact_conductance_w_k", v)?;
+            }
             if let Some(v) = t.viscosity_cst {
                 check(format!("{p}.viscosity_cst"), v, v > 0.0, "> 0")?;
             }

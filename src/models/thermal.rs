@@ -105,6 +105,8 @@ pub struct ThermalParams {
     pub g_oil: f64,
     /// Oil heat capacity, J/K.
     pub c_oil: f64,
+    /// Fixed ball–ring conductance per race, W/K (None: Holm constriction).
+    pub g_contact: Option<f64>,
     /// Slow time step, s (thermal time).
     pub dt: f64,
     /// Thermal seconds per dynamic second.
@@ -318,8 +320,12 @@ impl ThermalModel {
             g[a][b] -= c;
             g[b][a] -= c;
         };
-        link(INNER, BALLS, l.contact_conductance[0]);
-        link(OUTER, BALLS, l.contact_conductance[1]);
+        let gc = match self.p.g_contact {
+            Some(g) => [g, g],
+            None => l.contact_conductance,
+        };
+        link(INNER, BALLS, gc[0]);
+        link(OUTER, BALLS, gc[1]);
         for (k, node) in [INNER, OUTER, BALLS].into_iter().enumerate() {
             link(node, OIL, convection(v[k]) * self.area[k]);
         }

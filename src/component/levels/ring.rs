@@ -196,6 +196,7 @@ impl Slow {
                 g_housing: t.housing_conductance_w_k,
                 g_oil: t.oil_conductance_w_k,
                 c_oil: t.oil_heat_capacity_j_k,
+                g_contact: t.contact_conductance_w_k,
                 dt: t.dt_s,
                 time_scale: t.time_scale,
                 growth: t.growth,
