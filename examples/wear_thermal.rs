@@ -111,7 +111,11 @@ fn wear_case(label: &str, scene: &Scene) -> Result<(), Box<dyn std::error::Error
         &[],
     )?;
     let first = &orbits[0];
-    let last = orbits.iter().rev().find(|o| !o.0.is_empty()).unwrap_or(first);
+    let last = orbits
+        .iter()
+        .rev()
+        .find(|o| !o.0.is_empty())
+        .unwrap_or(first);
     plot(
         Path::new(&format!("out/wear-orbit-{label}.png")),
         &Axes {

@@ -47,7 +47,11 @@ fn run(s: &Scene, secs: f64) -> Component {
 const REV: f64 = 0.03; // one revolution at 2000 rpm, s
 
 fn wear_line(extra: &str) -> String {
-    let cycles = if extra.contains("cycles") { "" } else { ", cycles = 2" };
+    let cycles = if extra.contains("cycles") {
+        ""
+    } else {
+        ", cycles = 2"
+    };
     format!("wear = {{ cells = 72, window_revs = 1.0, cycle_revs = 1e4{cycles}{extra} }}")
 }
 
@@ -116,13 +120,24 @@ fn wear_concentrates_in_the_load_zone() {
 
 #[test]
 fn rougher_races_wear_faster_and_the_dry_limit_much_faster() {
-    let smooth = max_depth(&run(&scene(12.0, 2000.0, 100.0, &lubricated(0.2)), 2.2 * REV));
-    let rough = max_depth(&run(&scene(12.0, 2000.0, 100.0, &lubricated(0.42)), 2.2 * REV));
+    let smooth = max_depth(&run(
+        &scene(12.0, 2000.0, 100.0, &lubricated(0.2)),
+        2.2 * REV,
+    ));
+    let rough = max_depth(&run(
+        &scene(12.0, 2000.0, 100.0, &lubricated(0.42)),
+        2.2 * REV,
+    ));
     let dry = max_depth(&run(
-        &scene(12.0, 2000.0, 100.0, &format!(
+        &scene(
+            12.0,
+            2000.0,
+            100.0,
+            &format!(
             "lubrication = {{ film = \"ehl\", lubricant = \"study2\", roughness_um = 0.42 }}\n{}",
             wear_line(", dry = true")
-        )),
+        ),
+        ),
         2.2 * REV,
     ));
     println!("max depth: Ra 0.2 {smooth:.3e}, Ra 0.42 {rough:.3e}, dry {dry:.3e} m");
@@ -203,8 +218,12 @@ fn growth_equals_alpha_dt_d_and_closes_the_clearance() {
         e.wrench[1]
     );
     let mut cold = RingEval::default();
-    RingModel::new(&b, RingDof::Two, 0.0).eval(st.x[0], 0.0, &q, &[0.0; 5], 0.0, None, false, &mut cold);
-    assert!(change < 0.0 && fy.abs() > cold.wrench[1].abs(), "tighter when warm");
+    RingModel::new(&b, RingDof::Two, 0.0)
+        .eval(st.x[0], 0.0, &q, &[0.0; 5], 0.0, None, false, &mut cold);
+    assert!(
+        change < 0.0 && fy.abs() > cold.wrench[1].abs(),
+        "tighter when warm"
+    );
 }
 
 #[test]
@@ -251,7 +270,10 @@ fn switching_the_effect_off_recovers_the_plain_model() {
         12.0,
         2000.0,
         100.0,
-        &format!("{}\nthermal = {{ growth = false }}", wear_line(", cycles = 0")),
+        &format!(
+            "{}\nthermal = {{ growth = false }}",
+            wear_line(", cycles = 0")
+        ),
     );
     assert!(!inert.effects.is_off());
     let h = 2e-4;
@@ -262,7 +284,10 @@ fn switching_the_effect_off_recovers_the_plain_model() {
         q.do_step(i as f64 * h, h).unwrap();
         for name in ["force.x", "force.y", "contact.max_load"] {
             let (a, b) = (p.get_real(vr(name)).unwrap(), q.get_real(vr(name)).unwrap());
-            assert!((a - b).abs() <= 1e-9 * a.abs().max(1.0), "{name}: {a} vs {b}");
+            assert!(
+                (a - b).abs() <= 1e-9 * a.abs().max(1.0),
+                "{name}: {a} vs {b}"
+            );
         }
     }
     assert_eq!(max_depth(&q), 0.0);

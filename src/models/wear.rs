@@ -190,15 +190,13 @@ pub fn sample(map: &[f64], theta: f64) -> f64 {
 /// Deepest cell of a map: `(depth, angle of its centre in rad)`.
 pub fn deepest(map: &[f64]) -> (f64, f64) {
     let n = map.len().max(1);
-    map.iter()
-        .enumerate()
-        .fold((0.0, 0.0), |(d, a), (k, &v)| {
-            if v > d {
-                (v, std::f64::consts::TAU * k as f64 / n as f64)
-            } else {
-                (d, a)
-            }
-        })
+    map.iter().enumerate().fold((0.0, 0.0), |(d, a), (k, &v)| {
+        if v > d {
+            (v, std::f64::consts::TAU * k as f64 / n as f64)
+        } else {
+            (d, a)
+        }
+    })
 }
 
 /// Revolutions to reach `depth` given the deepest point after each cycle:

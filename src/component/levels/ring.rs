@@ -181,9 +181,9 @@ impl Slow {
         });
         let wear_aux = wear.as_ref().map_or(0, |w| 4 * w.n + 2);
         let thermal = e.thermal.as_ref().map(|t| {
-            let nu = t.viscosity_cst.unwrap_or_else(|| {
-                lubricant.map_or(20.0, |l| l.viscosity / l.density * 1e6)
-            });
+            let nu = t
+                .viscosity_cst
+                .unwrap_or_else(|| lubricant.map_or(20.0, |l| l.viscosity / l.density * 1e6));
             let eta = lubricant.map_or(nu * 1e-6 * 860.0, |l| l.viscosity);
             let p = ThermalParams {
                 f0: t.f0,
