@@ -60,7 +60,9 @@ fn wear_case(label: &str, scene: &Scene) -> Result<(), Box<dyn std::error::Error
             history.push((revs, deepest));
             maps.push((revs, outer.to_vec()));
         }
-        if let Some(o) = orbits.get_mut(done) {
+        // Skip the first revolution's settling from the centre in the "before" orbit.
+        let settled = done > 0 || c.time() > rev_s;
+        if let (true, Some(o)) = (settled, orbits.get_mut(done)) {
             o.0.push(c.get_real(vx).unwrap_or(0.0) * 1e6);
             o.1.push(c.get_real(vy).unwrap_or(0.0) * 1e6);
         }

@@ -255,8 +255,7 @@ impl ThermalModel {
         let (_, wb) = self.speeds(omega);
         let v_roll = wb * 0.5 * self.d;
         let sa = self.alpha.sin().abs();
-        for r in 0..2 {
-            let c = &self.contacts[r];
+        for (r, c) in self.contacts.iter().enumerate() {
             let (a, b) = c.semi_axes(q);
             let ms = 3.0 * self.p.mu_spin * q * a * c.ellipse.e / 8.0;
             sums.spin[r] += ms * rel[r] * sa;
@@ -372,6 +371,7 @@ impl ThermalModel {
 }
 
 /// Solve a 4x4 system by Gaussian elimination with partial pivoting.
+#[allow(clippy::needless_range_loop)]
 fn solve4(mut a: [[f64; 4]; 4], mut b: [f64; 4]) -> [f64; 4] {
     for c in 0..4 {
         let p = (c..4)

@@ -310,6 +310,7 @@ impl RingLevel {
         }
     }
 
+    #[allow(clippy::too_many_arguments)]
     fn evaluate<F: FnMut(usize, f64, f64)>(
         &mut self,
         t: f64,
