@@ -42,8 +42,9 @@ fn main() {
 
     // Cage advance per call: a time step of 2 µs at the cage speed (about 0.45 omega).
     let dpsi = 0.45 * w * 2e-6;
-    let evals = 2000;
-    let repeats = 21;
+    // `cargo bench` passes `--bench`; `cargo test --all-targets` runs this once as a smoke test.
+    let bench = std::env::args().any(|a| a == "--bench");
+    let (evals, repeats) = if bench { (2000, 21) } else { (10, 1) };
 
     let mut time = |with_k: bool| -> (f64, f64) {
         let mut wall = Vec::with_capacity(repeats);

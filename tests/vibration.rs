@@ -84,6 +84,13 @@ fn run(text: &str) -> (Vec<f64>, Vec<f64>) {
     (y, f)
 }
 
+fn max_diff(a: &[f64], b: &[f64]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max)
+}
+
 fn kin() -> (Kinematics, f64) {
     let b = preset("6205").unwrap().build().unwrap();
     (kinematics(&b, OMEGA), OMEGA / (2.0 * PI))
@@ -577,8 +584,12 @@ fn ball_waviness_of_even_order_excites_its_spin_harmonic() {
     let (y3, _) = run(&scene(
         r#"waviness = [{ race = "ball", order = 3, amplitude_um = 0.3 }]"#,
     ));
+    // Unchanged to the integration tolerance (the odd orders' offsets cancel to round-off,
+    // but the shaft-angle state they add changes the integrator's error norm and steps).
+    let (d3, d2) = (max_diff(&y3, &yh), max_diff(&y, &yh));
+    println!("ball waviness: max |y - healthy| order 3 {d3:.3e} m, order 2 {d2:.3e} m");
     assert!(
-        y3.iter().zip(&yh).all(|(a, b)| (a - b).abs() < 1e-15),
-        "odd ball orders leave the response unchanged"
+        d3 < 1e-4 * d2,
+        "odd ball orders leave the response unchanged: {d3:e} vs {d2:e}"
     );
 }

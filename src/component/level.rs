@@ -61,6 +61,31 @@ pub trait LevelModel: Send + std::fmt::Debug {
     fn ring_dofs(&self) -> &'static [usize] {
         &[0, 1, 2, 3, 4]
     }
+    /// Absolute tolerances of the level's states, given the scene's displacement
+    /// tolerance `atol_m`: fill `atol` (length `n_states`) and return `true`, or return
+    /// `false` (the default) to let the component treat every state as an angle.
+    fn state_atol(&self, _atol_m: f64, _atol: &mut [f64]) -> bool {
+        false
+    }
+    /// Jacobians of the level at `t` (optional; `false`, the default, lets the integrator
+    /// difference the whole right-hand side). With `n = n_states`, all row-major:
+    /// `jx = d(rates)/d(states)` (`n × n`), `jm = d(rates)/d(q, v)` (`n × 10`),
+    /// `wx = d(wrench)/d(states)` (`5 × n`), `wm = d(wrench)/d(q, v)` (`5 × 10`).
+    /// Motion-driven, `jm`, `wx` and `wm` are empty (not needed). Must not allocate.
+    #[allow(clippy::too_many_arguments)]
+    fn jacobian(
+        &mut self,
+        _t: f64,
+        _m: &Motion,
+        _x: &[f64],
+        _aux: &mut [f64],
+        _jx: &mut [f64],
+        _jm: &mut [f64],
+        _wx: &mut [f64],
+        _wm: &mut [f64],
+    ) -> bool {
+        false
+    }
     /// Initial states at the start motion.
     fn init(&mut self, m: &Motion, x: &mut [f64], aux: &mut [f64]) -> Result<()>;
     /// Time derivatives of the level's states at `t`; when `wrench` is given, also the

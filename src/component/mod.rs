@@ -91,8 +91,18 @@ struct Work {
     aux_save: Vec<f64>,
 }
 
+/// Work space of the level Jacobians (see [`LevelModel::jacobian`]).
+#[derive(Debug, Clone, Default)]
+struct JacWork {
+    jx: Vec<f64>,
+    jm: Vec<f64>,
+    wx: Vec<f64>,
+    wm: Vec<f64>,
+}
+
 /// The whole system a step integrates: the level's states and, load-driven, the ring's.
 struct Sys<'a> {
+    jw: Option<&'a mut JacWork>,
     level: &'a mut dyn LevelModel,
     st: &'a mut State,
     ring: Option<&'a RingBody>,
@@ -101,6 +111,9 @@ struct Sys<'a> {
     nl: usize,
     naux: usize,
     t0: f64,
+    /// The last error the level raised at a trial point (the integrator sees NaN there and
+    /// retries with a smaller step; if it gives up, this is the cause it reports).
+    last_error: Option<Error>,
 }
 
 impl Sys<'_> {
@@ -144,8 +157,59 @@ impl OdeSystem for Sys<'_> {
         self.st.x.len()
     }
     fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) -> std::result::Result<(), String> {
-        self.eval(t - self.t0, y, dy, None)
-            .map_err(|e| e.to_string())
+        // A trial state can be far off (a too-large trial step through a stiff contact):
+        // a level that cannot evaluate there makes the step fail and shrink, not the run.
+        if let Err(e) = self.eval(t - self.t0, y, dy, None) {
+            dy.fill(f64::NAN);
+            self.last_error = Some(e);
+        }
+        Ok(())
+    }
+    fn jacobian(&mut self, t: f64, y: &[f64], jac: &mut nalgebra::DMatrix<f64>) -> bool {
+        let Some(jw) = self.jw.as_deref_mut() else {
+            return false;
+        };
+        let nl = self.nl;
+        let s = t - self.t0;
+        let m = motion_at_y(self.st, self.rule, s, self.causality, self.ring, nl, y);
+        let (aux, _) = self.st.aux.split_at_mut(self.naux);
+        let (jm, wx, wm) = if self.ring.is_some() {
+            (&mut jw.jm[..], &mut jw.wx[..], &mut jw.wm[..])
+        } else {
+            (&mut [][..], &mut [][..], &mut [][..])
+        };
+        if !self
+            .level
+            .jacobian(t, &m, &y[..nl], aux, &mut jw.jx, jm, wx, wm)
+        {
+            return false;
+        }
+        jac.fill(0.0);
+        for r in 0..nl {
+            for c in 0..nl {
+                jac[(r, c)] = jw.jx[r * nl + c];
+            }
+        }
+        if let Some(ring) = self.ring {
+            let nd = ring.dofs.len();
+            for (k, &d) in ring.dofs.iter().enumerate() {
+                let (iq, iv) = (nl + k, nl + nd + k);
+                let inv = 1.0 / ring.inertia[d];
+                for r in 0..nl {
+                    jac[(r, iq)] = jw.jm[r * 10 + d];
+                    jac[(r, iv)] = jw.jm[r * 10 + 5 + d];
+                }
+                jac[(iq, iv)] = 1.0;
+                for c in 0..nl {
+                    jac[(iv, c)] = jw.wx[d * nl + c] * inv;
+                }
+                for (k2, &d2) in ring.dofs.iter().enumerate() {
+                    jac[(iv, nl + k2)] = jw.wm[d * 10 + d2] * inv;
+                    jac[(iv, nl + nd + k2)] = jw.wm[d * 10 + 5 + d2] * inv;
+                }
+            }
+        }
+        true
     }
 }
 
@@ -161,9 +225,9 @@ pub struct Component {
     state: State,
     scratch: State,
     work: Work,
+    jwork: JacWork,
     integrator: Integrator,
     opts: Options,
-    outputs_fresh: bool,
 }
 
 /// The scene's integrator and its options. `Auto` picks DOPRI5: the levels so far are not
@@ -171,19 +235,26 @@ pub struct Component {
 fn make_integrator(
     scene: &Scene,
     b: &Bearing,
+    level: &dyn LevelModel,
     nl: usize,
     ring: Option<&RingBody>,
 ) -> (Integrator, Options) {
     let n = nl + ring.map_or(0, |r| 2 * r.dofs.len());
+    // The skidding level is stiff (traction slope, numerics.md §1.2): RODAS4 by default.
+    let stiff = scene.model.level == Level::Skidding;
     let integrator = match scene.solver.method {
+        Method::Auto if stiff => Integrator::Rosenbrock(Rosenbrock::new(n)),
         Method::Auto | Method::Dopri5 => Integrator::Dopri5(Dopri5::new(n)),
         Method::Rosenbrock => Integrator::Rosenbrock(Rosenbrock::new(n)),
     };
     let s = &scene.solver;
     let mut opts = Options::new(n, s.rtol, s.atol_m);
-    // Angles (cage, shaft, balls): an angle error atol_m / (D/2) moves a ball surface by atol_m.
+    // Angles (cage, shaft, balls): an angle error atol_m / (D/2) moves a ball surface by
+    // atol_m; a level with other states gives its own scales.
     let angle = s.atol_m / (0.5 * b.d);
-    opts.atol[..nl].fill(angle);
+    if !level.state_atol(s.atol_m, &mut opts.atol[..nl]) {
+        opts.atol[..nl].fill(angle);
+    }
     if let Some(r) = ring {
         let nd = r.dofs.len();
         let rate = 2.0 * std::f64::consts::PI * 1e3; // velocities: atol over a 1 kHz period
@@ -226,6 +297,11 @@ fn build_level(scene: &Scene, b: &Bearing) -> Result<Box<dyn LevelModel>> {
                 m.contact_damping,
                 &scene.effects,
             )?)
+        }
+        Level::Skidding => {
+            let mut p = m.skidding.params(b)?;
+            p.contact_damping = m.contact_damping;
+            Box::new(levels::SkiddingLevel::new(b, p)?)
         }
         Level::QuasiStatic => Box::new(levels::QuasiStaticLevel::new(scene, b)?),
         Level::Linear => Box::new(levels::LinearLevel::new(scene, b)?),
@@ -292,14 +368,36 @@ impl Component {
             &mut state.x[..n_level],
             &mut state.aux[..n_level_aux],
         )?;
+        if let (Some(r), scene::Start::Equilibrium) = (&ring, scene.model.start) {
+            let loads: [f64; 5] = std::array::from_fn(|k| state.inputs[I_LOAD + k]);
+            let q = static_start(
+                level.as_mut(),
+                r.dofs,
+                &loads,
+                motion.omega,
+                &state.x[..n_level],
+                &mut state.aux[..n_level_aux],
+            )?;
+            for (k, &d) in r.dofs.iter().enumerate() {
+                state.x[n_level + k] = q[d];
+            }
+        }
         let dim = state.x.len();
-        let (integrator, opts) = make_integrator(&scene, &bearing, n_level, ring.as_ref());
+        let (integrator, opts) =
+            make_integrator(&scene, &bearing, level.as_ref(), n_level, ring.as_ref());
         let work = Work {
             k: std::array::from_fn(|_| vec![0.0; dim]),
             y: vec![0.0; dim],
             aux_save: vec![0.0; n_level_aux + 1],
         };
+        let jwork = JacWork {
+            jx: vec![0.0; n_level * n_level],
+            jm: vec![0.0; n_level * 10],
+            wx: vec![0.0; 5 * n_level],
+            wm: vec![0.0; 50],
+        };
         let mut c = Component {
+            jwork,
             scene,
             bearing,
             level,
@@ -311,7 +409,6 @@ impl Component {
             work,
             integrator,
             opts,
-            outputs_fresh: false,
         };
         if c.missing_inputs().is_empty() {
             c.refresh_outputs()?;
@@ -349,43 +446,37 @@ impl Component {
 
     /// Set an input by value reference. Setting a value clears that input's derivatives.
     pub fn set_real(&mut self, vr: u32, value: f64) -> Result<()> {
+        let i = self.input_slot("set_real", vr, value)?;
+        self.state.inputs[i] = value;
+        self.state.input_derivatives[3 * i..3 * i + 3].fill(0.0);
+        self.state.inputs_set |= 1 << i;
+        Ok(())
+    }
+
+    /// The slot of input `vr` if `call` may set it to `value` (an input of this causality,
+    /// a finite value).
+    fn input_slot(&self, call: &'static str, vr: u32, value: f64) -> Result<usize> {
         let v = variables::by_vr(vr)
             .ok_or_else(|| Error::invalid("value reference", vr, "a variable of the table"))?;
         if !v.is_input(self.causality()) {
             return Err(Error::CallOrder {
-                call: "set_real",
+                call,
                 reason: format!("`{}` is not an input of this causality", v.name),
             });
         }
         if !value.is_finite() {
             return Err(Error::invalid(v.name, value, "a finite number"));
         }
-        let i = index_of(vr).expect("in table");
-        self.state.inputs[i] = value;
-        self.state.input_derivatives[3 * i..3 * i + 3].fill(0.0);
-        self.state.inputs_set |= 1 << i;
-        self.outputs_fresh = false;
-        Ok(())
+        Ok(index_of(vr).expect("in table"))
     }
 
     /// Set the `order`-th time derivative (1..=3) of an input at the start of the next
     /// step, used with [`InputRule::Derivatives`]. They hold until the input is set again.
     pub fn set_input_derivative(&mut self, vr: u32, order: u32, value: f64) -> Result<()> {
-        let v = variables::by_vr(vr)
-            .ok_or_else(|| Error::invalid("value reference", vr, "a variable of the table"))?;
-        if !v.is_input(self.causality()) {
-            return Err(Error::CallOrder {
-                call: "set_input_derivative",
-                reason: format!("`{}` is not an input", v.name),
-            });
-        }
+        let i = self.input_slot("set_input_derivative", vr, value)?;
         if !(1..=3).contains(&order) {
             return Err(Error::invalid("order", order, "1, 2 or 3"));
         }
-        if !value.is_finite() {
-            return Err(Error::invalid(v.name, value, "a finite number"));
-        }
-        let i = index_of(vr).expect("in table");
         self.state.input_derivatives[3 * i + (order as usize - 1)] = value;
         Ok(())
     }
@@ -425,22 +516,27 @@ impl Component {
             .collect()
     }
 
+    /// Refuse `call` while some input of this causality was never set (names them).
+    fn require_inputs(&self, call: &'static str) -> Result<()> {
+        let missing = self.missing_inputs();
+        if missing.is_empty() {
+            return Ok(());
+        }
+        Err(Error::CallOrder {
+            call,
+            reason: format!("inputs never set: {}", missing.join(", ")),
+        })
+    }
+
     /// Evaluate the outputs at the current time and inputs (for hosts that read outputs
     /// before the first step, e.g. in FMI initialisation mode). On error nothing changes.
     pub fn refresh_outputs(&mut self) -> Result<()> {
-        let missing = self.missing_inputs();
-        if !missing.is_empty() {
-            return Err(Error::CallOrder {
-                call: "refresh_outputs",
-                reason: format!("inputs never set: {}", missing.join(", ")),
-            });
-        }
+        self.require_inputs("refresh_outputs")?;
         self.scratch.clone_from(&self.state);
         let mut sc = std::mem::take(&mut self.scratch);
         let r = self.compute_outputs(&mut sc, 0.0);
         if r.is_ok() {
             std::mem::swap(&mut self.state, &mut sc);
-            self.outputs_fresh = true;
         }
         self.scratch = sc;
         r
@@ -465,13 +561,7 @@ impl Component {
                 ),
             });
         }
-        let missing = self.missing_inputs();
-        if !missing.is_empty() {
-            return Err(Error::CallOrder {
-                call: "do_step",
-                reason: format!("inputs never set: {}", missing.join(", ")),
-            });
-        }
+        self.require_inputs("do_step")?;
         self.scratch.clone_from(&self.state);
         let mut sc = std::mem::take(&mut self.scratch);
         // The host owns time: re-sync to its communication point (within the tolerance).
@@ -483,7 +573,6 @@ impl Component {
             sc.t = t + h;
             sc.started = true;
             std::mem::swap(&mut self.state, &mut sc);
-            self.outputs_fresh = true;
         }
         self.scratch = sc;
         r.map_err(|e| match e {
@@ -507,6 +596,7 @@ impl Component {
         let mut h_trial = sc.aux[naux];
         self.work.y.copy_from_slice(&sc.x);
         let mut sys = Sys {
+            jw: Some(&mut self.jwork),
             level: self.level.as_mut(),
             st: sc,
             ring: self.ring.as_ref(),
@@ -515,28 +605,32 @@ impl Component {
             nl: self.n_level,
             naux,
             t0,
+            last_error: None,
         };
-        self.integrator
-            .integrate(
-                &mut sys,
-                t0,
-                t0 + h,
-                &mut self.work.y,
-                &mut h_trial,
-                &self.opts,
-            )
-            .map_err(|e| {
-                let hint = match e {
-                    SolverError::TooManySteps { .. } => {
-                        " (the scene's limit solver.max_substeps; raise it or shorten the step)"
-                    }
-                    _ => "",
-                };
-                Error::StepFailed {
-                    t: t0,
-                    reason: format!("{e}{hint}"),
+        let r = self.integrator.integrate(
+            &mut sys,
+            t0,
+            t0 + h,
+            &mut self.work.y,
+            &mut h_trial,
+            &self.opts,
+        );
+        if let Err(e) = r {
+            let hint = match e {
+                SolverError::TooManySteps { .. } => {
+                    " (the scene's limit solver.max_substeps; raise it or shorten the step)"
+                        .to_string()
                 }
-            })?;
+                _ => sys
+                    .last_error
+                    .map(|m| format!("; the model: {m}"))
+                    .unwrap_or_default(),
+            };
+            return Err(Error::StepFailed {
+                t: t0,
+                reason: format!("{e}{hint}"),
+            });
+        }
         sc.x.copy_from_slice(&self.work.y);
         sc.aux[naux] = h_trial;
         Ok(())
@@ -591,6 +685,7 @@ impl Component {
         let mut bwd = [0.0; 5];
         let t0 = sc.t;
         let mut sys = Sys {
+            jw: None,
             level: self.level.as_mut(),
             st: sc,
             ring: self.ring.as_ref(),
@@ -599,6 +694,7 @@ impl Component {
             nl,
             naux: self.n_level_aux,
             t0,
+            last_error: None,
         };
         let mut r = sys.eval(s, &w.y, &mut w.k[0], None);
         for (sign, dest) in [(1.0, &mut fwd), (-1.0, &mut bwd)] {
@@ -723,6 +819,87 @@ impl Component {
         }
         Ok(())
     }
+}
+
+/// The inner ring's static equilibrium under `loads` (external, on the ring) at speed
+/// `omega`: damped Newton on `F(q) + load = 0` over the level's ring coordinates with the
+/// level's stiffness; inside a clearance (no stiffness yet) it steps along the residual with
+/// a nominal 1e8 N/m. Refuses (naming the loads) when it finds no equilibrium.
+fn static_start(
+    level: &mut dyn LevelModel,
+    dofs: &[usize],
+    loads: &[f64; 5],
+    omega: f64,
+    x: &[f64],
+    aux: &mut [f64],
+) -> Result<[f64; 5]> {
+    let mut q = [0.0; 5];
+    let mut out = LevelOutputs::default();
+    let scale = loads.iter().map(|v| v.abs()).sum::<f64>() + 1.0;
+    let resid = |q: &[f64; 5],
+                 out: &mut LevelOutputs,
+                 level: &mut dyn LevelModel,
+                 aux: &mut [f64]|
+     -> Result<f64> {
+        let m = Motion {
+            q: *q,
+            v: [0.0; 5],
+            omega,
+        };
+        level.outputs(0.0, &m, x, aux, out)?;
+        Ok(dofs
+            .iter()
+            .map(|&d| (out.wrench[d] + loads[d]).powi(2))
+            .sum::<f64>()
+            .sqrt())
+    };
+    let mut r = resid(&q, &mut out, level, aux)?;
+    let n = dofs.len();
+    for _ in 0..100 {
+        if r <= 1e-9 * scale {
+            return Ok(q);
+        }
+        let mut a = nalgebra::DMatrix::<f64>::zeros(n, n);
+        let mut b = nalgebra::DVector::<f64>::zeros(n);
+        let kmax = dofs.iter().map(|&d| out.k[d][d].abs()).fold(0.0, f64::max);
+        for (i, &di) in dofs.iter().enumerate() {
+            b[i] = out.wrench[di] + loads[di];
+            for (j, &dj) in dofs.iter().enumerate() {
+                a[(i, j)] = out.k[di][dj];
+            }
+            // Regularise directions with no stiffness (inside a clearance, unloaded tilt).
+            a[(i, i)] += 1e-9 * kmax + if di < 3 { 1e3 } else { 1e-3 };
+        }
+        let Some(dq) = a.lu().solve(&b) else { break };
+        let mut step = 1.0;
+        let mut accepted = false;
+        for _ in 0..40 {
+            let mut trial = q;
+            for (i, &d) in dofs.iter().enumerate() {
+                trial[d] += step * dq[i];
+            }
+            if let Ok(rt) = resid(&trial, &mut out, level, aux) {
+                if rt < r {
+                    (q, r, accepted) = (trial, rt, true);
+                    break;
+                }
+            }
+            step *= 0.5;
+        }
+        if !accepted {
+            break;
+        }
+        // Restore `out` at the accepted point for the next Jacobian.
+        resid(&q, &mut out, level, aux)?;
+    }
+    if r <= 1e-6 * scale {
+        return Ok(q);
+    }
+    Err(Error::NotConverged {
+        what: "static start of the load-driven inner ring (try model.start = \"rest\")",
+        iterations: 100,
+        residual: r,
+    })
 }
 
 /// Input `i` at `s` after the step start under `rule`.

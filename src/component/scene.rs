@@ -22,6 +22,8 @@ pub enum Level {
     QuasiStatic,
     /// Ring on massless balls (physics.md §5.1).
     Ring,
+    /// Ball orbit and spin, cage, traction and drag (physics.md §5.2).
+    Skidding,
 }
 
 impl Level {
@@ -31,6 +33,7 @@ impl Level {
             Level::Linear => "linear",
             Level::QuasiStatic => "quasi_static",
             Level::Ring => "ring",
+            Level::Skidding => "skidding",
         }
     }
 }
@@ -57,6 +60,17 @@ pub enum RaceControl {
     Outer,
     /// No race control: `lambda_i = lambda_o = 1`.
     None,
+}
+
+/// Where a load-driven inner ring starts.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum Start {
+    /// At rest in static equilibrium under the initial loads (no start-up transient).
+    #[default]
+    Equilibrium,
+    /// At rest at zero displacement (the ring falls into its contacts).
+    Rest,
 }
 
 /// The operating point the `linear` level linearises about.
@@ -90,6 +104,81 @@ impl Default for OperatingPoint {
     }
 }
 
+/// `[model.skidding]`: options of the skidding level (SI unless the name says otherwise).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct SkiddingSpec {
+    /// Traction law at the race contacts (`law = "coulomb" | "fitted" | "mixed_ehl"`).
+    pub traction: crate::contact::traction::TractionLaw,
+    /// Pocket clearance per side, mm (default: the bearing's cage pocket clearance).
+    pub pocket_clearance_mm: Option<f64>,
+    /// Pocket contact stiffness, N/m.
+    pub pocket_stiffness: f64,
+    /// Pocket contact damping, N s/m.
+    pub pocket_damping: f64,
+    /// Pocket friction coefficient.
+    pub pocket_friction: f64,
+    /// Drag coefficient of an orbiting ball.
+    pub drag_coefficient: f64,
+    /// Effective density of the oil–air mixture around the balls, kg/m³.
+    pub drag_density: f64,
+    /// Oil viscosity for the ball spin drag, Pa s.
+    pub drag_viscosity: f64,
+    /// Cage drag, N m s.
+    pub cage_drag: f64,
+    /// Ball spacing scatter as a fraction of the pocket clearance (seeded, uniform).
+    pub spacing_scatter: f64,
+    /// Seed of the scatter.
+    pub seed: u64,
+}
+
+impl Default for SkiddingSpec {
+    fn default() -> Self {
+        let p = crate::models::skidding::SkiddingParams::default();
+        SkiddingSpec {
+            traction: p.traction,
+            pocket_clearance_mm: None,
+            pocket_stiffness: p.pocket_stiffness,
+            pocket_damping: p.pocket_damping,
+            pocket_friction: p.pocket_friction,
+            drag_coefficient: p.drag_coefficient,
+            drag_density: p.drag_density,
+            drag_viscosity: p.drag_viscosity,
+            cage_drag: p.cage_drag,
+            spacing_scatter: p.spacing_scatter,
+            seed: p.seed,
+        }
+    }
+}
+
+impl SkiddingSpec {
+    /// Validated model parameters for bearing `b`; errors name `model.skidding.<field>`.
+    pub fn params(&self, b: &Bearing) -> Result<crate::models::skidding::SkiddingParams> {
+        use crate::error::{in_range, positive};
+        self.traction.validate("model.skidding.traction")?;
+        let cp = match self.pocket_clearance_mm {
+            Some(v) => positive("model.skidding.pocket_clearance_mm", v)? * 1e-3,
+            None => b.cage.pocket_clearance,
+        };
+        let f = |n: &str| format!("model.skidding.{n}");
+        Ok(crate::models::skidding::SkiddingParams {
+            traction: self.traction,
+            pocket_clearance: positive(&f("pocket_clearance (m)"), cp)?,
+            pocket_stiffness: positive(&f("pocket_stiffness"), self.pocket_stiffness)?,
+            pocket_damping: in_range(&f("pocket_damping"), self.pocket_damping, 0.0, 1e9)?,
+            pocket_friction: in_range(&f("pocket_friction"), self.pocket_friction, 0.0, 2.0)?,
+            drag_coefficient: in_range(&f("drag_coefficient"), self.drag_coefficient, 0.0, 1e3)?,
+            drag_density: in_range(&f("drag_density"), self.drag_density, 0.0, 1e4)?,
+            drag_viscosity: in_range(&f("drag_viscosity"), self.drag_viscosity, 0.0, 10.0)?,
+            cage_drag: in_range(&f("cage_drag"), self.cage_drag, 0.0, 1e3)?,
+            spacing_scatter: in_range(&f("spacing_scatter"), self.spacing_scatter, 0.0, 1.0)?,
+            seed: self.seed,
+            contact_damping: 0.0,
+            ..Default::default()
+        })
+    }
+}
+
 /// Model section.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -109,6 +198,10 @@ pub struct ModelSpec {
     pub operating_point: OperatingPoint,
     /// Load-driven: mass attached to the inner ring, kg (added to the ring's own).
     pub attached_mass_kg: f64,
+    /// Skidding level options.
+    pub skidding: SkiddingSpec,
+    /// Load-driven: where the inner ring starts.
+    pub start: Start,
 }
 
 impl Default for ModelSpec {
@@ -121,6 +214,8 @@ impl Default for ModelSpec {
             contact_damping: 0.0,
             operating_point: OperatingPoint::default(),
             attached_mass_kg: 0.0,
+            skidding: SkiddingSpec::default(),
+            start: Start::default(),
         }
     }
 }
@@ -379,6 +474,9 @@ impl Scene {
                 m.attached_mass_kg,
                 ">= 0",
             ));
+        }
+        if m.level == Level::Skidding {
+            m.skidding.params(&b)?;
         }
         let op = &m.operating_point;
         for (f, v) in [

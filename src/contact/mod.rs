@@ -3,6 +3,7 @@
 
 pub mod elliptic;
 pub mod hertz;
+pub mod traction;
 
 pub use hertz::{
     ellipse_fit, ellipse_fit_hb83, hertz_load_and_stiffness, series_constant, BallRaceContacts,

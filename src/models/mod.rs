@@ -4,6 +4,7 @@ pub mod defects;
 pub mod effects;
 pub mod quasi_static;
 pub mod ring;
+pub mod skidding;
 pub mod thermal;
 pub mod waviness;
 pub mod wear;

@@ -4,10 +4,12 @@
 pub mod linear;
 pub mod quasi_static;
 pub mod ring;
+pub mod skidding;
 
 pub use linear::LinearLevel;
 pub use quasi_static::QuasiStaticLevel;
 pub use ring::RingLevel;
+pub use skidding::SkiddingLevel;
 
 use crate::geometry::Bearing;
 

@@ -1,0 +1,54 @@
+//! CPU time per simulated second of the skidding level: the 7008CE (16 balls) at
+//! 6000 rpm under 300 N axial, load-driven, through the component (RODAS4). Prints the
+//! figure and the integrator counters. Run: `cargo bench --bench skidding`.
+
+use raceway::component::{variables, Component};
+use std::time::Instant;
+
+fn main() {
+    let text = include_str!("../examples/scenes/7008ce-runup.toml");
+    let mut c = Component::from_text(text).expect("scene");
+    let vr = |n: &str| variables::by_name(n).unwrap().vr;
+    let omega = 6000.0 * std::f64::consts::PI / 30.0;
+    // Start at speed: a fresh component at 6000 rpm starts at the kinematic speeds.
+    let text = text.replace(
+        "\"shaft.omega\" = 0.0",
+        &format!("\"shaft.omega\" = {omega}"),
+    );
+    c = Component::from_text(&text).unwrap_or(c);
+    let h = 1e-3;
+    // Settle 50 ms (not timed).
+    for i in 0..50 {
+        c.do_step(i as f64 * h, h).expect("step");
+    }
+    let s0 = c.stats();
+    let sim = 0.2;
+    let n = (sim / h) as usize;
+    let t0 = Instant::now();
+    for i in 50..50 + n {
+        c.do_step(i as f64 * h, h).expect("step");
+    }
+    let cpu = t0.elapsed().as_secs_f64();
+    let s1 = c.stats();
+    println!(
+        "skidding 7008CE 6000 rpm 300 N: {:.3} s CPU per simulated s ({}x real time)",
+        cpu / sim,
+        ((sim / cpu) * 100.0).round() / 100.0
+    );
+    println!(
+        "  per simulated s: rhs {:.0}, jacobians {:.0}, LU {:.0}, accepted {:.0}, rejected {:.0}",
+        (s1.rhs - s0.rhs) as f64 / sim,
+        (s1.jacobians - s0.jacobians) as f64 / sim,
+        (s1.factorizations - s0.factorizations) as f64 / sim,
+        (s1.accepted - s0.accepted) as f64 / sim,
+        (s1.rejected - s0.rejected) as f64 / sim
+    );
+    println!(
+        "  cage slip {:.4}, cage speed {:.2} rad/s, Fz {:.1} N, torque {:.3e} N m, power {:.2} W",
+        c.get_real(vr("cage.slip")).unwrap(),
+        c.get_real(vr("cage.omega")).unwrap(),
+        c.get_real(vr("force.z")).unwrap(),
+        c.get_real(vr("torque.z")).unwrap(),
+        c.get_real(vr("power.loss")).unwrap_or(f64::NAN),
+    );
+}

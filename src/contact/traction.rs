@@ -1,0 +1,384 @@
+//! Traction (tangential force) laws of a lubricated ball–race contact (physics.md §5.2).
+//!
+//! Each law gives the tangential force `f` a contact transmits as a function of the slip
+//! velocity `dv` (the faster surface minus the slower, in the rolling direction), the
+//! rolling (entrainment) speed `u` and the contact's state. All laws are odd in `dv` and
+//! continuous through `dv = 0` (an integrator with error control needs at least that; the
+//! smooth Coulomb and mixed-EHL laws are C¹ there).
+//!
+//! - **Smooth Coulomb** `mu = mu_max tanh(dv / v_s)`: the regularised Coulomb law used by
+//!   skidding models since Walters (1971); study [3] uses a piecewise-linear law that rises
+//!   to about 0.02 at 0.05 m/s, which `tanh` reproduces as a continuous curve.
+//! - **Fitted traction curve** `mu = (A + B s) exp(-C s) + D` of the slide-to-roll ratio
+//!   `s = dv / u` (Gupta, *Advanced Dynamics of Rolling Elements*, 1984, ch. 3; study [0]),
+//!   odd-extended: `mu(s) = tanh(s / s_reg) [(A + B|s|) exp(-C|s|) + D]`, so it passes
+//!   through 0 continuously even when `A + D != 0`. `s` uses a regularised rolling speed
+//!   `sqrt(u² + u_min²)` so it stays finite at rest.
+//! - **Mixed EHL** (study [2], after Masjedi & Khonsari): the load is shared between the
+//!   asperities (`La` per cent) and the film. Asperity share
+//!   `f_a = f_c Q (La/100) tanh(dv/v_s)` (boundary friction coefficient `f_c`, made
+//!   continuous); film share `f_f = Lambda_lim p_h (1 - exp(-eta |dv| / (Lambda_lim p_h h_c)))
+//!   pi a b sign(dv)` (a limiting-shear-stress Newtonian film: the shear stress
+//!   `eta dv / h_c` saturating at `Lambda_lim p_h`; Bair & Winer's limiting-shear model),
+//!   with `p_h = (1 - La/100) Q / (pi a b)` the film's share of the mean pressure, `h_c` the
+//!   Hamrock–Dowson central film thickness (physics.md §6) and `eta` the Barus
+//!   pressure-corrected viscosity at `p_h` (Hamrock & Dowson, *Ball Bearing Lubrication*,
+//!   ch. 4). The asperity load ratio is the regression of Masjedi & Khonsari (Tribology
+//!   International 82 (2015) 228–244, point contact), a power law
+//!   `La = C kappa^e_k W^e_w U^e_u G^e_g (sigma/Rx)^e_s V^e_v` (`V = H/E'` the hardness
+//!   ratio), saturated smoothly at 100 %: `La = 100 (1 - exp(-La_fit / 100))`. Its
+//!   coefficients are fields of [`AsperityFit`]; the defaults are **not verified against
+//!   the paper** (its text was not reachable when this was written) and should be checked
+//!   before quantitative use. The limits hold for any positive exponents of roughness and
+//!   negative exponent of speed: smooth surfaces give `La -> 0`; no film (`U -> 0`) gives
+//!   `La -> 100`.
+
+use std::f64::consts::PI;
+
+/// Contact data a traction law may need. SI units.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ContactState {
+    /// Normal load, N.
+    pub q: f64,
+    /// Semi-axes `a` (across rolling) and `b` (along rolling), m.
+    pub a: f64,
+    /// Semi-axis along rolling, m.
+    pub b: f64,
+    /// Effective radius in the rolling direction, m.
+    pub rx: f64,
+    /// Ellipticity `a/b`.
+    pub kappa: f64,
+    /// Effective modulus `E'`, Pa.
+    pub e_eff: f64,
+}
+
+/// Regression coefficients of the asperity load ratio (per cent).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct AsperityFit {
+    /// Leading constant.
+    pub c: f64,
+    /// Exponent of the ellipticity.
+    pub e_kappa: f64,
+    /// Exponent of the load parameter `W = Q/(E' Rx²)`.
+    pub e_w: f64,
+    /// Exponent of the speed parameter `U = eta0 u/(E' Rx)`.
+    pub e_u: f64,
+    /// Exponent of the material parameter `G = alpha_p E'`.
+    pub e_g: f64,
+    /// Exponent of the roughness `sigma/Rx`.
+    pub e_sigma: f64,
+    /// Exponent of the hardness ratio `V = H/E'`.
+    pub e_v: f64,
+}
+
+impl Default for AsperityFit {
+    fn default() -> Self {
+        // Unverified defaults of the published form (see the module docs).
+        AsperityFit {
+            c: 0.0871,
+            e_kappa: 0.0,
+            e_w: 0.39,
+            e_u: -0.7,
+            e_g: -0.59,
+            e_sigma: 1.65,
+            e_v: 0.0,
+        }
+    }
+}
+
+/// Lubricant and surface data of the mixed-EHL law.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct MixedEhl {
+    /// Inlet viscosity `eta0`, Pa s.
+    pub viscosity: f64,
+    /// Pressure–viscosity coefficient `alpha_p`, 1/Pa.
+    pub alpha_p: f64,
+    /// Limiting-shear coefficient `Lambda_lim`.
+    pub lambda_lim: f64,
+    /// Boundary (asperity) friction coefficient `f_c`.
+    pub f_c: f64,
+    /// Composite RMS roughness `sigma`, m.
+    pub roughness: f64,
+    /// Hardness, Pa.
+    pub hardness: f64,
+    /// Regularising slip speed of the asperity share, m/s.
+    pub v_s: f64,
+    /// Regression of the asperity load ratio.
+    pub fit: AsperityFit,
+}
+
+impl Default for MixedEhl {
+    fn default() -> Self {
+        // Study [2]'s lubricant (physics.md §10): 0.04667 Pa s, 2.1e-8 1/Pa, Lambda 0.04,
+        // roughness sqrt(0.2² + 0.42²) um, hardness 2.39 GPa.
+        MixedEhl {
+            viscosity: 0.04667,
+            alpha_p: 2.1e-8,
+            lambda_lim: 0.04,
+            f_c: 0.1,
+            roughness: (0.2e-6_f64.powi(2) + 0.42e-6_f64.powi(2)).sqrt(),
+            hardness: 2.39e9,
+            v_s: 0.01,
+            fit: AsperityFit::default(),
+        }
+    }
+}
+
+impl MixedEhl {
+    /// Hamrock–Dowson central film thickness (physics.md §6), m, at entrainment speed `u`.
+    pub fn film_thickness(&self, c: &ContactState, u: f64) -> f64 {
+        let (uu, g, w) = self.groups(c, u);
+        if uu <= 0.0 || w <= 0.0 {
+            return 0.0;
+        }
+        2.69 * uu.powf(0.67)
+            * g.powf(0.53)
+            * w.powf(-0.067)
+            * (1.0 - 0.61 * (-0.73 * c.kappa).exp())
+            * c.rx
+    }
+
+    fn groups(&self, c: &ContactState, u: f64) -> (f64, f64, f64) {
+        let uu = self.viscosity * u.abs() / (c.e_eff * c.rx);
+        let g = self.alpha_p * c.e_eff;
+        let w = c.q / (c.e_eff * c.rx * c.rx);
+        (uu, g, w)
+    }
+
+    /// Asperity load ratio `La`, per cent, in `[0, 100]`.
+    pub fn asperity_load_ratio(&self, c: &ContactState, u: f64) -> f64 {
+        let (uu, g, w) = self.groups(c, u);
+        if self.roughness <= 0.0 {
+            return 0.0;
+        }
+        if uu <= 0.0 {
+            return 100.0;
+        }
+        let f = &self.fit;
+        let la = f.c
+            * c.kappa.max(1.0).powf(f.e_kappa)
+            * w.max(1e-30).powf(f.e_w)
+            * uu.powf(f.e_u)
+            * g.max(1e-30).powf(f.e_g)
+            * (self.roughness / c.rx).powf(f.e_sigma)
+            * (self.hardness / c.e_eff).powf(f.e_v);
+        if !la.is_finite() {
+            return 100.0;
+        }
+        100.0 * (1.0 - (-la / 100.0).exp())
+    }
+}
+
+/// A traction law (a scene choice).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(tag = "law", rename_all = "snake_case", deny_unknown_fields)]
+pub enum TractionLaw {
+    /// `mu = mu_max tanh(dv / v_s)`.
+    Coulomb {
+        /// Largest traction coefficient.
+        mu_max: f64,
+        /// Slip speed of the transition, m/s.
+        v_s: f64,
+    },
+    /// `mu = tanh(s/s_reg) [(A + B|s|) exp(-C|s|) + D]`, `s` the slide-to-roll ratio.
+    Fitted {
+        /// A.
+        a: f64,
+        /// B.
+        b: f64,
+        /// C.
+        c: f64,
+        /// D.
+        d: f64,
+        /// Regularising slide-to-roll ratio.
+        s_reg: f64,
+        /// Smallest rolling speed in `s`, m/s.
+        u_min: f64,
+    },
+    /// Mixed-EHL asperity + film law.
+    MixedEhl(MixedEhl),
+}
+
+impl Default for TractionLaw {
+    fn default() -> Self {
+        TractionLaw::Coulomb {
+            mu_max: 0.05,
+            v_s: 0.05,
+        }
+    }
+}
+
+impl TractionLaw {
+    /// Check the coefficients; errors name `field.<coefficient>`.
+    pub fn validate(&self, field: &str) -> crate::error::Result<()> {
+        use crate::error::{finite, positive};
+        match *self {
+            TractionLaw::Coulomb { mu_max, v_s } => {
+                finite(&format!("{field}.mu_max"), mu_max)?;
+                positive(&format!("{field}.v_s"), v_s)?;
+            }
+            TractionLaw::Fitted {
+                a,
+                b,
+                c,
+                d,
+                s_reg,
+                u_min,
+            } => {
+                finite(&format!("{field}.a"), a)?;
+                finite(&format!("{field}.b"), b)?;
+                crate::error::in_range(&format!("{field}.c"), c, 0.0, 1e6)?;
+                finite(&format!("{field}.d"), d)?;
+                positive(&format!("{field}.s_reg"), s_reg)?;
+                positive(&format!("{field}.u_min"), u_min)?;
+            }
+            TractionLaw::MixedEhl(m) => {
+                positive(&format!("{field}.viscosity"), m.viscosity)?;
+                crate::error::in_range(&format!("{field}.alpha_p"), m.alpha_p, 0.0, 1e-6)?;
+                positive(&format!("{field}.lambda_lim"), m.lambda_lim)?;
+                crate::error::in_range(&format!("{field}.f_c"), m.f_c, 0.0, 2.0)?;
+                crate::error::in_range(&format!("{field}.roughness"), m.roughness, 0.0, 1e-3)?;
+                positive(&format!("{field}.hardness"), m.hardness)?;
+                positive(&format!("{field}.v_s"), m.v_s)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// Does the law use the contact's semi-axes, radius and modulus (or only the load)?
+    pub fn needs_contact(&self) -> bool {
+        matches!(self, TractionLaw::MixedEhl(_))
+    }
+
+    /// Tangential force, N, for slip `dv` (m/s), rolling speed `u` (m/s) and contact `c`.
+    /// Odd in `dv`, zero when the contact carries no load.
+    pub fn force(&self, dv: f64, u: f64, c: &ContactState) -> f64 {
+        if c.q <= 0.0 {
+            return 0.0;
+        }
+        match *self {
+            TractionLaw::Coulomb { mu_max, v_s } => mu_max * (dv / v_s).tanh() * c.q,
+            TractionLaw::Fitted {
+                a,
+                b,
+                c: cc,
+                d,
+                s_reg,
+                u_min,
+            } => {
+                let s = dv / (u * u + u_min * u_min).sqrt();
+                let sa = s.abs();
+                (s / s_reg).tanh() * ((a + b * sa) * (-cc * sa).exp() + d) * c.q
+            }
+            TractionLaw::MixedEhl(m) => {
+                let la = m.asperity_load_ratio(c, u);
+                let fa = m.f_c * c.q * la / 100.0 * (dv / m.v_s).tanh();
+                let area = PI * c.a * c.b;
+                if area <= 0.0 {
+                    return fa;
+                }
+                let ph = (1.0 - la / 100.0) * c.q / area;
+                let hc = m.film_thickness(c, u);
+                if ph <= 0.0 || hc <= 0.0 {
+                    return fa;
+                }
+                let eta = m.viscosity * (m.alpha_p * ph).min(50.0).exp();
+                let tau_l = m.lambda_lim * ph;
+                let ff = tau_l * (1.0 - (-eta * dv.abs() / (tau_l * hc)).exp()) * area;
+                fa + ff.copysign(dv)
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn contact() -> ContactState {
+        ContactState {
+            q: 200.0,
+            a: 1.2e-3,
+            b: 0.15e-3,
+            rx: 4.5e-3,
+            kappa: 8.0,
+            e_eff: 2.28e11,
+        }
+    }
+
+    #[test]
+    fn laws_are_odd_and_continuous_through_zero() {
+        let c = contact();
+        let laws = [
+            TractionLaw::default(),
+            TractionLaw::Fitted {
+                a: -0.0103,
+                b: 1.1677,
+                c: 13.0,
+                d: 0.0103,
+                s_reg: 1e-3,
+                u_min: 0.01,
+            },
+            TractionLaw::MixedEhl(MixedEhl::default()),
+        ];
+        for law in laws {
+            for dv in [1e-3, 0.1, 2.0] {
+                let (fp, fm) = (law.force(dv, 5.0, &c), law.force(-dv, 5.0, &c));
+                assert!((fp + fm).abs() < 1e-12 * fp.abs(), "{law:?} odd");
+                assert!(fp > 0.0, "{law:?} drives the slower surface");
+            }
+            let tiny = law.force(1e-12, 5.0, &c);
+            assert!(tiny.abs() < 1e-6, "{law:?} continuous at 0: {tiny}");
+        }
+    }
+
+    #[test]
+    fn coulomb_saturates_at_mu_max() {
+        let c = contact();
+        let f = TractionLaw::Coulomb {
+            mu_max: 0.07,
+            v_s: 0.05,
+        }
+        .force(5.0, 5.0, &c);
+        assert!((f / c.q - 0.07).abs() < 1e-12);
+    }
+
+    /// Smooth surfaces carry no asperity load; with no film (no entrainment) the
+    /// asperities carry it all; rougher surfaces or slower rolling raise the share.
+    #[test]
+    fn asperity_load_ratio_limits() {
+        let c = contact();
+        let mut m = MixedEhl::default();
+        let la = m.asperity_load_ratio(&c, 5.0);
+        assert!(la > 0.0 && la < 100.0, "{la}");
+        assert!(m.asperity_load_ratio(&c, 0.5) > la, "slower: thinner film");
+        assert_eq!(m.asperity_load_ratio(&c, 0.0), 100.0);
+        let l9 = m.asperity_load_ratio(&c, 1e-13);
+        assert!(l9 > 99.9, "{l9} {la}");
+        m.roughness = 1e-12;
+        assert!(m.asperity_load_ratio(&c, 5.0) < 1e-6);
+        m.roughness = 0.0;
+        assert_eq!(m.asperity_load_ratio(&c, 5.0), 0.0);
+        // Dry (La = 100): pure boundary friction f_c Q at large slip.
+        let dry = MixedEhl {
+            roughness: 1e-3,
+            ..MixedEhl::default()
+        };
+        let f = TractionLaw::MixedEhl(dry).force(10.0, 1e-12, &c);
+        assert!((f / c.q - dry.f_c).abs() < 1e-6, "{}", f / c.q);
+    }
+
+    /// With smooth surfaces the film share saturates at the limiting shear `Lambda_lim Q`.
+    #[test]
+    fn film_share_saturates_at_limiting_shear() {
+        let c = contact();
+        let m = MixedEhl {
+            roughness: 0.0,
+            ..MixedEhl::default()
+        };
+        let f = TractionLaw::MixedEhl(m).force(50.0, 5.0, &c);
+        assert!((f / c.q - m.lambda_lim).abs() < 1e-3, "{}", f / c.q);
+    }
+}

@@ -1,0 +1,395 @@
+//! The skidding level (physics.md §5.2) through the component and the model API.
+//!
+//! Each test integrates at most a few tenths of a simulated second of a 6012 (14 balls).
+
+use raceway::component::{variables, Component};
+use raceway::geometry::{kinematics::kinematics, preset};
+use raceway::models::skidding::{SkiddingModel, SkiddingParams};
+use raceway::solver::{OdeSystem, Options, Rosenbrock};
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::cell::Cell;
+use std::f64::consts::PI;
+
+// A per-thread allocation counter (tests run on threads; only the calling thread counts).
+thread_local! {
+    static ALLOCS: Cell<usize> = const { Cell::new(0) };
+}
+struct Counting;
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, l: Layout) -> *mut u8 {
+        let _ = ALLOCS.try_with(|c| c.set(c.get() + 1));
+        unsafe { System.alloc(l) }
+    }
+    unsafe fn dealloc(&self, p: *mut u8, l: Layout) {
+        unsafe { System.dealloc(p, l) }
+    }
+    unsafe fn realloc(&self, p: *mut u8, l: Layout, n: usize) -> *mut u8 {
+        let _ = ALLOCS.try_with(|c| c.set(c.get() + 1));
+        unsafe { System.realloc(p, l, n) }
+    }
+}
+#[global_allocator]
+static A: Counting = Counting;
+
+fn vr(name: &str) -> u32 {
+    variables::by_name(name).unwrap().vr
+}
+
+/// A motion-driven 6012 scene: radial displacement `y` (m), shaft speed `omega` (rad/s),
+/// extra `[model.skidding]` lines.
+fn scene_6012(y: f64, omega: f64, skid: &str) -> String {
+    format!(
+        r#"
+bearing = "6012"
+[model]
+level = "skidding"
+[model.skidding]
+{skid}
+[solver]
+rtol = 1e-5
+atol_m = 1e-9
+[inputs]
+rule = "derivatives"
+initial = {{ "shaft.x" = 0.0, "shaft.y" = {y:e}, "shaft.z" = 0.0, "shaft.rx" = 0.0, "shaft.ry" = 0.0,
+            "shaft.vx" = 0.0, "shaft.vy" = 0.0, "shaft.vz" = 0.0, "shaft.wx" = 0.0, "shaft.wy" = 0.0,
+            "shaft.omega" = {omega:e} }}
+"#
+    )
+}
+
+/// Run `n` steps of `h`, returning per-step (t, cage slip, cage speed, Fy).
+fn run(c: &mut Component, n: usize, h: f64) -> Vec<(f64, f64, f64, f64)> {
+    run_ramp(c, n, h, 0.0)
+}
+
+/// As [`run`] with the shaft speed ramped at `accel` rad/s² (set each step with its
+/// derivative, as a host would).
+fn run_ramp(c: &mut Component, n: usize, h: f64, accel: f64) -> Vec<(f64, f64, f64, f64)> {
+    let mut out = Vec::with_capacity(n);
+    let w0 = c.get_real(vr("shaft.omega")).unwrap();
+    for _ in 0..n {
+        let t = c.time();
+        if accel != 0.0 {
+            c.set_real(vr("shaft.omega"), w0 + accel * t).unwrap();
+            c.set_input_derivative(vr("shaft.omega"), 1, accel).unwrap();
+        }
+        c.do_step(t, h).unwrap();
+        out.push((
+            c.time(),
+            c.get_real(vr("cage.slip")).unwrap(),
+            c.get_real(vr("cage.omega")).unwrap(),
+            c.get_real(vr("force.y")).unwrap(),
+        ));
+    }
+    out
+}
+
+fn mean(v: impl Iterator<Item = f64>) -> f64 {
+    let (s, n) = v.fold((0.0, 0usize), |(s, n), x| (s + x, n + 1));
+    s / n as f64
+}
+
+/// From rest under a speed ramp (500 rad/s²) the cage slip starts at 100 % and falls as
+/// traction spins the balls up and they push the cage.
+#[test]
+fn runup_from_rest_slip_starts_at_one_and_falls() {
+    let mut c = Component::from_text(&scene_6012(-10e-6, 0.0, "")).unwrap();
+    assert!((c.get_real(vr("cage.slip")).unwrap() - 1.0).abs() < 1e-12);
+    let r = run_ramp(&mut c, 100, 1e-3, 500.0);
+    let early = r[0].1;
+    let late = mean(r[80..].iter().map(|x| x.1));
+    println!("slip at 1 ms {early:.4}, mean over 80-100 ms {late:.4}");
+    assert!(early > 0.5, "slip just after start {early}");
+    assert!(late < 0.1 && late < early, "slip late in the ramp {late}");
+}
+
+/// At constant speed the cage runs near its kinematic speed under a high load, and slips
+/// more under a light load at a higher speed.
+#[test]
+fn slip_small_under_load_larger_when_light_and_fast() {
+    let w_lo = 2000.0 * PI / 30.0;
+    let mut heavy =
+        Component::from_text(&scene_6012(-12e-6, w_lo, "drag_coefficient = 15.0")).unwrap();
+    let rh = run(&mut heavy, 60, 1e-3);
+    let slip_h = mean(rh[20..].iter().map(|x| x.1));
+    let w_hi = 10000.0 * PI / 30.0;
+    let mut light =
+        Component::from_text(&scene_6012(-5.05e-6, w_hi, "drag_coefficient = 15.0")).unwrap();
+    let rl = run(&mut light, 60, 2e-4);
+    let slip_l = mean(rl[20..].iter().map(|x| x.1));
+    println!("cage slip: heavy 2000 rpm {slip_h:.5}, light 10000 rpm {slip_l:.5}");
+    assert!(slip_h.abs() < 0.01, "heavy-load slip {slip_h}");
+    assert!(
+        slip_l > 5.0 * slip_h.abs() && slip_l > 0.0,
+        "light-load slip {slip_l}"
+    );
+}
+
+/// The ball-pass line `Z w_cage / 2 pi` sits slightly below the kinematic BPFO.
+#[test]
+fn ball_pass_frequency_slightly_below_kinematic() {
+    let b = preset("6012").unwrap().build().unwrap();
+    let w = 2000.0 * PI / 30.0;
+    let mut c = Component::from_text(&scene_6012(-10e-6, w, "drag_density = 50.0")).unwrap();
+    let r = run(&mut c, 80, 1e-3);
+    // Cage angle over the window from the cage speed history (trapezoid).
+    let wc = mean(r[30..].iter().map(|x| x.2));
+    let bpf = b.z as f64 * wc / (2.0 * PI);
+    let kin = kinematics(&b, w).bpfo;
+    let shift = 1.0 - bpf / kin;
+    println!(
+        "BPFO kinematic {kin:.3} Hz, from the cage {bpf:.3} Hz, shift {:.3} %",
+        100.0 * shift
+    );
+    assert!(shift > 0.0 && shift < 0.03, "shift {shift}");
+}
+
+/// With a very steep traction law the level converges to the ring level: cage at the
+/// kinematic speed, and the same mean force.
+#[test]
+fn stiff_traction_converges_to_ring_level() {
+    let w = 500.0 * PI / 30.0;
+    let skid = r#"traction = { law = "coulomb", mu_max = 0.2, v_s = 1e-4 }
+drag_density = 0.0"#;
+    let mut c = Component::from_text(&scene_6012(-12e-6, w, skid)).unwrap();
+    let r = run(&mut c, 60, 1e-3);
+    let slip = mean(r[20..].iter().map(|x| x.1));
+    let fy = mean(r[20..].iter().map(|x| x.3));
+    let ring = scene_6012(-12e-6, w, "").replace("level = \"skidding\"", "level = \"ring\"");
+    let ring = ring.replace("[model.skidding]\n", "");
+    let mut rc = Component::from_text(&ring).unwrap();
+    let rr = run(&mut rc, 60, 1e-3);
+    let fy_ring = mean(rr[20..].iter().map(|x| x.3));
+    println!("stiff traction: slip {slip:.2e}, Fy {fy:.2} vs ring level {fy_ring:.2}");
+    assert!(slip.abs() < 1e-3, "cage slip {slip}");
+    assert!(
+        (fy - fy_ring).abs() < 0.01 * fy_ring.abs(),
+        "{fy} vs {fy_ring}"
+    );
+}
+
+/// Balls plus cage as an ODE with one more state: the time integral of the external
+/// torques (race tractions, drags). Angular momentum must equal its start value plus that
+/// integral, to the integration tolerance.
+struct Balance {
+    m: SkiddingModel,
+    q: [f64; 5],
+    omega: f64,
+}
+
+impl OdeSystem for Balance {
+    fn dim(&self) -> usize {
+        self.m.n_states() + 2
+    }
+    fn rhs(&mut self, _t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), String> {
+        let n = self.m.n_states();
+        let tot = self
+            .m
+            .eval(&self.q, &[0.0; 5], self.omega, &y[..n], &mut dy[..n]);
+        dy[n] = -tot.torque_shaft - tot.torque_outer + tot.torque_drag;
+        // Shaft power in, minus everything dissipated.
+        dy[n + 1] = -tot.torque_shaft * self.omega - tot.power_contacts - tot.power_other;
+        Ok(())
+    }
+}
+
+/// Kinetic plus pocket-spring energy of balls and cage.
+fn energy(m: &mut SkiddingModel, q: &[f64; 5], omega: f64, x: &[f64]) -> f64 {
+    let mut dx = vec![0.0; x.len()];
+    let tot = m.eval(q, &[0.0; 5], omega, x, &mut dx);
+    m.kinetic_energy(x) + tot.pocket_energy
+}
+
+#[test]
+fn angular_momentum_and_energy_balances_close() {
+    let b = preset("6012").unwrap().build().unwrap();
+    let p = SkiddingParams {
+        spacing_scatter: 0.5,
+        cage_drag: 1e-5,
+        drag_viscosity: 0.01,
+        ..SkiddingParams::default()
+    };
+    let m = SkiddingModel::new(&b, p).unwrap();
+    let n = m.n_states();
+    let omega = 200.0;
+    let mut y = vec![0.0; n + 2];
+    // Start from rest: strong spin-up, pocket impacts.
+    m.init(0.0, &mut y[..n]);
+    let l0 = m.angular_momentum(&y[..n]);
+    let q = [0.0, -12e-6, 0.0, 0.0, 0.0];
+    let mut sys = Balance { m, q, omega };
+    let e0 = energy(&mut sys.m, &q, omega, &y[..n]);
+    let mut integ = Rosenbrock::new(n + 2);
+    let mut opts = Options::new(n + 2, 1e-6, 1e-10);
+    opts.max_steps = 1_000_000;
+    let mut h = 0.0;
+    integ
+        .integrate(&mut sys, 0.0, 0.005, &mut y, &mut h, &opts)
+        .unwrap();
+    let l1 = sys.m.angular_momentum(&y[..n]);
+    let ext = y[n];
+    let scale = sys.m.z() as f64 * 1e-3; // |L| scale of the spun-up set
+    println!(
+        "L0 {l0:e}, L1 {l1:e}, integral of torques {ext:e}, residual {:e}",
+        l1 - l0 - ext
+    );
+    assert!(l1 > 0.0, "the shaft spun the balls up");
+    assert!(
+        (l1 - l0 - ext).abs() < 1e-6 * l1.abs().max(scale),
+        "balance"
+    );
+    // Energy: kinetic + pocket springs = start + work in - dissipated, to the tolerance.
+    let e1 = energy(&mut sys.m, &q, omega, &y[..n]);
+    let work = y[n + 1];
+    println!(
+        "E0 {e0:e}, E1 {e1:e}, net work {work:e}, residual {:e}",
+        e1 - e0 - work
+    );
+    assert!(e1 > 0.0);
+    assert!((e1 - e0 - work).abs() < 1e-4 * e1, "energy balance");
+}
+
+/// Load-driven (the 6012 scene of study [2]): the ring settles where the bearing carries
+/// the 500 N load, and stepping allocates nothing.
+#[test]
+fn load_driven_6012_carries_its_load_without_allocating() {
+    let text = include_str!("../examples/scenes/6012-skidding.toml");
+    let mut c = Component::from_text(text).unwrap();
+    let r = run(&mut c, 40, 1e-3);
+    let fy = mean(r[20..].iter().map(|x| x.3));
+    let before = ALLOCS.with(|a| a.get());
+    let r2 = run_steps_only(&mut c, 10, 1e-3);
+    let allocs = ALLOCS.with(|a| a.get()) - before;
+    let slip = c.get_real(vr("cage.slip")).unwrap();
+    println!(
+        "6012 load-driven: mean Fy {fy:.2} N, slip {slip:.4}, {r2} steps, {allocs} allocations"
+    );
+    assert!((fy - 500.0).abs() < 10.0, "Fy {fy}");
+    assert_eq!(allocs, 0);
+    assert!(
+        c.get_real(vr("torque.z")).unwrap() < 0.0,
+        "friction resists the shaft"
+    );
+    assert!(c.get_real(vr("power.loss")).unwrap() > 0.0);
+}
+
+fn run_steps_only(c: &mut Component, n: usize, h: f64) -> usize {
+    for _ in 0..n {
+        let t = c.time();
+        c.do_step(t, h).unwrap();
+    }
+    n
+}
+
+/// The 7008CE of study [3] under 300 N axial at constant speeds: print the cage slip.
+#[test]
+#[ignore]
+fn explore_7008ce_speeds() {
+    let text = include_str!("../examples/scenes/7008ce-runup.toml");
+    for rpm in [6000.0, 12000.0, 18000.0, 24000.0] {
+        let w = rpm * PI / 30.0;
+        let t = text.replace("\"shaft.omega\" = 0.0", &format!("\"shaft.omega\" = {w}"));
+        let mut c = Component::from_text(&t).unwrap();
+        let r = run(&mut c, 60, 5e-4);
+        let slip = mean(r[20..].iter().map(|x| x.1));
+        println!(
+            "{rpm} rpm: cage slip {slip:.3e}, torque {:.3e}, {:?}",
+            c.get_real(vr("torque.z")).unwrap(),
+            c.stats()
+        );
+    }
+}
+
+#[test]
+#[ignore]
+fn explore_runup() {
+    let mut c = Component::from_text(&scene_6012(-10e-6, 0.0, "")).unwrap();
+    let r = run_ramp(&mut c, 100, 1e-3, 500.0);
+    for x in r.iter().step_by(5) {
+        println!("{x:?} omega {}", 500.0 * x.0);
+    }
+    println!("{:?}", c.stats());
+}
+
+#[test]
+#[ignore]
+fn explore_7008ce_balls() {
+    let b = preset("7008ce").unwrap().build().unwrap();
+    let p = SkiddingParams {
+        drag_coefficient: 15.0,
+        drag_density: 10.0,
+        traction: raceway::contact::traction::TractionLaw::Coulomb {
+            mu_max: 0.02,
+            v_s: 0.05,
+        },
+        ..SkiddingParams::default()
+    };
+    let m = SkiddingModel::new(&b, p).unwrap();
+    let n = m.n_states();
+    let w = 6000.0 * PI / 30.0;
+    let mut y = vec![0.0; n + 2];
+    m.init(w, &mut y[..n]);
+    let mut sys = Balance {
+        m,
+        q: [0.0, 0.0, 12e-6, 0.0, 0.0],
+        omega: w,
+    };
+    let mut integ = Rosenbrock::new(n + 2);
+    let opts = Options::new(n + 2, 1e-6, 1e-10);
+    let mut h = 0.0;
+    integ
+        .integrate(&mut sys, 0.0, 0.02, &mut y, &mut h, &opts)
+        .unwrap();
+    let mut dy = vec![0.0; n + 2];
+    sys.rhs(0.0, &y, &mut dy).unwrap();
+    let (wk, _) = sys.m.kinematic(w);
+    println!("wk {wk} wc {} ", y[1]);
+    for b in sys.m.balls.iter().take(3) {
+        println!("{b:?}");
+    }
+}
+
+/// The 7008CE run-up scene (study [3]): load-driven from rest at 500 rad/s².
+#[test]
+fn runup_7008ce_scene_from_rest() {
+    let text = include_str!("../examples/scenes/7008ce-runup.toml");
+    let mut c = Component::from_text(text).unwrap();
+    let r = run_ramp(&mut c, 60, 1e-3, 500.0);
+    let fz = mean(r[40..].iter().map(|_| c.get_real(vr("force.z")).unwrap()));
+    println!(
+        "7008CE run-up: slip at 1 ms {:.3}, at 60 ms {:.4}, Fz {fz:.1}, {:?}",
+        r[0].1,
+        r[59].1,
+        c.stats()
+    );
+    assert!(r[0].1 > 0.5);
+    assert!(r[59].1 < 0.2 && r[59].1 < r[0].1);
+    assert!(
+        (fz + 300.0).abs() < 15.0,
+        "the ring carries the axial load: {fz}"
+    );
+}
+
+/// The fitted-curve and mixed-EHL laws are scene choices too; under a high load at
+/// 2000 rpm either keeps the cage within a few per cent of its kinematic speed.
+#[test]
+fn other_traction_laws_through_the_scene() {
+    let w = 2000.0 * PI / 30.0;
+    for law in [
+        r#"traction = { law = "fitted", a = -0.0103, b = 1.1677, c = 13.0, d = 0.0103, s_reg = 1e-3, u_min = 0.01 }"#,
+        r#"traction = { law = "mixed_ehl", viscosity = 0.04667, lambda_lim = 0.04 }"#,
+    ] {
+        let mut c = Component::from_text(&scene_6012(-12e-6, w, law)).unwrap();
+        let r = run(&mut c, 30, 1e-3);
+        let slip = mean(r[10..].iter().map(|x| x.1));
+        println!("{law}: cage slip {slip:.5}");
+        assert!(slip > -1e-3 && slip < 0.05, "{law}: {slip}");
+    }
+    let bad = scene_6012(
+        -12e-6,
+        w,
+        r#"traction = { law = "coulomb", mu_max = 0.05, v_s = -1.0 }"#,
+    );
+    let e = Component::from_text(&bad).unwrap_err().to_string();
+    assert!(e.contains("model.skidding.traction.v_s"), "{e}");
+}
