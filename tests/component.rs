@@ -217,3 +217,37 @@ fn effects_on_a_level_that_ignores_them_are_refused() {
     .to_string();
     assert!(e.contains("effects") && e.contains("ring"), "{e}");
 }
+
+/// Contact damping reaches the quasi-static level: a load-driven ring released from rest
+/// rings down to the static balance with damping, and keeps rattling without it.
+#[test]
+fn quasi_static_contact_damping_settles_a_released_ring() {
+    let scene = |c: f64| {
+        format!(
+            "bearing = {{ preset = \"6205\", clearance_um = 10.0 }}\n[model]\nlevel = \"quasi_static\"\ncausality = \"load\"\nstart = \"rest\"\nattached_mass_kg = 1.0\ncontact_damping = {c}\n[inputs]\ninitial = {{ \"load.x\" = 0.0, \"load.y\" = -1000.0, \"load.z\" = 0.0, \"load.mx\" = 0.0, \"load.my\" = 0.0, \"shaft.omega\" = 183.26 }}\n"
+        )
+    };
+    let spread = |c: f64| {
+        let mut comp = Component::from_text(&scene(c)).unwrap();
+        let h = 1e-4;
+        let mut late = Vec::new();
+        for i in 0..400 {
+            comp.do_step(i as f64 * h, h).unwrap();
+            if i >= 300 {
+                late.push(comp.get_real(vr("force.y")).unwrap());
+            }
+        }
+        let (lo, hi) = late
+            .iter()
+            .fold((f64::MAX, f64::MIN), |(a, b), &f| (a.min(f), b.max(f)));
+        let mean = late.iter().sum::<f64>() / late.len() as f64;
+        (mean, hi - lo)
+    };
+    let (mean_d, spread_d) = spread(3000.0);
+    let (_, spread_0) = spread(0.0);
+    assert!((mean_d - 1000.0).abs() < 20.0, "damped mean force {mean_d}");
+    assert!(
+        spread_d < 0.1 * spread_0,
+        "damped spread {spread_d} N vs undamped {spread_0} N"
+    );
+}

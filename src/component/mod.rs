@@ -8,6 +8,7 @@
 pub mod level;
 pub mod levels;
 pub mod scene;
+pub mod schema;
 pub mod state;
 pub mod variables;
 

@@ -75,6 +75,7 @@ bearing = { preset = "6205", clearance_um = 10.0 }
 level = "LEVEL"
 ring_dof = 2
 causality = "load"
+start = "rest"
 contact_damping = 3000.0
 attached_mass_kg = 1.0
 [inputs]
@@ -88,6 +89,7 @@ bearing = "7008ce"
 level = "LEVEL"
 ring_dof = 5
 causality = "load"
+start = "rest"
 contact_damping = 3000.0
 attached_mass_kg = 1.0
 [inputs]

@@ -17,6 +17,7 @@
 
 mod report;
 mod run;
+mod scene_cmd;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use raceway::component::scene::{RaceControl, Scene};
@@ -53,6 +54,8 @@ enum Cmd {
     /// Without --bearing, --speed-rpm and load flags it solves the embedded default scene's
     /// operating point; otherwise what is not given is zero (bearing: the scene's).
     QuasiStatic(QsArgs),
+    /// Scene files: document every field (--explain [--json]) or check one (--check FILE).
+    Scene(scene_cmd::SceneArgs),
 }
 
 #[derive(ValueEnum, Clone, Copy, Debug)]
@@ -100,6 +103,7 @@ fn main() -> ExitCode {
         Cmd::Bearings { json } => report::bearings(json),
         Cmd::QuasiStatic(a) => quasi_static(a),
         Cmd::Run(a) => run::run(a),
+        Cmd::Scene(a) => scene_cmd::scene(a),
     };
     match out {
         Ok(text) => {
