@@ -159,7 +159,9 @@ fn wear_study() -> Result<(), Box<dyn std::error::Error>> {
             l.roughness_um = Some(rough);
         }
         if let Some(w) = s.effects.wear.as_mut() {
-            w.dry = dry;
+            if dry {
+                w.regime = raceway::models::effects::WearRegime::Dry;
+            }
             if dry {
                 // The dry limit wears about 1e9 times faster: shorter cycles.
                 w.cycle_revs = 1e3;

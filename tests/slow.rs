@@ -69,13 +69,13 @@ fn max_depth(c: &Component) -> f64 {
 #[test]
 fn no_sliding_or_no_load_gives_no_wear() {
     // Loaded but not turning: no sliding, the accumulators stay exactly zero.
-    let s = scene(12.0, 0.0, 100.0, &wear_line(", dry = true"));
+    let s = scene(12.0, 0.0, 100.0, &wear_line(", regime = \"dry\""));
     let c = run(&s, 0.01);
     let (x0, _, n) = SlowLayout::of(&s).unwrap().wear.unwrap();
     let st = c.get_state();
     assert!(st.x[x0..x0 + 2 * n].iter().all(|&v| v == 0.0));
     // Turning but centred inside the clearance: no ball loaded, no wear after two cycles.
-    let s = scene(0.0, 2000.0, 100.0, &wear_line(", dry = true"));
+    let s = scene(0.0, 2000.0, 100.0, &wear_line(", regime = \"dry\""));
     let c = run(&s, 2.2 * REV);
     let st = c.get_state();
     let layout = SlowLayout::of(&s).unwrap();
@@ -83,13 +83,13 @@ fn no_sliding_or_no_load_gives_no_wear() {
     assert!(st.x[x0..x0 + 2 * n].iter().all(|&v| v == 0.0));
     assert_eq!(max_depth(&c), 0.0);
     // The same held off-centre and turning does wear.
-    let s = scene(12.0, 2000.0, 100.0, &wear_line(", dry = true"));
+    let s = scene(12.0, 2000.0, 100.0, &wear_line(", regime = \"dry\""));
     assert!(max_depth(&run(&s, 2.2 * REV)) > 0.0);
 }
 
 #[test]
 fn wear_concentrates_in_the_load_zone() {
-    let s = scene(12.0, 2000.0, 100.0, &wear_line(", dry = true"));
+    let s = scene(12.0, 2000.0, 100.0, &wear_line(", regime = \"dry\""));
     let c = run(&s, 2.2 * REV);
     let st = c.get_state();
     let layout = SlowLayout::of(&s).unwrap();
@@ -135,7 +135,7 @@ fn rougher_races_wear_faster_and_the_dry_limit_much_faster() {
             100.0,
             &format!(
             "lubrication = {{ film = \"ehl\", lubricant = \"study2\", roughness_um = 0.42 }}\n{}",
-            wear_line(", dry = true")
+            wear_line(", regime = \"dry\"")
         ),
         ),
         2.2 * REV,
@@ -232,7 +232,7 @@ fn slow_state_survives_get_set_serialise_bit_for_bit() {
         12.0,
         2000.0,
         100.0,
-        &format!("{}\n{THERMAL}", wear_line(", dry = true")),
+        &format!("{}\n{THERMAL}", wear_line(", regime = \"dry\"")),
     );
     let h = 2e-4;
     let mut a = Component::new(s.clone()).unwrap();
@@ -271,7 +271,7 @@ fn switching_the_effect_off_recovers_the_plain_model() {
         2000.0,
         100.0,
         &format!(
-            "{}\nthermal = {{ growth = false }}",
+            "{}\nthermal = {{ growth_factor = 0.0 }}",
             wear_line(", cycles = 0")
         ),
     );

@@ -147,8 +147,9 @@ pub struct WearSpec {
     pub coefficient: f64,
     /// Hardness `Hv`, GPa (study \[2\]: 2.39).
     pub hardness_gpa: f64,
-    /// Force the dry limit (`La = 100`, `psi = 1`) even with a film.
-    pub dry: bool,
+    /// `auto`: lubricated with an EHL film in the scene, else dry; `dry`: the dry limit
+    /// (`La = 100`, `psi = 1`) even with a film.
+    pub regime: WearRegime,
     /// Film-defect length `a_x`, m (study \[2\]: 3e-12).
     pub defect_length_m: f64,
     /// Film-defect time `t0`, s (study \[2\]: 3e-12).
@@ -165,13 +166,24 @@ pub struct WearSpec {
     pub cycles: u32,
 }
 
+/// Lubricated or dry wear.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum WearRegime {
+    /// Lubricated when the scene has an EHL film, else dry.
+    #[default]
+    Auto,
+    /// The dry limit.
+    Dry,
+}
+
 impl Default for WearSpec {
     fn default() -> Self {
         WearSpec {
             cells: 360,
             coefficient: 5e-4,
             hardness_gpa: 2.39,
-            dry: false,
+            regime: WearRegime::Auto,
             defect_length_m: 3e-12,
             defect_time_s: 3e-12,
             activation_energy_j_mol: 49e3,
@@ -215,8 +227,8 @@ pub struct ThermalSpec {
     pub dt_s: f64,
     /// Thermal seconds per second of dynamics (time-scale separation).
     pub time_scale: f64,
-    /// Whether the ring growth changes the clearance.
-    pub growth: bool,
+    /// Factor on the growth's change of the clearance (1: as computed, 0: off).
+    pub growth_factor: f64,
 }
 
 impl Default for ThermalSpec {
@@ -235,7 +247,7 @@ impl Default for ThermalSpec {
             contact_conductance_w_k: None,
             dt_s: 0.5,
             time_scale: 1.0,
-            growth: true,
+            growth_factor: 1.0,
         }
     }
 }
@@ -398,11 +410,11 @@ impl Effects {
         }
         if let Some(w) = &self.wear {
             let p = "effects.wear";
-            if !(1..=100_000).contains(&w.cells) {
+            if !(1..=1000).contains(&w.cells) {
                 return Err(Error::invalid(
                     format!("{p}.cells"),
                     w.cells,
-                    "an integer in [1, 100000]",
+                    "an integer in [1, 1000]",
                 ));
             }
             let pos = |f: &str, v: f64| check(format!("{p}.{f}"), v, v > 0.0, "> 0");
@@ -454,6 +466,7 @@ impl Effects {
             )?;
             let pos = |f: &str, v: f64| check(format!("{p}.{f}"), v, v > 0.0, "> 0");
             pos("oil_heat_capacity_j_k", t.oil_heat_capacity_j_k)?;
+            nonneg("growth_factor", t.growth_factor)?;
             pos("dt_s", t.dt_s)?;
             pos("time_scale", t.time_scale)?;
         }

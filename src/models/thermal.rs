@@ -111,8 +111,8 @@ pub struct ThermalParams {
     pub dt: f64,
     /// Thermal seconds per dynamic second.
     pub time_scale: f64,
-    /// Whether the growth changes the clearance.
-    pub growth: bool,
+    /// Factor on the growth's change of the clearance (0: off).
+    pub growth: f64,
 }
 
 /// Losses at one instant, W, with their split into the nodes.
@@ -360,13 +360,13 @@ impl ThermalModel {
         ]
     }
 
-    /// Change of the diametral clearance, m: `u_o - u_i - 2 u_b` (0 with growth off).
+    /// Change of the diametral clearance, m: `u_o - u_i - 2 u_b` times the growth factor.
     pub fn clearance_change(&self, theta: &[f64; 4]) -> f64 {
-        if !self.p.growth {
+        if self.p.growth == 0.0 {
             return 0.0;
         }
         let [ui, uo, ub] = self.growth(theta);
-        uo - ui - 2.0 * ub
+        (uo - ui - 2.0 * ub) * self.p.growth
     }
 }
 

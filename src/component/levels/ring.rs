@@ -25,7 +25,7 @@ use crate::contact::{Curvature, PointContact, Race};
 use crate::error::Result;
 use crate::geometry::Bearing;
 use crate::lubrication::entrainment_speed;
-use crate::models::effects::{Effects, FilmKind, RingEffects};
+use crate::models::effects::{Effects, FilmKind, RingEffects, WearRegime};
 use crate::models::ring::{RingDof, RingEval, RingModel};
 use crate::models::thermal::{ContactSums, ThermalModel, ThermalParams};
 use crate::models::wear::{self, FilmDefect, WearLaw};
@@ -149,8 +149,8 @@ impl Slow {
         };
         let wear = e.wear.as_ref().map(|w| {
             let n = w.cells as usize;
-            let film = match (lubricant, w.dry) {
-                (Some(l), false) => Some(FilmDefect {
+            let film = match (lubricant, w.regime) {
+                (Some(l), WearRegime::Auto) => Some(FilmDefect {
                     lubricant: l,
                     ax: w.defect_length_m,
                     t0: w.defect_time_s,
@@ -199,7 +199,7 @@ impl Slow {
                 g_contact: t.contact_conductance_w_k,
                 dt: t.dt_s,
                 time_scale: t.time_scale,
-                growth: t.growth,
+                growth: t.growth_factor,
             };
             ThermalPart {
                 model: ThermalModel::new(b, p, contacts),
