@@ -213,6 +213,7 @@ const ELEMENTS: &[&str] = &["outer", "inner", "ball"];
 const FILMS: &[&str] = &["ehl", "dry"];
 const STARTS: &[&str] = &["equilibrium", "rest"];
 const LAWS: &[&str] = &["coulomb", "fitted", "mixed_ehl"];
+const WEAR_REGIMES: &[&str] = &["auto", "dry"];
 
 use Kind::*;
 
@@ -331,6 +332,31 @@ pub const TABLE: &[Field] = &[
     f("effects.lubrication.pressure_viscosity_m2_per_n", Float, "m²/N", between(0.0, true, 1e-6, true), "absent: the preset's", "pressure-viscosity coefficient"),
     f("effects.lubrication.density_kg_m3", Float, "kg/m³", between(0.0, false, 1e5, true), "absent: the preset's", "lubricant density"),
     f("effects.lubrication.roughness_um", Float, "µm", between(0.0, true, 100.0, true), "absent: the preset's", "composite rms roughness of ball and race"),
+    f("effects.wear.cells", Int, "-", between(1.0, true, 1000.0, true), "", "cells of the circumferential wear map of each race"),
+    f("effects.wear.coefficient", Float, "-", gt(0.0), "", "Archard wear coefficient K"),
+    f("effects.wear.hardness_gpa", Float, "GPa", gt(0.0), "", "hardness Hv"),
+    f("effects.wear.regime", Enum(WEAR_REGIMES), "-", ANY, "", "auto: lubricated with an EHL film in the scene, else dry; dry: the dry limit La = 100, psi = 1"),
+    f("effects.wear.defect_length_m", Float, "m", gt(0.0), "", "film-defect length a_x"),
+    f("effects.wear.defect_time_s", Float, "s", gt(0.0), "", "film-defect time t0"),
+    f("effects.wear.activation_energy_j_mol", Float, "J/mol", ge(0.0), "", "adsorption activation energy Ea"),
+    f("effects.wear.surface_temperature_c", Float, "°C", gt(-273.15), "", "surface temperature Ts without the thermal model"),
+    f("effects.wear.window_revs", Float, "rev", gt(0.0), "", "shaft revolutions of dynamics per wear cycle"),
+    f("effects.wear.cycle_revs", Float, "rev", gt(0.0), ">= window_revs", "shaft revolutions each wear cycle stands for"),
+    f("effects.wear.cycles", Int, "-", ge(0.0), "", "wear cycles applied"),
+    f("effects.thermal.f0", Float, "-", ge(0.0), "", "Palmgren factor f0 (load-independent torque)"),
+    f("effects.thermal.f1", Float, "-", ge(0.0), "", "Palmgren factor f1 (load-dependent torque)"),
+    f("effects.thermal.viscosity_cst", Float, "cSt", gt(0.0), "absent: from the lubricant, else 20", "oil kinematic viscosity"),
+    f("effects.thermal.spin_friction", Float, "-", ge(0.0), "", "spin friction coefficient mu_s"),
+    f("effects.thermal.hysteresis_loss", Float, "-", ge(0.0), "", "hysteresis loss fraction alpha_h"),
+    f("effects.thermal.ambient_c", Float, "°C", gt(-273.15), "", "ambient and initial temperature"),
+    f("effects.thermal.shaft_conductance_w_k", Float, "W/K", ge(0.0), "", "inner ring to ambient through the shaft"),
+    f("effects.thermal.housing_conductance_w_k", Float, "W/K", ge(0.0), "", "outer ring to ambient through the housing"),
+    f("effects.thermal.oil_conductance_w_k", Float, "W/K", ge(0.0), "", "oil to ambient (oil flow)"),
+    f("effects.thermal.oil_heat_capacity_j_k", Float, "J/K", gt(0.0), "", "heat capacity of the oil in the bearing"),
+    f("effects.thermal.contact_conductance_w_k", Float, "W/K", ge(0.0), "absent: Holm constriction of the loaded contacts", "ball–ring conductance per race"),
+    f("effects.thermal.dt_s", Float, "s", gt(0.0), "", "thermal time step"),
+    f("effects.thermal.time_scale", Float, "-", gt(0.0), "", "thermal seconds per second of dynamics"),
+    f("effects.thermal.growth_factor", Float, "-", ge(0.0), "", "factor on the thermal growth's change of the clearance (0: off)"),
     // Run.
     f("run.duration_s", Float, "s", between(0.0, false, 1e4, true), "at most 1e7 steps of step_s", "simulated time of `raceway run`"),
     f("run.step_s", Float, "s", gt(0.0), "<= duration_s, at most 1e7 steps", "communication (output) step"),
@@ -469,6 +495,12 @@ fn full_scene(bearing: BearingRef, traction: TractionLaw) -> Scene {
                 pressure_viscosity_m2_per_n: Some(2e-8),
                 density_kg_m3: Some(870.0),
                 roughness_um: Some(0.1),
+            }),
+            wear: Some(crate::models::effects::WearSpec::default()),
+            thermal: Some(crate::models::effects::ThermalSpec {
+                viscosity_cst: Some(30.0),
+                contact_conductance_w_k: Some(1.0),
+                ..Default::default()
             }),
         },
         run: RunSpec::default(),

@@ -129,6 +129,127 @@ pub struct Effects {
     pub ball_spacing: Option<SpacingSpec>,
     /// Lubrication.
     pub lubrication: Option<LubricationSpec>,
+    /// Race wear (physics.md §7; `crate::models::wear`).
+    pub wear: Option<WearSpec>,
+    /// Friction power and thermal growth (physics.md §8; `crate::models::thermal`).
+    pub thermal: Option<ThermalSpec>,
+}
+
+/// `[effects.wear]`: Archard wear of both races with study \[2\]'s lubrication-aware
+/// factors (`crate::models::wear`). Lubricated when `[effects.lubrication]` has an EHL
+/// film (its lubricant and roughness), else the dry limit.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct WearSpec {
+    /// Cells of the circumferential map of each race.
+    pub cells: u32,
+    /// Dimensionless wear coefficient `K` (study \[2\]: 5e-4).
+    pub coefficient: f64,
+    /// Hardness `Hv`, GPa (study \[2\]: 2.39).
+    pub hardness_gpa: f64,
+    /// `auto`: lubricated with an EHL film in the scene, else dry; `dry`: the dry limit
+    /// (`La = 100`, `psi = 1`) even with a film.
+    pub regime: WearRegime,
+    /// Film-defect length `a_x`, m (study \[2\]: 3e-12).
+    pub defect_length_m: f64,
+    /// Film-defect time `t0`, s (study \[2\]: 3e-12).
+    pub defect_time_s: f64,
+    /// Activation energy `Ea`, J/mol (study \[2\]: 49e3).
+    pub activation_energy_j_mol: f64,
+    /// Surface temperature `Ts` without the thermal model, °C (study \[2\]: 20).
+    pub surface_temperature_c: f64,
+    /// Shaft revolutions of dynamics per wear cycle (the window the rate is measured on).
+    pub window_revs: f64,
+    /// Shaft revolutions each cycle stands for (the rate is extrapolated over them).
+    pub cycle_revs: f64,
+    /// Number of cycles; after them the wear map stays as it is.
+    pub cycles: u32,
+}
+
+/// Lubricated or dry wear.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum WearRegime {
+    /// Lubricated when the scene has an EHL film, else dry.
+    #[default]
+    Auto,
+    /// The dry limit.
+    Dry,
+}
+
+impl Default for WearSpec {
+    fn default() -> Self {
+        WearSpec {
+            cells: 360,
+            coefficient: 5e-4,
+            hardness_gpa: 2.39,
+            regime: WearRegime::Auto,
+            defect_length_m: 3e-12,
+            defect_time_s: 3e-12,
+            activation_energy_j_mol: 49e3,
+            surface_temperature_c: 20.0,
+            window_revs: 2.0,
+            cycle_revs: 1e6,
+            cycles: 10,
+        }
+    }
+}
+
+/// `[effects.thermal]`: friction power (Palmgren, spin, hysteresis, cage), a lumped
+/// thermal network and the ring growth it causes (`crate::models::thermal`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct ThermalSpec {
+    /// Palmgren `f0` (about 1 oil mist or jet on angular contact, 2 oil bath).
+    pub f0: f64,
+    /// Palmgren `f1`.
+    pub f1: f64,
+    /// Oil kinematic viscosity, cSt (absent: from the lubricant, else 20).
+    pub viscosity_cst: Option<f64>,
+    /// Spin friction coefficient `mu_s`.
+    pub spin_friction: f64,
+    /// Hysteresis loss fraction `alpha_h`.
+    pub hysteresis_loss: f64,
+    /// Ambient and initial temperature, °C.
+    pub ambient_c: f64,
+    /// Inner ring to ambient through the shaft, W/K.
+    pub shaft_conductance_w_k: f64,
+    /// Outer ring to ambient through the housing, W/K.
+    pub housing_conductance_w_k: f64,
+    /// Oil to ambient (oil flow `m_dot c_p`), W/K.
+    pub oil_conductance_w_k: f64,
+    /// Heat capacity of the oil in the bearing, J/K.
+    pub oil_heat_capacity_j_k: f64,
+    /// Ball–ring conductance per race, W/K (absent: Holm constriction of the loaded
+    /// contacts, a static lower bound; rolling contacts conduct more).
+    pub contact_conductance_w_k: Option<f64>,
+    /// Slow (thermal) time step, s.
+    pub dt_s: f64,
+    /// Thermal seconds per second of dynamics (time-scale separation).
+    pub time_scale: f64,
+    /// Factor on the growth's change of the clearance (1: as computed, 0: off).
+    pub growth_factor: f64,
+}
+
+impl Default for ThermalSpec {
+    fn default() -> Self {
+        ThermalSpec {
+            f0: 2.0,
+            f1: 7e-4,
+            viscosity_cst: None,
+            spin_friction: 0.03,
+            hysteresis_loss: 0.01,
+            ambient_c: 20.0,
+            shaft_conductance_w_k: 5.0,
+            housing_conductance_w_k: 10.0,
+            oil_conductance_w_k: 5.0,
+            oil_heat_capacity_j_k: 20.0,
+            contact_conductance_w_k: None,
+            dt_s: 0.5,
+            time_scale: 1.0,
+            growth_factor: 1.0,
+        }
+    }
 }
 
 fn check(field: String, v: f64, ok: bool, allowed: &str) -> Result<()> {
@@ -178,6 +299,8 @@ impl Effects {
                 .lubrication
                 .as_ref()
                 .is_none_or(|l| l.film == FilmKind::Dry)
+            && self.wear.is_none()
+            && self.thermal.is_none()
     }
 
     /// Validate; errors name `effects.<field>` and the allowed range. Bounds that depend on
@@ -284,6 +407,68 @@ impl Effects {
                 )?;
             }
             l.lubricant()?;
+        }
+        if let Some(w) = &self.wear {
+            let p = "effects.wear";
+            if !(1..=1000).contains(&w.cells) {
+                return Err(Error::invalid(
+                    format!("{p}.cells"),
+                    w.cells,
+                    "an integer in [1, 1000]",
+                ));
+            }
+            let pos = |f: &str, v: f64| check(format!("{p}.{f}"), v, v > 0.0, "> 0");
+            pos("coefficient", w.coefficient)?;
+            pos("hardness_gpa", w.hardness_gpa)?;
+            pos("defect_length_m", w.defect_length_m)?;
+            pos("defect_time_s", w.defect_time_s)?;
+            check(
+                format!("{p}.activation_energy_j_mol"),
+                w.activation_energy_j_mol,
+                w.activation_energy_j_mol >= 0.0,
+                ">= 0",
+            )?;
+            check(
+                format!("{p}.surface_temperature_c"),
+                w.surface_temperature_c,
+                w.surface_temperature_c > -273.15,
+                "> -273.15",
+            )?;
+            pos("window_revs", w.window_revs)?;
+            check(
+                format!("{p}.cycle_revs"),
+                w.cycle_revs,
+                w.cycle_revs >= w.window_revs,
+                ">= window_revs",
+            )?;
+        }
+        if let Some(t) = &self.thermal {
+            let p = "effects.thermal";
+            let nonneg = |f: &str, v: f64| check(format!("{p}.{f}"), v, v >= 0.0, ">= 0");
+            nonneg("f0", t.f0)?;
+            nonneg("f1", t.f1)?;
+            nonneg("spin_friction", t.spin_friction)?;
+            nonneg("hysteresis_loss", t.hysteresis_loss)?;
+            nonneg("shaft_conductance_w_k", t.shaft_conductance_w_k)?;
+            nonneg("housing_conductance_w_k", t.housing_conductance_w_k)?;
+            nonneg("oil_conductance_w_k", t.oil_conductance_w_k)?;
+            if let Some(v) = t.contact_conductance_w_k {
+                nonneg("contact_conductance_w_k", v)?;
+            }
+            if let Some(v) = t.viscosity_cst {
+                check(format!("{p}.viscosity_cst"), v, v > 0.0, "> 0")?;
+            }
+            check(
+                format!("{p}.ambient_c"),
+                t.ambient_c,
+                t.ambient_c > -273.15,
+                "> -273.15",
+            )?;
+            let pos = |f: &str, v: f64| check(format!("{p}.{f}"), v, v > 0.0, "> 0");
+            pos("oil_heat_capacity_j_k", t.oil_heat_capacity_j_k)?;
+            nonneg("growth_factor", t.growth_factor)?;
+            pos("dt_s", t.dt_s)?;
+            pos("time_scale", t.time_scale)?;
         }
         Ok(())
     }

@@ -5,4 +5,6 @@ pub mod effects;
 pub mod quasi_static;
 pub mod ring;
 pub mod skidding;
+pub mod thermal;
 pub mod waviness;
+pub mod wear;

@@ -168,6 +168,25 @@ impl RingModel {
         jac: bool,
         out: &mut RingEval,
     ) {
+        self.eval_with(theta_c, omega_c, q, v, t, profile, jac, out, |_, _, _| {});
+    }
+
+    /// [`RingModel::eval`] that also hands each loaded ball to `per_ball(j, psi_j, Q_j)`
+    /// (ball index, azimuth, Hertz load): what the slow effects (wear, friction power)
+    /// accumulate. Same arithmetic as `eval`; allocation-free.
+    #[allow(clippy::too_many_arguments)]
+    pub fn eval_with<F: FnMut(usize, f64, f64)>(
+        &self,
+        theta_c: f64,
+        omega_c: f64,
+        q: &[f64; 5],
+        v: &[f64; 5],
+        t: f64,
+        profile: Profile<'_>,
+        jac: bool,
+        out: &mut RingEval,
+        mut per_ball: F,
+    ) {
         *out = RingEval::default();
         let film_speed = self
             .film
@@ -234,6 +253,7 @@ impl RingModel {
                     )
                 }
             };
+            per_ball(j, psi, load);
             let fn_ = load + cd * rate;
             for (w, gk) in out.wrench.iter_mut().zip(g) {
                 *w -= fn_ * gk;

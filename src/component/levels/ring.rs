@@ -1,12 +1,249 @@
 //! The `ring` level: ring on massless balls (physics.md §5.1) behind the level seam, with
-//! the optional effects of the scene (defects, waviness, spacing scatter, EHL film).
+//! the optional effects of the scene (defects, waviness, spacing scatter, EHL film) and the
+//! slow effects (wear, physics.md §7; friction power and thermal growth, §8).
+//!
+//! Slow state (only when the scene turns wear or thermal on; see [`SlowLayout`]):
+//! - continuous states after the cage (and shaft) angle: the wear depth accumulated since
+//!   the start on each cell of the outer-race map, then of the inner-race map (m), rates
+//!   from `crate::models::wear` integrated with the dynamics;
+//! - memory (`aux`): the wear maps that act on the clearance (outer, inner), the
+//!   accumulated depth at the start of the current window (outer, inner), the window's
+//!   start in shaft revolutions and the cycles done; then the thermal block: the four node
+//!   temperature rises (K), the time of the last thermal update, energy generated and
+//!   removed (J), the last power loss (W) and the clearance change (m).
+//!
+//! Time-scale separation (physics.md §7): at a communication point where the window of
+//! `window_revs` shaft revolutions is complete, the window's accumulated wear is scaled to
+//! `cycle_revs` revolutions and added to the maps, which enter every ball's deflection like
+//! a defect (`- h_outer(psi) - h_inner(psi - theta_s)`). The thermal network advances at
+//! each communication point over the elapsed time times `time_scale`, on its own step.
 
 use super::cage_speed;
 use crate::component::level::{LevelModel, LevelOutputs, Motion};
+use crate::component::{Scene, State};
+use crate::contact::{Curvature, PointContact, Race};
 use crate::error::Result;
 use crate::geometry::Bearing;
-use crate::models::effects::{Effects, RingEffects};
+use crate::lubrication::entrainment_speed;
+use crate::models::effects::{Effects, FilmKind, RingEffects, WearRegime};
 use crate::models::ring::{RingDof, RingEval, RingModel};
+use crate::models::thermal::{ContactSums, ThermalModel, ThermalParams};
+use crate::models::wear::{self, FilmDefect, WearLaw};
+
+/// Kelvin at 0 °C.
+const T_ZERO: f64 = 273.15;
+
+/// Where the slow state sits in the component state (see the module notes).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct SlowLayout {
+    /// Wear: first continuous state of the accumulators, first aux slot, cells per race.
+    pub wear: Option<(usize, usize, usize)>,
+    /// Thermal: first aux slot of the thermal block.
+    pub thermal: Option<usize>,
+}
+
+/// Values in the thermal block.
+pub const THERMAL_SLOTS: usize = 9;
+
+impl SlowLayout {
+    /// The layout a scene's ring level uses.
+    pub fn of(scene: &Scene) -> Result<SlowLayout> {
+        let b = scene.validate()?;
+        let e = &scene.effects;
+        let nx = if e.is_off() {
+            1
+        } else {
+            1 + RingEffects::new(e, &b)?.needs_shaft_angle as usize
+        };
+        let wear = e.wear.as_ref().map(|w| (nx, 0, w.cells as usize));
+        let thermal = e
+            .thermal
+            .as_ref()
+            .map(|_| wear.map_or(0, |(_, _, n)| 4 * n + 2));
+        Ok(SlowLayout { wear, thermal })
+    }
+
+    /// Wear maps acting on the clearance `(outer, inner)`, m per cell (cell `k` centred at
+    /// `2 pi k / n`; outer in the fixed frame, inner in the shaft's).
+    pub fn wear_maps<'a>(&self, st: &'a State) -> Option<(&'a [f64], &'a [f64])> {
+        let (_, a0, n) = self.wear?;
+        Some((&st.aux[a0..a0 + n], &st.aux[a0 + n..a0 + 2 * n]))
+    }
+
+    /// Wear cycles done.
+    pub fn wear_cycles(&self, st: &State) -> Option<f64> {
+        let (_, a0, n) = self.wear?;
+        Some(st.aux[a0 + 4 * n + 1])
+    }
+
+    /// Thermal block: `[dT inner, dT outer, dT balls, dT oil]` (K), last update time (s),
+    /// energy generated and removed (J), power loss (W), clearance change (m).
+    pub fn thermal<'a>(&self, st: &'a State) -> Option<&'a [f64]> {
+        let a0 = self.thermal?;
+        Some(&st.aux[a0..a0 + THERMAL_SLOTS])
+    }
+}
+
+/// Wear part of the slow effects.
+#[derive(Debug)]
+struct WearPart {
+    law: WearLaw,
+    n: usize,
+    /// First continuous state (outer map; inner follows).
+    x0: usize,
+    /// First aux slot.
+    a0: usize,
+    /// Contacts (inner, outer) at the nominal angle.
+    contacts: [PointContact; 2],
+    /// Groove conformities (inner, outer).
+    f: [f64; 2],
+    /// Cell lengths on the race (inner, outer), m.
+    cell_len: [f64; 2],
+    m: f64,
+    window: f64,
+    cycle: f64,
+    cycles: f64,
+    /// Surface temperature without the thermal model, K.
+    ts: f64,
+}
+
+/// Thermal part of the slow effects.
+#[derive(Debug)]
+struct ThermalPart {
+    model: ThermalModel,
+    a0: usize,
+    ambient: f64,
+}
+
+/// The slow effects of a ring level.
+#[derive(Debug)]
+struct Slow {
+    wear: Option<WearPart>,
+    thermal: Option<ThermalPart>,
+    d: f64,
+    dm: f64,
+    gamma: f64,
+    n_aux: usize,
+}
+
+impl Slow {
+    fn new(b: &Bearing, e: &Effects, x0: usize) -> Result<Option<Slow>> {
+        if e.wear.is_none() && e.thermal.is_none() {
+            return Ok(None);
+        }
+        let alpha = b.nominal_contact_angle();
+        let contacts = [
+            PointContact::new(
+                Curvature::ball_race(b.d, b.dm, alpha, b.fi, Race::Inner),
+                b.e_eff_inner(),
+            ),
+            PointContact::new(
+                Curvature::ball_race(b.d, b.dm, alpha, b.fo, Race::Outer),
+                b.e_eff_outer(),
+            ),
+        ];
+        let gamma = b.d * alpha.cos() / b.dm;
+        let lubricant = match &e.lubrication {
+            Some(l) if l.film == FilmKind::Ehl => Some(l.lubricant()?),
+            _ => None,
+        };
+        let wear = e.wear.as_ref().map(|w| {
+            let n = w.cells as usize;
+            let film = match (lubricant, w.regime) {
+                (Some(l), WearRegime::Auto) => Some(FilmDefect {
+                    lubricant: l,
+                    ax: w.defect_length_m,
+                    t0: w.defect_time_s,
+                    ea: w.activation_energy_j_mol,
+                }),
+                _ => None,
+            };
+            let circ = |d: f64| std::f64::consts::PI * d / n as f64;
+            WearPart {
+                law: WearLaw {
+                    k: w.coefficient,
+                    hardness: w.hardness_gpa * 1e9,
+                    film,
+                    surface_temperature: w.surface_temperature_c + T_ZERO,
+                },
+                n,
+                x0,
+                a0: 0,
+                contacts,
+                f: [b.fi, b.fo],
+                cell_len: [circ(b.dm * (1.0 - gamma)), circ(b.dm * (1.0 + gamma))],
+                m: wear::heathcote_mean_factor(),
+                window: w.window_revs,
+                cycle: w.cycle_revs,
+                cycles: w.cycles as f64,
+                ts: w.surface_temperature_c + T_ZERO,
+            }
+        });
+        let wear_aux = wear.as_ref().map_or(0, |w| 4 * w.n + 2);
+        let thermal = e.thermal.as_ref().map(|t| {
+            let nu = t
+                .viscosity_cst
+                .unwrap_or_else(|| lubricant.map_or(20.0, |l| l.viscosity / l.density * 1e6));
+            let eta = lubricant.map_or(nu * 1e-6 * 860.0, |l| l.viscosity);
+            let p = ThermalParams {
+                f0: t.f0,
+                f1: t.f1,
+                nu_cst: nu,
+                eta,
+                mu_spin: t.spin_friction,
+                hysteresis: t.hysteresis_loss,
+                g_shaft: t.shaft_conductance_w_k,
+                g_housing: t.housing_conductance_w_k,
+                g_oil: t.oil_conductance_w_k,
+                c_oil: t.oil_heat_capacity_j_k,
+                g_contact: t.contact_conductance_w_k,
+                dt: t.dt_s,
+                time_scale: t.time_scale,
+                growth: t.growth_factor,
+            };
+            ThermalPart {
+                model: ThermalModel::new(b, p, contacts),
+                a0: wear_aux,
+                ambient: t.ambient_c + T_ZERO,
+            }
+        });
+        Ok(Some(Slow {
+            n_aux: wear_aux + thermal.as_ref().map_or(0, |_| THERMAL_SLOTS),
+            wear,
+            thermal,
+            d: b.d,
+            dm: b.dm,
+            gamma,
+        }))
+    }
+
+    fn n_states(&self) -> usize {
+        self.wear.as_ref().map_or(0, |w| 2 * w.n)
+    }
+
+    /// Deflection offset of a ball at `psi` with the shaft turned by `theta_s`: minus the
+    /// wear depths under it, plus half the thermal loss of diametral clearance.
+    #[inline]
+    fn offset(&self, aux: &[f64], psi: f64, theta_s: f64) -> f64 {
+        let mut o = 0.0;
+        if let Some(w) = &self.wear {
+            let (outer, inner) = (&aux[w.a0..w.a0 + w.n], &aux[w.a0 + w.n..w.a0 + 2 * w.n]);
+            o -= wear::sample(outer, psi) + wear::sample(inner, psi - theta_s);
+        }
+        if let Some(t) = &self.thermal {
+            o -= 0.5 * aux[t.a0 + 8];
+        }
+        o
+    }
+
+    /// Ball rotation relative to the inner and outer race at shaft speed `omega`.
+    #[inline]
+    fn relative_rolling(&self, omega: f64) -> [f64; 2] {
+        let wc = 0.5 * omega * (1.0 - self.gamma);
+        let wb = self.dm / (2.0 * self.d) * (1.0 - self.gamma * self.gamma) * omega.abs();
+        [wb + (omega - wc).abs(), (wb - wc.abs()).abs()]
+    }
+}
 
 /// Ring on massless balls (physics.md §5.1). States: the cage angle, and the shaft angle
 /// when an effect turns with the shaft or the balls (inner-race or ball defects/waviness).
@@ -20,6 +257,8 @@ pub struct RingLevel {
     profile: Option<RingEffects>,
     /// Whether state 1 is the shaft angle.
     shaft_angle: bool,
+    /// Wear and thermal (None: off, nothing evaluated).
+    slow: Option<Slow>,
 }
 
 impl RingLevel {
@@ -32,6 +271,7 @@ impl RingLevel {
             eval: RingEval::default(),
             profile: None,
             shaft_angle: false,
+            slow: None,
         }
     }
 
@@ -55,20 +295,113 @@ impl RingLevel {
         if fx.has_profile() {
             level.profile = Some(fx);
         }
+        level.slow = Slow::new(b, e, 1 + level.shaft_angle as usize)?;
         Ok(level)
     }
 
-    fn evaluate(&mut self, t: f64, m: &Motion, x: &[f64], wc: f64, jac: bool) {
-        let theta_s = if self.shaft_angle { x[1] } else { 0.0 };
-        match &self.profile {
-            None => self
-                .model
-                .eval(x[0], wc, &m.q, &m.v, t, None, jac, &mut self.eval),
-            Some(fx) => {
-                let p = |j: usize, psi: f64, _t: f64| fx.offset(j, psi, theta_s);
-                self.model
-                    .eval(x[0], wc, &m.q, &m.v, t, Some(&p), jac, &mut self.eval)
+    /// Shaft angle: state 1 when kept, else from the cage angle (both start at 0 and the
+    /// cage turns at a fixed ratio of the shaft).
+    #[inline]
+    fn shaft_turned(&self, x: &[f64]) -> f64 {
+        if self.shaft_angle {
+            x[1]
+        } else {
+            x[0] / self.cage_ratio
+        }
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn evaluate<F: FnMut(usize, f64, f64)>(
+        &mut self,
+        t: f64,
+        m: &Motion,
+        x: &[f64],
+        aux: &[f64],
+        wc: f64,
+        jac: bool,
+        per_ball: F,
+    ) {
+        let turned = self.shaft_turned(x);
+        eval_ring(
+            &self.model,
+            &mut self.eval,
+            self.profile.as_ref(),
+            self.slow.as_ref(),
+            [if self.shaft_angle { x[1] } else { 0.0 }, turned],
+            (t, m, x, aux, wc),
+            jac,
+            per_ball,
+        );
+    }
+
+    /// Wear-depth rates of the accumulators (`dx` of the wear block) at this instant; also
+    /// leaves the forces in `self.eval`.
+    fn wear_rates(&mut self, t: f64, m: &Motion, x: &[f64], aux: &[f64], wc: f64, dx: &mut [f64]) {
+        let turned = self.shaft_turned(x);
+        let angles = [if self.shaft_angle { x[1] } else { 0.0 }, turned];
+        let slow = self.slow.as_ref().expect("wear on");
+        let w = slow.wear.as_ref().expect("wear on");
+        let rel = slow.relative_rolling(m.omega);
+        let u = entrainment_speed(slow.dm, slow.gamma, m.omega);
+        let ts = match &slow.thermal {
+            Some(th) => [th.ambient + aux[th.a0], th.ambient + aux[th.a0 + 1]],
+            None => [w.ts; 2],
+        };
+        let (dx_o, dx_i) = dx[w.x0..w.x0 + 2 * w.n].split_at_mut(w.n);
+        dx_o.fill(0.0);
+        dx_i.fill(0.0);
+        let per_ball = |_j: usize, psi: f64, q: f64| {
+            for r in 0..2 {
+                let c = &w.contacts[r];
+                let (a, _) = c.semi_axes(q);
+                let us = wear::heathcote_slip(rel[r], a, w.f[r], slow.d, w.m);
+                let (la, psi_f) = w.law.factors(c, q, u, us, ts[r]);
+                let rate = w.law.area_rate(q, a, us, la, psi_f);
+                if r == 0 {
+                    wear::deposit(dx_i, psi - turned, rate, w.cell_len[0]);
+                } else {
+                    wear::deposit(dx_o, psi, rate, w.cell_len[1]);
+                }
             }
+        };
+        eval_ring(
+            &self.model,
+            &mut self.eval,
+            self.profile.as_ref(),
+            Some(slow),
+            angles,
+            (t, m, x, aux, wc),
+            false,
+            per_ball,
+        );
+    }
+}
+
+/// Evaluate the ring model with the profile of the effects and the slow state.
+/// `angles = [shaft angle for the fast effects, shaft angle turned]`.
+#[allow(clippy::too_many_arguments)]
+fn eval_ring<F: FnMut(usize, f64, f64)>(
+    model: &RingModel,
+    eval: &mut RingEval,
+    profile: Option<&RingEffects>,
+    slow: Option<&Slow>,
+    angles: [f64; 2],
+    (t, m, x, aux, wc): (f64, &Motion, &[f64], &[f64], f64),
+    jac: bool,
+    per_ball: F,
+) {
+    let [theta_s, turned] = angles;
+    match (profile, slow) {
+        (None, None) => model.eval_with(x[0], wc, &m.q, &m.v, t, None, jac, eval, per_ball),
+        (Some(fx), None) => {
+            let p = |j: usize, psi: f64, _t: f64| fx.offset(j, psi, theta_s);
+            model.eval_with(x[0], wc, &m.q, &m.v, t, Some(&p), jac, eval, per_ball)
+        }
+        (fx, Some(slow)) => {
+            let p = |j: usize, psi: f64, _t: f64| {
+                fx.map_or(0.0, |fx| fx.offset(j, psi, theta_s)) + slow.offset(aux, psi, turned)
+            };
+            model.eval_with(x[0], wc, &m.q, &m.v, t, Some(&p), jac, eval, per_ball)
         }
     }
 }
@@ -78,7 +411,10 @@ impl LevelModel for RingLevel {
         "ring"
     }
     fn n_states(&self) -> usize {
-        1 + self.shaft_angle as usize
+        1 + self.shaft_angle as usize + self.slow.as_ref().map_or(0, Slow::n_states)
+    }
+    fn n_aux(&self) -> usize {
+        self.slow.as_ref().map_or(0, |s| s.n_aux)
     }
     fn ring_dofs(&self) -> &'static [usize] {
         match self.dof {
@@ -86,8 +422,9 @@ impl LevelModel for RingLevel {
             RingDof::Five => &[0, 1, 2, 3, 4],
         }
     }
-    fn init(&mut self, _m: &Motion, x: &mut [f64], _aux: &mut [f64]) -> Result<()> {
+    fn init(&mut self, _m: &Motion, x: &mut [f64], aux: &mut [f64]) -> Result<()> {
         x.fill(0.0);
+        aux.fill(0.0);
         Ok(())
     }
     fn rhs(
@@ -95,7 +432,7 @@ impl LevelModel for RingLevel {
         t: f64,
         m: &Motion,
         x: &[f64],
-        _aux: &mut [f64],
+        aux: &mut [f64],
         dx: &mut [f64],
         wrench: Option<&mut [f64; 5]>,
     ) -> Result<()> {
@@ -104,8 +441,13 @@ impl LevelModel for RingLevel {
         if self.shaft_angle {
             dx[1] = m.omega;
         }
-        if let Some(w) = wrench {
-            self.evaluate(t, m, x, wc, false);
+        if self.slow.as_ref().is_some_and(|s| s.wear.is_some()) {
+            self.wear_rates(t, m, x, aux, wc, dx);
+            if let Some(w) = wrench {
+                *w = self.eval.wrench;
+            }
+        } else if let Some(w) = wrench {
+            self.evaluate(t, m, x, aux, wc, false, |_, _, _| {});
             *w = self.eval.wrench;
         }
         Ok(())
@@ -115,11 +457,51 @@ impl LevelModel for RingLevel {
         t: f64,
         m: &Motion,
         x: &[f64],
-        _aux: &mut [f64],
+        aux: &mut [f64],
         out: &mut LevelOutputs,
     ) -> Result<()> {
         let wc = self.cage_ratio * m.omega;
-        self.evaluate(t, m, x, wc, true);
+        let turned = self.shaft_turned(x);
+        // Wear cycle: scale the window's accumulated wear to the cycle, add it to the maps.
+        if let Some(w) = self.slow.as_ref().and_then(|s| s.wear.as_ref()) {
+            let (a0, n) = (w.a0, w.n);
+            let revs = turned.abs() / std::f64::consts::TAU;
+            let (start, done) = (aux[a0 + 4 * n], aux[a0 + 4 * n + 1]);
+            if done < w.cycles && revs - start >= w.window * (1.0 - 1e-9) {
+                let scale = w.cycle / (revs - start);
+                for c in 0..2 * n {
+                    let acc = x[w.x0 + c];
+                    aux[a0 + c] += (acc - aux[a0 + 2 * n + c]) * scale;
+                    aux[a0 + 2 * n + c] = acc;
+                }
+                aux[a0 + 4 * n] = revs;
+                aux[a0 + 4 * n + 1] = done + 1.0;
+            }
+        }
+        let mut sums = ContactSums::default();
+        {
+            let th = self
+                .slow
+                .as_ref()
+                .and_then(|s| s.thermal.as_ref())
+                .map(|t| &t.model);
+            let omega = m.omega;
+            let per_ball = |_j: usize, _psi: f64, q: f64| {
+                if let Some(th) = th {
+                    th.add_ball(omega, q, &mut sums);
+                }
+            };
+            eval_ring(
+                &self.model,
+                &mut self.eval,
+                self.profile.as_ref(),
+                self.slow.as_ref(),
+                [if self.shaft_angle { x[1] } else { 0.0 }, turned],
+                (t, m, x, aux, wc),
+                true,
+                per_ball,
+            );
+        }
         let e = &self.eval;
         *out = LevelOutputs {
             wrench: e.wrench,
@@ -136,6 +518,41 @@ impl LevelModel for RingLevel {
             film_min: e.film_min,
             ..LevelOutputs::default()
         };
+        let Some(slow) = &self.slow else {
+            return Ok(());
+        };
+        if let Some(w) = &slow.wear {
+            out.wear_max = aux[w.a0..w.a0 + 2 * w.n]
+                .iter()
+                .fold(0.0, |a: f64, &b| a.max(b));
+        }
+        if let Some(tp) = &slow.thermal {
+            let a = tp.a0;
+            let l = tp.model.losses(m.omega, &e.wrench, &sums);
+            let mut theta = [aux[a], aux[a + 1], aux[a + 2], aux[a + 3]];
+            let elapsed = t - aux[a + 4];
+            if elapsed > 0.0 {
+                let total = elapsed * tp.model.p.time_scale;
+                let nsub = (total / tp.model.p.dt).ceil().clamp(1.0, 1e4);
+                let h = total / nsub;
+                let mut removed = 0.0;
+                for _ in 0..nsub as usize {
+                    removed += tp.model.step(m.omega, &l, &mut theta, h);
+                }
+                aux[a..a + 4].copy_from_slice(&theta);
+                aux[a + 5] += l.total() * total;
+                aux[a + 6] += removed;
+            }
+            aux[a + 4] = t;
+            aux[a + 7] = l.total();
+            aux[a + 8] = tp.model.clearance_change(&theta);
+            out.power_loss = l.total();
+            out.torque = if m.omega != 0.0 {
+                -l.total() / m.omega
+            } else {
+                0.0
+            };
+        }
         Ok(())
     }
 }

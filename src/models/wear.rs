@@ -1,0 +1,260 @@
+//! Race wear (physics.md §7, study \[2\]: Cao et al., 6012): Archard's law with the
+//! lubrication-aware factors of study \[2\],
+//!
+//! `dh/dt = K psi (La/100) p u_s / Hv`,
+//!
+//! accumulated on a circumferential map of each race and fed back into the clearance.
+//!
+//! - `K` dimensionless wear coefficient, `Hv` hardness (study \[2\]: 5e-4 dry, 2.39 GPa).
+//! - `psi = 1 - exp(-(a_x / (u_s t0)) exp(-Ea / (Rg Ts)))`, the film-defect fraction of
+//!   Stolarski's adsorption model as study \[2\] uses it (`a_x = 3e-12 m`, `t0 = 3e-12 s`,
+//!   `Ea = 49 kJ/mol`, `Rg = 8.31 J/(mol K)`).
+//! - `La` the asperity load share in percent. Study \[2\] takes it from the Masjedi–Khonsari
+//!   regression (Tribol. Int. 82 (2015) 228–244); its coefficients could not be verified
+//!   here, so `La` is the Greenwood–Tripp estimate [`asperity_share`]: the asperity pressure
+//!   at the film's separation relative to touching surfaces, `F_5/2(Lambda)/F_5/2(0)` with
+//!   the usual curve fit `F_5/2(H) ∝ (4 - H)^6.804` for `H < 4` (Greenwood & Tripp,
+//!   Proc. IMechE 185 (1970); fit as in Patir & Cheng's mixed-lubrication work). It gives
+//!   100 % with no film (`Lambda = 0`) and 0 for `Lambda >= 4` (smooth surfaces).
+//!   The dry limit is `La = 100`, `psi = 1`.
+//!
+//! Per ball contact the map receives a wear *area* rate (depth times race length per unit
+//! time): a race point under the contact centre line sees `int p dt = (int p dx) / v_pass`
+//! with `int p dx = p0 pi b / 2 = 3Q/(4a)` for the Hertz ellipse (`b` along rolling), and
+//! is swept at `v_pass`, so the area rate is `K psi (La/100) u_s (3Q/(4a)) / Hv`,
+//! independent of the passing speed. It is spread on the two nearest cells with linear
+//! (hat) weights, which conserves it and keeps the rate continuous in the ball angle.
+//!
+//! Sliding speed [`heathcote_slip`]: the differential (Heathcote) slip of a ball in a
+//! conforming groove (Harris & Kotzalas, *Essential Concepts*, ch. "Friction"; Johnson,
+//! *Contact Mechanics* §8.5): the contact surface is curved with radius
+//! `R_c = 2 f D / (2f + 1)`, so across the contact width the ball and race surface speeds
+//! differ by `omega_rel y² / (2 R_c)` plus a constant; free rolling puts the two rolling
+//! lines where the net Coulomb traction vanishes, `y0 = s0 a` with
+//! `s0 - s0³/3 = 1/3`, i.e. `s0 = 2 cos 80° = 0.3473`. The wear uses the line-load-weighted
+//! mean slip `u_s = omega_rel a² m / (2 R_c)`, `m = int |s² - s0²| (1 - s²) ds / (4/3)`.
+//! `omega_rel` is the ball's rotation relative to the race (`|omega_b| - omega_c` at the
+//! outer race, `|omega_b| + omega - omega_c` at the inner). A skidding level's slip can
+//! replace this function.
+
+use crate::contact::PointContact;
+use crate::lubrication::{central_film, Lubricant};
+
+/// Universal gas constant used by study \[2\], J/(mol K).
+pub const RG: f64 = 8.31;
+
+/// Lubricated wear: the lubricant and the film-defect constants.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FilmDefect {
+    /// Lubricant (film thickness and composite roughness).
+    pub lubricant: Lubricant,
+    /// `a_x`, m.
+    pub ax: f64,
+    /// `t0`, s.
+    pub t0: f64,
+    /// Activation energy `Ea`, J/mol.
+    pub ea: f64,
+}
+
+/// Archard wear law of one bearing (both races).
+#[derive(Debug, Clone, PartialEq)]
+pub struct WearLaw {
+    /// Dimensionless wear coefficient `K`.
+    pub k: f64,
+    /// Hardness `Hv`, Pa.
+    pub hardness: f64,
+    /// Film (None: dry limit `La = 100`, `psi = 1`).
+    pub film: Option<FilmDefect>,
+    /// Surface temperature `Ts` without the thermal model, K.
+    pub surface_temperature: f64,
+}
+
+/// Mean Heathcote slip factor `m` for rolling lines at `s0 = 2 cos 80°`.
+pub fn heathcote_mean_factor() -> f64 {
+    let s0 = 2.0 * 80f64.to_radians().cos();
+    // Exact polynomial integral of |s² - s0²| (1 - s²) over [-1, 1], divided by 4/3.
+    let f = |s: f64| s0 * s0 * s - s.powi(3) / 3.0 * (1.0 + s0 * s0) + s.powi(5) / 5.0;
+    // (s0² - s²)(1 - s²) = s0² - s² (1 + s0²) + s⁴, antiderivative f.
+    let inner = f(s0) - f(0.0);
+    let outer = -(f(1.0) - f(s0));
+    2.0 * (inner + outer) / (4.0 / 3.0)
+}
+
+/// Rolling-line position `s0` (fraction of the semi-axis `a`) of free Heathcote rolling:
+/// the root of `s³ - 3 s + 1 = 0` in (0, 1).
+pub fn heathcote_rolling_line() -> f64 {
+    2.0 * 80f64.to_radians().cos()
+}
+
+/// Differential (Heathcote) sliding speed of a contact with transverse semi-axis `a`, in a
+/// groove of conformity `f` for a ball of diameter `d`, the ball turning at `omega_rel`
+/// relative to the race, m/s (see the module notes; `m` from [`heathcote_mean_factor`]).
+#[inline]
+pub fn heathcote_slip(omega_rel: f64, a: f64, f: f64, d: f64, m: f64) -> f64 {
+    let rc = 2.0 * f * d / (2.0 * f + 1.0);
+    omega_rel.abs() * a * a * m / (2.0 * rc)
+}
+
+/// Greenwood–Tripp asperity load share, percent, at film parameter `lambda` (module notes).
+#[inline]
+pub fn asperity_share(lambda: f64) -> f64 {
+    if lambda.is_nan() || lambda <= 0.0 {
+        100.0
+    } else if lambda >= 4.0 {
+        0.0
+    } else {
+        100.0 * ((4.0 - lambda) / 4.0).powf(6.804)
+    }
+}
+
+/// Film-defect fraction `psi` (study \[2\]); 1 at zero sliding.
+#[inline]
+pub fn film_defect_fraction(us: f64, ax: f64, t0: f64, ea: f64, ts: f64) -> f64 {
+    if us <= 0.0 {
+        return 1.0;
+    }
+    let x = ax / (us * t0) * (-ea / (RG * ts)).exp();
+    -(-x).exp_m1()
+}
+
+impl WearLaw {
+    /// Wear-depth rate at a point of pressure `p` under sliding `us`, with asperity share
+    /// `la` (percent) and film-defect fraction `psi`: `K psi (La/100) p us / Hv`, m/s.
+    #[inline]
+    pub fn depth_rate(&self, p: f64, us: f64, la: f64, psi: f64) -> f64 {
+        self.k * psi * 0.01 * la * p * us / self.hardness
+    }
+
+    /// `(La, psi)` of a contact carrying `q` with entrainment speed `u`, sliding `us`,
+    /// surface temperature `ts`.
+    #[inline]
+    pub fn factors(&self, c: &PointContact, q: f64, u: f64, us: f64, ts: f64) -> (f64, f64) {
+        match &self.film {
+            None => (100.0, 1.0),
+            Some(f) => {
+                let h = central_film(&f.lubricant, c, u, q);
+                let lambda = if f.lubricant.roughness > 0.0 {
+                    h / f.lubricant.roughness
+                } else {
+                    f64::INFINITY
+                };
+                (
+                    asperity_share(lambda),
+                    film_defect_fraction(us, f.ax, f.t0, f.ea, ts),
+                )
+            }
+        }
+    }
+
+    /// Wear area rate of one contact (depth times race length per time, m²/s): load `q`,
+    /// transverse semi-axis `a`, sliding `us`, factors `la`, `psi` (module notes).
+    #[inline]
+    pub fn area_rate(&self, q: f64, a: f64, us: f64, la: f64, psi: f64) -> f64 {
+        if q <= 0.0 || a <= 0.0 {
+            return 0.0;
+        }
+        self.depth_rate(0.75 * q / a, us, la, psi)
+    }
+}
+
+/// Add `area_rate` (m²/s) at angle `theta` (rad) to a periodic map of `n = map.len()` cells
+/// of length `cell_len` (m), hat-weighted on the two nearest cell centres (cell `k` centred
+/// at `2 pi k / n`): the sum of `map * cell_len` grows by exactly `area_rate`.
+#[inline]
+pub fn deposit(map: &mut [f64], theta: f64, area_rate: f64, cell_len: f64) {
+    let n = map.len();
+    if n == 0 || area_rate == 0.0 {
+        return;
+    }
+    let u = theta.rem_euclid(std::f64::consts::TAU) / std::f64::consts::TAU * n as f64;
+    let k = (u.floor() as usize).min(n - 1);
+    let w = (u - k as f64).clamp(0.0, 1.0);
+    let r = area_rate / cell_len;
+    map[k] += (1.0 - w) * r;
+    map[(k + 1) % n] += w * r;
+}
+
+/// Depth of a periodic map at angle `theta` (linear interpolation between cell centres).
+#[inline]
+pub fn sample(map: &[f64], theta: f64) -> f64 {
+    let n = map.len();
+    if n == 0 {
+        return 0.0;
+    }
+    let u = theta.rem_euclid(std::f64::consts::TAU) / std::f64::consts::TAU * n as f64;
+    let k = (u.floor() as usize).min(n - 1);
+    let w = (u - k as f64).clamp(0.0, 1.0);
+    (1.0 - w) * map[k] + w * map[(k + 1) % n]
+}
+
+/// Deepest cell of a map: `(depth, angle of its centre in rad)`.
+pub fn deepest(map: &[f64]) -> (f64, f64) {
+    let n = map.len().max(1);
+    map.iter().enumerate().fold((0.0, 0.0), |(d, a), (k, &v)| {
+        if v > d {
+            (v, std::f64::consts::TAU * k as f64 / n as f64)
+        } else {
+            (d, a)
+        }
+    })
+}
+
+/// Revolutions to reach `depth` given the deepest point after each cycle:
+/// `history = [(revolutions, max depth)]` in order; linear interpolation inside the
+/// history, linear extrapolation from the last cycle's rate beyond it; None if no wear.
+pub fn revolutions_to(history: &[(f64, f64)], depth: f64) -> Option<f64> {
+    let mut prev = (0.0, 0.0);
+    for &(r, d) in history {
+        if d >= depth {
+            let f = (depth - prev.1) / (d - prev.1);
+            return Some(prev.0 + f * (r - prev.0));
+        }
+        prev = (r, d);
+    }
+    let (&(r1, d1), rest) = history.split_last()?;
+    let (r0, d0) = rest.last().copied().unwrap_or((0.0, 0.0));
+    let rate = (d1 - d0) / (r1 - r0);
+    (rate > 0.0).then(|| r1 + (depth - d1) / rate)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rolling_line_root_and_mean_factor() {
+        let s0 = heathcote_rolling_line();
+        assert!((s0.powi(3) - 3.0 * s0 + 1.0).abs() < 1e-14);
+        // Midpoint check of the closed form.
+        let n = 200_000;
+        let mut acc = 0.0;
+        for i in 0..n {
+            let s = -1.0 + (i as f64 + 0.5) * 2.0 / n as f64;
+            acc += (s * s - s0 * s0).abs() * (1.0 - s * s) * 2.0 / n as f64;
+        }
+        assert!((acc / (4.0 / 3.0) - heathcote_mean_factor()).abs() < 1e-8);
+    }
+
+    #[test]
+    fn limits_of_the_factors() {
+        assert_eq!(asperity_share(0.0), 100.0);
+        assert_eq!(asperity_share(5.0), 0.0);
+        assert!(asperity_share(1.0) > asperity_share(2.0));
+        assert_eq!(film_defect_fraction(0.0, 3e-12, 3e-12, 49e3, 293.15), 1.0);
+        let p = film_defect_fraction(0.02, 3e-12, 3e-12, 49e3, 293.15);
+        assert!(p > 0.0 && p < 1e-6, "{p}");
+    }
+
+    #[test]
+    fn deposit_conserves_and_samples() {
+        let mut m = vec![0.0; 36];
+        deposit(&mut m, 1.234, 2.0, 0.5);
+        let s: f64 = m.iter().sum::<f64>() * 0.5;
+        assert!((s - 2.0).abs() < 1e-15);
+        let mut m = vec![0.0; 4];
+        m[1] = 1.0;
+        assert!((sample(&m, std::f64::consts::FRAC_PI_4) - 0.5).abs() < 1e-15);
+        assert_eq!(revolutions_to(&[(10.0, 1.0), (20.0, 2.0)], 3.0), Some(30.0));
+        assert_eq!(revolutions_to(&[(10.0, 1.0), (20.0, 2.0)], 1.5), Some(15.0));
+    }
+}
