@@ -80,6 +80,28 @@ fn range(vals: impl Iterator<Item = f64>, log: bool) -> (f64, f64) {
     }
 }
 
+/// Tick label: powers of ten on log axes (`1e-6`), plain short numbers otherwise.
+fn tick(v: f64, log: bool) -> String {
+    if log {
+        let e = v.log10();
+        if (e - e.round()).abs() < 1e-6 {
+            format!("1e{}", e.round() as i32)
+        } else {
+            format!("{v:.1e}")
+        }
+    } else if v != 0.0 && (v.abs() >= 1e5 || v.abs() < 1e-3) {
+        format!("{v:.2e}")
+    } else {
+        let s = format!("{v:.4}");
+        let s = s.trim_end_matches('0').trim_end_matches('.');
+        if s.is_empty() || s == "-" {
+            "0".into()
+        } else {
+            s.to_string()
+        }
+    }
+}
+
 const COLORS: [RGBColor; 6] = [
     RGBColor(31, 119, 180),
     RGBColor(214, 39, 40),
@@ -115,10 +137,14 @@ pub fn plot(path: &Path, axes: &Axes<'_>, series: &[Series<'_>], markers: &[Mark
     macro_rules! draw {
         ($chart:expr) => {{
             let mut chart = $chart;
+            let fx = |v: &f64| tick(*v, axes.log_x);
+            let fy = |v: &f64| tick(*v, axes.log_y);
             chart
                 .configure_mesh()
                 .x_desc(axes.x_label)
                 .y_desc(axes.y_label)
+                .x_label_formatter(&fx)
+                .y_label_formatter(&fy)
                 .label_style(("sans-serif", 13))
                 .draw()
                 .map_err(io)?;
