@@ -69,7 +69,7 @@ pub const BASES: &[Base] = &[
     Base {
         name: "quasi_static/load",
         preset: "6205",
-        model: "level = \"quasi_static\"\ncausality = \"load\"\nattached_mass_kg = 1.0\n",
+        model: "level = \"quasi_static\"\ncausality = \"load\"\ncontact_damping = 3000.0\nattached_mass_kg = 1.0\n",
         load_driven: true,
         axial_share: 0.0,
         clearance_axis: true,
@@ -85,7 +85,7 @@ pub const BASES: &[Base] = &[
     Base {
         name: "linear/load",
         preset: "6205",
-        model: "level = \"linear\"\ncausality = \"load\"\nattached_mass_kg = 1.0\n",
+        model: "level = \"linear\"\ncausality = \"load\"\ncontact_damping = 3000.0\nattached_mass_kg = 1.0\n",
         load_driven: true,
         axial_share: 0.0,
         clearance_axis: true,
