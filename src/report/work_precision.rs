@@ -143,8 +143,34 @@ pub fn cases() -> Vec<Case> {
             "linear",
             0.05,
         ),
+        mk(
+            "7008ce-skid",
+            "7008CE (ZrO2) skidding level at 6000 rpm under 300 N axial + 100 N radial, balls and cage starting at their kinematic speeds, Coulomb traction (0.02, 0.05 m/s), 10 ms",
+            SKID_7008,
+            "skidding",
+            0.01,
+        ),
     ]
 }
+
+const SKID_7008: &str = r#"
+title = "7008CE skidding at 6000 rpm, 300 N axial + 100 N radial"
+bearing = "7008ce"
+[model]
+level = "LEVEL"
+causality = "load"
+attached_mass_kg = 0.5
+contact_damping = 100.0
+[model.skidding]
+traction = { law = "coulomb", mu_max = 0.02, v_s = 0.05 }
+pocket_stiffness = 1e7
+pocket_damping = 200.0
+pocket_friction = 0.05
+drag_coefficient = 15.0
+drag_density = 10.0
+[inputs]
+initial = { "load.x" = 0.0, "load.y" = -100.0, "load.z" = 300.0, "load.mx" = 0.0, "load.my" = 0.0, "shaft.omega" = 628.318531 }
+"#;
 
 /// Settings of a study.
 #[derive(Debug, Clone, PartialEq)]
