@@ -28,7 +28,7 @@
 //! (`crate::lubrication`: film in series with Hertz, squeeze damping in parallel, the
 //! damping blended in over `DAMPING_RAMP` of Hertz approach like the contact damping).
 
-use crate::contact::{series_constant, Curvature, PointContact, Race};
+use crate::contact::{series_constant, BallRaceContacts, PointContact};
 use crate::geometry::Bearing;
 use crate::lubrication::{FilmModel, Lubricant};
 use std::f64::consts::PI;
@@ -94,14 +94,7 @@ impl RingModel {
     /// Build for bearing `b`, `dof`, contact damping `c` (N s/m per loaded ball).
     pub fn new(b: &Bearing, dof: RingDof, damping: f64) -> Self {
         let alpha = b.nominal_contact_angle();
-        let inner = PointContact::new(
-            Curvature::ball_race(b.d, b.dm, alpha, b.fi, Race::Inner),
-            b.e_eff_inner(),
-        );
-        let outer = PointContact::new(
-            Curvature::ball_race(b.d, b.dm, alpha, b.fo, Race::Outer),
-            b.e_eff_outer(),
-        );
+        let BallRaceContacts { inner, outer } = BallRaceContacts::new(b, alpha);
         let (a10, a20) = b.reference_groove_offset();
         RingModel {
             dof,

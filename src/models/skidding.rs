@@ -74,7 +74,7 @@
 //! sphere, `8 pi eta R³ w`); cage drag `M_cage = c_cage w_c` (linear viscous).
 
 use crate::contact::traction::{ContactState, TractionLaw};
-use crate::contact::{Curvature, PointContact, Race};
+use crate::contact::{BallRaceContacts, PointContact};
 use crate::error::{Error, Result};
 use crate::geometry::Bearing;
 use std::f64::consts::PI;
@@ -253,14 +253,7 @@ impl SkiddingModel {
             ));
         }
         let alpha = b.nominal_contact_angle();
-        let inner = PointContact::new(
-            Curvature::ball_race(b.d, b.dm, alpha, b.fi, Race::Inner),
-            b.e_eff_inner(),
-        );
-        let outer = PointContact::new(
-            Curvature::ball_race(b.d, b.dm, alpha, b.fo, Race::Outer),
-            b.e_eff_outer(),
-        );
+        let BallRaceContacts { inner, outer } = BallRaceContacts::new(b, alpha);
         let (a10, a20) = b.reference_groove_offset();
         // Seeded spacing scatter (SplitMix64), uniform in +-scatter * c_p / (dm/2).
         let mut s = p.seed;

@@ -144,21 +144,7 @@ impl Dopri5 {
     /// 4th-order dense output at `t` in the last accepted step `[t_old, t_new]` (Hairer's
     /// `CONTD5`): `y(t_old + θh) = r1 + θ(r2 + (1−θ)(r3 + θ(r4 + (1−θ) r5)))`.
     pub fn dense(&self, t: f64, out: &mut [f64]) -> Result<(), SolverError> {
-        let Some((a, b)) = self.last_step() else {
-            return Err(SolverError::invalid(
-                "t",
-                t,
-                "a time after an accepted step",
-            ));
-        };
-        let slack = 1e-12 * (b - a).abs().max(UROUND * b.abs());
-        if !(t >= a - slack && t <= b + slack) || out.len() != self.n {
-            return Err(SolverError::invalid(
-                "t",
-                t,
-                format!("in the last accepted step [{a}, {b}] with out.len() = n"),
-            ));
-        }
+        super::check_dense(self.last_step(), t, out.len(), self.n)?;
         let th = (t - self.t_old) / self.h_old;
         let th1 = 1.0 - th;
         let [r1, r2, r3, r4, r5] = &self.rcont;

@@ -45,6 +45,32 @@ pub(crate) const UROUND: f64 = f64::EPSILON;
 /// one cuts the step by 5) before the integration gives up.
 const MAX_NONFINITE_RETRIES: u32 = 12;
 
+/// Check a dense-output request: `t` inside the last accepted step (to round-off) and an
+/// output buffer of the system's dimension.
+pub(crate) fn check_dense(
+    last: Option<(f64, f64)>,
+    t: f64,
+    out_len: usize,
+    n: usize,
+) -> Result<(), SolverError> {
+    let Some((a, b)) = last else {
+        return Err(SolverError::invalid(
+            "t",
+            t,
+            "a time after an accepted step",
+        ));
+    };
+    let slack = 1e-12 * (b - a).abs().max(UROUND * b.abs());
+    if !(t >= a - slack && t <= b + slack) || out_len != n {
+        return Err(SolverError::invalid(
+            "t",
+            t,
+            format!("in the last accepted step [{a}, {b}] with out.len() = n"),
+        ));
+    }
+    Ok(())
+}
+
 /// A system of ordinary differential equations `y' = f(t, y)` of fixed dimension.
 ///
 /// Time-dependent inputs are the system's business: it knows `t`.

@@ -158,21 +158,7 @@ impl Rosenbrock {
     /// 3rd-order dense output at `t` in the last accepted step:
     /// `y(t_old + θh) = (1−θ) y_old + θ (y_new + (1−θ)(kd1 + θ kd2))`.
     pub fn dense(&self, t: f64, out: &mut [f64]) -> Result<(), SolverError> {
-        let Some((a, b)) = self.last_step() else {
-            return Err(SolverError::invalid(
-                "t",
-                t,
-                "a time after an accepted step",
-            ));
-        };
-        let slack = 1e-12 * (b - a).abs().max(UROUND * b.abs());
-        if !(t >= a - slack && t <= b + slack) || out.len() != self.n {
-            return Err(SolverError::invalid(
-                "t",
-                t,
-                format!("in the last accepted step [{a}, {b}] with out.len() = n"),
-            ));
-        }
+        super::check_dense(self.last_step(), t, out.len(), self.n)?;
         let th = (t - self.t_old) / self.h_old;
         let th1 = 1.0 - th;
         for (i, o) in out.iter_mut().enumerate() {
