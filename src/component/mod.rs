@@ -87,7 +87,9 @@ struct RingBody {
 /// Preallocated work space of a step (no allocation inside `do_step`).
 #[derive(Debug, Clone, Default)]
 struct Work {
-    k: [Vec<f64>; 4],
+    /// Rates at the output time, rates at a shifted time, and the shifted states (the
+    /// central difference that gives `dF/dt`).
+    k: [Vec<f64>; 3],
     y: Vec<f64>,
     aux_save: Vec<f64>,
 }
@@ -706,7 +708,7 @@ impl Component {
             for j in 0..n {
                 w.k[2][j] = w.y[j] + sign * DT_DERIV * w.k[0][j];
             }
-            let [_, dk, yk, _] = &mut w.k;
+            let [_, dk, yk] = &mut w.k;
             r = sys.eval(s + sign * DT_DERIV, yk, dk, Some(dest));
         }
         sc.aux.copy_from_slice(&w.aux_save);
