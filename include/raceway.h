@@ -20,7 +20,7 @@
 /*
  Number of variables in the table.
  */
-#define RACEWAY_VARIABLE_COUNT 80
+#define RACEWAY_VARIABLE_COUNT 86
 
 /*
  `shaft.x` (m): inner-ring centre displacement x relative to the outer ring.
@@ -171,6 +171,36 @@
  `wear.max_depth` (m): deepest wear on any race.
  */
 #define RACEWAY_VR_WEAR_MAX_DEPTH 114
+
+/*
+ `cage.x` (1): cage-centre displacement x in units of the guide clearance (full level).
+ */
+#define RACEWAY_VR_CAGE_X 115
+
+/*
+ `cage.y` (1): cage-centre displacement y in units of the guide clearance (full level).
+ */
+#define RACEWAY_VR_CAGE_Y 116
+
+/*
+ `cage.speed` (m/s): speed |v| of the cage centre (full level; its std/mean is the whirl index sigma).
+ */
+#define RACEWAY_VR_CAGE_SPEED 117
+
+/*
+ `cage.speed_ratio` (1): cage speed over its kinematic speed, 1 - cage.slip.
+ */
+#define RACEWAY_VR_CAGE_SPEED_RATIO 118
+
+/*
+ `pocket.max_force` (N): largest ball-pocket force (skidding and full levels).
+ */
+#define RACEWAY_VR_POCKET_MAX_FORCE 119
+
+/*
+ `guide.force` (N): cage guide-land force (full level).
+ */
+#define RACEWAY_VR_GUIDE_FORCE 120
 
 /*
  `K.x.x` (N/m): stiffness -dF_i/dq_j.

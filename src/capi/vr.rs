@@ -5,7 +5,7 @@
 //! edit. Regenerate with `RACEWAY_BLESS=1 cargo test --test capi_header`.
 
 /// Number of variables in the table.
-pub const RACEWAY_VARIABLE_COUNT: usize = 80;
+pub const RACEWAY_VARIABLE_COUNT: usize = 86;
 
 /// `shaft.x` (m): inner-ring centre displacement x relative to the outer ring.
 pub const RACEWAY_VR_SHAFT_X: u32 = 1;
@@ -96,6 +96,24 @@ pub const RACEWAY_VR_POWER_LOSS: u32 = 113;
 
 /// `wear.max_depth` (m): deepest wear on any race.
 pub const RACEWAY_VR_WEAR_MAX_DEPTH: u32 = 114;
+
+/// `cage.x` (1): cage-centre displacement x in units of the guide clearance (full level).
+pub const RACEWAY_VR_CAGE_X: u32 = 115;
+
+/// `cage.y` (1): cage-centre displacement y in units of the guide clearance (full level).
+pub const RACEWAY_VR_CAGE_Y: u32 = 116;
+
+/// `cage.speed` (m/s): speed |v| of the cage centre (full level; its std/mean is the whirl index sigma).
+pub const RACEWAY_VR_CAGE_SPEED: u32 = 117;
+
+/// `cage.speed_ratio` (1): cage speed over its kinematic speed, 1 - cage.slip.
+pub const RACEWAY_VR_CAGE_SPEED_RATIO: u32 = 118;
+
+/// `pocket.max_force` (N): largest ball-pocket force (skidding and full levels).
+pub const RACEWAY_VR_POCKET_MAX_FORCE: u32 = 119;
+
+/// `guide.force` (N): cage guide-land force (full level).
+pub const RACEWAY_VR_GUIDE_FORCE: u32 = 120;
 
 /// `K.x.x` (N/m): stiffness -dF_i/dq_j.
 pub const RACEWAY_VR_K_X_X: u32 = 200;

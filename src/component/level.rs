@@ -45,6 +45,14 @@ pub struct LevelOutputs {
     pub power_loss: f64,
     /// Deepest wear, m.
     pub wear_max: f64,
+    /// Cage-centre displacement `(x, y)` in units of the guide clearance.
+    pub cage_xy: [f64; 2],
+    /// Speed of the cage centre, m/s.
+    pub cage_speed: f64,
+    /// Largest ball-pocket force, N.
+    pub pocket_force: f64,
+    /// Cage guide-land force, N.
+    pub guide_force: f64,
 }
 
 /// One model level.

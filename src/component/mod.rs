@@ -59,8 +59,9 @@ const I_FORCE: usize = 16; // force.x .. moment.y
 const I_TORQUE: usize = 21;
 const I_CAGE_OMEGA: usize = 22;
 const I_DIAG: usize = 23; // cage.slip, balls.loaded, contact.max_load, contact.max_pressure, film, power, wear
-const I_K: usize = 30;
-const I_C: usize = 55;
+const I_CAGE: usize = 30; // cage.x, cage.y, cage.speed, cage.speed_ratio, pocket.max_force, guide.force
+const I_K: usize = 36;
+const I_C: usize = 61;
 
 /// Time offset of the central difference that gives output derivatives, s.
 const DT_DERIV: f64 = 1e-7;
@@ -666,6 +667,15 @@ impl Component {
             out.wear_max,
         ];
         o[I_DIAG..I_DIAG + 7].copy_from_slice(&diag);
+        let cage = [
+            out.cage_xy[0],
+            out.cage_xy[1],
+            out.cage_speed,
+            1.0 - out.cage_slip,
+            out.pocket_force,
+            out.guide_force,
+        ];
+        o[I_CAGE..I_CAGE + 6].copy_from_slice(&cage);
         for r in 0..5 {
             o[I_K + 5 * r..I_K + 5 * r + 5].copy_from_slice(&out.k[r]);
             o[I_C + 5 * r..I_C + 5 * r + 5].copy_from_slice(&out.c[r]);
@@ -1033,6 +1043,8 @@ mod tests {
         assert_eq!(at(I_CAGE_OMEGA), "cage.omega");
         assert_eq!(at(I_DIAG), "cage.slip");
         assert_eq!(at(I_DIAG + 6), "wear.max_depth");
+        assert_eq!(at(I_CAGE), "cage.x");
+        assert_eq!(at(I_CAGE + 5), "guide.force");
         assert_eq!(at(I_K), "K.x.x");
         assert_eq!(at(I_C + 24), "C.ry.ry");
         assert_eq!(variables::by_vr(variables::VR_K0).unwrap().name, "K.x.x");

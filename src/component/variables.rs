@@ -255,6 +255,48 @@ pub const SCALARS: &[Variable] = &[
         Output,
         "deepest wear on any race",
     ),
+    v(
+        "cage.x",
+        115,
+        "1",
+        Output,
+        "cage-centre displacement x in units of the guide clearance (full level)",
+    ),
+    v(
+        "cage.y",
+        116,
+        "1",
+        Output,
+        "cage-centre displacement y in units of the guide clearance (full level)",
+    ),
+    v(
+        "cage.speed",
+        117,
+        "m/s",
+        Output,
+        "speed |v| of the cage centre (full level; its std/mean is the whirl index sigma)",
+    ),
+    v(
+        "cage.speed_ratio",
+        118,
+        "1",
+        Output,
+        "cage speed over its kinematic speed, 1 - cage.slip",
+    ),
+    v(
+        "pocket.max_force",
+        119,
+        "N",
+        Output,
+        "largest ball-pocket force (skidding and full levels)",
+    ),
+    v(
+        "guide.force",
+        120,
+        "N",
+        Output,
+        "cage guide-land force (full level)",
+    ),
 ];
 
 /// Unit of row `i` (force or moment) divided by column `j` (displacement or tilt).

@@ -161,7 +161,9 @@ impl LevelModel for SkiddingLevel {
         let eps = 1e-3;
         let slip = 1.0 - x[1] * wk / (wk * wk + eps * eps);
         let mut max_p: f64 = 0.0;
+        let mut pocket: f64 = 0.0;
         for b in &self.model.balls {
+            pocket = pocket.max(b.pocket.abs());
             if b.q_i > 0.0 || b.q_o > 0.0 {
                 max_p = max_p.max(self.model.peak_pressure(b.q_i, b.q_o));
             }
@@ -197,6 +199,7 @@ impl LevelModel for SkiddingLevel {
             max_load: tot.max_load,
             max_pressure: max_p,
             power_loss: -tot.torque_shaft * m.omega,
+            pocket_force: pocket,
             ..LevelOutputs::default()
         };
         Ok(())
