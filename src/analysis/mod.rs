@@ -352,6 +352,25 @@ pub fn find_peaks(s: &Spectrum, marks: &[Mark], tol: f64) -> Vec<FoundPeak> {
         .collect()
 }
 
+/// Cage whirl instability index `sigma = std(|v|) / mean(|v|)` of the cage-centre speed
+/// (Ghaisas, Wassgren and Sadeghi, *Cage instabilities in cylindrical roller bearings*,
+/// J. Tribology 126 (2004); used by study [0], physics.md §5.5): 0 for a steady circular
+/// whirl (constant speed), growing as the motion becomes irregular. Population standard
+/// deviation over the samples given. `None` for no samples or a cage centre at rest (the
+/// ratio is undefined), never NaN.
+pub fn whirl_index(speed: &[f64]) -> Option<f64> {
+    if speed.is_empty() || speed.iter().any(|v| !v.is_finite()) {
+        return None;
+    }
+    let n = speed.len() as f64;
+    let mean = speed.iter().map(|v| v.abs()).sum::<f64>() / n;
+    if mean <= 0.0 {
+        return None;
+    }
+    let var = speed.iter().map(|v| (v.abs() - mean).powi(2)).sum::<f64>() / n;
+    Some(var.sqrt() / mean)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -419,5 +438,27 @@ mod tests {
         let s = envelope_spectrum(&x, fs, Some((900.0, 1150.0)));
         let (f, a) = s.peak_in(5.0, 100.0).unwrap();
         assert!((f - 16.0).abs() < 0.1 && (a - 0.5).abs() < 1e-6, "{f} {a}");
+    }
+    /// A steady circular whirl has sigma 0; speeds alternating between 1 and 3 have mean 2
+    /// and population std 1, so sigma = 1/2 exactly; a centre at rest has no index.
+    #[test]
+    fn whirl_index_limits() {
+        let r = 1e-4;
+        let w = 300.0;
+        let speed: Vec<f64> = (0..1000)
+            .map(|k| {
+                let t = k as f64 * 1e-5;
+                let (vx, vy) = (-r * w * (w * t).sin(), r * w * (w * t).cos());
+                vx.hypot(vy)
+            })
+            .collect();
+        assert!(whirl_index(&speed).unwrap() < 1e-12);
+        let alt: Vec<f64> = (0..100)
+            .map(|k| if k % 2 == 0 { 1.0 } else { 3.0 })
+            .collect();
+        assert!((whirl_index(&alt).unwrap() - 0.5).abs() < 1e-15);
+        assert_eq!(whirl_index(&[0.0; 10]), None);
+        assert_eq!(whirl_index(&[]), None);
+        assert_eq!(whirl_index(&[1.0, f64::NAN]), None);
     }
 }

@@ -1,7 +1,9 @@
 //! `raceway run [scene.toml] [--out DIR] [--quiet]`: run a scene stand-alone, write the time
 //! series, a summary and plots.
 
-use raceway::analysis::{amplitude_spectrum, characteristic_marks, find_peaks, Window};
+use raceway::analysis::{
+    amplitude_spectrum, characteristic_marks, find_peaks, whirl_index, Window,
+};
 use raceway::component::{Causality, Scene};
 use raceway::geometry::kinematics;
 use raceway::models::quasi_static::{azimuths, BallResult, BallState, Options, QuasiStatic};
@@ -172,6 +174,30 @@ pub fn run(a: RunArgs) -> Result<String> {
         slip.last().copied().unwrap_or(0.0)
     )
     .ok();
+    // Cage dynamics (the full level): whirl index over the second half of the run.
+    let cage_level = scene.model.level.name() == "full";
+    let sigma = if cage_level {
+        whirl_index(&col("cage.speed")[start..])
+    } else {
+        None
+    };
+    let orbit_max = col("cage.x")
+        .iter()
+        .zip(col("cage.y"))
+        .fold(0.0f64, |m, (x, y)| m.max(x.hypot(*y)));
+    if cage_level {
+        writeln!(
+            s,
+            "cage: whirl index sigma {} (second half), largest orbit {:.3} guide clearances, \
+             peak pocket force {:.2} N, peak guide force {:.2} N, final speed ratio {:.4}",
+            sigma.map_or("-".to_string(), |v| format!("{v:.4}")),
+            orbit_max,
+            peak("pocket.max_force"),
+            peak("guide.force"),
+            col("cage.speed_ratio").last().copied().unwrap_or(0.0)
+        )
+        .ok();
+    }
     writeln!(
         s,
         "shaft {:.2} Hz; characteristic frequencies (expected / found in the {} spectrum):",
@@ -199,6 +225,8 @@ pub fn run(a: RunArgs) -> Result<String> {
         "peak_force_n": [peak("force.x"), peak("force.y"), peak("force.z")],
         "peak_contact_load_n": peak("contact.max_load"), "peak_pressure_pa": peak("contact.max_pressure"),
         "final_cage_slip": slip.last().copied().unwrap_or(0.0),
+        "cage_whirl_sigma": sigma, "cage_orbit_max": if cage_level { Some(orbit_max) } else { None },
+        "peak_pocket_force_n": peak("pocket.max_force"), "peak_guide_force_n": peak("guide.force"),
         "frequencies": found.iter().map(|p| serde_json::json!({"label": p.label, "expected_hz": p.expected, "found_hz": if p.found.is_nan() { None } else { Some(p.found) }})).collect::<Vec<_>>(),
     });
     let sj = out.join("summary.json");
@@ -209,7 +237,12 @@ pub fn run(a: RunArgs) -> Result<String> {
     if quiet {
         return Ok(String::new());
     }
-    writeln!(s, "results in {}/ (series.csv, summary.txt, summary.json, orbit.png, force.png, spectrum.png, ball-loads.png, cage-slip.png)", out.display()).ok();
+    let extra = if cage_level {
+        ", cage-orbit.png, speeds.png"
+    } else {
+        ""
+    };
+    writeln!(s, "results in {}/ (series.csv, summary.txt, summary.json, orbit.png, force.png, spectrum.png, ball-loads.png, cage-slip.png{extra})", out.display()).ok();
     Ok(s)
 }
 
@@ -398,5 +431,89 @@ fn write_plots(
         }],
         &[],
     )?;
+    if scene.model.level.name() == "full" {
+        write_cage_plots(out, series)?;
+    }
     Ok(())
+}
+
+/// The full level's cage plots: the cage-centre orbit in units of the guide clearance
+/// (with the clearance circle) and the speed histories (shaft, cage, kinematic cage).
+fn write_cage_plots(out: &Path, series: &Run) -> Result<()> {
+    let col = |n: &str| series.column(n).unwrap_or(&[]).to_vec();
+    let t = &series.t;
+    let (cx, cy) = (col("cage.x"), col("cage.y"));
+    let circle: Vec<(f64, f64)> = (0..=360)
+        .map(|k| (k as f64).to_radians().sin_cos())
+        .map(|(s, c)| (c, s))
+        .collect();
+    let (ux, uy): (Vec<f64>, Vec<f64>) = circle.into_iter().unzip();
+    plot(
+        &out.join("cage-orbit.png"),
+        &Axes {
+            title: "cage-centre orbit (units of the guide clearance)",
+            x_label: "x / Cg",
+            y_label: "y / Cg",
+            equal: true,
+            ..Axes::default()
+        },
+        &[
+            Series {
+                label: "guide clearance",
+                x: &ux,
+                y: &uy,
+                points: false,
+            },
+            Series {
+                label: "cage centre",
+                x: &cx,
+                y: &cy,
+                points: false,
+            },
+        ],
+        &[],
+    )?;
+    let rpm = |v: Vec<f64>| {
+        v.into_iter()
+            .map(|w| w * 60.0 / (2.0 * std::f64::consts::PI))
+            .collect::<Vec<_>>()
+    };
+    let shaft = rpm(col("shaft.omega"));
+    let cage = rpm(col("cage.omega"));
+    let ratio = col("cage.speed_ratio");
+    let kin: Vec<f64> = cage
+        .iter()
+        .zip(&ratio)
+        .map(|(c, r)| if *r != 0.0 { c / r } else { 0.0 })
+        .collect();
+    plot(
+        &out.join("speeds.png"),
+        &Axes {
+            title: "speed histories",
+            x_label: "t (s)",
+            y_label: "speed (rpm)",
+            ..Axes::default()
+        },
+        &[
+            Series {
+                label: "shaft",
+                x: t,
+                y: &shaft,
+                points: false,
+            },
+            Series {
+                label: "cage",
+                x: t,
+                y: &cage,
+                points: false,
+            },
+            Series {
+                label: "cage, kinematic",
+                x: t,
+                y: &kin,
+                points: false,
+            },
+        ],
+        &[],
+    )
 }
