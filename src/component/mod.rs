@@ -244,8 +244,9 @@ fn make_integrator(
     ring: Option<&RingBody>,
 ) -> (Integrator, Options) {
     let n = nl + ring.map_or(0, |r| 2 * r.dofs.len());
-    // The skidding level is stiff (traction slope, numerics.md §1.2): RODAS4 by default.
-    let stiff = scene.model.level == Level::Skidding;
+    // The skidding and full levels are stiff (traction slope, numerics.md §1.2): RODAS4
+    // by default.
+    let stiff = matches!(scene.model.level, Level::Skidding | Level::Full);
     let integrator = match scene.solver.method {
         Method::Auto if stiff => Integrator::Rosenbrock(Rosenbrock::new(n)),
         Method::Auto | Method::Dopri5 => Integrator::Dopri5(Dopri5::new(n)),
@@ -307,6 +308,10 @@ fn build_level(scene: &Scene, b: &Bearing) -> Result<Box<dyn LevelModel>> {
             p.contact_damping = m.contact_damping;
             Box::new(levels::SkiddingLevel::new(b, p)?)
         }
+        Level::Full => Box::new(levels::FullLevel::new(
+            b,
+            m.full.params(b, m.race_control)?,
+        )?),
         Level::QuasiStatic => Box::new(levels::QuasiStaticLevel::new(scene, b)?),
         Level::Linear => Box::new(levels::LinearLevel::new(scene, b)?),
     })

@@ -24,6 +24,8 @@ pub enum Level {
     Ring,
     /// Ball orbit and spin, cage, traction and drag (physics.md §5.2).
     Skidding,
+    /// High-speed dynamics with cage whirl (physics.md §5.5).
+    Full,
 }
 
 impl Level {
@@ -34,6 +36,7 @@ impl Level {
             Level::QuasiStatic => "quasi_static",
             Level::Ring => "ring",
             Level::Skidding => "skidding",
+            Level::Full => "full",
         }
     }
 }
@@ -179,6 +182,109 @@ impl SkiddingSpec {
     }
 }
 
+/// `[model.full]`: options of the full level (SI unless the name says otherwise); see
+/// [`crate::models::full`]. Absent optional fields take the bearing's cage data.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct FullSpec {
+    /// Traction law at the race contacts.
+    pub traction: crate::contact::traction::TractionLaw,
+    /// `quasi_static` (ball radial/axial position in equilibrium) or `dynamic`.
+    pub ball_contacts: crate::models::full::BallContacts,
+    /// `free` (6 DOF) or `ideal` (rotation only).
+    pub cage: crate::models::full::CageModel,
+    /// Reference force of the nondimensional states, N.
+    pub reference_load_n: f64,
+    /// Factor on the boundary-layer drag of balls and cage (0: off).
+    pub drag_factor: f64,
+    /// Effective density of the oil–air mixture, kg/m³.
+    pub drag_density: f64,
+    /// Oil viscosity (drag, pockets, guide land), Pa s.
+    pub viscosity: f64,
+    /// Diametral pocket play, mm (absent: the bearing's).
+    pub pocket_clearance_mm: Option<f64>,
+    /// Pocket friction coefficient.
+    pub pocket_friction: f64,
+    /// Composite roughness of ball and pocket, µm.
+    pub pocket_roughness_um: f64,
+    /// Regularising slip speed of the pocket friction, m/s.
+    pub pocket_v_s: f64,
+    /// Guide land width, mm (absent: half the cage width).
+    pub guide_width_mm: Option<f64>,
+    /// Guide-land contact stiffness beyond `guide_eps_max`, N/m.
+    pub guide_stiffness: f64,
+    /// Eccentricity ratio where the guide-land contact starts.
+    pub guide_eps_max: f64,
+}
+
+impl Default for FullSpec {
+    fn default() -> Self {
+        let b = crate::geometry::preset("7004")
+            .and_then(|s| s.build())
+            .expect("the 7004 preset builds");
+        let p = crate::models::full::FullParams::for_bearing(&b);
+        FullSpec {
+            traction: p.traction,
+            ball_contacts: p.ball_contacts,
+            cage: p.cage,
+            reference_load_n: p.reference_load,
+            drag_factor: p.drag,
+            drag_density: p.drag_density,
+            viscosity: p.viscosity,
+            pocket_clearance_mm: None,
+            pocket_friction: p.pocket_friction,
+            pocket_roughness_um: p.pocket_roughness * 1e6,
+            pocket_v_s: p.pocket_v_s,
+            guide_width_mm: None,
+            guide_stiffness: p.guide_stiffness,
+            guide_eps_max: p.guide_eps_max,
+        }
+    }
+}
+
+impl FullSpec {
+    /// Validated model parameters for bearing `b`; errors name `model.full.<field>`.
+    pub fn params(
+        &self,
+        b: &Bearing,
+        race_control: RaceControl,
+    ) -> Result<crate::models::full::FullParams> {
+        use crate::error::{in_range, positive};
+        let f = |n: &str| format!("model.full.{n}");
+        self.traction.validate(&f("traction"))?;
+        let cp = match self.pocket_clearance_mm {
+            Some(v) => positive(&f("pocket_clearance_mm"), v)? * 1e-3,
+            None => b.cage.pocket_clearance,
+        };
+        let gw = match self.guide_width_mm {
+            Some(v) => positive(&f("guide_width_mm"), v)? * 1e-3,
+            None => 0.5 * b.cage.width,
+        };
+        Ok(crate::models::full::FullParams {
+            traction: self.traction,
+            ball_contacts: self.ball_contacts,
+            cage: self.cage,
+            reference_load: in_range(&f("reference_load_n"), self.reference_load_n, 1e-3, 1e9)?,
+            race_control,
+            drag: in_range(&f("drag_factor"), self.drag_factor, 0.0, 1e3)?,
+            drag_density: in_range(&f("drag_density"), self.drag_density, 0.0, 1e4)?,
+            viscosity: in_range(&f("viscosity"), self.viscosity, 0.0, 10.0)?,
+            pocket_clearance: cp,
+            pocket_friction: in_range(&f("pocket_friction"), self.pocket_friction, 0.0, 2.0)?,
+            pocket_roughness: in_range(
+                &f("pocket_roughness_um"),
+                self.pocket_roughness_um,
+                0.0,
+                1e3,
+            )? * 1e-6,
+            pocket_v_s: positive(&f("pocket_v_s"), self.pocket_v_s)?,
+            guide_width: gw,
+            guide_stiffness: positive(&f("guide_stiffness"), self.guide_stiffness)?,
+            guide_eps_max: in_range(&f("guide_eps_max"), self.guide_eps_max, 0.05, 0.999)?,
+        })
+    }
+}
+
 /// Model section.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -200,6 +306,8 @@ pub struct ModelSpec {
     pub attached_mass_kg: f64,
     /// Skidding level options.
     pub skidding: SkiddingSpec,
+    /// Full level options.
+    pub full: FullSpec,
     /// Load-driven: where the inner ring starts.
     pub start: Start,
 }
@@ -215,6 +323,7 @@ impl Default for ModelSpec {
             operating_point: OperatingPoint::default(),
             attached_mass_kg: 0.0,
             skidding: SkiddingSpec::default(),
+            full: FullSpec::default(),
             start: Start::default(),
         }
     }
@@ -477,6 +586,9 @@ impl Scene {
         }
         if m.level == Level::Skidding {
             m.skidding.params(&b)?;
+        }
+        if m.level == Level::Full {
+            m.full.params(&b, m.race_control)?;
         }
         let op = &m.operating_point;
         for (f, v) in [

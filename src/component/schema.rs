@@ -202,7 +202,9 @@ const fn f(
     }
 }
 
-const LEVELS: &[&str] = &["linear", "quasi_static", "ring", "skidding"];
+const LEVELS: &[&str] = &["linear", "quasi_static", "ring", "skidding", "full"];
+const BALL_CONTACTS: &[&str] = &["quasi_static", "dynamic"];
+const CAGE_MODELS: &[&str] = &["free", "ideal"];
 const CAUSALITIES: &[&str] = &["motion", "load"];
 const RACE_CONTROL: &[&str] = &["outer", "none"];
 const METHODS: &[&str] = &["auto", "dopri5", "rosenbrock"];
@@ -302,6 +304,41 @@ pub const TABLE: &[Field] = &[
     f("model.skidding.cage_drag", Float, "N m s", between(0.0, true, 1e3, true), "", "skidding level: cage drag"),
     f("model.skidding.spacing_scatter", Float, "-", between(0.0, true, 1.0, true), "", "skidding level: ball spacing scatter as a fraction of the pocket clearance"),
     f("model.skidding.seed", Int, "-", ge(0.0), "", "skidding level: seed of the scatter"),
+    f("model.full.traction.law", Enum(LAWS), "-", ANY, "the other traction fields belong to one law each", "full level: traction law at the race contacts"),
+    f("model.full.traction.mu_max", Float, "-", ANY, "law = \"coulomb\", required there", "largest traction coefficient of mu = mu_max tanh(dv/v_s)"),
+    f("model.full.traction.v_s", Float, "m/s", gt(0.0), "law = \"coulomb\" (required) or \"mixed_ehl\" (default 0.01)", "regularising slip speed"),
+    f("model.full.traction.a", Float, "-", ANY, "law = \"fitted\", required there", "A of mu = tanh(s/s_reg) [(A + B|s|) exp(-C|s|) + D]"),
+    f("model.full.traction.b", Float, "-", ANY, "law = \"fitted\", required there", "B of the fitted law"),
+    f("model.full.traction.c", Float, "-", between(0.0, true, 1e6, true), "law = \"fitted\", required there", "C of the fitted law"),
+    f("model.full.traction.d", Float, "-", ANY, "law = \"fitted\", required there", "D of the fitted law"),
+    f("model.full.traction.s_reg", Float, "-", gt(0.0), "law = \"fitted\", required there", "regularising slide-to-roll ratio"),
+    f("model.full.traction.u_min", Float, "m/s", gt(0.0), "law = \"fitted\", required there", "smallest rolling speed in the slide-to-roll ratio"),
+    f("model.full.traction.viscosity", Float, "Pa s", gt(0.0), "law = \"mixed_ehl\" (default 0.04667)", "inlet viscosity of the mixed-EHL law"),
+    f("model.full.traction.alpha_p", Float, "1/Pa", between(0.0, true, 1e-6, true), "law = \"mixed_ehl\" (default 2.1e-8)", "pressure-viscosity coefficient"),
+    f("model.full.traction.lambda_lim", Float, "-", gt(0.0), "law = \"mixed_ehl\" (default 0.04)", "limiting-shear coefficient"),
+    f("model.full.traction.f_c", Float, "-", between(0.0, true, 2.0, true), "law = \"mixed_ehl\" (default 0.1)", "boundary (asperity) friction coefficient"),
+    f("model.full.traction.roughness", Float, "m", between(0.0, true, 1e-3, true), "law = \"mixed_ehl\" (default 4.65e-7)", "composite rms roughness"),
+    f("model.full.traction.hardness", Float, "Pa", gt(0.0), "law = \"mixed_ehl\" (default 2.39e9)", "hardness"),
+    f("model.full.traction.fit.c", Float, "-", ANY, "law = \"mixed_ehl\"", "asperity load ratio regression: leading constant"),
+    f("model.full.traction.fit.e_kappa", Float, "-", ANY, "law = \"mixed_ehl\"", "asperity regression: exponent of the ellipticity"),
+    f("model.full.traction.fit.e_w", Float, "-", ANY, "law = \"mixed_ehl\"", "asperity regression: exponent of the load parameter W"),
+    f("model.full.traction.fit.e_u", Float, "-", ANY, "law = \"mixed_ehl\"", "asperity regression: exponent of the speed parameter U"),
+    f("model.full.traction.fit.e_g", Float, "-", ANY, "law = \"mixed_ehl\"", "asperity regression: exponent of the material parameter G"),
+    f("model.full.traction.fit.e_sigma", Float, "-", ANY, "law = \"mixed_ehl\"", "asperity regression: exponent of the roughness sigma/Rx"),
+    f("model.full.traction.fit.e_v", Float, "-", ANY, "law = \"mixed_ehl\"", "asperity regression: exponent of the hardness ratio H/E'"),
+    f("model.full.ball_contacts", Enum(BALL_CONTACTS), "-", ANY, "", "full level: ball radial/axial position in quasi-static equilibrium (study [0]) or integrated with the ball mass (dynamic)"),
+    f("model.full.cage", Enum(CAGE_MODELS), "-", ANY, "", "full level: cage with six degrees of freedom (free) or centred, rotation only (ideal)"),
+    f("model.full.reference_load_n", Float, "N", between(1e-3, true, 1e9, true), "", "full level: reference force F_ref of the nondimensional states (time scale sqrt(m_b D / (2 F_ref)))"),
+    f("model.full.drag_factor", Float, "-", between(0.0, true, 1e3, true), "", "full level: factor on the boundary-layer drag of balls and cage (0: off)"),
+    f("model.full.drag_density", Float, "kg/m³", between(0.0, true, 1e4, true), "", "full level: effective density of the oil–air mixture"),
+    f("model.full.viscosity", Float, "Pa s", between(0.0, true, 10.0, true), "", "full level: oil viscosity (drag, pockets, guide land)"),
+    f("model.full.pocket_clearance_mm", Float, "mm", gt(0.0), "absent: the bearing's cage pocket clearance", "full level: diametral pocket play"),
+    f("model.full.pocket_friction", Float, "-", between(0.0, true, 2.0, true), "", "full level: ball–pocket friction coefficient"),
+    f("model.full.pocket_roughness_um", Float, "µm", between(0.0, true, 1e3, true), "", "full level: composite roughness of ball and pocket"),
+    f("model.full.pocket_v_s", Float, "m/s", gt(0.0), "", "full level: regularising slip speed of the pocket friction"),
+    f("model.full.guide_width_mm", Float, "mm", gt(0.0), "absent: half the cage width", "full level: guide land width"),
+    f("model.full.guide_stiffness", Float, "N/m", gt(0.0), "", "full level: guide-land contact stiffness beyond guide_eps_max"),
+    f("model.full.guide_eps_max", Float, "-", between(0.05, true, 0.999, true), "", "full level: eccentricity ratio where the guide-land contact starts"),
     f("model.start", Enum(STARTS), "-", ANY, "", "load-driven: the inner ring starts at rest in static equilibrium under the initial loads (equilibrium) or at zero displacement (rest)"),
     f("model.attached_mass_kg", Float, "kg", ge(0.0), "", "load-driven: mass attached to the inner ring (added to its own)"),
     // Solver.
@@ -461,6 +498,12 @@ fn full_scene(bearing: BearingRef, traction: TractionLaw) -> Scene {
                 cage_drag: sk.cage_drag,
                 spacing_scatter: sk.spacing_scatter,
                 seed: sk.seed,
+            },
+            full: super::scene::FullSpec {
+                traction,
+                pocket_clearance_mm: Some(0.1),
+                guide_width_mm: Some(3.0),
+                ..Default::default()
             },
             start: d.start,
         },

@@ -2,6 +2,7 @@
 
 pub mod defects;
 pub mod effects;
+pub mod full;
 pub mod quasi_static;
 pub mod ring;
 pub mod skidding;

@@ -1,11 +1,13 @@
 //! The levels: glue between the [`LevelModel`](super::level::LevelModel) seam and the
 //! physics in `crate::models`. One file per level.
 
+pub mod full;
 pub mod linear;
 pub mod quasi_static;
 pub mod ring;
 pub mod skidding;
 
+pub use full::FullLevel;
 pub use linear::LinearLevel;
 pub use quasi_static::QuasiStaticLevel;
 pub use ring::RingLevel;

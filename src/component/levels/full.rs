@@ -1,0 +1,172 @@
+//! The `full` level: high-speed dynamics with cage whirl (physics.md §5.5, study [0])
+//! behind the level seam. States and physics: [`crate::models::full`].
+//!
+//! Memory (`aux`, in the component state so a restored state continues bit for bit): the
+//! quasi-static ball positions' warm starts (`X1, X2, flag` per ball).
+//!
+//! Outputs: stiffness `K = -dF/dq` and damping `C = -dF/dv` by forward differences of the
+//! wrench with the level's states held (the quasi-static ball positions re-solved: they
+//! are not states), on a scratch copy of `aux` so that the outputs never change the run.
+
+use super::cage_speed;
+use crate::component::level::{LevelModel, LevelOutputs, Motion};
+use crate::error::{Error, Result};
+use crate::geometry::Bearing;
+use crate::models::full::{FullModel, FullParams, Totals};
+
+/// The level.
+#[derive(Debug)]
+pub struct FullLevel {
+    model: FullModel,
+    kin_ratio: f64,
+    guide_clearance: f64,
+    last: Totals,
+    /// Scratch (allocated once): rates and aux for the output differences.
+    dx: Vec<f64>,
+    aux: Vec<f64>,
+}
+
+impl FullLevel {
+    /// Build.
+    pub fn new(b: &Bearing, p: FullParams) -> Result<Self> {
+        let model = FullModel::new(b, p)?;
+        let (n, na) = (model.n_states(), model.n_aux());
+        Ok(FullLevel {
+            model,
+            kin_ratio: cage_speed(b, 1.0),
+            guide_clearance: b.cage.guide_clearance,
+            last: Totals::default(),
+            dx: vec![0.0; n],
+            aux: vec![0.0; na],
+        })
+    }
+
+    /// The model (per-ball results of the last evaluation in `model().balls`).
+    pub fn model(&self) -> &FullModel {
+        &self.model
+    }
+
+    /// Totals of the last evaluation.
+    pub fn totals(&self) -> &Totals {
+        &self.last
+    }
+}
+
+impl LevelModel for FullLevel {
+    fn name(&self) -> &'static str {
+        "full"
+    }
+    fn n_states(&self) -> usize {
+        self.model.n_states()
+    }
+    fn n_aux(&self) -> usize {
+        self.model.n_aux()
+    }
+    fn state_atol(&self, atol_m: f64, atol: &mut [f64]) -> bool {
+        // Nondimensional states: one tolerance, a length atol_m in units of D/2 (and the
+        // same number for the scaled rates and angles).
+        let (l, _) = self.model.scales();
+        atol.fill(atol_m / l);
+        true
+    }
+    fn init(&mut self, m: &Motion, x: &mut [f64], aux: &mut [f64]) -> Result<()> {
+        if !m.omega.is_finite() {
+            return Err(Error::invalid("shaft.omega", m.omega, "a finite number"));
+        }
+        self.model.init(&m.q, m.omega, x, aux)
+    }
+    fn rhs(
+        &mut self,
+        _t: f64,
+        m: &Motion,
+        x: &[f64],
+        aux: &mut [f64],
+        dx: &mut [f64],
+        wrench: Option<&mut [f64; 5]>,
+    ) -> Result<()> {
+        let tot = self.model.eval(&m.q, &m.v, m.omega, x, aux, dx)?;
+        if let Some(w) = wrench {
+            *w = tot.wrench;
+        }
+        self.last = tot;
+        Ok(())
+    }
+    fn outputs(
+        &mut self,
+        _t: f64,
+        m: &Motion,
+        x: &[f64],
+        aux: &mut [f64],
+        out: &mut LevelOutputs,
+    ) -> Result<()> {
+        self.aux.copy_from_slice(aux);
+        let tot = self
+            .model
+            .eval(&m.q, &m.v, m.omega, x, &mut self.aux, &mut self.dx)?;
+        // K and C by forward differences of the wrench, states held.
+        let mut k = [[0.0; 5]; 5];
+        let mut c = [[0.0; 5]; 5];
+        for col in 0..10 {
+            let (mut q, mut v) = (m.q, m.v);
+            let h = if col % 5 < 3 {
+                if col < 5 {
+                    1e-9
+                } else {
+                    1e-6
+                }
+            } else if col < 5 {
+                1e-7
+            } else {
+                1e-5
+            };
+            if col < 5 {
+                q[col] += h;
+            } else {
+                v[col - 5] += h;
+            }
+            self.aux.copy_from_slice(aux);
+            let t = self
+                .model
+                .eval(&q, &v, m.omega, x, &mut self.aux, &mut self.dx)?;
+            for r in 0..5 {
+                let d = -(t.wrench[r] - tot.wrench[r]) / h;
+                if col < 5 {
+                    k[r][col] = d;
+                } else {
+                    c[r][col - 5] = d;
+                }
+            }
+        }
+        // Restore the per-ball results of the unperturbed evaluation.
+        self.aux.copy_from_slice(aux);
+        let tot = self
+            .model
+            .eval(&m.q, &m.v, m.omega, x, &mut self.aux, &mut self.dx)?;
+        self.last = tot;
+        let wk = self.kin_ratio * m.omega;
+        let wc = self.model.cage_omega(x);
+        // 1 - w_c/w_k, regularised below 1 mrad/s of kinematic cage speed (as the skidding
+        // level): a bearing at rest reports 100 % slip and the output stays finite.
+        let eps = 1e-3;
+        let slip = 1.0 - wc * wk / (wk * wk + eps * eps);
+        let (cxy, cspeed) = self.model.cage_centre(x);
+        *out = LevelOutputs {
+            wrench: tot.wrench,
+            torque: tot.torque_shaft,
+            k,
+            c,
+            cage_omega: wc,
+            cage_slip: slip,
+            balls_loaded: tot.loaded as f64,
+            max_load: tot.max_load,
+            max_pressure: tot.max_pressure,
+            power_loss: -tot.torque_shaft * m.omega,
+            cage_xy: [cxy[0] / self.guide_clearance, cxy[1] / self.guide_clearance],
+            cage_speed: cspeed,
+            pocket_force: tot.pocket_max,
+            guide_force: tot.guide_force,
+            ..LevelOutputs::default()
+        };
+        Ok(())
+    }
+}

@@ -1,0 +1,233 @@
+//! Small 3-vector helpers and the quasi-static ball position solve of the full level.
+//!
+//! # Quasi-static ball position (study [0]'s way, physics.md §4 and §5.5)
+//!
+//! In the ball plane at azimuth `psi`, coordinates `(axial, radial)`: `X = (X1, X2)` is the
+//! ball centre relative to the outer groove curvature centre and `A` the inner groove
+//! curvature centre relative to the outer one (Jones geometry, as the quasi-static and
+//! skidding levels). With `u_o = X`, `u_i = A - X`, `delta_k = |u_k| - (f_k - 1/2) D` and
+//! `Q_k = Kc_k(alpha_k) delta_k^1.5` (Hertz, Harris & Kotzalas Vol. 1 ch. 6), the ball's
+//! radial and axial force balance of the two race normal loads and the centrifugal force
+//! `Fc = m rho w_orb²` (rho the ball centre's radius) is
+//!
+//! ```text
+//! g(X) = Q_i u_i/|u_i| - Q_o u_o/|u_o| + Fc e_radial = 0
+//! ```
+//!
+//! (Harris & Kotzalas Vol. 2 ch. 3, without the gyroscopic friction couple: in the full
+//! level the gyroscopic moment is not imposed, it follows from the ball's rotational
+//! dynamics and the traction it calls up). Solved by Newton with back-tracking; the Jacobian
+//! `dg/dX = -J_i - J_o + m w² e_r e_r^T` uses `J_k = Kc [1.5 delta^0.5 n n^T +
+//! delta^1.5/l (I - n n^T)]` and neglects `dKc/d alpha` (it changes the convergence rate
+//! only, not the answer).
+
+use crate::contact::ContactTable;
+use crate::error::{Error, Result};
+
+pub(crate) type V3 = [f64; 3];
+
+#[inline]
+pub(crate) fn add(a: V3, b: V3) -> V3 {
+    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
+}
+#[inline]
+pub(crate) fn sub(a: V3, b: V3) -> V3 {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+#[inline]
+pub(crate) fn scale(a: V3, s: f64) -> V3 {
+    [a[0] * s, a[1] * s, a[2] * s]
+}
+#[inline]
+pub(crate) fn dot(a: V3, b: V3) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+#[inline]
+pub(crate) fn cross(a: V3, b: V3) -> V3 {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+#[inline]
+pub(crate) fn norm(a: V3) -> f64 {
+    dot(a, a).sqrt()
+}
+/// Tangential part of `v` in the plane normal to the unit vector `n`.
+#[inline]
+pub(crate) fn tangential(v: V3, n: V3) -> V3 {
+    sub(v, scale(n, dot(v, n)))
+}
+
+/// Constants of the position solve.
+#[derive(Debug, Clone)]
+pub(crate) struct PositionSolver {
+    /// `(f_i - 1/2) D`, `(f_o - 1/2) D`, m.
+    pub ri_free: f64,
+    pub ro_free: f64,
+    /// Radius of the outer groove curvature centre, m.
+    pub r_og: f64,
+    pub inner: ContactTable,
+    pub outer: ContactTable,
+}
+
+/// One race contact evaluated at a relative vector `u` (groove centre to ball centre, or
+/// ball centre to groove centre): `(Q, n, delta, Kc)` with `n = u/|u|` in (axial, radial).
+#[inline]
+pub(crate) fn contact(t: &ContactTable, free: f64, u: [f64; 2]) -> (f64, [f64; 2], f64, f64) {
+    let l = u[0].hypot(u[1]).max(1e-300);
+    let n = [u[0] / l, u[1] / l];
+    let delta = l - free;
+    let kc = t.eval_cos_sin(n[1], n[0]).kc;
+    let q = if delta > 0.0 {
+        kc * delta * delta.sqrt()
+    } else {
+        0.0
+    };
+    (q, n, delta, kc)
+}
+
+impl PositionSolver {
+    fn residual(&self, x: [f64; 2], a: [f64; 2], mw2: f64) -> ([f64; 2], f64) {
+        let (qi, ni, _, _) = contact(&self.inner, self.ri_free, [a[0] - x[0], a[1] - x[1]]);
+        let (qo, no, _, _) = contact(&self.outer, self.ro_free, x);
+        let fc = mw2 * (self.r_og + x[1]);
+        (
+            [qi * ni[0] - qo * no[0], qi * ni[1] - qo * no[1] + fc],
+            qi + qo + fc.abs(),
+        )
+    }
+
+    fn jac(&self, x: [f64; 2], a: [f64; 2], mw2: f64) -> [[f64; 2]; 2] {
+        let part = |t: &ContactTable, free: f64, u: [f64; 2]| {
+            let (_, n, delta, kc) = contact(t, free, u);
+            if delta <= 0.0 {
+                return [[0.0; 2]; 2];
+            }
+            let l = delta + free;
+            let kn = 1.5 * kc * delta.sqrt();
+            let kt = kc * delta * delta.sqrt() / l;
+            let mut j = [[0.0; 2]; 2];
+            for r in 0..2 {
+                for c in 0..2 {
+                    let nn = n[r] * n[c];
+                    let id = if r == c { 1.0 } else { 0.0 };
+                    j[r][c] = kn * nn + kt * (id - nn);
+                }
+            }
+            j
+        };
+        let ji = part(&self.inner, self.ri_free, [a[0] - x[0], a[1] - x[1]]);
+        let jo = part(&self.outer, self.ro_free, x);
+        let mut j = [[0.0; 2]; 2];
+        for r in 0..2 {
+            for c in 0..2 {
+                j[r][c] = -ji[r][c] - jo[r][c];
+            }
+        }
+        j[1][1] += mw2;
+        j
+    }
+
+    /// The zero-speed start: on the line of the groove centres, equal loads (or equal gaps
+    /// for a loose ball).
+    pub fn static_position(&self, a: [f64; 2]) -> [f64; 2] {
+        let la = a[0].hypot(a[1]);
+        let a0 = self.ri_free + self.ro_free;
+        if la <= 0.0 {
+            return [0.0, self.ro_free];
+        }
+        let n = [a[0] / la, a[1] / la];
+        let lo = if la <= a0 {
+            self.ro_free + 0.5 * (la - a0)
+        } else {
+            let ki = self.inner.eval_cos_sin(n[1], n[0]).kc;
+            let ko = self.outer.eval_cos_sin(n[1], n[0]).kc;
+            let r = (ko / ki).powf(2.0 / 3.0);
+            self.ro_free + (la - a0) / (1.0 + r)
+        };
+        [n[0] * lo, n[1] * lo]
+    }
+
+    /// The ball resting on the outer race under its centrifugal force alone.
+    fn free_position(&self, mw2: f64) -> [f64; 2] {
+        let k = self.outer.eval_cos_sin(1.0, 0.0).kc;
+        let mut x = [0.0, self.ro_free];
+        for _ in 0..6 {
+            let fc = (mw2 * (self.r_og + x[1])).max(0.0);
+            x[1] = self.ro_free + (fc / k).powf(2.0 / 3.0);
+        }
+        x
+    }
+
+    /// Solve `g(X) = 0` for groove offset `a` and `m w_orb²` (`mw2`), from `start` when
+    /// given (a warm start), else from the static or free-ball position. Relative tolerance
+    /// `tol` on the residual (N over the sum of the forces).
+    pub fn solve(
+        &self,
+        a: [f64; 2],
+        mw2: f64,
+        start: Option<[f64; 2]>,
+        tol: f64,
+    ) -> Result<[f64; 2]> {
+        let la = a[0].hypot(a[1]);
+        let loaded = la > self.ri_free + self.ro_free;
+        if mw2 == 0.0 && !loaded {
+            return Ok(self.static_position(a));
+        }
+        let fallback = || {
+            if loaded {
+                self.static_position(a)
+            } else {
+                self.free_position(mw2)
+            }
+        };
+        let mut x = match start {
+            Some(s) if s[0].is_finite() && s[1].is_finite() => s,
+            _ => fallback(),
+        };
+        let mut restarted = start.is_none();
+        let mut it = 0usize;
+        loop {
+            let (g, sc) = self.residual(x, a, mw2);
+            let r = g[0].hypot(g[1]);
+            if r <= tol * sc + 1e-13 {
+                return Ok(x);
+            }
+            let j = self.jac(x, a, mw2);
+            let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
+            let mut ok = false;
+            if det.is_finite() && det != 0.0 && it < 60 {
+                let dx = [
+                    -(j[1][1] * g[0] - j[0][1] * g[1]) / det,
+                    -(j[0][0] * g[1] - j[1][0] * g[0]) / det,
+                ];
+                let mut t = 1.0;
+                for _ in 0..30 {
+                    let xn = [x[0] + t * dx[0], x[1] + t * dx[1]];
+                    let (gn, _) = self.residual(xn, a, mw2);
+                    if gn[0].hypot(gn[1]) <= (1.0 - 1e-4 * t) * r {
+                        x = xn;
+                        ok = true;
+                        break;
+                    }
+                    t *= 0.5;
+                }
+            }
+            it += 1;
+            if !ok {
+                if restarted {
+                    return Err(Error::NotConverged {
+                        what: "full level: quasi-static ball position",
+                        iterations: it,
+                        residual: r,
+                    });
+                }
+                restarted = true;
+                x = fallback();
+                it = 0;
+            }
+        }
+    }
+}

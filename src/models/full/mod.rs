@@ -1,0 +1,984 @@
+//! Full high-speed dynamics with cage whirl (physics.md §5.5; study [0] after Gupta,
+//! *Advanced Dynamics of Rolling Elements*, Springer 1984, ch. 3–5; Harris & Kotzalas,
+//! *Rolling Bearing Analysis* 5th ed., Vol. 2 ch. 3 for the contact kinematics).
+//!
+//! # Bodies, frames and states
+//!
+//! Fixed frame as physics.md §0 (`z` the shaft axis). Ball `j`: centre in cylindrical
+//! coordinates `(rho_j, psi_j, z_j)`, angular velocity `w_j` in **fixed-frame Cartesian**
+//! components. A sphere's orientation angles never enter the forces (isotropic inertia,
+//! `J = m D²/10`, and a ball surface that looks the same in every orientation), so only
+//! `w_j` is integrated, and Euler's equations reduce to `J dw/dt = M` in the fixed frame
+//! exactly (no gyroscopic term for an isotropic body: the "gyroscopic moment" of the
+//! quasi-static model appears here as the moment the contacts must supply to turn `w` with
+//! the orbit).
+//!
+//! - `ball_contacts = quasi_static` (default, study [0]'s way): `rho_j, z_j` solved at every
+//!   evaluation from the ball's radial/axial balance of the two race normal loads and the
+//!   centrifugal force (`ball.rs`), warm-started from `aux`; states `(psi, w_orb, w)`.
+//!   The orbital equation is `m rho psi'' = F_t` (the Coriolis term `2 m rho' psi'` is
+//!   dropped with `rho'`, which the quasi-static position does not carry).
+//! - `dynamic`: `rho, z` and their rates integrated with the ball mass; Newton in
+//!   cylindrical coordinates `m (rho'' - rho psi'²) = F_r`, `m (rho psi'' + 2 rho' psi') =
+//!   F_t`, `m z'' = F_z`.
+//!
+//! Cage (`cage = free`, default): centre `(x, y, z)`, small tilts `(bx, by)` about `x`, `y`
+//! and rotation `theta_c`; with the polar inertia `I_p` (bearing's `cage.inertia`) and the
+//! transverse one `I_t = m_c ((r_i² + r_o²)/4 + w²/12)` (a thick ring, any dynamics text):
+//! `m_c c'' = F`, `I_t bx'' + I_p w_c by' = M_x`, `I_t by'' - I_p w_c bx' = M_y`,
+//! `I_p w_c' = M_z` (Euler's equations of a symmetric rotor linearised in the tilts; the
+//! angular momentum is `I_p w_c (by, -bx, 1) + I_t (bx', by', 0)`). `cage = ideal`: centre
+//! held on the ring axis, no tilt, only `theta_c` dynamic; pockets act tangentially only.
+//!
+//! # Nondimensional states (study [0])
+//!
+//! Lengths in `L = D/2`, time in `T0 = sqrt(m_b D / (2 F_ref))`: stored are `x/L`,
+//! `v T0/L`, angles, `w T0`; the right-hand side returns their derivatives in physical time.
+//! One absolute tolerance `atol_m / L` then fits every state.
+//!
+//! Layout: cage block first (`ideal`: `[theta, w_c]`; `free`: `[x, y, z, bx, by, theta,
+//! vx, vy, vz, bx', by', w_c]`), then per ball (`quasi_static`: `[psi, psi', wx, wy, wz]`;
+//! `dynamic`: `[rho, z, psi, rho', z', psi', wx, wy, wz]`).
+//!
+//! # Race contacts
+//!
+//! The inner groove curvature centre moves with the ring exactly as in the quasi-static
+//! and skidding levels (Jones geometry with `q = (x, y, z, rx, ry)`); inner and outer
+//! contact angles follow from the ball position; loads by Hertz with `Kc(alpha)` and the
+//! semi-axes from the bearing's [`ContactTable`]. Contact points `r_b -+ (D/2) n_k` (`n_i`,
+//! `n_o` the unit vectors of `A - X` and `X`, lifted to 3-D with `e_z`, `e_r`).
+//!
+//! Traction from the full 3-D slip: at each contact centre the sliding velocity of the ball
+//! surface over the race, `dv = (v_b + w × r) - v_race` (inner race
+//! `v_race = v_q + omega e_z × (r_c - q)`, tilt rates neglected; outer race fixed),
+//! projected on the contact plane (rolling and lateral components together). Force on the
+//! ball `-T(|dv|, u) dv/|dv|` with the scene's [`TractionLaw`] (odd, so `T(s)/s` is finite
+//! as `s -> 0`); `u` the entrainment speed along the rolling direction (mean surface speed
+//! relative to the orbiting contact point), the law's slide-to-roll ratio is `|dv|/u`.
+//! Spin: the relative angular velocity along the normal `w_s = (w - w_race)·n` gives the
+//! ball the moment `-(3 pi/16) a T(w_s a, u) n` — for the Coulomb law exactly
+//! `(3 pi/16) mu Q a tanh(w_s a / v_s)`, the full-sliding spin moment of a circular contact
+//! of radius `a` (Harris & Kotzalas Vol. 2 ch. 3; Johnson, *Contact Mechanics* §8.4), used
+//! with the ellipse's major semi-axis.
+//!
+//! # Cage interactions
+//!
+//! Pocket `j` is a cylindrical hole along the cage-radial direction at
+//! `theta_c + 2 pi j/Z`, centre at the pitch radius. The ball centre's offset from the
+//! pocket centre has a tangential and an axial component; the two directions are treated
+//! independently (physics.md: "the two pocket directions independent"): each gives a gap
+//! `h = (D_p - D)/2 - |offset|` (pocket diameter `D_p = D + c_p`, the bearing's diametral
+//! pocket play `c_p`) and a force from [`PocketLaw`] normal to the wall, plus its friction
+//! opposing the sliding of the ball surface over the wall. Equal and opposite on the cage
+//! (force and moment about the cage centre). The pocket axis is taken as the cage radial
+//! in the bearing plane (its tilt with the cage, second order in the offsets, is neglected).
+//!
+//! Guide land: [`GuideLand`] with `e` the cage centre minus the guiding ring's centre
+//! (outer ring: the origin; inner ring: the shaft's `(x, y)`), guiding ring speed 0 or
+//! `omega`. Its force passes through the cage centre (pressure normal to the land) and adds
+//! the shear torque; the land's tilting moment is not modelled. With `cage = ideal` the land
+//! is not evaluated (the centre is held by the constraint).
+//!
+//! Boundary-layer drag: each ball moves through oil–air at rest (`sphere_drag_force` on the
+//! centre's velocity, `sphere_spin_moment` on `w`); the cage's two side faces by
+//! `disk_moment` between its bore and outside diameters.
+//!
+//! # Momentum
+//!
+//! Angular momentum about `z`: `L = sum_j [m rho_j² psi_j' + J w_jz] + m_c (c × c')_z +
+//! I_p w_c`. Pocket forces and frictions are internal; `dL/dt` is the sum of the race
+//! tractions' and spin moments about `z`, the drag moments and the guide land's moment and
+//! torque ([`Totals::external_mz`]). Exact for `dynamic` ball contacts (tests/full.rs).
+
+mod ball;
+
+use crate::contact::traction::{ContactState, TractionLaw};
+use crate::contact::{BallRaceContacts, ContactTable, PointContact, Race};
+use crate::error::{Error, Result};
+use crate::geometry::{Bearing, Guidance};
+mod laws_stub;
+use crate::models::quasi_static::{BallResult, BallState, Options, QuasiStatic, RaceControl};
+use ball::{add, cross, dot, norm, scale, sub, tangential, PositionSolver, V3};
+use laws_stub::drag::{disk_moment, sphere_drag_force, sphere_spin_moment, Fluid};
+use laws_stub::guide_land::GuideLand;
+use laws_stub::pocket::PocketLaw;
+use serde::{Deserialize, Serialize};
+use std::f64::consts::PI;
+
+/// How the ball–race contacts enter.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum BallContacts {
+    /// Ball radial and axial position in quasi-static equilibrium (study [0]).
+    #[default]
+    QuasiStatic,
+    /// Radial and axial position integrated with the ball mass.
+    Dynamic,
+}
+
+/// The cage model.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum CageModel {
+    /// Six degrees of freedom.
+    #[default]
+    Free,
+    /// Centre held on the axis, no tilt; rotation only, tangential pocket forces.
+    Ideal,
+}
+
+/// Options of the full model (SI).
+#[derive(Debug, Clone, PartialEq)]
+pub struct FullParams {
+    /// Traction law at the race contacts.
+    pub traction: TractionLaw,
+    /// Ball contact treatment.
+    pub ball_contacts: BallContacts,
+    /// Cage model.
+    pub cage: CageModel,
+    /// Reference force of the nondimensional states, N.
+    pub reference_load: f64,
+    /// Race control of the quasi-static start.
+    pub race_control: RaceControl,
+    /// Factor on the boundary-layer drag of balls and cage (0: off).
+    pub drag: f64,
+    /// Effective density of the oil–air mixture (drag), kg/m³.
+    pub drag_density: f64,
+    /// Oil viscosity (drag, pockets, guide land), Pa s.
+    pub viscosity: f64,
+    /// Diametral pocket play, m.
+    pub pocket_clearance: f64,
+    /// Pocket friction coefficient.
+    pub pocket_friction: f64,
+    /// Composite roughness of ball and pocket, m.
+    pub pocket_roughness: f64,
+    /// Regularising slip speed of the pocket friction, m/s.
+    pub pocket_v_s: f64,
+    /// Guide land width, m.
+    pub guide_width: f64,
+    /// Guide land contact stiffness beyond `eps_max`, N/m.
+    pub guide_stiffness: f64,
+    /// Eccentricity ratio where the land's contact starts.
+    pub guide_eps_max: f64,
+}
+
+impl FullParams {
+    /// Defaults for bearing `b` (its cage's pocket play and width).
+    pub fn for_bearing(b: &Bearing) -> Self {
+        FullParams {
+            traction: TractionLaw::default(),
+            ball_contacts: BallContacts::default(),
+            cage: CageModel::default(),
+            reference_load: 1000.0,
+            race_control: RaceControl::Outer,
+            drag: 1.0,
+            drag_density: 10.0,
+            viscosity: 3e-3,
+            pocket_clearance: b.cage.pocket_clearance,
+            pocket_friction: 0.1,
+            pocket_roughness: 0.3e-6,
+            pocket_v_s: 0.05,
+            guide_width: 0.5 * b.cage.width,
+            guide_stiffness: 1e7,
+            guide_eps_max: 0.9,
+        }
+    }
+}
+
+/// Per-ball results of the last evaluation.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct BallInfo {
+    /// Orbital angle and speed, rad, rad/s.
+    pub psi: f64,
+    /// Orbital speed, rad/s.
+    pub w_orb: f64,
+    /// Ball centre radius and axial position, m.
+    pub rho: f64,
+    /// Axial position, m.
+    pub z: f64,
+    /// Inner and outer normal loads, N.
+    pub q_i: f64,
+    /// Outer load, N.
+    pub q_o: f64,
+    /// Contact angles, rad.
+    pub alpha_i: f64,
+    /// Outer contact angle, rad.
+    pub alpha_o: f64,
+    /// Sliding speeds at the contact centres, m/s.
+    pub slide_i: f64,
+    /// Outer sliding speed, m/s.
+    pub slide_o: f64,
+    /// Largest pocket normal force, N.
+    pub pocket: f64,
+    /// Peak Hertz pressure (larger of the two), Pa.
+    pub p_max: f64,
+}
+
+/// Totals of one evaluation.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Totals {
+    /// Wrench on the shaft.
+    pub wrench: [f64; 5],
+    /// Torque on the shaft about z, N m.
+    pub torque_shaft: f64,
+    /// External moment about z on balls and cage (races, drag, guide land), N m.
+    pub external_mz: f64,
+    /// Power dissipated at the race contacts (sliding and spin), W.
+    pub power_contacts: f64,
+    /// Balls loaded at the inner race.
+    pub loaded: usize,
+    /// Largest race load, N.
+    pub max_load: f64,
+    /// Largest Hertz pressure, Pa.
+    pub max_pressure: f64,
+    /// Largest pocket force, N.
+    pub pocket_max: f64,
+    /// Guide-land force magnitude, N.
+    pub guide_force: f64,
+}
+
+/// Physical cage kinematics.
+#[derive(Debug, Clone, Copy, Default)]
+struct CageKin {
+    c: V3,
+    b: [f64; 2],
+    theta: f64,
+    v: V3,
+    bd: [f64; 2],
+    w: f64,
+}
+
+/// Physical ball kinematics.
+#[derive(Debug, Clone, Copy, Default)]
+struct BallKin {
+    psi: f64,
+    rho: f64,
+    z: f64,
+    rho_d: f64,
+    z_d: f64,
+    w_orb: f64,
+    w: V3,
+}
+
+/// One ball's terms.
+#[derive(Debug, Clone, Copy, Default)]
+struct BallTerms {
+    /// `(rho'', psi'', z'')`.
+    acc: [f64; 3],
+    /// `dw/dt`.
+    w_dot: V3,
+    /// Force on the cage and moment about its centre.
+    cage_f: V3,
+    cage_m: V3,
+    wrench: [f64; 5],
+    torque: f64,
+    ext_mz: f64,
+    power: f64,
+    info: BallInfo,
+}
+
+/// The full model of one bearing.
+#[derive(Debug, Clone)]
+pub struct FullModel {
+    /// Options.
+    pub p: FullParams,
+    z: usize,
+    d: f64,
+    dm: f64,
+    m: f64,
+    j: f64,
+    mc: f64,
+    ip: f64,
+    it: f64,
+    a10: f64,
+    a20: f64,
+    ri: f64,
+    z_og: f64,
+    pos: PositionSolver,
+    qs: QuasiStatic,
+    pocket: PocketLaw,
+    guide: Option<GuideLand>,
+    nominal: BallRaceContacts,
+    fluid: Fluid,
+    guided_inner: bool,
+    cage_r_in: f64,
+    cage_r_out: f64,
+    /// Length and time scales.
+    l: f64,
+    t0: f64,
+    nc: usize,
+    nb: usize,
+    /// Per-ball results of the last evaluation.
+    pub balls: Vec<BallInfo>,
+}
+
+/// Relative tolerance of the quasi-static ball position solve.
+const POS_TOL: f64 = 1e-12;
+
+impl FullModel {
+    /// Build; errors name the field.
+    pub fn new(b: &Bearing, p: FullParams) -> Result<Self> {
+        let f = |n: &str| format!("model.full.{n}");
+        p.traction.validate(&f("traction"))?;
+        crate::error::positive(&f("reference_load_n"), p.reference_load)?;
+        if !(b.cage.mass > 0.0 && b.cage.inertia > 0.0) {
+            return Err(Error::invalid(
+                "bearing.cage",
+                format!("mass {} kg, inertia {} kg m²", b.cage.mass, b.cage.inertia),
+                "> 0 (give cage mass and diameters)",
+            ));
+        }
+        let qs = QuasiStatic::new(
+            b,
+            Options {
+                race_control: p.race_control,
+                gyroscopic: false,
+                ..Options::default()
+            },
+        )?;
+        let (a10, a20) = b.reference_groove_offset();
+        let alpha0 = b.nominal_contact_angle();
+        let ro_free = (b.fo - 0.5) * b.d;
+        let m = b.ball_mass();
+        let l = 0.5 * b.d;
+        let t0 = (m * b.d / (2.0 * p.reference_load)).sqrt();
+        let (cri, cro, cw) = (
+            0.5 * b.cage.inner_diameter,
+            0.5 * b.cage.outer_diameter,
+            b.cage.width,
+        );
+        let guided_inner = matches!(b.cage.guidance, Guidance::InnerRing);
+        let (nc, nb) = (
+            match p.cage {
+                CageModel::Free => 12,
+                CageModel::Ideal => 2,
+            },
+            match p.ball_contacts {
+                BallContacts::QuasiStatic => 5,
+                BallContacts::Dynamic => 9,
+            },
+        );
+        Ok(FullModel {
+            z: b.z,
+            d: b.d,
+            dm: b.dm,
+            m,
+            j: b.ball_inertia(),
+            mc: b.cage.mass,
+            ip: b.cage.inertia,
+            it: b.cage.mass * ((cri * cri + cro * cro) / 4.0 + cw * cw / 12.0),
+            a10,
+            a20,
+            ri: b.inner_groove_centre_radius(),
+            z_og: -ro_free * alpha0.sin(),
+            pos: PositionSolver {
+                ri_free: (b.fi - 0.5) * b.d,
+                ro_free,
+                r_og: b.outer_groove_centre_radius(),
+                inner: ContactTable::new(b, Race::Inner),
+                outer: ContactTable::new(b, Race::Outer),
+            },
+            qs,
+            pocket: PocketLaw {
+                ball_radius: 0.5 * b.d,
+                pocket_radius: 0.5 * (b.d + p.pocket_clearance),
+                width: cro - cri,
+                roughness: p.pocket_roughness,
+                viscosity: p.viscosity,
+                e_eff: crate::geometry::material::effective_modulus(
+                    &b.ball_material,
+                    &b.cage_material,
+                ),
+                friction: p.pocket_friction,
+                v_s: p.pocket_v_s,
+            },
+            nominal: BallRaceContacts::new(b, alpha0),
+            guide: (!matches!(b.cage.guidance, Guidance::Ball)).then_some(GuideLand {
+                radius: if guided_inner { cri } else { cro },
+                width: p.guide_width,
+                clearance: b.cage.guide_clearance,
+                viscosity: p.viscosity,
+                outer: !guided_inner,
+                contact_stiffness: p.guide_stiffness,
+                eps_max: p.guide_eps_max,
+            }),
+            fluid: Fluid {
+                density: p.drag_density,
+                viscosity: p.viscosity,
+            },
+            guided_inner,
+            cage_r_in: cri,
+            cage_r_out: cro,
+            l,
+            t0,
+            nc,
+            nb,
+            balls: vec![BallInfo::default(); b.z],
+            p,
+        })
+    }
+
+    /// Number of states.
+    pub fn n_states(&self) -> usize {
+        self.nc + self.nb * self.z
+    }
+
+    /// Number of aux values (quasi-static ball positions).
+    pub fn n_aux(&self) -> usize {
+        match self.p.ball_contacts {
+            BallContacts::QuasiStatic => 3 * self.z,
+            BallContacts::Dynamic => 0,
+        }
+    }
+
+    /// Balls.
+    pub fn z(&self) -> usize {
+        self.z
+    }
+
+    /// Length scale `D/2`, m, and time scale `T0`, s.
+    pub fn scales(&self) -> (f64, f64) {
+        (self.l, self.t0)
+    }
+
+    /// Offset of the first ball block.
+    pub fn ball0(&self) -> usize {
+        self.nc
+    }
+
+    /// States per ball.
+    pub fn per_ball(&self) -> usize {
+        self.nb
+    }
+
+    /// Cage speed `w_c`, rad/s, from the states.
+    pub fn cage_omega(&self, x: &[f64]) -> f64 {
+        x[self.nc - 1] / self.t0
+    }
+
+    /// Cage centre `(x, y)`, m, and its speed `|v|`, m/s.
+    pub fn cage_centre(&self, x: &[f64]) -> ([f64; 2], f64) {
+        match self.p.cage {
+            CageModel::Ideal => ([0.0; 2], 0.0),
+            CageModel::Free => {
+                let v = self.l / self.t0;
+                (
+                    [x[0] * self.l, x[1] * self.l],
+                    (x[6] * v).hypot(x[7] * v).hypot(x[8] * v),
+                )
+            }
+        }
+    }
+
+    fn cage_kin(&self, x: &[f64]) -> CageKin {
+        let (l, t0) = (self.l, self.t0);
+        let v = l / t0;
+        match self.p.cage {
+            CageModel::Ideal => CageKin {
+                theta: x[0],
+                w: x[1] / t0,
+                ..CageKin::default()
+            },
+            CageModel::Free => CageKin {
+                c: [x[0] * l, x[1] * l, x[2] * l],
+                b: [x[3], x[4]],
+                theta: x[5],
+                v: [x[6] * v, x[7] * v, x[8] * v],
+                bd: [x[9] / t0, x[10] / t0],
+                w: x[11] / t0,
+            },
+        }
+    }
+
+    /// Ball kinematics from its states; `rho, z` in quasi-static mode come from `pos`.
+    fn ball_kin(&self, xb: &[f64], pos: [f64; 2]) -> BallKin {
+        let (l, t0) = (self.l, self.t0);
+        match self.p.ball_contacts {
+            BallContacts::QuasiStatic => BallKin {
+                psi: xb[0],
+                w_orb: xb[1] / t0,
+                w: [xb[2] / t0, xb[3] / t0, xb[4] / t0],
+                rho: self.pos.r_og + pos[1],
+                z: self.z_og + pos[0],
+                ..BallKin::default()
+            },
+            BallContacts::Dynamic => BallKin {
+                rho: xb[0] * l,
+                z: xb[1] * l,
+                psi: xb[2],
+                rho_d: xb[3] * l / t0,
+                z_d: xb[4] * l / t0,
+                w_orb: xb[5] / t0,
+                w: [xb[6] / t0, xb[7] / t0, xb[8] / t0],
+            },
+        }
+    }
+
+    /// Groove offset `(A1, A2)` at azimuth `psi` (Jones geometry, as `models::quasi_static`).
+    fn groove_offset(&self, q: &[f64; 5], psi: f64) -> [f64; 2] {
+        let (s, c) = psi.sin_cos();
+        [
+            self.a10 + q[2] + self.ri * (q[3] * s - q[4] * c),
+            self.a20 + q[0] * c + q[1] * s,
+        ]
+    }
+
+    /// Contact state at the actual contact angle (semi-axes from the table); the film
+    /// laws' effective radius and modulus are taken at the nominal contact angle.
+    fn contact_state(
+        t: &ContactTable,
+        n: [f64; 2],
+        q: f64,
+        nominal: &PointContact,
+    ) -> ContactState {
+        let co = t.eval_cos_sin(n[1], n[0]);
+        let (a, b) = co.semi_axes(q);
+        ContactState {
+            q,
+            a,
+            b,
+            rx: nominal.curvature.rx,
+            kappa: if b > 0.0 {
+                a / b
+            } else {
+                nominal.ellipse.kappa
+            },
+            e_eff: nominal.e_eff,
+        }
+    }
+
+    /// Tangential traction on the ball from slip `dv` (3-D, in the contact plane).
+    fn traction(&self, dv: V3, u: f64, cs: &ContactState) -> V3 {
+        let s = norm(dv);
+        let se = s.max(1e-12);
+        let t = self.p.traction.force(se, u, cs);
+        scale(dv, -t / se)
+    }
+
+    /// Spin moment on the ball about the normal `n` for relative spin `ws`.
+    fn spin_moment(&self, ws: f64, u: f64, cs: &ContactState, n: V3) -> V3 {
+        if cs.q <= 0.0 {
+            return [0.0; 3];
+        }
+        let m = 3.0 * PI / 16.0 * cs.a * self.p.traction.force(ws * cs.a, u, cs);
+        scale(n, -m)
+    }
+
+    /// Everything about ball `j`. `xrel` is the ball centre relative to the outer groove
+    /// centre `(X1, X2)`.
+    #[allow(clippy::too_many_arguments)]
+    fn ball(
+        &self,
+        j: usize,
+        q: &[f64; 5],
+        v: &[f64; 5],
+        omega: f64,
+        ck: &CageKin,
+        bk: &BallKin,
+        xrel: [f64; 2],
+    ) -> BallTerms {
+        let hd = 0.5 * self.d;
+        let (s, c) = bk.psi.sin_cos();
+        let er = [c, s, 0.0];
+        let et = [-s, c, 0.0];
+        let ez = [0.0, 0.0, 1.0];
+        let a = self.groove_offset(q, bk.psi);
+        let (qi, ni2, _, _) = ball::contact(
+            &self.pos.inner,
+            self.pos.ri_free,
+            [a[0] - xrel[0], a[1] - xrel[1]],
+        );
+        let (qo, no2, _, _) = ball::contact(&self.pos.outer, self.pos.ro_free, xrel);
+        let ni = add(scale(ez, ni2[0]), scale(er, ni2[1]));
+        let no = add(scale(ez, no2[0]), scale(er, no2[1]));
+        let rb = [bk.rho * c, bk.rho * s, bk.z];
+        let vb = add(
+            add(scale(er, bk.rho_d), scale(et, bk.rho * bk.w_orb)),
+            scale(ez, bk.z_d),
+        );
+        let w = bk.w;
+        let csi = Self::contact_state(&self.pos.inner, ni2, qi, &self.nominal.inner);
+        let cso = Self::contact_state(&self.pos.outer, no2, qo, &self.nominal.outer);
+        let wo = [0.0, 0.0, bk.w_orb];
+        // Outer contact.
+        let ro_ = scale(no, hd);
+        let rco = add(rb, ro_);
+        let vbs_o = add(vb, cross(w, ro_));
+        let vcp_o = cross(wo, rco);
+        let u_o = (0.5 * dot(add(sub(vbs_o, vcp_o), scale(vcp_o, -1.0)), et)).abs();
+        let dv_o = tangential(vbs_o, no);
+        let ft_o = self.traction(dv_o, u_o, &cso);
+        let ms_o = self.spin_moment(dot(w, no), u_o, &cso, no);
+        // Inner contact.
+        let ri_ = scale(ni, -hd);
+        let rci = add(rb, ri_);
+        let vbs_i = add(vb, cross(w, ri_));
+        let wr = [0.0, 0.0, omega];
+        let vq = [v[0], v[1], v[2]];
+        let vr_i = add(vq, cross(wr, sub(rci, [q[0], q[1], q[2]])));
+        let vcp_i = cross(wo, rci);
+        let u_i = (0.5 * dot(add(sub(vbs_i, vcp_i), sub(vr_i, vcp_i)), et)).abs();
+        let dv_i = tangential(sub(vbs_i, vr_i), ni);
+        let ft_i = self.traction(dv_i, u_i, &csi);
+        let ms_i = self.spin_moment(dot(sub(w, wr), ni), u_i, &csi, ni);
+        // Forces and moments on the ball.
+        let mut f = add(add(scale(ni, qi), scale(no, -qo)), add(ft_i, ft_o));
+        let mut mom = add(add(cross(ri_, ft_i), cross(ro_, ft_o)), add(ms_i, ms_o));
+        let mut ext_mz = cross(rci, ft_i)[2] + cross(rco, ft_o)[2] + ms_i[2] + ms_o[2];
+        // Drag.
+        if self.p.drag > 0.0 {
+            let k = self.p.drag;
+            let sv = norm(vb);
+            if sv > 0.0 {
+                let fd = scale(
+                    vb,
+                    -k * sphere_drag_force(&self.fluid, self.d, sv).abs() / sv,
+                );
+                f = add(f, fd);
+                ext_mz += cross(rb, fd)[2];
+            }
+            let sw = norm(w);
+            if sw > 0.0 {
+                let md = scale(
+                    w,
+                    -k * sphere_spin_moment(&self.fluid, self.d, sw).abs() / sw,
+                );
+                mom = add(mom, md);
+                ext_mz += md[2];
+            }
+        }
+        // Pocket.
+        let th = ck.theta + 2.0 * PI * j as f64 / self.z as f64;
+        let (sp, cp) = th.sin_cos();
+        let rp = 0.5 * self.dm;
+        let erp = [cp, sp, 0.0];
+        let etp = [-sp, cp, 0.0];
+        let wc = [ck.bd[0], ck.bd[1], ck.w];
+        let lift = rp * (ck.b[0] * sp - ck.b[1] * cp);
+        let pc = add(add(ck.c, scale(erp, rp)), [0.0, 0.0, lift]);
+        let vp = add(ck.v, cross(wc, sub(pc, ck.c)));
+        let d = sub(rb, pc);
+        let dd = sub(vb, vp);
+        let side = 0.5 * self.p.pocket_clearance;
+        let mut cage_f = [0.0; 3];
+        let mut cage_m = [0.0; 3];
+        let mut pocket_max: f64 = 0.0;
+        let dirs: &[V3] = match self.p.cage {
+            CageModel::Free => &[etp, ez],
+            CageModel::Ideal => &[etp, [0.0; 3]],
+        };
+        for &nvec in dirs {
+            if nvec == [0.0; 3] {
+                continue;
+            }
+            let dn = dot(d, nvec);
+            let nw = if dn >= 0.0 { nvec } else { scale(nvec, -1.0) };
+            let h = side - dn.abs();
+            let h_dot = -dot(dd, nw);
+            let rc = add(rb, scale(nw, hd));
+            let vbs = add(vb, cross(w, scale(nw, hd)));
+            let vwall = add(vp, cross(wc, sub(rc, ck.c)));
+            let slide = tangential(sub(vbs, vwall), nw);
+            let vs = norm(slide);
+            let pf = self.pocket.force(h, h_dot, 0.5 * vs, vs);
+            let mut fb = scale(nw, -pf.normal);
+            if vs > 0.0 {
+                fb = add(fb, scale(slide, -pf.friction.abs() / vs));
+            }
+            f = add(f, fb);
+            mom = add(mom, cross(scale(nw, hd), fb));
+            cage_f = sub(cage_f, fb);
+            cage_m = sub(cage_m, cross(sub(rc, ck.c), fb));
+            pocket_max = pocket_max.max(pf.normal.abs());
+        }
+        // Accelerations.
+        let (fr, ft, fz) = (dot(f, er), dot(f, et), dot(f, ez));
+        let acc = match self.p.ball_contacts {
+            BallContacts::QuasiStatic => [0.0, ft / (self.m * bk.rho), 0.0],
+            BallContacts::Dynamic => [
+                fr / self.m + bk.rho * bk.w_orb * bk.w_orb,
+                (ft / self.m - 2.0 * bk.rho_d * bk.w_orb) / bk.rho,
+                fz / self.m,
+            ],
+        };
+        // On the shaft: the inner normal load through the groove centre (the quasi-static
+        // level's convention), the traction and spin reactions at the contact point.
+        let mut wrench = [0.0; 5];
+        let (fa, frr) = (-qi * ni2[0], -qi * ni2[1]);
+        let mb = self.ri * fa;
+        wrench[0] = frr * c;
+        wrench[1] = frr * s;
+        wrench[2] = fa;
+        wrench[3] = mb * s;
+        wrench[4] = -mb * c;
+        let fs = scale(ft_i, -1.0);
+        let ms = sub(cross(rci, fs), ms_i);
+        wrench[0] += fs[0];
+        wrench[1] += fs[1];
+        wrench[2] += fs[2];
+        wrench[3] += ms[0];
+        wrench[4] += ms[1];
+        let power = -dot(ft_i, dv_i) - dot(ft_o, dv_o) - dot(ms_i, sub(w, wr)) - dot(ms_o, w);
+        let p_max = csi_peak(&csi).max(csi_peak(&cso));
+        BallTerms {
+            acc,
+            w_dot: scale(mom, 1.0 / self.j),
+            cage_f,
+            cage_m,
+            wrench,
+            torque: ms[2],
+            ext_mz,
+            power,
+            info: BallInfo {
+                psi: bk.psi,
+                w_orb: bk.w_orb,
+                rho: bk.rho,
+                z: bk.z,
+                q_i: qi,
+                q_o: qo,
+                alpha_i: ni2[0].atan2(ni2[1]),
+                alpha_o: no2[0].atan2(no2[1]),
+                slide_i: norm(dv_i),
+                slide_o: norm(dv_o),
+                pocket: pocket_max,
+                p_max,
+            },
+        }
+    }
+
+    /// Quasi-static ball position for ball states `xb` (warm start in `aux[0..3]`:
+    /// `X1, X2, warm flag`); updates the warm start.
+    fn ball_position(&self, q: &[f64; 5], xb: &[f64], aux: &mut [f64]) -> Result<[f64; 2]> {
+        let psi = xb[0];
+        let w_orb = xb[1] / self.t0;
+        let a = self.groove_offset(q, psi);
+        let start = (aux[2] != 0.0).then_some([aux[0], aux[1]]);
+        let x = self.pos.solve(a, self.m * w_orb * w_orb, start, POS_TOL)?;
+        aux[0] = x[0];
+        aux[1] = x[1];
+        aux[2] = 1.0;
+        Ok(x)
+    }
+
+    /// Right-hand side: fills `dx` (derivatives of the stored states in physical time),
+    /// `self.balls` and the totals. Allocation-free.
+    pub fn eval(
+        &mut self,
+        q: &[f64; 5],
+        v: &[f64; 5],
+        omega: f64,
+        x: &[f64],
+        aux: &mut [f64],
+        dx: &mut [f64],
+    ) -> Result<Totals> {
+        let (l, t0) = (self.l, self.t0);
+        let ck = self.cage_kin(x);
+        let mut tot = Totals::default();
+        let mut cf = [0.0; 3];
+        let mut cm = [0.0; 3];
+        for j in 0..self.z {
+            let k = self.nc + self.nb * j;
+            let xb = &x[k..k + self.nb];
+            let (bk, xrel) = match self.p.ball_contacts {
+                BallContacts::QuasiStatic => {
+                    let xr = self.ball_position(q, xb, &mut aux[3 * j..3 * j + 3])?;
+                    (self.ball_kin(xb, xr), xr)
+                }
+                BallContacts::Dynamic => {
+                    let bk = self.ball_kin(xb, [0.0; 2]);
+                    (bk, [bk.z - self.z_og, bk.rho - self.pos.r_og])
+                }
+            };
+            let bt = self.ball(j, q, v, omega, &ck, &bk, xrel);
+            let d = &mut dx[k..k + self.nb];
+            match self.p.ball_contacts {
+                BallContacts::QuasiStatic => {
+                    d[0] = xb[1] / t0;
+                    d[1] = bt.acc[1] * t0;
+                    d[2] = bt.w_dot[0] * t0;
+                    d[3] = bt.w_dot[1] * t0;
+                    d[4] = bt.w_dot[2] * t0;
+                }
+                BallContacts::Dynamic => {
+                    d[0] = xb[3] / t0;
+                    d[1] = xb[4] / t0;
+                    d[2] = xb[5] / t0;
+                    d[3] = bt.acc[0] * t0 / l;
+                    d[4] = bt.acc[2] * t0 / l;
+                    d[5] = bt.acc[1] * t0;
+                    d[6] = bt.w_dot[0] * t0;
+                    d[7] = bt.w_dot[1] * t0;
+                    d[8] = bt.w_dot[2] * t0;
+                }
+            }
+            cf = add(cf, bt.cage_f);
+            cm = add(cm, bt.cage_m);
+            for (a, b) in tot.wrench.iter_mut().zip(bt.wrench) {
+                *a += b;
+            }
+            tot.torque_shaft += bt.torque;
+            tot.external_mz += bt.ext_mz;
+            tot.power_contacts += bt.power;
+            if bt.info.q_i > 0.0 {
+                tot.loaded += 1;
+            }
+            tot.max_load = tot.max_load.max(bt.info.q_i).max(bt.info.q_o);
+            tot.max_pressure = tot.max_pressure.max(bt.info.p_max);
+            tot.pocket_max = tot.pocket_max.max(bt.info.pocket);
+            self.balls[j] = bt.info;
+        }
+        // Cage drag (both side faces).
+        if self.p.drag > 0.0 {
+            let md = -2.0
+                * self.p.drag
+                * disk_moment(&self.fluid, self.cage_r_in, self.cage_r_out, ck.w.abs()).abs()
+                * ck.w.signum();
+            cm[2] += md;
+            tot.external_mz += md;
+        }
+        match self.p.cage {
+            CageModel::Ideal => {
+                dx[0] = x[1] / t0;
+                dx[1] = cm[2] / self.ip * t0;
+            }
+            CageModel::Free => {
+                let (e, e_dot, w_ring) = if self.guided_inner {
+                    (
+                        [ck.c[0] - q[0], ck.c[1] - q[1]],
+                        [ck.v[0] - v[0], ck.v[1] - v[1]],
+                        omega,
+                    )
+                } else {
+                    ([ck.c[0], ck.c[1]], [ck.v[0], ck.v[1]], 0.0)
+                };
+                if let Some(guide) = &self.guide {
+                    let g = guide.force(e, e_dot, ck.w, w_ring);
+                    cf[0] += g.f[0];
+                    cf[1] += g.f[1];
+                    cm[2] += g.torque;
+                    tot.external_mz += ck.c[0] * g.f[1] - ck.c[1] * g.f[0] + g.torque;
+                    tot.guide_force = g.f[0].hypot(g.f[1]);
+                    if self.guided_inner {
+                        tot.wrench[0] -= g.f[0];
+                        tot.wrench[1] -= g.f[1];
+                        tot.torque_shaft -= g.torque;
+                    }
+                }
+                let acc = scale(cf, 1.0 / self.mc);
+                let (bx_d, by_d) = (ck.bd[0], ck.bd[1]);
+                let bxdd = (cm[0] - self.ip * ck.w * by_d) / self.it;
+                let bydd = (cm[1] + self.ip * ck.w * bx_d) / self.it;
+                for k in 0..3 {
+                    dx[k] = x[6 + k] / t0;
+                    dx[6 + k] = acc[k] * t0 / l;
+                }
+                dx[3] = x[9] / t0;
+                dx[4] = x[10] / t0;
+                dx[5] = x[11] / t0;
+                dx[9] = bxdd * t0;
+                dx[10] = bydd * t0;
+                dx[11] = cm[2] / self.ip * t0;
+            }
+        }
+        Ok(tot)
+    }
+
+    /// Angular momentum about `z` of balls and cage, kg m²/s (module docs).
+    pub fn angular_momentum(&self, x: &[f64], aux: &[f64]) -> f64 {
+        let ck = self.cage_kin(x);
+        let mut lz = self.ip * ck.w + self.mc * (ck.c[0] * ck.v[1] - ck.c[1] * ck.v[0]);
+        for j in 0..self.z {
+            let k = self.nc + self.nb * j;
+            let pos = if self.n_aux() > 0 {
+                [aux[3 * j], aux[3 * j + 1]]
+            } else {
+                [0.0; 2]
+            };
+            let bk = self.ball_kin(&x[k..k + self.nb], pos);
+            lz += self.m * bk.rho * bk.rho * bk.w_orb + self.j * bk.w[2];
+        }
+        lz
+    }
+
+    /// Initial states at motion `(q, omega)`: balls at the quasi-static solution
+    /// (positions, orbital speeds and spin vectors of the Jones–Harris model with the
+    /// scene's race control, no gyroscopic friction), cage centred at the mean orbital
+    /// speed. From rest when `omega = 0`.
+    pub fn init(&mut self, q: &[f64; 5], omega: f64, x: &mut [f64], aux: &mut [f64]) -> Result<()> {
+        let (l, t0) = (self.l, self.t0);
+        let z = self.z;
+        let mut psi = [0.0; 64];
+        let mut st = [BallState::default(); 64];
+        let mut res = [BallResult::default(); 64];
+        if z > 64 {
+            return Err(Error::invalid(
+                "bearing.ball_count",
+                z,
+                "<= 64 for the full level",
+            ));
+        }
+        for (j, p) in psi.iter_mut().enumerate().take(z) {
+            *p = 2.0 * PI * j as f64 / z as f64;
+        }
+        self.qs
+            .evaluate(q, omega, &psi[..z], &mut st[..z], None, Some(&mut res[..z]))?;
+        x.fill(0.0);
+        aux.fill(0.0);
+        let mut wsum = 0.0;
+        for j in 0..z {
+            let r = &res[j];
+            let k = self.nc + self.nb * j;
+            let (s, c) = psi[j].sin_cos();
+            let wr = r.omega_r;
+            let (sb, cb) = r.beta.sin_cos();
+            // w = w_m e_z + w_R (cos beta e_z - sin beta e_r) (quasi_static/ball.rs).
+            let w = [-wr * sb * c, -wr * sb * s, r.omega_m + wr * cb];
+            wsum += r.omega_m;
+            let xr = match self.p.ball_contacts {
+                BallContacts::QuasiStatic => {
+                    let a = &mut aux[3 * j..3 * j + 3];
+                    a[0] = r.x[0];
+                    a[1] = r.x[1];
+                    a[2] = 1.0;
+                    let xb = [psi[j], r.omega_m * t0, 0.0, 0.0, 0.0];
+                    self.ball_position(q, &xb, a)?
+                }
+                BallContacts::Dynamic => {
+                    let a = self.groove_offset(q, psi[j]);
+                    self.pos
+                        .solve(a, self.m * r.omega_m * r.omega_m, Some(r.x), POS_TOL)?
+                }
+            };
+            let xb = &mut x[k..k + self.nb];
+            match self.p.ball_contacts {
+                BallContacts::QuasiStatic => {
+                    xb.copy_from_slice(&[psi[j], r.omega_m * t0, w[0] * t0, w[1] * t0, w[2] * t0]);
+                }
+                BallContacts::Dynamic => {
+                    xb.copy_from_slice(&[
+                        (self.pos.r_og + xr[1]) / l,
+                        (self.z_og + xr[0]) / l,
+                        psi[j],
+                        0.0,
+                        0.0,
+                        r.omega_m * t0,
+                        w[0] * t0,
+                        w[1] * t0,
+                        w[2] * t0,
+                    ]);
+                }
+            }
+        }
+        let nc = self.nc;
+        x[nc - 1] = wsum / z as f64 * t0;
+        Ok(())
+    }
+}
+
+fn csi_peak(cs: &ContactState) -> f64 {
+    if cs.a > 0.0 && cs.b > 0.0 {
+        1.5 * cs.q / (PI * cs.a * cs.b)
+    } else {
+        0.0
+    }
+}
