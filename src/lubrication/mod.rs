@@ -32,6 +32,14 @@
 //! from his thesis that this crate could not verify; the Reynolds squeeze film is a closed
 //! form that can be checked by hand.
 
+pub mod drag;
+pub mod guide_land;
+pub mod pocket;
+
+pub use drag::{disk_moment, sphere_drag_force, sphere_spin_moment, Fluid};
+pub use guide_land::{GuideForce, GuideLand};
+pub use pocket::{PocketForce, PocketLaw};
+
 use crate::contact::PointContact;
 use std::f64::consts::PI;
 
