@@ -66,10 +66,11 @@
 //! Pocket `j` is a cylindrical hole along the cage-radial direction at
 //! `theta_c + 2 pi j/Z`, centre at the pitch radius. The ball centre's offset from the
 //! pocket centre has a tangential and an axial component; the two directions are treated
-//! independently (physics.md: "the two pocket directions independent"): each gives a gap
-//! `h = (D_p - D)/2 - |offset|` (pocket diameter `D_p = D + c_p`, the bearing's diametral
-//! pocket play `c_p`) and a force from [`PocketLaw`] normal to the wall, plus its friction
-//! opposing the sliding of the ball surface over the wall. Equal and opposite on the cage
+//! independently (physics.md: "the two pocket directions independent"): in each, both
+//! walls act, with gaps `h = (D_p - D)/2 -+ offset` (pocket diameter `D_p = D + c_p`, the
+//! bearing's diametral pocket play `c_p`), each a force from [`PocketLaw`] normal to the
+//! wall (films on both sides, so the force is continuous through the pocket centre) plus
+//! its friction opposing the sliding of the ball surface over the wall. Equal and opposite on the cage
 //! (force and moment about the cage centre). The pocket axis is taken as the cage radial
 //! in the bearing plane (its tilt with the cage, second order in the offsets, is neglected).
 //!
@@ -96,12 +97,11 @@ use crate::contact::traction::{ContactState, TractionLaw};
 use crate::contact::{BallRaceContacts, ContactTable, PointContact, Race};
 use crate::error::{Error, Result};
 use crate::geometry::{Bearing, Guidance};
-mod laws_stub;
+use crate::lubrication::drag::{disk_moment, sphere_drag_force, sphere_spin_moment, Fluid};
+use crate::lubrication::guide_land::GuideLand;
+use crate::lubrication::pocket::PocketLaw;
 use crate::models::quasi_static::{BallResult, BallState, Options, QuasiStatic, RaceControl};
 use ball::{add, cross, dot, norm, scale, sub, tangential, PositionSolver, V3};
-use laws_stub::drag::{disk_moment, sphere_drag_force, sphere_spin_moment, Fluid};
-use laws_stub::guide_land::GuideLand;
-use laws_stub::pocket::PocketLaw;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 
@@ -672,24 +672,34 @@ impl FullModel {
                 continue;
             }
             let dn = dot(d, nvec);
-            let nw = if dn >= 0.0 { nvec } else { scale(nvec, -1.0) };
-            let h = side - dn.abs();
-            let h_dot = -dot(dd, nw);
-            let rc = add(rb, scale(nw, hd));
-            let vbs = add(vb, cross(w, scale(nw, hd)));
-            let vwall = add(vp, cross(wc, sub(rc, ck.c)));
-            let slide = tangential(sub(vbs, vwall), nw);
-            let vs = norm(slide);
-            let pf = self.pocket.force(h, h_dot, 0.5 * vs, vs);
-            let mut fb = scale(nw, -pf.normal);
-            if vs > 0.0 {
-                fb = add(fb, scale(slide, -pf.friction.abs() / vs));
+            // Both walls of the pocket (films on both sides; contact on one at most).
+            for sgn in [1.0, -1.0] {
+                let nw = scale(nvec, sgn);
+                let h = side - sgn * dn;
+                let h_dot = -dot(dd, nw);
+                let arm = scale(nw, hd);
+                let rc = add(rb, arm);
+                let vbs = add(vb, cross(w, arm));
+                let vwall = add(vp, cross(wc, sub(rc, ck.c)));
+                let slide = tangential(sub(vbs, vwall), nw);
+                let vs = norm(slide);
+                // Entrainment: mean surface speed relative to the contact point, which
+                // moves with the ball centre.
+                let u = norm(tangential(
+                    scale(add(sub(vbs, vb), sub(vwall, vb)), 0.5),
+                    nw,
+                ));
+                let pf = self.pocket.force(h, h_dot, u, vs);
+                let mut fb = scale(nw, -pf.normal);
+                if vs > 0.0 {
+                    fb = add(fb, scale(slide, -pf.friction.abs() / vs));
+                }
+                f = add(f, fb);
+                mom = add(mom, cross(arm, fb));
+                cage_f = sub(cage_f, fb);
+                cage_m = sub(cage_m, cross(sub(rc, ck.c), fb));
+                pocket_max = pocket_max.max(pf.normal.abs());
             }
-            f = add(f, fb);
-            mom = add(mom, cross(scale(nw, hd), fb));
-            cage_f = sub(cage_f, fb);
-            cage_m = sub(cage_m, cross(sub(rc, ck.c), fb));
-            pocket_max = pocket_max.max(pf.normal.abs());
         }
         // Accelerations.
         let (fr, ft, fz) = (dot(f, er), dot(f, et), dot(f, ez));
