@@ -87,7 +87,7 @@ initial = {{ "shaft.x" = {:e}, "shaft.y" = {:e}, "shaft.z" = {:e}, "shaft.rx" = 
 #[test]
 #[ignore]
 fn print_displacements() {
-    for n in [30_000.0, 60_000.0, 80_000.0, 85_000.0, 120_000.0] {
+    for n in [0.0, 30_000.0, 60_000.0, 80_000.0, 85_000.0, 120_000.0] {
         println!("{n} rpm: q = {:?}", qs_displacement(rpm(n)));
     }
 }
@@ -384,4 +384,50 @@ fn cage_orbit_inside_clearance_and_sigma_repeats() {
     assert_eq!(sigma.to_bits(), sigma2.to_bits());
     assert_eq!(orbit, orbit2);
     println!("r_max {r_max}, sigma {sigma}");
+}
+
+/// The block Jacobian equals a whole-system forward difference (free cage, both ball
+/// contact treatments).
+#[test]
+fn block_jacobian_matches_whole_differences() {
+    let b = preset("7004").unwrap().build().unwrap();
+    let omega = rpm(30_000.0);
+    let q = qs_displacement(omega);
+    for contacts in [BallContacts::QuasiStatic, BallContacts::Dynamic] {
+        let p = FullParams {
+            ball_contacts: contacts,
+            ..FullParams::for_bearing(&b)
+        };
+        let mut m = FullModel::new(&b, p).unwrap();
+        let n = m.n_states();
+        let mut x = vec![0.0; n];
+        let mut aux = vec![0.0; m.n_aux()];
+        m.init(&q, omega, &mut x, &mut aux).unwrap();
+        // Off the start: cage displaced and turning slow, so pockets act.
+        x[0] = 0.05;
+        x[11] *= 0.99;
+        let mut jx = vec![0.0; n * n];
+        let mut scratch = vec![0.0; 3 * n + aux.len()];
+        m.jacobian(&q, &[0.0; 5], omega, &x, &aux, &mut jx, &mut scratch)
+            .unwrap();
+        let mut d0 = vec![0.0; n];
+        let mut d1 = vec![0.0; n];
+        let mut a = aux.clone();
+        m.eval(&q, &[0.0; 5], omega, &x, &mut a, &mut d0).unwrap();
+        let mut worst: f64 = 0.0;
+        for c in 0..n {
+            let mut xp = x.clone();
+            let h = 1.5e-8 * x[c].abs().max(1.0);
+            xp[c] += h;
+            let mut a = aux.clone();
+            m.eval(&q, &[0.0; 5], omega, &xp, &mut a, &mut d1).unwrap();
+            for r in 0..n {
+                let fd = (d1[r] - d0[r]) / h;
+                let scale = 1e-4 * (fd.abs() + jx[r * n + c].abs()) + 1e-3 * d0[r].abs().max(1.0);
+                let err = (jx[r * n + c] - fd).abs() / scale;
+                worst = worst.max(err);
+            }
+        }
+        assert!(worst < 1.0, "{contacts:?}: worst scaled error {worst}");
+    }
 }

@@ -24,6 +24,8 @@ pub struct FullLevel {
     /// Scratch (allocated once): rates and aux for the output differences.
     dx: Vec<f64>,
     aux: Vec<f64>,
+    /// Jacobian scratch (`3 n + n_aux`).
+    jscratch: Vec<f64>,
 }
 
 impl FullLevel {
@@ -38,6 +40,7 @@ impl FullLevel {
             last: Totals::default(),
             dx: vec![0.0; n],
             aux: vec![0.0; na],
+            jscratch: vec![0.0; 3 * n + na],
         })
     }
 
@@ -68,6 +71,25 @@ impl LevelModel for FullLevel {
         let (l, _) = self.model.scales();
         atol.fill(atol_m / l);
         true
+    }
+    fn jacobian(
+        &mut self,
+        _t: f64,
+        m: &Motion,
+        x: &[f64],
+        aux: &mut [f64],
+        jx: &mut [f64],
+        jm: &mut [f64],
+        _wx: &mut [f64],
+        _wm: &mut [f64],
+    ) -> bool {
+        // Motion-driven only (load-driven, the integrator differences the whole system).
+        if !jm.is_empty() {
+            return false;
+        }
+        self.model
+            .jacobian(&m.q, &m.v, m.omega, x, aux, jx, &mut self.jscratch)
+            .is_ok()
     }
     fn init(&mut self, m: &Motion, x: &mut [f64], aux: &mut [f64]) -> Result<()> {
         if !m.omega.is_finite() {

@@ -770,6 +770,150 @@ impl FullModel {
         Ok(x)
     }
 
+    /// Ball `j`'s terms at its states `xb` (the quasi-static position re-solved, its warm
+    /// start in `aux` updated).
+    #[allow(clippy::too_many_arguments)]
+    fn ball_terms(
+        &self,
+        j: usize,
+        q: &[f64; 5],
+        v: &[f64; 5],
+        omega: f64,
+        ck: &CageKin,
+        xb: &[f64],
+        aux: &mut [f64],
+    ) -> Result<BallTerms> {
+        let (bk, xrel) = match self.p.ball_contacts {
+            BallContacts::QuasiStatic => {
+                let xr = self.ball_position(q, xb, &mut aux[3 * j..3 * j + 3])?;
+                (self.ball_kin(xb, xr), xr)
+            }
+            BallContacts::Dynamic => {
+                let bk = self.ball_kin(xb, [0.0; 2]);
+                (bk, [bk.z - self.z_og, bk.rho - self.pos.r_og])
+            }
+        };
+        Ok(self.ball(j, q, v, omega, ck, &bk, xrel))
+    }
+
+    /// Ball rates (stored-state derivatives) from its terms.
+    fn ball_rates(&self, bt: &BallTerms, xb: &[f64], d: &mut [f64]) {
+        let (l, t0) = (self.l, self.t0);
+        match self.p.ball_contacts {
+            BallContacts::QuasiStatic => {
+                d[0] = xb[1] / t0;
+                d[1] = bt.acc[1] * t0;
+                d[2] = bt.w_dot[0] * t0;
+                d[3] = bt.w_dot[1] * t0;
+                d[4] = bt.w_dot[2] * t0;
+            }
+            BallContacts::Dynamic => {
+                d[0] = xb[3] / t0;
+                d[1] = xb[4] / t0;
+                d[2] = xb[5] / t0;
+                d[3] = bt.acc[0] * t0 / l;
+                d[4] = bt.acc[2] * t0 / l;
+                d[5] = bt.acc[1] * t0;
+                d[6] = bt.w_dot[0] * t0;
+                d[7] = bt.w_dot[1] * t0;
+                d[8] = bt.w_dot[2] * t0;
+            }
+        }
+    }
+
+    /// Add to `d` (cage rates) the part linear in a change `(df, dm)` of the balls' force
+    /// on the cage and moment about its centre.
+    fn cage_rates_from(&self, df: V3, dm: V3, d: &mut [f64]) {
+        let (l, t0) = (self.l, self.t0);
+        match self.p.cage {
+            CageModel::Ideal => d[1] += dm[2] / self.ip * t0,
+            CageModel::Free => {
+                for k in 0..3 {
+                    d[6 + k] += df[k] / self.mc * t0 / l;
+                }
+                d[9] += dm[0] / self.it * t0;
+                d[10] += dm[1] / self.it * t0;
+                d[11] += dm[2] / self.ip * t0;
+            }
+        }
+    }
+
+    /// Jacobian `d(rates)/d(states)` (`n × n`, row-major) at fixed shaft motion by
+    /// block-wise forward differences: a ball's column costs one ball evaluation (its rates
+    /// and its share of the cage's), a cage column one right-hand side. `scratch` holds
+    /// `3 n + n_aux` values. Allocation-free.
+    #[allow(clippy::too_many_arguments)]
+    pub fn jacobian(
+        &mut self,
+        q: &[f64; 5],
+        v: &[f64; 5],
+        omega: f64,
+        x: &[f64],
+        aux: &[f64],
+        jx: &mut [f64],
+        scratch: &mut [f64],
+    ) -> Result<()> {
+        let n = self.n_states();
+        let na = self.n_aux();
+        let (xs, rest) = scratch.split_at_mut(n);
+        let (d0, rest) = rest.split_at_mut(n);
+        let (col, rest) = rest.split_at_mut(n);
+        let auxs = &mut rest[..na];
+        jx.fill(0.0);
+        auxs.copy_from_slice(aux);
+        self.eval(q, v, omega, x, auxs, d0)?;
+        let step = |xv: f64| 1.5e-8 * xv.abs().max(1.0);
+        // Cage columns: everything depends on the cage.
+        xs.copy_from_slice(x);
+        for c in 0..self.nc {
+            let h = step(x[c]);
+            xs[c] = x[c] + h;
+            auxs.copy_from_slice(aux);
+            self.eval(q, v, omega, xs, auxs, col)?;
+            for r in 0..n {
+                jx[r * n + c] = (col[r] - d0[r]) / h;
+            }
+            xs[c] = x[c];
+        }
+        // Ball columns: ball j's rates and the cage's.
+        let ck = self.cage_kin(x);
+        auxs.copy_from_slice(aux);
+        let nb = self.nb;
+        for j in 0..self.z {
+            let k = self.nc + nb * j;
+            let base = self.ball_terms(j, q, v, omega, &ck, &x[k..k + nb], auxs)?;
+            let mut r0 = [0.0; 9];
+            self.ball_rates(&base, &x[k..k + nb], &mut r0[..nb]);
+            let warm = [auxs.get(3 * j).copied(), auxs.get(3 * j + 1).copied()];
+            for c in 0..nb {
+                let h = step(x[k + c]);
+                let mut xb = [0.0; 9];
+                xb[..nb].copy_from_slice(&x[k..k + nb]);
+                xb[c] += h;
+                if let (Some(a0), Some(a1)) = (warm[0], warm[1]) {
+                    auxs[3 * j] = a0;
+                    auxs[3 * j + 1] = a1;
+                }
+                let bt = self.ball_terms(j, q, v, omega, &ck, &xb[..nb], auxs)?;
+                let mut r1 = [0.0; 9];
+                self.ball_rates(&bt, &xb[..nb], &mut r1[..nb]);
+                for r in 0..nb {
+                    jx[(k + r) * n + k + c] = (r1[r] - r0[r]) / h;
+                }
+                let mut dc = [0.0; 12];
+                self.cage_rates_from(
+                    sub(bt.cage_f, base.cage_f),
+                    sub(bt.cage_m, base.cage_m),
+                    &mut dc[..self.nc],
+                );
+                for (r, dcr) in dc.iter().enumerate().take(self.nc) {
+                    jx[r * n + k + c] = dcr / h;
+                }
+            }
+        }
+        Ok(())
+    }
+
     /// Right-hand side: fills `dx` (derivatives of the stored states in physical time),
     /// `self.balls` and the totals. Allocation-free.
     pub fn eval(
@@ -789,38 +933,8 @@ impl FullModel {
         for j in 0..self.z {
             let k = self.nc + self.nb * j;
             let xb = &x[k..k + self.nb];
-            let (bk, xrel) = match self.p.ball_contacts {
-                BallContacts::QuasiStatic => {
-                    let xr = self.ball_position(q, xb, &mut aux[3 * j..3 * j + 3])?;
-                    (self.ball_kin(xb, xr), xr)
-                }
-                BallContacts::Dynamic => {
-                    let bk = self.ball_kin(xb, [0.0; 2]);
-                    (bk, [bk.z - self.z_og, bk.rho - self.pos.r_og])
-                }
-            };
-            let bt = self.ball(j, q, v, omega, &ck, &bk, xrel);
-            let d = &mut dx[k..k + self.nb];
-            match self.p.ball_contacts {
-                BallContacts::QuasiStatic => {
-                    d[0] = xb[1] / t0;
-                    d[1] = bt.acc[1] * t0;
-                    d[2] = bt.w_dot[0] * t0;
-                    d[3] = bt.w_dot[1] * t0;
-                    d[4] = bt.w_dot[2] * t0;
-                }
-                BallContacts::Dynamic => {
-                    d[0] = xb[3] / t0;
-                    d[1] = xb[4] / t0;
-                    d[2] = xb[5] / t0;
-                    d[3] = bt.acc[0] * t0 / l;
-                    d[4] = bt.acc[2] * t0 / l;
-                    d[5] = bt.acc[1] * t0;
-                    d[6] = bt.w_dot[0] * t0;
-                    d[7] = bt.w_dot[1] * t0;
-                    d[8] = bt.w_dot[2] * t0;
-                }
-            }
+            let bt = self.ball_terms(j, q, v, omega, &ck, xb, aux)?;
+            self.ball_rates(&bt, xb, &mut dx[k..k + self.nb]);
             cf = add(cf, bt.cage_f);
             cm = add(cm, bt.cage_m);
             for (a, b) in tot.wrench.iter_mut().zip(bt.wrench) {
