@@ -6,7 +6,7 @@
 use raceway::component::{variables, Component};
 use raceway::contact::traction::TractionLaw;
 use raceway::geometry::preset;
-use raceway::models::full::{BallContacts, CageModel, FullModel, FullParams};
+use raceway::models::full::{BallContacts, FullModel, FullParams};
 use raceway::models::quasi_static::{BallResult, BallState, Options, QuasiStatic};
 use raceway::solver::{OdeSystem, Options as SolverOptions, Rosenbrock};
 use std::f64::consts::PI;

@@ -587,9 +587,9 @@ impl Scene {
         if m.level == Level::Skidding {
             m.skidding.params(&b)?;
         }
-        if m.level == Level::Full {
-            m.full.params(&b, m.race_control)?;
-        }
+        // The full level's options are checked whatever the level (cheap, and a bad value
+        // is named even in a scene that does not use it yet).
+        m.full.params(&b, m.race_control)?;
         let op = &m.operating_point;
         for (f, v) in [
             ("speed_rpm", op.speed_rpm),
