@@ -50,7 +50,7 @@
 //!
 //! Traction from the full 3-D slip: at each contact centre the sliding velocity of the ball
 //! surface over the race, `dv = (v_b + w × r) - v_race` (inner race
-//! `v_race = v_q + omega e_z × (r_c - q)`, tilt rates neglected; outer race fixed),
+//! `v_race = v_q + (rx', ry', omega) × (r_c - q)`; outer race fixed),
 //! projected on the contact plane (rolling and lateral components together). Force on the
 //! ball `-T(|dv|, u) dv/|dv|` with the scene's [`TractionLaw`] (odd, so `T(s)/s` is finite
 //! as `s -> 0`); `u` the entrainment speed along the rolling direction (mean surface speed
@@ -613,7 +613,8 @@ impl FullModel {
         let ri_ = scale(ni, -hd);
         let rci = add(rb, ri_);
         let vbs_i = add(vb, cross(w, ri_));
-        let wr = [0.0, 0.0, omega];
+        // Inner ring angular velocity: spin plus tilt rates.
+        let wr = [v[3], v[4], omega];
         let vq = [v[0], v[1], v[2]];
         let vr_i = add(vq, cross(wr, sub(rci, [q[0], q[1], q[2]])));
         let vcp_i = cross(wo, rci);
