@@ -261,7 +261,7 @@ pub const TABLE: &[Field] = &[
     f("bearing.materials.<body>.heat_capacity", Float, "J/(kg K)", ge(0.0), "", "specific heat capacity"),
     f("bearing.source", Text, "-", ANY, "", "where the data come from"),
     // Model.
-    f("model.level", Enum(LEVELS), "-", ANY, "effects need `ring`", "model level: constant K and C (linear), per-ball equilibrium at kinematic cage positions (quasi_static), ring on massless balls (ring), ball orbit and spin with cage, traction and drag (skidding)"),
+    f("model.level", Enum(LEVELS), "-", ANY, "effects need `ring`", "model level: constant K and C (linear), per-ball equilibrium at kinematic cage positions (quasi_static), ring on massless balls (ring), ball orbit and spin with cage, traction and drag (skidding), 6-DOF balls and cage with pocket and guide-land forces (full)"),
     f("model.causality", Enum(CAUSALITIES), "-", ANY, "", "motion: shaft motion in, forces out; load: loads in, the inner ring is integrated inside"),
     f("model.race_control", Enum(RACE_CONTROL), "-", ANY, "", "race control of the quasi-static kernels (Harris ch. 8)"),
     f("model.ring_dof", IntChoice(&[2, 5]), "-", ANY, "", "ring level: 2 (x, y) or 5 (x, y, z, rx, ry) degrees of freedom"),

@@ -4,6 +4,10 @@
 //! Memory (`aux`, in the component state so a restored state continues bit for bit): the
 //! quasi-static ball positions' warm starts (`X1, X2, flag` per ball).
 //!
+//! Jacobian (motion-driven): the model's per-ball block differences
+//! ([`FullModel::jacobian`]); load-driven, the integrator differences the whole system.
+//! RODAS4 is the level's default integrator (`solver.method = "auto"`).
+//!
 //! Outputs: stiffness `K = -dF/dq` and damping `C = -dF/dv` by forward differences of the
 //! wrench with the level's states held (the quasi-static ball positions re-solved: they
 //! are not states), on a scratch copy of `aux` so that the outputs never change the run.
