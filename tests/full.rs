@@ -408,8 +408,19 @@ fn block_jacobian_matches_whole_differences() {
         x[11] *= 0.99;
         let mut jx = vec![0.0; n * n];
         let mut scratch = vec![0.0; 3 * n + aux.len()];
-        m.jacobian(&q, &[0.0; 5], omega, &x, &aux, &mut jx, &mut scratch)
-            .unwrap();
+        m.jacobian(
+            &q,
+            &[0.0; 5],
+            omega,
+            &x,
+            &aux,
+            &mut jx,
+            &mut [],
+            &mut [],
+            &mut [],
+            &mut scratch,
+        )
+        .unwrap();
         let mut d0 = vec![0.0; n];
         let mut d1 = vec![0.0; n];
         let mut a = aux.clone();
@@ -464,4 +475,91 @@ fn startup_from_rest_slip_starts_at_one_and_falls() {
     println!("after 10 ms: cage slip {last}, cage speed {w} rad/s");
     assert!(last < 0.2 && last > -0.1, "slip {last}");
     assert!(w > 0.0);
+}
+
+/// Load-driven, the block Jacobian's ring columns and wrench rows equal whole-system
+/// differences too (same steps; agreement to 1e-6 of each column's largest entry), so a
+/// load-driven run can use it.
+#[test]
+fn block_jacobian_ring_parts_match() {
+    let b = preset("7004").unwrap().build().unwrap();
+    let omega = rpm(30_000.0);
+    let q = qs_displacement(omega);
+    let v = [1e-3, -2e-3, 0.0, 0.0, 0.0];
+    let mut m = FullModel::new(&b, FullParams::for_bearing(&b)).unwrap();
+    let n = m.n_states();
+    let mut x = vec![0.0; n];
+    let mut aux = vec![0.0; m.n_aux()];
+    m.init(&q, omega, &mut x, &mut aux).unwrap();
+    x[0] = 0.05;
+    let (mut jx, mut jm, mut wx, mut wm) = (
+        vec![0.0; n * n],
+        vec![0.0; n * 10],
+        vec![0.0; 5 * n],
+        vec![0.0; 50],
+    );
+    let mut scratch = vec![0.0; 3 * n + aux.len()];
+    m.jacobian(
+        &q,
+        &v,
+        omega,
+        &x,
+        &aux,
+        &mut jx,
+        &mut jm,
+        &mut wx,
+        &mut wm,
+        &mut scratch,
+    )
+    .unwrap();
+    let mut d0 = vec![0.0; n];
+    let mut d1 = vec![0.0; n];
+    let t0 = m
+        .eval(&q, &v, omega, &x, &mut aux.clone(), &mut d0)
+        .unwrap();
+    // Compare a column of differences `fd` with the block one `blk`.
+    let check = |what: &str, c: usize, blk: &[f64], fd: &[f64]| {
+        let big = fd.iter().chain(blk).fold(0.0f64, |a, v| a.max(v.abs()));
+        for (r, (a, b)) in blk.iter().zip(fd).enumerate() {
+            assert!(
+                (a - b).abs() <= 1e-6 * big,
+                "{what} row {r} col {c}: {a} vs {b}"
+            );
+        }
+    };
+    // Ring columns.
+    let hs = [
+        1e-10, 1e-10, 1e-10, 1e-8, 1e-8, 1e-6, 1e-6, 1e-6, 1e-4, 1e-4,
+    ];
+    for (c, h) in hs.iter().enumerate() {
+        let (mut qp, mut vp) = (q, v);
+        if c < 5 {
+            qp[c] += h;
+        } else {
+            vp[c - 5] += h;
+        }
+        let t = m
+            .eval(&qp, &vp, omega, &x, &mut aux.clone(), &mut d1)
+            .unwrap();
+        let fd: Vec<f64> = (0..n).map(|r| (d1[r] - d0[r]) / h).collect();
+        let blk: Vec<f64> = (0..n).map(|r| jm[r * 10 + c]).collect();
+        check("jm", c, &blk, &fd);
+        let fd: Vec<f64> = (0..5).map(|r| (t.wrench[r] - t0.wrench[r]) / h).collect();
+        let blk: Vec<f64> = (0..5).map(|r| wm[r * 10 + c]).collect();
+        check("wm", c, &blk, &fd);
+    }
+    // Wrench rows.
+    for c in 0..n {
+        let h = 1.5e-8 * x[c].abs().max(1.0);
+        let mut xp = x.clone();
+        xp[c] += h;
+        let t = m
+            .eval(&q, &v, omega, &xp, &mut aux.clone(), &mut d1)
+            .unwrap();
+        let fd: Vec<f64> = (0..5).map(|r| (t.wrench[r] - t0.wrench[r]) / h).collect();
+        let blk: Vec<f64> = (0..5).map(|r| wx[r * n + c]).collect();
+        check("wx", c, &blk, &fd);
+    }
+    // The shaft feels the balls: the axial force depends on the axial displacement.
+    assert!(wm[2 * 10 + 2].abs() > 1e7, "axial stiffness {}", wm[22]);
 }

@@ -4,8 +4,8 @@
 //! Memory (`aux`, in the component state so a restored state continues bit for bit): the
 //! quasi-static ball positions' warm starts (`X1, X2, flag` per ball).
 //!
-//! Jacobian (motion-driven): the model's per-ball block differences
-//! ([`FullModel::jacobian`]); load-driven, the integrator differences the whole system.
+//! Jacobian: the model's per-ball block differences ([`FullModel::jacobian`]), with the
+//! ring columns and wrench rows when load-driven.
 //! RODAS4 is the level's default integrator (`solver.method = "auto"`).
 //!
 //! Outputs: stiffness `K = -dF/dq` and damping `C = -dF/dv` by forward differences of the
@@ -84,15 +84,22 @@ impl LevelModel for FullLevel {
         aux: &mut [f64],
         jx: &mut [f64],
         jm: &mut [f64],
-        _wx: &mut [f64],
-        _wm: &mut [f64],
+        wx: &mut [f64],
+        wm: &mut [f64],
     ) -> bool {
-        // Motion-driven only (load-driven, the integrator differences the whole system).
-        if !jm.is_empty() {
-            return false;
-        }
         self.model
-            .jacobian(&m.q, &m.v, m.omega, x, aux, jx, &mut self.jscratch)
+            .jacobian(
+                &m.q,
+                &m.v,
+                m.omega,
+                x,
+                aux,
+                jx,
+                jm,
+                wx,
+                wm,
+                &mut self.jscratch,
+            )
             .is_ok()
     }
     fn init(&mut self, m: &Motion, x: &mut [f64], aux: &mut [f64]) -> Result<()> {

@@ -839,10 +839,12 @@ impl FullModel {
         }
     }
 
-    /// Jacobian `d(rates)/d(states)` (`n × n`, row-major) at fixed shaft motion by
-    /// block-wise forward differences: a ball's column costs one ball evaluation (its rates
-    /// and its share of the cage's), a cage column one right-hand side. `scratch` holds
-    /// `3 n + n_aux` values. Allocation-free.
+    /// Jacobians by block-wise forward differences, all row-major: `jx = d(rates)/d(states)`
+    /// (`n × n`), and when load-driven (non-empty slices) `jm = d(rates)/d(q, v)`
+    /// (`n × 10`), `wx = d(wrench)/d(states)` (`5 × n`), `wm = d(wrench)/d(q, v)`
+    /// (`5 × 10`). A ball's column costs one ball evaluation (its rates, its share of the
+    /// cage's and of the wrench), a cage or ring column one right-hand side. `scratch`
+    /// holds `3 n + n_aux` values. Allocation-free.
     #[allow(clippy::too_many_arguments)]
     pub fn jacobian(
         &mut self,
@@ -852,6 +854,9 @@ impl FullModel {
         x: &[f64],
         aux: &[f64],
         jx: &mut [f64],
+        jm: &mut [f64],
+        wx: &mut [f64],
+        wm: &mut [f64],
         scratch: &mut [f64],
     ) -> Result<()> {
         let n = self.n_states();
@@ -860,19 +865,53 @@ impl FullModel {
         let (d0, rest) = rest.split_at_mut(n);
         let (col, rest) = rest.split_at_mut(n);
         let auxs = &mut rest[..na];
+        let load = !jm.is_empty() && !wx.is_empty() && !wm.is_empty();
         jx.fill(0.0);
+        jm.fill(0.0);
+        wx.fill(0.0);
+        wm.fill(0.0);
         auxs.copy_from_slice(aux);
-        self.eval(q, v, omega, x, auxs, d0)?;
+        let tot0 = self.eval(q, v, omega, x, auxs, d0)?;
         let step = |xv: f64| 1.5e-8 * xv.abs().max(1.0);
+        if load {
+            // Ring columns: displacements and velocities (steps as the outputs' K and C).
+            for c in 0..10 {
+                let (mut qp, mut vp) = (*q, *v);
+                let h = match c {
+                    0..=2 => 1e-10,
+                    3 | 4 => 1e-8,
+                    5..=7 => 1e-6,
+                    _ => 1e-4,
+                };
+                if c < 5 {
+                    qp[c] += h;
+                } else {
+                    vp[c - 5] += h;
+                }
+                auxs.copy_from_slice(aux);
+                let t = self.eval(&qp, &vp, omega, x, auxs, col)?;
+                for r in 0..n {
+                    jm[r * 10 + c] = (col[r] - d0[r]) / h;
+                }
+                for r in 0..5 {
+                    wm[r * 10 + c] = (t.wrench[r] - tot0.wrench[r]) / h;
+                }
+            }
+        }
         // Cage columns: everything depends on the cage.
         xs.copy_from_slice(x);
         for c in 0..self.nc {
             let h = step(x[c]);
             xs[c] = x[c] + h;
             auxs.copy_from_slice(aux);
-            self.eval(q, v, omega, xs, auxs, col)?;
+            let t = self.eval(q, v, omega, xs, auxs, col)?;
             for r in 0..n {
                 jx[r * n + c] = (col[r] - d0[r]) / h;
+            }
+            if load {
+                for r in 0..5 {
+                    wx[r * n + c] = (t.wrench[r] - tot0.wrench[r]) / h;
+                }
             }
             xs[c] = x[c];
         }
@@ -909,6 +948,11 @@ impl FullModel {
                 );
                 for (r, dcr) in dc.iter().enumerate().take(self.nc) {
                     jx[r * n + k + c] = dcr / h;
+                }
+                if load {
+                    for r in 0..5 {
+                        wx[r * n + k + c] = (bt.wrench[r] - base.wrench[r]) / h;
+                    }
                 }
             }
         }
