@@ -150,8 +150,32 @@ pub fn cases() -> Vec<Case> {
             "skidding",
             0.01,
         ),
+        Case {
+            h: 2e-5,
+            ..mk(
+                "7004-full-30k",
+                "7004 hybrid at 30 000 rpm, Fa 2000 N, Fr 400 N, full level (6-DOF balls and free cage, quasi-static ball-race contacts), motion-driven at the quasi-static displacement, 5 ms = 2.5 shaft revolutions (examples/scenes/7004-30000.toml)",
+                FULL_7004_30K,
+                "full",
+                0.005,
+            )
+        },
+        Case {
+            h: 2e-5,
+            ..mk(
+                "7004-full-120k",
+                "as 7004-full-30k at 120 000 rpm (examples/scenes/7004-120000.toml), 2 ms = 4 shaft revolutions",
+                FULL_7004_120K,
+                "full",
+                0.002,
+            )
+        },
     ]
 }
+
+/// The full-level cases use the catalogue's scenes (the study overrides their solver).
+const FULL_7004_30K: &str = include_str!("../../examples/scenes/7004-30000.toml");
+const FULL_7004_120K: &str = include_str!("../../examples/scenes/7004-120000.toml");
 
 const SKID_7008: &str = r#"
 title = "7008CE skidding at 6000 rpm, 300 N axial + 100 N radial"

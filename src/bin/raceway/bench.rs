@@ -30,6 +30,10 @@ pub struct BenchArgs {
     /// With --stability: the long matrix.
     #[arg(long)]
     pub long: bool,
+    /// Only these work-precision cases (repeatable; default all). For a quick look into
+    /// another folder: the docs are regenerated from all cases.
+    #[arg(long = "case")]
+    pub cases: Vec<String>,
 }
 
 /// Run; returns what to print.
@@ -48,6 +52,13 @@ pub fn bench(a: BenchArgs) -> Result<String> {
         verbose: true,
         ..Config::default()
     };
+    if !a.cases.is_empty() {
+        let known: Vec<&str> = cfg.cases.iter().map(|c| c.name).collect();
+        if let Some(bad) = a.cases.iter().find(|n| !known.contains(&n.as_str())) {
+            return Err(Error::invalid("--case", bad, format!("one of {}", known.join(", "))));
+        }
+        cfg.cases.retain(|c| a.cases.iter().any(|n| n == c.name));
+    }
     if a.quick {
         cfg.rtols = vec![1e-3, 1e-5, 1e-7];
         cfg.repeats = 1;
