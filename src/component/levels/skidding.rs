@@ -13,11 +13,12 @@ pub struct SkiddingLevel {
     model: SkiddingModel,
     dofs: &'static [usize],
     last: SkidTotals,
-    /// Jacobian scratch for the outputs' stiffness and damping (allocated once).
-    jx: Vec<f64>,
-    jm: Vec<f64>,
-    wx: Vec<f64>,
-    wm: Vec<f64>,
+    /// The last right-hand side and its arguments `(q, v, omega, x)`: the component
+    /// evaluates the same point several times (the outputs, the base of the `dF/dt`
+    /// difference, the next step's first stage), so an exact repeat is served from here.
+    memo_key: Vec<f64>,
+    memo_dx: Vec<f64>,
+    memo_valid: bool,
 }
 
 impl SkiddingLevel {
@@ -34,10 +35,9 @@ impl SkiddingLevel {
             model,
             dofs,
             last: SkidTotals::default(),
-            jx: vec![0.0; n * n],
-            jm: vec![0.0; n * 10],
-            wx: vec![0.0; 5 * n],
-            wm: vec![0.0; 50],
+            memo_key: vec![0.0; 11 + n],
+            memo_dx: vec![0.0; n],
+            memo_valid: false,
         })
     }
 
@@ -53,6 +53,23 @@ impl SkiddingLevel {
             .balls
             .iter()
             .map(|b: &BallState| (b.dv_i, b.dv_o))
+    }
+
+    /// Is `(m, x)` the point of the last evaluation (bit for bit)?
+    fn memo_hit(&self, m: &Motion, x: &[f64]) -> bool {
+        let k = &self.memo_key;
+        self.memo_valid && k[..5] == m.q && k[5..10] == m.v && k[10] == m.omega && k[11..] == *x
+    }
+
+    fn memo_store(&mut self, m: &Motion, x: &[f64], dx: &[f64]) {
+        let k = &mut self.memo_key;
+        k[..5].copy_from_slice(&m.q);
+        k[5..10].copy_from_slice(&m.v);
+        k[10] = m.omega;
+        k[11..].copy_from_slice(x);
+        self.memo_dx.copy_from_slice(dx);
+        // NaN never compares equal, so a NaN point is never served from the memo.
+        self.memo_valid = true;
     }
 
     /// Totals of the last evaluation.
@@ -122,7 +139,14 @@ impl LevelModel for SkiddingLevel {
         dx: &mut [f64],
         wrench: Option<&mut [f64; 5]>,
     ) -> Result<()> {
-        let tot = self.model.eval(&m.q, &m.v, m.omega, x, dx);
+        let tot = if self.memo_hit(m, x) {
+            dx.copy_from_slice(&self.memo_dx);
+            self.last
+        } else {
+            let tot = self.model.eval(&m.q, &m.v, m.omega, x, dx);
+            self.memo_store(m, x, dx);
+            tot
+        };
         if let Some(w) = wrench {
             *w = tot.wrench;
             if self.dofs.len() == 2 {
@@ -134,17 +158,14 @@ impl LevelModel for SkiddingLevel {
     }
     fn outputs(
         &mut self,
-        t: f64,
+        _t: f64,
         m: &Motion,
         x: &[f64],
-        aux: &mut [f64],
+        _aux: &mut [f64],
         out: &mut LevelOutputs,
     ) -> Result<()> {
-        // dx is not needed: evaluate into a stack buffer of the cage part only is not
-        // possible (the model writes all rates), so reuse the balls' scratch via rhs.
-        let mut w = [0.0; 5];
         let n = self.model.n_states();
-        // Fixed-size scratch (no allocation): rates are discarded.
+        // Fixed-size scratch (no allocation) for the rates.
         let mut buf = [0.0; 2 + 3 * MAX_BALLS];
         if n > buf.len() {
             return Err(Error::invalid(
@@ -153,8 +174,19 @@ impl LevelModel for SkiddingLevel {
                 "<= 64 for the skidding level",
             ));
         }
-        self.rhs(t, m, x, aux, &mut buf[..n], Some(&mut w))?;
-        let tot = self.last;
+        // The rates, the wrench and its stiffness -dF/dq and damping -dF/dv at the current
+        // ball positions (balls held), analytically in one pass.
+        let mut kf = [[0.0; 5]; 5];
+        let mut cf = [[0.0; 5]; 5];
+        let tot =
+            self.model
+                .eval_with_stiffness(&m.q, &m.v, m.omega, x, &mut buf[..n], &mut kf, &mut cf);
+        self.memo_store(m, x, &buf[..n]);
+        self.last = tot;
+        let mut w = tot.wrench;
+        if self.dofs.len() == 2 {
+            w[2..].fill(0.0);
+        }
         let (wk, _) = self.model.kinematic(m.omega);
         // 1 - w_c/w_k, regularised below 1 mrad/s of kinematic cage speed so that a
         // bearing at rest reports 100 % slip and the output stays finite.
@@ -168,24 +200,12 @@ impl LevelModel for SkiddingLevel {
                 max_p = max_p.max(self.model.peak_pressure(b.q_i, b.q_o));
             }
         }
-        // Stiffness -dF/dq and damping -dF/dv at the current ball positions (balls held).
-        self.model.jacobian(
-            &m.q,
-            &m.v,
-            m.omega,
-            x,
-            &mut self.jx,
-            &mut self.jm,
-            &mut self.wx,
-            &mut self.wm,
-            self.dofs,
-        );
         let mut k = [[0.0; 5]; 5];
         let mut c = [[0.0; 5]; 5];
         for &r in self.dofs {
             for &col in self.dofs {
-                k[r][col] = -self.wm[r * 10 + col];
-                c[r][col] = -self.wm[r * 10 + 5 + col];
+                k[r][col] = kf[r][col];
+                c[r][col] = cf[r][col];
             }
         }
         *out = LevelOutputs {
