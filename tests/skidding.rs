@@ -343,7 +343,7 @@ fn explore_7008ce_balls() {
     let mut dy = vec![0.0; n + 2];
     sys.rhs(0.0, &y, &mut dy).unwrap();
     let (wk, _) = sys.m.kinematic(w);
-    println!("wk {wk} wc {} ", y[1]);
+    println!("wk {wk} wc {} ", y[sys.m.cage_index() + 1]);
     for b in sys.m.balls.iter().take(3) {
         println!("{b:?}");
     }

@@ -266,8 +266,10 @@ pub struct SkidTotals {
     pub max_load: f64,
 }
 
-/// State layout: `[theta_c, w_c, (psi_j, w_b_j, w_a_j) for j in 0..Z]`.
-pub const BALL0: usize = 2;
+/// State layout: `[(psi_j, w_b_j, w_a_j) for j in 0..Z, theta_c, w_c]`: independent
+/// three-state blocks (one per ball) followed by the cage, so that with the ring's states
+/// after them the Jacobian is block-arrowhead ([`crate::solver::BlockArrowhead`]).
+pub const BALL0: usize = 0;
 
 /// The skidding model of one bearing.
 #[derive(Debug, Clone)]
@@ -296,6 +298,8 @@ pub struct SkiddingModel {
     ax_o: [f64; 2],
     /// `Kc_i^(1/3)`.
     kc3_i: f64,
+    /// `Kc_o^(1/3)`.
+    kc3_o: f64,
     /// Lever of the lateral friction about the inner groove centre, `f_i D`.
     fid: f64,
     /// Pocket centre offsets, rad.
@@ -349,6 +353,7 @@ impl SkiddingModel {
             ax_i: axes(&inner),
             ax_o: axes(&outer),
             kc3_i: inner.kc.cbrt(),
+            kc3_o: outer.kc.cbrt(),
             fid: b.fi * b.d,
             z: b.z,
             d: b.d,
@@ -372,9 +377,14 @@ impl SkiddingModel {
         })
     }
 
-    /// Number of states `2 + 3 Z`.
+    /// Number of states `3 Z + 2`.
     pub fn n_states(&self) -> usize {
-        BALL0 + 3 * self.z
+        3 * self.z + 2
+    }
+
+    /// Index of the cage angle (the cage speed follows it).
+    pub fn cage_index(&self) -> usize {
+        3 * self.z
     }
 
     /// Balls.
@@ -399,8 +409,9 @@ impl SkiddingModel {
     /// kinematic speeds of `omega` (from rest when `omega = 0`).
     pub fn init(&self, omega: f64, x: &mut [f64]) {
         let (wb, ws) = self.kinematic(omega);
-        x[0] = 0.0;
-        x[1] = wb;
+        let ic = self.cage_index();
+        x[ic] = 0.0;
+        x[ic + 1] = wb;
         for j in 0..self.z {
             let k = BALL0 + 3 * j;
             x[k] = 2.0 * PI * j as f64 / self.z as f64 + self.offsets[j];
@@ -412,7 +423,7 @@ impl SkiddingModel {
     /// Angular momentum about z of balls and cage, kg m²/s.
     pub fn angular_momentum(&self, x: &[f64]) -> f64 {
         let r2 = 0.25 * self.dm * self.dm;
-        let mut l = self.jc * x[1];
+        let mut l = self.jc * x[self.cage_index() + 1];
         for j in 0..self.z {
             let k = BALL0 + 3 * j;
             l += self.m * r2 * x[k + 1] + self.j * self.cos_a * x[k + 2];
@@ -423,7 +434,8 @@ impl SkiddingModel {
     /// Kinetic energy of balls (orbit and rolling spin) and cage, J.
     pub fn kinetic_energy(&self, x: &[f64]) -> f64 {
         let r2 = 0.25 * self.dm * self.dm;
-        let mut e = 0.5 * self.jc * x[1] * x[1];
+        let wc = x[self.cage_index() + 1];
+        let mut e = 0.5 * self.jc * wc * wc;
         for j in 0..self.z {
             let k = BALL0 + 3 * j;
             e += 0.5 * self.m * r2 * x[k + 1].powi(2) + 0.5 * self.j * x[k + 2].powi(2);
@@ -693,7 +705,11 @@ impl SkiddingModel {
         let (pt, bt) = Self::pen(-xi - cp, w);
         let pocket = -p.pocket_stiffness * (pl - pt) - p.pocket_damping * (bl + bt) * xi_dot;
         let slide = hd * (w_a * self.cos_a - w_c);
-        let m_fric = -hd * p.pocket_friction * pocket.abs() * (slide / p.friction_v_s).tanh();
+        let m_fric = if pocket == 0.0 {
+            0.0
+        } else {
+            -hd * p.pocket_friction * pocket.abs() * (slide / p.friction_v_s).tanh()
+        };
         // Drag.
         let vb = r * w_b;
         let f_d = p.drag_coefficient * p.drag_density * PI * self.d * self.d * vb * vb.abs() / 8.0;
@@ -949,7 +965,8 @@ impl SkiddingModel {
         mut kc: Option<(&mut [[f64; 5]; 5], &mut [[f64; 5]; 5])>,
     ) -> SkidTotals {
         let mut tot = SkidTotals::default();
-        let (theta_c, w_c) = (x[0], x[1]);
+        let ic = self.cage_index();
+        let (theta_c, w_c) = (x[ic], x[ic + 1]);
         let mut cage_torque = -self.p.cage_drag * w_c;
         tot.torque_drag -= self.p.cage_drag * w_c;
         tot.power_other += self.p.cage_drag * w_c * w_c;
@@ -995,8 +1012,8 @@ impl SkiddingModel {
             tot.max_load = tot.max_load.max(b.state.q_i).max(b.state.q_o);
             self.balls[j] = b.state;
         }
-        dx[0] = w_c;
-        dx[1] = cage_torque / self.jc;
+        dx[ic] = w_c;
+        dx[ic + 1] = cage_torque / self.jc;
         tot
     }
 
@@ -1024,10 +1041,12 @@ impl SkiddingModel {
         jm.fill(0.0);
         wx.fill(0.0);
         wm.fill(0.0);
-        let (theta_c, w_c) = (x[0], x[1]);
+        let ic = self.cage_index();
+        let (theta_c, w_c) = (x[ic], x[ic + 1]);
         let jc = self.jc;
-        jx[1] = 1.0; // d theta_c' / d w_c
-        jx[n + 1] = -self.p.cage_drag / jc;
+        let cr = (ic + 1) * n; // the cage speed's row
+        jx[ic * n + ic + 1] = 1.0; // d theta_c' / d w_c
+        jx[cr + ic + 1] = -self.p.cage_drag / jc;
         let eps = f64::EPSILON.sqrt();
         for j in 0..self.z {
             let k = BALL0 + 3 * j;
@@ -1045,16 +1064,22 @@ impl SkiddingModel {
                 };
                 let mut sp = st;
                 sp[col] += h;
-                let b = if col == 2 {
-                    at([theta_c, w_c, sp[0], sp[1], sp[2]])
-                } else {
-                    self.ball(j, q, v, omega, theta_c, w_c, sp[0], sp[1], sp[2])
+                let s5 = [theta_c, w_c, sp[0], sp[1], sp[2]];
+                let b = match col {
+                    // w_a: same geometry and loads.
+                    2 => at(s5),
+                    // w_b: same geometry, new centrifugal split.
+                    1 => {
+                        let ld1 = self.loads(&geo, sp[1]);
+                        self.forces(j, &geo, &ld1, q, v, omega, s5, None)
+                    }
+                    _ => self.ball(j, q, v, omega, theta_c, w_c, sp[0], sp[1], sp[2]),
                 };
                 let c = k + col;
                 for r in 0..3 {
                     jx[(k + r) * n + c] = (b.dx[r] - base.dx[r]) / h;
                 }
-                jx[n + c] = (b.cage_torque - base.cage_torque) / (h * jc);
+                jx[cr + c] = (b.cage_torque - base.cage_torque) / (h * jc);
                 if !wx.is_empty() {
                     for r in 0..5 {
                         wx[r * n + c] = (b.wrench[r] - base.wrench[r]) / h;
@@ -1071,9 +1096,9 @@ impl SkiddingModel {
                 };
                 let b = at([tc, wc, st[0], st[1], st[2]]);
                 for r in 0..3 {
-                    jx[(k + r) * n + col] = (b.dx[r] - base.dx[r]) / h;
+                    jx[(k + r) * n + ic + col] = (b.dx[r] - base.dx[r]) / h;
                 }
-                jx[n + col] += (b.cage_torque - base.cage_torque) / (h * jc);
+                jx[cr + ic + col] += (b.cage_torque - base.cage_torque) / (h * jc);
             }
             if jm.is_empty() {
                 continue;
@@ -1096,7 +1121,7 @@ impl SkiddingModel {
                 for r in 0..3 {
                     jm[(k + r) * 10 + col] = (b.dx[r] - base.dx[r]) / h;
                 }
-                jm[10 + col] += (b.cage_torque - base.cage_torque) / (h * jc);
+                jm[(ic + 1) * 10 + col] += (b.cage_torque - base.cage_torque) / (h * jc);
                 for r in 0..5 {
                     wm[r * 10 + col] += (b.wrench[r] - base.wrench[r]) / h;
                 }
@@ -1106,9 +1131,16 @@ impl SkiddingModel {
 
     /// Peak Hertz pressure at the larger of a ball's two loads, Pa.
     pub fn peak_pressure(&self, q_i: f64, q_o: f64) -> f64 {
-        self.inner
-            .peak_pressure(q_i)
-            .max(self.outer.peak_pressure(q_o))
+        // p0 = 3Q/(2 pi a b) with a b = ca cb Q^(2/3) (coefficients per sqrt(delta) here).
+        let p0 = |q: f64, ax: [f64; 2], k3: f64| {
+            if q > 0.0 {
+                let q3 = q.cbrt();
+                1.5 * q3 * k3 * k3 / (PI * ax[0] * ax[1])
+            } else {
+                0.0
+            }
+        };
+        p0(q_i, self.ax_i, self.kc3_i).max(p0(q_o, self.ax_o, self.kc3_o))
     }
 }
 
@@ -1232,5 +1264,14 @@ mod tests {
             }
         }
         assert_eq!(m.split(-1e-6, 0.0), Split::default());
+        // The semi-axes from sqrt(delta) and the peak pressure agree with the Hertz API.
+        let sp = m.split(5e-6, 3.0);
+        let ci = m.contact_state(true, sp.q_i, sp.r_i);
+        let (a, bb) = m.inner.semi_axes(sp.q_i);
+        assert!((ci.a / a - 1.0).abs() < 1e-12 && (ci.b / bb - 1.0).abs() < 1e-12);
+        let p = m.peak_pressure(sp.q_i, 0.0);
+        assert!((p / m.inner.peak_pressure(sp.q_i) - 1.0).abs() < 1e-12);
+        let p = m.peak_pressure(0.0, sp.q_o);
+        assert!((p / m.outer.peak_pressure(sp.q_o) - 1.0).abs() < 1e-12);
     }
 }

@@ -88,12 +88,17 @@ impl LevelModel for SkiddingLevel {
     fn ring_dofs(&self) -> &'static [usize] {
         self.dofs
     }
+    fn blocks(&self) -> Option<(usize, usize)> {
+        // One independent 3-state block per ball, then the cage (and the ring) as border.
+        Some((self.model.z(), 3))
+    }
     fn state_atol(&self, atol_m: f64, atol: &mut [f64]) -> bool {
         // Angles: a ball-surface error of atol_m; speeds: that error over a 1 kHz period.
         let angle = atol_m / (0.5 * self.model.d_ball());
         let rate = angle * 2.0 * std::f64::consts::PI * 1e3;
-        atol[0] = angle;
-        atol[1] = rate;
+        let ic = self.model.cage_index();
+        atol[ic] = angle;
+        atol[ic + 1] = rate;
         for j in 0..self.model.z() {
             let k = BALL0 + 3 * j;
             atol[k] = angle;
@@ -191,7 +196,8 @@ impl LevelModel for SkiddingLevel {
         // 1 - w_c/w_k, regularised below 1 mrad/s of kinematic cage speed so that a
         // bearing at rest reports 100 % slip and the output stays finite.
         let eps = 1e-3;
-        let slip = 1.0 - x[1] * wk / (wk * wk + eps * eps);
+        let w_c = x[self.model.cage_index() + 1];
+        let slip = 1.0 - w_c * wk / (wk * wk + eps * eps);
         let mut max_p: f64 = 0.0;
         let mut pocket: f64 = 0.0;
         for b in &self.model.balls {
@@ -213,7 +219,7 @@ impl LevelModel for SkiddingLevel {
             k,
             c,
             torque: tot.torque_shaft,
-            cage_omega: x[1],
+            cage_omega: w_c,
             cage_slip: slip,
             balls_loaded: tot.loaded as f64,
             max_load: tot.max_load,
