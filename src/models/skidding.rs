@@ -204,6 +204,15 @@ struct Geo {
     g: [f64; 5],
 }
 
+/// `d/dq` of a ball's contact line and loads ([`SkiddingModel::load_derivs`]).
+#[derive(Debug, Clone, Copy)]
+struct LoadDerivs {
+    dn0: [f64; 5],
+    dn1: [f64; 5],
+    dqi: [f64; 5],
+    dqo: [f64; 5],
+}
+
 /// One ball's loads.
 #[derive(Debug, Clone, Copy)]
 struct Loads {
@@ -546,7 +555,8 @@ impl SkiddingModel {
         let (s, c) = psi.sin_cos();
         let a1 = self.a10 + q[2] + self.ri * (q[3] * s - q[4] * c);
         let a2 = self.a20 + q[0] * c + q[1] * s;
-        let l = a1.hypot(a2);
+        // Millimetre-sized: no overflow, so the plain root (hypot is several times slower).
+        let l = (a1 * a1 + a2 * a2).sqrt();
         let n = [a1 / l, a2 / l];
         Geo {
             s,
@@ -752,25 +762,9 @@ impl SkiddingModel {
         wrench[3] += ms_i * n[1] * c;
         wrench[4] += ms_i * n[1] * s;
         if let Some(k) = kq {
-            // dn/dq, dg/dq (G1 = d a1/dq, G2 = d a2/dq).
             let g1 = [0.0, 0.0, 1.0, self.ri * s, -self.ri * c];
             let g2 = [c, s, 0.0, 0.0, 0.0];
-            let dn0: [f64; 5] = std::array::from_fn(|i| (g1[i] - n[0] * g[i]) / geo.l);
-            let dn1: [f64; 5] = std::array::from_fn(|i| (g2[i] - n[1] * g[i]) / geo.l);
-            // Loads: dQ_i = A_i dδ + B_i df, dQ_o = A_o dδ + B_o df (from the split).
-            let df: [f64; 5] =
-                std::array::from_fn(|i| if ld.f_active { ld.fc * dn1[i] } else { 0.0 });
-            let (ai, bi, ao, bo) = if q_i > 0.0 && q_o > 0.0 {
-                let ss = sp.s_i + sp.s_o;
-                let h = sp.s_i * sp.s_o / ss;
-                (h, -sp.s_i / ss, h, sp.s_o / ss)
-            } else if q_o > 0.0 {
-                (0.0, 0.0, 0.0, 1.0)
-            } else {
-                (0.0, 0.0, 0.0, 0.0)
-            };
-            let dqi: [f64; 5] = std::array::from_fn(|i| ai * g[i] + bi * df[i]);
-            let dqo: [f64; 5] = std::array::from_fn(|i| ao * g[i] + bo * df[i]);
+            let LoadDerivs { dn0, dn1, dqi, dqo } = self.load_derivs(geo, ld);
             // Normal force with damping.
             let mut dfn = dqi;
             if cd > 0.0 {
@@ -870,6 +864,36 @@ impl SkiddingModel {
                 spin_i: ms_i,
                 spin_o: ms_o,
             },
+        }
+    }
+
+    /// Derivatives with respect to `q` of the contact line `n` and of the normal loads
+    /// (balls held): `dn = (G - n g)/|A|` with `G = dA/dq`, and from the split
+    /// `Q_o(x) - Q_i(delta - x) = f`: `dQ_i = (s_i s_o d delta - s_i df)/(s_i + s_o)`,
+    /// `dQ_o = (s_i s_o d delta + s_o df)/(s_i + s_o)` (`s` the contact stiffnesses,
+    /// `f = Fc n_r`); a ball on the outer race only has `dQ_o = df`.
+    fn load_derivs(&self, geo: &Geo, ld: &Loads) -> LoadDerivs {
+        let (s, c, n, g) = (geo.s, geo.c, geo.n, geo.g);
+        let g1 = [0.0, 0.0, 1.0, self.ri * s, -self.ri * c];
+        let g2 = [c, s, 0.0, 0.0, 0.0];
+        let dn0: [f64; 5] = std::array::from_fn(|i| (g1[i] - n[0] * g[i]) / geo.l);
+        let dn1: [f64; 5] = std::array::from_fn(|i| (g2[i] - n[1] * g[i]) / geo.l);
+        let df: [f64; 5] = std::array::from_fn(|i| if ld.f_active { ld.fc * dn1[i] } else { 0.0 });
+        let sp = &ld.sp;
+        let (ai, bi, ao, bo) = if sp.q_i > 0.0 && sp.q_o > 0.0 {
+            let ss = sp.s_i + sp.s_o;
+            let h = sp.s_i * sp.s_o / ss;
+            (h, -sp.s_i / ss, h, sp.s_o / ss)
+        } else if sp.q_o > 0.0 {
+            (0.0, 0.0, 0.0, 1.0)
+        } else {
+            (0.0, 0.0, 0.0, 0.0)
+        };
+        LoadDerivs {
+            dn0,
+            dn1,
+            dqi: std::array::from_fn(|i| ai * g[i] + bi * df[i]),
+            dqo: std::array::from_fn(|i| ao * g[i] + bo * df[i]),
         }
     }
 
@@ -1109,22 +1133,36 @@ impl SkiddingModel {
                     wm[r * 10 + 5 + c] -= base.cd * base.g[r] * base.g[c];
                 }
             }
-            // Displacement columns.
-            for col in 0..5 {
-                let (mut qp, vp) = (*q, *v);
-                if !q_cols.contains(&col) {
-                    continue;
+            // Displacement columns. The rates depend on q only through the contact line
+            // and the loads: difference along their analytic derivatives (no new geometry
+            // or split); the wrench's columns are the analytic stiffness.
+            let mut kw = [[0.0; 5]; 5];
+            let st5 = [theta_c, w_c, st[0], st[1], st[2]];
+            self.forces(j, &geo, &ld, q, v, omega, st5, Some(&mut kw));
+            let dl = self.load_derivs(&geo, &ld);
+            for &col in q_cols {
+                for r in 0..5 {
+                    wm[r * 10 + col] += kw[r][col];
                 }
                 let h = if col < 3 { 1e-11 } else { 1e-9 };
-                qp[col] += h;
-                let b = self.ball(j, &qp, &vp, omega, theta_c, w_c, st[0], st[1], st[2]);
+                let mut gp = geo;
+                gp.n[0] += h * dl.dn0[col];
+                gp.n[1] += h * dl.dn1[col];
+                let mut lp = ld;
+                let sp = &mut lp.sp;
+                if sp.s_i > 0.0 {
+                    sp.q_i += h * dl.dqi[col];
+                    sp.r_i = (sp.r_i * sp.r_i + h * dl.dqi[col] / sp.s_i).max(0.0).sqrt();
+                }
+                if sp.s_o > 0.0 {
+                    sp.q_o += h * dl.dqo[col];
+                    sp.r_o = (sp.r_o * sp.r_o + h * dl.dqo[col] / sp.s_o).max(0.0).sqrt();
+                }
+                let b = self.forces(j, &gp, &lp, q, v, omega, st5, None);
                 for r in 0..3 {
                     jm[(k + r) * 10 + col] = (b.dx[r] - base.dx[r]) / h;
                 }
                 jm[(ic + 1) * 10 + col] += (b.cage_torque - base.cage_torque) / (h * jc);
-                for r in 0..5 {
-                    wm[r * 10 + col] += (b.wrench[r] - base.wrench[r]) / h;
-                }
             }
         }
     }
@@ -1228,7 +1266,44 @@ mod tests {
                     kfd[r][col] = -(wp[r] - wn[r]) / (2.0 * h);
                 }
             }
-            m.jacobian(&q, &v, omega, &x, &mut jx, &mut jm, &mut wx, &mut wm, &[]);
+            m.jacobian(
+                &q,
+                &v,
+                omega,
+                &x,
+                &mut jx,
+                &mut jm,
+                &mut wx,
+                &mut wm,
+                &[0, 1, 2, 3, 4],
+            );
+            // The integrator's d(rates)/dq (differenced along the analytic load
+            // derivatives) against central differences of whole right-hand sides.
+            let (mut dp, mut dm) = (vec![0.0; n], vec![0.0; n]);
+            for col in 0..5 {
+                let h = if col < 3 { 1e-10 } else { 1e-8 };
+                let (mut qp, mut qm) = (q, q);
+                qp[col] += h;
+                qm[col] -= h;
+                m.eval(&qp, &v, omega, &x, &mut dp);
+                m.eval(&qm, &v, omega, &x, &mut dm);
+                for r in 0..n {
+                    let fd = (dp[r] - dm[r]) / (2.0 * h);
+                    let an = jm[r * 10 + col];
+                    let scale = (0..5).map(|c| jm[r * 10 + c].abs()).fold(1e-3, f64::max);
+                    assert!(
+                        (an - fd).abs() <= 2e-3 * scale,
+                        "{law:?} jm[{r}][{col}] {an:e} vs {fd:e}"
+                    );
+                }
+                for r in 0..5 {
+                    let (w, kk) = (wm[r * 10 + col], -k[r][col]);
+                    assert!(
+                        (w - kk).abs() <= 1e-12 * kk.abs(),
+                        "wm is the analytic stiffness"
+                    );
+                }
+            }
             for r in 0..5 {
                 let scale = kfd[r].iter().map(|v| v.abs()).fold(0.0, f64::max);
                 for col in 0..5 {
