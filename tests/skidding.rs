@@ -393,3 +393,174 @@ fn other_traction_laws_through_the_scene() {
     let e = Component::from_text(&bad).unwrap_err().to_string();
     assert!(e.contains("model.skidding.traction.v_s"), "{e}");
 }
+
+/// The 7008CE model with `p`, its states at the kinematic speeds of `omega`.
+fn model_7008ce(p: SkiddingParams, omega: f64) -> (SkiddingModel, Vec<f64>) {
+    let b = preset("7008ce").unwrap().build().unwrap();
+    let m = SkiddingModel::new(&b, p).unwrap();
+    let mut x = vec![0.0; m.n_states()];
+    m.init(omega, &mut x);
+    (m, x)
+}
+
+/// Gyroscopic couple (Harris & Kotzalas Vol. 2 ch. 3): at 24 000 rpm under an axial
+/// approach, switching it on changes the wrench on the shaft by the lateral friction
+/// through the inner contacts, `dFz = -sum_j F_j cos(alpha_j)` with
+/// `F = (J w_s w_b sin(alpha0)/D) phi(mu Q_h D / Mg)`; the axial symmetry leaves the radial
+/// forces and the moments unchanged. The rates of the balls do not change (the lateral
+/// forces balance on each ball and do no work).
+#[test]
+fn gyroscopic_friction_changes_the_axial_force_by_the_predicted_amount() {
+    let b = preset("7008ce").unwrap().build().unwrap();
+    let omega = 24000.0 * PI / 30.0;
+    let base = SkiddingParams {
+        gyro_traction: f64::INFINITY,
+        ..SkiddingParams::default()
+    };
+    let (mut on, mut x) = model_7008ce(base.clone(), omega);
+    let (mut off, _) = model_7008ce(
+        SkiddingParams {
+            gyroscopic: false,
+            ..base
+        },
+        omega,
+    );
+    // A slipping state near the kinematic one (the balls lag 1 %).
+    for j in 0..on.z() {
+        x[3 * j + 1] *= 0.99;
+    }
+    let q = [0.0, 0.0, 15e-6, 0.0, 0.0];
+    let n = x.len();
+    let (mut d_on, mut d_off) = (vec![0.0; n], vec![0.0; n]);
+    let w_on = on.eval(&q, &[0.0; 5], omega, &x, &mut d_on).wrench;
+    let w_off = off.eval(&q, &[0.0; 5], omega, &x, &mut d_off).wrench;
+    assert_eq!(d_on, d_off, "the ball and cage rates do not change");
+    // Prediction from the bearing data and the kinematics (unlimited friction).
+    let alpha0 = b.nominal_contact_angle();
+    let k = kinematics(&b, omega);
+    let (wb, ws) = (0.99 * k.cage_speed, {
+        let s = on.balls[0];
+        s.w_s
+    });
+    let mg = b.ball_inertia() * ws * wb * alpha0.sin();
+    // The contact line of this approach: the same for every ball.
+    let s = on.balls[0];
+    assert!(s.q_i > 0.0 && s.gyro > 0.0);
+    let f = mg / b.d;
+    assert!((s.gyro / f - 1.0).abs() < 1e-12, "F = Mg/D unlimited");
+    // cos(alpha) of the loaded contact from the normal-force part of Fz.
+    let fz_normal = w_off[2];
+    let cos_a = {
+        // Fz = -Z Q sin(alpha): recover alpha from it and the load.
+        let sin_a = -fz_normal / (b.z as f64 * s.q_i);
+        (1.0 - sin_a * sin_a).sqrt()
+    };
+    let predicted = -(b.z as f64) * f * cos_a;
+    let dfz = w_on[2] - w_off[2];
+    println!(
+        "Mg {mg:.4e} N m, F {f:.3} N per ball, dFz {dfz:.4} N, predicted {predicted:.4} N"
+    );
+    assert!((dfz / predicted - 1.0).abs() < 1e-9, "{dfz} vs {predicted}");
+    assert!(dfz < 0.0, "the lateral friction pulls the shaft further along -z");
+    for r in [0, 1, 3, 4] {
+        let scale = if r < 3 { 1.0 } else { 1e-2 };
+        assert!((w_on[r] - w_off[r]).abs() < 1e-9 * scale * f, "{r}");
+    }
+    // With the quasi-static level's default cap (mu = 0.3): smaller, never larger.
+    let (mut capped, _) = model_7008ce(
+        SkiddingParams {
+            gyro_traction: 0.3,
+            ..SkiddingParams::default()
+        },
+        omega,
+    );
+    let w_cap = capped.eval(&q, &[0.0; 5], omega, &x, &mut d_on).wrench;
+    let dcap = w_cap[2] - w_off[2];
+    assert!(dcap < 0.0 && dcap > dfz, "{dcap} vs {dfz}");
+}
+
+/// Spinning friction `M = (3/8) mu Q a E` (Harris & Kotzalas): a deep-groove bearing at
+/// zero contact angle rolls without spin, so it changes nothing; in the 7008CE both
+/// contacts spin, the moment dissipates power and adds a resisting torque on the shaft.
+#[test]
+fn spin_friction_zero_without_contact_angle_positive_power_with_it() {
+    let spin = SkiddingParams {
+        spin_friction: 0.05,
+        ..SkiddingParams::default()
+    };
+    // 6012 at zero contact angle: no spin, nothing changes.
+    let b = preset("6012").unwrap().build().unwrap();
+    let mut m = SkiddingModel::new(&b, spin.clone()).unwrap();
+    let mut m0 = SkiddingModel::new(&b, SkiddingParams::default()).unwrap();
+    let mut x = vec![0.0; m.n_states()];
+    m.init(300.0, &mut x);
+    let q = [0.0, -12e-6, 0.0, 0.0, 0.0];
+    let mut dx = vec![0.0; x.len()];
+    let t = m.eval(&q, &[0.0; 5], 300.0, &x, &mut dx);
+    let t0 = m0.eval(&q, &[0.0; 5], 300.0, &x, &mut dx);
+    assert!(m.balls.iter().all(|s| s.spin_i == 0.0 && s.spin_o == 0.0));
+    assert_eq!(t.power_contacts, t0.power_contacts);
+    assert_eq!(t.torque_shaft, t0.torque_shaft);
+    // 7008CE: spin at both contacts.
+    let omega = 6000.0 * PI / 30.0;
+    let (mut m, x) = model_7008ce(spin, omega);
+    let (mut m0, _) = model_7008ce(SkiddingParams::default(), omega);
+    let q = [0.0, 0.0, 12e-6, 0.0, 0.0];
+    let mut dx = vec![0.0; x.len()];
+    let t = m.eval(&q, &[0.0; 5], omega, &x, &mut dx);
+    let t0 = m0.eval(&q, &[0.0; 5], omega, &x, &mut dx);
+    let dp = t.power_contacts - t0.power_contacts;
+    let dt = t.torque_shaft - t0.torque_shaft;
+    let s = m.balls[0];
+    println!(
+        "7008CE 6000 rpm: spin moments inner {:.3e} outer {:.3e} N m, power +{dp:.3} W, torque {dt:.3e} N m",
+        s.spin_i, s.spin_o
+    );
+    assert!(dp > 0.0, "spinning friction dissipates");
+    assert!(dt < 0.0, "and resists the shaft");
+    assert!(m.balls.iter().all(|s| s.spin_i < 0.0 && s.spin_o > 0.0));
+}
+
+/// Momentum and energy balances of the 7008CE with gyroscopic and spin friction on,
+/// spun up from rest (pocket friction off: its component off the rolling axis turns the
+/// unmodelled pivoting spin, so only `alpha = 0` closes the momentum balance with it).
+#[test]
+fn balances_close_with_gyroscopic_and_spin_friction() {
+    let p = SkiddingParams {
+        spin_friction: 0.05,
+        pocket_friction: 0.0,
+        spacing_scatter: 0.5,
+        cage_drag: 1e-5,
+        drag_viscosity: 0.01,
+        ..SkiddingParams::default()
+    };
+    let (m, _) = model_7008ce(p, 0.0);
+    let n = m.n_states();
+    let omega = 300.0;
+    let mut y = vec![0.0; n + 2];
+    m.init(0.0, &mut y[..n]);
+    let l0 = m.angular_momentum(&y[..n]);
+    let q = [0.0, 0.0, 12e-6, 0.0, 0.0];
+    let mut sys = Balance { m, q, omega };
+    let e0 = energy(&mut sys.m, &q, omega, &y[..n]);
+    let mut integ = Rosenbrock::new(n + 2);
+    let mut opts = Options::new(n + 2, 1e-6, 1e-10);
+    opts.max_steps = 1_000_000;
+    let mut h = 0.0;
+    integ
+        .integrate(&mut sys, 0.0, 0.003, &mut y, &mut h, &opts)
+        .unwrap();
+    let l1 = sys.m.angular_momentum(&y[..n]);
+    let e1 = energy(&mut sys.m, &q, omega, &y[..n]);
+    let mut dy = vec![0.0; n + 2];
+    sys.rhs(0.0, &y, &mut dy).unwrap();
+    assert!(sys.m.balls.iter().all(|s| s.spin_i != 0.0 && s.gyro != 0.0));
+    println!(
+        "L residual {:e} of {l1:e}; E residual {:e} of {e1:e}",
+        l1 - l0 - y[n],
+        e1 - e0 - y[n + 1]
+    );
+    assert!(l1 > 0.0);
+    assert!((l1 - l0 - y[n]).abs() < 1e-6 * l1.abs(), "momentum balance");
+    assert!((e1 - e0 - y[n + 1]).abs() < 1e-4 * e1, "energy balance");
+}

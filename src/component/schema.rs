@@ -302,6 +302,8 @@ pub const TABLE: &[Field] = &[
     f("model.skidding.cage_drag", Float, "N m s", between(0.0, true, 1e3, true), "", "skidding level: cage drag"),
     f("model.skidding.spacing_scatter", Float, "-", between(0.0, true, 1.0, true), "", "skidding level: ball spacing scatter as a fraction of the pocket clearance"),
     f("model.skidding.seed", Int, "-", ge(0.0), "", "skidding level: seed of the scatter"),
+    f("model.skidding.gyro_traction", Float, "-", between(0.0, true, 10.0, true), "0 turns the gyroscopic friction off", "skidding level: traction coefficient limiting the lateral friction that carries the balls' gyroscopic couple"),
+    f("model.skidding.spin_friction", Float, "-", between(0.0, true, 2.0, true), "0: no spinning moment", "skidding level: friction coefficient of the spinning moment (3/8) mu Q a E at the race contacts"),
     f("model.start", Enum(STARTS), "-", ANY, "", "load-driven: the inner ring starts at rest in static equilibrium under the initial loads (equilibrium) or at zero displacement (rest)"),
     f("model.attached_mass_kg", Float, "kg", ge(0.0), "", "load-driven: mass attached to the inner ring (added to its own)"),
     // Solver.
@@ -461,6 +463,8 @@ fn full_scene(bearing: BearingRef, traction: TractionLaw) -> Scene {
                 cage_drag: sk.cage_drag,
                 spacing_scatter: sk.spacing_scatter,
                 seed: sk.seed,
+                gyro_traction: sk.gyro_traction,
+                spin_friction: 0.02,
             },
             start: d.start,
         },
