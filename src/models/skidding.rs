@@ -345,7 +345,7 @@ impl SkiddingModel {
             })
             .collect();
         let cos_a = alpha.cos();
-        if !(p.gyro_traction > 0.0) {
+        if p.gyro_traction.is_nan() || p.gyro_traction <= 0.0 {
             return Err(Error::invalid(
                 "model.skidding.gyro_traction",
                 p.gyro_traction,
