@@ -43,6 +43,8 @@
 //! J_c w_c'       = -(dm/2) sum_j P_j - sum_j M_z,j - M_cage
 //! ```
 //!
+//! (plus the spin friction's generalised forces below).
+//!
 //! Angular momentum about `z` of balls and cage,
 //! `L = sum_j [m (dm/2)² w_b + J cos(alpha) w_a] + J_c w_c`, then changes only by the race
 //! tractions' moments `sum (d_i/2) f_i - sum (d_o/2) f_o` and the drags (pocket forces and
@@ -65,9 +67,33 @@
 //! quasi-static equilibrium with its centrifugal force `Fc = m (dm/2) w_b²`:
 //! `Q_o(delta_o) - Q_i(delta_j - delta_o) = Fc n_r` (`n_r` the radial component of
 //! `n_j`), solved by safeguarded Newton per ball (Harris & Kotzalas Vol. 2 ch. 3 do the
-//! same with both contact angles free; here the two contacts stay collinear, so the
-//! gyroscopic moment `J w_R w_b sin(beta)` has no component along `n_j` and does not change
-//! the loads — it would be carried by lateral friction, not modelled).
+//! same with both contact angles free; here the two contacts stay collinear).
+//!
+//! Gyroscopic couple: the ball's angular velocity is `w = w_b z + (w_a - w_b cos a) a` and
+//! `a` turns with the orbit (`a' = -sin(a) w_b e_t`), so `dH/dt` has the component
+//! `Mg = J w_s w_b sin(a)` about `e_t` (Harris & Kotzalas Vol. 2 ch. 3). Lateral friction
+//! `+F` at the inner contact and `-F` at the outer one, along `(n1, -n0)` in the
+//! (axial, radial) plane, supplies it (`F D = Mg`, no net force on the ball, no work: the
+//! contact points do not slide laterally), limited exactly as the quasi-static kernel
+//! (`models::quasi_static::ball`, "no control" `lambda_i = lambda_o = 1`):
+//! `F = (Mg/D) phi(mu Q_h D/|Mg|)`, `phi(t) = t/(1 + t⁴)^(1/4)`, `Q_h = Q_i Q_o/(Q_i + Q_o)`.
+//! The shaft receives `-F (n1, -n0)` at the inner contact: an axial and radial force and
+//! the ball-plane moment `Ri F_a + F f_i D` about the groove-centre circle (as the
+//! quasi-static kernel). The normal loads do not change.
+//!
+//! Spin friction: relative to the races the ball spins about the contact normal
+//! `n3 = n0 z + n1 e_r` at `w.n3 - omega n0` (inner) and `w.n3` (outer), zero at `a = 0`.
+//! Each contact resists with `M = (3/8) mu Q a E(k) tanh(w_spin a / v_s)` (Harris &
+//! Kotzalas Vol. 2 ch. 2, the spinning moment of an elliptical contact in full sliding;
+//! `3 pi/16 mu Q a` for a circle; `tanh` makes it continuous). On the ball `-M n3`, whose
+//! generalised forces on `(w_b, w_a)` are `-M n3.(z - cos(a) a)` and `-M n3.a` (so the
+//! energy and the momentum about `z` balance exactly); on the races `+M n3` (the shaft's
+//! torque about `z` and its tilt moments).
+//!
+//! Shaft stiffness: `-dW/dq` with the balls held is analytic (the load derivatives from
+//! the split, `dQ_i = (s_i s_o d delta - s_i df)/(s_i + s_o)`, the contact line's
+//! `dn = (dA/dq - n g)/|A|`, and the traction, lateral and spin terms through them),
+//! checked against central differences in a unit test.
 //!
 //! Drag (physics.md §5.2): `F_d = C_d rho_eff pi D² v|v|/8` with `v = (dm/2) w_b` (dynamic
 //! pressure on the frontal area); ball spin drag `M = pi eta D³ w_a` (Stokes' rotating
