@@ -1246,8 +1246,8 @@ impl SkiddingModel {
                     }
                 }
                 let b = self.forces(j, &gp, &lp, q, v, omega, st5, None);
-                for r in 0..3 {
-                    dp[r] = (b.dx[r] - base.dx[r]) / h;
+                for ((d, bx), b0) in dp.iter_mut().zip(b.dx).zip(base.dx) {
+                    *d = (bx - b0) / h;
                 }
                 dcage[kp] = (b.cage_torque - base.cage_torque) / h;
             }
