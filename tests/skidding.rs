@@ -566,3 +566,84 @@ fn balances_close_with_gyroscopic_and_spin_friction() {
     assert!((l1 - l0 - y[n]).abs() < 1e-6 * l1.abs(), "momentum balance");
     assert!((e1 - e0 - y[n + 1]).abs() < 1e-4 * e1, "energy balance");
 }
+
+/// Balls with radial mass (`ball_radial_mass`): started away from radial equilibrium
+/// (placed for a centred ring, then the ring is displaced), the damped radial motion
+/// settles within a fraction of a millisecond onto the quasi-static split's loads. With
+/// the option off the state vector is the three-per-ball one (nothing added).
+#[test]
+fn radial_mass_settles_on_the_quasi_static_split() {
+    let b = preset("6012").unwrap().build().unwrap();
+    let p = SkiddingParams {
+        ball_radial_mass: true,
+        contact_damping: 200.0,
+        ..SkiddingParams::default()
+    };
+    let m = SkiddingModel::new(&b, p.clone()).unwrap();
+    let qs = SkiddingModel::new(&b, SkiddingParams::default()).unwrap();
+    assert_eq!(qs.n_states(), 3 * b.z + 2, "off: no extra states");
+    assert_eq!(m.n_states(), 5 * b.z + 2);
+    let omega = 2000.0 * PI / 30.0;
+    let n = m.n_states();
+    let mut y = vec![0.0; n + 2];
+    m.init(omega, &mut y[..n]); // balls placed for q = 0
+    let q = [0.0, -12e-6, 0.0, 0.0, 0.0];
+    let mut sys = Balance { m, q, omega };
+    let mut dy = vec![0.0; n + 2];
+    sys.rhs(0.0, &y, &mut dy).unwrap();
+    let first: Vec<(f64, f64)> = sys.m.balls.iter().map(|s| (s.q_i, s.q_o)).collect();
+    let mut integ = Rosenbrock::new(n + 2);
+    let mut opts = Options::new(n + 2, 1e-7, 1e-12);
+    opts.max_steps = 1_000_000;
+    let mut h = 0.0;
+    integ
+        .integrate(&mut sys, 0.0, 0.002, &mut y, &mut h, &opts)
+        .unwrap();
+    sys.rhs(0.0, &y, &mut dy).unwrap();
+    // The quasi-static model at the same orbit and spin states.
+    let mut qs = qs;
+    let mut xq = vec![0.0; qs.n_states()];
+    for j in 0..b.z {
+        xq[3 * j..3 * j + 3].copy_from_slice(&y[5 * j..5 * j + 3]);
+    }
+    xq[3 * b.z..3 * b.z + 2].copy_from_slice(&y[5 * b.z..5 * b.z + 2]);
+    let mut dq = vec![0.0; xq.len()];
+    qs.eval(&q, &[0.0; 5], omega, &xq, &mut dq);
+    let mut worst: f64 = 0.0;
+    let mut moved: f64 = 0.0;
+    for (j, (a, s)) in sys.m.balls.iter().zip(&qs.balls).enumerate() {
+        let scale = s.q_i.max(s.q_o).max(1.0);
+        worst = worst
+            .max((a.q_i - s.q_i).abs() / scale)
+            .max((a.q_o - s.q_o).abs() / scale);
+        moved = moved.max((first[j].0 - s.q_i).abs() / scale);
+    }
+    println!("radial mass: start off by {moved:.3} of the load, settled to {worst:.2e}");
+    assert!(moved > 0.1, "the start is away from equilibrium");
+    assert!(worst < 1e-4, "settled on the split: {worst}");
+}
+
+/// The option through the scene: a motion-driven 6012 with radial mass runs and its
+/// force matches the quasi-static level's once settled.
+#[test]
+fn radial_mass_through_the_scene() {
+    let w = 2000.0 * PI / 30.0;
+    let on = scene_6012(-12e-6, w, "ball_radial_mass = true").replace(
+        "level = \"skidding\"",
+        "level = \"skidding\"\ncontact_damping = 200.0",
+    );
+    let off = scene_6012(-12e-6, w, "").replace(
+        "level = \"skidding\"",
+        "level = \"skidding\"\ncontact_damping = 200.0",
+    );
+    let mut c_on = Component::from_text(&on).unwrap();
+    let mut c_off = Component::from_text(&off).unwrap();
+    let r_on = run(&mut c_on, 10, 1e-3);
+    let r_off = run(&mut c_off, 10, 1e-3);
+    let (f_on, f_off) = (r_on[9].3, r_off[9].3);
+    println!("Fy with radial mass {f_on:.3} N, quasi-static {f_off:.3} N");
+    assert!(
+        (f_on - f_off).abs() < 1e-3 * f_off.abs(),
+        "{f_on} vs {f_off}"
+    );
+}

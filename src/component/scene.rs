@@ -135,6 +135,9 @@ pub struct SkiddingSpec {
     pub gyro_traction: f64,
     /// Friction coefficient of the spinning moment at the race contacts (0: off).
     pub spin_friction: f64,
+    /// Give the balls radial mass (their position along the contact line becomes a
+    /// state, damped by `model.contact_damping`) instead of the quasi-static split.
+    pub ball_radial_mass: bool,
 }
 
 impl Default for SkiddingSpec {
@@ -154,6 +157,7 @@ impl Default for SkiddingSpec {
             seed: p.seed,
             gyro_traction: p.gyro_traction,
             spin_friction: p.spin_friction,
+            ball_radial_mass: p.ball_radial_mass,
         }
     }
 }
@@ -188,6 +192,7 @@ impl SkiddingSpec {
                 1.0
             },
             spin_friction: in_range(&f("spin_friction"), self.spin_friction, 0.0, 2.0)?,
+            ball_radial_mass: self.ball_radial_mass,
             ..Default::default()
         })
     }

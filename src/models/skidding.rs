@@ -145,6 +145,9 @@ pub struct SkiddingParams {
     pub gyro_traction: f64,
     /// Friction coefficient of the spinning moment at the race contacts (0: off).
     pub spin_friction: f64,
+    /// Give each ball radial mass: its position along the contact line (the outer
+    /// approach `u`) and `u'` become states instead of the quasi-static split.
+    pub ball_radial_mass: bool,
 }
 
 impl Default for SkiddingParams {
@@ -167,6 +170,7 @@ impl Default for SkiddingParams {
             gyroscopic: true,
             gyro_traction: 0.3,
             spin_friction: 0.0,
+            ball_radial_mass: false,
         }
     }
 }
@@ -258,13 +262,15 @@ struct Loads {
     fc: f64,
     /// Is its component along the contact line positive (not clamped)?
     f_active: bool,
+    /// Radial mass: the loads follow from the ball's state, not from the split.
+    radial: bool,
 }
 
 /// One ball's terms.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct BallOut {
-    /// Rates of `(psi, w_b, w_a)`.
-    pub dx: [f64; 3],
+    /// Rates of `(psi, w_b, w_a, u, u')` (the last two with radial mass only).
+    pub dx: [f64; 5],
     /// Torque on the cage about z, N m.
     pub cage_torque: f64,
     /// Wrench on the shaft.
@@ -327,6 +333,8 @@ pub struct SkiddingModel {
     dm: f64,
     cos_a: f64,
     sin_a: f64,
+    /// States per ball: 3, or 5 with radial mass.
+    bs: usize,
     di: f64,
     do_: f64,
     m: f64,
@@ -395,6 +403,7 @@ impl SkiddingModel {
             [ca * k3, cb * k3]
         };
         Ok(SkiddingModel {
+            bs: if p.ball_radial_mass { 5 } else { 3 },
             sin_a: alpha.sin(),
             ax_i: axes(&inner),
             ax_o: axes(&outer),
@@ -425,12 +434,17 @@ impl SkiddingModel {
 
     /// Number of states `3 Z + 2`.
     pub fn n_states(&self) -> usize {
-        3 * self.z + 2
+        self.bs * self.z + 2
+    }
+
+    /// States per ball (3, or 5 with radial mass).
+    pub fn ball_states(&self) -> usize {
+        self.bs
     }
 
     /// Index of the cage angle (the cage speed follows it).
     pub fn cage_index(&self) -> usize {
-        3 * self.z
+        self.bs * self.z
     }
 
     /// Balls.
@@ -454,15 +468,27 @@ impl SkiddingModel {
     /// Initial states: balls centred in their pockets, everything turning at the
     /// kinematic speeds of `omega` (from rest when `omega = 0`).
     pub fn init(&self, omega: f64, x: &mut [f64]) {
+        self.init_at(&[0.0; 5], omega, x);
+    }
+
+    /// [`Self::init`] at ring displacement `q`: with radial mass, each ball starts at rest
+    /// where the quasi-static split puts it.
+    pub fn init_at(&self, q: &[f64; 5], omega: f64, x: &mut [f64]) {
         let (wb, ws) = self.kinematic(omega);
         let ic = self.cage_index();
         x[ic] = 0.0;
         x[ic + 1] = wb;
         for j in 0..self.z {
-            let k = BALL0 + 3 * j;
+            let k = BALL0 + self.bs * j;
             x[k] = 2.0 * PI * j as f64 / self.z as f64 + self.offsets[j];
             x[k + 1] = wb;
             x[k + 2] = wb * self.cos_a - ws;
+            if self.bs == 5 {
+                let geo = self.geo(q, x[k]);
+                let ld = self.loads(&geo, wb, None);
+                x[k + 3] = ld.sp.r_o * ld.sp.r_o;
+                x[k + 4] = 0.0;
+            }
         }
     }
 
@@ -471,7 +497,7 @@ impl SkiddingModel {
         let r2 = 0.25 * self.dm * self.dm;
         let mut l = self.jc * x[self.cage_index() + 1];
         for j in 0..self.z {
-            let k = BALL0 + 3 * j;
+            let k = BALL0 + self.bs * j;
             l += self.m * r2 * x[k + 1] + self.j * self.cos_a * x[k + 2];
         }
         l
@@ -483,8 +509,11 @@ impl SkiddingModel {
         let wc = x[self.cage_index() + 1];
         let mut e = 0.5 * self.jc * wc * wc;
         for j in 0..self.z {
-            let k = BALL0 + 3 * j;
+            let k = BALL0 + self.bs * j;
             e += 0.5 * self.m * r2 * x[k + 1].powi(2) + 0.5 * self.j * x[k + 2].powi(2);
+            if self.bs == 5 {
+                e += 0.5 * self.m * x[k + 4].powi(2);
+            }
         }
         e
     }
@@ -613,13 +642,31 @@ impl SkiddingModel {
 
     /// Normal loads of a ball at geometry `geo` and orbital speed `w_b` (centrifugal
     /// force `m (dm/2) w_b²` along the contact line's radial component).
-    fn loads(&self, geo: &Geo, w_b: f64) -> Loads {
+    /// With radial mass the ball's outer approach `u` is given (`Some`) and the loads
+    /// follow from it and the total approach.
+    fn loads(&self, geo: &Geo, w_b: f64, u: Option<f64>) -> Loads {
         let fc = self.m * 0.5 * self.dm * w_b * w_b;
         let f = fc * geo.n[1];
+        let sp = match u {
+            None => self.split(geo.delta, f),
+            Some(u) => {
+                let (r_o, r_i) = (u.max(0.0).sqrt(), (geo.delta - u).max(0.0).sqrt());
+                let (ki, ko) = (self.inner.kc, self.outer.kc);
+                Split {
+                    q_i: ki * r_i * r_i * r_i,
+                    q_o: ko * r_o * r_o * r_o,
+                    s_i: 1.5 * ki * r_i,
+                    s_o: 1.5 * ko * r_o,
+                    r_i,
+                    r_o,
+                }
+            }
+        };
         Loads {
-            sp: self.split(geo.delta, f),
+            sp,
             fc,
             f_active: f > 0.0,
+            radial: u.is_some(),
         }
     }
 
@@ -648,7 +695,9 @@ impl SkiddingModel {
     }
 
     /// One ball's contribution at shaft motion `(q, v, omega)`, cage `(theta_c, w_c)` and
-    /// ball states `(psi, w_b, w_a)`. Allocation-free.
+    /// ball states `(psi, w_b, w_a)`, the ball in quasi-static radial equilibrium (also
+    /// with the radial-mass option, whose position states it does not see).
+    /// Allocation-free.
     #[allow(clippy::too_many_arguments)]
     pub fn ball(
         &self,
@@ -662,18 +711,20 @@ impl SkiddingModel {
         w_b: f64,
         w_a: f64,
     ) -> BallOut {
+        // Radial mass or not, this is the quasi-static split (no ball position given).
         let geo = self.geo(q, psi);
-        let ld = self.loads(&geo, w_b);
-        self.forces(
-            j,
-            &geo,
-            &ld,
-            q,
-            v,
-            omega,
-            [theta_c, w_c, psi, w_b, w_a],
-            None,
-        )
+        let ld = self.loads(&geo, w_b, None);
+        let st = [theta_c, w_c, psi, w_b, w_a, 0.0, 0.0];
+        self.forces(j, &geo, &ld, q, v, omega, st, None)
+    }
+
+    /// [`Self::ball`] with all states `[theta_c, w_c, psi, w_b, w_a, u, u']` (the last
+    /// two used with radial mass only).
+    fn ball_r(&self, j: usize, q: &[f64; 5], v: &[f64; 5], omega: f64, st: [f64; 7]) -> BallOut {
+        let geo = self.geo(q, st[2]);
+        let u = (self.bs == 5).then_some(st[5]);
+        let ld = self.loads(&geo, st[3], u);
+        self.forces(j, &geo, &ld, q, v, omega, st, None)
     }
 
     /// Everything but the geometry and the normal loads: tractions, gyroscopic and spin
@@ -689,10 +740,10 @@ impl SkiddingModel {
         q: &[f64; 5],
         v: &[f64; 5],
         omega: f64,
-        st: [f64; 5],
+        st: [f64; 7],
         kq: Option<&mut [[f64; 5]; 5]>,
     ) -> BallOut {
-        let [_, w_c, psi, w_b, w_a] = st;
+        let [theta_c, w_c, psi, w_b, w_a, _, u_dot] = st;
         let p = &self.p;
         let r = 0.5 * self.dm;
         let hd = 0.5 * self.d;
@@ -750,16 +801,18 @@ impl SkiddingModel {
             bt,
             force: pocket,
             m_fric,
-        } = self.pocket(j, st);
+        } = self.pocket(j, [theta_c, w_c, psi, w_b, w_a]);
         let (cp, w) = (p.pocket_clearance, p.pocket_smoothing);
         // Drag.
         let vb = r * w_b;
         let f_d = p.drag_coefficient * p.drag_density * PI * self.d * self.d * vb * vb.abs() / 8.0;
         let m_d = PI * p.drag_viscosity * self.d.powi(3) * w_a;
-        let dx = [
+        let mut dx = [
             w_b,
             (f_i - f_o + pocket - f_d) / (self.m * r) + gen_b / (self.m * r * r),
             (-hd * (f_i + f_o) + m_fric * self.cos_a - m_d + gen_a) / self.j,
+            0.0,
+            0.0,
         ];
         // On the shaft: normal load along -n through the groove centre, traction -f_i e_t
         // at the inner contact, the lateral friction -F (n1, -n0) at the inner contact
@@ -769,12 +822,35 @@ impl SkiddingModel {
         let mut fn_ = q_i;
         let mut cd = 0.0;
         let (mut da1, mut da2) = (0.0, 0.0);
-        if p.contact_damping > 0.0 && geo.delta > 0.0 {
+        // Damped approach: the total one (massless balls) or the inner one (radial mass).
+        let (app, mut dd) = if ld.radial {
+            (sp.r_i * sp.r_i, -u_dot)
+        } else {
+            (geo.delta, 0.0)
+        };
+        let mut extra_dissipation = 0.0;
+        if p.contact_damping > 0.0 && app > 0.0 {
             da1 = v[2] + self.ri * (v[3] * s - v[4] * c) + w_b * self.ri * (q[3] * c + q[4] * s);
             da2 = v[0] * c + v[1] * s + w_b * (-q[0] * s + q[1] * c);
-            let blend = (geo.delta / crate::models::ring::DAMPING_RAMP).min(1.0);
+            let blend = (app / crate::models::ring::DAMPING_RAMP).min(1.0);
             cd = p.contact_damping * blend;
-            fn_ += cd * (n[0] * da1 + n[1] * da2);
+            dd += n[0] * da1 + n[1] * da2;
+            fn_ += cd * dd;
+        }
+        if ld.radial {
+            // Newton along the contact line: inner load and damping outwards, outer load
+            // and damping (on u', the outer ring fixed) inwards, centrifugal force.
+            let r_o2 = sp.r_o * sp.r_o;
+            let cd_o = p.contact_damping * (r_o2 / crate::models::ring::DAMPING_RAMP).min(1.0);
+            let f_out = q_o + if r_o2 > 0.0 { cd_o * u_dot } else { 0.0 };
+            dx[3] = u_dot;
+            dx[4] = (fn_ - f_out + ld.fc * n[1]) / self.m;
+            extra_dissipation = cd * dd * dd
+                + if r_o2 > 0.0 {
+                    cd_o * u_dot * u_dot
+                } else {
+                    0.0
+                };
         }
         let mut wrench = [0.0; 5];
         for (wk, gk) in wrench.iter_mut().zip(g) {
@@ -800,8 +876,7 @@ impl SkiddingModel {
             // Normal force with damping.
             let mut dfn = dqi;
             if cd > 0.0 {
-                let dd = n[0] * da1 + n[1] * da2;
-                let ramp = geo.delta < crate::models::ring::DAMPING_RAMP;
+                let ramp = app < crate::models::ring::DAMPING_RAMP;
                 let h1 = [0.0, 0.0, 0.0, w_b * self.ri * c, w_b * self.ri * s];
                 let h2 = [-w_b * s, w_b * c, 0.0, 0.0, 0.0];
                 for i in 0..5 {
@@ -878,7 +953,8 @@ impl SkiddingModel {
             dissipation: p.pocket_damping * (bl + bt) * xi_dot * xi_dot
                 - m_fric * (w_a * self.cos_a - w_c)
                 + f_d * vb
-                + m_d * w_a,
+                + m_d * w_a
+                + extra_dissipation,
             g,
             cd,
             state: BallState {
@@ -912,7 +988,10 @@ impl SkiddingModel {
         let dn1: [f64; 5] = std::array::from_fn(|i| (g2[i] - n[1] * g[i]) / geo.l);
         let df: [f64; 5] = std::array::from_fn(|i| if ld.f_active { ld.fc * dn1[i] } else { 0.0 });
         let sp = &ld.sp;
-        let (ai, bi, ao, bo) = if sp.q_i > 0.0 && sp.q_o > 0.0 {
+        let (ai, bi, ao, bo) = if ld.radial {
+            // The ball held: only the inner approach changes.
+            (sp.s_i, 0.0, 0.0, 0.0)
+        } else if sp.q_i > 0.0 && sp.q_o > 0.0 {
             let ss = sp.s_i + sp.s_o;
             let h = sp.s_i * sp.s_o / ss;
             (h, -sp.s_i / ss, h, sp.s_o / ss)
@@ -1061,10 +1140,15 @@ impl SkiddingModel {
             **c = [[0.0; 5]; 5];
         }
         for j in 0..self.z {
-            let k = BALL0 + 3 * j;
+            let k = BALL0 + self.bs * j;
             let geo = self.geo(q, x[k]);
-            let ld = self.loads(&geo, x[k + 1]);
-            let st = [theta_c, w_c, x[k], x[k + 1], x[k + 2]];
+            let (u, ud) = if self.bs == 5 {
+                (Some(x[k + 3]), x[k + 4])
+            } else {
+                (None, 0.0)
+            };
+            let ld = self.loads(&geo, x[k + 1], u);
+            let st = [theta_c, w_c, x[k], x[k + 1], x[k + 2], u.unwrap_or(0.0), ud];
             let b = self.forces(
                 j,
                 &geo,
@@ -1082,7 +1166,7 @@ impl SkiddingModel {
                     }
                 }
             }
-            dx[k..k + 3].copy_from_slice(&b.dx);
+            dx[k..k + self.bs].copy_from_slice(&b.dx[..self.bs]);
             cage_torque += b.cage_torque;
             for (t, w) in tot.wrench.iter_mut().zip(b.wrench) {
                 *t += w;
@@ -1136,12 +1220,15 @@ impl SkiddingModel {
         jx[cr + ic + 1] = -self.p.cage_drag / jc;
         let eps = f64::EPSILON.sqrt();
         for j in 0..self.z {
-            let k = BALL0 + 3 * j;
-            let st = [x[k], x[k + 1], x[k + 2]];
+            let bs = self.bs;
+            let k = BALL0 + bs * j;
+            let mut st = [0.0; 5];
+            st[..bs].copy_from_slice(&x[k..k + bs]);
+            let radial = |s: &[f64; 5]| (bs == 5).then_some(s[3]);
             let geo = self.geo(q, st[0]);
-            let ld = self.loads(&geo, st[1]);
-            let at = |s5: [f64; 5]| self.forces(j, &geo, &ld, q, v, omega, s5, None);
-            let st5 = [theta_c, w_c, st[0], st[1], st[2]];
+            let ld = self.loads(&geo, st[1], radial(&st));
+            let at = |s5: [f64; 7]| self.forces(j, &geo, &ld, q, v, omega, s5, None);
+            let st5 = [theta_c, w_c, st[0], st[1], st[2], st[3], st[4]];
             // The base point, with the analytic wrench stiffness when the ring's columns
             // are wanted.
             let mut kw = [[0.0; 5]; 5];
@@ -1151,29 +1238,30 @@ impl SkiddingModel {
                 self.forces(j, &geo, &ld, q, v, omega, st5, Some(&mut kw))
             };
             // Ball columns.
-            for col in 0..3 {
+            for col in 0..bs {
                 // psi: 1e-7 rad (the loads' solve leaves a relative noise of ~1e-13 in
                 // the rates, which a 1e-9 step would amplify to ~30 %).
-                let h = if col == 0 {
-                    1e-7
-                } else {
-                    eps * st[col].abs().max(1.0)
+                let h = match col {
+                    0 => 1e-7,
+                    3 => 1e-4 * st[3].abs().max(1e-8),
+                    4 => 1e-6,
+                    _ => eps * st[col].abs().max(1.0),
                 };
                 let mut sp = st;
                 sp[col] += h;
-                let s5 = [theta_c, w_c, sp[0], sp[1], sp[2]];
+                let s5 = [theta_c, w_c, sp[0], sp[1], sp[2], sp[3], sp[4]];
                 let b = match col {
-                    // w_a: same geometry and loads.
-                    2 => at(s5),
-                    // w_b: same geometry, new centrifugal split.
-                    1 => {
-                        let ld1 = self.loads(&geo, sp[1]);
+                    // w_a, u': same geometry and loads.
+                    2 | 4 => at(s5),
+                    // w_b, u: same geometry, new loads.
+                    1 | 3 => {
+                        let ld1 = self.loads(&geo, sp[1], radial(&sp));
                         self.forces(j, &geo, &ld1, q, v, omega, s5, None)
                     }
-                    _ => self.ball(j, q, v, omega, theta_c, w_c, sp[0], sp[1], sp[2]),
+                    _ => self.ball_r(j, q, v, omega, s5),
                 };
                 let c = k + col;
-                for r in 0..3 {
+                for r in 0..bs {
                     jx[(k + r) * n + c] = (b.dx[r] - base.dx[r]) / h;
                 }
                 jx[cr + c] = (b.cage_torque - base.cage_torque) / (h * jc);
@@ -1202,10 +1290,16 @@ impl SkiddingModel {
             if jm.is_empty() {
                 continue;
             }
-            // Velocity columns: only the contact damping `-cd g g^T` depends on v.
+            // Velocity columns: only the contact damping `-cd g g^T` depends on v (and,
+            // with radial mass, the ball's radial acceleration through the same term).
             for r in 0..5 {
                 for c in 0..5 {
                     wm[r * 10 + 5 + c] -= base.cd * base.g[r] * base.g[c];
+                }
+            }
+            if bs == 5 {
+                for c in 0..5 {
+                    jm[(k + 4) * 10 + 5 + c] = base.cd * base.g[c] / self.m;
                 }
             }
             // Displacement columns. The rates depend on q only through three scalars:
@@ -1214,7 +1308,7 @@ impl SkiddingModel {
             // with their analytic derivatives (no new geometry or split); the wrench's
             // columns are the analytic stiffness.
             let dl = self.load_derivs(&geo, &ld);
-            let mut dpar = [[0.0; 3]; 3]; // dpar[param][rate]: d(rates)/d(Q_i, Q_o, theta)
+            let mut dpar = [[0.0; 5]; 3]; // dpar[param][rate]: d(rates)/d(Q_i, Q_o, theta)
             let mut dcage = [0.0; 3];
             let sp0 = ld.sp;
             for (kp, dp) in dpar.iter_mut().enumerate() {
@@ -1257,7 +1351,7 @@ impl SkiddingModel {
                 }
                 let dth = geo.n[1] * dl.dn0[col] - geo.n[0] * dl.dn1[col];
                 let chain = [dl.dqi[col], dl.dqo[col], dth];
-                for r in 0..3 {
+                for r in 0..bs {
                     jm[(k + r) * 10 + col] = (0..3).map(|kp| dpar[kp][r] * chain[kp]).sum();
                 }
                 jm[(ic + 1) * 10 + col] += (0..3).map(|kp| dcage[kp] * chain[kp]).sum::<f64>() / jc;

@@ -90,7 +90,7 @@ impl LevelModel for SkiddingLevel {
     }
     fn blocks(&self) -> Option<(usize, usize)> {
         // One independent 3-state block per ball, then the cage (and the ring) as border.
-        Some((self.model.z(), 3))
+        Some((self.model.z(), self.model.ball_states()))
     }
     fn state_atol(&self, atol_m: f64, atol: &mut [f64]) -> bool {
         // Angles: a ball-surface error of atol_m; speeds: that error over a 1 kHz period.
@@ -99,11 +99,17 @@ impl LevelModel for SkiddingLevel {
         let ic = self.model.cage_index();
         atol[ic] = angle;
         atol[ic + 1] = rate;
+        let bs = self.model.ball_states();
         for j in 0..self.model.z() {
-            let k = BALL0 + 3 * j;
+            let k = BALL0 + bs * j;
             atol[k] = angle;
             atol[k + 1] = rate;
             atol[k + 2] = rate;
+            if bs == 5 {
+                // The ball's radial position and its rate.
+                atol[k + 3] = atol_m;
+                atol[k + 4] = atol_m * 2.0 * std::f64::consts::PI * 1e3;
+            }
         }
         true
     }
@@ -132,7 +138,7 @@ impl LevelModel for SkiddingLevel {
         if !m.omega.is_finite() {
             return Err(Error::invalid("shaft.omega", m.omega, "a finite number"));
         }
-        self.model.init(m.omega, x);
+        self.model.init_at(&m.q, m.omega, x);
         Ok(())
     }
     fn rhs(
@@ -171,7 +177,7 @@ impl LevelModel for SkiddingLevel {
     ) -> Result<()> {
         let n = self.model.n_states();
         // Fixed-size scratch (no allocation) for the rates.
-        let mut buf = [0.0; 2 + 3 * MAX_BALLS];
+        let mut buf = [0.0; 2 + 5 * MAX_BALLS];
         if n > buf.len() {
             return Err(Error::invalid(
                 "bearing.ball_count",
