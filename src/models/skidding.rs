@@ -90,6 +90,14 @@
 //! energy and the momentum about `z` balance exactly); on the races `+M n3` (the shaft's
 //! torque about `z` and its tilt moments).
 //!
+//! Radial mass (option `ball_radial_mass`): the ball's outer approach `u` and `u'` become
+//! states, `m u'' = Q_i(delta - u) + c_i (delta' - u') - Q_o(u) - c_o u' + Fc n_r` along
+//! the contact line (the outer ring fixed; `c_k` the contact damping blended in over
+//! [`crate::models::ring::DAMPING_RAMP`] of each approach, so the radial motion settles onto
+//! the quasi-static split), and the shaft receives `Q_i + c_i (delta' - u')`. The
+//! rotation of the contact line and the Coriolis terms are neglected (the ball moves by
+//! micrometres).
+//!
 //! Shaft stiffness: `-dW/dq` with the balls held is analytic (the load derivatives from
 //! the split, `dQ_i = (s_i s_o d delta - s_i df)/(s_i + s_o)`, the contact line's
 //! `dn = (dA/dq - n g)/|A|`, and the traction, lateral and spin terms through them),

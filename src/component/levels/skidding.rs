@@ -1,6 +1,11 @@
 //! The `skidding` level: ball orbit and spin, cage, traction and drag (physics.md §5.2)
-//! behind the level seam. States: `[theta_c, w_c, (psi_j, w_b_j, w_a_j)]`, see
-//! [`crate::models::skidding`].
+//! behind the level seam. States: `[(psi_j, w_b_j, w_a_j[, u_j, u_j']), theta_c, w_c]`
+//! (balls first, so the Jacobian is block-arrowhead), see [`crate::models::skidding`].
+//!
+//! Cost at a communication point: the outputs' stiffness `-dF/dq` is analytic (one
+//! right-hand side, not a Jacobian), and the last right-hand side is memoised, so the
+//! component's repeated evaluations of the same point (outputs, the base of its `dF/dt`
+//! difference, the next step's first stage and `df/dt`) cost nothing.
 
 use crate::component::level::{LevelModel, LevelOutputs, Motion};
 use crate::error::{Error, Result};
