@@ -7,14 +7,14 @@
 //! smooth Coulomb and mixed-EHL laws are C¹ there).
 //!
 //! - **Smooth Coulomb** `mu = mu_max tanh(dv / v_s)`: the regularised Coulomb law used by
-//!   skidding models since Walters (1971); study [3] uses a piecewise-linear law that rises
+//!   skidding models since Walters (1971); study \[3\] uses a piecewise-linear law that rises
 //!   to about 0.02 at 0.05 m/s, which `tanh` reproduces as a continuous curve.
 //! - **Fitted traction curve** `mu = (A + B s) exp(-C s) + D` of the slide-to-roll ratio
-//!   `s = dv / u` (Gupta, *Advanced Dynamics of Rolling Elements*, 1984, ch. 3; study [0]),
+//!   `s = dv / u` (Gupta, *Advanced Dynamics of Rolling Elements*, 1984, ch. 3; study \[0\]),
 //!   odd-extended: `mu(s) = tanh(s / s_reg) [(A + B|s|) exp(-C|s|) + D]`, so it passes
 //!   through 0 continuously even when `A + D != 0`. `s` uses a regularised rolling speed
 //!   `sqrt(u² + u_min²)` so it stays finite at rest.
-//! - **Mixed EHL** (study [2], after Masjedi & Khonsari): the load is shared between the
+//! - **Mixed EHL** (study \[2\], after Masjedi & Khonsari): the load is shared between the
 //!   asperities (`La` per cent) and the film. Asperity share
 //!   `f_a = f_c Q (La/100) tanh(dv/v_s)` (boundary friction coefficient `f_c`, made
 //!   continuous); film share `f_f = Lambda_lim p_h (1 - exp(-eta |dv| / (Lambda_lim p_h h_c)))

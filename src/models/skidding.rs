@@ -1,5 +1,5 @@
 //! Skidding level: ball orbit and spin, cage, traction, lubricant drag (physics.md §5.2;
-//! studies [2] and [3]; Harris & Kotzalas Vol. 2 ch. 3 for the slip kinematics, Gupta
+//! studies \[2\] and \[3\]; Harris & Kotzalas Vol. 2 ch. 3 for the slip kinematics, Gupta
 //! *Advanced Dynamics of Rolling Elements* ch. 3–4 for the ball and cage equations).
 //!
 //! # Free-body diagram and sign conventions
