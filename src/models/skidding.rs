@@ -562,6 +562,9 @@ impl SkiddingModel {
             (qo - qi - f, so + si)
         };
         let tol = 1e-13 * hi.max(1e-9);
+        // A Newton step below 1e-8 of the bracket leaves an error of order its square
+        // over the approach (quadratic convergence): accept it without another pass.
+        let tol_newton = 1e-8 * hi.max(1e-9);
         for _ in 0..60 {
             let (r, dr) = g(x);
             if r > 0.0 {
@@ -569,15 +572,14 @@ impl SkiddingModel {
             } else {
                 lo = x;
             }
-            let mut xn = if dr > 0.0 {
-                x - r / dr
-            } else {
-                0.5 * (lo + hi)
-            };
+            let mut newton = dr > 0.0;
+            let mut xn = if newton { x - r / dr } else { 0.5 * (lo + hi) };
             if !(xn > lo && xn < hi) {
                 xn = 0.5 * (lo + hi);
+                newton = false;
             }
-            if (xn - x).abs() <= tol || hi - lo <= tol {
+            let step = (xn - x).abs();
+            if step <= tol || hi - lo <= tol || (newton && step <= tol_newton) {
                 x = xn;
                 break;
             }
@@ -695,7 +697,7 @@ impl SkiddingModel {
         let a = ca * r;
         let ms = 0.375 * mu * q * a * e;
         let z = w * a / self.p.friction_v_s;
-        let th = z.tanh();
+        let th = crate::contact::traction::tanh(z);
         let sech2 = 1.0 - th * th;
         // ms ~ Q^(4/3), z ~ Q^(1/3).
         let m_q = (4.0 / 3.0) * ms * th / q + ms * sech2 * z / (3.0 * q);
@@ -1035,7 +1037,9 @@ impl SkiddingModel {
         let m_fric = if force == 0.0 {
             0.0
         } else {
-            -hd * p.pocket_friction * force.abs() * (slide / p.friction_v_s).tanh()
+            -hd * p.pocket_friction
+                * force.abs()
+                * crate::contact::traction::tanh(slide / p.friction_v_s)
         };
         Pocket {
             xi,
