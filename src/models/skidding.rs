@@ -1318,7 +1318,9 @@ impl SkiddingModel {
             // the loads Q_i, Q_o and the direction of the contact line (n rotates by
             // d theta = n1 dn0 - n0 dn1, a unit vector). Difference along each and chain
             // with their analytic derivatives (no new geometry or split); the wrench's
-            // columns are the analytic stiffness.
+            // columns are the analytic stiffness. (With radial mass the damping of the
+            // ball's radial motion also sees q through the ring-geometry rate `delta'`; that
+            // small term is left out of this Jacobian, which only costs step efficiency.)
             let dl = self.load_derivs(&geo, &ld);
             let mut dpar = [[0.0; 5]; 3]; // dpar[param][rate]: d(rates)/d(Q_i, Q_o, theta)
             let mut dcage = [0.0; 3];
