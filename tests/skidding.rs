@@ -343,7 +343,7 @@ fn explore_7008ce_balls() {
     let mut dy = vec![0.0; n + 2];
     sys.rhs(0.0, &y, &mut dy).unwrap();
     let (wk, _) = sys.m.kinematic(w);
-    println!("wk {wk} wc {} ", y[1]);
+    println!("wk {wk} wc {} ", y[sys.m.cage_index() + 1]);
     for b in sys.m.balls.iter().take(3) {
         println!("{b:?}");
     }
@@ -392,4 +392,258 @@ fn other_traction_laws_through_the_scene() {
     );
     let e = Component::from_text(&bad).unwrap_err().to_string();
     assert!(e.contains("model.skidding.traction.v_s"), "{e}");
+}
+
+/// The 7008CE model with `p`, its states at the kinematic speeds of `omega`.
+fn model_7008ce(p: SkiddingParams, omega: f64) -> (SkiddingModel, Vec<f64>) {
+    let b = preset("7008ce").unwrap().build().unwrap();
+    let m = SkiddingModel::new(&b, p).unwrap();
+    let mut x = vec![0.0; m.n_states()];
+    m.init(omega, &mut x);
+    (m, x)
+}
+
+/// Gyroscopic couple (Harris & Kotzalas Vol. 2 ch. 3): at 24 000 rpm under an axial
+/// approach, switching it on changes the wrench on the shaft by the lateral friction
+/// through the inner contacts, `dFz = -sum_j F_j cos(alpha_j)` with
+/// `F = (J w_s w_b sin(alpha0)/D) phi(mu Q_h D / Mg)`; the axial symmetry leaves the radial
+/// forces and the moments unchanged. The rates of the balls do not change (the lateral
+/// forces balance on each ball and do no work).
+#[test]
+fn gyroscopic_friction_changes_the_axial_force_by_the_predicted_amount() {
+    let b = preset("7008ce").unwrap().build().unwrap();
+    let omega = 24000.0 * PI / 30.0;
+    let base = SkiddingParams {
+        gyro_traction: f64::INFINITY,
+        ..SkiddingParams::default()
+    };
+    let (mut on, mut x) = model_7008ce(base.clone(), omega);
+    let (mut off, _) = model_7008ce(
+        SkiddingParams {
+            gyroscopic: false,
+            ..base
+        },
+        omega,
+    );
+    // A slipping state near the kinematic one (the balls lag 1 %).
+    for j in 0..on.z() {
+        x[3 * j + 1] *= 0.99;
+    }
+    let q = [0.0, 0.0, 15e-6, 0.0, 0.0];
+    let n = x.len();
+    let (mut d_on, mut d_off) = (vec![0.0; n], vec![0.0; n]);
+    let w_on = on.eval(&q, &[0.0; 5], omega, &x, &mut d_on).wrench;
+    let w_off = off.eval(&q, &[0.0; 5], omega, &x, &mut d_off).wrench;
+    assert_eq!(d_on, d_off, "the ball and cage rates do not change");
+    // Prediction from the bearing data and the kinematics (unlimited friction).
+    let alpha0 = b.nominal_contact_angle();
+    let k = kinematics(&b, omega);
+    // w_b lowered by 1 % at a fixed absolute spin w_a: w_s = w_b cos(alpha0) - w_a.
+    let (wb, ws) = (
+        0.99 * k.cage_speed,
+        k.ball_spin_speed - 0.01 * k.cage_speed * alpha0.cos(),
+    );
+    let mg = b.ball_inertia() * ws * wb * alpha0.sin();
+    // The contact line of this approach: the same for every ball.
+    let s = on.balls[0];
+    assert!(s.q_i > 0.0 && s.gyro > 0.0);
+    let f = mg / b.d;
+    assert!((s.gyro / f - 1.0).abs() < 1e-12, "F = Mg/D unlimited");
+    // cos(alpha) of the loaded contact from the normal-force part of Fz.
+    let fz_normal = w_off[2];
+    let cos_a = {
+        // Fz = -Z Q sin(alpha): recover alpha from it and the load.
+        let sin_a = -fz_normal / (b.z as f64 * s.q_i);
+        (1.0 - sin_a * sin_a).sqrt()
+    };
+    let predicted = -(b.z as f64) * f * cos_a;
+    let dfz = w_on[2] - w_off[2];
+    println!("Mg {mg:.4e} N m, F {f:.3} N per ball, dFz {dfz:.4} N, predicted {predicted:.4} N");
+    assert!((dfz / predicted - 1.0).abs() < 1e-9, "{dfz} vs {predicted}");
+    assert!(
+        dfz < 0.0,
+        "the lateral friction pulls the shaft further along -z"
+    );
+    for r in [0, 1, 3, 4] {
+        let scale = if r < 3 { 1.0 } else { 1e-2 };
+        assert!((w_on[r] - w_off[r]).abs() < 1e-9 * scale * f, "{r}");
+    }
+    // With the quasi-static level's default cap (mu = 0.3): smaller, never larger.
+    let (mut capped, _) = model_7008ce(
+        SkiddingParams {
+            gyro_traction: 0.3,
+            ..SkiddingParams::default()
+        },
+        omega,
+    );
+    let w_cap = capped.eval(&q, &[0.0; 5], omega, &x, &mut d_on).wrench;
+    let dcap = w_cap[2] - w_off[2];
+    assert!(dcap < 0.0 && dcap > dfz, "{dcap} vs {dfz}");
+}
+
+/// Spinning friction `M = (3/8) mu Q a E` (Harris & Kotzalas): a deep-groove bearing at
+/// zero contact angle rolls without spin, so it changes nothing; in the 7008CE both
+/// contacts spin, the moment dissipates power and adds a resisting torque on the shaft.
+#[test]
+fn spin_friction_zero_without_contact_angle_positive_power_with_it() {
+    let spin = SkiddingParams {
+        spin_friction: 0.05,
+        ..SkiddingParams::default()
+    };
+    // 6012 at zero contact angle: no spin, nothing changes.
+    let b = preset("6012").unwrap().build().unwrap();
+    let mut m = SkiddingModel::new(&b, spin.clone()).unwrap();
+    let mut m0 = SkiddingModel::new(&b, SkiddingParams::default()).unwrap();
+    let mut x = vec![0.0; m.n_states()];
+    m.init(300.0, &mut x);
+    let q = [0.0, -12e-6, 0.0, 0.0, 0.0];
+    let mut dx = vec![0.0; x.len()];
+    let t = m.eval(&q, &[0.0; 5], 300.0, &x, &mut dx);
+    let t0 = m0.eval(&q, &[0.0; 5], 300.0, &x, &mut dx);
+    assert!(m.balls.iter().all(|s| s.spin_i == 0.0 && s.spin_o == 0.0));
+    assert_eq!(t.power_contacts, t0.power_contacts);
+    assert_eq!(t.torque_shaft, t0.torque_shaft);
+    // 7008CE: spin at both contacts.
+    let omega = 6000.0 * PI / 30.0;
+    let (mut m, x) = model_7008ce(spin, omega);
+    let (mut m0, _) = model_7008ce(SkiddingParams::default(), omega);
+    let q = [0.0, 0.0, 12e-6, 0.0, 0.0];
+    let mut dx = vec![0.0; x.len()];
+    let t = m.eval(&q, &[0.0; 5], omega, &x, &mut dx);
+    let t0 = m0.eval(&q, &[0.0; 5], omega, &x, &mut dx);
+    let dp = t.power_contacts - t0.power_contacts;
+    let dt = t.torque_shaft - t0.torque_shaft;
+    let s = m.balls[0];
+    println!(
+        "7008CE 6000 rpm: spin moments inner {:.3e} outer {:.3e} N m, power +{dp:.3} W, torque {dt:.3e} N m",
+        s.spin_i, s.spin_o
+    );
+    assert!(dp > 0.0, "spinning friction dissipates");
+    assert!(dt < 0.0, "and resists the shaft");
+    assert!(m.balls.iter().all(|s| s.spin_i < 0.0 && s.spin_o > 0.0));
+}
+
+/// Momentum and energy balances of the 7008CE with gyroscopic and spin friction on,
+/// spun up from rest (pocket friction off: its component off the rolling axis turns the
+/// unmodelled pivoting spin, so only `alpha = 0` closes the momentum balance with it).
+#[test]
+fn balances_close_with_gyroscopic_and_spin_friction() {
+    let p = SkiddingParams {
+        spin_friction: 0.05,
+        pocket_friction: 0.0,
+        spacing_scatter: 0.5,
+        cage_drag: 1e-5,
+        drag_viscosity: 0.01,
+        ..SkiddingParams::default()
+    };
+    let (m, _) = model_7008ce(p, 0.0);
+    let n = m.n_states();
+    let omega = 300.0;
+    let mut y = vec![0.0; n + 2];
+    m.init(0.0, &mut y[..n]);
+    let l0 = m.angular_momentum(&y[..n]);
+    let q = [0.0, 0.0, 12e-6, 0.0, 0.0];
+    let mut sys = Balance { m, q, omega };
+    let e0 = energy(&mut sys.m, &q, omega, &y[..n]);
+    let mut integ = Rosenbrock::new(n + 2);
+    let mut opts = Options::new(n + 2, 1e-6, 1e-10);
+    opts.max_steps = 1_000_000;
+    let mut h = 0.0;
+    integ
+        .integrate(&mut sys, 0.0, 0.003, &mut y, &mut h, &opts)
+        .unwrap();
+    let l1 = sys.m.angular_momentum(&y[..n]);
+    let e1 = energy(&mut sys.m, &q, omega, &y[..n]);
+    let mut dy = vec![0.0; n + 2];
+    sys.rhs(0.0, &y, &mut dy).unwrap();
+    assert!(sys.m.balls.iter().all(|s| s.spin_i != 0.0 && s.gyro != 0.0));
+    println!(
+        "L residual {:e} of {l1:e}; E residual {:e} of {e1:e}",
+        l1 - l0 - y[n],
+        e1 - e0 - y[n + 1]
+    );
+    assert!(l1 > 0.0);
+    assert!((l1 - l0 - y[n]).abs() < 1e-6 * l1.abs(), "momentum balance");
+    assert!((e1 - e0 - y[n + 1]).abs() < 1e-4 * e1, "energy balance");
+}
+
+/// Balls with radial mass (`ball_radial_mass`): started away from radial equilibrium
+/// (placed for a centred ring, then the ring is displaced), the damped radial motion
+/// settles within a fraction of a millisecond onto the quasi-static split's loads. With
+/// the option off the state vector is the three-per-ball one (nothing added).
+#[test]
+fn radial_mass_settles_on_the_quasi_static_split() {
+    let b = preset("6012").unwrap().build().unwrap();
+    let p = SkiddingParams {
+        ball_radial_mass: true,
+        contact_damping: 200.0,
+        ..SkiddingParams::default()
+    };
+    let m = SkiddingModel::new(&b, p.clone()).unwrap();
+    let qs = SkiddingModel::new(&b, SkiddingParams::default()).unwrap();
+    assert_eq!(qs.n_states(), 3 * b.z + 2, "off: no extra states");
+    assert_eq!(m.n_states(), 5 * b.z + 2);
+    let omega = 2000.0 * PI / 30.0;
+    let n = m.n_states();
+    let mut y = vec![0.0; n + 2];
+    m.init(omega, &mut y[..n]); // balls placed for q = 0
+    let q = [0.0, -12e-6, 0.0, 0.0, 0.0];
+    let mut sys = Balance { m, q, omega };
+    let mut dy = vec![0.0; n + 2];
+    sys.rhs(0.0, &y, &mut dy).unwrap();
+    let first: Vec<(f64, f64)> = sys.m.balls.iter().map(|s| (s.q_i, s.q_o)).collect();
+    let mut integ = Rosenbrock::new(n + 2);
+    let mut opts = Options::new(n + 2, 1e-7, 1e-12);
+    opts.max_steps = 1_000_000;
+    let mut h = 0.0;
+    integ
+        .integrate(&mut sys, 0.0, 0.002, &mut y, &mut h, &opts)
+        .unwrap();
+    sys.rhs(0.0, &y, &mut dy).unwrap();
+    // The quasi-static model at the same orbit and spin states.
+    let mut qs = qs;
+    let mut xq = vec![0.0; qs.n_states()];
+    for j in 0..b.z {
+        xq[3 * j..3 * j + 3].copy_from_slice(&y[5 * j..5 * j + 3]);
+    }
+    xq[3 * b.z..3 * b.z + 2].copy_from_slice(&y[5 * b.z..5 * b.z + 2]);
+    let mut dq = vec![0.0; xq.len()];
+    qs.eval(&q, &[0.0; 5], omega, &xq, &mut dq);
+    let mut worst: f64 = 0.0;
+    let mut moved: f64 = 0.0;
+    for (j, (a, s)) in sys.m.balls.iter().zip(&qs.balls).enumerate() {
+        let scale = s.q_i.max(s.q_o).max(1.0);
+        worst = worst
+            .max((a.q_i - s.q_i).abs() / scale)
+            .max((a.q_o - s.q_o).abs() / scale);
+        moved = moved.max((first[j].0 - s.q_i).abs() / scale);
+    }
+    println!("radial mass: start off by {moved:.3} of the load, settled to {worst:.2e}");
+    assert!(moved > 0.1, "the start is away from equilibrium");
+    assert!(worst < 1e-4, "settled on the split: {worst}");
+}
+
+/// The option through the scene: a motion-driven 6012 with radial mass runs and its
+/// force matches the quasi-static level's once settled.
+#[test]
+fn radial_mass_through_the_scene() {
+    let w = 2000.0 * PI / 30.0;
+    let on = scene_6012(-12e-6, w, "ball_radial_mass = true").replace(
+        "level = \"skidding\"",
+        "level = \"skidding\"\ncontact_damping = 200.0",
+    );
+    let off = scene_6012(-12e-6, w, "").replace(
+        "level = \"skidding\"",
+        "level = \"skidding\"\ncontact_damping = 200.0",
+    );
+    let mut c_on = Component::from_text(&on).unwrap();
+    let mut c_off = Component::from_text(&off).unwrap();
+    let r_on = run(&mut c_on, 10, 1e-3);
+    let r_off = run(&mut c_off, 10, 1e-3);
+    let (f_on, f_off) = (r_on[9].3, r_off[9].3);
+    println!("Fy with radial mass {f_on:.3} N, quasi-static {f_off:.3} N");
+    assert!(
+        (f_on - f_off).abs() < 1e-3 * f_off.abs(),
+        "{f_on} vs {f_off}"
+    );
 }

@@ -69,6 +69,13 @@ pub trait LevelModel: Send + std::fmt::Debug {
     fn ring_dofs(&self) -> &'static [usize] {
         &[0, 1, 2, 3, 4]
     }
+    /// Block structure of the level's states for a structured linear solver: `Some((nb,
+    /// s))` when the first `nb·s` states form `nb` independent blocks of `s` (no rate of
+    /// one block depends on another block's states) and the rest, with the ring's states,
+    /// form the border ([`crate::solver::BlockArrowhead`]). `None` (default): dense.
+    fn blocks(&self) -> Option<(usize, usize)> {
+        None
+    }
     /// Absolute tolerances of the level's states, given the scene's displacement
     /// tolerance `atol_m`: fill `atol` (length `n_states`) and return `true`, or return
     /// `false` (the default) to let the component treat every state as an angle.

@@ -247,10 +247,17 @@ fn make_integrator(
     // The skidding and full levels are stiff (traction slope, numerics.md §1.2): RODAS4
     // by default.
     let stiff = matches!(scene.model.level, Level::Skidding | Level::Full);
+    // A level with independent blocks of states gets the block-arrowhead solver.
+    let rodas = || match level.blocks() {
+        Some((nb, s)) if nb * s <= nl => Rosenbrock::with_solver(Box::new(
+            crate::solver::BlockArrowhead::new(nb, s, n - nb * s),
+        )),
+        _ => Rosenbrock::new(n),
+    };
     let integrator = match scene.solver.method {
-        Method::Auto if stiff => Integrator::Rosenbrock(Rosenbrock::new(n)),
+        Method::Auto if stiff => Integrator::Rosenbrock(rodas()),
         Method::Auto | Method::Dopri5 => Integrator::Dopri5(Dopri5::new(n)),
-        Method::Rosenbrock => Integrator::Rosenbrock(Rosenbrock::new(n)),
+        Method::Rosenbrock => Integrator::Rosenbrock(rodas()),
     };
     let s = &scene.solver;
     let mut opts = Options::new(n, s.rtol, s.atol_m);

@@ -133,6 +133,14 @@ pub struct SkiddingSpec {
     pub spacing_scatter: f64,
     /// Seed of the scatter.
     pub seed: u64,
+    /// Traction coefficient limiting the lateral friction that carries the balls'
+    /// gyroscopic couple (as `quasi_static`'s `gyro_traction`); 0 turns it off.
+    pub gyro_traction: f64,
+    /// Friction coefficient of the spinning moment at the race contacts (0: off).
+    pub spin_friction: f64,
+    /// Give the balls radial mass (their position along the contact line becomes a
+    /// state, damped by `model.contact_damping`) instead of the quasi-static split.
+    pub ball_radial_mass: bool,
 }
 
 impl Default for SkiddingSpec {
@@ -150,6 +158,9 @@ impl Default for SkiddingSpec {
             cage_drag: p.cage_drag,
             spacing_scatter: p.spacing_scatter,
             seed: p.seed,
+            gyro_traction: p.gyro_traction,
+            spin_friction: p.spin_friction,
+            ball_radial_mass: p.ball_radial_mass,
         }
     }
 }
@@ -177,6 +188,14 @@ impl SkiddingSpec {
             spacing_scatter: in_range(&f("spacing_scatter"), self.spacing_scatter, 0.0, 1.0)?,
             seed: self.seed,
             contact_damping: 0.0,
+            gyroscopic: in_range(&f("gyro_traction"), self.gyro_traction, 0.0, 10.0)? > 0.0,
+            gyro_traction: if self.gyro_traction > 0.0 {
+                self.gyro_traction
+            } else {
+                1.0
+            },
+            spin_friction: in_range(&f("spin_friction"), self.spin_friction, 0.0, 2.0)?,
+            ball_radial_mass: self.ball_radial_mass,
             ..Default::default()
         })
     }

@@ -86,6 +86,8 @@ pub enum Kind {
     Name(Names),
     /// A name from a library list, or a table of fields (the paths below this one).
     NameOrTable(Names),
+    /// `true` or `false`.
+    Bool,
 }
 
 impl Kind {
@@ -96,6 +98,7 @@ impl Kind {
             Kind::Int | Kind::IntChoice(_) => "integer",
             Kind::Text | Kind::Enum(_) | Kind::Name(_) => "string",
             Kind::NameOrTable(_) => "string or table",
+            Kind::Bool => "boolean",
         }
     }
 }
@@ -339,6 +342,9 @@ pub const TABLE: &[Field] = &[
     f("model.full.guide_width_mm", Float, "mm", gt(0.0), "absent: half the cage width", "full level: guide land width"),
     f("model.full.guide_stiffness", Float, "N/m", gt(0.0), "", "full level: guide-land contact stiffness beyond guide_eps_max"),
     f("model.full.guide_eps_max", Float, "-", between(0.05, true, 0.999, true), "", "full level: eccentricity ratio where the guide-land contact starts"),
+    f("model.skidding.gyro_traction", Float, "-", between(0.0, true, 10.0, true), "0 turns the gyroscopic friction off", "skidding level: traction coefficient limiting the lateral friction that carries the balls' gyroscopic couple"),
+    f("model.skidding.ball_radial_mass", Bool, "-", ANY, "default false", "skidding level: give the balls radial mass (position along the contact line as a state, damped by model.contact_damping) instead of the quasi-static split"),
+    f("model.skidding.spin_friction", Float, "-", between(0.0, true, 2.0, true), "0: no spinning moment", "skidding level: friction coefficient of the spinning moment (3/8) mu Q a E at the race contacts"),
     f("model.start", Enum(STARTS), "-", ANY, "", "load-driven: the inner ring starts at rest in static equilibrium under the initial loads (equilibrium) or at zero displacement (rest)"),
     f("model.attached_mass_kg", Float, "kg", ge(0.0), "", "load-driven: mass attached to the inner ring (added to its own)"),
     // Solver.
@@ -498,6 +504,9 @@ fn full_scene(bearing: BearingRef, traction: TractionLaw) -> Scene {
                 cage_drag: sk.cage_drag,
                 spacing_scatter: sk.spacing_scatter,
                 seed: sk.seed,
+                gyro_traction: sk.gyro_traction,
+                spin_friction: 0.02,
+                ball_radial_mass: false,
             },
             full: super::scene::FullSpec {
                 traction,
@@ -851,6 +860,7 @@ pub fn range_text(f: &Field) -> String {
                 .join(", ")
         ),
         Name(n) | NameOrTable(n) => format!("one of {}", n.list().join(", ")),
+        Bool => "true or false".into(),
     };
     let base = if matches!(f.kind, NameOrTable(_)) {
         format!("{base}, or a table")
@@ -1271,7 +1281,7 @@ impl Checker<'_> {
                     );
                 }
             }
-            (Text, Node::Str(_)) => {}
+            (Text, Node::Str(_)) | (Bool, Node::Bool) => {}
             (Enum(v), Node::Str(s)) => {
                 if !v.contains(&s.as_str()) {
                     let hint = nearest(s, v.iter().copied())
@@ -1338,6 +1348,7 @@ fn expect(entry: Option<&Field>) -> String {
         Some(Float) => "a number".into(),
         Some(Int) | Some(IntChoice(_)) => "an integer".into(),
         Some(NameOrTable(_)) => "a name or a table".into(),
+        Some(Bool) => "a boolean".into(),
         Some(_) => "a string".into(),
     }
 }

@@ -7,14 +7,14 @@
 //! smooth Coulomb and mixed-EHL laws are C¹ there).
 //!
 //! - **Smooth Coulomb** `mu = mu_max tanh(dv / v_s)`: the regularised Coulomb law used by
-//!   skidding models since Walters (1971); study [3] uses a piecewise-linear law that rises
+//!   skidding models since Walters (1971); study \[3\] uses a piecewise-linear law that rises
 //!   to about 0.02 at 0.05 m/s, which `tanh` reproduces as a continuous curve.
 //! - **Fitted traction curve** `mu = (A + B s) exp(-C s) + D` of the slide-to-roll ratio
-//!   `s = dv / u` (Gupta, *Advanced Dynamics of Rolling Elements*, 1984, ch. 3; study [0]),
+//!   `s = dv / u` (Gupta, *Advanced Dynamics of Rolling Elements*, 1984, ch. 3; study \[0\]),
 //!   odd-extended: `mu(s) = tanh(s / s_reg) [(A + B|s|) exp(-C|s|) + D]`, so it passes
 //!   through 0 continuously even when `A + D != 0`. `s` uses a regularised rolling speed
 //!   `sqrt(u² + u_min²)` so it stays finite at rest.
-//! - **Mixed EHL** (study [2], after Masjedi & Khonsari): the load is shared between the
+//! - **Mixed EHL** (study \[2\], after Masjedi & Khonsari): the load is shared between the
 //!   asperities (`La` per cent) and the film. Asperity share
 //!   `f_a = f_c Q (La/100) tanh(dv/v_s)` (boundary friction coefficient `f_c`, made
 //!   continuous); film share `f_f = Lambda_lim p_h (1 - exp(-eta |dv| / (Lambda_lim p_h h_c)))
@@ -34,6 +34,22 @@
 //!   `La -> 100`.
 
 use std::f64::consts::PI;
+
+/// `tanh(x)` through one `exp` (about twice as fast as `f64::tanh`, which goes through
+/// `expm1`): `(1 - e^(-2|x|)) / (1 + e^(-2|x|))` with the sign of `x`, and the odd Taylor
+/// series `x - x³/3 + 2x⁵/15` below `|x| = 1e-3` (where the quotient would lose digits).
+/// Exactly odd; relative error below `1e-13` everywhere (checked in a unit test).
+#[inline]
+pub fn tanh(x: f64) -> f64 {
+    let a = x.abs();
+    if a < 1e-3 {
+        let x2 = x * x;
+        x * (1.0 - x2 * (1.0 / 3.0 - x2 * (2.0 / 15.0)))
+    } else {
+        let e = (-2.0 * a).exp();
+        ((1.0 - e) / (1.0 + e)).copysign(x)
+    }
+}
 
 /// Contact data a traction law may need. SI units.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -259,7 +275,7 @@ impl TractionLaw {
             return 0.0;
         }
         match *self {
-            TractionLaw::Coulomb { mu_max, v_s } => mu_max * (dv / v_s).tanh() * c.q,
+            TractionLaw::Coulomb { mu_max, v_s } => mu_max * tanh(dv / v_s) * c.q,
             TractionLaw::Fitted {
                 a,
                 b,
@@ -332,6 +348,23 @@ mod tests {
             let tiny = law.force(1e-12, 5.0, &c);
             assert!(tiny.abs() < 1e-6, "{law:?} continuous at 0: {tiny}");
         }
+    }
+
+    /// The fast `tanh` against the library's, over twenty decades and both signs.
+    #[test]
+    fn fast_tanh_matches_the_library() {
+        let mut worst: f64 = 0.0;
+        for k in 0..=4000 {
+            let x = 10f64.powf(-16.0 + 18.0 * k as f64 / 4000.0);
+            for s in [x, -x] {
+                let (a, b) = (tanh(s), s.tanh());
+                assert_eq!(tanh(-s), -a, "odd");
+                worst = worst.max(((a - b) / b).abs());
+            }
+        }
+        assert!(worst < 1e-13, "{worst:e}");
+        assert_eq!(tanh(0.0), 0.0);
+        assert_eq!(tanh(800.0), 1.0);
     }
 
     #[test]

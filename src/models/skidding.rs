@@ -1,5 +1,5 @@
 //! Skidding level: ball orbit and spin, cage, traction, lubricant drag (physics.md §5.2;
-//! studies [2] and [3]; Harris & Kotzalas Vol. 2 ch. 3 for the slip kinematics, Gupta
+//! studies \[2\] and \[3\]; Harris & Kotzalas Vol. 2 ch. 3 for the slip kinematics, Gupta
 //! *Advanced Dynamics of Rolling Elements* ch. 3–4 for the ball and cage equations).
 //!
 //! # Free-body diagram and sign conventions
@@ -43,6 +43,8 @@
 //! J_c w_c'       = -(dm/2) sum_j P_j - sum_j M_z,j - M_cage
 //! ```
 //!
+//! (plus the spin friction's generalised forces below).
+//!
 //! Angular momentum about `z` of balls and cage,
 //! `L = sum_j [m (dm/2)² w_b + J cos(alpha) w_a] + J_c w_c`, then changes only by the race
 //! tractions' moments `sum (d_i/2) f_i - sum (d_o/2) f_o` and the drags (pocket forces and
@@ -65,9 +67,41 @@
 //! quasi-static equilibrium with its centrifugal force `Fc = m (dm/2) w_b²`:
 //! `Q_o(delta_o) - Q_i(delta_j - delta_o) = Fc n_r` (`n_r` the radial component of
 //! `n_j`), solved by safeguarded Newton per ball (Harris & Kotzalas Vol. 2 ch. 3 do the
-//! same with both contact angles free; here the two contacts stay collinear, so the
-//! gyroscopic moment `J w_R w_b sin(beta)` has no component along `n_j` and does not change
-//! the loads — it would be carried by lateral friction, not modelled).
+//! same with both contact angles free; here the two contacts stay collinear).
+//!
+//! Gyroscopic couple: the ball's angular velocity is `w = w_b z + (w_a - w_b cos a) a` and
+//! `a` turns with the orbit (`a' = -sin(a) w_b e_t`), so `dH/dt` has the component
+//! `Mg = J w_s w_b sin(a)` about `e_t` (Harris & Kotzalas Vol. 2 ch. 3). Lateral friction
+//! `+F` at the inner contact and `-F` at the outer one, along `(n1, -n0)` in the
+//! (axial, radial) plane, supplies it (`F D = Mg`, no net force on the ball, no work: the
+//! contact points do not slide laterally), limited exactly as the quasi-static kernel
+//! (`models::quasi_static::ball`, "no control" `lambda_i = lambda_o = 1`):
+//! `F = (Mg/D) phi(mu Q_h D/|Mg|)`, `phi(t) = t/(1 + t⁴)^(1/4)`, `Q_h = Q_i Q_o/(Q_i + Q_o)`.
+//! The shaft receives `-F (n1, -n0)` at the inner contact: an axial and radial force and
+//! the ball-plane moment `Ri F_a + F f_i D` about the groove-centre circle (as the
+//! quasi-static kernel). The normal loads do not change.
+//!
+//! Spin friction: relative to the races the ball spins about the contact normal
+//! `n3 = n0 z + n1 e_r` at `w.n3 - omega n0` (inner) and `w.n3` (outer), zero at `a = 0`.
+//! Each contact resists with `M = (3/8) mu Q a E(k) tanh(w_spin a / v_s)` (Harris &
+//! Kotzalas Vol. 2 ch. 2, the spinning moment of an elliptical contact in full sliding;
+//! `3 pi/16 mu Q a` for a circle; `tanh` makes it continuous). On the ball `-M n3`, whose
+//! generalised forces on `(w_b, w_a)` are `-M n3.(z - cos(a) a)` and `-M n3.a` (so the
+//! energy and the momentum about `z` balance exactly); on the races `+M n3` (the shaft's
+//! torque about `z` and its tilt moments).
+//!
+//! Radial mass (option `ball_radial_mass`): the ball's outer approach `u` and `u'` become
+//! states, `m u'' = Q_i(delta - u) + c_i (delta' - u') - Q_o(u) - c_o u' + Fc n_r` along
+//! the contact line (the outer ring fixed; `c_k` the contact damping blended in over
+//! [`crate::models::ring::DAMPING_RAMP`] of each approach, so the radial motion settles onto
+//! the quasi-static split), and the shaft receives `Q_i + c_i (delta' - u')`. The
+//! rotation of the contact line and the Coriolis terms are neglected (the ball moves by
+//! micrometres).
+//!
+//! Shaft stiffness: `-dW/dq` with the balls held is analytic (the load derivatives from
+//! the split, `dQ_i = (s_i s_o d delta - s_i df)/(s_i + s_o)`, the contact line's
+//! `dn = (dA/dq - n g)/|A|`, and the traction, lateral and spin terms through them),
+//! checked against central differences in a unit test.
 //!
 //! Drag (physics.md §5.2): `F_d = C_d rho_eff pi D² v|v|/8` with `v = (dm/2) w_b` (dynamic
 //! pressure on the frontal area); ball spin drag `M = pi eta D³ w_a` (Stokes' rotating
@@ -106,11 +140,22 @@ pub struct SkiddingParams {
     pub spacing_scatter: f64,
     /// Seed of the scatter.
     pub seed: u64,
-    /// Slip speed regularising the pocket friction, m/s.
+    /// Slip speed regularising the pocket friction and the spinning moment, m/s.
     pub friction_v_s: f64,
     /// Contact damping on the shaft, N s/m per loaded ball (as the ring level:
     /// `c d(delta)/dt` blended in over [`crate::models::ring::DAMPING_RAMP`]).
     pub contact_damping: f64,
+    /// Gyroscopic couple carried by lateral friction at the contacts (angular-contact
+    /// bearings; zero at `alpha = 0`).
+    pub gyroscopic: bool,
+    /// Traction coefficient that limits the gyroscopic friction (as the quasi-static
+    /// level's `gyro_traction`; `f64::INFINITY`: unlimited).
+    pub gyro_traction: f64,
+    /// Friction coefficient of the spinning moment at the race contacts (0: off).
+    pub spin_friction: f64,
+    /// Give each ball radial mass: its position along the contact line (the outer
+    /// approach `u`) and `u'` become states instead of the quasi-static split.
+    pub ball_radial_mass: bool,
 }
 
 impl Default for SkiddingParams {
@@ -130,6 +175,10 @@ impl Default for SkiddingParams {
             seed: 1,
             friction_v_s: 0.05,
             contact_damping: 0.0,
+            gyroscopic: true,
+            gyro_traction: 0.3,
+            spin_friction: 0.0,
+            ball_radial_mass: false,
         }
     }
 }
@@ -157,13 +206,79 @@ pub struct BallState {
     pub f_o: f64,
     /// Pocket force on the ball along `e_t`, N.
     pub pocket: f64,
+    /// Lateral friction force carrying the gyroscopic couple, N.
+    pub gyro: f64,
+    /// Spinning moment on the inner race about the contact normal, N m.
+    pub spin_i: f64,
+    /// Spinning moment on the outer race about the contact normal, N m.
+    pub spin_o: f64,
+}
+
+/// Normal loads of one ball from [`SkiddingModel::split`].
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+struct Split {
+    q_i: f64,
+    q_o: f64,
+    /// `dQ/d(approach)` of each contact.
+    s_i: f64,
+    s_o: f64,
+    /// Square roots of the approaches.
+    r_i: f64,
+    r_o: f64,
+}
+
+/// One ball's geometry (see [`SkiddingModel::geo`]).
+#[derive(Debug, Clone, Copy)]
+struct Geo {
+    s: f64,
+    c: f64,
+    /// Unit contact line `(axial, radial)`.
+    n: [f64; 2],
+    /// `|A|`.
+    l: f64,
+    /// Total approach.
+    delta: f64,
+    /// `d delta / dq`.
+    g: [f64; 5],
+}
+
+/// `d/dq` of a ball's contact line and loads ([`SkiddingModel::load_derivs`]).
+#[derive(Debug, Clone, Copy)]
+struct LoadDerivs {
+    dn0: [f64; 5],
+    dn1: [f64; 5],
+    dqi: [f64; 5],
+    dqo: [f64; 5],
+}
+
+/// One ball's pocket contact ([`SkiddingModel::pocket`]).
+#[derive(Debug, Clone, Copy)]
+struct Pocket {
+    xi: f64,
+    xi_dot: f64,
+    bl: f64,
+    bt: f64,
+    force: f64,
+    m_fric: f64,
+}
+
+/// One ball's loads.
+#[derive(Debug, Clone, Copy)]
+struct Loads {
+    sp: Split,
+    /// Centrifugal force, N.
+    fc: f64,
+    /// Is its component along the contact line positive (not clamped)?
+    f_active: bool,
+    /// Radial mass: the loads follow from the ball's state, not from the split.
+    radial: bool,
 }
 
 /// One ball's terms.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct BallOut {
-    /// Rates of `(psi, w_b, w_a)`.
-    pub dx: [f64; 3],
+    /// Rates of `(psi, w_b, w_a, u, u')` (the last two with radial mass only).
+    pub dx: [f64; 5],
     /// Torque on the cage about z, N m.
     pub cage_torque: f64,
     /// Wrench on the shaft.
@@ -211,8 +326,10 @@ pub struct SkidTotals {
     pub max_load: f64,
 }
 
-/// State layout: `[theta_c, w_c, (psi_j, w_b_j, w_a_j) for j in 0..Z]`.
-pub const BALL0: usize = 2;
+/// State layout: `[(psi_j, w_b_j, w_a_j) for j in 0..Z, theta_c, w_c]`: independent
+/// three-state blocks (one per ball) followed by the cage, so that with the ring's states
+/// after them the Jacobian is block-arrowhead ([`crate::solver::BlockArrowhead`]).
+pub const BALL0: usize = 0;
 
 /// The skidding model of one bearing.
 #[derive(Debug, Clone)]
@@ -223,6 +340,9 @@ pub struct SkiddingModel {
     d: f64,
     dm: f64,
     cos_a: f64,
+    sin_a: f64,
+    /// States per ball: 3, or 5 with radial mass.
+    bs: usize,
     di: f64,
     do_: f64,
     m: f64,
@@ -235,6 +355,15 @@ pub struct SkiddingModel {
     inner: PointContact,
     outer: PointContact,
     kratio: f64,
+    /// Semi-axis coefficients per square root of the approach, `(a, b) = ax sqrt(delta)`.
+    ax_i: [f64; 2],
+    ax_o: [f64; 2],
+    /// `Kc_i^(1/3)`.
+    kc3_i: f64,
+    /// `Kc_o^(1/3)`.
+    kc3_o: f64,
+    /// Lever of the lateral friction about the inner groove centre, `f_i D`.
+    fid: f64,
     /// Pocket centre offsets, rad.
     offsets: Vec<f64>,
     /// Per-ball results of the last evaluation.
@@ -269,7 +398,26 @@ impl SkiddingModel {
             })
             .collect();
         let cos_a = alpha.cos();
+        if p.gyro_traction.is_nan() || p.gyro_traction <= 0.0 {
+            return Err(Error::invalid(
+                "model.skidding.gyro_traction",
+                p.gyro_traction,
+                "> 0 (inf: unlimited)",
+            ));
+        }
+        let axes = |pc: &PointContact| {
+            let (ca, cb) = pc.semi_axis_coefficients();
+            let k3 = pc.kc.cbrt();
+            [ca * k3, cb * k3]
+        };
         Ok(SkiddingModel {
+            bs: if p.ball_radial_mass { 5 } else { 3 },
+            sin_a: alpha.sin(),
+            ax_i: axes(&inner),
+            ax_o: axes(&outer),
+            kc3_i: inner.kc.cbrt(),
+            kc3_o: outer.kc.cbrt(),
+            fid: b.fi * b.d,
             z: b.z,
             d: b.d,
             dm: b.dm,
@@ -292,9 +440,19 @@ impl SkiddingModel {
         })
     }
 
-    /// Number of states `2 + 3 Z`.
+    /// Number of states `3 Z + 2`.
     pub fn n_states(&self) -> usize {
-        BALL0 + 3 * self.z
+        self.bs * self.z + 2
+    }
+
+    /// States per ball (3, or 5 with radial mass).
+    pub fn ball_states(&self) -> usize {
+        self.bs
+    }
+
+    /// Index of the cage angle (the cage speed follows it).
+    pub fn cage_index(&self) -> usize {
+        self.bs * self.z
     }
 
     /// Balls.
@@ -318,23 +476,36 @@ impl SkiddingModel {
     /// Initial states: balls centred in their pockets, everything turning at the
     /// kinematic speeds of `omega` (from rest when `omega = 0`).
     pub fn init(&self, omega: f64, x: &mut [f64]) {
+        self.init_at(&[0.0; 5], omega, x);
+    }
+
+    /// [`Self::init`] at ring displacement `q`: with radial mass, each ball starts at rest
+    /// where the quasi-static split puts it.
+    pub fn init_at(&self, q: &[f64; 5], omega: f64, x: &mut [f64]) {
         let (wb, ws) = self.kinematic(omega);
-        x[0] = 0.0;
-        x[1] = wb;
+        let ic = self.cage_index();
+        x[ic] = 0.0;
+        x[ic + 1] = wb;
         for j in 0..self.z {
-            let k = BALL0 + 3 * j;
+            let k = BALL0 + self.bs * j;
             x[k] = 2.0 * PI * j as f64 / self.z as f64 + self.offsets[j];
             x[k + 1] = wb;
             x[k + 2] = wb * self.cos_a - ws;
+            if self.bs == 5 {
+                let geo = self.geo(q, x[k]);
+                let ld = self.loads(&geo, wb, None);
+                x[k + 3] = ld.sp.r_o * ld.sp.r_o;
+                x[k + 4] = 0.0;
+            }
         }
     }
 
     /// Angular momentum about z of balls and cage, kg m²/s.
     pub fn angular_momentum(&self, x: &[f64]) -> f64 {
         let r2 = 0.25 * self.dm * self.dm;
-        let mut l = self.jc * x[1];
+        let mut l = self.jc * x[self.cage_index() + 1];
         for j in 0..self.z {
-            let k = BALL0 + 3 * j;
+            let k = BALL0 + self.bs * j;
             l += self.m * r2 * x[k + 1] + self.j * self.cos_a * x[k + 2];
         }
         l
@@ -343,73 +514,100 @@ impl SkiddingModel {
     /// Kinetic energy of balls (orbit and rolling spin) and cage, J.
     pub fn kinetic_energy(&self, x: &[f64]) -> f64 {
         let r2 = 0.25 * self.dm * self.dm;
-        let mut e = 0.5 * self.jc * x[1] * x[1];
+        let wc = x[self.cage_index() + 1];
+        let mut e = 0.5 * self.jc * wc * wc;
         for j in 0..self.z {
-            let k = BALL0 + 3 * j;
+            let k = BALL0 + self.bs * j;
             e += 0.5 * self.m * r2 * x[k + 1].powi(2) + 0.5 * self.j * x[k + 2].powi(2);
+            if self.bs == 5 {
+                e += 0.5 * self.m * x[k + 4].powi(2);
+            }
         }
         e
     }
 
     /// Ball position along the contact line: solve `Q_o(d_o) - Q_i(delta - d_o) = f` for
-    /// the outer approach `d_o` (monotone; safeguarded Newton). Returns `(Q_i, Q_o)`.
-    fn split(&self, delta: f64, f: f64) -> (f64, f64) {
+    /// the outer approach `d_o` (monotone; safeguarded Newton). Returns the loads, their
+    /// stiffnesses `dQ/d(approach)` and the square roots of the approaches.
+    fn split(&self, delta: f64, f: f64) -> Split {
         let (ki, ko) = (self.inner.kc, self.outer.kc);
         if f <= 0.0 && delta <= 0.0 {
-            return (0.0, 0.0);
+            return Split::default();
         }
         let f = f.max(0.0);
-        // Bracket [lo, hi]: g(0) <= 0, g(max(delta, 0) + (f/ko)^(2/3)) >= 0.
+        // Bracket [lo, hi] with g(lo) <= 0 <= g(hi): when the outer contact alone carries
+        // at least f at the whole approach (the usual case), hi = delta; otherwise the ball
+        // may leave the inner race and hi = max(delta, 0) + (f/ko)^(2/3) (one cube root).
         let mut lo = 0.0;
-        let fo = {
-            let t = f / ko;
-            (t * t).cbrt()
+        let outer_alone = if delta > 0.0 {
+            ko * delta * delta.sqrt()
+        } else {
+            0.0
         };
-        let mut hi = delta.max(0.0) + fo;
-        // Start from the f = 0 split (equal loads) or the outer-only contact.
+        let mut hi = if delta > 0.0 && outer_alone >= f {
+            delta
+        } else {
+            let t = f / ko;
+            delta.max(0.0) + (t * t).cbrt()
+        };
+        // Start from the f = 0 split (equal loads).
         let mut x = if delta > 0.0 {
-            let r = self.kratio;
-            (delta * r / (1.0 + r) + fo * 0.5).min(hi)
+            (delta * self.kratio / (1.0 + self.kratio)).min(hi)
         } else {
             hi
         };
         let g = |x: f64| {
             let (qo, so) = crate::contact::hertz_load_and_stiffness(ko, x);
             let (qi, si) = crate::contact::hertz_load_and_stiffness(ki, delta - x);
-            (qo - qi - f, so + si, qi, qo)
+            (qo - qi - f, so + si)
         };
         let tol = 1e-13 * hi.max(1e-9);
+        // A Newton step below 1e-8 of the bracket leaves an error of order its square
+        // over the approach (quadratic convergence): accept it without another pass.
+        let tol_newton = 1e-8 * hi.max(1e-9);
         for _ in 0..60 {
-            let (r, dr, _, _) = g(x);
+            let (r, dr) = g(x);
             if r > 0.0 {
                 hi = x;
             } else {
                 lo = x;
             }
-            let mut xn = if dr > 0.0 {
-                x - r / dr
-            } else {
-                0.5 * (lo + hi)
-            };
+            let mut newton = dr > 0.0;
+            let mut xn = if newton { x - r / dr } else { 0.5 * (lo + hi) };
             if !(xn > lo && xn < hi) {
                 xn = 0.5 * (lo + hi);
+                newton = false;
             }
-            if (xn - x).abs() <= tol || hi - lo <= tol {
-                let (_, _, qi, qo) = g(xn);
-                return (qi, qo);
+            let step = (xn - x).abs();
+            if step <= tol || hi - lo <= tol || (newton && step <= tol_newton) {
+                x = xn;
+                break;
             }
             x = xn;
         }
-        let (_, _, qi, qo) = g(x);
-        (qi, qo)
+        let (r_o, r_i) = (x.max(0.0).sqrt(), (delta - x).max(0.0).sqrt());
+        Split {
+            q_i: ki * r_i * r_i * r_i,
+            q_o: ko * r_o * r_o * r_o,
+            s_i: 1.5 * ki * r_i,
+            s_o: 1.5 * ko * r_o,
+            r_i,
+            r_o,
+        }
     }
 
-    fn contact_state(pc: &PointContact, q: f64) -> ContactState {
-        let (a, b) = pc.semi_axes(q);
+    /// Contact data for the traction law from the load and the square root of the
+    /// approach (`Q^(1/3) = Kc^(1/3) sqrt(delta)`: no cube root on the hot path).
+    fn contact_state(&self, inner: bool, q: f64, r: f64) -> ContactState {
+        let (pc, ca, cb) = if inner {
+            (&self.inner, self.ax_i[0], self.ax_i[1])
+        } else {
+            (&self.outer, self.ax_o[0], self.ax_o[1])
+        };
         ContactState {
             q,
-            a,
-            b,
+            a: ca * r,
+            b: cb * r,
             rx: pc.curvature.rx,
             kappa: pc.ellipse.kappa,
             e_eff: pc.e_eff,
@@ -427,8 +625,89 @@ impl SkiddingModel {
         }
     }
 
+    /// Geometry of ball `j` at azimuth `psi` for ring displacement `q` (Jones geometry of
+    /// the ring level).
+    fn geo(&self, q: &[f64; 5], psi: f64) -> Geo {
+        let (s, c) = psi.sin_cos();
+        let a1 = self.a10 + q[2] + self.ri * (q[3] * s - q[4] * c);
+        let a2 = self.a20 + q[0] * c + q[1] * s;
+        // Millimetre-sized: no overflow, so the plain root (hypot is several times slower).
+        let l = (a1 * a1 + a2 * a2).sqrt();
+        let n = [a1 / l, a2 / l];
+        Geo {
+            s,
+            c,
+            n,
+            l,
+            delta: l - self.a,
+            g: [
+                n[1] * c,
+                n[1] * s,
+                n[0],
+                n[0] * self.ri * s,
+                -n[0] * self.ri * c,
+            ],
+        }
+    }
+
+    /// Normal loads of a ball at geometry `geo` and orbital speed `w_b` (centrifugal
+    /// force `m (dm/2) w_b²` along the contact line's radial component).
+    /// With radial mass the ball's outer approach `u` is given (`Some`) and the loads
+    /// follow from it and the total approach.
+    fn loads(&self, geo: &Geo, w_b: f64, u: Option<f64>) -> Loads {
+        let fc = self.m * 0.5 * self.dm * w_b * w_b;
+        let f = fc * geo.n[1];
+        let sp = match u {
+            None => self.split(geo.delta, f),
+            Some(u) => {
+                let (r_o, r_i) = (u.max(0.0).sqrt(), (geo.delta - u).max(0.0).sqrt());
+                let (ki, ko) = (self.inner.kc, self.outer.kc);
+                Split {
+                    q_i: ki * r_i * r_i * r_i,
+                    q_o: ko * r_o * r_o * r_o,
+                    s_i: 1.5 * ki * r_i,
+                    s_o: 1.5 * ko * r_o,
+                    r_i,
+                    r_o,
+                }
+            }
+        };
+        Loads {
+            sp,
+            fc,
+            f_active: f > 0.0,
+            radial: u.is_some(),
+        }
+    }
+
+    /// Spinning moment of a contact in full spin sliding, `M = (3/8) mu Q a E(k)`
+    /// (Harris & Kotzalas Vol. 2 ch. 2, the spinning friction moment of an elliptical
+    /// contact; `3 pi/16 mu Q a` for a circle), regularised by `tanh(w a / v_s)` so that it
+    /// is continuous through zero spin. Returns `(M, dM/dQ, dM/dw)` at spin `w` (rad/s).
+    fn spin_moment(&self, inner: bool, q: f64, r: f64, w: f64) -> (f64, f64, f64) {
+        let mu = self.p.spin_friction;
+        if mu <= 0.0 || q <= 0.0 {
+            return (0.0, 0.0, 0.0);
+        }
+        let (ca, e) = if inner {
+            (self.ax_i[0], self.inner.ellipse.e)
+        } else {
+            (self.ax_o[0], self.outer.ellipse.e)
+        };
+        let a = ca * r;
+        let ms = 0.375 * mu * q * a * e;
+        let z = w * a / self.p.friction_v_s;
+        let th = crate::contact::traction::tanh(z);
+        let sech2 = 1.0 - th * th;
+        // ms ~ Q^(4/3), z ~ Q^(1/3).
+        let m_q = (4.0 / 3.0) * ms * th / q + ms * sech2 * z / (3.0 * q);
+        (ms * th, m_q, ms * sech2 * a / self.p.friction_v_s)
+    }
+
     /// One ball's contribution at shaft motion `(q, v, omega)`, cage `(theta_c, w_c)` and
-    /// ball states `(psi, w_b, w_a)`. Allocation-free.
+    /// ball states `(psi, w_b, w_a)`, the ball in quasi-static radial equilibrium (also
+    /// with the radial-mass option, whose position states it does not see).
+    /// Allocation-free.
     #[allow(clippy::too_many_arguments)]
     pub fn ball(
         &self,
@@ -442,27 +721,55 @@ impl SkiddingModel {
         w_b: f64,
         w_a: f64,
     ) -> BallOut {
+        // Radial mass or not, this is the quasi-static split (no ball position given).
+        let geo = self.geo(q, psi);
+        let ld = self.loads(&geo, w_b, None);
+        let st = [theta_c, w_c, psi, w_b, w_a, 0.0, 0.0];
+        self.forces(j, &geo, &ld, q, v, omega, st, None)
+    }
+
+    /// [`Self::ball`] with all states `[theta_c, w_c, psi, w_b, w_a, u, u']` (the last
+    /// two used with radial mass only).
+    fn ball_r(&self, j: usize, q: &[f64; 5], v: &[f64; 5], omega: f64, st: [f64; 7]) -> BallOut {
+        let geo = self.geo(q, st[2]);
+        let u = (self.bs == 5).then_some(st[5]);
+        let ld = self.loads(&geo, st[3], u);
+        self.forces(j, &geo, &ld, q, v, omega, st, None)
+    }
+
+    /// Everything but the geometry and the normal loads: tractions, gyroscopic and spin
+    /// friction, pocket, drag, the wrench; with `kq`, also adds the wrench's derivative
+    /// `dW/dq` (balls and cage held) to it, analytically (see the module docs).
+    /// `s = [theta_c, w_c, psi, w_b, w_a]`.
+    #[allow(clippy::too_many_arguments)]
+    fn forces(
+        &self,
+        j: usize,
+        geo: &Geo,
+        ld: &Loads,
+        q: &[f64; 5],
+        v: &[f64; 5],
+        omega: f64,
+        st: [f64; 7],
+        kq: Option<&mut [[f64; 5]; 5]>,
+    ) -> BallOut {
+        let [theta_c, w_c, psi, w_b, w_a, _, u_dot] = st;
         let p = &self.p;
         let r = 0.5 * self.dm;
         let hd = 0.5 * self.d;
-        let (s, c) = psi.sin_cos();
-        // Normal loads (Jones geometry of the ring level).
-        let a1 = self.a10 + q[2] + self.ri * (q[3] * s - q[4] * c);
-        let a2 = self.a20 + q[0] * c + q[1] * s;
-        let l = a1.hypot(a2);
-        let n = [a1 / l, a2 / l];
-        let delta = l - self.a;
-        let fc = self.m * r * w_b * w_b;
-        let (q_i, q_o) = self.split(delta, fc * n[1]);
+        let (s, c, n) = (geo.s, geo.c, geo.n);
+        let sp = &ld.sp;
+        let (q_i, q_o) = (sp.q_i, sp.q_o);
         // Slip.
         let dv_i = 0.5 * self.di * omega - (r * w_b - hd * w_a);
         let dv_o = r * w_b + hd * w_a;
-        let u_i = 0.5 * (0.5 * self.di * (omega - w_b) + hd * (w_b * self.cos_a - w_a));
-        let u_o = 0.5 * (0.5 * self.do_ * w_b + hd * (w_b * self.cos_a - w_a));
+        let w_s = w_b * self.cos_a - w_a;
+        let u_i = 0.5 * (0.5 * self.di * (omega - w_b) + hd * w_s);
+        let u_o = 0.5 * (0.5 * self.do_ * w_b + hd * w_s);
         let (ci, co) = if p.traction.needs_contact() {
             (
-                Self::contact_state(&self.inner, q_i),
-                Self::contact_state(&self.outer, q_o),
+                self.contact_state(true, q_i, sp.r_i),
+                self.contact_state(false, q_o, sp.r_o),
             )
         } else {
             (
@@ -478,44 +785,82 @@ impl SkiddingModel {
         };
         let f_i = p.traction.force(dv_i, u_i, &ci);
         let f_o = p.traction.force(dv_o, u_o, &co);
+        // Spin about the contact normals: the ball's angular velocity is
+        // w_b z + (w_a - w_b cos a) a; its component along n3 = n0 z + n1 e_r, minus the
+        // race's (omega z, inner; 0, outer).
+        let nd = self.cos_a * n[0] - self.sin_a * n[1]; // a . n3
+        let w_rel_b = w_a - w_b * self.cos_a;
+        let wn = w_b * n[0] + w_rel_b * nd;
+        let (w_sp_i, w_sp_o) = (wn - omega * n[0], wn);
+        let (ms_i, msq_i, msw_i) = self.spin_moment(true, q_i, sp.r_i, w_sp_i);
+        let (ms_o, _, _) = self.spin_moment(false, q_o, sp.r_o, w_sp_o);
+        // Generalised forces of the spin moments -(M_i + M_o) n3 on the ball's states:
+        // d w / d w_b = z - cos a a, d w / d w_a = a.
+        let gen = -(ms_i + ms_o);
+        let gen_b = gen * (n[0] - self.cos_a * nd);
+        let gen_a = gen * nd;
+        // Gyroscopic couple J w_s w_b sin(a) about e_t, carried by lateral friction
+        // +-F (n1, -n0) at the two contacts with the traction cap of the quasi-static
+        // kernel (module docs).
+        let (f_g, fg_qi, fg_qo) = self.gyro_force(w_b, w_s, q_i, q_o);
         // Pocket.
-        let pocket_angle = theta_c + 2.0 * PI * j as f64 / self.z as f64 + self.offsets[j];
-        let xi = r * (psi - pocket_angle);
-        let xi_dot = r * (w_b - w_c);
-        let cp = p.pocket_clearance;
-        let w = p.pocket_smoothing;
-        let (pl, bl) = Self::pen(xi - cp, w);
-        let (pt, bt) = Self::pen(-xi - cp, w);
-        let pocket = -p.pocket_stiffness * (pl - pt) - p.pocket_damping * (bl + bt) * xi_dot;
-        let slide = hd * (w_a * self.cos_a - w_c);
-        let m_fric = -hd * p.pocket_friction * pocket.abs() * (slide / p.friction_v_s).tanh();
+        let Pocket {
+            xi,
+            xi_dot,
+            bl,
+            bt,
+            force: pocket,
+            m_fric,
+        } = self.pocket(j, [theta_c, w_c, psi, w_b, w_a]);
+        let (cp, w) = (p.pocket_clearance, p.pocket_smoothing);
         // Drag.
         let vb = r * w_b;
         let f_d = p.drag_coefficient * p.drag_density * PI * self.d * self.d * vb * vb.abs() / 8.0;
         let m_d = PI * p.drag_viscosity * self.d.powi(3) * w_a;
-        let dx = [
+        let mut dx = [
             w_b,
-            (f_i - f_o + pocket - f_d) / (self.m * r),
-            (-hd * (f_i + f_o) + m_fric * self.cos_a - m_d) / self.j,
+            (f_i - f_o + pocket - f_d) / (self.m * r) + gen_b / (self.m * r * r),
+            (-hd * (f_i + f_o) + m_fric * self.cos_a - m_d + gen_a) / self.j,
+            0.0,
+            0.0,
         ];
         // On the shaft: normal load along -n through the groove centre, traction -f_i e_t
-        // at the inner contact.
-        let g = [
-            n[1] * c,
-            n[1] * s,
-            n[0],
-            n[0] * self.ri * s,
-            -n[0] * self.ri * c,
-        ];
+        // at the inner contact, the lateral friction -F (n1, -n0) at the inner contact
+        // (ball-plane moment about the groove-centre circle as the quasi-static kernel),
+        // the spin moment +M_i n3.
+        let g = geo.g;
         let mut fn_ = q_i;
         let mut cd = 0.0;
-        if p.contact_damping > 0.0 && delta > 0.0 {
-            let da1 =
-                v[2] + self.ri * (v[3] * s - v[4] * c) + w_b * self.ri * (q[3] * c + q[4] * s);
-            let da2 = v[0] * c + v[1] * s + w_b * (-q[0] * s + q[1] * c);
-            let blend = (delta / crate::models::ring::DAMPING_RAMP).min(1.0);
+        let (mut da1, mut da2) = (0.0, 0.0);
+        // Damped approach: the total one (massless balls) or the inner one (radial mass).
+        let (app, mut dd) = if ld.radial {
+            (sp.r_i * sp.r_i, -u_dot)
+        } else {
+            (geo.delta, 0.0)
+        };
+        let mut extra_dissipation = 0.0;
+        if p.contact_damping > 0.0 && app > 0.0 {
+            da1 = v[2] + self.ri * (v[3] * s - v[4] * c) + w_b * self.ri * (q[3] * c + q[4] * s);
+            da2 = v[0] * c + v[1] * s + w_b * (-q[0] * s + q[1] * c);
+            let blend = (app / crate::models::ring::DAMPING_RAMP).min(1.0);
             cd = p.contact_damping * blend;
-            fn_ += cd * (n[0] * da1 + n[1] * da2);
+            dd += n[0] * da1 + n[1] * da2;
+            fn_ += cd * dd;
+        }
+        if ld.radial {
+            // Newton along the contact line: inner load and damping outwards, outer load
+            // and damping (on u', the outer ring fixed) inwards, centrifugal force.
+            let r_o2 = sp.r_o * sp.r_o;
+            let cd_o = p.contact_damping * (r_o2 / crate::models::ring::DAMPING_RAMP).min(1.0);
+            let f_out = q_o + if r_o2 > 0.0 { cd_o * u_dot } else { 0.0 };
+            dx[3] = u_dot;
+            dx[4] = (fn_ - f_out + ld.fc * n[1]) / self.m;
+            extra_dissipation = cd * dd * dd
+                + if r_o2 > 0.0 {
+                    cd_o * u_dot * u_dot
+                } else {
+                    0.0
+                };
         }
         let mut wrench = [0.0; 5];
         for (wk, gk) in wrench.iter_mut().zip(g) {
@@ -523,26 +868,109 @@ impl SkiddingModel {
         }
         wrench[0] += f_i * s;
         wrench[1] -= f_i * c;
+        let plane = |fa: f64, fr: f64, m: f64| [fr * c, fr * s, fa, m * s, -m * c];
+        if f_g != 0.0 {
+            let fa = -f_g * n[1];
+            let fr = f_g * n[0];
+            let wg = plane(fa, fr, self.ri * fa + self.fid * f_g);
+            for (wk, x) in wrench.iter_mut().zip(wg) {
+                *wk += x;
+            }
+        }
+        wrench[3] += ms_i * n[1] * c;
+        wrench[4] += ms_i * n[1] * s;
+        if let Some(k) = kq {
+            let g1 = [0.0, 0.0, 1.0, self.ri * s, -self.ri * c];
+            let g2 = [c, s, 0.0, 0.0, 0.0];
+            let LoadDerivs { dn0, dn1, dqi, dqo } = self.load_derivs(geo, ld);
+            // Normal force with damping.
+            let mut dfn = dqi;
+            if cd > 0.0 {
+                let ramp = app < crate::models::ring::DAMPING_RAMP;
+                let h1 = [0.0, 0.0, 0.0, w_b * self.ri * c, w_b * self.ri * s];
+                let h2 = [-w_b * s, w_b * c, 0.0, 0.0, 0.0];
+                for i in 0..5 {
+                    let ddd = da1 * dn0[i] + da2 * dn1[i] + n[0] * h1[i] + n[1] * h2[i];
+                    let dcd = if ramp {
+                        p.contact_damping / crate::models::ring::DAMPING_RAMP * g[i]
+                    } else {
+                        0.0
+                    };
+                    dfn[i] += dd * dcd + cd * ddd;
+                }
+            }
+            for rr in 0..5 {
+                for cc in 0..5 {
+                    let dg = (g1[rr] * g1[cc] + g2[rr] * g2[cc] - g[rr] * g[cc]) / geo.l;
+                    k[rr][cc] -= g[rr] * dfn[cc] + fn_ * dg;
+                }
+            }
+            // Traction along e_t.
+            let tq = if q_i <= 0.0 {
+                0.0
+            } else if p.traction.needs_contact() {
+                let h = 1e-7 * q_i;
+                let (ca, cb) = (self.ax_i[0], self.ax_i[1]);
+                let r3 = (q_i + h).cbrt() / self.kc3_i;
+                let cs = ContactState {
+                    a: ca * r3,
+                    b: cb * r3,
+                    ..self.contact_state(true, q_i + h, 0.0)
+                };
+                (p.traction.force(dv_i, u_i, &cs) - f_i) / h
+            } else {
+                f_i / q_i
+            };
+            for cc in 0..5 {
+                k[0][cc] += s * tq * dqi[cc];
+                k[1][cc] -= c * tq * dqi[cc];
+            }
+            // Lateral (gyroscopic) friction.
+            if f_g != 0.0 {
+                for cc in 0..5 {
+                    let dfg = fg_qi * dqi[cc] + fg_qo * dqo[cc];
+                    let dfa = -n[1] * dfg - f_g * dn1[cc];
+                    let dfr = n[0] * dfg + f_g * dn0[cc];
+                    let dm = self.ri * dfa + self.fid * dfg;
+                    let col = plane(dfa, dfr, dm);
+                    for rr in 0..5 {
+                        k[rr][cc] += col[rr];
+                    }
+                }
+            }
+            // Spin moment on the shaft.
+            if ms_i != 0.0 || msq_i != 0.0 {
+                let dw0 = w_b - omega + w_rel_b * self.cos_a;
+                let dw1 = -w_rel_b * self.sin_a;
+                for cc in 0..5 {
+                    let dm = msq_i * dqi[cc] + msw_i * (dw0 * dn0[cc] + dw1 * dn1[cc]);
+                    let dmx = n[1] * dm + ms_i * dn1[cc];
+                    k[3][cc] += c * dmx;
+                    k[4][cc] += s * dmx;
+                }
+            }
+        }
         BallOut {
             dx,
             cage_torque: -r * pocket - m_fric,
             wrench,
-            torque_shaft: -0.5 * self.di * f_i,
-            torque_outer: 0.5 * self.do_ * f_o,
+            torque_shaft: -0.5 * self.di * f_i + ms_i * n[0],
+            torque_outer: 0.5 * self.do_ * f_o + ms_o * n[0],
             torque_drag: -(r * f_d + self.cos_a * m_d),
-            power: f_i * dv_i + f_o * dv_o,
+            power: f_i * dv_i + f_o * dv_o + ms_i * w_sp_i + ms_o * w_sp_o,
             pocket_energy: p.pocket_stiffness
                 * (Self::pen_energy(xi - cp, w) + Self::pen_energy(-xi - cp, w)),
             dissipation: p.pocket_damping * (bl + bt) * xi_dot * xi_dot
                 - m_fric * (w_a * self.cos_a - w_c)
                 + f_d * vb
-                + m_d * w_a,
+                + m_d * w_a
+                + extra_dissipation,
             g,
             cd,
             state: BallState {
                 psi,
                 w_b,
-                w_s: w_b * self.cos_a - w_a,
+                w_s,
                 q_i,
                 q_o,
                 dv_i,
@@ -550,8 +978,111 @@ impl SkiddingModel {
                 f_i,
                 f_o,
                 pocket,
+                gyro: f_g,
+                spin_i: ms_i,
+                spin_o: ms_o,
             },
         }
+    }
+
+    /// Derivatives with respect to `q` of the contact line `n` and of the normal loads
+    /// (balls held): `dn = (G - n g)/|A|` with `G = dA/dq`, and from the split
+    /// `Q_o(x) - Q_i(delta - x) = f`: `dQ_i = (s_i s_o d delta - s_i df)/(s_i + s_o)`,
+    /// `dQ_o = (s_i s_o d delta + s_o df)/(s_i + s_o)` (`s` the contact stiffnesses,
+    /// `f = Fc n_r`); a ball on the outer race only has `dQ_o = df`.
+    fn load_derivs(&self, geo: &Geo, ld: &Loads) -> LoadDerivs {
+        let (s, c, n, g) = (geo.s, geo.c, geo.n, geo.g);
+        let g1 = [0.0, 0.0, 1.0, self.ri * s, -self.ri * c];
+        let g2 = [c, s, 0.0, 0.0, 0.0];
+        let dn0: [f64; 5] = std::array::from_fn(|i| (g1[i] - n[0] * g[i]) / geo.l);
+        let dn1: [f64; 5] = std::array::from_fn(|i| (g2[i] - n[1] * g[i]) / geo.l);
+        let df: [f64; 5] = std::array::from_fn(|i| if ld.f_active { ld.fc * dn1[i] } else { 0.0 });
+        let sp = &ld.sp;
+        let (ai, bi, ao, bo) = if ld.radial {
+            // The ball held: only the inner approach changes.
+            (sp.s_i, 0.0, 0.0, 0.0)
+        } else if sp.q_i > 0.0 && sp.q_o > 0.0 {
+            let ss = sp.s_i + sp.s_o;
+            let h = sp.s_i * sp.s_o / ss;
+            (h, -sp.s_i / ss, h, sp.s_o / ss)
+        } else if sp.q_o > 0.0 {
+            (0.0, 0.0, 0.0, 1.0)
+        } else {
+            (0.0, 0.0, 0.0, 0.0)
+        };
+        LoadDerivs {
+            dn0,
+            dn1,
+            dqi: std::array::from_fn(|i| ai * g[i] + bi * df[i]),
+            dqo: std::array::from_fn(|i| ao * g[i] + bo * df[i]),
+        }
+    }
+
+    /// Pocket force on ball `j` and the pocket friction moment (module docs);
+    /// `st = [theta_c, w_c, psi, w_b, w_a]`.
+    fn pocket(&self, j: usize, st: [f64; 5]) -> Pocket {
+        let [theta_c, w_c, psi, w_b, w_a] = st;
+        let p = &self.p;
+        let r = 0.5 * self.dm;
+        let hd = 0.5 * self.d;
+        let pocket_angle = theta_c + 2.0 * PI * j as f64 / self.z as f64 + self.offsets[j];
+        let xi = r * (psi - pocket_angle);
+        let xi_dot = r * (w_b - w_c);
+        let cp = p.pocket_clearance;
+        let w = p.pocket_smoothing;
+        let (pl, bl) = Self::pen(xi - cp, w);
+        let (pt, bt) = Self::pen(-xi - cp, w);
+        let force = -p.pocket_stiffness * (pl - pt) - p.pocket_damping * (bl + bt) * xi_dot;
+        let slide = hd * (w_a * self.cos_a - w_c);
+        let m_fric = if force == 0.0 {
+            0.0
+        } else {
+            -hd * p.pocket_friction
+                * force.abs()
+                * crate::contact::traction::tanh(slide / p.friction_v_s)
+        };
+        Pocket {
+            xi,
+            xi_dot,
+            bl,
+            bt,
+            force,
+            m_fric,
+        }
+    }
+
+    /// Lateral friction force `F` that carries the gyroscopic couple
+    /// `Mg = J w_s w_b sin(alpha)` (Harris & Kotzalas Vol. 2 ch. 3), `+F` on the ball at
+    /// the inner contact and `-F` at the outer one along `(n1, -n0)` (so the ball's lateral
+    /// force balance closes and the couple is `F D = Mg`), limited as in the quasi-static
+    /// kernel (`models::quasi_static::ball`): `F = (Mg/D) phi(mu Q_h D/|Mg|)`,
+    /// `phi(t) = t/(1 + t⁴)^(1/4)`, `Q_h = Q_i Q_o/(Q_i + Q_o)`. Returns
+    /// `(F, dF/dQ_i, dF/dQ_o)`.
+    fn gyro_force(&self, w_b: f64, w_s: f64, q_i: f64, q_o: f64) -> (f64, f64, f64) {
+        if !self.p.gyroscopic || q_i <= 0.0 || q_o <= 0.0 {
+            return (0.0, 0.0, 0.0);
+        }
+        let fb = self.j * w_s * w_b * self.sin_a / self.d;
+        if fb == 0.0 {
+            return (0.0, 0.0, 0.0);
+        }
+        let mu = self.p.gyro_traction;
+        if !mu.is_finite() {
+            return (fb, 0.0, 0.0);
+        }
+        let sum = q_i + q_o;
+        let qh = q_i * q_o / sum;
+        let t = mu * qh / fb.abs();
+        let t4 = 1.0 + t * t * t * t;
+        let r4 = t4.sqrt().sqrt();
+        let phi = t / r4;
+        let dphi = 1.0 / (t4 * r4);
+        let d = mu * dphi * fb.signum();
+        (
+            fb * phi,
+            d * q_o * q_o / (sum * sum),
+            d * q_i * q_i / (sum * sum),
+        )
     }
 
     /// Integral of [`Self::pen`]: the pocket spring's energy per unit stiffness.
@@ -575,15 +1106,79 @@ impl SkiddingModel {
         x: &[f64],
         dx: &mut [f64],
     ) -> SkidTotals {
+        self.eval_inner(q, v, omega, x, dx, None)
+    }
+
+    /// [`Self::eval`] plus the shaft stiffness `k = -dW/dq` and damping `c = -dW/dv` with
+    /// the balls and cage held (analytic, at the cost of about one right-hand side).
+    #[allow(clippy::too_many_arguments)]
+    pub fn eval_with_stiffness(
+        &mut self,
+        q: &[f64; 5],
+        v: &[f64; 5],
+        omega: f64,
+        x: &[f64],
+        dx: &mut [f64],
+        k: &mut [[f64; 5]; 5],
+        c: &mut [[f64; 5]; 5],
+    ) -> SkidTotals {
+        let mut kw = [[0.0; 5]; 5];
+        let tot = self.eval_inner(q, v, omega, x, dx, Some((&mut kw, c)));
+        for (kr, wr) in k.iter_mut().zip(kw) {
+            for (kk, w) in kr.iter_mut().zip(wr) {
+                *kk = -w;
+            }
+        }
+        tot
+    }
+
+    #[allow(clippy::type_complexity)]
+    fn eval_inner(
+        &mut self,
+        q: &[f64; 5],
+        v: &[f64; 5],
+        omega: f64,
+        x: &[f64],
+        dx: &mut [f64],
+        mut kc: Option<(&mut [[f64; 5]; 5], &mut [[f64; 5]; 5])>,
+    ) -> SkidTotals {
         let mut tot = SkidTotals::default();
-        let (theta_c, w_c) = (x[0], x[1]);
+        let ic = self.cage_index();
+        let (theta_c, w_c) = (x[ic], x[ic + 1]);
         let mut cage_torque = -self.p.cage_drag * w_c;
         tot.torque_drag -= self.p.cage_drag * w_c;
         tot.power_other += self.p.cage_drag * w_c * w_c;
+        if let Some((_, c)) = kc.as_mut() {
+            **c = [[0.0; 5]; 5];
+        }
         for j in 0..self.z {
-            let k = BALL0 + 3 * j;
-            let b = self.ball(j, q, v, omega, theta_c, w_c, x[k], x[k + 1], x[k + 2]);
-            dx[k..k + 3].copy_from_slice(&b.dx);
+            let k = BALL0 + self.bs * j;
+            let geo = self.geo(q, x[k]);
+            let (u, ud) = if self.bs == 5 {
+                (Some(x[k + 3]), x[k + 4])
+            } else {
+                (None, 0.0)
+            };
+            let ld = self.loads(&geo, x[k + 1], u);
+            let st = [theta_c, w_c, x[k], x[k + 1], x[k + 2], u.unwrap_or(0.0), ud];
+            let b = self.forces(
+                j,
+                &geo,
+                &ld,
+                q,
+                v,
+                omega,
+                st,
+                kc.as_mut().map(|(k, _)| &mut **k),
+            );
+            if let Some((_, c)) = kc.as_mut() {
+                for r in 0..5 {
+                    for cc in 0..5 {
+                        c[r][cc] += b.cd * b.g[r] * b.g[cc];
+                    }
+                }
+            }
+            dx[k..k + self.bs].copy_from_slice(&b.dx[..self.bs]);
             cage_torque += b.cage_torque;
             for (t, w) in tot.wrench.iter_mut().zip(b.wrench) {
                 *t += w;
@@ -600,16 +1195,17 @@ impl SkiddingModel {
             tot.max_load = tot.max_load.max(b.state.q_i).max(b.state.q_o);
             self.balls[j] = b.state;
         }
-        dx[0] = w_c;
-        dx[1] = cage_torque / self.jc;
+        dx[ic] = w_c;
+        dx[ic + 1] = cage_torque / self.jc;
         tot
     }
 
     /// Jacobians by per-ball finite differences (each ball's terms depend only on its own
     /// states, the cage's and the ring's, so a column costs one ball evaluation, not a
-    /// whole right-hand side): `jx = d(rates)/d(states)` (`n × n`, row-major),
-    /// `jm = d(rates)/d(q, v)` (`n × 10`), `wx = d(wrench)/d(states)` (`5 × n`),
-    /// `wm = d(wrench)/d(q, v)` (`5 × 10`). Allocation-free.
+    /// whole right-hand side; the columns of `w_a` and of the cage reuse the ball's
+    /// geometry and loads, which do not depend on them): `jx = d(rates)/d(states)`
+    /// (`n × n`, row-major), `jm = d(rates)/d(q, v)` (`n × 10`), `wx = d(wrench)/d(states)`
+    /// (`5 × n`), `wm = d(wrench)/d(q, v)` (`5 × 10`). Allocation-free.
     #[allow(clippy::too_many_arguments)]
     pub fn jacobian(
         &self,
@@ -628,37 +1224,68 @@ impl SkiddingModel {
         jm.fill(0.0);
         wx.fill(0.0);
         wm.fill(0.0);
-        let (theta_c, w_c) = (x[0], x[1]);
+        let ic = self.cage_index();
+        let (theta_c, w_c) = (x[ic], x[ic + 1]);
         let jc = self.jc;
-        jx[1] = 1.0; // d theta_c' / d w_c
-        jx[n + 1] = -self.p.cage_drag / jc;
+        let cr = (ic + 1) * n; // the cage speed's row
+        jx[ic * n + ic + 1] = 1.0; // d theta_c' / d w_c
+        jx[cr + ic + 1] = -self.p.cage_drag / jc;
         let eps = f64::EPSILON.sqrt();
         for j in 0..self.z {
-            let k = BALL0 + 3 * j;
-            let st = [x[k], x[k + 1], x[k + 2]];
-            let base = self.ball(j, q, v, omega, theta_c, w_c, st[0], st[1], st[2]);
+            let bs = self.bs;
+            let k = BALL0 + bs * j;
+            let mut st = [0.0; 5];
+            st[..bs].copy_from_slice(&x[k..k + bs]);
+            let radial = |s: &[f64; 5]| (bs == 5).then_some(s[3]);
+            let geo = self.geo(q, st[0]);
+            let ld = self.loads(&geo, st[1], radial(&st));
+            let at = |s5: [f64; 7]| self.forces(j, &geo, &ld, q, v, omega, s5, None);
+            let st5 = [theta_c, w_c, st[0], st[1], st[2], st[3], st[4]];
+            // The base point, with the analytic wrench stiffness when the ring's columns
+            // are wanted.
+            let mut kw = [[0.0; 5]; 5];
+            let base = if jm.is_empty() {
+                at(st5)
+            } else {
+                self.forces(j, &geo, &ld, q, v, omega, st5, Some(&mut kw))
+            };
             // Ball columns.
-            for col in 0..3 {
-                let h = if col == 0 {
-                    1e-9
-                } else {
-                    eps * st[col].abs().max(1.0)
+            for col in 0..bs {
+                // psi: 1e-7 rad (the loads' solve leaves a relative noise of ~1e-13 in
+                // the rates, which a 1e-9 step would amplify to ~30 %).
+                let h = match col {
+                    0 => 1e-7,
+                    3 => 1e-4 * st[3].abs().max(1e-8),
+                    4 => 1e-6,
+                    _ => eps * st[col].abs().max(1.0),
                 };
                 let mut sp = st;
                 sp[col] += h;
-                let b = self.ball(j, q, v, omega, theta_c, w_c, sp[0], sp[1], sp[2]);
+                let s5 = [theta_c, w_c, sp[0], sp[1], sp[2], sp[3], sp[4]];
+                let b = match col {
+                    // w_a, u': same geometry and loads.
+                    2 | 4 => at(s5),
+                    // w_b, u: same geometry, new loads.
+                    1 | 3 => {
+                        let ld1 = self.loads(&geo, sp[1], radial(&sp));
+                        self.forces(j, &geo, &ld1, q, v, omega, s5, None)
+                    }
+                    _ => self.ball_r(j, q, v, omega, s5),
+                };
                 let c = k + col;
-                for r in 0..3 {
+                for r in 0..bs {
                     jx[(k + r) * n + c] = (b.dx[r] - base.dx[r]) / h;
                 }
-                jx[n + c] = (b.cage_torque - base.cage_torque) / (h * jc);
+                jx[cr + c] = (b.cage_torque - base.cage_torque) / (h * jc);
                 if !wx.is_empty() {
                     for r in 0..5 {
                         wx[r * n + c] = (b.wrench[r] - base.wrench[r]) / h;
                     }
                 }
             }
-            // Cage columns.
+            // Cage columns: only the pocket terms depend on the cage.
+            let pk0 = self.pocket(j, [theta_c, w_c, st[0], st[1], st[2]]);
+            let rr = 0.5 * self.dm;
             for col in 0..2 {
                 let (tc, wc, h) = if col == 0 {
                     (theta_c + 1e-9, w_c, 1e-9)
@@ -666,46 +1293,98 @@ impl SkiddingModel {
                     let h = eps * w_c.abs().max(1.0);
                     (theta_c, w_c + h, h)
                 };
-                let b = self.ball(j, q, v, omega, tc, wc, st[0], st[1], st[2]);
-                for r in 0..3 {
-                    jx[(k + r) * n + col] = (b.dx[r] - base.dx[r]) / h;
-                }
-                jx[n + col] += (b.cage_torque - base.cage_torque) / (h * jc);
+                let pk = self.pocket(j, [tc, wc, st[0], st[1], st[2]]);
+                let (dp, dmf) = (pk.force - pk0.force, pk.m_fric - pk0.m_fric);
+                jx[(k + 1) * n + ic + col] = dp / (self.m * rr * h);
+                jx[(k + 2) * n + ic + col] = dmf * self.cos_a / (self.j * h);
+                jx[cr + ic + col] += (-rr * dp - dmf) / (h * jc);
             }
             if jm.is_empty() {
                 continue;
             }
-            // Velocity columns: only the contact damping `-cd g g^T` depends on v.
+            // Velocity columns: only the contact damping `-cd g g^T` depends on v (and,
+            // with radial mass, the ball's radial acceleration through the same term).
             for r in 0..5 {
                 for c in 0..5 {
                     wm[r * 10 + 5 + c] -= base.cd * base.g[r] * base.g[c];
                 }
             }
-            // Displacement columns.
-            for col in 0..5 {
-                let (mut qp, vp) = (*q, *v);
-                if !q_cols.contains(&col) {
-                    continue;
+            if bs == 5 {
+                for c in 0..5 {
+                    jm[(k + 4) * 10 + 5 + c] = base.cd * base.g[c] / self.m;
                 }
-                let h = if col < 3 { 1e-11 } else { 1e-9 };
-                qp[col] += h;
-                let b = self.ball(j, &qp, &vp, omega, theta_c, w_c, st[0], st[1], st[2]);
-                for r in 0..3 {
-                    jm[(k + r) * 10 + col] = (b.dx[r] - base.dx[r]) / h;
+            }
+            // Displacement columns. The rates depend on q only through three scalars:
+            // the loads Q_i, Q_o and the direction of the contact line (n rotates by
+            // d theta = n1 dn0 - n0 dn1, a unit vector). Difference along each and chain
+            // with their analytic derivatives (no new geometry or split); the wrench's
+            // columns are the analytic stiffness. (With radial mass the damping of the
+            // ball's radial motion also sees q through the ring-geometry rate `delta'`; that
+            // small term is left out of this Jacobian, which only costs step efficiency.)
+            let dl = self.load_derivs(&geo, &ld);
+            let mut dpar = [[0.0; 5]; 3]; // dpar[param][rate]: d(rates)/d(Q_i, Q_o, theta)
+            let mut dcage = [0.0; 3];
+            let sp0 = ld.sp;
+            for (kp, dp) in dpar.iter_mut().enumerate() {
+                let (mut gp, mut lp) = (geo, ld);
+                let h;
+                match kp {
+                    0 | 1 => {
+                        let (q0, s0) = if kp == 0 {
+                            (sp0.q_i, sp0.s_i)
+                        } else {
+                            (sp0.q_o, sp0.s_o)
+                        };
+                        if s0 <= 0.0 {
+                            continue;
+                        }
+                        h = 1e-7 * q0.max(1e-3);
+                        let sp = &mut lp.sp;
+                        let (qq, rr) = if kp == 0 {
+                            (&mut sp.q_i, &mut sp.r_i)
+                        } else {
+                            (&mut sp.q_o, &mut sp.r_o)
+                        };
+                        *qq += h;
+                        *rr = (*rr * *rr + h / s0).sqrt();
+                    }
+                    _ => {
+                        h = 1e-8;
+                        gp.n = [geo.n[0] + h * geo.n[1], geo.n[1] - h * geo.n[0]];
+                    }
                 }
-                jm[10 + col] += (b.cage_torque - base.cage_torque) / (h * jc);
+                let b = self.forces(j, &gp, &lp, q, v, omega, st5, None);
+                for ((d, bx), b0) in dp.iter_mut().zip(b.dx).zip(base.dx) {
+                    *d = (bx - b0) / h;
+                }
+                dcage[kp] = (b.cage_torque - base.cage_torque) / h;
+            }
+            for &col in q_cols {
                 for r in 0..5 {
-                    wm[r * 10 + col] += (b.wrench[r] - base.wrench[r]) / h;
+                    wm[r * 10 + col] += kw[r][col];
                 }
+                let dth = geo.n[1] * dl.dn0[col] - geo.n[0] * dl.dn1[col];
+                let chain = [dl.dqi[col], dl.dqo[col], dth];
+                for r in 0..bs {
+                    jm[(k + r) * 10 + col] = (0..3).map(|kp| dpar[kp][r] * chain[kp]).sum();
+                }
+                jm[(ic + 1) * 10 + col] += (0..3).map(|kp| dcage[kp] * chain[kp]).sum::<f64>() / jc;
             }
         }
     }
 
     /// Peak Hertz pressure at the larger of a ball's two loads, Pa.
     pub fn peak_pressure(&self, q_i: f64, q_o: f64) -> f64 {
-        self.inner
-            .peak_pressure(q_i)
-            .max(self.outer.peak_pressure(q_o))
+        // p0 = 3Q/(2 pi a b) with a b = ca cb Q^(2/3) (coefficients per sqrt(delta) here).
+        let p0 = |q: f64, ax: [f64; 2], k3: f64| {
+            if q > 0.0 {
+                let q3 = q.cbrt();
+                1.5 * q3 * k3 * k3 / (PI * ax[0] * ax[1])
+            } else {
+                0.0
+            }
+        };
+        p0(q_i, self.ax_i, self.kc3_i).max(p0(q_o, self.ax_o, self.kc3_o))
     }
 }
 
@@ -735,13 +1414,145 @@ mod tests {
         }
     }
 
+    /// The analytic stiffness `-dW/dq` and damping `-dW/dv` of the outputs equal the
+    /// finite-difference Jacobian of the wrench (balls held), with every term on: contact
+    /// damping at a moving ring, gyroscopic and spin friction, each traction law, a
+    /// ball off the inner race.
+    #[test]
+    fn analytic_stiffness_matches_finite_differences() {
+        use crate::contact::traction::MixedEhl;
+        let b = preset("7008ce").unwrap().build().unwrap();
+        for (law, omega) in [
+            (TractionLaw::default(), 2500.0),
+            (TractionLaw::MixedEhl(MixedEhl::default()), 1500.0),
+        ] {
+            let p = SkiddingParams {
+                traction: law,
+                contact_damping: 50.0,
+                spin_friction: 0.05,
+                spacing_scatter: 0.5,
+                ..SkiddingParams::default()
+            };
+            let mut m = SkiddingModel::new(&b, p).unwrap();
+            let n = m.n_states();
+            let mut x = vec![0.0; n];
+            m.init(omega, &mut x);
+            // Perturb the ball speeds so that every contact slips and spins.
+            for j in 0..m.z() {
+                x[BALL0 + 3 * j + 1] *= 1.0 + 0.01 * (j as f64 - 7.0) / 7.0;
+                x[BALL0 + 3 * j + 2] *= 1.0 - 0.02 * (j as f64 - 3.0) / 7.0;
+            }
+            // Axial preload, radial offset (unloads some balls), tilt, a moving ring.
+            let q = [4e-6, -12e-6, 10e-6, 2e-4, -1e-4];
+            let v = [1e-3, -2e-3, 5e-4, 0.02, 0.01];
+            let mut dx = vec![0.0; n];
+            let (mut k, mut c) = ([[0.0; 5]; 5], [[0.0; 5]; 5]);
+            m.eval_with_stiffness(&q, &v, omega, &x, &mut dx, &mut k, &mut c);
+            assert!(m.balls.iter().any(|s| s.q_i == 0.0), "a ball off the race");
+            assert!(m.balls.iter().any(|s| s.gyro != 0.0 && s.spin_i != 0.0));
+            let mut dx2 = vec![0.0; n];
+            m.eval(&q, &v, omega, &x, &mut dx2);
+            assert_eq!(dx, dx2, "the same rates");
+            let (mut jx, mut jm, mut wx, mut wm) = (
+                vec![0.0; n * n],
+                vec![0.0; n * 10],
+                vec![0.0; 5 * n],
+                vec![0.0; 50],
+            );
+            // Central differences of the wrench in q for the reference.
+            let mut kfd = [[0.0; 5]; 5];
+            for col in 0..5 {
+                let h = if col < 3 { 1e-10 } else { 1e-8 };
+                let (mut qp, mut qm) = (q, q);
+                qp[col] += h;
+                qm[col] -= h;
+                let wp = m.eval(&qp, &v, omega, &x, &mut dx2).wrench;
+                let wn = m.eval(&qm, &v, omega, &x, &mut dx2).wrench;
+                for r in 0..5 {
+                    kfd[r][col] = -(wp[r] - wn[r]) / (2.0 * h);
+                }
+            }
+            m.jacobian(
+                &q,
+                &v,
+                omega,
+                &x,
+                &mut jx,
+                &mut jm,
+                &mut wx,
+                &mut wm,
+                &[0, 1, 2, 3, 4],
+            );
+            // The integrator's d(rates)/dq (differenced along the analytic load
+            // derivatives) against central differences of whole right-hand sides.
+            let (mut dp, mut dm) = (vec![0.0; n], vec![0.0; n]);
+            for col in 0..5 {
+                let h = if col < 3 { 1e-10 } else { 1e-8 };
+                let (mut qp, mut qm) = (q, q);
+                qp[col] += h;
+                qm[col] -= h;
+                m.eval(&qp, &v, omega, &x, &mut dp);
+                m.eval(&qm, &v, omega, &x, &mut dm);
+                for r in 0..n {
+                    let fd = (dp[r] - dm[r]) / (2.0 * h);
+                    let an = jm[r * 10 + col];
+                    let scale = (0..5).map(|c| jm[r * 10 + c].abs()).fold(1e-3, f64::max);
+                    assert!(
+                        (an - fd).abs() <= 1e-2 * scale,
+                        "{law:?} jm[{r}][{col}] {an:e} vs {fd:e}"
+                    );
+                }
+                for r in 0..5 {
+                    let (w, kk) = (wm[r * 10 + col], -k[r][col]);
+                    assert!(
+                        (w - kk).abs() <= 1e-12 * kk.abs(),
+                        "wm is the analytic stiffness"
+                    );
+                }
+            }
+            // d(rates)/d(states), every column, against central differences.
+            for col in 0..n {
+                let h = 1e-7 * x[col].abs().max(1e-2);
+                let (mut xp, mut xm) = (x.clone(), x.clone());
+                xp[col] += h;
+                xm[col] -= h;
+                m.eval(&q, &v, omega, &xp, &mut dp);
+                m.eval(&q, &v, omega, &xm, &mut dm);
+                for r in 0..n {
+                    let fd = (dp[r] - dm[r]) / (2.0 * h);
+                    let an = jx[r * n + col];
+                    let scale = (0..n).map(|c| jx[r * n + c].abs()).fold(1e-3, f64::max);
+                    assert!(
+                        (an - fd).abs() <= 1e-2 * scale,
+                        "{law:?} jx[{r}][{col}] {an:e} vs {fd:e}"
+                    );
+                }
+            }
+            for r in 0..5 {
+                let scale = kfd[r].iter().map(|v| v.abs()).fold(0.0, f64::max);
+                for col in 0..5 {
+                    let (a, f) = (k[r][col], kfd[r][col]);
+                    assert!(
+                        (a - f).abs() <= 1e-5 * scale,
+                        "{law:?} K[{r}][{col}] analytic {a:e} vs fd {f:e}"
+                    );
+                    assert!(
+                        (c[r][col] + wm[r * 10 + 5 + col]).abs() <= 1e-9 * c[r][r].abs().max(1.0)
+                    );
+                }
+            }
+        }
+    }
+
     /// Force split with centrifugal force: `Q_o - Q_i = Fc` and the approaches add up.
     #[test]
     fn split_balances_the_centrifugal_force() {
         let b = preset("6012").unwrap().build().unwrap();
         let m = SkiddingModel::new(&b, SkiddingParams::default()).unwrap();
         for (delta, f) in [(5e-6, 3.0), (5e-6, 0.0), (-2e-6, 3.0), (1e-7, 50.0)] {
-            let (qi, qo) = m.split(delta, f);
+            let Split {
+                q_i: qi, q_o: qo, ..
+            } = m.split(delta, f);
             assert!(
                 (qo - qi - f).abs() < 1e-8 * (1.0 + qo),
                 "{delta} {f}: {qi} {qo}"
@@ -751,6 +1562,15 @@ mod tests {
                 assert!((sum - delta).abs() < 1e-12, "{sum} vs {delta}");
             }
         }
-        assert_eq!(m.split(-1e-6, 0.0), (0.0, 0.0));
+        assert_eq!(m.split(-1e-6, 0.0), Split::default());
+        // The semi-axes from sqrt(delta) and the peak pressure agree with the Hertz API.
+        let sp = m.split(5e-6, 3.0);
+        let ci = m.contact_state(true, sp.q_i, sp.r_i);
+        let (a, bb) = m.inner.semi_axes(sp.q_i);
+        assert!((ci.a / a - 1.0).abs() < 1e-12 && (ci.b / bb - 1.0).abs() < 1e-12);
+        let p = m.peak_pressure(sp.q_i, 0.0);
+        assert!((p / m.inner.peak_pressure(sp.q_i) - 1.0).abs() < 1e-12);
+        let p = m.peak_pressure(0.0, sp.q_o);
+        assert!((p / m.outer.peak_pressure(sp.q_o) - 1.0).abs() < 1e-12);
     }
 }

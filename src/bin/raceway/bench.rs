@@ -55,7 +55,11 @@ pub fn bench(a: BenchArgs) -> Result<String> {
     if !a.cases.is_empty() {
         let known: Vec<&str> = cfg.cases.iter().map(|c| c.name).collect();
         if let Some(bad) = a.cases.iter().find(|n| !known.contains(&n.as_str())) {
-            return Err(Error::invalid("--case", bad, format!("one of {}", known.join(", "))));
+            return Err(Error::invalid(
+                "--case",
+                bad,
+                format!("one of {}", known.join(", ")),
+            ));
         }
         cfg.cases.retain(|c| a.cases.iter().any(|n| n == c.name));
     }

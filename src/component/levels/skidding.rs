@@ -1,6 +1,11 @@
 //! The `skidding` level: ball orbit and spin, cage, traction and drag (physics.md §5.2)
-//! behind the level seam. States: `[theta_c, w_c, (psi_j, w_b_j, w_a_j)]`, see
-//! [`crate::models::skidding`].
+//! behind the level seam. States: `[(psi_j, w_b_j, w_a_j[, u_j, u_j']), theta_c, w_c]`
+//! (balls first, so the Jacobian is block-arrowhead), see [`crate::models::skidding`].
+//!
+//! Cost at a communication point: the outputs' stiffness `-dF/dq` is analytic (one
+//! right-hand side, not a Jacobian), and the last right-hand side is memoised, so the
+//! component's repeated evaluations of the same point (outputs, the base of its `dF/dt`
+//! difference, the next step's first stage and `df/dt`) cost nothing.
 
 use crate::component::level::{LevelModel, LevelOutputs, Motion};
 use crate::error::{Error, Result};
@@ -13,11 +18,12 @@ pub struct SkiddingLevel {
     model: SkiddingModel,
     dofs: &'static [usize],
     last: SkidTotals,
-    /// Jacobian scratch for the outputs' stiffness and damping (allocated once).
-    jx: Vec<f64>,
-    jm: Vec<f64>,
-    wx: Vec<f64>,
-    wm: Vec<f64>,
+    /// The last right-hand side and its arguments `(q, v, omega, x)`: the component
+    /// evaluates the same point several times (the outputs, the base of the `dF/dt`
+    /// difference, the next step's first stage), so an exact repeat is served from here.
+    memo_key: Vec<f64>,
+    memo_dx: Vec<f64>,
+    memo_valid: bool,
 }
 
 impl SkiddingLevel {
@@ -34,10 +40,9 @@ impl SkiddingLevel {
             model,
             dofs,
             last: SkidTotals::default(),
-            jx: vec![0.0; n * n],
-            jm: vec![0.0; n * 10],
-            wx: vec![0.0; 5 * n],
-            wm: vec![0.0; 50],
+            memo_key: vec![0.0; 11 + n],
+            memo_dx: vec![0.0; n],
+            memo_valid: false,
         })
     }
 
@@ -53,6 +58,23 @@ impl SkiddingLevel {
             .balls
             .iter()
             .map(|b: &BallState| (b.dv_i, b.dv_o))
+    }
+
+    /// Is `(m, x)` the point of the last evaluation (bit for bit)?
+    fn memo_hit(&self, m: &Motion, x: &[f64]) -> bool {
+        let k = &self.memo_key;
+        self.memo_valid && k[..5] == m.q && k[5..10] == m.v && k[10] == m.omega && k[11..] == *x
+    }
+
+    fn memo_store(&mut self, m: &Motion, x: &[f64], dx: &[f64]) {
+        let k = &mut self.memo_key;
+        k[..5].copy_from_slice(&m.q);
+        k[5..10].copy_from_slice(&m.v);
+        k[10] = m.omega;
+        k[11..].copy_from_slice(x);
+        self.memo_dx.copy_from_slice(dx);
+        // NaN never compares equal, so a NaN point is never served from the memo.
+        self.memo_valid = true;
     }
 
     /// Totals of the last evaluation.
@@ -71,17 +93,28 @@ impl LevelModel for SkiddingLevel {
     fn ring_dofs(&self) -> &'static [usize] {
         self.dofs
     }
+    fn blocks(&self) -> Option<(usize, usize)> {
+        // One independent 3-state block per ball, then the cage (and the ring) as border.
+        Some((self.model.z(), self.model.ball_states()))
+    }
     fn state_atol(&self, atol_m: f64, atol: &mut [f64]) -> bool {
         // Angles: a ball-surface error of atol_m; speeds: that error over a 1 kHz period.
         let angle = atol_m / (0.5 * self.model.d_ball());
         let rate = angle * 2.0 * std::f64::consts::PI * 1e3;
-        atol[0] = angle;
-        atol[1] = rate;
+        let ic = self.model.cage_index();
+        atol[ic] = angle;
+        atol[ic + 1] = rate;
+        let bs = self.model.ball_states();
         for j in 0..self.model.z() {
-            let k = BALL0 + 3 * j;
+            let k = BALL0 + bs * j;
             atol[k] = angle;
             atol[k + 1] = rate;
             atol[k + 2] = rate;
+            if bs == 5 {
+                // The ball's radial position and its rate.
+                atol[k + 3] = atol_m;
+                atol[k + 4] = atol_m * 2.0 * std::f64::consts::PI * 1e3;
+            }
         }
         true
     }
@@ -110,7 +143,7 @@ impl LevelModel for SkiddingLevel {
         if !m.omega.is_finite() {
             return Err(Error::invalid("shaft.omega", m.omega, "a finite number"));
         }
-        self.model.init(m.omega, x);
+        self.model.init_at(&m.q, m.omega, x);
         Ok(())
     }
     fn rhs(
@@ -122,7 +155,14 @@ impl LevelModel for SkiddingLevel {
         dx: &mut [f64],
         wrench: Option<&mut [f64; 5]>,
     ) -> Result<()> {
-        let tot = self.model.eval(&m.q, &m.v, m.omega, x, dx);
+        let tot = if self.memo_hit(m, x) {
+            dx.copy_from_slice(&self.memo_dx);
+            self.last
+        } else {
+            let tot = self.model.eval(&m.q, &m.v, m.omega, x, dx);
+            self.memo_store(m, x, dx);
+            tot
+        };
         if let Some(w) = wrench {
             *w = tot.wrench;
             if self.dofs.len() == 2 {
@@ -134,18 +174,15 @@ impl LevelModel for SkiddingLevel {
     }
     fn outputs(
         &mut self,
-        t: f64,
+        _t: f64,
         m: &Motion,
         x: &[f64],
-        aux: &mut [f64],
+        _aux: &mut [f64],
         out: &mut LevelOutputs,
     ) -> Result<()> {
-        // dx is not needed: evaluate into a stack buffer of the cage part only is not
-        // possible (the model writes all rates), so reuse the balls' scratch via rhs.
-        let mut w = [0.0; 5];
         let n = self.model.n_states();
-        // Fixed-size scratch (no allocation): rates are discarded.
-        let mut buf = [0.0; 2 + 3 * MAX_BALLS];
+        // Fixed-size scratch (no allocation) for the rates.
+        let mut buf = [0.0; 2 + 5 * MAX_BALLS];
         if n > buf.len() {
             return Err(Error::invalid(
                 "bearing.ball_count",
@@ -153,13 +190,25 @@ impl LevelModel for SkiddingLevel {
                 "<= 64 for the skidding level",
             ));
         }
-        self.rhs(t, m, x, aux, &mut buf[..n], Some(&mut w))?;
-        let tot = self.last;
+        // The rates, the wrench and its stiffness -dF/dq and damping -dF/dv at the current
+        // ball positions (balls held), analytically in one pass.
+        let mut kf = [[0.0; 5]; 5];
+        let mut cf = [[0.0; 5]; 5];
+        let tot =
+            self.model
+                .eval_with_stiffness(&m.q, &m.v, m.omega, x, &mut buf[..n], &mut kf, &mut cf);
+        self.memo_store(m, x, &buf[..n]);
+        self.last = tot;
+        let mut w = tot.wrench;
+        if self.dofs.len() == 2 {
+            w[2..].fill(0.0);
+        }
         let (wk, _) = self.model.kinematic(m.omega);
         // 1 - w_c/w_k, regularised below 1 mrad/s of kinematic cage speed so that a
         // bearing at rest reports 100 % slip and the output stays finite.
         let eps = 1e-3;
-        let slip = 1.0 - x[1] * wk / (wk * wk + eps * eps);
+        let w_c = x[self.model.cage_index() + 1];
+        let slip = 1.0 - w_c * wk / (wk * wk + eps * eps);
         let mut max_p: f64 = 0.0;
         let mut pocket: f64 = 0.0;
         for b in &self.model.balls {
@@ -168,24 +217,12 @@ impl LevelModel for SkiddingLevel {
                 max_p = max_p.max(self.model.peak_pressure(b.q_i, b.q_o));
             }
         }
-        // Stiffness -dF/dq and damping -dF/dv at the current ball positions (balls held).
-        self.model.jacobian(
-            &m.q,
-            &m.v,
-            m.omega,
-            x,
-            &mut self.jx,
-            &mut self.jm,
-            &mut self.wx,
-            &mut self.wm,
-            self.dofs,
-        );
         let mut k = [[0.0; 5]; 5];
         let mut c = [[0.0; 5]; 5];
         for &r in self.dofs {
             for &col in self.dofs {
-                k[r][col] = -self.wm[r * 10 + col];
-                c[r][col] = -self.wm[r * 10 + 5 + col];
+                k[r][col] = kf[r][col];
+                c[r][col] = cf[r][col];
             }
         }
         *out = LevelOutputs {
@@ -193,7 +230,7 @@ impl LevelModel for SkiddingLevel {
             k,
             c,
             torque: tot.torque_shaft,
-            cage_omega: x[1],
+            cage_omega: w_c,
             cage_slip: slip,
             balls_loaded: tot.loaded as f64,
             max_load: tot.max_load,
