@@ -137,8 +137,19 @@ pub fn plot(path: &Path, axes: &Axes<'_>, series: &[Series<'_>], markers: &[Mark
     macro_rules! draw {
         ($chart:expr) => {{
             let mut chart = $chart;
-            let fx = |v: &f64| tick(*v, axes.log_x);
-            let fy = |v: &f64| tick(*v, axes.log_y);
+            // A tick within round-off of zero (a grid computed across it) reads 0.
+            let fx = |v: &f64| {
+                tick(
+                    if v.abs() < 1e-9 * (x1 - x0) { 0.0 } else { *v },
+                    axes.log_x,
+                )
+            };
+            let fy = |v: &f64| {
+                tick(
+                    if v.abs() < 1e-9 * (y1 - y0) { 0.0 } else { *v },
+                    axes.log_y,
+                )
+            };
             chart
                 .configure_mesh()
                 .x_desc(axes.x_label)
