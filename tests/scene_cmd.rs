@@ -151,6 +151,32 @@ fn every_example_scene_checks_clean() {
     assert!(n >= 12, "{n} scenes");
 }
 
+/// The scene catalogue in docs/scenes.md and the README's table name every scene file, and
+/// no file that is not there.
+#[test]
+fn scene_catalogues_list_every_scene() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut files: Vec<String> = std::fs::read_dir(root.join("examples/scenes"))
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.ends_with(".toml"))
+        .collect();
+    files.sort();
+    for doc in ["docs/scenes.md", "README.md"] {
+        let text = std::fs::read_to_string(root.join(doc)).unwrap();
+        let mut listed: Vec<String> = text
+            .lines()
+            .filter_map(|l| l.strip_prefix("| `"))
+            .filter_map(|l| l.split('`').next())
+            .filter(|n| n.ends_with(".toml") && !n.contains('/'))
+            .map(String::from)
+            .collect();
+        listed.sort();
+        listed.dedup();
+        assert_eq!(listed, files, "{doc}: scene table out of date");
+    }
+}
+
 #[test]
 fn explain_covers_exactly_the_schema_fields() {
     let schema: BTreeSet<String> = schema::schema_paths().into_keys().collect();
