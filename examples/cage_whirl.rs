@@ -12,7 +12,9 @@
 //! `--speeds 30000,120000`, `--duration S` (simulated time per speed), `--step S`
 //! (communication step = sampling of the cage-centre speed), `--viscosity PAS`,
 //! `--guide-width-mm MM`, `--guide-clearance-mm MM` (radial), `--pocket-clearance-mm MM`,
-//! `--mu MU` (Coulomb traction `mu_max`), `--drag-density KGM3`, `--tight` (rtol 1e-5,
+//! `--mu MU` (Coulomb traction `mu_max`), `--drag-density KGM3`, `--guide-eps-max E`
+//! (where the land's film law is capped and the wall spring starts), `--traction-vs V`
+//! (Coulomb traction transition slip speed, m/s), `--tight` (rtol 1e-5,
 //! atol 1e-9 m at every speed).
 //!
 //! Columns: speed; sigma = std(|v|)/mean(|v|) of the level's `cage.speed` (the 3-D
@@ -60,6 +62,8 @@ struct Opts {
     pocket_clearance_mm: Option<f64>,
     mu: Option<f64>,
     drag_density: Option<f64>,
+    guide_eps_max: Option<f64>,
+    traction_vs: Option<f64>,
     tight: bool,
 }
 
@@ -80,6 +84,9 @@ fn scene_for(rpm: f64, o: &Opts) -> Result<Scene, Box<dyn std::error::Error>> {
     if let Some(v) = o.pocket_clearance_mm {
         f.pocket_clearance_mm = Some(v);
     }
+    if let Some(v) = o.guide_eps_max {
+        f.guide_eps_max = v;
+    }
     if let Some(v) = o.drag_density {
         f.drag_density = v;
     }
@@ -87,6 +94,11 @@ fn scene_for(rpm: f64, o: &Opts) -> Result<Scene, Box<dyn std::error::Error>> {
         if let raceway::contact::traction::TractionLaw::Coulomb { mu_max, .. } = &mut f.traction
         {
             *mu_max = mu;
+        }
+    }
+    if let Some(v) = o.traction_vs {
+        if let raceway::contact::traction::TractionLaw::Coulomb { v_s, .. } = &mut f.traction {
+            *v_s = v;
         }
     }
     if let Some(c) = o.guide_clearance_mm {
@@ -210,6 +222,8 @@ fn parse() -> Result<(Opts, bool, bool), Box<dyn std::error::Error>> {
             "--pocket-clearance-mm" => o.pocket_clearance_mm = Some(val()?),
             "--mu" => o.mu = Some(val()?),
             "--drag-density" => o.drag_density = Some(val()?),
+            "--guide-eps-max" => o.guide_eps_max = Some(val()?),
+            "--traction-vs" => o.traction_vs = Some(val()?),
             "--speeds" => {
                 i += 1;
                 o.speeds = args
@@ -280,7 +294,14 @@ fn sensitivity(o: &Opts) -> Result<String, Box<dyn std::error::Error>> {
     let cases: Vec<(&str, Opts)> = vec![
         ("scenes as they are", o.clone()),
         (
-            "guide-land viscosity 0.03 Pa s (x10)",
+            "oil viscosity 0.012 Pa s (x4; land, pockets, drag)",
+            Opts {
+                viscosity: Some(0.012),
+                ..o.clone()
+            },
+        ),
+        (
+            "oil viscosity 0.03 Pa s (x10; land, pockets, drag)",
             Opts {
                 viscosity: Some(0.03),
                 ..o.clone()
@@ -301,6 +322,13 @@ fn sensitivity(o: &Opts) -> Result<String, Box<dyn std::error::Error>> {
             },
         ),
         (
+            "land film law up to eps 0.99 (guide_eps_max)",
+            Opts {
+                guide_eps_max: Some(0.99),
+                ..o.clone()
+            },
+        ),
+        (
             "pocket clearance 0.5 mm (pocket side play = guide clearance)",
             Opts {
                 pocket_clearance_mm: Some(0.5),
@@ -311,6 +339,13 @@ fn sensitivity(o: &Opts) -> Result<String, Box<dyn std::error::Error>> {
             "traction mu_max 0.1 (x2)",
             Opts {
                 mu: Some(0.1),
+                ..o.clone()
+            },
+        ),
+        (
+            "softer traction: v_s 0.5 m/s (x10)",
+            Opts {
+                traction_vs: Some(0.5),
                 ..o.clone()
             },
         ),
