@@ -91,8 +91,7 @@ fn scene_for(rpm: f64, o: &Opts) -> Result<Scene, Box<dyn std::error::Error>> {
         f.drag_density = v;
     }
     if let Some(mu) = o.mu {
-        if let raceway::contact::traction::TractionLaw::Coulomb { mu_max, .. } = &mut f.traction
-        {
+        if let raceway::contact::traction::TractionLaw::Coulomb { mu_max, .. } = &mut f.traction {
             *mu_max = mu;
         }
     }
@@ -198,7 +197,7 @@ fn parse() -> Result<(Opts, bool, bool), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let mut o = Opts {
         speeds: vec![30_000.0, 60_000.0, 80_000.0, 120_000.0],
-        duration: 0.1,
+        duration: 0.15,
         step: 1e-5,
         ..Opts::default()
     };
@@ -403,7 +402,11 @@ fn write_docs(o: &Opts, rows: &[Row], table: &str) -> Result<(), Box<dyn std::er
         "\n## Results\n\n{} s simulated per speed, communication step {} s, second half for the statistics:\n\n{table}",
         o.duration, o.step
     )?;
-    writeln!(md, "\n### Sampling (120 000 rpm, {} s)\n\n{samp}", o.duration.min(0.04))?;
+    writeln!(
+        md,
+        "\n### Sampling (120 000 rpm, {} s)\n\n{samp}",
+        o.duration.min(0.04)
+    )?;
     writeln!(md, "\n### One thing at a time\n\n{sens}")?;
     md += include_str!("cage_whirl_tail.md");
     std::fs::write(dir.join("cage-whirl.md"), md)?;
