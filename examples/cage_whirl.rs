@@ -321,6 +321,13 @@ fn sensitivity(o: &Opts) -> Result<String, Box<dyn std::error::Error>> {
             },
         ),
         (
+            "guide land width 6.9 mm (land film x10 alone; a probe wider than the cage)",
+            Opts {
+                guide_width_mm: Some(6.894),
+                ..o.clone()
+            },
+        ),
+        (
             "guide clearance 0.125 mm (0.25 mm read as diametral)",
             Opts {
                 guide_clearance_mm: Some(0.125),
@@ -422,7 +429,11 @@ fn write_docs(o: &Opts, rows: &[Row], table: &str) -> Result<(), Box<dyn std::er
         "\n### Sampling (120 000 rpm, {} s)\n\n{samp}",
         o.duration.min(0.04)
     )?;
-    writeln!(md, "\n### One thing at a time\n\n{sens}")?;
+    writeln!(
+        md,
+        "\n### One thing at a time ({} s per run)\n\n{sens}",
+        o.duration.min(0.05)
+    )?;
     md += &std::fs::read_to_string(here.join("cage_whirl_tail.md"))?;
     std::fs::write(dir.join("cage-whirl.md"), md)?;
     let _ = rows;
