@@ -14,7 +14,7 @@
 //! `--guide-width-mm MM`, `--guide-clearance-mm MM` (radial), `--pocket-clearance-mm MM`,
 //! `--mu MU` (Coulomb traction `mu_max`), `--drag-density KGM3`, `--guide-eps-max E`
 //! (where the land's film law is capped and the wall spring starts), `--traction-vs V`
-//! (Coulomb traction transition slip speed, m/s), `--no-radial` (ring centred radially:
+//! (Coulomb traction transition slip speed, m/s), `--pocket-friction MU`, `--no-radial` (ring centred radially:
 //! the scene's axial displacement only, so Fr = 0), `--tight` (rtol 1e-5,
 //! atol 1e-9 m at every speed).
 //!
@@ -65,6 +65,7 @@ struct Opts {
     drag_density: Option<f64>,
     guide_eps_max: Option<f64>,
     traction_vs: Option<f64>,
+    pocket_friction: Option<f64>,
     no_radial: bool,
     tight: bool,
 }
@@ -85,6 +86,9 @@ fn scene_for(rpm: f64, o: &Opts) -> Result<Scene, Box<dyn std::error::Error>> {
     }
     if let Some(v) = o.pocket_clearance_mm {
         f.pocket_clearance_mm = Some(v);
+    }
+    if let Some(v) = o.pocket_friction {
+        f.pocket_friction = v;
     }
     if let Some(v) = o.guide_eps_max {
         f.guide_eps_max = v;
@@ -230,6 +234,7 @@ fn parse() -> Result<(Opts, bool, bool), Box<dyn std::error::Error>> {
             "--drag-density" => o.drag_density = Some(val()?),
             "--guide-eps-max" => o.guide_eps_max = Some(val()?),
             "--traction-vs" => o.traction_vs = Some(val()?),
+            "--pocket-friction" => o.pocket_friction = Some(val()?),
             "--speeds" => {
                 i += 1;
                 o.speeds = args
