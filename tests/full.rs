@@ -563,3 +563,67 @@ fn block_jacobian_ring_parts_match() {
     // The shaft feels the balls: the axial force depends on the axial displacement.
     assert!(wm[2 * 10 + 2].abs() > 1e7, "axial stiffness {}", wm[22]);
 }
+
+/// The level's use of the guide land (outer-ring guided 7004): with the cage displaced by
+/// `e` (inside the pocket play, so the pockets only add their film) and at rest relative
+/// to its centre, the land's share of the cage's acceleration — isolated as the difference
+/// between a land of width `2 Bg` and one of `Bg` — is exactly the short-bearing law's force
+/// on the cage at the cage OD, `e` measured from the fixed outer ring, `w_ring = 0` and
+/// the cage's own speed: restoring (radial component toward the centre) and driving
+/// forward whirl (tangential component along the rotation). A wrong sign of `e`, the
+/// inner ring's speed or the bore radius would all fail it.
+#[test]
+fn guide_land_in_the_level_restores_and_drives_forward_whirl() {
+    use raceway::lubrication::guide_land::GuideLand;
+    let b = preset("7004").unwrap().build().unwrap();
+    let omega = rpm(120_000.0);
+    let q = qs_displacement(omega);
+    let bg = 0.5 * b.cage.width;
+    let cg = b.cage.guide_clearance;
+    let (e, ang) = (0.2 * cg, 0.7f64);
+    let e_xy = [e * ang.cos(), e * ang.sin()];
+    let mut acc = Vec::new();
+    let mut wc = 0.0;
+    for width in [bg, 2.0 * bg] {
+        let p = FullParams {
+            guide_width: width,
+            drag: 0.0,
+            ..FullParams::for_bearing(&b)
+        };
+        let mut m = FullModel::new(&b, p).unwrap();
+        let n = m.n_states();
+        let mut y = vec![0.0; n];
+        let mut aux = vec![0.0; m.n_aux()];
+        m.init(&q, omega, &mut y, &mut aux).unwrap();
+        let (l, t0) = m.scales();
+        y[0] = e_xy[0] / l;
+        y[1] = e_xy[1] / l;
+        wc = m.cage_omega(&y);
+        let mut dx = vec![0.0; n];
+        m.eval(&q, &[0.0; 5], omega, &y, &mut aux, &mut dx).unwrap();
+        // Cage force (N) from the stored-rate derivative: dx[6..8] = a t0 / l.
+        acc.push([dx[6] * l / t0 * b.cage.mass, dx[7] * l / t0 * b.cage.mass]);
+    }
+    let land = |width: f64| GuideLand {
+        radius: 0.5 * b.cage.outer_diameter,
+        width,
+        clearance: cg,
+        viscosity: FullParams::for_bearing(&b).viscosity,
+        outer: true,
+        contact_stiffness: 1e7,
+        eps_max: 0.9,
+    };
+    let f1 = land(bg).force(e_xy, [0.0; 2], wc, 0.0).f;
+    let f2 = land(2.0 * bg).force(e_xy, [0.0; 2], wc, 0.0).f;
+    let want = [f2[0] - f1[0], f2[1] - f1[1]];
+    let got = [acc[1][0] - acc[0][0], acc[1][1] - acc[0][1]];
+    let mag = want[0].hypot(want[1]);
+    assert!(mag > 0.0);
+    for k in 0..2 {
+        assert!((got[k] - want[k]).abs() < 1e-6 * mag, "{got:?} {want:?}");
+    }
+    // Restoring and forward: along e negative, along e_perp (+90° about z) positive.
+    let (c, s) = (ang.cos(), ang.sin());
+    assert!(got[0] * c + got[1] * s < 0.0, "{got:?}");
+    assert!(-got[0] * s + got[1] * c > 0.0, "{got:?}");
+}
