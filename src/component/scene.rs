@@ -29,8 +29,24 @@ pub enum Level {
 }
 
 impl Level {
+    /// Every level, lowest fidelity first.
+    pub const ALL: [Level; 5] = [
+        Level::Linear,
+        Level::QuasiStatic,
+        Level::Ring,
+        Level::Skidding,
+        Level::Full,
+    ];
+    /// Every scene spelling, in the order of [`Level::ALL`].
+    pub const NAMES: [&'static str; 5] = [
+        Level::ALL[0].name(),
+        Level::ALL[1].name(),
+        Level::ALL[2].name(),
+        Level::ALL[3].name(),
+        Level::ALL[4].name(),
+    ];
     /// Scene spelling.
-    pub fn name(self) -> &'static str {
+    pub const fn name(self) -> &'static str {
         match self {
             Level::Linear => "linear",
             Level::QuasiStatic => "quasi_static",

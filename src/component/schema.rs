@@ -17,7 +17,9 @@
 //!   field path their message names. TOML spans come from the `toml` crate's spanned
 //!   document tables ([`toml::de::DeTable::parse_recoverable`]).
 
-use super::scene::{BearingRef, InputSpec, ModelSpec, RunSpec, Scene, SkiddingSpec, SolverSpec};
+use super::scene::{
+    BearingRef, InputSpec, Level, ModelSpec, RunSpec, Scene, SkiddingSpec, SolverSpec,
+};
 use super::variables;
 use crate::contact::traction::TractionLaw;
 use crate::geometry::bearing::{CageSpec, MaterialSpec, MaterialsSpec};
@@ -205,7 +207,7 @@ const fn f(
     }
 }
 
-const LEVELS: &[&str] = &["linear", "quasi_static", "ring", "skidding", "full"];
+const LEVELS: &[&str] = &Level::NAMES;
 const BALL_CONTACTS: &[&str] = &["quasi_static", "dynamic"];
 const CAGE_MODELS: &[&str] = &["free", "ideal"];
 const CAUSALITIES: &[&str] = &["motion", "load"];

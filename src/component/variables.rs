@@ -431,7 +431,7 @@ pub const PARAMETERS: &[Parameter] = &[
         ty: ParamType::String,
         unit: "",
         start: "",
-        description: "model level: linear, quasi_static or ring",
+        description: "model level: linear, quasi_static, ring, skidding or full",
     },
     Parameter {
         name: "input_rule",

@@ -108,7 +108,7 @@ pub(crate) fn scene(
         scene.bearing = BearingRef::Preset(name.to_string());
     }
     if let Some(level) = string(values, "level") {
-        scene.model.level = parse_enum::<Level>("level", level, "linear, quasi_static or ring")?;
+        scene.model.level = parse_enum::<Level>("level", level, &Level::NAMES.join(", "))?;
     }
     if let Some(rule) = string(values, "input_rule") {
         scene.inputs.rule =

@@ -96,6 +96,23 @@ fn parameters_map_onto_the_scene() {
     assert!(params::scene(&values(&[("level", s(""))]), None, None).is_ok());
     let e = params::scene(&values(&[("level", s("best"))]), None, None).unwrap_err();
     assert!(e.contains("parameter `level`") && e.contains("best"), "{e}");
+    // every level is accepted, and the refusal and the parameter's description name them all
+    let desc = crate::component::variables::PARAMETERS
+        .iter()
+        .find(|p| p.name == "level")
+        .unwrap()
+        .description;
+    for (l, name) in crate::component::Level::ALL
+        .iter()
+        .zip(crate::component::Level::NAMES)
+    {
+        let (sc, _) = params::scene(&values(&[("level", s(name))]), None, None).unwrap();
+        assert_eq!(sc.model.level, *l);
+        assert!(
+            e.contains(name) && desc.contains(name),
+            "{name}: {e} / {desc}"
+        );
+    }
     let e = params::scene(
         &values(&[("clearance", ParamValue::Real(-0.5))]),
         None,
