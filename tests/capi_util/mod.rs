@@ -25,26 +25,24 @@ pub fn lib_dir() -> PathBuf {
         std::env::consts::DLL_PREFIX,
         std::env::consts::DLL_SUFFIX
     ));
-    if !lib.exists() {
-        // `cargo test` links the tests against the rlib and builds the cdylib only when
-        // the library itself is built: build it (same profile, same target directory).
-        // Serialised: several tests may ask at once.
-        static BUILD: std::sync::Mutex<()> = std::sync::Mutex::new(());
-        let _guard = BUILD.lock().unwrap_or_else(|e| e.into_inner());
-        if !lib.exists() {
-            let mut cmd = Command::new(env!("CARGO"));
-            cmd.args(["build", "--lib", "--quiet", "--manifest-path"])
-                .arg(root().join("Cargo.toml"));
-            if dir.file_name().is_some_and(|n| n == "release") {
-                cmd.arg("--release");
-            }
-            if let Some(target) = dir.parent() {
-                cmd.arg("--target-dir").arg(target);
-            }
-            let st = cmd.status().expect("run cargo build --lib");
-            assert!(st.success(), "cargo build --lib failed");
+    // `cargo test` links the tests against the rlib and builds the cdylib only when the
+    // library itself is built, and a cdylib left from an earlier build may be stale: run
+    // `cargo build --lib` once per test process (same profile, same target directory; a
+    // no-op when it is fresh). Serialised: several tests may ask at once.
+    static BUILD: std::sync::Once = std::sync::Once::new();
+    BUILD.call_once(|| {
+        let mut cmd = Command::new(env!("CARGO"));
+        cmd.args(["build", "--lib", "--quiet", "--manifest-path"])
+            .arg(root().join("Cargo.toml"));
+        if dir.file_name().is_some_and(|n| n == "release") {
+            cmd.arg("--release");
         }
-    }
+        if let Some(target) = dir.parent() {
+            cmd.arg("--target-dir").arg(target);
+        }
+        let st = cmd.status().expect("run cargo build --lib");
+        assert!(st.success(), "cargo build --lib failed");
+    });
     assert!(
         lib.exists(),
         "{} not found after `cargo build --lib`",
