@@ -1,5 +1,6 @@
 //! Stability campaign, CI sample (one factor at a time around each level's nominal cell,
-//! plus corners; short windows). The long campaign:
+//! plus corners; short windows; the dynamic levels, skidding and full, a few hard cells
+//! over a shorter window). The long campaign:
 //! `cargo run --release -- bench --stability --long`.
 //! Every cell must converge under refinement or refuse cleanly: never a panic or a NaN.
 
@@ -9,9 +10,18 @@ fn base(name: &str) -> &'static stability::Base {
     BASES.iter().find(|b| b.name == name).unwrap()
 }
 
+/// The dynamic levels (skidding and full): their cells cost 10 to 1000 times a ring
+/// cell's, so the CI sample takes a few hard cells of them (below).
+fn dynamic(b: &stability::Base) -> bool {
+    b.model.contains("\"skidding\"") || b.model.contains("\"full\"")
+}
+
 #[test]
 fn sampled_matrix_converges_or_refuses_cleanly() {
-    let cells = stability::matrix(false);
+    let cells: Vec<Cell> = stability::matrix(false)
+        .into_iter()
+        .filter(|c| !dynamic(c.base))
+        .collect();
     assert!(cells.len() >= 60, "{} cells", cells.len());
     let res = stability::run(&cells, 0.002, false);
     let failed: Vec<String> = res
@@ -89,4 +99,57 @@ fn angular_contact_preload_as_clearance_is_a_clean_error() {
         Outcome::CleanError(m) => assert!(m.contains("bearing."), "{m}"),
         o => panic!("{o:?}"),
     }
+}
+
+/// The dynamic levels' hard corners: start from rest (ramp), 120 000 rpm with ceramic balls
+/// at the 4 GPa load, no load at rest, a step input (load or shaft +5 µm and the speed
+/// reversed) and the largest macro step, over 1 ms. Each level is wired, so every cell must
+/// run to finite outputs that converge (pointwise or in statistics): no refusal either.
+#[test]
+fn dynamic_levels_hard_cells_converge() {
+    let mut cells = Vec::new();
+    for b in BASES.iter().filter(|b| dynamic(b)) {
+        let n = stability::nominal(b);
+        cells.extend([
+            n,
+            Cell {
+                speed: Speed::FromRest,
+                ..n
+            },
+            Cell {
+                speed: Speed::Max,
+                load: Load::Gpa4,
+                ball: "si3n4",
+                ..n
+            },
+            Cell {
+                speed: Speed::Zero,
+                load: Load::Zero,
+                ..n
+            },
+            Cell {
+                step_input: true,
+                ..n
+            },
+        ]);
+    }
+    assert_eq!(cells.len(), 15, "three dynamic bases");
+    for (c, o) in stability::run(&cells, 0.001, false) {
+        assert!(
+            matches!(o, Outcome::Converged { .. } | Outcome::Statistical { .. }),
+            "{c:?}: {o:?}"
+        );
+    }
+}
+
+/// The motion-driven full base sits at the square-held quasi-static equilibrium: for
+/// study [0]'s 7004 at 30 000 rpm under Fa 2000 N, Fr 400 N it gives the displacement of
+/// the catalogue scene examples/scenes/7004-30000.toml (solved independently there).
+#[test]
+fn square_equilibrium_reproduces_the_catalogue_scene() {
+    let b = raceway::geometry::preset("7004").unwrap().build().unwrap();
+    let q = stability::square_equilibrium(&b, [0.0, -400.0, 2000.0], 3141.592654).unwrap();
+    assert!(q[0].abs() < 1e-12, "{q:?}");
+    assert!((q[1] / -2.96568e-6 - 1.0).abs() < 1e-4, "{q:?}");
+    assert!((q[2] / 4.364864e-5 - 1.0).abs() < 1e-5, "{q:?}");
 }
