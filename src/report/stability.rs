@@ -14,6 +14,9 @@ use crate::geometry::preset;
 use std::fmt::Write as _;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
+/// Input values by variable name.
+type Inputs = Vec<(&'static str, f64)>;
+
 /// A level base: how a cell's scene is built for that level.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Base {
@@ -472,11 +475,7 @@ impl Cell {
     }
 
     /// The inputs at the start of the window (name, value) and the step-input events.
-    fn inputs(
-        &self,
-        c: &Component,
-        t_end: f64,
-    ) -> Result<(Vec<(&'static str, f64)>, Vec<InputEvent>)> {
+    fn inputs(&self, c: &Component, t_end: f64) -> Result<(Inputs, Vec<InputEvent>)> {
         let f = self.radial_load()?;
         let omega = self.speed.rad_s();
         let mut v = vec![("shaft.omega", omega)];
