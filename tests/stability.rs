@@ -179,3 +179,56 @@ fn static_start_crosses_a_dead_zone() {
         assert!(matches!(o, Outcome::Converged { .. }), "{c:?}: {o:?}");
     }
 }
+
+/// Full level, a host that sets the inputs after building the component (as the C API's
+/// `raceway_create` then `raceway_set_real` do): the balls start at their quasi-static
+/// positions for zero inputs, the shaft is then 78 µm down and turning backwards. The ball
+/// position solve stalls at a residual of 1.5e-13 N (rounding) above its absolute floor
+/// of 1e-13 N (src/models/full/ball.rs `solve`: `r <= tol * sc + 1e-13`, `tol` 1e-12) and
+/// the step fails at t = 0.24 ms ("right-hand side is not finite ... did not converge in
+/// 14 iterations (residual 1.541e-13)"). A rounding-level knife edge: with `shaft.x`
+/// exactly 0 instead of 8.3e-20 m the run passes. Ignored until the full level's tolerance
+/// floor follows the rounding of its contact forces.
+#[test]
+#[ignore = "full level: ball position solve tolerance floor below rounding"]
+fn full_level_inputs_set_after_build_step() {
+    use raceway::component::{variables, Component};
+    let scene = r#"
+bearing = { preset = "7004", materials = { ball = "steel" } }
+[model]
+level = "full"
+causality = "motion"
+[model.full]
+traction = { law = "coulomb", mu_max = 0.05, v_s = 0.05 }
+viscosity = 0.003
+drag_density = 10.0
+cage = "free"
+[solver]
+rtol = 1e-6
+atol_m = 1e-10
+max_substeps = 200000
+[inputs]
+rule = "velocity"
+"#;
+    let mut c = Component::from_text(scene).unwrap();
+    let inputs = [
+        ("shaft.omega", -183.25957145940458),
+        ("shaft.x", 8.306161236781641e-20),
+        ("shaft.y", -7.788044617692236e-5),
+        ("shaft.z", -9.42245231095893e-6),
+        ("shaft.rx", 0.0),
+        ("shaft.ry", 0.0),
+        ("shaft.vx", 0.0),
+        ("shaft.vy", 0.0),
+        ("shaft.vz", 0.0),
+        ("shaft.wx", 0.0),
+        ("shaft.wy", 0.0),
+    ];
+    for (n, v) in inputs {
+        c.set_real(variables::by_name(n).unwrap().vr, v).unwrap();
+    }
+    for i in 0..20 {
+        c.do_step(i as f64 * 1e-4, 1e-4)
+            .unwrap_or_else(|e| panic!("step {i}: {e}"));
+    }
+}
