@@ -1,5 +1,6 @@
 //! Stability campaign, CI sample (one factor at a time around each level's nominal cell,
-//! plus corners; short windows). The long campaign:
+//! plus corners; short windows; the dynamic levels, skidding and full, a few hard cells
+//! over a shorter window). The long campaign:
 //! `cargo run --release -- bench --stability --long`.
 //! Every cell must converge under refinement or refuse cleanly: never a panic or a NaN.
 
@@ -9,9 +10,18 @@ fn base(name: &str) -> &'static stability::Base {
     BASES.iter().find(|b| b.name == name).unwrap()
 }
 
+/// The dynamic levels (skidding and full): their cells cost 10 to 1000 times a ring
+/// cell's, so the CI sample takes a few hard cells of them (below).
+fn dynamic(b: &stability::Base) -> bool {
+    b.model.contains("\"skidding\"") || b.model.contains("\"full\"")
+}
+
 #[test]
 fn sampled_matrix_converges_or_refuses_cleanly() {
-    let cells = stability::matrix(false);
+    let cells: Vec<Cell> = stability::matrix(false)
+        .into_iter()
+        .filter(|c| !dynamic(c.base))
+        .collect();
     assert!(cells.len() >= 60, "{} cells", cells.len());
     let res = stability::run(&cells, 0.002, false);
     let failed: Vec<String> = res
@@ -88,5 +98,137 @@ fn angular_contact_preload_as_clearance_is_a_clean_error() {
     match c.run(0.001) {
         Outcome::CleanError(m) => assert!(m.contains("bearing."), "{m}"),
         o => panic!("{o:?}"),
+    }
+}
+
+/// The dynamic levels' hard corners: start from rest (ramp), 120 000 rpm with ceramic balls
+/// at the 4 GPa load, no load at rest, a step input (load or shaft +5 µm and the speed
+/// reversed) and the largest macro step, over 1 ms. Each level is wired, so every cell must
+/// run to finite outputs that converge (pointwise or in statistics): no refusal either.
+#[test]
+fn dynamic_levels_hard_cells_converge() {
+    let mut cells = Vec::new();
+    for b in BASES.iter().filter(|b| dynamic(b)) {
+        let n = stability::nominal(b);
+        cells.extend([
+            n,
+            Cell {
+                speed: Speed::FromRest,
+                ..n
+            },
+            Cell {
+                speed: Speed::Max,
+                load: Load::Gpa4,
+                ball: "si3n4",
+                ..n
+            },
+            Cell {
+                speed: Speed::Zero,
+                load: Load::Zero,
+                ..n
+            },
+            Cell {
+                step_input: true,
+                ..n
+            },
+        ]);
+    }
+    assert_eq!(cells.len(), 15, "three dynamic bases");
+    for (c, o) in stability::run(&cells, 0.001, false) {
+        assert!(
+            matches!(o, Outcome::Converged { .. } | Outcome::Statistical { .. }),
+            "{c:?}: {o:?}"
+        );
+    }
+}
+
+/// The motion-driven full base sits at the square-held quasi-static equilibrium: for
+/// study [0]'s 7004 at 30 000 rpm under Fa 2000 N, Fr 400 N it gives the displacement of
+/// the catalogue scene examples/scenes/7004-30000.toml (solved independently there).
+#[test]
+fn square_equilibrium_reproduces_the_catalogue_scene() {
+    let b = raceway::geometry::preset("7004").unwrap().build().unwrap();
+    let q = stability::square_equilibrium(&b, [0.0, -400.0, 2000.0], 3141.592654).unwrap();
+    assert!(q[0].abs() < 1e-12, "{q:?}");
+    assert!((q[1] / -2.96568e-6 - 1.0).abs() < 1e-4, "{q:?}");
+    assert!((q[2] / 4.364864e-5 - 1.0).abs() < 1e-5, "{q:?}");
+}
+
+/// A load-driven ring that starts in static equilibrium (the dynamic bases put their inputs
+/// in the scene) where there is no stiffness at zero displacement: a 6012 with 40 µm
+/// clearance under 10 N (the ring must cross 20 µm of play before a ball answers) and the
+/// 7008CE at 120 000 rpm under 1 kN (centrifugal force has opened its inner contacts).
+/// The static start crosses the dead zone and the cell runs; it used to refuse ("static
+/// start ... did not converge") because halving the step jumped over the narrow band where
+/// the contacts engage, and at speed because unloaded balls' damping pushed the ring.
+#[test]
+fn static_start_crosses_a_dead_zone() {
+    let cells = [
+        Cell {
+            load: Load::Light,
+            clearance: Clearance::Large,
+            ..stability::nominal(base("skidding/load 6012"))
+        },
+        Cell {
+            speed: Speed::Max,
+            ..stability::nominal(base("skidding/load 7008CE"))
+        },
+    ];
+    for c in cells {
+        let o = c.run(2e-4);
+        assert!(matches!(o, Outcome::Converged { .. }), "{c:?}: {o:?}");
+    }
+}
+
+/// Full level, a host that sets the inputs after building the component (as the C API's
+/// `raceway_create` then `raceway_set_real` do): the balls start at their quasi-static
+/// positions for zero inputs, the shaft is then 78 µm down and turning backwards. The ball
+/// position solve stalls at a residual of 1.5e-13 N (rounding) above its absolute floor
+/// of 1e-13 N (src/models/full/ball.rs `solve`: `r <= tol * sc + 1e-13`, `tol` 1e-12) and
+/// the step fails at t = 0.24 ms ("right-hand side is not finite ... did not converge in
+/// 14 iterations (residual 1.541e-13)"). A rounding-level knife edge: with `shaft.x`
+/// exactly 0 instead of 8.3e-20 m the run passes. Ignored until the full level's tolerance
+/// floor follows the rounding of its contact forces.
+#[test]
+#[ignore = "full level: ball position solve tolerance floor below rounding"]
+fn full_level_inputs_set_after_build_step() {
+    use raceway::component::{variables, Component};
+    let scene = r#"
+bearing = { preset = "7004", materials = { ball = "steel" } }
+[model]
+level = "full"
+causality = "motion"
+[model.full]
+traction = { law = "coulomb", mu_max = 0.05, v_s = 0.05 }
+viscosity = 0.003
+drag_density = 10.0
+cage = "free"
+[solver]
+rtol = 1e-6
+atol_m = 1e-10
+max_substeps = 200000
+[inputs]
+rule = "velocity"
+"#;
+    let mut c = Component::from_text(scene).unwrap();
+    let inputs = [
+        ("shaft.omega", -183.25957145940458),
+        ("shaft.x", 8.306161236781641e-20),
+        ("shaft.y", -7.788044617692236e-5),
+        ("shaft.z", -9.42245231095893e-6),
+        ("shaft.rx", 0.0),
+        ("shaft.ry", 0.0),
+        ("shaft.vx", 0.0),
+        ("shaft.vy", 0.0),
+        ("shaft.vz", 0.0),
+        ("shaft.wx", 0.0),
+        ("shaft.wy", 0.0),
+    ];
+    for (n, v) in inputs {
+        c.set_real(variables::by_name(n).unwrap().vr, v).unwrap();
+    }
+    for i in 0..20 {
+        c.do_step(i as f64 * 1e-4, 1e-4)
+            .unwrap_or_else(|e| panic!("step {i}: {e}"));
     }
 }

@@ -955,6 +955,8 @@ fn newton_static(
         let Some(dq) = a.lu().solve(&b) else { break };
         let mut step = 1.0;
         let mut accepted = false;
+        // The last step that overshot (residual up) before one that changed nothing.
+        let mut over = None;
         for _ in 0..40 {
             let mut trial = *q;
             for (i, &d) in dofs.iter().enumerate() {
@@ -965,6 +967,33 @@ fn newton_static(
                     (*q, r, accepted) = (trial, rt, true);
                     break;
                 }
+                if rt == r {
+                    // No contact along the whole trial (the residual is exactly the
+                    // load's): the band where the contacts engage and the residual falls
+                    // lies between this step and the last that overshot, narrower than a
+                    // halving (a clearance's dead zone before a Hertzian rise). Bisect it:
+                    // residual unchanged, go further; larger, go back.
+                    if let Some(mut hi) = over {
+                        let mut lo = step;
+                        for _ in 0..60 {
+                            let mid = 0.5 * (lo + hi);
+                            let mut trial = *q;
+                            for (i, &d) in dofs.iter().enumerate() {
+                                trial[d] += mid * dq[i] / w(d);
+                            }
+                            match resid(&trial, &mut out, level, aux) {
+                                Ok(rt) if rt < r => {
+                                    (*q, r, accepted) = (trial, rt, true);
+                                    break;
+                                }
+                                Ok(rt) if rt == r => lo = mid,
+                                _ => hi = mid,
+                            }
+                        }
+                    }
+                    break;
+                }
+                over = Some(step);
             }
             step *= 0.5;
         }

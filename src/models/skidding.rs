@@ -832,12 +832,14 @@ impl SkiddingModel {
         let mut fn_ = q_i;
         let mut cd = 0.0;
         let (mut da1, mut da2) = (0.0, 0.0);
-        // Damped approach: the total one (massless balls) or the inner one (radial mass).
-        let (app, mut dd) = if ld.radial {
-            (sp.r_i * sp.r_i, -u_dot)
-        } else {
-            (geo.delta, 0.0)
-        };
+        // Damping acts on a loaded inner contact only (as the ring level: "on loaded balls
+        // only"), blended in over its Hertz approach `r_i²`; the damped rate is the total
+        // approach's (massless balls) or the inner one's (radial mass). Blending on the
+        // total approach instead let a ball that centrifugal force holds off the inner race
+        // (`delta > 0`, `Q_i = 0`, fast) push and pull the shaft through an open contact:
+        // a force with no ball loaded, and no stiffness to show it (the static start of a
+        // load-driven ring then failed at 120 000 rpm).
+        let (app, mut dd) = (sp.r_i * sp.r_i, if ld.radial { -u_dot } else { 0.0 });
         let mut extra_dissipation = 0.0;
         if p.contact_damping > 0.0 && app > 0.0 {
             da1 = v[2] + self.ri * (v[3] * s - v[4] * c) + w_b * self.ri * (q[3] * c + q[4] * s);
@@ -891,8 +893,17 @@ impl SkiddingModel {
                 let h2 = [-w_b * s, w_b * c, 0.0, 0.0, 0.0];
                 for i in 0..5 {
                     let ddd = da1 * dn0[i] + da2 * dn1[i] + n[0] * h1[i] + n[1] * h2[i];
+                    // d(r_i²)/dq: the inner approach's, `dQ_i/dq / (dQ_i/d delta_i)`
+                    // (the ball held with radial mass: `g`).
+                    let dapp = if ld.radial {
+                        g[i]
+                    } else if sp.s_i > 0.0 {
+                        dqi[i] / sp.s_i
+                    } else {
+                        0.0
+                    };
                     let dcd = if ramp {
-                        p.contact_damping / crate::models::ring::DAMPING_RAMP * g[i]
+                        p.contact_damping / crate::models::ring::DAMPING_RAMP * dapp
                     } else {
                         0.0
                     };

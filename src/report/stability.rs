@@ -6,13 +6,16 @@
 //! A cell is data ([`Cell`]); the level bases are a table ([`BASES`]); a new level is one
 //! more row there.
 
-use super::{drive, InputEvent, Samples};
+use super::{InputEvent, Samples};
 use crate::component::Component;
 use crate::contact::{Curvature, PointContact, Race};
 use crate::error::Result;
 use crate::geometry::preset;
 use std::fmt::Write as _;
 use std::panic::{catch_unwind, AssertUnwindSafe};
+
+/// Input values by variable name.
+type Inputs = Vec<(&'static str, f64)>;
 
 /// A level base: how a cell's scene is built for that level.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -30,6 +33,20 @@ pub struct Base {
     /// Whether the clearance axis applies (angular-contact presets derive their conformity
     /// from their own clearance and refuse a preload as a clearance: they keep theirs).
     pub clearance_axis: bool,
+    /// Longest window of this base's cells, s (`f64::INFINITY`: the campaign's window).
+    /// The dynamic levels cost 10 to 1000 times a ring cell per simulated second.
+    pub max_window: f64,
+    /// Long campaign: the full product of speed × load × clearance × ball material
+    /// (`false`: one factor at a time around the nominal cell at every speed, plus the
+    /// product of speed and load; for the expensive dynamic levels).
+    pub full_product: bool,
+    /// The cell's inputs go into the scene's `[inputs] initial`, so the level starts from
+    /// them (skidding balls at their kinematic speeds, full-level balls at their
+    /// quasi-static positions, a load-driven ring in static equilibrium), as a scene file,
+    /// `raceway run` and an FMI host (inputs set in initialisation mode) start it. `false`:
+    /// the inputs are set after the component is built (the ring and quasi-static bases:
+    /// a load-driven ring falls from rest through its clearance).
+    pub initial_inputs: bool,
 }
 
 /// The level bases. Add a row for a new level.
@@ -41,6 +58,9 @@ pub const BASES: &[Base] = &[
         load_driven: true,
         axial_share: 0.0,
         clearance_axis: true,
+        max_window: f64::INFINITY,
+        full_product: true,
+        initial_inputs: false,
     },
     Base {
         name: "ring-5dof/load",
@@ -49,6 +69,9 @@ pub const BASES: &[Base] = &[
         load_driven: true,
         axial_share: 0.5,
         clearance_axis: true,
+        max_window: f64::INFINITY,
+        full_product: true,
+        initial_inputs: false,
     },
     Base {
         name: "ring-5dof/load 7008CE",
@@ -57,6 +80,9 @@ pub const BASES: &[Base] = &[
         load_driven: true,
         axial_share: 0.5,
         clearance_axis: false,
+        max_window: f64::INFINITY,
+        full_product: true,
+        initial_inputs: false,
     },
     Base {
         name: "ring-2dof/motion",
@@ -65,6 +91,9 @@ pub const BASES: &[Base] = &[
         load_driven: false,
         axial_share: 0.0,
         clearance_axis: true,
+        max_window: f64::INFINITY,
+        full_product: true,
+        initial_inputs: false,
     },
     Base {
         name: "quasi_static/load",
@@ -73,6 +102,9 @@ pub const BASES: &[Base] = &[
         load_driven: true,
         axial_share: 0.0,
         clearance_axis: true,
+        max_window: f64::INFINITY,
+        full_product: true,
+        initial_inputs: false,
     },
     Base {
         name: "quasi_static/motion",
@@ -81,6 +113,9 @@ pub const BASES: &[Base] = &[
         load_driven: false,
         axial_share: 0.0,
         clearance_axis: true,
+        max_window: f64::INFINITY,
+        full_product: true,
+        initial_inputs: false,
     },
     Base {
         name: "linear/load",
@@ -89,6 +124,54 @@ pub const BASES: &[Base] = &[
         load_driven: true,
         axial_share: 0.0,
         clearance_axis: true,
+        max_window: f64::INFINITY,
+        full_product: true,
+        initial_inputs: false,
+    },
+    Base {
+        name: "skidding/load 7008CE",
+        preset: "7008ce",
+        // The settings of examples/scenes/7008ce-skidding-24000.toml (study [3]).
+        model: "level = \"skidding\"\ncausality = \"load\"\ncontact_damping = 100.0\nattached_mass_kg = 0.5\n\
+                [model.skidding]\ntraction = { law = \"coulomb\", mu_max = 0.02, v_s = 0.05 }\n\
+                pocket_stiffness = 1e7\npocket_damping = 200.0\npocket_friction = 0.05\n\
+                drag_coefficient = 15.0\ndrag_density = 10.0\nspacing_scatter = 0.5\nseed = 7\n",
+        load_driven: true,
+        axial_share: 0.5,
+        clearance_axis: false,
+        max_window: 0.01,
+        full_product: true,
+        initial_inputs: true,
+    },
+    Base {
+        name: "skidding/load 6012",
+        preset: "6012",
+        // The settings of examples/scenes/6012-skidding.toml (study [2]).
+        model: "level = \"skidding\"\ncausality = \"load\"\ncontact_damping = 100.0\nattached_mass_kg = 1.0\n\
+                [model.skidding]\ntraction = { law = \"coulomb\", mu_max = 0.05, v_s = 0.05 }\n\
+                pocket_stiffness = 1e7\npocket_damping = 200.0\npocket_friction = 0.05\n\
+                drag_coefficient = 15.0\ndrag_density = 10.0\n",
+        load_driven: true,
+        axial_share: 0.0,
+        clearance_axis: true,
+        max_window: 0.01,
+        full_product: true,
+        initial_inputs: true,
+    },
+    Base {
+        name: "full/motion 7004",
+        preset: "7004",
+        // The settings of examples/scenes/7004-30000.toml (study [0]): free cage,
+        // quasi-static ball-race contacts.
+        model: "level = \"full\"\ncausality = \"motion\"\n\
+                [model.full]\ntraction = { law = \"coulomb\", mu_max = 0.05, v_s = 0.05 }\n\
+                viscosity = 0.003\ndrag_density = 10.0\ncage = \"free\"\n",
+        load_driven: false,
+        axial_share: 0.5,
+        clearance_axis: false,
+        max_window: 0.005,
+        full_product: false,
+        initial_inputs: true,
     },
 ];
 
@@ -334,14 +417,29 @@ impl Cell {
         })
     }
 
-    /// Radial shaft displacement of a motion-driven cell: half the clearance plus the
-    /// Stribeck deflection `(F / (Z K_n J_r))^(2/3)`, `J_r(0.5) = 0.2288` (Harris §7.2).
-    fn displacement(&self, c: &Component) -> Result<f64> {
+    /// Shaft displacement `(x, y, z)` of a motion-driven cell. Radial bases (no axial
+    /// share): half the clearance plus the Stribeck deflection `(F / (Z K_n J_r))^(2/3)`,
+    /// `J_r(0.5) = 0.2288` (Harris §7.2), along `-y`. Bases with an axial share (angular
+    /// contact, which must be seated axially): the quasi-static (Jones–Harris, Harris &
+    /// Kotzalas Vol. 2 ch. 3) equilibrium of the radial load and its axial share at the
+    /// cell's initial speed, tilts then held zero (as examples/scenes/7004-30000.toml); no
+    /// load leaves the ring centred, the balls free in their play.
+    fn displacement(&self, c: &Component) -> Result<[f64; 3]> {
         let b = c.bearing();
         let f = self.radial_load()?;
+        if self.base.axial_share > 0.0 {
+            if f == 0.0 {
+                return Ok([0.0; 3]);
+            }
+            return square_equilibrium(b, [0.0, -f, self.base.axial_share * f], self.speed.rad_s());
+        }
         let kn =
             crate::models::ring::RingModel::new(b, crate::models::ring::RingDof::Two, 0.0).kn();
-        Ok(0.5 * b.pd + (f / (b.z as f64 * kn * 0.2288)).powf(2.0 / 3.0))
+        Ok([
+            0.0,
+            -(0.5 * b.pd + (f / (b.z as f64 * kn * 0.2288)).powf(2.0 / 3.0)),
+            0.0,
+        ])
     }
 
     /// The scene text of the cell at `rtol`.
@@ -370,67 +468,107 @@ impl Cell {
         )
     }
 
-    /// The window simulated, s.
+    /// The window simulated, s: `t_base`, at most the base's own window, and at least two
+    /// macro steps.
     pub fn window(&self, t_base: f64) -> f64 {
-        t_base.max(2.0 * self.h)
+        t_base.min(self.base.max_window).max(2.0 * self.h)
     }
 
-    fn run_once(&self, rtol: f64, t_end: f64) -> Result<(Samples, f64)> {
-        let mut c = Component::from_text(&self.scene(rtol))?;
-        let set = |c: &mut Component, n: &str, v: f64| -> Result<()> {
+    /// The inputs at the start of the window (name, value) and the step-input events.
+    fn inputs(&self, c: &Component, t_end: f64) -> Result<(Inputs, Vec<InputEvent>)> {
+        let f = self.radial_load()?;
+        let omega = self.speed.rad_s();
+        let mut v = vec![("shaft.omega", omega)];
+        let mut events = Vec::new();
+        let mut step = |name: &str, value: f64| {
+            if self.step_input {
+                events.push(InputEvent {
+                    t: 0.5 * t_end,
+                    name: name.into(),
+                    value,
+                });
+            }
+        };
+        if self.base.load_driven {
+            v.extend([
+                ("load.x", 0.0),
+                ("load.y", -f),
+                ("load.z", self.base.axial_share * f),
+                ("load.mx", 0.0),
+                ("load.my", 0.0),
+            ]);
+            step("load.y", -f - 1000.0);
+        } else {
+            let q = self.displacement(c)?;
+            v.extend([("shaft.x", q[0]), ("shaft.y", q[1]), ("shaft.z", q[2])]);
+            for n in [
+                "shaft.rx", "shaft.ry", "shaft.vx", "shaft.vy", "shaft.vz", "shaft.wx", "shaft.wy",
+            ] {
+                v.push((n, 0.0));
+            }
+            step("shaft.y", q[1] - 5e-6);
+        }
+        step("shaft.omega", -omega);
+        Ok((v, events))
+    }
+
+    /// A scene file that reruns the cell at `rtol` with `raceway run` (`[inputs] initial`
+    /// and `[run]`); the step input is noted in a comment (a scene has no events).
+    pub fn reproducer(&self, rtol: f64, t_base: f64) -> Result<String> {
+        let t_end = self.window(t_base);
+        let c = Component::from_text(&self.scene(rtol))?;
+        let (v, events) = self.inputs(&c, t_end)?;
+        let mut s = with_initial(&self.scene(rtol), &v);
+        if !self.base.initial_inputs {
+            s += "# the campaign sets these inputs after building the component (its level \
+                  starts from zero inputs): build from the scene without `initial`, then \
+                  set_real them before the first do_step\n";
+        }
+        let _ = writeln!(s, "[run]\nduration_s = {t_end:e}\nstep_s = {:e}", self.h);
+        if self.speed == Speed::FromRest {
+            let _ = writeln!(
+                s,
+                "speed_ramp_rpm_per_s = {:e}",
+                Speed::Nominal.rad_s() / t_end * 30.0 / std::f64::consts::PI
+            );
+        }
+        for e in events {
+            let _ = writeln!(
+                s,
+                "# step input at t = {:e} s: {} = {:e}",
+                e.t, e.name, e.value
+            );
+        }
+        Ok(s)
+    }
+
+    /// One run: the forces, the peak pressure at the end and the first non-finite output.
+    fn run_once(&self, rtol: f64, t_end: f64) -> Result<(Samples, f64, Option<String>)> {
+        let c0 = Component::from_text(&self.scene(rtol))?;
+        let (v, events) = self.inputs(&c0, t_end)?;
+        let mut c = if self.base.initial_inputs {
+            Component::from_text(&with_initial(&self.scene(rtol), &v))?
+        } else {
+            c0
+        };
+        for (n, x) in v {
             let vr = crate::component::variables::by_name(n)
                 .expect("a variable of the table")
                 .vr;
-            c.set_real(vr, v)
-        };
-        let f = self.radial_load()?;
-        let omega = self.speed.rad_s();
-        set(&mut c, "shaft.omega", omega)?;
-        let mut events = Vec::new();
-        if self.base.load_driven {
-            for n in ["load.x", "load.mx", "load.my"] {
-                set(&mut c, n, 0.0)?;
-            }
-            set(&mut c, "load.y", -f)?;
-            set(&mut c, "load.z", self.base.axial_share * f)?;
-            if self.step_input {
-                events.push(InputEvent {
-                    t: 0.5 * t_end,
-                    name: "load.y".into(),
-                    value: -f - 1000.0,
-                });
-            }
-        } else {
-            for n in [
-                "shaft.x", "shaft.z", "shaft.rx", "shaft.ry", "shaft.vx", "shaft.vy", "shaft.vz",
-                "shaft.wx", "shaft.wy",
-            ] {
-                set(&mut c, n, 0.0)?;
-            }
-            let y = self.displacement(&c)?;
-            set(&mut c, "shaft.y", -y)?;
-            if self.step_input {
-                events.push(InputEvent {
-                    t: 0.5 * t_end,
-                    name: "shaft.y".into(),
-                    value: -y - 5e-6,
-                });
-            }
-        }
-        if self.step_input {
-            events.push(InputEvent {
-                t: 0.5 * t_end,
-                name: "shaft.omega".into(),
-                value: -omega,
-            });
+            c.set_real(vr, x)?;
         }
         let ramp = (self.speed == Speed::FromRest)
             .then(|| ("shaft.omega", Speed::Nominal.rad_s() / t_end));
-        let (s, _) = drive(&mut c, t_end, self.h, &events, ramp)?;
+        let (s, bad) = drive_checked(&mut c, t_end, self.h, &events, ramp)?;
         let vr = crate::component::variables::by_name("contact.max_pressure")
             .expect("in the table")
             .vr;
-        Ok((s, c.get_real(vr)?))
+        let p = match bad {
+            // Reported as a non-finite pressure, with the output named.
+            Some(what) => return Ok((s, f64::NAN, Some(what))),
+            None => c.get_real(vr)?,
+        };
+        Ok((s, p, None))
     }
 
     /// Run the cell: at rtol 1e-6 and 1e-7 over `window(t_base)`.
@@ -441,18 +579,14 @@ impl Cell {
             let b = self.run_once(1e-7, t_end)?;
             Ok::<_, crate::Error>((a, b))
         }));
-        let ((sa, pa), (sb, pb)) = match r {
-            Err(p) => {
-                let msg = p
-                    .downcast_ref::<String>()
-                    .cloned()
-                    .or_else(|| p.downcast_ref::<&str>().map(|s| s.to_string()))
-                    .unwrap_or_default();
-                return Outcome::Failed(format!("panic: {msg}"));
-            }
+        let ((sa, pa, na), (sb, pb, nb)) = match r {
+            Err(p) => return Outcome::Failed(format!("panic: {}", panic_text(&*p))),
             Ok(Err(e)) => return Outcome::CleanError(e.to_string()),
             Ok(Ok(v)) => v,
         };
+        if let Some(what) = na.or(nb) {
+            return Outcome::Failed(format!("non-finite output: {what}"));
+        }
         let finite =
             |s: &Samples, p: f64| s.f.iter().flatten().all(|v| v.is_finite()) && p.is_finite();
         if !(finite(&sa, pa) && finite(&sb, pb)) {
@@ -467,9 +601,12 @@ impl Cell {
         }
         // One more refinement: converging late, or separating trajectories?
         let (sc, pc) = match catch_unwind(AssertUnwindSafe(|| self.run_once(1e-8, t_end))) {
-            Ok(Ok(v)) => v,
+            Ok(Ok((_, _, Some(what)))) => {
+                return Outcome::Failed(format!("non-finite output at rtol 1e-8: {what}"))
+            }
+            Ok(Ok((s, p, None))) => (s, p),
             Ok(Err(e)) => return Outcome::CleanError(e.to_string()),
-            Err(_) => return Outcome::Failed("panic at rtol 1e-8".into()),
+            Err(p) => return Outcome::Failed(format!("panic at rtol 1e-8: {}", panic_text(&*p))),
         };
         if !finite(&sc, pc) {
             return Outcome::Failed("non-finite output at rtol 1e-8".into());
@@ -497,10 +634,156 @@ impl Cell {
     }
 }
 
+/// The quasi-static (Jones–Harris) displacement `(x, y, z)` that balances the force `load`
+/// on the inner ring at shaft speed `omega` with the ring held square (tilts zero, as a
+/// spindle's second bearing holds it): Newton on the three force equations with the
+/// model's exact stiffness, from the unconstrained equilibrium, halving the step until
+/// the residual falls.
+pub fn square_equilibrium(
+    b: &crate::geometry::Bearing,
+    load: [f64; 3],
+    omega: f64,
+) -> Result<[f64; 3]> {
+    use crate::models::quasi_static::{azimuths, BallState, QuasiStatic};
+    let qs = QuasiStatic::new(b, Default::default())?;
+    let free = qs.solve(&[load[0], load[1], load[2], 0.0, 0.0], omega)?;
+    let psi = azimuths(b.z, 0.0);
+    let mut st = free.states.clone();
+    let mut q = [free.q[0], free.q[1], free.q[2], 0.0, 0.0];
+    let scale = load.iter().map(|x| x.abs()).fold(0.0, f64::max).max(1.0);
+    let residual = |q: &[f64; 5], st: &mut [BallState], k: &mut [[f64; 5]; 5]| {
+        let f = qs.forces_and_stiffness(q, omega, &psi, st, k)?;
+        Ok::<_, crate::Error>([f[0] + load[0], f[1] + load[1], f[2] + load[2]])
+    };
+    let norm = |r: &[f64; 3]| r.iter().map(|x| x * x).sum::<f64>().sqrt();
+    let mut k = [[0.0; 5]; 5];
+    let mut r = residual(&q, &mut st, &mut k)?;
+    for _ in 0..100 {
+        if norm(&r) <= 1e-9 * scale {
+            return Ok([q[0], q[1], q[2]]);
+        }
+        // Solve K3 dq = r (F(q + dq) ~ F(q) - K dq), Cramer's rule on the 3 x 3 block
+        // with a Levenberg–Marquardt shift for the unloaded directions.
+        let mut a = [[0.0; 3]; 3];
+        let shift = 1e-12 * (0..3).map(|i| k[i][i].abs()).fold(0.0, f64::max);
+        for i in 0..3 {
+            for j in 0..3 {
+                a[i][j] = k[i][j] + if i == j { shift } else { 0.0 };
+            }
+        }
+        let det3 = |m: &[[f64; 3]; 3]| {
+            m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
+                - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+                + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])
+        };
+        let d = det3(&a);
+        if !(d.is_finite() && d != 0.0) {
+            break;
+        }
+        let mut dq = [0.0; 3];
+        for (c, x) in dq.iter_mut().enumerate() {
+            let mut m = a;
+            for row in 0..3 {
+                m[row][c] = r[row];
+            }
+            *x = det3(&m) / d;
+        }
+        let mut t = 1.0;
+        let mut improved = false;
+        for _ in 0..40 {
+            let mut qn = q;
+            for i in 0..3 {
+                qn[i] += t * dq[i];
+            }
+            let mut sn = st.clone();
+            if let Ok(rn) = residual(&qn, &mut sn, &mut k) {
+                if norm(&rn) < norm(&r) {
+                    (q, st, r, improved) = (qn, sn, rn, true);
+                    break;
+                }
+            }
+            t *= 0.5;
+        }
+        if !improved {
+            break;
+        }
+    }
+    Err(crate::Error::NotConverged {
+        what: "stability campaign: square-held quasi-static displacement",
+        iterations: 100,
+        residual: norm(&r),
+    })
+}
+
+/// `scene` (ending in its `[inputs]` table) with the inputs `v` as its initial values.
+fn with_initial(scene: &str, v: &[(&str, f64)]) -> String {
+    let initial: Vec<String> = v.iter().map(|(n, x)| format!("\"{n}\" = {x:e}")).collect();
+    format!("{scene}initial = {{ {} }}\n", initial.join(", "))
+}
+
+/// The message of a caught panic.
+fn panic_text(p: &(dyn std::any::Any + Send)) -> String {
+    p.downcast_ref::<String>()
+        .cloned()
+        .or_else(|| p.downcast_ref::<&str>().map(|s| s.to_string()))
+        .unwrap_or_default()
+}
+
+/// The shared driver's loop ([`super::drive`]: events when their time comes, the ramp
+/// with its derivative) that also checks after every macro step that every output of the
+/// variable table (forces, motion, K and C, cage and contact outputs) and its derivative
+/// is finite. Returns the forces, and the first non-finite output (the run stops there).
+fn drive_checked(
+    c: &mut Component,
+    t_end: f64,
+    h: f64,
+    events: &[InputEvent],
+    ramp: Option<(&str, f64)>,
+) -> Result<(Samples, Option<String>)> {
+    use crate::component::variables;
+    let vr = |n: &str| variables::by_name(n).expect("a variable of the table").vr;
+    let outputs: Vec<&'static variables::Variable> = variables::all()
+        .filter(|v| v.is_output(c.causality()))
+        .collect();
+    let fvr = super::FORCE_NAMES.map(vr);
+    let n = (t_end / h - 1e-9).ceil().max(1.0) as usize;
+    let mut s = Samples::default();
+    let mut next_event = 0;
+    for i in 0..n {
+        let t = i as f64 * h;
+        let step = if i + 1 == n { t_end - t } else { h };
+        while next_event < events.len() && events[next_event].t <= t + 1e-12 {
+            c.set_real(vr(&events[next_event].name), events[next_event].value)?;
+            next_event += 1;
+        }
+        if let Some((name, rate)) = ramp {
+            c.set_real(vr(name), rate * t)?;
+            c.set_input_derivative(vr(name), 1, rate)?;
+        }
+        c.do_step(t, step)?;
+        s.t.push(t + step);
+        s.f.push([
+            c.get_real(fvr[0])?,
+            c.get_real(fvr[1])?,
+            c.get_real(fvr[2])?,
+        ]);
+        for v in &outputs {
+            let x = c.get_real(v.vr)?;
+            let d = c.get_output_derivative(v.vr, 1).unwrap_or(0.0);
+            if !(x.is_finite() && d.is_finite()) {
+                let at = format!("at t = {:e} s", t + step);
+                return Ok((s, Some(format!("{} = {x}, d/dt = {d} {at}", v.name))));
+            }
+        }
+    }
+    Ok((s, None))
+}
+
 /// The cells of the campaign. `long`: for every level base the full product of speed,
-/// load, clearance and ball material at 1e-4 s, plus the macro-step sweep with and
-/// without a step input at each speed. Otherwise a sample: one factor at a time around
-/// each base's nominal cell, plus a few corners.
+/// load, clearance and ball material at 1e-4 s (bases without [`Base::full_product`]:
+/// speed × load, and clearance and ball material one at a time at each speed), plus the
+/// macro-step sweep with and without a step input at each speed. Otherwise a sample: one
+/// factor at a time around each base's nominal cell, plus a few corners.
 pub fn matrix(long: bool) -> Vec<Cell> {
     let mut v = Vec::new();
     for base in BASES {
@@ -512,7 +795,18 @@ pub fn matrix(long: bool) -> Vec<Cell> {
                         if !base.clearance_axis && clearance != Clearance::Zero {
                             continue;
                         }
+                        if !base.full_product && clearance != Clearance::Zero {
+                            v.push(Cell {
+                                speed,
+                                clearance,
+                                ..n
+                            });
+                            continue;
+                        }
                         for ball in MATERIALS {
+                            if !base.full_product && (ball != n.ball && load != n.load) {
+                                continue;
+                            }
                             v.push(Cell {
                                 speed,
                                 load,
@@ -637,48 +931,90 @@ fn outcome_text(o: &Outcome) -> String {
     }
 }
 
-/// The Markdown page of a campaign.
-pub fn markdown(results: &[(Cell, Outcome)], t_base: f64, command: &str) -> String {
-    let n = results.len();
-    let conv = results
-        .iter()
-        .filter(|(_, o)| matches!(o, Outcome::Converged { .. }))
-        .count();
-    let clean = results
-        .iter()
-        .filter(|(_, o)| matches!(o, Outcome::CleanError(_)))
-        .count();
-    let stat = results
-        .iter()
-        .filter(|(_, o)| matches!(o, Outcome::Statistical { .. }))
-        .count();
-    let failed = n - conv - clean - stat;
+/// The Markdown page of a campaign; `times`: run time per base, s.
+pub fn markdown(
+    results: &[(Cell, Outcome)],
+    t_base: f64,
+    command: &str,
+    times: &[(&str, f64)],
+) -> String {
+    let count = |r: &[&(Cell, Outcome)]| {
+        let c = |f: fn(&Outcome) -> bool| r.iter().filter(|(_, o)| f(o)).count();
+        (
+            r.len(),
+            c(|o| matches!(o, Outcome::Converged { .. })),
+            c(|o| matches!(o, Outcome::Statistical { .. })),
+            c(|o| matches!(o, Outcome::CleanError(_))),
+            c(|o| matches!(o, Outcome::Failed(_))),
+        )
+    };
+    let all: Vec<&(Cell, Outcome)> = results.iter().collect();
+    let (n, conv, stat, clean, failed) = count(&all);
     let mut s = String::new();
     let _ = writeln!(
         s,
         "# Stability campaign\n\n\
          Generated by `{command}` on {}.\n\n\
          Every cell runs the component through its public API over max({t_base} s, 2 macro \
-         steps) at rtol 1e-6 and again at 1e-7 (atol_m = 1e-4 m × rtol, DOPRI5). It passes if \
-         the outputs are finite and the two runs' forces differ by less than \
-         {CONVERGENCE_LIMIT:.0e} (RMS difference over RMS force, or over 1 N when the forces \
-         are smaller), or if the component refuses cleanly with an error naming the cause. \
-         A panic, a NaN or a run that does not converge is a failure.\n\n\
+         steps) (a dynamic level's base may cap the window: see the table of bases) at rtol \
+         1e-6 and again at 1e-7 (atol_m = 1e-4 m × rtol; the level's default integrator: \
+         DOPRI5, RODAS4 for the skidding and full levels). It passes if every output of the \
+         variable table (forces, motion, K and C, cage, contact and power outputs) and its \
+         derivative is finite after every macro step and the two runs' forces differ by less \
+         than {CONVERGENCE_LIMIT:.0e} (RMS difference over RMS force, or over 1 N when the \
+         forces are smaller), or if the component refuses cleanly with an error naming the \
+         cause. A panic, a NaN or a run that does not converge is a failure.\n\n\
          Axes (numerics.md §5.5): level; speed (standing, ramped from rest through input \
          derivatives, reversed, 1750 rpm, 120 000 rpm); radial load (0, 10 N, 1 kN, the load \
-         whose Stribeck ball load gives a 4 GPa Hertz peak; motion-driven levels get the \
-         Stribeck deflection of that load plus half the clearance; the 5-DOF base adds half \
-         the load axially); diametral clearance (-5 µm preload, 0, 40 µm); ball material \
+         whose Stribeck ball load gives a 4 GPa Hertz peak, for steel balls at zero \
+         clearance); an axial load of a share of it where the base says; diametral clearance \
+         (-5 µm preload, 0, 40 µm; angular-contact presets keep their own); ball material \
          (steel, Si3N4, ZrO2, rings steel); macro step; a step input at mid-window (load \
-         +1 kN or the shaft 5 µm further, and the speed reversed).\n\n\
+         +1 kN or the shaft 5 µm further, and the speed reversed). Motion-driven radial bases \
+         get the Stribeck deflection of the load plus half the clearance; motion-driven \
+         angular-contact bases the quasi-static (Jones–Harris) displacement of the radial \
+         and axial load at the cell's initial speed with the ring held square (tilts zero, \
+         as examples/scenes/7004-30000.toml). Ring and quasi-static bases set their inputs \
+         after building the component (a load-driven ring falls from rest through its \
+         clearance); the dynamic bases put them in the scene's initial inputs, as a scene \
+         file, `raceway run` and an FMI host do (balls at their kinematic speeds or \
+         quasi-static positions, a load-driven ring in static equilibrium).\n\n\
          When rtol 1e-6 and 1e-7 disagree, a third run at 1e-8 decides: converged from \
          1e-7 (1e-7 and 1e-8 agree pointwise), converged in statistics (mean and RMS of each \
          force over the second half agree within {STATISTICS_LIMIT} of the RMS force while \
-         the trajectories separate: impacts in the clearance, numerics.md §6.4), or failed.\n\n\
+         the trajectories separate: impacts in the clearance or chaotic cage motion, \
+         numerics.md §6.4), or failed.\n\n\
          **{n} cells: {conv} converged, {stat} converged late or in statistics, {clean} clean \
          errors, {failed} failed.**\n",
         super::Machine::detect().describe()
     );
+    s += "## Bases\n\n| base | preset | axial share | window (s) | product | cells | converged | late / statistics | clean errors | failed | run time (s) |\n\
+          |---|---|---|---|---|---|---|---|---|---|---|\n";
+    for b in BASES {
+        let r: Vec<&(Cell, Outcome)> = results.iter().filter(|(c, _)| c.base == b).collect();
+        if r.is_empty() {
+            continue;
+        }
+        let (n, conv, stat, clean, failed) = count(&r);
+        let time = times
+            .iter()
+            .find(|(name, _)| *name == b.name)
+            .map_or(String::new(), |(_, t)| format!("{t:.1}"));
+        let _ = writeln!(
+            s,
+            "| {} | {} | {} | {} | {} | {n} | {conv} | {stat} | {clean} | {failed} | {time} |",
+            b.name,
+            b.preset,
+            b.axial_share,
+            t_base.min(b.max_window),
+            if b.full_product {
+                "full"
+            } else {
+                "speed × load, others one at a time"
+            }
+        );
+    }
+    s += "\n## Cells\n\n";
     s += "| level | speed (rpm) | load | clearance | ball | H (s) | step input | outcome | refinement diff | peak contact pressure at the end (GPa) |\n\
           |---|---|---|---|---|---|---|---|---|---|\n";
     for (c, o) in results {
@@ -696,12 +1032,22 @@ pub fn campaign(long: bool, dir: &std::path::Path, verbose: bool) -> Result<Vec<
     if verbose {
         println!("stability campaign: {} cells", cells.len());
     }
-    let res = run(&cells, t_base, verbose);
+    let mut res = Vec::with_capacity(cells.len());
+    let mut times = Vec::new();
+    for b in BASES {
+        let these: Vec<Cell> = cells.iter().filter(|c| c.base == b).copied().collect();
+        let start = std::time::Instant::now();
+        res.extend(run(&these, t_base, verbose));
+        times.push((b.name, start.elapsed().as_secs_f64()));
+    }
     let cmd = if long {
         "cargo run --release -- bench --stability --long"
     } else {
         "cargo run --release -- bench --stability"
     };
-    super::write_file(&dir.join("stability.md"), &markdown(&res, t_base, cmd))?;
+    super::write_file(
+        &dir.join("stability.md"),
+        &markdown(&res, t_base, cmd, &times),
+    )?;
     Ok(res)
 }
