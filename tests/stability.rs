@@ -182,15 +182,13 @@ fn static_start_crosses_a_dead_zone() {
 
 /// Full level, a host that sets the inputs after building the component (as the C API's
 /// `raceway_create` then `raceway_set_real` do): the balls start at their quasi-static
-/// positions for zero inputs, the shaft is then 78 µm down and turning backwards. The ball
-/// position solve stalls at a residual of 1.5e-13 N (rounding) above its absolute floor
-/// of 1e-13 N (src/models/full/ball.rs `solve`: `r <= tol * sc + 1e-13`, `tol` 1e-12) and
-/// the step fails at t = 0.24 ms ("right-hand side is not finite ... did not converge in
-/// 14 iterations (residual 1.541e-13)"). A rounding-level knife edge: with `shaft.x`
-/// exactly 0 instead of 8.3e-20 m the run passes. Ignored until the full level's tolerance
-/// floor follows the rounding of its contact forces.
+/// positions for zero inputs, the shaft is then 78 µm down and turning backwards. Found by
+/// the campaign: the ball position solve stalled at a residual of 1.5e-13 N (rounding)
+/// above its absolute floor of 1e-13 N and the step failed at t = 0.24 ms. The solve's
+/// floor now follows the rounding of its contact forces (src/models/full/ball.rs `solve`);
+/// the kinematic fixes made since also moved this case off its knife edge, so it is kept
+/// as a regression run of the create-then-set path.
 #[test]
-#[ignore = "full level: ball position solve tolerance floor below rounding"]
 fn full_level_inputs_set_after_build_step() {
     use raceway::component::{variables, Component};
     let scene = r#"

@@ -192,10 +192,15 @@ impl PositionSolver {
         loop {
             let (g, sc) = self.residual(x, a, mw2);
             let r = g[0].hypot(g[1]);
-            if r <= tol * sc + 1e-13 {
+            let j = self.jac(x, a, mw2);
+            // Rounding floor of the residual: the contact stiffness times the rounding of
+            // the positions it differences (a few ulp of |x| + |a|), so a nearly unloaded
+            // ball is not asked for a residual below what its forces can resolve.
+            let kmax = j.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
+            let floor = 64.0 * f64::EPSILON * kmax * (x[0].hypot(x[1]) + la);
+            if r <= tol * sc + floor.max(1e-13) {
                 return Ok(x);
             }
-            let j = self.jac(x, a, mw2);
             let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
             let mut ok = false;
             if det.is_finite() && det != 0.0 && it < 60 {
