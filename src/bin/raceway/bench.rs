@@ -30,6 +30,10 @@ pub struct BenchArgs {
     /// With --stability: the long matrix.
     #[arg(long)]
     pub long: bool,
+    /// Recompute the cached references (target/raceway-bench, keyed by scene and version,
+    /// not by the model's code: use this after changing a model).
+    #[arg(long)]
+    pub fresh: bool,
     /// Only these work-precision cases (repeatable; default all). For a quick look into
     /// another folder: the docs are regenerated from all cases.
     #[arg(long = "case")]
@@ -52,6 +56,13 @@ pub fn bench(a: BenchArgs) -> Result<String> {
         verbose: true,
         ..Config::default()
     };
+    if a.fresh {
+        match std::fs::remove_dir_all(&cfg.cache_dir) {
+            Ok(()) => {}
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => {}
+            Err(e) => return Err(Error::Io(format!("{}: {e}", cfg.cache_dir.display()))),
+        }
+    }
     if !a.cases.is_empty() {
         let known: Vec<&str> = cfg.cases.iter().map(|c| c.name).collect();
         if let Some(bad) = a.cases.iter().find(|n| !known.contains(&n.as_str())) {
