@@ -132,37 +132,34 @@ impl LevelModel for FullLevel {
         aux: &mut [f64],
         out: &mut LevelOutputs,
     ) -> Result<()> {
-        self.aux.copy_from_slice(aux);
-        let tot = self
-            .model
-            .eval(&m.q, &m.v, m.omega, x, &mut self.aux, &mut self.dx)?;
-        // K and C by forward differences of the wrench, states held.
-        let mut k = [[0.0; 5]; 5];
-        let mut c = [[0.0; 5]; 5];
-        for col in 0..10 {
+        // K and C by forward differences of the wrench, states held. The perturbed
+        // evaluations come first and the unperturbed one last, so the per-ball results the
+        // model keeps are those of the current motion (each evaluation starts from the same
+        // warm starts, so the order changes no number).
+        const STEPS: [f64; 10] = [1e-9, 1e-9, 1e-9, 1e-7, 1e-7, 1e-6, 1e-6, 1e-6, 1e-5, 1e-5];
+        let mut perturbed = [[0.0; 5]; 10];
+        for (col, (h, w)) in STEPS.iter().zip(perturbed.iter_mut()).enumerate() {
             let (mut q, mut v) = (m.q, m.v);
-            let h = if col % 5 < 3 {
-                if col < 5 {
-                    1e-9
-                } else {
-                    1e-6
-                }
-            } else if col < 5 {
-                1e-7
-            } else {
-                1e-5
-            };
             if col < 5 {
                 q[col] += h;
             } else {
                 v[col - 5] += h;
             }
             self.aux.copy_from_slice(aux);
-            let t = self
+            *w = self
                 .model
-                .eval(&q, &v, m.omega, x, &mut self.aux, &mut self.dx)?;
+                .eval(&q, &v, m.omega, x, &mut self.aux, &mut self.dx)?
+                .wrench;
+        }
+        self.aux.copy_from_slice(aux);
+        let tot = self
+            .model
+            .eval(&m.q, &m.v, m.omega, x, &mut self.aux, &mut self.dx)?;
+        let mut k = [[0.0; 5]; 5];
+        let mut c = [[0.0; 5]; 5];
+        for (col, (h, w)) in STEPS.iter().zip(&perturbed).enumerate() {
             for r in 0..5 {
-                let d = -(t.wrench[r] - tot.wrench[r]) / h;
+                let d = -(w[r] - tot.wrench[r]) / h;
                 if col < 5 {
                     k[r][col] = d;
                 } else {
@@ -170,11 +167,6 @@ impl LevelModel for FullLevel {
                 }
             }
         }
-        // Restore the per-ball results of the unperturbed evaluation.
-        self.aux.copy_from_slice(aux);
-        let tot = self
-            .model
-            .eval(&m.q, &m.v, m.omega, x, &mut self.aux, &mut self.dx)?;
         self.last = tot;
         let wk = self.kin_ratio * m.omega;
         let wc = self.model.cage_omega(x);
