@@ -200,6 +200,48 @@ fn energy(m: &mut SkiddingModel, q: &[f64; 5], omega: f64, x: &[f64]) -> f64 {
     m.kinetic_energy(x) + tot.pocket_energy
 }
 
+/// Spin balls and cage up from rest for `t_end` with the ring held at `q`: returns the
+/// balance system at the end (its model holds the final per-ball results), the momentum and
+/// energy at start and end, the integral of the external moments and the net work.
+struct SpinUp {
+    sys: Balance,
+    l0: f64,
+    l1: f64,
+    e0: f64,
+    e1: f64,
+    moments: f64,
+    work: f64,
+    y: Vec<f64>,
+}
+
+fn spin_up(m: SkiddingModel, q: [f64; 5], omega: f64, t_end: f64) -> SpinUp {
+    let n = m.n_states();
+    let mut y = vec![0.0; n + 2];
+    m.init(0.0, &mut y[..n]);
+    let l0 = m.angular_momentum(&y[..n]);
+    let mut sys = Balance { m, q, omega };
+    let e0 = energy(&mut sys.m, &q, omega, &y[..n]);
+    let mut integ = Rosenbrock::new(n + 2);
+    let mut opts = Options::new(n + 2, 1e-6, 1e-10);
+    opts.max_steps = 1_000_000;
+    let mut h = 0.0;
+    integ
+        .integrate(&mut sys, 0.0, t_end, &mut y, &mut h, &opts)
+        .unwrap();
+    let l1 = sys.m.angular_momentum(&y[..n]);
+    let e1 = energy(&mut sys.m, &q, omega, &y[..n]);
+    SpinUp {
+        l0,
+        l1,
+        e0,
+        e1,
+        moments: y[n],
+        work: y[n + 1],
+        sys,
+        y,
+    }
+}
+
 #[test]
 fn angular_momentum_and_energy_balances_close() {
     let b = preset("6012").unwrap().build().unwrap();
@@ -210,24 +252,17 @@ fn angular_momentum_and_energy_balances_close() {
         ..SkiddingParams::default()
     };
     let m = SkiddingModel::new(&b, p).unwrap();
-    let n = m.n_states();
-    let omega = 200.0;
-    let mut y = vec![0.0; n + 2];
     // Start from rest: strong spin-up, pocket impacts.
-    m.init(0.0, &mut y[..n]);
-    let l0 = m.angular_momentum(&y[..n]);
-    let q = [0.0, -12e-6, 0.0, 0.0, 0.0];
-    let mut sys = Balance { m, q, omega };
-    let e0 = energy(&mut sys.m, &q, omega, &y[..n]);
-    let mut integ = Rosenbrock::new(n + 2);
-    let mut opts = Options::new(n + 2, 1e-6, 1e-10);
-    opts.max_steps = 1_000_000;
-    let mut h = 0.0;
-    integ
-        .integrate(&mut sys, 0.0, 0.005, &mut y, &mut h, &opts)
-        .unwrap();
-    let l1 = sys.m.angular_momentum(&y[..n]);
-    let ext = y[n];
+    let SpinUp {
+        sys,
+        l0,
+        l1,
+        e0,
+        e1,
+        moments: ext,
+        work,
+        ..
+    } = spin_up(m, [0.0, -12e-6, 0.0, 0.0, 0.0], 200.0, 0.005);
     let scale = sys.m.z() as f64 * 1e-3; // |L| scale of the spun-up set
     println!(
         "L0 {l0:e}, L1 {l1:e}, integral of torques {ext:e}, residual {:e}",
@@ -239,8 +274,6 @@ fn angular_momentum_and_energy_balances_close() {
         "balance"
     );
     // Energy: kinetic + pocket springs = start + work in - dissipated, to the tolerance.
-    let e1 = energy(&mut sys.m, &q, omega, &y[..n]);
-    let work = y[n + 1];
     println!(
         "E0 {e0:e}, E1 {e1:e}, net work {work:e}, residual {:e}",
         e1 - e0 - work
@@ -538,22 +571,15 @@ fn balances_close_with_gyroscopic_and_spin_friction() {
     };
     let (m, _) = model_7008ce(p, 0.0);
     let n = m.n_states();
-    let omega = 300.0;
-    let mut y = vec![0.0; n + 2];
-    m.init(0.0, &mut y[..n]);
-    let l0 = m.angular_momentum(&y[..n]);
-    let q = [0.0, 0.0, 12e-6, 0.0, 0.0];
-    let mut sys = Balance { m, q, omega };
-    let e0 = energy(&mut sys.m, &q, omega, &y[..n]);
-    let mut integ = Rosenbrock::new(n + 2);
-    let mut opts = Options::new(n + 2, 1e-6, 1e-10);
-    opts.max_steps = 1_000_000;
-    let mut h = 0.0;
-    integ
-        .integrate(&mut sys, 0.0, 0.003, &mut y, &mut h, &opts)
-        .unwrap();
-    let l1 = sys.m.angular_momentum(&y[..n]);
-    let e1 = energy(&mut sys.m, &q, omega, &y[..n]);
+    let SpinUp {
+        mut sys,
+        l0,
+        l1,
+        e0,
+        e1,
+        y,
+        ..
+    } = spin_up(m, [0.0, 0.0, 12e-6, 0.0, 0.0], 300.0, 0.003);
     let mut dy = vec![0.0; n + 2];
     sys.rhs(0.0, &y, &mut dy).unwrap();
     assert!(sys.m.balls.iter().all(|s| s.spin_i != 0.0 && s.gyro != 0.0));
