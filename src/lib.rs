@@ -23,6 +23,7 @@ pub mod lubrication;
 pub mod models;
 #[cfg(feature = "plot")]
 pub mod plot;
+pub mod ratings;
 pub mod report;
 pub mod runner;
 pub mod solver;
