@@ -1,6 +1,7 @@
 //! Bearing geometry, materials, presets and kinematics.
 
 pub mod bearing;
+pub mod catalogue;
 pub mod kinematics;
 pub mod material;
 pub mod presets;

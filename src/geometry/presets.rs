@@ -2,7 +2,7 @@
 //! examples. Each preset records where its numbers come from and what was assumed.
 
 use super::bearing::{BearingKind, BearingSpec, CageSpec, Guidance, MaterialSpec, MaterialsSpec};
-use crate::error::{Error, Result};
+use crate::error::Result;
 
 fn mat(ball: &str, ring: &str, cage: &str) -> MaterialsSpec {
     MaterialsSpec {
@@ -173,16 +173,16 @@ pub fn presets() -> Vec<BearingSpec> {
     v
 }
 
-/// Look a preset up by name (case-insensitive).
+/// Look a bearing up by name (case-insensitive): a preset, else a catalogue designation
+/// (`6206`, `7205B`, .. with estimated internal geometry, see [`super::catalogue`]).
 pub fn preset(name: &str) -> Result<BearingSpec> {
     let all = presets();
     all.iter()
         .find(|b| b.name.eq_ignore_ascii_case(name))
         .cloned()
-        .ok_or_else(|| Error::Unknown {
-            what: "bearing preset",
-            name: name.into(),
-            known: all.iter().map(|b| b.name.clone()).collect(),
+        .or_else(|| super::catalogue::lookup(name))
+        .ok_or_else(|| {
+            super::catalogue::unknown(name, all.iter().map(|b| b.name.clone()).collect())
         })
 }
 
@@ -229,7 +229,12 @@ mod tests {
 
     #[test]
     fn unknown_preset_is_refused_with_the_known_names() {
-        let e = preset("6309").unwrap_err().to_string();
-        assert!(e.contains("6309") && e.contains("7008ce"), "{e}");
+        let e = preset("6409").unwrap_err().to_string();
+        assert!(
+            e.contains("6409") && e.contains("7008ce") && e.contains("62xx"),
+            "{e}"
+        );
+        // A catalogue designation is found, with its estimated geometry marked.
+        assert!(preset("6309").unwrap().source.contains("ESTIMATED"));
     }
 }
