@@ -360,6 +360,7 @@ impl QuasiStatic {
                 ));
             }
         }
+        self.check_geometry(q, psi)?;
         if let Some(k) = stiffness.as_deref_mut() {
             *k = [[0.0; 5]; 5];
         }
@@ -391,6 +392,68 @@ impl QuasiStatic {
             residual: f64::NAN,
         })?;
         Ok(f)
+    }
+
+    /// Largest total approach `|A_j| - A` of a ball (sum of both contact deflections) the
+    /// model admits, m: twice [`Options::max_deflection_ratio`] `D`, the per-contact limit
+    /// of Hertz theory the load-driven solve also applies.
+    pub fn max_approach(&self) -> f64 {
+        2.0 * self.opts.max_deflection_ratio * self.bearing.d
+    }
+
+    /// Displacement ranges `(radial, axial)` (m) the geometry allows for a pure radial and
+    /// a pure (positive) axial ring displacement: every ball's approach at most
+    /// [`QuasiStatic::max_approach`], and the inner groove centre never pushed through the
+    /// outer one (`A2_j > 0`).
+    pub fn displacement_limits(&self) -> (f64, f64) {
+        let (a, dmax) = (self.bearing.a(), self.max_approach());
+        let [a1, a2] = self.a_ref;
+        // Pure radial x: the ball on the x axis has |(a1, a2 + x)| = A + dmax; the ball
+        // opposite needs a2 - x > 0.
+        let radial = ((a + dmax).powi(2) - a1 * a1).max(0.0).sqrt() - a2;
+        let axial = ((a + dmax).powi(2) - a2 * a2).max(0.0).sqrt() - a1;
+        (radial.min(a2).max(0.0), axial.max(0.0))
+    }
+
+    /// Refuse a displacement no bearing could take (a ball crushed beyond Hertz theory, or
+    /// the inner groove centre pushed through the outer one) with the allowed ranges,
+    /// instead of letting the ball equations return NaN.
+    fn check_geometry(&self, q: &[f64; 5], psi: &[f64]) -> Result<()> {
+        let (a, dmax) = (self.bearing.a(), self.max_approach());
+        for (j, &p) in psi.iter().enumerate() {
+            let g = self.groove_offset(q, p);
+            let approach = g[0].hypot(g[1]) - a;
+            if approach > dmax || g[1] <= 0.0 {
+                let (rad, ax) = self.displacement_limits();
+                return Err(Error::invalid(
+                    "ring displacement q",
+                    format!(
+                        "(x {:.3} µm, y {:.3} µm, z {:.3} µm, rx {:.4} mrad, ry {:.4} mrad)",
+                        q[0] * 1e6,
+                        q[1] * 1e6,
+                        q[2] * 1e6,
+                        q[3] * 1e3,
+                        q[4] * 1e3
+                    ),
+                    format!(
+                        "a displacement the bearing geometry allows: ball {j} at {:.1} deg would be {} \
+                         (allowed: ball approach <= {:.1} µm = 2 x {} D; pure radial displacement \
+                         <= {:.1} µm, pure axial <= {:.1} µm)",
+                        p.to_degrees(),
+                        if g[1] <= 0.0 {
+                            "pushed through the opposite groove (inner groove centre beyond the outer one)".to_string()
+                        } else {
+                            format!("compressed by {:.1} µm", approach * 1e6)
+                        },
+                        dmax * 1e6,
+                        self.opts.max_deflection_ratio,
+                        rad * 1e6,
+                        ax * 1e6
+                    ),
+                ));
+            }
+        }
+        Ok(())
     }
 
     /// Add ball `e`'s contribution to `K = -dF/dq` (implicit-function theorem on the ball
@@ -608,8 +671,20 @@ impl QuasiStatic {
         }
         let u: [f64; 5] = std::array::from_fn(|i| ls[i] / lmag);
         let q_of = |t: f64| -> [f64; 5] { std::array::from_fn(|i| t * u[i] / self.t[i]) };
+        let too_big = || {
+            Error::invalid(
+                "load",
+                format!("{lmag:.6e} N (scaled magnitude)"),
+                "a load the bearing can carry (no equilibrium within the displacement the geometry allows)",
+            )
+        };
         let phi = |t: f64, state: &mut [BallState]| -> Result<f64> {
-            let f = self.forces(&q_of(t), 0.0, psi, state)?;
+            let f = match self.forces(&q_of(t), 0.0, psi, state) {
+                Err(Error::Invalid { field, .. }) if field == "ring displacement q" => {
+                    return Err(too_big())
+                }
+                other => other?,
+            };
             let proj: f64 = (0..5).map(|i| u[i] * f[i] / self.t[i]).sum();
             Ok(-proj - lmag)
         };
@@ -739,6 +814,49 @@ mod tests {
 
     fn model(name: &str) -> QuasiStatic {
         QuasiStatic::new(&preset(name).unwrap().build().unwrap(), Options::default()).unwrap()
+    }
+
+    /// A shaft pushed 1 mm into a 6205 (A = 0.318 mm) is refused with the allowed range,
+    /// not answered with a NaN residual; 100 µm is answered.
+    #[test]
+    fn impossible_displacement_is_a_clear_error() {
+        let m = model("6205");
+        let psi = azimuths(9, 0.0);
+        let mut st = vec![BallState::default(); 9];
+        let e = m
+            .forces(&[1e-3, 0.0, 0.0, 0.0, 0.0], 0.0, &psi, &mut st)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("x 1000.000 µm")
+                && e.contains("geometry allows")
+                && e.contains("pure radial displacement <= 317.6 µm"),
+            "{e}"
+        );
+        assert!(!e.contains("NaN"), "{e}");
+        let (radial, axial) = m.displacement_limits();
+        // Zero clearance: the radial limit is the groove-centre distance A = 0.04 D (the
+        // opposite ball's groove centres meet) and the approach limit 2 x 0.02 D.
+        assert!((radial - 0.04 * m.bearing.d).abs() < 1e-12, "{radial}");
+        assert!(axial > radial);
+        let f = m
+            .forces(&[100e-6, 0.0, 0.0, 0.0, 0.0], 0.0, &psi, &mut st)
+            .unwrap();
+        assert!(f[0] < -1e4 && f.iter().all(|v| v.is_finite()), "{f:?}");
+        // Just inside and just outside the radial limit.
+        let mut st = vec![BallState::default(); 9];
+        assert!(m
+            .forces(&[0.999 * radial, 0.0, 0.0, 0.0, 0.0], 0.0, &psi, &mut st)
+            .is_ok());
+        assert!(m
+            .forces(&[1.001 * radial, 0.0, 0.0, 0.0, 0.0], 0.0, &psi, &mut st)
+            .is_err());
+        // Load-driven: an impossible load names the load, not the displacement.
+        let e = m
+            .solve(&[1e7, 0.0, 0.0, 0.0, 0.0], 0.0)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("load") && e.contains("can carry"), "{e}");
     }
 
     /// Under outer-race control the spin at the outer contact vanishes (the attitude formula
