@@ -50,6 +50,7 @@ use crate::error::{Error, Result};
 use crate::geometry::{Bearing, BearingKind};
 use crate::models::quasi_static::Solution;
 use serde::Serialize;
+use std::fmt::Write;
 
 /// ISO 76 permissible peak contact pressure for ball bearings (other than self-aligning), Pa.
 pub const STATIC_PRESSURE_LIMIT: f64 = 4200e6;
@@ -614,6 +615,135 @@ pub fn assess(b: &Bearing, sol: &Solution, inputs: &LifeInputs) -> Result<Assess
     })
 }
 
+fn opt(v: Option<f64>, prec: usize) -> String {
+    match v {
+        Some(x) if x >= 1e7 => format!("{x:.3e}"),
+        Some(x) if x < 10.0 => format!("{x:.3}"),
+        Some(x) => format!("{x:.prec$}"),
+        None => "-".into(),
+    }
+}
+
+/// The ratings block shared by `quasi-static` (text) and `bearings NAME`.
+fn ratings_text(s: &mut String, r: &LoadRatings) {
+    let _ = writeln!(
+        s,
+        "ISO 281/76 ratings:               C {:.0} N  C0 {:.0} N  Cu {:.0} N  (Dw cos a/Dpw {:.4}, fc {:.2}{}, f0 {:.2})",
+        r.c,
+        r.c0,
+        r.cu,
+        r.gamma,
+        r.fc,
+        if r.fc_reduction < 1.0 {
+            format!(" incl. conformity reduction {:.3}", r.fc_reduction)
+        } else {
+            String::new()
+        },
+        r.f0
+    );
+}
+
+/// Text lines of an [`Assessment`] (life, safety, pressure, warnings).
+fn assessment_text(s: &mut String, a: &Assessment) {
+    ratings_text(s, &a.ratings);
+    let _ = writeln!(
+        s,
+        "equivalent loads:                 P {:.1} N (X {:.2} Y {:.2} e {:.3})  P0 {:.1} N  (Fr {:.1} N, Fa {:.1} N)",
+        a.p, a.xye[0], a.xye[1], a.xye[2], a.p0, a.radial_load, a.axial_load
+    );
+    let _ = writeln!(
+        s,
+        "life:                             L10 {} Mrev = {} h (ISO 281, (C/P)^3);  L10r {} Mrev = {} h (per-ball loads, inner {} / outer {} Mrev)",
+        opt(a.l10_mrev, 1),
+        opt(a.l10_hours, 0),
+        opt(a.l10r_mrev, 1),
+        opt(a.l10r_hours, 0),
+        opt(a.raceway_lives_mrev[0], 1),
+        opt(a.raceway_lives_mrev[1], 1)
+    );
+    if a.a_iso.is_some() {
+        let _ = writeln!(
+            s,
+            "modified life:                    a_ISO {}  L10mr {} h",
+            opt(a.a_iso, 3),
+            opt(a.l10mr_hours, 0)
+        );
+    }
+    let _ = writeln!(
+        s,
+        "static safety:                    S0 = C0/P0 {}  peak contact pressure {:.0} MPa = {:.3} x the ISO 76 limit {:.0} MPa;  loaded balls {}",
+        opt(a.s0, 2),
+        a.peak_pressure * 1e-6,
+        a.pressure_limit_ratio,
+        a.pressure_limit * 1e-6,
+        a.loaded_balls
+    );
+    if a.warnings.is_empty() {
+        let _ = writeln!(s, "warnings:                         none");
+    }
+    for w in &a.warnings {
+        let _ = writeln!(s, "WARNING: {w}");
+    }
+}
+
+impl LoadRatings {
+    /// One text line: C, C0, Cu and the factors.
+    pub fn text(&self) -> String {
+        let mut s = String::new();
+        ratings_text(&mut s, self);
+        s
+    }
+}
+
+impl Assessment {
+    /// Text lines (edge units: N, MPa, hours) with one `WARNING:` line per warning, as
+    /// `raceway quasi-static` and `raceway run`'s summary print them.
+    pub fn text(&self) -> String {
+        let mut s = String::new();
+        assessment_text(&mut s, self);
+        s
+    }
+
+    /// The warnings as sentences.
+    pub fn warning_texts(&self) -> Vec<String> {
+        self.warnings.iter().map(|w| w.to_string()).collect()
+    }
+}
+
+/// Solve the quasi-static equilibrium of `b` under the external `load` on the inner ring
+/// `(Fx, Fy, Fz, Mx, My)` (N, N m) at `inputs.speed_rpm` and rate it: what a run summary
+/// calls with the mean load of a run.
+pub fn assess_load(b: &Bearing, load: &[f64; 5], inputs: &LifeInputs) -> Result<Assessment> {
+    let m = crate::models::quasi_static::QuasiStatic::new(
+        b,
+        crate::models::quasi_static::Options::default(),
+    )?;
+    let sol = m.solve(load, crate::units::rpm_to_rad_s(inputs.speed_rpm))?;
+    assess(b, &sol, inputs)
+}
+
+/// Ratings at the mean load of a recorded run (from sample `start` on): the load on the
+/// inner ring is minus the mean bearing force `(force.x, force.y, force.z, moment.x,
+/// moment.y)`; solved again at the quasi-static level at the run's last shaft speed. What
+/// `raceway run` puts in its summary.
+pub fn assess_run(b: &Bearing, series: &crate::runner::Series, start: usize) -> Result<Assessment> {
+    let mean = |n: &str| -> f64 {
+        let c = series.column(n).unwrap_or(&[]);
+        let c = &c[start.min(c.len())..];
+        c.iter().sum::<f64>() / c.len().max(1) as f64
+    };
+    let load = ["force.x", "force.y", "force.z", "moment.x", "moment.y"].map(|n| -mean(n));
+    let omega = series
+        .column("shaft.omega")
+        .and_then(|c| c.last().copied())
+        .unwrap_or(0.0);
+    let inputs = LifeInputs {
+        speed_rpm: crate::units::rad_s_to_rpm(omega.abs()),
+        ..LifeInputs::default()
+    };
+    assess_load(b, &load, &inputs)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -749,7 +879,8 @@ mod tests {
         assert!((a.l10_hours.unwrap() - a.l10_mrev.unwrap() * 1e6 / 108_000.0).abs() < 1e-9);
         assert_eq!(a.s0, Some(r.c0 / 2000.0));
         let ratio = a.l10r_mrev.unwrap() / a.l10_mrev.unwrap();
-        assert!(ratio > 0.8 && ratio < 1.5, "L10r/L10 = {ratio}");
+        // Zero clearance: the Stribeck-type distribution ISO 281 assumes (0.407 factor).
+        assert!(ratio > 0.97 && ratio < 1.03, "L10r/L10 = {ratio}");
         assert!(a.warnings.is_empty(), "{:?}", a.warnings);
         // Zero load: no life, no S0, and a warning that no ball is loaded.
         let a0 = assess(&b, &solve(&b, [0.0; 5]), &LifeInputs::default()).unwrap();

@@ -321,3 +321,84 @@ fn run_refuses_a_bad_scene_with_its_cause() {
     assert!(err.contains("run.duration_s"), "{err}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// `raceway bearings 6206` shows a catalogue bearing with its ratings and says which
+/// numbers are estimated; an unknown designation is refused with what is known.
+#[test]
+fn bearings_by_designation_show_ratings_and_provenance() {
+    let v = json(&["bearings", "6206", "--json"]);
+    let b = preset("6206").unwrap().build().unwrap();
+    let r = raceway::ratings::load_ratings(&b).unwrap();
+    assert_eq!(v["estimated"], true);
+    assert_eq!(
+        (
+            f(&v["bore_mm"]),
+            f(&v["outer_diameter_mm"]),
+            f(&v["width_mm"])
+        ),
+        (30.0, 62.0, 16.0)
+    );
+    assert!(close(f(&v["ratings"]["c"]), r.c, 1e-12));
+    assert!(close(f(&v["ratings"]["c0"]), r.c0, 1e-12));
+    let t = String::from_utf8(run(&["bearings", "6206"]).stdout).unwrap();
+    assert!(
+        t.contains("ESTIMATED") && t.contains("ISO 15") && t.contains("(estimated)"),
+        "{t}"
+    );
+    let t = String::from_utf8(run(&["bearings", "6205"]).stdout).unwrap();
+    assert!(!t.contains("(estimated)") && t.contains("CWRU"), "{t}");
+    refused(&["bearings", "6421"], &["6421", "62xx", "7008ce"]);
+}
+
+/// `quasi-static --json` carries the ratings, lives and warnings; 19 kN on a 6205 is past
+/// the 4 200 MPa static limit and says so in both outputs, 1 kN does not.
+#[test]
+fn quasi_static_reports_life_safety_and_warnings() {
+    let v = json(&[
+        "quasi-static",
+        "--bearing",
+        "6205",
+        "--fx",
+        "19000",
+        "--speed-rpm",
+        "1800",
+        "--json",
+    ]);
+    let a = &v["rating"];
+    assert!(f(&a["pressure_limit_ratio"]) > 1.0);
+    assert!(close(f(&a["s0"]), f(&a["ratings"]["c0"]) / 19000.0, 1e-12));
+    assert!(close(
+        f(&a["l10_mrev"]),
+        (f(&a["ratings"]["c"]) / 19000.0).powi(3),
+        1e-12
+    ));
+    assert!(v["warnings"][0].as_str().unwrap().contains("4200 MPa"));
+    let t = String::from_utf8(run(&["quasi-static", "--bearing", "6205", "--fx", "19000"]).stdout)
+        .unwrap();
+    assert!(
+        t.contains("WARNING: peak contact pressure") && t.contains("S0 = C0/P0 0.415"),
+        "{t}"
+    );
+    let v = json(&[
+        "quasi-static",
+        "--bearing",
+        "6205",
+        "--fx",
+        "1000",
+        "--json",
+    ]);
+    assert_eq!(v["warnings"].as_array().unwrap().len(), 0);
+    assert!(v["rating"]["l10_hours"].is_null(), "no hours at standstill");
+    refused(
+        &[
+            "quasi-static",
+            "--bearing",
+            "6205",
+            "--fx",
+            "1000",
+            "--contamination",
+            "2",
+        ],
+        &["--contamination", "2"],
+    );
+}

@@ -2,6 +2,8 @@
 //!
 //! - `raceway bearings [--json]`: the bearing presets with their data (mm, degrees, µm)
 //!   and derived quantities (free contact angle, `A`, ball mass, `Kc` at the nominal angle).
+//!   `raceway bearings NAME [--json]`: one preset or catalogue designation (`6206`,
+//!   `7205B`) with its ISO 281/76 ratings and where each number comes from.
 //! - `raceway quasi-static [--bearing <preset|file.toml>] [--speed-rpm N] [--fx ..] [--fy ..]
 //!   [--fz ..] [--mx ..] [--my ..] [--race-control outer|none] [--json]`: the Jones–Harris
 //!   quasi-static equilibrium under an external load on the inner ring. With none of
@@ -9,7 +11,9 @@
 //!   operating point (its bearing, `model.operating_point`, and the speed from
 //!   `inputs.initial["shaft.omega"]` when set, else `model.operating_point.speed_rpm`).
 //!   Otherwise values not given are zero and the bearing defaults to the scene's. The race
-//!   control defaults to the scene's `model.race_control`.
+//!   control defaults to the scene's `model.race_control`. The answer carries the ISO
+//!   ratings, lives, static safety and warnings (`raceway::ratings`); `--kappa` and
+//!   `--contamination` add ISO 281's `a_ISO`.
 //!
 //! Every value is checked: non-finite numbers, a negative speed, an unknown preset or a
 //! malformed bearing file are refused with a message naming the cause and exit status 1
@@ -24,6 +28,7 @@ use clap::{Args, Parser, Subcommand, ValueEnum};
 use raceway::component::scene::{RaceControl, Scene};
 use raceway::geometry::{preset, Bearing, BearingSpec};
 use raceway::models::quasi_static::{Options, QuasiStatic};
+use raceway::ratings::{assess, LifeInputs};
 use raceway::units::{rad_s_to_rpm, rpm_to_rad_s};
 use raceway::{Error, Result};
 use std::process::ExitCode;
@@ -47,8 +52,11 @@ enum Cmd {
     /// Run a scene stand-alone (the embedded default scene without a file): time series,
     /// summary and plots into out/<scene>/.
     Run(run::RunArgs),
-    /// List the bearing presets and their data.
+    /// List the bearing presets and their data, or show one bearing (a preset or a
+    /// catalogue designation such as 6206 or 7205B) with its ISO ratings and provenance.
     Bearings {
+        /// A preset name or a designation (60xx, 62xx, 63xx; 70xx, 72xx, 73xx + C, AC or B).
+        name: Option<String>,
         /// Machine-readable output.
         #[arg(long)]
         json: bool,
@@ -96,6 +104,13 @@ struct QsArgs {
     /// Race control assumption.
     #[arg(long, value_enum)]
     race_control: Option<RaceControlArg>,
+    /// Viscosity ratio kappa = nu/nu1 at the operating temperature (for ISO 281's a_ISO
+    /// and the kappa < 1 warning).
+    #[arg(long)]
+    kappa: Option<f64>,
+    /// Contamination factor eC of ISO 281 (0..1; with --kappa gives a_ISO).
+    #[arg(long)]
+    contamination: Option<f64>,
     /// Machine-readable output (SI units).
     #[arg(long)]
     json: bool,
@@ -104,7 +119,10 @@ struct QsArgs {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let out = match cli.cmd {
-        Cmd::Bearings { json } => report::bearings(json),
+        Cmd::Bearings { name, json } => match name {
+            Some(n) => report::bearing_detail(&n, json),
+            None => report::bearings(json),
+        },
         Cmd::QuasiStatic(a) => quasi_static(a),
         Cmd::Run(a) => run::run(a),
         Cmd::Bench(a) => bench::bench(a),
@@ -219,9 +237,21 @@ fn quasi_static(a: QsArgs) -> Result<String> {
     };
     let model = QuasiStatic::new(&p.bearing, opts)?;
     let sol = model.solve(&p.load, rpm_to_rad_s(p.speed_rpm))?;
+    let inputs = LifeInputs {
+        speed_rpm: p.speed_rpm,
+        kappa: a
+            .kappa
+            .map(|k| raceway::error::positive("--kappa", k))
+            .transpose()?,
+        contamination: a
+            .contamination
+            .map(|e| raceway::error::in_range("--contamination", e, 0.0, 1.0))
+            .transpose()?,
+    };
+    let rating = assess(&p.bearing, &sol, &inputs)?;
     if a.json {
-        report::quasi_static_json(&p, &sol)
+        report::quasi_static_json(&p, &sol, &rating)
     } else {
-        Ok(report::quasi_static_text(&p, &sol))
+        Ok(report::quasi_static_text(&p, &sol, &rating))
     }
 }

@@ -4,8 +4,9 @@
 use crate::Problem;
 use raceway::component::scene::RaceControl;
 use raceway::contact::{Curvature, PointContact, Race};
-use raceway::geometry::{presets, Bearing, BearingKind};
+use raceway::geometry::{preset, presets, Bearing, BearingKind};
 use raceway::models::quasi_static::Solution;
+use raceway::ratings::{load_ratings, Assessment, LoadRatings};
 use raceway::units::rad_s_to_rpm;
 use raceway::{Error, Result};
 use serde::Serialize;
@@ -46,6 +47,10 @@ pub struct PresetRow {
     pub ball_material: String,
     /// Ring material (inner).
     pub ring_material: String,
+    /// ISO 281 basic dynamic load rating `C`, N (absent outside the standard's range).
+    pub dynamic_rating_n: Option<f64>,
+    /// ISO 76 basic static load rating `C0`, N.
+    pub static_rating_n: Option<f64>,
     /// Where the data come from.
     pub source: String,
 }
@@ -80,6 +85,8 @@ fn row(spec_source: &str, b: &Bearing) -> PresetRow {
         kc_outer: kc(b, Race::Outer),
         ball_material: b.ball_material.name.clone(),
         ring_material: b.inner_material.name.clone(),
+        dynamic_rating_n: load_ratings(b).ok().map(|r| r.c),
+        static_rating_n: load_ratings(b).ok().map(|r| r.c0),
         source: spec_source.to_string(),
     }
 }
@@ -103,9 +110,9 @@ pub fn bearings(as_json: bool) -> Result<String> {
     let mut s = String::new();
     let _ = writeln!(
         s,
-        "{:<13} {:<15} {:>7} {:>7} {:>3} {:>6} {:>6} {:>7} {:>8} {:>7} {:>9} {:>10} {:>10}  balls/rings",
+        "{:<13} {:<15} {:>7} {:>7} {:>3} {:>6} {:>6} {:>7} {:>8} {:>7} {:>9} {:>10} {:>10} {:>6} {:>6}  balls/rings",
         "name", "kind", "D mm", "dm mm", "Z", "f_i", "f_o", "a0 deg", "Pd µm", "A mm", "ball kg",
-        "Kc_i N/m1.5", "Kc_o N/m1.5"
+        "Kc_i N/m1.5", "Kc_o N/m1.5", "C kN", "C0 kN"
     );
     for r in &rows {
         let kind = match r.kind {
@@ -114,7 +121,7 @@ pub fn bearings(as_json: bool) -> Result<String> {
         };
         let _ = writeln!(
             s,
-            "{:<13} {:<15} {:>7.3} {:>7.2} {:>3} {:>6.4} {:>6.4} {:>7.2} {:>8.2} {:>7.4} {:>9.3e} {:>10.4e} {:>10.4e}  {}/{}",
+            "{:<13} {:<15} {:>7.3} {:>7.2} {:>3} {:>6.4} {:>6.4} {:>7.2} {:>8.2} {:>7.4} {:>9.3e} {:>10.4e} {:>10.4e} {:>6} {:>6}  {}/{}",
             r.name,
             kind,
             r.ball_diameter_mm,
@@ -128,13 +135,16 @@ pub fn bearings(as_json: bool) -> Result<String> {
             r.ball_mass_kg,
             r.kc_inner,
             r.kc_outer,
+            r.dynamic_rating_n.map_or("-".into(), |c| format!("{:.2}", c * 1e-3)),
+            r.static_rating_n.map_or("-".into(), |c| format!("{:.2}", c * 1e-3)),
             r.ball_material,
             r.ring_material
         );
     }
     let _ = writeln!(
         s,
-        "a0: free contact angle; Kc at the nominal contact angle (0 for deep-groove)."
+        "a0: free contact angle; Kc at the nominal contact angle (0 for deep-groove); C, C0: ISO 281/76 from the internal geometry.\n\
+         Catalogue designations 60xx/62xx/63xx and 70xx/72xx/73xx + C|AC|B (xx = 00..20) are also known, with ESTIMATED internal geometry: `raceway bearings 6206`."
     );
     Ok(s)
 }
@@ -154,18 +164,97 @@ struct QsJson<'a> {
     race_control: &'static str,
     /// Everything else in SI: the library's [`Solution`].
     solution: &'a Solution,
+    /// ISO ratings, lives (millions of revolutions and hours), static safety, peak
+    /// pressure (Pa): the library's [`Assessment`] without its warnings.
+    rating: &'a Assessment,
+    /// Warnings as sentences (the same list, typed, is `rating.warnings`).
+    warnings: Vec<String>,
 }
 
-pub fn quasi_static_json(p: &Problem, sol: &Solution) -> Result<String> {
+pub fn quasi_static_json(p: &Problem, sol: &Solution, rating: &Assessment) -> Result<String> {
     json(&QsJson {
         bearing: &p.bearing.name,
         speed_rpm: p.speed_rpm,
         race_control: control_name(p.race_control),
         solution: sol,
+        rating,
+        warnings: rating.warnings.iter().map(|w| w.to_string()).collect(),
     })
 }
 
-pub fn quasi_static_text(p: &Problem, sol: &Solution) -> String {
+/// `raceway bearings NAME`: one bearing, its data, ratings and provenance.
+pub fn bearing_detail(name: &str, as_json: bool) -> Result<String> {
+    let spec = preset(name)?;
+    let b = spec.build()?;
+    let r = load_ratings(&b)?;
+    #[derive(Serialize)]
+    struct Detail<'a> {
+        #[serde(flatten)]
+        row: PresetRow,
+        bore_mm: f64,
+        outer_diameter_mm: f64,
+        width_mm: f64,
+        /// true when the internal geometry is estimated (catalogue designation).
+        estimated: bool,
+        ratings: &'a LoadRatings,
+    }
+    let estimated = spec.source.contains("ESTIMATED");
+    let d = Detail {
+        row: row(&spec.source, &b),
+        bore_mm: b.bore * 1e3,
+        outer_diameter_mm: b.outer_diameter * 1e3,
+        width_mm: b.width * 1e3,
+        estimated,
+        ratings: &r,
+    };
+    if as_json {
+        return json(&d);
+    }
+    let mut s = String::new();
+    let kind = match b.kind {
+        BearingKind::DeepGroove => "deep-groove",
+        BearingKind::AngularContact => "angular-contact",
+    };
+    let tag = if estimated { " (estimated)" } else { "" };
+    let _ = writeln!(s, "{} ({kind})", b.name);
+    let _ = writeln!(
+        s,
+        "envelope d x D x B:        {:.0} x {:.0} x {:.0} mm",
+        d.bore_mm, d.outer_diameter_mm, d.width_mm
+    );
+    let _ = writeln!(s, "ball diameter Dw:          {:.3} mm{tag}", b.d * 1e3);
+    let _ = writeln!(s, "pitch diameter Dpw:        {:.3} mm{tag}", b.dm * 1e3);
+    let _ = writeln!(s, "ball count Z:              {}{tag}", b.z);
+    let _ = writeln!(
+        s,
+        "groove curvatures f_i/f_o: {:.4} / {:.4}{tag}",
+        b.fi, b.fo
+    );
+    let _ = writeln!(
+        s,
+        "contact angle:             {:.2} deg nominal, {:.2} deg free",
+        b.nominal_contact_angle().to_degrees(),
+        b.alpha0.to_degrees()
+    );
+    let _ = writeln!(s, "diametral clearance Pd:    {:.2} µm{tag}", b.pd * 1e6);
+    let _ = writeln!(
+        s,
+        "materials (balls/rings):   {}/{}",
+        b.ball_material.name, b.inner_material.name
+    );
+    s += &r.text();
+    let _ = writeln!(s, "source: {}", spec.source);
+    if estimated {
+        let _ = writeln!(
+            s,
+            "The internal geometry is ESTIMATED from the envelope (method and its error: docs/catalogue.md); \
+             give a bearing file with the maker's data for a real design check."
+        );
+    }
+    Ok(s)
+}
+
+pub fn quasi_static_text(p: &Problem, sol: &Solution, rating: &Assessment) -> String {
     let mut s = String::new();
     let b = &p.bearing;
     let _ = writeln!(
@@ -246,5 +335,7 @@ pub fn quasi_static_text(p: &Problem, sol: &Solution) -> String {
         "\nForces and moments act on the shaft (the reaction to the load); moments about the bearing centre. \
          a: contact semi-axis across the rolling direction, b: along it; d: approach (negative: gap)."
     );
+    let _ = writeln!(s);
+    s += &rating.text();
     s
 }

@@ -218,6 +218,12 @@ pub fn run(a: RunArgs) -> Result<String> {
         )
         .ok();
     }
+    // ISO ratings, life, static safety and warnings at the run's mean load (raceway::ratings).
+    let rating = raceway::ratings::assess_run(&b, &series, start);
+    match &rating {
+        Ok(a) => s += &format!("at the mean load of the second half:\n{}", a.text()),
+        Err(e) => s += &format!("ratings and life: not available ({e})\n"),
+    }
     let summary = out.join("summary.txt");
     std::fs::write(&summary, &s).map_err(|e| io(&summary, e))?;
     let json = serde_json::json!({
@@ -229,6 +235,13 @@ pub fn run(a: RunArgs) -> Result<String> {
         "peak_pocket_force_n": peak("pocket.max_force"), "peak_guide_force_n": peak("guide.force"),
         "frequencies": found.iter().map(|p| serde_json::json!({"label": p.label, "expected_hz": p.expected, "found_hz": if p.found.is_nan() { None } else { Some(p.found) }})).collect::<Vec<_>>(),
     });
+    let mut json = json;
+    json["rating"] = serde_json::to_value(rating.as_ref().ok()).unwrap_or_default();
+    json["warnings"] = rating
+        .as_ref()
+        .map(|a| a.warning_texts())
+        .unwrap_or_default()
+        .into();
     let sj = out.join("summary.json");
     std::fs::write(&sj, serde_json::to_string_pretty(&json).unwrap_or_default())
         .map_err(|e| io(&sj, e))?;
