@@ -126,7 +126,7 @@ fn do_step_before_inputs_names_the_missing_inputs() {
 #[test]
 fn bad_scenes_name_the_field() {
     for (text, field) in [
-        ("bearing = \"6309\"", "6309"),
+        ("bearing = \"6409\"", "6409"),
         ("bearing = \"6205\"\nbogus = 1", "bogus"),
         ("bearing = \"6205\"\n[solver]\nrtol = -1.0", "solver.rtol"),
         (
