@@ -316,7 +316,7 @@ pub struct LifeInputs {
 /// ISO 281 §9.3.2 life modification factor for ball bearings (eq. (16)–(18)); `None` for
 /// κ < 0.1 (outside the standard). κ above 4 is taken as 4; the result is capped at 50.
 pub fn a_iso(kappa: f64, ec: f64, cu: f64, p: f64) -> Option<f64> {
-    if !(kappa >= 0.1) || !(p > 0.0) {
+    if kappa.is_nan() || kappa < 0.1 || p.is_nan() || p <= 0.0 {
         return None;
     }
     let k = kappa.min(4.0);

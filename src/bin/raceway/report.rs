@@ -165,20 +165,32 @@ struct QsJson<'a> {
     /// Everything else in SI: the library's [`Solution`].
     solution: &'a Solution,
     /// ISO ratings, lives (millions of revolutions and hours), static safety, peak
-    /// pressure (Pa): the library's [`Assessment`] without its warnings.
-    rating: &'a Assessment,
+    /// pressure (Pa), typed warnings: the library's [`Assessment`] (null when the bearing
+    /// is outside the standards' range; then `rating_error` says why).
+    rating: Option<&'a Assessment>,
+    /// Why there is no rating.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    rating_error: Option<&'a str>,
     /// Warnings as sentences (the same list, typed, is `rating.warnings`).
     warnings: Vec<String>,
 }
 
-pub fn quasi_static_json(p: &Problem, sol: &Solution, rating: &Assessment) -> Result<String> {
+pub fn quasi_static_json(
+    p: &Problem,
+    sol: &Solution,
+    rating: &std::result::Result<Assessment, String>,
+) -> Result<String> {
     json(&QsJson {
         bearing: &p.bearing.name,
         speed_rpm: p.speed_rpm,
         race_control: control_name(p.race_control),
         solution: sol,
-        rating,
-        warnings: rating.warnings.iter().map(|w| w.to_string()).collect(),
+        rating: rating.as_ref().ok(),
+        rating_error: rating.as_ref().err().map(|e| e.as_str()),
+        warnings: rating
+            .as_ref()
+            .map(|a| a.warning_texts())
+            .unwrap_or_default(),
     })
 }
 
@@ -254,7 +266,11 @@ pub fn bearing_detail(name: &str, as_json: bool) -> Result<String> {
     Ok(s)
 }
 
-pub fn quasi_static_text(p: &Problem, sol: &Solution, rating: &Assessment) -> String {
+pub fn quasi_static_text(
+    p: &Problem,
+    sol: &Solution,
+    rating: &std::result::Result<Assessment, String>,
+) -> String {
     let mut s = String::new();
     let b = &p.bearing;
     let _ = writeln!(
@@ -336,6 +352,9 @@ pub fn quasi_static_text(p: &Problem, sol: &Solution, rating: &Assessment) -> St
          a: contact semi-axis across the rolling direction, b: along it; d: approach (negative: gap)."
     );
     let _ = writeln!(s);
-    s += &rating.text();
+    match rating {
+        Ok(a) => s += &a.text(),
+        Err(e) => s += &format!("ISO ratings and life: not available ({e})\n"),
+    }
     s
 }
