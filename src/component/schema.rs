@@ -229,7 +229,7 @@ use Kind::*;
 pub const TABLE: &[Field] = &[
     f("title", Text, "-", ANY, "", "free title"),
     // Bearing.
-    f("bearing", NameOrTable(Names::BearingPreset), "-", ANY, "", "the bearing: a preset name (`raceway bearings`), or a table with an optional `preset` and bearing-file fields overriding it"),
+    f("bearing", NameOrTable(Names::BearingPreset), "-", ANY, "", "the bearing: a preset name (`raceway bearings`) or a catalogue designation (60xx, 62xx, 63xx; 70xx, 72xx, 73xx + C, AC or B; internal geometry estimated, `raceway bearings 6206`), or a table with an optional `preset` and bearing-file fields overriding it"),
     f("bearing.preset", Name(Names::BearingPreset), "-", ANY, "", "preset the table starts from (without it, name, ball_diameter_mm, pitch_diameter_mm and ball_count are required)"),
     f("bearing.name", Text, "-", ANY, "", "designation"),
     f("bearing.kind", Enum(KINDS), "-", ANY, "", "deep-groove (radial) or angular-contact"),
