@@ -762,6 +762,17 @@ mod tests {
             .unwrap()
     }
 
+    /// Assessment at standstill without lubrication data.
+    fn rate(b: &Bearing, load: [f64; 5]) -> Assessment {
+        assess(b, &solve(b, load), &LifeInputs::default()).unwrap()
+    }
+
+    fn truncated(a: &Assessment) -> bool {
+        a.warnings
+            .iter()
+            .any(|w| matches!(w, Warning::EllipseTruncated { .. }))
+    }
+
     /// The transcribed ISO 281 Table 2 is the Lundberg–Palmgren `fc` (fi = fo = 0.52, the
     /// conformity ISO/TR 1281-1 gives for the table) times one constant, within the
     /// table's rounding: a typo in the table would show here.
@@ -883,7 +894,7 @@ mod tests {
         assert!(ratio > 0.97 && ratio < 1.03, "L10r/L10 = {ratio}");
         assert!(a.warnings.is_empty(), "{:?}", a.warnings);
         // Zero load: no life, no S0, and a warning that no ball is loaded.
-        let a0 = assess(&b, &solve(&b, [0.0; 5]), &LifeInputs::default()).unwrap();
+        let a0 = rate(&b, [0.0; 5]);
         assert!(a0.l10_mrev.is_none() && a0.s0.is_none());
         assert_eq!(a0.warnings, vec![Warning::FewLoadedBalls { count: 0 }]);
     }
@@ -936,13 +947,7 @@ mod tests {
         let b = bearing("6205");
         // Zero clearance, zero speed: the load distribution keeps its shape, so the peak
         // pressure scales as Fr^(1/3) and the limit load follows from one solve.
-        let p1 = assess(
-            &b,
-            &solve(&b, [1000.0, 0.0, 0.0, 0.0, 0.0]),
-            &LifeInputs::default(),
-        )
-        .unwrap()
-        .peak_pressure;
+        let p1 = rate(&b, [1000.0, 0.0, 0.0, 0.0, 0.0]).peak_pressure;
         let f_lim = 1000.0 * (STATIC_PRESSURE_LIMIT / p1).powi(3);
         let at = |f: f64, kappa: Option<f64>| {
             assess(
@@ -982,23 +987,13 @@ mod tests {
         let mut s = preset("6012").unwrap();
         s.clearance_um = Some(30.0);
         let b = s.build().unwrap();
-        let a = assess(
-            &b,
-            &solve(&b, [5.0, 0.0, 0.0, 0.0, 0.0]),
-            &LifeInputs::default(),
-        )
-        .unwrap();
+        let a = rate(&b, [5.0, 0.0, 0.0, 0.0, 0.0]);
         assert_eq!(a.loaded_balls, 1);
         assert!(a.warnings.contains(&Warning::FewLoadedBalls {
             count: a.loaded_balls
         }));
         let b = bearing("6012");
-        let a = assess(
-            &b,
-            &solve(&b, [0.0, 0.0, 500.0, 0.0, 0.0]),
-            &LifeInputs::default(),
-        )
-        .unwrap();
+        let a = rate(&b, [0.0, 0.0, 500.0, 0.0, 0.0]);
         assert_eq!(a.loaded_balls, 14);
         assert!(a.warnings.is_empty(), "{:?}", a.warnings);
 
@@ -1006,34 +1001,13 @@ mod tests {
         // angle and the ellipse up the groove towards the shoulder.
         let b = bearing("6205");
         let (shi, _) = shoulder_angles(&b);
-        let light = assess(
-            &b,
-            &solve(&b, [0.0, 0.0, 200.0, 0.0, 0.0]),
-            &LifeInputs::default(),
-        )
-        .unwrap();
-        assert!(!light
-            .warnings
-            .iter()
-            .any(|w| matches!(w, Warning::EllipseTruncated { .. })));
+        let light = rate(&b, [0.0, 0.0, 200.0, 0.0, 0.0]);
+        assert!(!truncated(&light));
         // At 10 kN the inner ellipse reaches 51.9° of the 52.0° shoulder (h = 0.2 Dw on
         // f = 0.52); at 14 kN it runs over.
-        let edge_free = assess(
-            &b,
-            &solve(&b, [0.0, 0.0, 10e3, 0.0, 0.0]),
-            &LifeInputs::default(),
-        )
-        .unwrap();
-        assert!(!edge_free
-            .warnings
-            .iter()
-            .any(|w| matches!(w, Warning::EllipseTruncated { .. })));
-        let heavy = assess(
-            &b,
-            &solve(&b, [0.0, 0.0, 14e3, 0.0, 0.0]),
-            &LifeInputs::default(),
-        )
-        .unwrap();
+        let edge_free = rate(&b, [0.0, 0.0, 10e3, 0.0, 0.0]);
+        assert!(!truncated(&edge_free));
+        let heavy = rate(&b, [0.0, 0.0, 14e3, 0.0, 0.0]);
         let t = heavy.warnings.iter().find_map(|w| match w {
             Warning::EllipseTruncated {
                 edge_angle,
