@@ -61,10 +61,13 @@ pub const STATIC_PRESSURE_LIMIT_SELF_ALIGNING: f64 = 4600e6;
 pub const BM: f64 = 1.3;
 /// The constant of the Lundberg–Palmgren `fc` that reproduces ISO 281 Table 2 (N, mm).
 pub const FC_CONSTANT: f64 = 38.2;
-/// Shoulder height assumed for the groove edges when the bearing file gives none, as a
-/// fraction of `Dw`: an assumption (typical proportions of deep-groove rings), not a
-/// standard's value.
+/// Shoulder height assumed for the groove edges of a deep-groove bearing (the bearing
+/// data carry none), as a fraction of `Dw`: an assumption (typical proportions of
+/// deep-groove rings), not a standard's value.
 pub const ASSUMED_SHOULDER_HEIGHT: f64 = 0.2;
+/// The same for the thrust-side shoulder of an angular-contact bearing, which is made
+/// higher to carry the axial load: also an assumption.
+pub const ASSUMED_SHOULDER_HEIGHT_AC: f64 = 0.3;
 
 /// ISO 281:2007 Table 2, `fc` at `Dw cos α / Dpw = 0.01, 0.02, .., 0.40` (single-row radial
 /// and angular contact groove ball bearings).
@@ -398,7 +401,7 @@ impl std::fmt::Display for Warning {
                 shoulder_angle,
             } => write!(
                 f,
-                "contact ellipse of ball {ball} ({race} race) reaches {:.1} deg, beyond the groove shoulder at {:.1} deg: the ellipse is truncated (edge loading; Hertz theory does not hold)",
+                "contact ellipse of ball {ball} ({race} race) reaches {:.1} deg, beyond the groove shoulder at {:.1} deg (assumed shoulder height, raceway::ratings::shoulder_angles): the ellipse is truncated (edge loading; Hertz theory does not hold)",
                 edge_angle.to_degrees(),
                 shoulder_angle.to_degrees()
             ),
@@ -458,9 +461,13 @@ pub struct Assessment {
 }
 
 /// Groove shoulder angles `(inner, outer)` measured from the groove bottom (radial
-/// direction), rad, from [`ASSUMED_SHOULDER_HEIGHT`]: `acos(1 - h/(f Dw))`.
+/// direction), rad, from [`ASSUMED_SHOULDER_HEIGHT`] (deep-groove) or
+/// [`ASSUMED_SHOULDER_HEIGHT_AC`] (angular-contact): `acos(1 - h/(f Dw))`.
 pub fn shoulder_angles(b: &Bearing) -> (f64, f64) {
-    let h = ASSUMED_SHOULDER_HEIGHT * b.d;
+    let h = match b.kind {
+        BearingKind::DeepGroove => ASSUMED_SHOULDER_HEIGHT,
+        BearingKind::AngularContact => ASSUMED_SHOULDER_HEIGHT_AC,
+    } * b.d;
     let ang = |f: f64| (1.0 - h / (f * b.d)).clamp(-1.0, 1.0).acos();
     (ang(b.fi), ang(b.fo))
 }
