@@ -568,12 +568,14 @@ fn block_jacobian_ring_parts_match() {
 /// `e` (inside the pocket play, so the pockets only add their film) and at rest relative
 /// to its centre, the land's share of the cage's acceleration — isolated as the difference
 /// between a land of width `2 Bg` and one of `Bg` — is exactly the short-bearing law's force
-/// on the cage at the cage OD, `e` measured from the fixed outer ring, `w_ring = 0` and
-/// the cage's own speed: restoring (radial component toward the centre) and driving
+/// on the cage — outer-ring guided: at the cage OD, `e` measured from the fixed outer ring,
+/// `w_ring = 0`; inner-ring guided (`FullParams::guidance`): at the cage bore, `e` measured
+/// from the displaced shaft, `w_ring` the shaft speed — with the cage's own speed: restoring (radial component toward the centre) and driving
 /// forward whirl (tangential component along the rotation). A wrong sign of `e`, the
 /// inner ring's speed or the bore radius would all fail it.
 #[test]
 fn guide_land_in_the_level_restores_and_drives_forward_whirl() {
+    use raceway::geometry::Guidance;
     use raceway::lubrication::guide_land::GuideLand;
     let b = preset("7004").unwrap().build().unwrap();
     let omega = rpm(120_000.0);
@@ -582,12 +584,81 @@ fn guide_land_in_the_level_restores_and_drives_forward_whirl() {
     let cg = b.cage.guide_clearance;
     let (e, ang) = (0.2 * cg, 0.7f64);
     let e_xy = [e * ang.cos(), e * ang.sin()];
-    let mut acc = Vec::new();
-    let mut wc = 0.0;
-    for width in [bg, 2.0 * bg] {
+    for guidance in [Guidance::OuterRing, Guidance::InnerRing] {
+        let inner = guidance == Guidance::InnerRing;
+        // The guiding ring's centre: the shaft's (x, y) for the inner ring, else the origin.
+        let ring = if inner { [q[0], q[1]] } else { [0.0, 0.0] };
+        let mut acc = Vec::new();
+        let mut wc = 0.0;
+        for width in [bg, 2.0 * bg] {
+            let p = FullParams {
+                guide_width: width,
+                drag: 0.0,
+                guidance,
+                ..FullParams::for_bearing(&b)
+            };
+            let mut m = FullModel::new(&b, p).unwrap();
+            let n = m.n_states();
+            let mut y = vec![0.0; n];
+            let mut aux = vec![0.0; m.n_aux()];
+            m.init(&q, omega, &mut y, &mut aux).unwrap();
+            let (l, t0) = m.scales();
+            y[0] = (ring[0] + e_xy[0]) / l;
+            y[1] = (ring[1] + e_xy[1]) / l;
+            wc = m.cage_omega(&y);
+            let mut dx = vec![0.0; n];
+            m.eval(&q, &[0.0; 5], omega, &y, &mut aux, &mut dx).unwrap();
+            // Cage force (N) from the stored-rate derivative: dx[6..8] = a t0 / l.
+            acc.push([dx[6] * l / t0 * b.cage.mass, dx[7] * l / t0 * b.cage.mass]);
+        }
+        let land = |width: f64| GuideLand {
+            radius: 0.5
+                * if inner {
+                    b.cage.inner_diameter
+                } else {
+                    b.cage.outer_diameter
+                },
+            width,
+            clearance: cg,
+            viscosity: FullParams::for_bearing(&b).viscosity,
+            outer: !inner,
+            contact_stiffness: 1e7,
+            eps_max: 0.9,
+        };
+        let w_ring = if inner { omega } else { 0.0 };
+        let f1 = land(bg).force(e_xy, [0.0; 2], wc, w_ring).f;
+        let f2 = land(2.0 * bg).force(e_xy, [0.0; 2], wc, w_ring).f;
+        let want = [f2[0] - f1[0], f2[1] - f1[1]];
+        let got = [acc[1][0] - acc[0][0], acc[1][1] - acc[0][1]];
+        let mag = want[0].hypot(want[1]);
+        assert!(mag > 0.0);
+        for k in 0..2 {
+            assert!(
+                (got[k] - want[k]).abs() < 1e-6 * mag,
+                "{guidance:?} {got:?} {want:?}"
+            );
+        }
+        // Restoring and forward: along e negative, along e_perp (+90° about z) positive.
+        let (c, s) = (ang.cos(), ang.sin());
+        assert!(got[0] * c + got[1] * s < 0.0, "{guidance:?} {got:?}");
+        assert!(-got[0] * s + got[1] * c > 0.0, "{guidance:?} {got:?}");
+    }
+}
+
+/// Cage mass unbalance `u`: the geometric centre's acceleration changes by exactly
+/// `u (w_c² e - w_c' e_perp)` (`e` the cage's angle-origin direction), i.e. the mass
+/// centre `c + u e` obeys `m a = F` with the same forces; at 120 000 rpm and 10 µm that is
+/// the rotating load `m_c u w_c²` (tenths of a newton for the 7004's cage), outward along `e`.
+#[test]
+fn cage_unbalance_adds_the_rotating_load() {
+    let b = preset("7004").unwrap().build().unwrap();
+    let omega = rpm(120_000.0);
+    let q = qs_displacement(omega);
+    let u = 10e-6;
+    let mut out = Vec::new();
+    for unbalance in [0.0, u] {
         let p = FullParams {
-            guide_width: width,
-            drag: 0.0,
+            cage_unbalance: unbalance,
             ..FullParams::for_bearing(&b)
         };
         let mut m = FullModel::new(&b, p).unwrap();
@@ -596,34 +667,24 @@ fn guide_land_in_the_level_restores_and_drives_forward_whirl() {
         let mut aux = vec![0.0; m.n_aux()];
         m.init(&q, omega, &mut y, &mut aux).unwrap();
         let (l, t0) = m.scales();
-        y[0] = e_xy[0] / l;
-        y[1] = e_xy[1] / l;
-        wc = m.cage_omega(&y);
+        y[5] = 2.1; // cage angle, rad
         let mut dx = vec![0.0; n];
         m.eval(&q, &[0.0; 5], omega, &y, &mut aux, &mut dx).unwrap();
-        // Cage force (N) from the stored-rate derivative: dx[6..8] = a t0 / l.
-        acc.push([dx[6] * l / t0 * b.cage.mass, dx[7] * l / t0 * b.cage.mass]);
+        let wc = m.cage_omega(&y);
+        out.push(([dx[6] * l / t0, dx[7] * l / t0], wc, dx[11] / t0));
     }
-    let land = |width: f64| GuideLand {
-        radius: 0.5 * b.cage.outer_diameter,
-        width,
-        clearance: cg,
-        viscosity: FullParams::for_bearing(&b).viscosity,
-        outer: true,
-        contact_stiffness: 1e7,
-        eps_max: 0.9,
-    };
-    let f1 = land(bg).force(e_xy, [0.0; 2], wc, 0.0).f;
-    let f2 = land(2.0 * bg).force(e_xy, [0.0; 2], wc, 0.0).f;
-    let want = [f2[0] - f1[0], f2[1] - f1[1]];
-    let got = [acc[1][0] - acc[0][0], acc[1][1] - acc[0][1]];
-    let mag = want[0].hypot(want[1]);
-    assert!(mag > 0.0);
+    let ((a0, wc, wd), (a1, _, wd1)) = (out[0], out[1]);
+    assert_eq!(wd, wd1, "the rotation is not changed");
+    let (s, c) = 2.1f64.sin_cos();
+    let want = [u * (wc * wc * c + wd * s), u * (wc * wc * s - wd * c)];
     for k in 0..2 {
-        assert!((got[k] - want[k]).abs() < 1e-6 * mag, "{got:?} {want:?}");
+        assert!(
+            (a1[k] - a0[k] - want[k]).abs() < 1e-9 * want[0].hypot(want[1]),
+            "{a0:?} {a1:?} {want:?}"
+        );
     }
-    // Restoring and forward: along e negative, along e_perp (+90° about z) positive.
-    let (c, s) = (ang.cos(), ang.sin());
-    assert!(got[0] * c + got[1] * s < 0.0, "{got:?}");
-    assert!(-got[0] * s + got[1] * c > 0.0, "{got:?}");
+    // Outward along e, of the size m_c u w_c².
+    let f = b.cage.mass * ((a1[0] - a0[0]) * c + (a1[1] - a0[1]) * s);
+    let fc = b.cage.mass * u * wc * wc;
+    assert!(fc > 0.05 && (f - fc).abs() < 1e-3 * fc, "{f} {fc}");
 }

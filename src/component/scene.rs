@@ -250,6 +250,11 @@ pub struct FullSpec {
     pub guide_stiffness: f64,
     /// Eccentricity ratio where the guide-land contact starts.
     pub guide_eps_max: f64,
+    /// Cage guidance: `outer_ring`, `inner_ring` or `ball` (absent: the bearing's
+    /// `cage.guidance`).
+    pub guidance: Option<crate::geometry::Guidance>,
+    /// Cage mass unbalance: offset of the cage's mass centre from its geometric centre, µm.
+    pub cage_unbalance_um: f64,
 }
 
 impl Default for FullSpec {
@@ -273,6 +278,8 @@ impl Default for FullSpec {
             guide_width_mm: None,
             guide_stiffness: p.guide_stiffness,
             guide_eps_max: p.guide_eps_max,
+            guidance: None,
+            cage_unbalance_um: 0.0,
         }
     }
 }
@@ -316,6 +323,9 @@ impl FullSpec {
             guide_width: gw,
             guide_stiffness: positive(&f("guide_stiffness"), self.guide_stiffness)?,
             guide_eps_max: in_range(&f("guide_eps_max"), self.guide_eps_max, 0.05, 0.999)?,
+            guidance: self.guidance.unwrap_or(b.cage.guidance),
+            cage_unbalance: in_range(&f("cage_unbalance_um"), self.cage_unbalance_um, 0.0, 1e3)?
+                * 1e-6,
         })
     }
 }

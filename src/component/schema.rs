@@ -344,6 +344,8 @@ pub const TABLE: &[Field] = &[
     f("model.full.guide_width_mm", Float, "mm", gt(0.0), "absent: half the cage width", "full level: guide land width"),
     f("model.full.guide_stiffness", Float, "N/m", gt(0.0), "", "full level: guide-land contact stiffness beyond guide_eps_max"),
     f("model.full.guide_eps_max", Float, "-", between(0.05, true, 0.999, true), "", "full level: eccentricity ratio where the guide-land contact starts"),
+    f("model.full.guidance", Enum(GUIDANCE), "-", ANY, "absent: bearing.cage.guidance", "full level: cage guidance, on the outer-ring land (land radius = cage OD/2) or the inner-ring land (= cage bore/2), or ball-riding (no land)"),
+    f("model.full.cage_unbalance_um", Float, "µm", between(0.0, true, 1e3, true), "default 0", "full level: cage mass unbalance, offset of the mass centre from the geometric centre (a load rotating with the cage, m_c u w_c²)"),
     f("model.skidding.gyro_traction", Float, "-", between(0.0, true, 10.0, true), "0 turns the gyroscopic friction off", "skidding level: traction coefficient limiting the lateral friction that carries the balls' gyroscopic couple"),
     f("model.skidding.ball_radial_mass", Bool, "-", ANY, "default false", "skidding level: give the balls radial mass (position along the contact line as a state, damped by model.contact_damping) instead of the quasi-static split"),
     f("model.skidding.spin_friction", Float, "-", between(0.0, true, 2.0, true), "0: no spinning moment", "skidding level: friction coefficient of the spinning moment (3/8) mu Q a E at the race contacts"),
@@ -514,6 +516,8 @@ fn full_scene(bearing: BearingRef, traction: TractionLaw) -> Scene {
                 traction,
                 pocket_clearance_mm: Some(0.1),
                 guide_width_mm: Some(3.0),
+                guidance: Some(crate::geometry::Guidance::InnerRing),
+                cage_unbalance_um: 2.0,
                 ..Default::default()
             },
             start: d.start,

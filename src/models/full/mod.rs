@@ -80,6 +80,24 @@
 //! the shear torque; the land's tilting moment is not modelled. With `cage = ideal` the land
 //! is not evaluated (the centre is held by the constraint).
 //!
+//! Guidance (`FullParams::guidance`, the bearing's unless the scene sets
+//! `model.full.guidance`): outer-ring land radius = cage OD/2, inner-ring land radius = cage
+//! bore/2 (study [0]'s cage, ID 30 mm and OD 35 mm, runs between the inner-ring land below
+//! 30 mm and the outer-ring land above 35 mm). Why one force law serves both, with the
+//! sign physics.md gives for Gupta's eccentricity: [`GuideLand`]'s notes.
+//!
+//! Cage mass unbalance `u` (`cage_unbalance`): the mass centre sits at
+//! `c + u (cos theta_c, sin theta_c, 0)`, so the geometric centre (the states, the land's
+//! eccentricity) obeys `m_c c'' = F + m_c u (w_c² e - w_c' e_perp)` (`e`, `e_perp` the
+//! cage's angle-origin direction and its normal): the rotating "centrifugal" load that grows
+//! with the square of the cage speed. The `O(u)` changes of the cage's moments and polar
+//! inertia are neglected (`u` is micrometres against a 15 mm radius), and
+//! [`FullModel::angular_momentum`] is that of `u = 0`.
+//!
+//! Cage power balance ([`Totals`]): pocket, guide-land and drag powers on the cage, and
+//! their parts from the centre's velocity; over a settled orbit their sum averages to
+//! zero, and the whirl parts say who feeds the whirl and who takes it out.
+//!
 //! Boundary-layer drag: each ball moves through oil–air at rest (`sphere_drag_force` on the
 //! centre's velocity, `sphere_spin_moment` on `w`); the cage's two side faces by
 //! `disk_moment` between its bore and outside diameters.
@@ -160,6 +178,11 @@ pub struct FullParams {
     pub guide_stiffness: f64,
     /// Eccentricity ratio where the land's contact starts.
     pub guide_eps_max: f64,
+    /// Cage guidance (inner- or outer-ring land, or ball-riding); the bearing's by default.
+    pub guidance: Guidance,
+    /// Cage mass unbalance: distance of the cage's mass centre from its geometric centre,
+    /// m (fixed in the cage, along the cage's angle origin).
+    pub cage_unbalance: f64,
 }
 
 impl FullParams {
@@ -181,6 +204,8 @@ impl FullParams {
             guide_width: 0.5 * b.cage.width,
             guide_stiffness: 1e7,
             guide_eps_max: 0.9,
+            guidance: b.cage.guidance,
+            cage_unbalance: 0.0,
         }
     }
 }
@@ -235,6 +260,17 @@ pub struct Totals {
     pub pocket_max: f64,
     /// Guide-land force magnitude, N.
     pub guide_force: f64,
+    /// Power of the ball–pocket forces and moments on the cage, W (translation and
+    /// rotation of the cage body).
+    pub pocket_power: f64,
+    /// Its part from the cage centre's velocity (the power feeding the whirl), W.
+    pub pocket_power_whirl: f64,
+    /// Power of the guide-land film and wall on the cage, W.
+    pub guide_power: f64,
+    /// Its part from the cage centre's velocity (the power the land takes from the whirl), W.
+    pub guide_power_whirl: f64,
+    /// Power of the boundary-layer drag on the cage, W.
+    pub cage_drag_power: f64,
 }
 
 /// Physical cage kinematics.
@@ -352,6 +388,7 @@ impl FullModel {
         let f = |n: &str| format!("model.full.{n}");
         p.traction.validate(&f("traction"))?;
         crate::error::positive(&f("reference_load_n"), p.reference_load)?;
+        crate::error::in_range(&f("cage_unbalance_um"), p.cage_unbalance * 1e6, 0.0, 1e3)?;
         if !(b.cage.mass > 0.0 && b.cage.inertia > 0.0) {
             return Err(Error::invalid(
                 "bearing.cage",
@@ -378,7 +415,7 @@ impl FullModel {
             0.5 * b.cage.outer_diameter,
             b.cage.width,
         );
-        let guided_inner = matches!(b.cage.guidance, Guidance::InnerRing);
+        let guided_inner = matches!(p.guidance, Guidance::InnerRing);
         let (nc, nb) = (
             match p.cage {
                 CageModel::Free => 12,
@@ -424,7 +461,7 @@ impl FullModel {
                 v_s: p.pocket_v_s,
             },
             nominal: BallRaceContacts::new(b, alpha0),
-            guide: (!matches!(b.cage.guidance, Guidance::Ball)).then_some(GuideLand {
+            guide: (!matches!(p.guidance, Guidance::Ball)).then_some(GuideLand {
                 radius: if guided_inner { cri } else { cro },
                 width: p.guide_width,
                 clearance: b.cage.guide_clearance,
@@ -1008,6 +1045,9 @@ impl FullModel {
             self.ball_rates(&bt, xb, &mut dx[k..k + self.nb]);
             cf = add(cf, bt.cage_f);
             cm = add(cm, bt.cage_m);
+            let pw = dot(bt.cage_f, ck.v);
+            tot.pocket_power_whirl += pw;
+            tot.pocket_power += pw + dot(bt.cage_m, ck.omega());
             for (a, b) in tot.wrench.iter_mut().zip(bt.wrench) {
                 *a += b;
             }
@@ -1030,6 +1070,7 @@ impl FullModel {
                 * ck.w.signum();
             cm[2] += md;
             tot.external_mz += md;
+            tot.cage_drag_power = md * ck.w;
         }
         match self.p.cage {
             CageModel::Ideal => {
@@ -1053,13 +1094,24 @@ impl FullModel {
                     cm[2] += g.torque;
                     tot.external_mz += ck.c[0] * g.f[1] - ck.c[1] * g.f[0] + g.torque;
                     tot.guide_force = g.f[0].hypot(g.f[1]);
+                    tot.guide_power_whirl = g.f[0] * ck.v[0] + g.f[1] * ck.v[1];
+                    tot.guide_power = tot.guide_power_whirl + g.torque * ck.w;
                     if self.guided_inner {
                         tot.wrench[0] -= g.f[0];
                         tot.wrench[1] -= g.f[1];
                         tot.torque_shaft -= g.torque;
                     }
                 }
-                let acc = scale(cf, 1.0 / self.mc);
+                let mut acc = scale(cf, 1.0 / self.mc);
+                // Mass unbalance `u` (module docs): the geometric centre's acceleration is
+                // the mass centre's minus that of `u (cos theta, sin theta)` about it.
+                let u = self.p.cage_unbalance;
+                if u != 0.0 {
+                    let (s, c) = ck.theta.sin_cos();
+                    let w_dot = cm[2] / self.ip;
+                    acc[0] += u * (ck.w * ck.w * c + w_dot * s);
+                    acc[1] += u * (ck.w * ck.w * s - w_dot * c);
+                }
                 let (bx_d, by_d) = (ck.bd[0], ck.bd[1]);
                 let bxdd = (cm[0] - self.ip * ck.w * by_d) / self.it;
                 let bydd = (cm[1] + self.ip * ck.w * bx_d) / self.it;
