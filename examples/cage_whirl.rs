@@ -1,206 +1,458 @@
 //! Cage-whirl study of the hybrid 7004 (study [0], Ye, Wang, Zhang; physics.md §5.5 and the
 //! §10 row): the `full` level at 30 000, 60 000, 80 000 and 120 000 rpm under Fa 2000 N,
-//! Fr 400 N, from the scenes `examples/scenes/7004-*.toml`.
+//! Fr 400 N, from the scenes `examples/scenes/7004-*.toml`, for both cage guidances
+//! (outer- and inner-ring land) and both readings of the study's 0.25 mm guide clearance
+//! (radial, or diametral = 0.125 mm radial); and the start-up from rest
+//! (`examples/scenes/7004-startup.toml`).
 //!
 //! ```text
-//! cargo run --release --example cage_whirl                 # full study, table on stdout
+//! cargo run --release --example cage_whirl                 # study, tables on stdout
 //! cargo run --release --example cage_whirl -- --quick      # CI: two speeds, a few ms each
 //! cargo run --release --example cage_whirl -- --write-docs # study + docs/cage-whirl.md, PNGs
 //! ```
 //!
-//! Options (each changes one thing against the scenes, for the sensitivity runs):
-//! `--speeds 30000,120000`, `--duration S` (simulated time per speed), `--step S`
-//! (communication step = sampling of the cage-centre speed), `--viscosity PAS`,
-//! `--guide-width-mm MM`, `--guide-clearance-mm MM` (radial), `--pocket-clearance-mm MM`,
-//! `--mu MU` (Coulomb traction `mu_max`), `--drag-density KGM3`, `--guide-eps-max E`
-//! (where the land's film law is capped and the wall spring starts), `--traction-vs V`
-//! (Coulomb traction transition slip speed, m/s), `--pocket-friction MU`, `--no-radial` (ring centred radially:
-//! the scene's axial displacement only, so Fr = 0), `--tight` (rtol 1e-5,
-//! atol 1e-9 m at every speed).
+//! Options: `--speeds 30000,120000`, `--duration S` (simulated time per speed),
+//! `--windows N` (equal windows over which sigma is computed, the convergence check),
+//! `--step S` (communication step = sampling of the cage-centre speed), `--unbalance-um U`
+//! (cage mass unbalance, `model.full.cage_unbalance_um`), `--startup-ms MS`, `--config TAG`
+//! (one of `outer-radial`, `outer-diametral`, `inner-radial`, `inner-diametral`; default all).
 //!
-//! Columns: speed; sigma = std(|v|)/mean(|v|) of the level's `cage.speed` (the 3-D
-//! cage-centre speed, as `raceway run`) over the second half of the run; the same index
-//! of the in-plane speed from central differences of the sampled orbit, a check on the
-//! sampling; the
-//! largest orbit radius in guide clearances; the mean guide-land force and the peak pocket
-//! force over the second half; the cage speed ratio (cage / kinematic) at the end; CPU
-//! seconds per shaft revolution.
+//! Per run: sigma = std(|v|)/mean(|v|) of the level's `cage.speed` (3-D cage-centre speed)
+//! over each of `N` equal windows of the run (the last is the settled value, the change
+//! from the one before its convergence measure); the orbit (guide clearances); the whirl
+//! frequency (mean rate of the cage centre's polar angle over the last window) against the
+//! cage rotation frequency; the cage power balance per cage revolution over the last window
+//! (pocket, guide land, drag; whirl parts from the centre's velocity), from the model's
+//! totals re-evaluated at the recorded states; CPU seconds of this thread per shaft
+//! revolution.
 
 use raceway::analysis::whirl_index;
-use raceway::geometry::preset;
-use raceway::runner;
+use raceway::component::variables;
+use raceway::component::{Causality, Component};
+use raceway::geometry::{preset, Guidance};
+use raceway::models::full::FullModel;
 use raceway::Scene;
+use std::f64::consts::PI;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
+
+/// One guidance and clearance reading.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Config {
+    guidance: Guidance,
+    /// The study's 0.25 mm read as diametral (radial clearance 0.125 mm).
+    diametral: bool,
+}
+
+impl Config {
+    fn label(&self) -> String {
+        format!(
+            "{}, Cg {} mm",
+            match self.guidance {
+                Guidance::InnerRing => "inner-ring land",
+                Guidance::OuterRing => "outer-ring land",
+                Guidance::Ball => "ball-riding",
+            },
+            if self.diametral {
+                "0.125 (0.25 diametral)"
+            } else {
+                "0.25 (radial)"
+            }
+        )
+    }
+    fn tag(&self) -> String {
+        format!(
+            "{}-{}",
+            match self.guidance {
+                Guidance::InnerRing => "inner",
+                Guidance::OuterRing => "outer",
+                Guidance::Ball => "ball",
+            },
+            if self.diametral {
+                "diametral"
+            } else {
+                "radial"
+            }
+        )
+    }
+}
+
+/// Options of a study run.
+#[derive(Debug, Clone)]
+struct Opts {
+    speeds: Vec<f64>,
+    duration: f64,
+    windows: usize,
+    step: f64,
+    unbalance_um: f64,
+    startup_ms: f64,
+    /// Only this configuration (its tag).
+    config: Option<String>,
+}
+
+/// What one recorded run gives.
+#[derive(Debug, Clone, Default)]
+struct Record {
+    t: Vec<f64>,
+    cx: Vec<f64>,
+    cy: Vec<f64>,
+    speed: Vec<f64>,
+    ratio: Vec<f64>,
+    guide: Vec<f64>,
+    /// Cage rotation speed, rad/s.
+    w_cage: Vec<f64>,
+    /// Pocket normal force of each ball at each sample, N.
+    pockets: Vec<Vec<f64>>,
+    /// Powers on the cage at each sample: pocket, pocket whirl, guide, guide whirl, drag, W.
+    powers: Vec<[f64; 5]>,
+    cpu: f64,
+}
+
+/// CPU time of this thread, s (`CLOCK_THREAD_CPUTIME_ID`).
+fn thread_cpu() -> f64 {
+    let mut ts = libc::timespec {
+        tv_sec: 0,
+        tv_nsec: 0,
+    };
+    // SAFETY: `ts` is a valid, writable timespec; the clock id is a constant.
+    unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut ts) };
+    ts.tv_sec as f64 + ts.tv_nsec as f64 * 1e-9
+}
+
+fn var(name: &str) -> u32 {
+    variables::by_name(name).expect("a contract variable").vr
+}
+
+/// Step the scene's component at its `[run]` step with the scene's initial (motion) inputs
+/// and speed ramp, recording the cage outputs and, from the model re-evaluated at each
+/// recorded state, the per-ball pocket forces and the cage powers.
+fn simulate(scene: &Scene) -> Result<Record, Box<dyn std::error::Error>> {
+    if scene.model.causality != Causality::Motion {
+        return Err("the study's scenes are motion-driven".into());
+    }
+    let b = scene.build_bearing()?;
+    let mut model = FullModel::new(&b, scene.model.full.params(&b, scene.model.race_control)?)?;
+    let na = model.n_aux();
+    let mut dx = vec![0.0; model.n_states()];
+    let mut c = Component::new(scene.clone())?;
+    let init = |n: &str| scene.inputs.initial.get(n).copied().unwrap_or(0.0);
+    let ramp = raceway::units::rpm_to_rad_s(scene.run.speed_ramp_rpm_per_s);
+    let omega0 = init("shaft.omega");
+    let names = [
+        "shaft.x", "shaft.y", "shaft.z", "shaft.rx", "shaft.ry", "shaft.vx", "shaft.vy",
+        "shaft.vz", "shaft.wx", "shaft.wy",
+    ];
+    let q = [0, 1, 2, 3, 4].map(|k| init(names[k]));
+    let v = [5, 6, 7, 8, 9].map(|k| init(names[k]));
+    let set = |c: &mut Component, t: f64| -> Result<f64, Box<dyn std::error::Error>> {
+        for n in names {
+            c.set_real(var(n), init(n))?;
+        }
+        let omega = omega0 + ramp * t;
+        c.set_real(var("shaft.omega"), omega)?;
+        if ramp != 0.0 {
+            c.set_input_derivative(var("shaft.omega"), 1, ramp)?;
+        }
+        Ok(omega)
+    };
+    let n = (scene.run.duration_s / scene.run.step_s).round().max(1.0) as usize;
+    let h = scene.run.duration_s / n as f64;
+    let mut r = Record {
+        pockets: vec![Vec::with_capacity(n + 1); b.z],
+        ..Record::default()
+    };
+    let (_, t0) = model.scales();
+    // The cage block of the free cage: `[x, y, z, bx, by, theta, vx, vy, vz, bx', by', w_c T0]`.
+    let cage_w = |x: &[f64]| x[11] / t0;
+    let cpu0 = thread_cpu();
+    set(&mut c, 0.0)?;
+    c.refresh_outputs()?;
+    for i in 0..=n {
+        let t = i as f64 * h;
+        if i > 0 {
+            set(&mut c, t - h)?;
+            c.do_step(t - h, h)?;
+        }
+        let omega = omega0 + ramp * t;
+        let st = c.get_state();
+        let mut aux = st.aux[..na].to_vec();
+        let tot = model.eval(&q, &v, omega, &st.x, &mut aux, &mut dx)?;
+        r.t.push(t);
+        r.cx.push(c.get_real(var("cage.x"))?);
+        r.cy.push(c.get_real(var("cage.y"))?);
+        r.speed.push(c.get_real(var("cage.speed"))?);
+        r.ratio.push(c.get_real(var("cage.speed_ratio"))?);
+        r.guide.push(c.get_real(var("guide.force"))?);
+        r.w_cage.push(cage_w(&st.x));
+        for (j, p) in r.pockets.iter_mut().enumerate() {
+            p.push(model.balls[j].pocket);
+        }
+        r.powers.push([
+            tot.pocket_power,
+            tot.pocket_power_whirl,
+            tot.guide_power,
+            tot.guide_power_whirl,
+            tot.cage_drag_power,
+        ]);
+    }
+    r.cpu = thread_cpu() - cpu0;
+    Ok(r)
+}
 
 /// One speed's results.
 #[derive(Debug, Clone)]
 struct Row {
     rpm: f64,
-    sigma: f64,
-    sigma_xy: f64,
+    /// Sigma over each window.
+    sigmas: Vec<f64>,
     orbit_max: f64,
     orbit_mean: f64,
     guide_mean: f64,
     pocket_peak: f64,
-    pocket_peak_2nd: f64,
     ratio: f64,
+    /// Whirl and cage rotation frequencies over the last window, Hz.
+    f_whirl: f64,
+    f_cage: f64,
+    /// Energies per cage revolution over the last window (pocket, pocket whirl, guide,
+    /// guide whirl, drag), J.
+    energy: [f64; 5],
     cpu_per_rev: f64,
-    /// Orbit (second half), guide clearances.
+    /// Orbit over the last window, guide clearances.
     ox: Vec<f64>,
     oy: Vec<f64>,
 }
 
-/// Options of a study run.
-#[derive(Debug, Clone, Default)]
-struct Opts {
-    speeds: Vec<f64>,
-    duration: f64,
-    step: f64,
-    viscosity: Option<f64>,
-    guide_width_mm: Option<f64>,
-    guide_clearance_mm: Option<f64>,
-    pocket_clearance_mm: Option<f64>,
-    mu: Option<f64>,
-    drag_density: Option<f64>,
-    guide_eps_max: Option<f64>,
-    traction_vs: Option<f64>,
-    pocket_friction: Option<f64>,
-    no_radial: bool,
-    tight: bool,
+impl Row {
+    fn sigma(&self) -> f64 {
+        *self.sigmas.last().unwrap_or(&f64::NAN)
+    }
+    /// Relative change of sigma between the last two windows.
+    fn change(&self) -> f64 {
+        let n = self.sigmas.len();
+        if n < 2 {
+            return f64::NAN;
+        }
+        (self.sigmas[n - 1] - self.sigmas[n - 2]).abs() / self.sigmas[n - 1]
+    }
 }
 
-fn scene_for(rpm: f64, o: &Opts) -> Result<Scene, Box<dyn std::error::Error>> {
+fn scene_for(rpm: f64, cfg: Config, o: &Opts) -> Result<Scene, Box<dyn std::error::Error>> {
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("examples/scenes")
         .join(format!("7004-{}.toml", rpm.round() as i64));
     let mut s = Scene::from_text(&std::fs::read_to_string(&path)?)?;
     s.run.duration_s = o.duration;
     s.run.step_s = o.step;
-    let f = &mut s.model.full;
-    if let Some(v) = o.viscosity {
-        f.viscosity = v;
-    }
-    if let Some(v) = o.guide_width_mm {
-        f.guide_width_mm = Some(v);
-    }
-    if let Some(v) = o.pocket_clearance_mm {
-        f.pocket_clearance_mm = Some(v);
-    }
-    if let Some(v) = o.pocket_friction {
-        f.pocket_friction = v;
-    }
-    if let Some(v) = o.guide_eps_max {
-        f.guide_eps_max = v;
-    }
-    if let Some(v) = o.drag_density {
-        f.drag_density = v;
-    }
-    if let Some(mu) = o.mu {
-        if let raceway::contact::traction::TractionLaw::Coulomb { mu_max, .. } = &mut f.traction {
-            *mu_max = mu;
-        }
-    }
-    if let Some(v) = o.traction_vs {
-        if let raceway::contact::traction::TractionLaw::Coulomb { v_s, .. } = &mut f.traction {
-            *v_s = v;
-        }
-    }
-    if let Some(c) = o.guide_clearance_mm {
-        // The bearing's cage data: a preset with the clearance replaced, as a table.
+    s.model.full.guidance = Some(cfg.guidance);
+    s.model.full.cage_unbalance_um = o.unbalance_um;
+    if cfg.diametral {
         let mut spec = preset("7004")?;
-        spec.cage.guide_clearance_mm = Some(c);
+        spec.cage.guide_clearance_mm = Some(0.125);
         s.bearing = raceway::component::scene::BearingRef::Table(toml::Table::try_from(&spec)?);
-    }
-    if o.no_radial {
-        // Ring centred radially: pure axial displacement (Fr = 0, Fa about the same).
-        s.inputs.initial.insert("shaft.y".into(), 0.0);
-    }
-    if o.tight {
-        s.solver.rtol = 1e-5;
-        s.solver.atol_m = 1e-9;
     }
     Ok(s)
 }
 
-fn run_one(rpm: f64, o: &Opts) -> Result<Row, Box<dyn std::error::Error>> {
-    let scene = scene_for(rpm, o)?;
-    let t0 = std::time::Instant::now();
-    let (series, _) = runner::run(&scene, &mut |_| {})?;
-    let cpu = t0.elapsed().as_secs_f64();
-    let col = |n: &str| series.column(n).map(|c| c.to_vec()).unwrap_or_default();
-    let n = series.t.len();
-    let start = n / 2;
-    let speed = col("cage.speed");
-    let (cx, cy) = (col("cage.x"), col("cage.y"));
-    let sigma = whirl_index(&speed[start..]).unwrap_or(f64::NAN);
-    // In-plane speed from the sampled orbit (central differences), the check on sampling.
-    let b = scene.build_bearing()?;
-    let cg = b.cage.guide_clearance;
-    let h = series.t[1] - series.t[0];
-    let vxy: Vec<f64> = (start.max(1)..n - 1)
-        .map(|k| {
-            let dx = (cx[k + 1] - cx[k - 1]) * cg / (2.0 * h);
-            let dy = (cy[k + 1] - cy[k - 1]) * cg / (2.0 * h);
-            dx.hypot(dy)
-        })
+fn run_one(rpm: f64, cfg: Config, o: &Opts) -> Result<Row, Box<dyn std::error::Error>> {
+    let scene = scene_for(rpm, cfg, o)?;
+    let r = simulate(&scene)?;
+    let n = r.t.len();
+    let nw = o.windows.max(1);
+    let wl = (n - 1) / nw;
+    let sigmas: Vec<f64> = (0..nw)
+        .map(|k| whirl_index(&r.speed[1 + k * wl..1 + (k + 1) * wl]).unwrap_or(f64::NAN))
         .collect();
-    let sigma_xy = whirl_index(&vxy).unwrap_or(f64::NAN);
-    let r: Vec<f64> = cx.iter().zip(&cy).map(|(x, y)| x.hypot(*y)).collect();
-    let orbit_max = r.iter().fold(0.0f64, |m, v| m.max(*v));
-    let orbit_mean = r[start..].iter().sum::<f64>() / (n - start) as f64;
-    let guide = col("guide.force");
-    let guide_mean = guide[start..].iter().sum::<f64>() / (n - start) as f64;
-    let pocket = col("pocket.max_force");
-    let pocket_peak = pocket.iter().fold(0.0f64, |m, v| m.max(*v));
-    let pocket_peak_2nd = pocket[start..].iter().fold(0.0f64, |m, v| m.max(*v));
-    let ratio = *col("cage.speed_ratio").last().unwrap_or(&f64::NAN);
-    let revs = rpm / 60.0 * o.duration;
+    let last = 1 + (nw - 1) * wl..n;
+    let rad: Vec<f64> = r.cx.iter().zip(&r.cy).map(|(x, y)| x.hypot(*y)).collect();
+    let orbit_max = rad.iter().fold(0.0f64, |m, v| m.max(*v));
+    let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len() as f64;
+    let orbit_mean = mean(&rad[last.clone()]);
+    let guide_mean = mean(&r.guide[last.clone()]);
+    let pocket_peak = r
+        .pockets
+        .iter()
+        .flat_map(|p| p[last.clone()].iter())
+        .fold(0.0f64, |m, v| m.max(*v));
+    // Whirl: mean rate of the unwrapped polar angle of the orbit.
+    let mut ang = 0.0;
+    let mut prev = r.cy[last.start].atan2(r.cx[last.start]);
+    for k in last.clone().skip(1) {
+        let a = r.cy[k].atan2(r.cx[k]);
+        let mut d = a - prev;
+        d -= 2.0 * PI * (d / (2.0 * PI)).round();
+        ang += d;
+        prev = a;
+    }
+    let span = r.t[n - 1] - r.t[last.start];
+    let f_whirl = ang / (2.0 * PI * span);
+    let w_c = mean(&r.w_cage[last.clone()]);
+    let f_cage = w_c / (2.0 * PI);
+    let mut energy = [0.0; 5];
+    for (e, k) in energy.iter_mut().zip(0..5) {
+        // Mean power times the cage revolution period.
+        *e = mean(
+            &r.powers[last.clone()]
+                .iter()
+                .map(|p| p[k])
+                .collect::<Vec<_>>(),
+        ) / f_cage;
+    }
     Ok(Row {
         rpm,
-        sigma,
-        sigma_xy,
+        sigmas,
         orbit_max,
         orbit_mean,
         guide_mean,
         pocket_peak,
-        pocket_peak_2nd,
-        ratio,
-        cpu_per_rev: cpu / revs,
-        ox: cx[start..].to_vec(),
-        oy: cy[start..].to_vec(),
+        ratio: *r.ratio.last().unwrap_or(&f64::NAN),
+        f_whirl,
+        f_cage,
+        energy,
+        cpu_per_rev: r.cpu / (rpm / 60.0 * o.duration),
+        ox: r.cx[last.clone()].to_vec(),
+        oy: r.cy[last].to_vec(),
     })
 }
 
-fn header() -> String {
-    "| speed, rpm | sigma | sigma (x,y) | orbit max / Cg | orbit mean / Cg | guide force mean, N | pocket peak, N (all / 2nd half) | cage speed ratio | CPU per shaft rev, ms |\n|---|---|---|---|---|---|---|---|---|\n".into()
-}
-
-fn line(r: &Row) -> String {
-    format!(
-        "| {:.0} | {:.4} | {:.4} | {:.3} | {:.3} | {:.3e} | {:.2} / {:.2} | {:.4} | {:.3} |\n",
-        r.rpm,
-        r.sigma,
-        r.sigma_xy,
-        r.orbit_max,
-        r.orbit_mean,
-        r.guide_mean,
-        r.pocket_peak,
-        r.pocket_peak_2nd,
-        r.ratio,
-        r.cpu_per_rev * 1e3
-    )
-}
-
-fn study(o: &Opts) -> Result<(Vec<Row>, String), Box<dyn std::error::Error>> {
+fn study(
+    cfg: Config,
+    o: &Opts,
+) -> Result<(Vec<Row>, String, String, String), Box<dyn std::error::Error>> {
     let mut rows = Vec::new();
-    let mut s = header();
+    let mut main = String::from(
+        "| speed, rpm | sigma (last window) | change from the window before | orbit max / Cg | orbit mean / Cg | guide force mean, N | pocket peak, N | cage speed ratio | whirl / cage frequency | CPU per shaft rev, ms |\n|---|---|---|---|---|---|---|---|---|---|\n",
+    );
+    let mut conv = String::from("| speed, rpm |");
+    for k in 0..o.windows {
+        let w = o.duration / o.windows as f64;
+        write!(
+            conv,
+            " {:.0}–{:.0} ms |",
+            k as f64 * w * 1e3,
+            (k + 1) as f64 * w * 1e3
+        )?;
+    }
+    conv += "\n|---|";
+    for _ in 0..o.windows {
+        conv += "---|";
+    }
+    conv += "\n";
+    let mut energy = String::from(
+        "| speed, rpm | pocket, mJ | of it whirl, mJ | guide land, mJ | of it whirl, mJ | drag, mJ | sum, mJ |\n|---|---|---|---|---|---|---|\n",
+    );
     for &rpm in &o.speeds {
-        let r = run_one(rpm, o)?;
-        s += &line(&r);
+        let r = run_one(rpm, cfg, o)?;
+        writeln!(
+            main,
+            "| {:.0} | {:.4} | {:.0} % | {:.3} | {:.3} | {:.3e} | {:.2} | {:.4} | {:.0} / {:.0} Hz = {:.3} | {:.1} |",
+            r.rpm,
+            r.sigma(),
+            100.0 * r.change(),
+            r.orbit_max,
+            r.orbit_mean,
+            r.guide_mean,
+            r.pocket_peak,
+            r.ratio,
+            r.f_whirl,
+            r.f_cage,
+            r.f_whirl / r.f_cage,
+            r.cpu_per_rev * 1e3
+        )?;
+        write!(conv, "| {:.0} |", r.rpm)?;
+        for s in &r.sigmas {
+            write!(conv, " {s:.4} |")?;
+        }
+        conv += "\n";
+        let e = r.energy.map(|v| v * 1e3);
+        writeln!(
+            energy,
+            "| {:.0} | {:.3e} | {:.3e} | {:.3e} | {:.3e} | {:.3e} | {:.1e} |",
+            r.rpm,
+            e[0],
+            e[1],
+            e[2],
+            e[3],
+            e[4],
+            e[0] + e[2] + e[4]
+        )?;
+        eprintln!("{}: {rpm} rpm done", cfg.label());
         rows.push(r);
     }
-    Ok((rows, s))
+    Ok((rows, main, conv, energy))
+}
+
+/// Start-up from rest: ball–pocket impacts over the first `ms` milliseconds and the cage
+/// speed history.
+struct Startup {
+    impacts: usize,
+    impacts_per_ball: Vec<usize>,
+    threshold: f64,
+    /// Impacts counted at a tenth of the threshold.
+    impacts_low: usize,
+    z: usize,
+    t: Vec<f64>,
+    ratio: Vec<f64>,
+    w_cage: Vec<f64>,
+    w_kin: Vec<f64>,
+    pocket_max: Vec<f64>,
+}
+
+/// An impact: a ball's pocket force rising through `threshold` (counted once until it
+/// falls below half of it again, so a contact that chatters around the threshold counts
+/// once).
+fn count_impacts(p: &[f64], threshold: f64) -> usize {
+    let mut n = 0;
+    let mut on = false;
+    for &f in p {
+        if !on && f >= threshold {
+            n += 1;
+            on = true;
+        } else if on && f < 0.5 * threshold {
+            on = false;
+        }
+    }
+    n
+}
+
+fn startup(ms: f64, step: f64) -> Result<Startup, Box<dyn std::error::Error>> {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/scenes/7004-startup.toml");
+    let mut s = Scene::from_text(&std::fs::read_to_string(&path)?)?;
+    s.run.duration_s = ms * 1e-3;
+    s.run.step_s = step;
+    let b = s.build_bearing()?;
+    let r = simulate(&s)?;
+    // Threshold: 1 % of the ball's share of the axial load, Fa/Z (the scale of the race
+    // loads that drive the balls), i.e. 2.5 N for the study.
+    let threshold = 0.01 * 2000.0 / b.z as f64;
+    let impacts_per_ball: Vec<usize> = r
+        .pockets
+        .iter()
+        .map(|p| count_impacts(p, threshold))
+        .collect();
+    let ramp = raceway::units::rpm_to_rad_s(s.run.speed_ramp_rpm_per_s);
+    let w_kin: Vec<f64> =
+        r.t.iter()
+            .map(|t| raceway::component::levels::cage_speed(&b, ramp * t))
+            .collect();
+    let pocket_max: Vec<f64> = (0..r.t.len())
+        .map(|k| r.pockets.iter().fold(0.0f64, |m, p| m.max(p[k])))
+        .collect();
+    Ok(Startup {
+        impacts: impacts_per_ball.iter().sum(),
+        impacts_low: r
+            .pockets
+            .iter()
+            .map(|p| count_impacts(p, 0.1 * threshold))
+            .sum(),
+        z: b.z,
+        impacts_per_ball,
+        threshold,
+        t: r.t,
+        ratio: r.ratio,
+        w_cage: r.w_cage,
+        w_kin,
+        pocket_max,
+    })
 }
 
 fn parse() -> Result<(Opts, bool, bool), Box<dyn std::error::Error>> {
@@ -208,8 +460,11 @@ fn parse() -> Result<(Opts, bool, bool), Box<dyn std::error::Error>> {
     let mut o = Opts {
         speeds: vec![30_000.0, 60_000.0, 80_000.0, 120_000.0],
         duration: 0.15,
+        windows: 5,
         step: 1e-5,
-        ..Opts::default()
+        unbalance_um: 0.0,
+        startup_ms: 10.0,
+        config: None,
     };
     let (mut quick, mut docs) = (false, false);
     let mut i = 0;
@@ -222,19 +477,19 @@ fn parse() -> Result<(Opts, bool, bool), Box<dyn std::error::Error>> {
         match a {
             "--quick" => quick = true,
             "--write-docs" => docs = true,
-            "--tight" => o.tight = true,
-            "--no-radial" => o.no_radial = true,
             "--duration" => o.duration = val()?,
+            "--windows" => o.windows = val()? as usize,
             "--step" => o.step = val()?,
-            "--viscosity" => o.viscosity = Some(val()?),
-            "--guide-width-mm" => o.guide_width_mm = Some(val()?),
-            "--guide-clearance-mm" => o.guide_clearance_mm = Some(val()?),
-            "--pocket-clearance-mm" => o.pocket_clearance_mm = Some(val()?),
-            "--mu" => o.mu = Some(val()?),
-            "--drag-density" => o.drag_density = Some(val()?),
-            "--guide-eps-max" => o.guide_eps_max = Some(val()?),
-            "--traction-vs" => o.traction_vs = Some(val()?),
-            "--pocket-friction" => o.pocket_friction = Some(val()?),
+            "--unbalance-um" => o.unbalance_um = val()?,
+            "--startup-ms" => o.startup_ms = val()?,
+            "--config" => {
+                i += 1;
+                let t = args.get(i).ok_or("--config needs a tag")?;
+                if !CONFIGS.iter().any(|c| &c.tag() == t) {
+                    return Err(format!("unknown --config `{t}`").into());
+                }
+                o.config = Some(t.clone());
+            }
             "--speeds" => {
                 i += 1;
                 o.speeds = args
@@ -251,229 +506,262 @@ fn parse() -> Result<(Opts, bool, bool), Box<dyn std::error::Error>> {
     if quick {
         o.speeds = vec![30_000.0, 120_000.0];
         o.duration = 4e-3;
+        o.windows = 2;
         o.step = 2e-5;
+        o.startup_ms = 2.0;
+    }
+    if o.windows == 0 || !(o.duration > 0.0 && o.step > 0.0) {
+        return Err("--windows, --duration and --step must be positive".into());
     }
     Ok((o, quick, docs))
 }
 
+const CONFIGS: [Config; 4] = [
+    Config {
+        guidance: Guidance::OuterRing,
+        diametral: false,
+    },
+    Config {
+        guidance: Guidance::OuterRing,
+        diametral: true,
+    },
+    Config {
+        guidance: Guidance::InnerRing,
+        diametral: false,
+    },
+    Config {
+        guidance: Guidance::InnerRing,
+        diametral: true,
+    },
+];
+
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let (o, quick, docs) = parse()?;
     println!(
-        "cage whirl, 7004, Fa 2000 N, Fr 400 N: {} s per speed, communication step {} s{}",
+        "cage whirl, 7004, Fa 2000 N, Fr 400 N: {} s per speed in {} windows, communication step {} s, cage unbalance {} µm{}",
         o.duration,
+        o.windows,
         o.step,
+        o.unbalance_um,
         if quick { " (quick)" } else { "" }
     );
-    let (rows, table) = study(&o)?;
-    print!("{table}");
-    if quick {
-        // The CI check: finite, inside the clearance (wall spring beyond eps_max).
-        for r in &rows {
-            if !(r.sigma.is_finite() && r.orbit_max < 1.5 && r.ratio.is_finite()) {
-                return Err(format!("bad result at {} rpm: {r:?}", r.rpm).into());
+    let configs: Vec<Config> = match (&o.config, quick) {
+        (_, true) => CONFIGS[..1].to_vec(),
+        (Some(t), _) => CONFIGS.iter().filter(|c| &c.tag() == t).copied().collect(),
+        (None, _) => CONFIGS.to_vec(),
+    };
+    let mut all = Vec::new();
+    for &cfg in &configs {
+        let (rows, main, conv, energy) = study(cfg, &o)?;
+        println!("\n{}\n\n{main}\n{conv}\n{energy}", cfg.label());
+        if quick {
+            // The CI check: finite, inside the clearance (wall spring beyond eps_max).
+            for r in &rows {
+                if !(r.sigma().is_finite() && r.orbit_max < 1.5 && r.ratio.is_finite()) {
+                    return Err(format!("bad result at {} rpm: {r:?}", r.rpm).into());
+                }
             }
         }
+        all.push((cfg, rows, main, conv, energy));
     }
+    let st = startup(o.startup_ms, if quick { 2e-5 } else { 5e-6 })?;
+    println!(
+        "start-up from rest, first {} ms: {} ball–pocket impacts (pocket force rising through {:.2} N), per ball {:?}; {} through {:.2} N; largest pocket force {:.3} N; cage speed ratio at the end {:.3}",
+        o.startup_ms,
+        st.impacts,
+        st.threshold,
+        st.impacts_per_ball,
+        st.impacts_low,
+        0.1 * st.threshold,
+        st.pocket_max.iter().fold(0.0f64, |m, v| m.max(*v)),
+        st.ratio.last().unwrap_or(&f64::NAN)
+    );
     if docs {
-        write_docs(&o, &rows, &table)?;
+        if o.config.is_some() {
+            return Err("--write-docs runs every configuration (drop --config)".into());
+        }
+        write_docs(&o, &all, &st)?;
     }
     Ok(())
 }
 
-/// Sampling study at one speed: sigma against the communication step.
-fn sampling(o: &Opts, rpm: f64) -> Result<String, Box<dyn std::error::Error>> {
-    let mut s = String::from(
-        "| step, s | samples per cage revolution | sigma | sigma (x,y) | orbit max / Cg |\n|---|---|---|---|---|\n",
-    );
-    for step in [1e-4, 5e-5, 2e-5, 1e-5, 5e-6] {
-        let r = run_one(rpm, &Opts { step, ..o.clone() })?;
-        let cage_hz = r.ratio * 0.38 * rpm / 60.0;
-        writeln!(
-            s,
-            "| {step:.0e} | {:.0} | {:.4} | {:.4} | {:.3} |",
-            1.0 / (step * cage_hz),
-            r.sigma,
-            r.sigma_xy,
-            r.orbit_max
-        )?;
-    }
-    Ok(s)
-}
+type Study = (Config, Vec<Row>, String, String, String);
 
-/// One-at-a-time sensitivity: sigma at each speed for each variation.
-fn sensitivity(o: &Opts) -> Result<String, Box<dyn std::error::Error>> {
-    let cases: Vec<(&str, Opts)> = vec![
-        ("scenes as they are", o.clone()),
-        (
-            "oil viscosity 0.012 Pa s (x4; land, pockets, drag)",
-            Opts {
-                viscosity: Some(0.012),
-                ..o.clone()
-            },
-        ),
-        (
-            "oil viscosity 0.03 Pa s (x10; land, pockets, drag)",
-            Opts {
-                viscosity: Some(0.03),
-                ..o.clone()
-            },
-        ),
-        (
-            "guide land width 6.4 mm (x2, the whole cage width)",
-            Opts {
-                guide_width_mm: Some(6.4),
-                ..o.clone()
-            },
-        ),
-        (
-            "guide land width 6.9 mm (land film x10 alone; a probe wider than the cage)",
-            Opts {
-                guide_width_mm: Some(6.894),
-                ..o.clone()
-            },
-        ),
-        (
-            "guide clearance 0.125 mm (0.25 mm read as diametral)",
-            Opts {
-                guide_clearance_mm: Some(0.125),
-                ..o.clone()
-            },
-        ),
-        (
-            "land film law up to eps 0.99 (guide_eps_max)",
-            Opts {
-                guide_eps_max: Some(0.99),
-                ..o.clone()
-            },
-        ),
-        (
-            "pocket clearance 0.5 mm (pocket side play = guide clearance)",
-            Opts {
-                pocket_clearance_mm: Some(0.5),
-                ..o.clone()
-            },
-        ),
-        (
-            "traction mu_max 0.1 (x2)",
-            Opts {
-                mu: Some(0.1),
-                ..o.clone()
-            },
-        ),
-        (
-            "softer traction: v_s 0.5 m/s (x10)",
-            Opts {
-                traction_vs: Some(0.5),
-                ..o.clone()
-            },
-        ),
-        (
-            "Fr = 0 (ring centred radially; sigma of a near-zero orbit is noise)",
-            Opts {
-                no_radial: true,
-                ..o.clone()
-            },
-        ),
-        (
-            "drag density 50 kg/m3 (x5)",
-            Opts {
-                drag_density: Some(50.0),
-                ..o.clone()
-            },
-        ),
-    ];
-    let mut s = String::from("| variation |");
-    for rpm in &o.speeds {
-        write!(s, " sigma at {:.0}k (orbit max / Cg) |", rpm / 1e3)?;
-    }
-    s += "\n|---|";
-    for _ in &o.speeds {
-        s += "---|";
-    }
-    s += "\n";
-    for (name, oc) in cases {
-        write!(s, "| {name} |")?;
-        for &rpm in &o.speeds {
-            let r = run_one(rpm, &oc)?;
-            write!(s, " {:.4} ({:.2}) |", r.sigma, r.orbit_max)?;
-        }
-        s += "\n";
-        eprintln!("{s}");
-    }
-    Ok(s)
-}
-
-fn write_docs(o: &Opts, rows: &[Row], table: &str) -> Result<(), Box<dyn std::error::Error>> {
+fn write_docs(o: &Opts, all: &[Study], st: &Startup) -> Result<(), Box<dyn std::error::Error>> {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("docs");
     std::fs::create_dir_all(&dir)?;
-    let samp = sampling(
-        &Opts {
-            duration: o.duration.min(0.04),
-            ..o.clone()
-        },
-        120_000.0,
-    )?;
-    eprintln!("{samp}");
-    let sens = sensitivity(&Opts {
-        duration: o.duration.min(0.05),
-        step: o.step.max(1e-5),
-        ..o.clone()
-    })?;
     #[cfg(feature = "plot")]
-    plots(&dir, rows)?;
+    plots(&dir, all, st)?;
     let here = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("examples");
     let mut md = String::new();
     md += &std::fs::read_to_string(here.join("cage_whirl_head.md"))?;
     writeln!(
         md,
-        "\n## Results\n\n{} s simulated per speed, communication step {} s, second half for the statistics:\n\n{table}",
-        o.duration, o.step
+        "\n## Results\n\n{} s simulated per speed from the quasi-static start, communication step {} s; \
+         statistics over the last of {} equal windows ({:.0} ms); cage unbalance {} µm.\n",
+        o.duration,
+        o.step,
+        o.windows,
+        o.duration / o.windows as f64 * 1e3,
+        o.unbalance_um
     )?;
+    md += "![sigma vs speed](cage-whirl-sigma.png)\n\n![whirl frequency over cage frequency](cage-whirl-frequency.png)\n\n";
+    for (cfg, _, main, conv, energy) in all {
+        writeln!(
+            md,
+            "### {}\n\n{main}\nSigma over successive windows (convergence check):\n\n{conv}\n\
+             Cage energy per cage revolution over the last window (work done on the cage; \
+             \"whirl\" = the part through the centre's velocity):\n\n{energy}\n\
+             ![orbits {}](cage-whirl-orbits-{}.png)\n",
+            cfg.label(),
+            cfg.label(),
+            cfg.tag()
+        )?;
+    }
     writeln!(
         md,
-        "\n### Sampling (120 000 rpm, {} s)\n\n{samp}",
-        o.duration.min(0.04)
-    )?;
-    writeln!(
-        md,
-        "\n### One thing at a time ({} s per run)\n\n{sens}",
-        o.duration.min(0.05)
+        "### Start-up from rest (`7004-startup.toml`, 0 to 30 000 rpm in 50 ms, outer-ring land, Cg 0.25 mm)\n\n\
+         Over the first {} ms: **{} ball–pocket impacts** (a ball's pocket force rising through {:.2} N = 1 % of Fa/Z, \
+         counted again only after falling below half of it); per ball {:?}; {} rising through a tenth of that ({:.2} N); \
+         largest pocket force {:.3} N. Cage speed ratio (cage / kinematic) at {} ms: {:.3}.\n\n\
+         ![start-up cage speed](cage-whirl-startup.png)\n\n![start-up pocket force](cage-whirl-startup-pocket.png)\n",
+        o.startup_ms,
+        st.impacts,
+        st.threshold,
+        st.impacts_per_ball,
+        st.impacts_low,
+        0.1 * st.threshold,
+        st.pocket_max.iter().fold(0.0f64, |m, v| m.max(*v)),
+        o.startup_ms,
+        st.ratio.last().unwrap_or(&f64::NAN)
     )?;
     md += &std::fs::read_to_string(here.join("cage_whirl_tail.md"))?;
     std::fs::write(dir.join("cage-whirl.md"), md)?;
-    let _ = rows;
     Ok(())
 }
 
 #[cfg(feature = "plot")]
-fn plots(dir: &Path, rows: &[Row]) -> Result<(), Box<dyn std::error::Error>> {
+fn plots(dir: &Path, all: &[Study], st: &Startup) -> Result<(), Box<dyn std::error::Error>> {
     use raceway::plot::{plot, Axes, Series};
-    let x: Vec<f64> = rows.iter().map(|r| r.rpm).collect();
-    let y: Vec<f64> = rows.iter().map(|r| r.sigma).collect();
+    let labels: Vec<String> = all.iter().map(|(c, ..)| c.label()).collect();
+    let xs: Vec<Vec<f64>> = all
+        .iter()
+        .map(|(_, r, ..)| r.iter().map(|r| r.rpm).collect())
+        .collect();
+    let sig: Vec<Vec<f64>> = all
+        .iter()
+        .map(|(_, r, ..)| r.iter().map(|r| r.sigma()).collect())
+        .collect();
+    let fr: Vec<Vec<f64>> = all
+        .iter()
+        .map(|(_, r, ..)| r.iter().map(|r| r.f_whirl / r.f_cage).collect())
+        .collect();
+    fn lines<'a>(labels: &'a [String], xs: &'a [Vec<f64>], ys: &'a [Vec<f64>]) -> Vec<Series<'a>> {
+        (0..labels.len())
+            .map(|k| Series {
+                label: &labels[k],
+                x: &xs[k],
+                y: &ys[k],
+                points: false,
+            })
+            .collect()
+    }
     plot(
         &dir.join("cage-whirl-sigma.png"),
         &Axes {
             title: "cage whirl index sigma vs shaft speed (7004, Fa 2000 N, Fr 400 N)",
             x_label: "shaft speed, rpm",
-            y_label: "sigma = std(|v|)/mean(|v|)",
+            y_label: "sigma = std(|v|)/mean(|v|), -",
+            ..Axes::default()
+        },
+        &lines(&labels, &xs, &sig),
+        &[],
+    )?;
+    let one = vec![1.0; xs[0].len()];
+    let mut s = lines(&labels, &xs, &fr);
+    s.push(Series {
+        label: "whirl = cage frequency",
+        x: &xs[0],
+        y: &one,
+        points: false,
+    });
+    plot(
+        &dir.join("cage-whirl-frequency.png"),
+        &Axes {
+            title: "cage whirl frequency over cage rotation frequency (study [0] Fig. 11 reading)",
+            x_label: "shaft speed, rpm",
+            y_label: "f_whirl / f_cage, -",
+            ..Axes::default()
+        },
+        &s,
+        &[],
+    )?;
+    for (cfg, rows, ..) in all {
+        orbit_plot(
+            &dir.join(format!("cage-whirl-orbits-{}.png", cfg.tag())),
+            rows,
+            &format!("cage-centre orbits, last window: {}", cfg.label()),
+        )?;
+    }
+    let t_ms: Vec<f64> = st.t.iter().map(|t| t * 1e3).collect();
+    let rpm = |w: &[f64]| -> Vec<f64> { w.iter().map(|w| w * 30.0 / PI).collect() };
+    let (wc, wk) = (rpm(&st.w_cage), rpm(&st.w_kin));
+    plot(
+        &dir.join("cage-whirl-startup.png"),
+        &Axes {
+            title: "start-up from rest: cage speed (7004, shaft 0 to 30 000 rpm in 50 ms)",
+            x_label: "time, ms",
+            y_label: "cage speed, rpm",
+            ..Axes::default()
+        },
+        &[
+            Series {
+                label: "cage",
+                x: &t_ms,
+                y: &wc,
+                points: false,
+            },
+            Series {
+                label: "kinematic (no slip)",
+                x: &t_ms,
+                y: &wk,
+                points: false,
+            },
+        ],
+        &[],
+    )?;
+    let pl = format!("largest of the {} pockets", st.z);
+    plot(
+        &dir.join("cage-whirl-startup-pocket.png"),
+        &Axes {
+            title: "start-up from rest: largest ball-pocket force",
+            x_label: "time, ms",
+            y_label: "pocket force, N",
             ..Axes::default()
         },
         &[Series {
-            label: "full level",
-            x: &x,
-            y: &y,
+            label: &pl,
+            x: &t_ms,
+            y: &st.pocket_max,
             points: false,
         }],
         &[],
     )?;
-    let labels: Vec<String> = rows.iter().map(|r| format!("{:.0} rpm", r.rpm)).collect();
+    Ok(())
+}
+
+/// Orbits of `rows` (guide clearances) with the clearance circle.
+#[cfg(feature = "plot")]
+fn orbit_plot(path: &Path, rows: &[Row], title: &str) -> Result<(), Box<dyn std::error::Error>> {
+    use raceway::plot::{plot, Axes, Series};
     let circle: (Vec<f64>, Vec<f64>) = (0..=200)
         .map(|k| {
-            let a = 2.0 * std::f64::consts::PI * k as f64 / 200.0;
+            let a = 2.0 * PI * k as f64 / 200.0;
             (a.cos(), a.sin())
         })
         .unzip();
-    let mut series: Vec<Series> = rows
+    let labels: Vec<String> = rows.iter().map(|r| format!("{:.0} rpm", r.rpm)).collect();
+    let mut s: Vec<Series> = rows
         .iter()
         .zip(&labels)
         .map(|(r, l)| Series {
@@ -483,22 +771,22 @@ fn plots(dir: &Path, rows: &[Row]) -> Result<(), Box<dyn std::error::Error>> {
             points: false,
         })
         .collect();
-    series.push(Series {
+    s.push(Series {
         label: "guide clearance",
         x: &circle.0,
         y: &circle.1,
         points: false,
     });
     plot(
-        &dir.join("cage-whirl-orbits.png"),
+        path,
         &Axes {
-            title: "cage-centre orbits, second half (units of the guide clearance)",
-            x_label: "x / Cg",
-            y_label: "y / Cg",
+            title,
+            x_label: "x / Cg, -",
+            y_label: "y / Cg, -",
             equal: true,
             ..Axes::default()
         },
-        &series,
+        &s,
         &[],
     )?;
     Ok(())
