@@ -45,35 +45,28 @@ struct Config {
 }
 
 impl Config {
-    fn label(&self) -> String {
-        format!(
-            "{}, Cg {} mm",
+    /// Guidance and clearance reading: (long, short) names.
+    fn names(&self) -> [(&'static str, &'static str); 2] {
+        [
             match self.guidance {
-                Guidance::InnerRing => "inner-ring land",
-                Guidance::OuterRing => "outer-ring land",
-                Guidance::Ball => "ball-riding",
+                Guidance::InnerRing => ("inner-ring land", "inner"),
+                Guidance::OuterRing => ("outer-ring land", "outer"),
+                Guidance::Ball => ("ball-riding", "ball"),
             },
             if self.diametral {
-                "0.125 (0.25 diametral)"
+                ("0.125 (0.25 diametral)", "diametral")
             } else {
-                "0.25 (radial)"
-            }
-        )
+                ("0.25 (radial)", "radial")
+            },
+        ]
+    }
+    fn label(&self) -> String {
+        let [g, c] = self.names();
+        format!("{}, Cg {} mm", g.0, c.0)
     }
     fn tag(&self) -> String {
-        format!(
-            "{}-{}",
-            match self.guidance {
-                Guidance::InnerRing => "inner",
-                Guidance::OuterRing => "outer",
-                Guidance::Ball => "ball",
-            },
-            if self.diametral {
-                "diametral"
-            } else {
-                "radial"
-            }
-        )
+        let [g, c] = self.names();
+        format!("{}-{}", g.1, c.1)
     }
 }
 
@@ -314,10 +307,10 @@ fn run_one(rpm: f64, cfg: Config, o: &Opts) -> Result<Row, Box<dyn std::error::E
     })
 }
 
-fn study(
-    cfg: Config,
-    o: &Opts,
-) -> Result<(Vec<Row>, String, String, String), Box<dyn std::error::Error>> {
+/// One configuration's rows and its three Markdown tables (main, convergence, energy).
+type Tables = (Vec<Row>, String, String, String);
+
+fn study(cfg: Config, o: &Opts) -> Result<Tables, Box<dyn std::error::Error>> {
     let mut rows = Vec::new();
     let mut main = String::from(
         "| speed, rpm | sigma (last window) | change from the window before | orbit max / Cg | orbit mean / Cg | guide force mean, N | pocket peak, N | cage speed ratio | whirl / cage frequency | CPU per shaft rev, ms |\n|---|---|---|---|---|---|---|---|---|---|\n",

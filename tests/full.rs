@@ -564,6 +564,17 @@ fn block_jacobian_ring_parts_match() {
     assert!(wm[2 * 10 + 2].abs() > 1e7, "axial stiffness {}", wm[22]);
 }
 
+/// The 7004's full model with parameters `p`, its states and aux at the quasi-static start
+/// for motion `(q, omega)`.
+fn started(p: FullParams, q: &[f64; 5], omega: f64) -> (FullModel, Vec<f64>, Vec<f64>) {
+    let b = preset("7004").unwrap().build().unwrap();
+    let mut m = FullModel::new(&b, p).unwrap();
+    let mut y = vec![0.0; m.n_states()];
+    let mut aux = vec![0.0; m.n_aux()];
+    m.init(q, omega, &mut y, &mut aux).unwrap();
+    (m, y, aux)
+}
+
 /// The level's use of the guide land (outer-ring guided 7004): with the cage displaced by
 /// `e` (inside the pocket play, so the pockets only add their film) and at rest relative
 /// to its centre, the land's share of the cage's acceleration — isolated as the difference
@@ -597,16 +608,12 @@ fn guide_land_in_the_level_restores_and_drives_forward_whirl() {
                 guidance,
                 ..FullParams::for_bearing(&b)
             };
-            let mut m = FullModel::new(&b, p).unwrap();
-            let n = m.n_states();
-            let mut y = vec![0.0; n];
-            let mut aux = vec![0.0; m.n_aux()];
-            m.init(&q, omega, &mut y, &mut aux).unwrap();
+            let (mut m, mut y, mut aux) = started(p, &q, omega);
             let (l, t0) = m.scales();
             y[0] = (ring[0] + e_xy[0]) / l;
             y[1] = (ring[1] + e_xy[1]) / l;
             wc = m.cage_omega(&y);
-            let mut dx = vec![0.0; n];
+            let mut dx = vec![0.0; y.len()];
             m.eval(&q, &[0.0; 5], omega, &y, &mut aux, &mut dx).unwrap();
             // Cage force (N) from the stored-rate derivative: dx[6..8] = a t0 / l.
             acc.push([dx[6] * l / t0 * b.cage.mass, dx[7] * l / t0 * b.cage.mass]);
@@ -661,14 +668,10 @@ fn cage_unbalance_adds_the_rotating_load() {
             cage_unbalance: unbalance,
             ..FullParams::for_bearing(&b)
         };
-        let mut m = FullModel::new(&b, p).unwrap();
-        let n = m.n_states();
-        let mut y = vec![0.0; n];
-        let mut aux = vec![0.0; m.n_aux()];
-        m.init(&q, omega, &mut y, &mut aux).unwrap();
+        let (mut m, mut y, mut aux) = started(p, &q, omega);
         let (l, t0) = m.scales();
         y[5] = 2.1; // cage angle, rad
-        let mut dx = vec![0.0; n];
+        let mut dx = vec![0.0; y.len()];
         m.eval(&q, &[0.0; 5], omega, &y, &mut aux, &mut dx).unwrap();
         let wc = m.cage_omega(&y);
         out.push(([dx[6] * l / t0, dx[7] * l / t0], wc, dx[11] / t0));
