@@ -125,9 +125,9 @@ fn scene_for(rpm: f64, o: &Opts) -> Result<Scene, Box<dyn std::error::Error>> {
 
 fn run_one(rpm: f64, o: &Opts) -> Result<Row, Box<dyn std::error::Error>> {
     let scene = scene_for(rpm, o)?;
-    let t0 = std::time::Instant::now();
+    let t0 = raceway::report::thread_cpu_s();
     let (series, _) = runner::run(&scene, &mut |_| {})?;
-    let cpu = t0.elapsed().as_secs_f64();
+    let cpu = raceway::report::thread_cpu_s() - t0;
     let col = |n: &str| series.column(n).map(|c| c.to_vec()).unwrap_or_default();
     let n = series.t.len();
     let start = n / 2;
