@@ -1120,4 +1120,42 @@ mod tests {
         assert_eq!(variables::by_vr(variables::VR_C0).unwrap().name, "C.x.x");
         assert!(SCALARS.len() <= 64, "the inputs-set mask is a u64");
     }
+
+    /// Motion-driven, the cage angle is integrated by quadrature ([`Component::quadrature`]):
+    /// under the derivatives rule the shaft speed is a cubic in time inside a step, and the
+    /// angle must be the cage ratio times its exact integral (a trapezoid or midpoint rule
+    /// misses by 4e-4 of the angle here, far above the 1e-12 asserted).
+    #[test]
+    fn motion_driven_cage_angle_is_the_exact_integral_of_a_cubic_speed() {
+        let text = "title = \"quadrature\"\nbearing = { preset = \"6205\", clearance_um = 10.0 }\n\
+                    [model]\nlevel = \"ring\"\ncausality = \"motion\"\nring_dof = 2\n\
+                    [inputs]\nrule = \"derivatives\"\n";
+        let mut c = Component::from_text(text).unwrap();
+        let vr = |n: &str| variables::by_name(n).unwrap().vr;
+        for n in [
+            "shaft.x", "shaft.z", "shaft.rx", "shaft.ry", "shaft.vx", "shaft.vy", "shaft.vz",
+            "shaft.wx", "shaft.wy",
+        ] {
+            c.set_real(vr(n), 0.0).unwrap();
+        }
+        c.set_real(vr("shaft.y"), -15e-6).unwrap();
+        let (w0, d) = (100.0, [5e3, -2e6, 3e9]);
+        c.set_real(vr("shaft.omega"), w0).unwrap();
+        for (k, v) in d.iter().enumerate() {
+            c.set_input_derivative(vr("shaft.omega"), k as u32 + 1, *v)
+                .unwrap();
+        }
+        let h = 1e-3;
+        c.do_step(0.0, h).unwrap();
+        let w_end = w0 + h * (d[0] + h * (d[1] / 2.0 + h * d[2] / 6.0));
+        let ratio = c.get_real(vr("cage.omega")).unwrap() / w_end;
+        let integral = h * (w0 + h * (d[0] / 2.0 + h * (d[1] / 6.0 + h * d[2] / 24.0)));
+        let angle = c.state.x[0];
+        assert!(ratio > 0.3 && ratio < 0.5, "cage ratio {ratio}");
+        assert!(
+            (angle - ratio * integral).abs() <= 1e-12 * angle.abs(),
+            "cage angle {angle} vs {}",
+            ratio * integral
+        );
+    }
 }
