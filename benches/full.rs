@@ -6,7 +6,7 @@
 //! it takes one short step per scene as a smoke run.
 
 use raceway::component::{variables, Component};
-use std::time::Instant;
+use raceway::report::{load_average, thread_cpu_s};
 
 fn main() {
     let full = std::env::args().any(|a| a == "--bench");
@@ -38,15 +38,16 @@ fn main() {
         }
         let s0 = c.stats();
         let n = revs * 10;
-        let t0 = Instant::now();
+        let t0 = thread_cpu_s();
         for i in settle..settle + n {
             c.do_step(i as f64 * h, h).expect("step");
         }
-        let cpu = t0.elapsed().as_secs_f64();
+        let cpu = thread_cpu_s() - t0;
         let s1 = c.stats();
         println!(
-            "full 7004 {name}: {:.1} ms CPU per shaft revolution ({revs} revolutions)",
-            cpu / revs as f64 * 1e3
+            "full 7004 {name}: {:.1} ms thread CPU per shaft revolution ({revs} revolutions; load average {})",
+            cpu / revs as f64 * 1e3,
+            load_average()
         );
         println!(
             "  per revolution: rhs {:.0}, jacobians {:.0}, LU {:.0}, accepted {:.0}, rejected {:.0}",

@@ -5,19 +5,7 @@
 //! the figures and the integrator counters. Run: `cargo bench --bench skidding`.
 
 use raceway::component::{variables, Component};
-use std::time::Instant;
-
-/// CPU time of this thread, s (`CLOCK_THREAD_CPUTIME_ID`: not inflated when other
-/// processes share the cores).
-fn cpu_now() -> f64 {
-    let mut ts = libc::timespec {
-        tv_sec: 0,
-        tv_nsec: 0,
-    };
-    // SAFETY: a valid pointer to a timespec.
-    unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut ts) };
-    ts.tv_sec as f64 + 1e-9 * ts.tv_nsec as f64
-}
+use raceway::report::{load_average, thread_cpu_s as cpu_now};
 
 fn vr(n: &str) -> u32 {
     variables::by_name(n).unwrap().vr
@@ -41,19 +29,17 @@ fn case(label: &str, h: f64, sim: f64) -> f64 {
     let s0 = c.stats();
     let n = (sim / h).round() as usize;
     let t_start = c.time();
-    let t0 = Instant::now();
     let c0 = cpu_now();
     for i in 0..n {
         c.do_step(t_start + i as f64 * h, h).expect("step");
     }
     let cpu = cpu_now() - c0;
-    let wall = t0.elapsed().as_secs_f64();
     let s1 = c.stats();
     println!(
-        "skidding 7008CE 6000 rpm 300 N, {label}: {:.3} s CPU per simulated s ({}x real time; wall {:.3} s)",
+        "skidding 7008CE 6000 rpm 300 N, {label}: {:.3} s thread CPU per simulated s ({}x real time; load average {})",
         cpu / sim,
         ((sim / cpu) * 100.0).round() / 100.0,
-        wall / sim
+        load_average()
     );
     println!(
         "  per simulated s: rhs {:.0}, jacobians {:.0}, LU {:.0}, accepted {:.0}, rejected {:.0}",

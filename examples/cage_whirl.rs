@@ -101,17 +101,6 @@ struct Record {
     cpu: f64,
 }
 
-/// CPU time of this thread, s (`CLOCK_THREAD_CPUTIME_ID`).
-fn thread_cpu() -> f64 {
-    let mut ts = libc::timespec {
-        tv_sec: 0,
-        tv_nsec: 0,
-    };
-    // SAFETY: `ts` is a valid, writable timespec; the clock id is a constant.
-    unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut ts) };
-    ts.tv_sec as f64 + ts.tv_nsec as f64 * 1e-9
-}
-
 fn var(name: &str) -> u32 {
     variables::by_name(name).expect("a contract variable").vr
 }
@@ -157,7 +146,7 @@ fn simulate(scene: &Scene) -> Result<Record, Box<dyn std::error::Error>> {
     let (_, t0) = model.scales();
     // The cage block of the free cage: `[x, y, z, bx, by, theta, vx, vy, vz, bx', by', w_c T0]`.
     let cage_w = |x: &[f64]| x[11] / t0;
-    let cpu0 = thread_cpu();
+    let cpu0 = raceway::report::thread_cpu_s();
     set(&mut c, 0.0)?;
     c.refresh_outputs()?;
     for i in 0..=n {
@@ -188,7 +177,7 @@ fn simulate(scene: &Scene) -> Result<Record, Box<dyn std::error::Error>> {
             tot.cage_drag_power,
         ]);
     }
-    r.cpu = thread_cpu() - cpu0;
+    r.cpu = raceway::report::thread_cpu_s() - cpu0;
     Ok(r)
 }
 
@@ -335,6 +324,11 @@ fn study(cfg: Config, o: &Opts) -> Result<Tables, Box<dyn std::error::Error>> {
     );
     for &rpm in &o.speeds {
         let r = run_one(rpm, cfg, o)?;
+        eprintln!(
+            "  {rpm:.0} rpm: {:.1} ms of thread CPU per shaft rev (load average {})",
+            r.cpu_per_rev * 1e3,
+            raceway::report::load_average()
+        );
         writeln!(
             main,
             "| {:.0} | {:.4} | {:.0} % | {:.3} | {:.3} | {:.3e} | {:.2} | {:.4} | {:.0} / {:.0} Hz = {:.3} | {:.1} |",

@@ -189,7 +189,7 @@ fn probe_scene() {
     let mut c = Component::from_text(&text).unwrap();
     let h = 1e-4;
     let n: usize = std::env::var("N").map(|s| s.parse().unwrap()).unwrap_or(20);
-    let t0 = std::time::Instant::now();
+    let t0 = raceway::report::thread_cpu_s();
     for i in 0..n {
         c.do_step(i as f64 * h, h).unwrap();
         if i % (n / 10).max(1) == 0 || i == n - 1 {
@@ -209,7 +209,12 @@ fn probe_scene() {
             );
         }
     }
-    println!("cpu {:?} stats {:?}", t0.elapsed(), c.stats());
+    println!(
+        "thread CPU {:.3} s (load average {}) stats {:?}",
+        raceway::report::thread_cpu_s() - t0,
+        raceway::report::load_average(),
+        c.stats()
+    );
 }
 
 /// Mean of the cage speed over `n` steps of `h` after `skip` steps.

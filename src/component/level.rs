@@ -101,6 +101,13 @@ pub trait LevelModel: Send + std::fmt::Debug {
     ) -> bool {
         false
     }
+    /// Whether the states' rates depend on the motion inputs (and time) only, never on the
+    /// states or the level's memory: then a motion-driven step integrates them by
+    /// quadrature instead of an adaptive integrator (the cage angle at a fixed ratio of the
+    /// shaft speed). Default `false`.
+    fn states_are_quadrature(&self) -> bool {
+        false
+    }
     /// Initial states at the start motion.
     fn init(&mut self, m: &Motion, x: &mut [f64], aux: &mut [f64]) -> Result<()>;
     /// Time derivatives of the level's states at `t`; when `wrench` is given, also the

@@ -931,7 +931,7 @@ fn outcome_text(o: &Outcome) -> String {
     }
 }
 
-/// The Markdown page of a campaign; `times`: run time per base, s.
+/// The Markdown page of a campaign; `times`: thread CPU time per base, s.
 pub fn markdown(
     results: &[(Cell, Outcome)],
     t_base: f64,
@@ -988,7 +988,7 @@ pub fn markdown(
          errors, {failed} failed.**\n",
         super::Machine::detect().describe()
     );
-    s += "## Bases\n\n| base | preset | axial share | window (s) | product | cells | converged | late / statistics | clean errors | failed | run time (s) |\n\
+    s += "## Bases\n\n| base | preset | axial share | window (s) | product | cells | converged | late / statistics | clean errors | failed | CPU time (s) |\n\
           |---|---|---|---|---|---|---|---|---|---|---|\n";
     for b in BASES {
         let r: Vec<&(Cell, Outcome)> = results.iter().filter(|(c, _)| c.base == b).collect();
@@ -1036,9 +1036,9 @@ pub fn campaign(long: bool, dir: &std::path::Path, verbose: bool) -> Result<Vec<
     let mut times = Vec::new();
     for b in BASES {
         let these: Vec<Cell> = cells.iter().filter(|c| c.base == b).copied().collect();
-        let start = std::time::Instant::now();
+        let start = super::thread_cpu_s();
         res.extend(run(&these, t_base, verbose));
-        times.push((b.name, start.elapsed().as_secs_f64()));
+        times.push((b.name, super::thread_cpu_s() - start));
     }
     let cmd = if long {
         "cargo run --release -- bench --stability --long"

@@ -66,7 +66,7 @@ pub fn run(a: RunArgs) -> Result<String> {
     std::fs::create_dir_all(&out).map_err(|e| io(&out, e))?;
     let quiet = a.quiet;
     let bar_on = !quiet && std::io::IsTerminal::is_terminal(&std::io::stderr());
-    let started = std::time::Instant::now();
+    let started = raceway::report::thread_cpu_s();
     let mut last = -1i64;
     let mut progress = |f: f64| {
         if !bar_on {
@@ -84,7 +84,7 @@ pub fn run(a: RunArgs) -> Result<String> {
     if bar_on {
         eprintln!();
     }
-    let cpu = started.elapsed().as_secs_f64();
+    let cpu = raceway::report::thread_cpu_s() - started;
 
     let csv = out.join("series.csv");
     std::fs::write(&csv, series.to_csv()).map_err(|e| io(&csv, e))?;
@@ -145,11 +145,12 @@ pub fn run(a: RunArgs) -> Result<String> {
     .ok();
     writeln!(
         s,
-        "simulated {:.4} s in {} steps, {:.3} s of CPU ({:.2}x real time)",
+        "simulated {:.4} s in {} steps, {:.3} s of thread CPU ({:.2}x real time; load average {})",
         scene.run.duration_s,
         n - 1,
         cpu,
-        scene.run.duration_s / cpu
+        scene.run.duration_s / cpu,
+        raceway::report::load_average()
     )
     .ok();
     writeln!(

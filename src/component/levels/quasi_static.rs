@@ -118,6 +118,10 @@ impl LevelModel for QuasiStaticLevel {
     fn n_states(&self) -> usize {
         1
     }
+    fn states_are_quadrature(&self) -> bool {
+        // The cage angle, at cage_ratio * omega.
+        true
+    }
     fn n_aux(&self) -> usize {
         AUX_PER_BALL * self.psi.len()
     }

@@ -422,6 +422,11 @@ impl LevelModel for RingLevel {
             RingDof::Five => &[0, 1, 2, 3, 4],
         }
     }
+    fn states_are_quadrature(&self) -> bool {
+        // Cage (and shaft) angle only: rates cage_ratio * omega and omega. Wear and thermal
+        // states have rates that depend on the contact state.
+        self.slow.is_none()
+    }
     fn init(&mut self, _m: &Motion, x: &mut [f64], aux: &mut [f64]) -> Result<()> {
         x.fill(0.0);
         aux.fill(0.0);

@@ -1,0 +1,723 @@
+//! The speed benchmark of issue #17: each row of the goals table with its goal and the
+//! measured value, the SciPy peer on the same ring equations measured in the same run,
+//! the cost against ball count (9, 16, 32) and against the communication step, written to
+//! `docs/speed.md`. Run: `cargo bench --bench speed` (about two minutes on one core;
+//! `-- --quick` for a shorter look that still writes the page, `-- --no-peer` without the
+//! SciPy peer, `-- --out DIR` for another folder).
+//!
+//! Clocks: every time is the measuring thread's CPU time
+//! ([`raceway::report::thread_cpu_s`], `CLOCK_THREAD_CPUTIME_ID`), the load average is
+//! printed beside the figures. The SciPy peer reports its process CPU time
+//! (`time.process_time`, BLAS limited to one thread by `scripts/peer-scipy`).
+//!
+//! The C ABI rows call the exported `extern "C"` functions (`raceway_set_reals`,
+//! `raceway_do_step`, `raceway_get_reals`) from Rust: the same symbols, argument checks,
+//! panic guards and error handling a C host goes through, without needing a C compiler in
+//! the benchmark (a C call into the cdylib adds one indirect jump per call, a few ns
+//! against microseconds per step). A counting global allocator counts the heap
+//! allocations inside the timed loop.
+
+use raceway::capi::{
+    raceway_create, raceway_do_step, raceway_free, raceway_get_reals, raceway_last_error,
+    raceway_set_reals, RacewayComponent, RacewayStatus,
+};
+use raceway::component::{variables, Component, Level, Method, Scene};
+use raceway::report::work_precision::{self as wp, Config};
+use raceway::report::{force_error, load_average, median, thread_cpu_s, Machine, Samples};
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::ffi::CString;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicU64, Ordering};
+
+/// The system allocator, counting allocations (`alloc`, `alloc_zeroed`, `realloc`).
+struct Counting;
+
+static ALLOCS: AtomicU64 = AtomicU64::new(0);
+
+// SAFETY: forwards every call unchanged to the system allocator.
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, l: Layout) -> *mut u8 {
+        ALLOCS.fetch_add(1, Ordering::Relaxed);
+        // SAFETY: the caller's promises are System's.
+        unsafe { System.alloc(l) }
+    }
+    unsafe fn alloc_zeroed(&self, l: Layout) -> *mut u8 {
+        ALLOCS.fetch_add(1, Ordering::Relaxed);
+        // SAFETY: as above.
+        unsafe { System.alloc_zeroed(l) }
+    }
+    unsafe fn realloc(&self, p: *mut u8, l: Layout, n: usize) -> *mut u8 {
+        ALLOCS.fetch_add(1, Ordering::Relaxed);
+        // SAFETY: as above.
+        unsafe { System.realloc(p, l, n) }
+    }
+    unsafe fn dealloc(&self, p: *mut u8, l: Layout) {
+        // SAFETY: as above.
+        unsafe { System.dealloc(p, l) }
+    }
+}
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+fn vr(n: &str) -> u32 {
+    variables::by_name(n)
+        .unwrap_or_else(|| panic!("no variable {n}"))
+        .vr
+}
+
+/// The 8 outputs a host reads every step.
+const OUTPUTS: [&str; 8] = [
+    "force.x",
+    "force.y",
+    "force.z",
+    "moment.x",
+    "moment.y",
+    "torque.z",
+    "cage.omega",
+    "contact.max_load",
+];
+
+/// A motion-driven scene: the inner ring held at `(0, y0, z0)` with a synchronous orbit
+/// of 1 µm added by the host.
+fn motion_scene(level: &str, bearing: &str, dof: u32, y0: f64, z0: f64, rpm: f64) -> String {
+    let omega = rpm * std::f64::consts::PI / 30.0;
+    format!(
+        "title = \"speed bench: {level} motion-driven\"\nbearing = {bearing}\n\n[model]\n\
+         level = \"{level}\"\ncausality = \"motion\"\nring_dof = {dof}\n\n[inputs]\n\
+         rule = \"velocity\"\ninitial = {{ \"shaft.y\" = {y0:e}, \"shaft.z\" = {z0:e}, \"shaft.omega\" = {omega} }}\n"
+    )
+}
+
+/// Result of a host loop.
+#[derive(Clone, Copy, Debug)]
+struct Loop {
+    /// Median thread CPU time per communication step, s.
+    step_s: f64,
+    /// Communication step, s.
+    h: f64,
+    /// Heap allocations per step inside the timed loop.
+    allocs: f64,
+}
+
+impl Loop {
+    fn rtf(&self) -> f64 {
+        self.h / self.step_s
+    }
+}
+
+/// A C host's loop through the C ABI: each step sets the 4 orbit inputs (`shaft.x`, `.y`,
+/// `.vx`, `.vy`), advances `h` and reads the 8 outputs. `warm` untimed steps, then
+/// `reps` timed blocks of `n` steps; returns the median block.
+fn capi_loop(scene: &str, h: f64, warm: usize, n: usize, reps: usize) -> Loop {
+    let text = CString::new(scene).expect("scene text");
+    let mut err = vec![0 as std::ffi::c_char; 512];
+    // SAFETY: NUL-terminated text, an error buffer of the stated length.
+    let c: *mut RacewayComponent =
+        unsafe { raceway_create(text.as_ptr(), err.as_mut_ptr(), err.len()) };
+    if c.is_null() {
+        // SAFETY: raceway_create wrote a NUL-terminated message.
+        let m = unsafe { std::ffi::CStr::from_ptr(err.as_ptr()) };
+        panic!("raceway_create: {}", m.to_string_lossy());
+    }
+    let s = Scene::from_text(scene).expect("scene");
+    let init = |n: &str| s.inputs.initial.get(n).copied().unwrap_or(0.0);
+    let (x0, y0) = (init("shaft.x"), init("shaft.y"));
+    let omega = init("shaft.omega");
+    let a = 1e-6;
+    let in_vr = [vr("shaft.x"), vr("shaft.y"), vr("shaft.vx"), vr("shaft.vy")];
+    let out_vr: Vec<u32> = OUTPUTS.iter().map(|n| vr(n)).collect();
+    // The motion inputs the loop does not move: set once, from the scene's values.
+    let held = [
+        "shaft.z", "shaft.rx", "shaft.ry", "shaft.vz", "shaft.wx", "shaft.wy",
+    ];
+    let held_vr: Vec<u32> = held.iter().map(|n| vr(n)).collect();
+    let held_v: Vec<f64> = held.iter().map(|n| init(n)).collect();
+    // SAFETY: a live instance, arrays of the stated lengths.
+    let r = unsafe { raceway_set_reals(c, held_vr.as_ptr(), held_v.as_ptr(), held.len()) };
+    assert!(matches!(r, RacewayStatus::Ok), "set_reals (held inputs)");
+    let mut inputs = [0.0; 4];
+    let mut outputs = [0.0; 8];
+    let mut t = 0.0;
+    let mut step = |t: &mut f64| {
+        let (sn, cs) = (omega * *t).sin_cos();
+        inputs = [x0 + a * cs, y0 + a * sn, -a * omega * sn, a * omega * cs];
+        // SAFETY: a live instance, arrays of the stated lengths.
+        unsafe {
+            let r = raceway_set_reals(c, in_vr.as_ptr(), inputs.as_ptr(), 4);
+            assert!(matches!(r, RacewayStatus::Ok), "set_reals");
+            let r = raceway_do_step(c, *t, h);
+            if !matches!(r, RacewayStatus::Ok) {
+                let m = std::ffi::CStr::from_ptr(raceway_last_error(c));
+                panic!("do_step at t = {t}: {}", m.to_string_lossy());
+            }
+            let r = raceway_get_reals(c, out_vr.as_ptr(), outputs.as_mut_ptr(), 8);
+            assert!(matches!(r, RacewayStatus::Ok), "get_reals");
+        }
+        *t += h;
+        assert!(outputs.iter().all(|v| v.is_finite()));
+    };
+    for _ in 0..warm {
+        step(&mut t);
+    }
+    let mut times = Vec::with_capacity(reps);
+    let mut allocs = 0u64;
+    for _ in 0..reps {
+        let a0 = ALLOCS.load(Ordering::Relaxed);
+        let c0 = thread_cpu_s();
+        for _ in 0..n {
+            step(&mut t);
+        }
+        let dt = thread_cpu_s() - c0;
+        allocs += ALLOCS.load(Ordering::Relaxed) - a0;
+        times.push(dt / n as f64);
+    }
+    // SAFETY: created above, freed once.
+    unsafe { raceway_free(c) };
+    Loop {
+        step_s: median(&mut times),
+        h,
+        allocs: allocs as f64 / (reps * n) as f64,
+    }
+}
+
+/// A load-driven host loop through the Rust API (the shipped scenes' own use: loads held,
+/// a rotating load if the scene's `[run]` asks for one), reading the 8 outputs every step.
+/// Returns the thread CPU per step and the forces at every communication point.
+fn rust_loop(scene: &Scene, h: f64, t_end: f64) -> (f64, Samples) {
+    let mut c = Component::new(scene.clone()).expect("scene");
+    let init = |n: &str| scene.inputs.initial.get(n).copied().unwrap_or(0.0);
+    let omega = init("shaft.omega");
+    let f_rot = scene.run.rotating_load_n;
+    let (lx, ly) = (vr("load.x"), vr("load.y"));
+    let out_vr: Vec<u32> = OUTPUTS.iter().map(|n| vr(n)).collect();
+    let n = (t_end / h).round() as usize;
+    let mut s = Samples {
+        t: Vec::with_capacity(n),
+        f: Vec::with_capacity(n),
+    };
+    for name in [
+        "load.x",
+        "load.y",
+        "load.z",
+        "load.mx",
+        "load.my",
+        "shaft.omega",
+    ] {
+        c.set_real(vr(name), init(name)).expect("input");
+    }
+    let mut out = [0.0; 8];
+    let c0 = thread_cpu_s();
+    for i in 0..n {
+        let t = i as f64 * h;
+        if f_rot != 0.0 {
+            let (sn, cs) = (omega * t).sin_cos();
+            c.set_real(lx, init("load.x") + f_rot * cs).expect("load.x");
+            c.set_real(ly, init("load.y") + f_rot * sn).expect("load.y");
+        }
+        c.do_step(t, h).expect("step");
+        for (o, &v) in out.iter_mut().zip(&out_vr) {
+            *o = c.get_real(v).expect("output");
+        }
+        s.t.push(t + h);
+        s.f.push([out[0], out[1], out[2]]);
+    }
+    ((thread_cpu_s() - c0) / n as f64, s)
+}
+
+/// One row of the goals table.
+struct Goal {
+    case: String,
+    goal: String,
+    measured: String,
+    met: Option<bool>,
+    note: String,
+}
+
+fn yes_no(met: Option<bool>) -> &'static str {
+    match met {
+        Some(true) => "yes",
+        Some(false) => "**no**",
+        None => "—",
+    }
+}
+
+/// Skidding 7008CE at 6000 rpm, 300 N axial (benches/skidding.rs's case), settled 20 ms in
+/// 1 ms steps, then `t_end` in host steps of 0.1 ms; returns (CPU per step, samples).
+fn skidding_run(rtol: f64, t_end: f64) -> (f64, Samples) {
+    let text = include_str!("../examples/scenes/7008ce-runup.toml");
+    let omega = 6000.0 * std::f64::consts::PI / 30.0;
+    let text = text.replace(
+        "\"shaft.omega\" = 0.0",
+        &format!("\"shaft.omega\" = {omega}"),
+    );
+    let mut scene = Scene::from_text(&text).expect("scene");
+    scene.solver.rtol = rtol;
+    scene.solver.atol_m = rtol * 1e-4;
+    let mut c = Component::new(scene).expect("scene");
+    for i in 0..20 {
+        c.do_step(i as f64 * 1e-3, 1e-3).expect("settle");
+    }
+    let h = 1e-4;
+    let t0 = c.time();
+    let n = (t_end / h).round() as usize;
+    let fv = [vr("force.x"), vr("force.y"), vr("force.z")];
+    let out_vr: Vec<u32> = OUTPUTS.iter().map(|n| vr(n)).collect();
+    let mut s = Samples {
+        t: Vec::new(),
+        f: Vec::new(),
+    };
+    let mut out = [0.0; 8];
+    let c0 = thread_cpu_s();
+    for i in 0..n {
+        c.do_step(t0 + i as f64 * h, h).expect("step");
+        for (o, &v) in out.iter_mut().zip(&out_vr) {
+            *o = c.get_real(v).expect("output");
+        }
+        s.t.push(c.time());
+        s.f.push([
+            c.get_real(fv[0]).unwrap(),
+            c.get_real(fv[1]).unwrap(),
+            c.get_real(fv[2]).unwrap(),
+        ]);
+    }
+    ((thread_cpu_s() - c0) / n as f64, s)
+}
+
+/// Full level, 7004 scene at `rpm`, outputs every 20 µs: ms of CPU per shaft revolution
+/// (one revolution settled untimed, then `revs` timed).
+fn full_ms_per_rev(text: &str, rpm: f64, revs: usize) -> f64 {
+    let mut c = Component::from_text(text).expect("scene");
+    let h = 20e-6;
+    let per_rev = ((60.0 / rpm) / h).round() as usize;
+    let out_vr: Vec<u32> = OUTPUTS.iter().map(|n| vr(n)).collect();
+    let mut out = [0.0; 8];
+    let mut t = 0.0;
+    let mut run = |c: &mut Component, steps: usize| {
+        for _ in 0..steps {
+            c.do_step(t, h).expect("step");
+            t += h;
+            for (o, &v) in out.iter_mut().zip(&out_vr) {
+                *o = c.get_real(v).expect("output");
+            }
+        }
+    };
+    run(&mut c, per_rev);
+    let c0 = thread_cpu_s();
+    run(&mut c, per_rev * revs);
+    let cpu = thread_cpu_s() - c0;
+    // Simulated time of the timed part over the revolution time.
+    let sim_revs = (per_rev * revs) as f64 * h / (60.0 / rpm);
+    cpu / sim_revs * 1e3
+}
+
+/// The SciPy peer on case 6205-2dof against raceway's two integrators at equal error:
+/// returns the Markdown section and the smallest SciPy-best / raceway ratio.
+fn scipy_peer(quick: bool) -> Result<(String, Option<f64>), String> {
+    let mut cfg = Config {
+        verbose: false,
+        ..Config::default()
+    };
+    cfg.cases.retain(|c| c.name == "6205-2dof");
+    cfg.rtols = if quick {
+        vec![1e-4, 1e-6, 1e-8]
+    } else {
+        vec![1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9]
+    };
+    cfg.repeats = if quick { 1 } else { 3 };
+    let rep = wp::run(&cfg).map_err(|e| e.to_string())?;
+    let case = &cfg.cases[0];
+    wp::export_for_peer(&cfg, case, &cfg.cache_dir).map_err(|e| e.to_string())?;
+    let mut cmd = std::process::Command::new("scripts/peer-scipy");
+    cmd.arg(&cfg.cache_dir);
+    if quick {
+        cmd.arg("--quick");
+    }
+    let status = cmd
+        .status()
+        .map_err(|e| format!("scripts/peer-scipy: {e}"))?;
+    if !status.success() {
+        return Err("scripts/peer-scipy failed".into());
+    }
+    let p = cfg.cache_dir.join("6205-2dof-scipy.csv");
+    let text = std::fs::read_to_string(&p).map_err(|e| format!("{}: {e}", p.display()))?;
+    let peer = wp::read_peer_csv(&text).map_err(|e| e.to_string())?;
+    let curve = |m: Method| -> Vec<(f64, f64)> {
+        rep.series("6205-2dof", m)
+            .iter()
+            .map(|r| (r.err_l2, r.median_s))
+            .collect()
+    };
+    let (c_dp, c_ro) = (curve(Method::Dopri5), curve(Method::Rosenbrock));
+    let mut s = String::from(
+        "| peer | rtol | CPU (ms) | err L2 | raceway CPU at that error (ms) | SciPy / raceway |\n|---|---|---|---|---|---|\n",
+    );
+    // For each SciPy point: raceway's faster integrator interpolated at the same error.
+    let mut best_ratio: Vec<(f64, f64)> = Vec::new(); // (err, ratio)
+    for p in &peer {
+        let rt = match (
+            wp::time_at_error(&c_dp, p.err_l2),
+            wp::time_at_error(&c_ro, p.err_l2),
+        ) {
+            (Some(a), Some(b)) => Some(a.min(b)),
+            (a, b) => a.or(b),
+        };
+        let _ = writeln!(
+            s,
+            "| {} | {:.0e} | {:.2} | {:.2e} | {} | {} |",
+            p.method,
+            p.rtol,
+            p.median_s * 1e3,
+            p.err_l2,
+            rt.map_or("outside raceway's range".into(), |t| format!(
+                "{:.3}",
+                t * 1e3
+            )),
+            rt.map_or("—".into(), |t| format!("{:.0}×", p.median_s / t)),
+        );
+        if let Some(t) = rt {
+            best_ratio.push((p.err_l2, p.median_s / t));
+        }
+    }
+    // Best SciPy method at each error: the smallest ratio over methods is the figure the
+    // goal is about (conservative: every SciPy point counts).
+    let worst = best_ratio.iter().map(|r| r.1).min_by(|a, b| a.total_cmp(b));
+    s += "\nraceway's own points on this case (same run):\n\n| integrator | rtol | CPU (ms) | err L2 |\n|---|---|---|---|\n";
+    for r in &rep.rows {
+        let _ = writeln!(
+            s,
+            "| {} | {:.0e} | {:.3} | {:.2e} |",
+            wp::method_name(r.method),
+            r.rtol,
+            r.median_s * 1e3,
+            r.err_l2
+        );
+    }
+    Ok((s, worst))
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    let quick = args.iter().any(|a| a == "--quick");
+    let peer = !args.iter().any(|a| a == "--no-peer");
+    let out = args
+        .iter()
+        .position(|a| a == "--out")
+        .and_then(|i| args.get(i + 1))
+        .map_or(PathBuf::from("docs"), PathBuf::from);
+    let load_before = load_average();
+    let (warm, n, reps) = if quick { (100, 500, 3) } else { (200, 2000, 5) };
+    let mut goals: Vec<Goal> = Vec::new();
+    let mut page = String::new();
+
+    // --- Ring, motion-driven, through the C ABI.
+    let ring6205 = motion_scene(
+        "ring",
+        "{ preset = \"6205\", clearance_um = 10.0 }",
+        2,
+        -15e-6,
+        0.0,
+        1750.0,
+    );
+    let l = capi_loop(&ring6205, 1e-4, warm, n, reps);
+    println!(
+        "ring 6205 motion C ABI: {:.2} µs/step, {:.0}x real time, {:.2} allocations/step",
+        l.step_s * 1e6,
+        l.rtf(),
+        l.allocs
+    );
+    let ring_allocs = l.allocs;
+    goals.push(Goal {
+        case: "ring 6205, motion-driven, 10 kHz, 8 outputs read each step, C ABI".into(),
+        goal: "≥ 100× real time".into(),
+        measured: format!("{:.0}× ({:.2} µs per step)", l.rtf(), l.step_s * 1e6),
+        met: Some(l.rtf() >= 100.0),
+        note: String::new(),
+    });
+    let ring7008 = motion_scene("ring", "\"7008ce\"", 5, -5e-6, 10e-6, 6000.0);
+    let l = capi_loop(&ring7008, 1e-4, warm, n, reps);
+    println!(
+        "ring 7008CE 5-DOF motion C ABI: {:.2} µs/step, {:.0}x real time, {:.2} allocations/step",
+        l.step_s * 1e6,
+        l.rtf(),
+        l.allocs
+    );
+    goals.push(Goal {
+        case: "ring 7008CE 5-DOF, 16 balls, same loop".into(),
+        goal: "≥ 50×".into(),
+        measured: format!("{:.0}× ({:.2} µs per step)", l.rtf(), l.step_s * 1e6),
+        met: Some(l.rtf() >= 50.0),
+        note: "6000 rpm, 10 µm axial + 5 µm radial".into(),
+    });
+    let ring5_allocs = l.allocs;
+
+    // --- Every shipped ring scene, as shipped and without its sub-step cap.
+    let mut scenes_md = String::from(
+        "| scene | step (s) | cap (s) | as shipped: real-time factor | as shipped: force error | uncapped: real-time factor | uncapped: force error | uncapped, rtol/100: real-time factor | uncapped, rtol/100: force error |\n|---|---|---|---|---|---|---|---|---|\n",
+    );
+    let mut worst_scene = f64::INFINITY;
+    let mut worst_uncapped = f64::INFINITY;
+    let dir = Path::new("examples/scenes");
+    let mut names: Vec<PathBuf> = std::fs::read_dir(dir)
+        .expect("examples/scenes")
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .collect();
+    names.sort();
+    for p in names {
+        let text = std::fs::read_to_string(&p).expect("scene");
+        let Ok(scene) = Scene::from_text(&text) else {
+            continue;
+        };
+        if scene.model.level != Level::Ring {
+            continue;
+        }
+        let h = scene.run.step_s;
+        let t_end = if quick {
+            100.0 * h
+        } else {
+            (200.0 * h).min(0.02)
+        };
+        let (cpu, shipped) = rust_loop(&scene, h, t_end);
+        let mut open = scene.clone();
+        open.solver.max_substep_s = 0.0;
+        let (cpu_open, uncapped) = rust_loop(&open, h, t_end);
+        // Uncapped with a 100× tighter tolerance: the other way to buy the accuracy.
+        let mut open_tight = open.clone();
+        open_tight.solver.rtol = scene.solver.rtol / 100.0;
+        open_tight.solver.atol_m = scene.solver.atol_m / 100.0;
+        let (cpu_ot, uncapped_tight) = rust_loop(&open_tight, h, t_end);
+        // A tight reference: rtol 1e-9 and a 1 µs cap.
+        let mut tight = scene.clone();
+        tight.solver.rtol = 1e-9;
+        tight.solver.atol_m = 1e-13;
+        tight.solver.max_substep_s = 1e-6;
+        tight.solver.max_substeps = 10_000_000;
+        let (_, reference) = rust_loop(&tight, h, t_end);
+        let err = |s: &Samples| force_error(s, &reference).map_or(f64::NAN, |e| e.0);
+        let (e_shipped, e_open, e_ot) = (err(&shipped), err(&uncapped), err(&uncapped_tight));
+        let name = p.file_stem().unwrap().to_string_lossy().to_string();
+        println!(
+            "scene {name}: {:.1}x as shipped (error {e_shipped:.1e}), {:.1}x uncapped (error {e_open:.1e}), {:.1}x uncapped at rtol/100 (error {e_ot:.1e})",
+            h / cpu,
+            h / cpu_open,
+            h / cpu_ot
+        );
+        worst_scene = worst_scene.min(h / cpu);
+        worst_uncapped = worst_uncapped.min(h / cpu_open);
+        let _ = writeln!(
+            scenes_md,
+            "| {name} | {h:.0e} | {} | {:.1}× | {e_shipped:.1e} | {:.1}× | {e_open:.1e} | {:.1}× | {e_ot:.1e} |",
+            if scene.solver.max_substep_s > 0.0 {
+                format!("{:.0e}", scene.solver.max_substep_s)
+            } else {
+                "none".into()
+            },
+            h / cpu,
+            h / cpu_open,
+            h / cpu_ot
+        );
+    }
+    goals.push(Goal {
+        case: "every shipped ring scene (load-driven, spall, EHL film)".into(),
+        goal: "≥ 10×".into(),
+        measured: format!(
+            "slowest {:.1}× as shipped, {:.1}× without the sub-step cap",
+            worst_scene, worst_uncapped
+        ),
+        met: Some(worst_scene >= 10.0),
+        note: "per scene, with force errors, below".into(),
+    });
+
+    // --- Quasi-static 7008CE, 12 000 rpm, motion-driven, C ABI.
+    let qs = include_str!("../examples/scenes/7008ce-qs-motion.toml");
+    let l = capi_loop(qs, 1e-4, warm / 4, n / 4, reps);
+    println!(
+        "quasi-static 7008CE 12000 rpm C ABI: {:.2} µs/step, {:.1}x real time, {:.2} allocations/step",
+        l.step_s * 1e6,
+        l.rtf(),
+        l.allocs
+    );
+    goals.push(Goal {
+        case: "quasi-static 7008CE 12 000 rpm, motion-driven, 10 kHz (C ABI)".into(),
+        goal: "≥ 10×".into(),
+        measured: format!("{:.1}× ({:.1} µs per step)", l.rtf(), l.step_s * 1e6),
+        met: Some(l.rtf() >= 10.0),
+        note: "scene 7008ce-qs-motion".into(),
+    });
+
+    // --- Skidding 7008CE 6000 rpm, outputs every 0.1 ms; error against rtol 1e-9.
+    let t_sk = if quick { 0.005 } else { 0.02 };
+    let (cpu_sk, s_sk) = skidding_run(1e-5, t_sk);
+    let (_, s_ref) = skidding_run(1e-9, t_sk);
+    let (e_l2, _) = force_error(&s_sk, &s_ref).unwrap_or((f64::NAN, f64::NAN));
+    println!(
+        "skidding 7008CE 6000 rpm, 0.1 ms: {:.1}x real time, force error {e_l2:.1e}",
+        1e-4 / cpu_sk
+    );
+    goals.push(Goal {
+        case: "skidding 7008CE 6000 rpm, outputs every 0.1 ms, force error ≤ 1e-4".into(),
+        goal: "≥ 5×".into(),
+        measured: format!(
+            "{:.2}× at the scene's rtol 1e-5 (force error {e_l2:.1e} against rtol 1e-9)",
+            1e-4 / cpu_sk
+        ),
+        met: Some(1e-4 / cpu_sk >= 5.0 && e_l2 <= 1e-4),
+        note: format!("{t_sk} s after 20 ms of settling"),
+    });
+
+    // --- Full level (measured only).
+    let revs = if quick { 1 } else { 3 };
+    for (name, text, rpm) in [
+        (
+            "30 000",
+            include_str!("../examples/scenes/7004-30000.toml"),
+            30_000.0,
+        ),
+        (
+            "120 000",
+            include_str!("../examples/scenes/7004-120000.toml"),
+            120_000.0,
+        ),
+    ] {
+        let ms = full_ms_per_rev(text, rpm, revs);
+        println!("full 7004 {name} rpm, 20 µs: {ms:.1} ms CPU per revolution");
+        goals.push(Goal {
+            case: format!("full 7004 at {name} rpm, outputs every 20 µs"),
+            goal: "≤ 10 ms CPU per revolution".into(),
+            measured: format!("{ms:.1} ms per revolution"),
+            met: Some(ms <= 10.0),
+            note: "force error not measured here (the scenes' tolerances)".into(),
+        });
+    }
+
+    // --- Allocations in the C loop (counted in the ring rows).
+    goals.push(Goal {
+        case: "C ABI calls in the loop (set_reals, do_step, get_reals)".into(),
+        goal: "0 heap allocations".into(),
+        measured: format!("{ring_allocs:.1} per step (6205 ring), {ring5_allocs:.1} (7008CE ring)"),
+        met: Some(ring_allocs == 0.0 && ring5_allocs == 0.0),
+        note: "counted by a global allocator in this benchmark".into(),
+    });
+
+    // --- SciPy peer.
+    let mut peer_md = String::new();
+    if peer {
+        match scipy_peer(quick) {
+            Ok((md, worst)) => {
+                println!(
+                    "SciPy peer: smallest SciPy/raceway ratio at equal error {}",
+                    worst.map_or("n/a".into(), |r| format!("{r:.0}x"))
+                );
+                goals.push(Goal {
+                    case: "the same ring equations in SciPy (LSODA, Radau, DOP853) at equal force error, same run".into(),
+                    goal: "≥ 100× faster than the best of them".into(),
+                    measured: worst.map_or("no overlap in error".into(), |r| {
+                        format!("{r:.0}× (smallest ratio over all SciPy points)")
+                    }),
+                    met: worst.map(|r| r >= 100.0),
+                    note: "load-driven 2-DOF 6205 (work-precision case 6205-2dof)".into(),
+                });
+                peer_md = md;
+            }
+            Err(e) => {
+                println!("SciPy peer skipped: {e}");
+                peer_md = format!("SciPy peer not run: {e}\n");
+            }
+        }
+    }
+
+    // --- Cost against ball count and step.
+    let mut scale_md = String::from(
+        "| balls | step (s) | CPU per step (µs) | per ball (ns) | real-time factor |\n|---|---|---|---|---|\n",
+    );
+    for z in [9, 16, 32] {
+        let scene = motion_scene(
+            "ring",
+            &format!(
+                "{{ preset = \"6205\", clearance_um = 10.0, ball_count = {z}, ball_diameter_mm = 3.5 }}"
+            ),
+            2,
+            -15e-6,
+            0.0,
+            1750.0,
+        );
+        let l = capi_loop(&scene, 1e-4, warm, n, reps);
+        let _ = writeln!(
+            scale_md,
+            "| {z} | 1e-4 | {:.2} | {:.0} | {:.0}× |",
+            l.step_s * 1e6,
+            l.step_s * 1e9 / z as f64,
+            l.rtf()
+        );
+    }
+    scale_md += "\n| step (s) | balls | CPU per step (µs) | CPU per simulated s (ms) | real-time factor |\n|---|---|---|---|---|\n";
+    for h in [1e-5, 1e-4, 1e-3] {
+        let steps = ((n as f64) * 1e-4 / h).ceil().max(50.0) as usize;
+        let l = capi_loop(&ring6205, h, warm.min(steps), steps, reps);
+        let _ = writeln!(
+            scale_md,
+            "| {h:.0e} | 9 | {:.2} | {:.1} | {:.0}× |",
+            l.step_s * 1e6,
+            l.step_s / h * 1e3,
+            l.rtf()
+        );
+    }
+    print!("{scale_md}");
+
+    // --- The page.
+    let machine = Machine::detect();
+    let load_after = load_average();
+    let _ = write!(
+        page,
+        "# Speed\n\nGenerated by `cargo bench --bench speed`{} (benches/speed.rs, issue #17). \
+         Every time is the measuring thread's CPU time (`CLOCK_THREAD_CPUTIME_ID`), one core, \
+         release build; the SciPy peer reports its process CPU time. Machine: {}. Load average \
+         before {load_before}, after {load_after} (a load above the core count means the \
+         machine was shared while measuring: CPU time stays honest, caches suffer).\n\n\
+         ## Goals\n\n| case | goal | measured | met | note |\n|---|---|---|---|---|\n",
+        if quick { " -- --quick" } else { "" },
+        machine.describe()
+    );
+    for g in &goals {
+        let _ = writeln!(
+            page,
+            "| {} | {} | {} | {} | {} |",
+            g.case,
+            g.goal,
+            g.measured,
+            yes_no(g.met),
+            g.note
+        );
+    }
+    page += "\nThe C ABI rows drive the exported `raceway_set_reals` / `raceway_do_step` / \
+             `raceway_get_reals` (4 motion inputs set, 8 outputs read per step; the shaft held \
+             off-centre with a 1 µm synchronous orbit), called from Rust. Real-time factor: \
+             simulated time over CPU time.\n\n## Shipped ring scenes\n\nEach scene with its own \
+             communication step and tolerances, load-driven through the Rust API (loads held, \
+             8 outputs read per step), as shipped and with its `max_substep_s` removed, from the scene's \
+             start (the ring released under load: contact onsets and impacts are in the \
+             window). Force error: relative L2 of (Fx, Fy, Fz) over the communication points \
+             against the same scene at rtol 1e-9, atol 1e-13 m and a 1 µs sub-step cap. \
+             The last two columns: no cap but rtol and atol 100× tighter than the scene's.\n\n";
+    page += &scenes_md;
+    page +=
+        "\n## Cost against ball count and step\n\nRing level, 2 DOF, motion-driven, C ABI loop \
+             as above. Ball count: the 6205's pitch circle with 3.5 mm balls (so 32 fit), \
+             Z = 9, 16, 32. Step: the 6205 (9 balls) at three communication steps.\n\n";
+    page += &scale_md;
+    if peer {
+        page += "\n## SciPy peer\n\n`peers/scipy_ring.py` (run by `scripts/peer-scipy`) \
+                 integrates the load-driven 2-DOF 6205 ring of the work-precision case \
+                 `6205-2dof` with `solve_ivp` (Radau, LSODA, DOP853), NumPy right-hand side and \
+                 analytic Jacobian, straight through the window; raceway's DOPRI5 and RODAS4 \
+                 points on the same case are measured in the same run and interpolated (log-log) \
+                 at SciPy's error.\n\n";
+        page += &peer_md;
+    }
+    std::fs::create_dir_all(&out).expect("output folder");
+    let path = out.join("speed.md");
+    std::fs::write(&path, &page).expect("write speed.md");
+    println!("wrote {} (load average {load_after})", path.display());
+}
