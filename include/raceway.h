@@ -13,8 +13,8 @@
  * the library's at run time. Binary compatibility follows the major version (the SONAME
  * libraceway.so.MAJOR).
  *
- * Threads: instances are independent (the library keeps no global mutable state): any
- * number may live in one process and run on different threads at the same time. One
+ * Threads: instances are independent: any number may live in one process and run on
+ * different threads at the same time, and nothing one does is seen by another. One
  * instance is used by one thread at a time: calls on the same RacewayComponent from two
  * threads at once must be serialised by the caller (a mutex, or handing it over with a
  * join or a queue); the same holds for one RacewayState. raceway_last_error(c) belongs to
