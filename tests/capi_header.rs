@@ -6,8 +6,11 @@
 //!    `src/capi` and must equal the checked-in file;
 //! 3. every `#define RACEWAY_VR_*` in the header equals the table's value reference, and
 //!    every variable has one;
-//! 4. a C99 program (`-Wall -Wextra -pedantic -Werror`) including the header links to the
-//!    cdylib and checks each constant against the library's run-time lookup; a C++
+//! 4. the version macros (`RACEWAY_VERSION_MAJOR`, `_MINOR`, `_PATCH`, `_STRING`, added
+//!    after the includes) are Cargo.toml's version;
+//! 5. a C99 program (`-Wall -Wextra -pedantic -Werror`) including the header links to the
+//!    cdylib and checks each constant (and the version string) against the library's
+//!    run-time lookup; a C++
 //!    translation unit includes the header unchanged (`c++ -fsyntax-only`).
 //!
 //! `RACEWAY_BLESS=1 cargo test --test capi_header` rewrites files 1 and 2.
@@ -77,10 +80,32 @@ fn vr_source() -> String {
     s
 }
 
-/// The header as cbindgen generates it now.
+/// The version macros of the header, from Cargo.toml's version (never copied by hand).
+fn version_macros() -> String {
+    format!(
+        "\n/*\n The version of this header (Cargo.toml's); raceway_version() is the library's.\n */\n\
+         #define RACEWAY_VERSION_MAJOR {}\n\
+         #define RACEWAY_VERSION_MINOR {}\n\
+         #define RACEWAY_VERSION_PATCH {}\n\
+         #define RACEWAY_VERSION_STRING \"{}\"",
+        env!("CARGO_PKG_VERSION_MAJOR"),
+        env!("CARGO_PKG_VERSION_MINOR"),
+        env!("CARGO_PKG_VERSION_PATCH"),
+        env!("CARGO_PKG_VERSION")
+    )
+}
+
+/// The header as cbindgen generates it now (with `cbindgen.toml`, plus the version macros
+/// after the includes).
 fn header_source() -> String {
     let root = root();
-    let config = cbindgen::Config::from_file(root.join("cbindgen.toml")).expect("cbindgen.toml");
+    let mut config =
+        cbindgen::Config::from_file(root.join("cbindgen.toml")).expect("cbindgen.toml");
+    assert!(
+        config.after_includes.is_none(),
+        "cbindgen.toml: after_includes is where this test puts the version macros"
+    );
+    config.after_includes = Some(version_macros());
     let bindings = cbindgen::Builder::new()
         .with_config(config)
         .with_src(root.join("src/capi/mod.rs"))
@@ -125,6 +150,17 @@ fn header_is_generated_and_its_constants_equal_the_table() {
         n += 1;
     }
     assert_eq!(defs.get("RACEWAY_VARIABLE_COUNT"), Some(&(n as u64)));
+    for (name, value) in [
+        ("RACEWAY_VERSION_MAJOR", env!("CARGO_PKG_VERSION_MAJOR")),
+        ("RACEWAY_VERSION_MINOR", env!("CARGO_PKG_VERSION_MINOR")),
+        ("RACEWAY_VERSION_PATCH", env!("CARGO_PKG_VERSION_PATCH")),
+    ] {
+        assert_eq!(defs.get(name), Some(&value.parse().unwrap()), "{name}");
+    }
+    assert!(header.contains(&format!(
+        "#define RACEWAY_VERSION_STRING \"{}\"",
+        env!("CARGO_PKG_VERSION")
+    )));
     let vr_defines = defs.keys().filter(|k| k.starts_with("RACEWAY_VR_")).count();
     assert_eq!(
         vr_defines, n,
@@ -165,6 +201,7 @@ fn header_compiles_as_c99_and_cpp_and_its_constants_match_the_library() {
         c += &format!("  check({}, \"{}\");\n", c_constant_name(v.name), v.name);
     }
     c += "  if (raceway_variable_count() != RACEWAY_VARIABLE_COUNT) bad++;\n\
+          \x20 if (strcmp(raceway_version(), RACEWAY_VERSION_STRING) != 0) bad++;\n\
           \x20 printf(\"checked %d mismatches %d version %s\\n\", RACEWAY_VARIABLE_COUNT, bad, raceway_version());\n\
           \x20 return bad != 0;\n}\n";
     let c_path = dir.join("constants.c");
