@@ -116,6 +116,12 @@ impl Limits {
         })
     }
 
+    /// Is `value` finite and within the limit of input `name`? (No allocation: the hot
+    /// path asks this and builds the message only on refusal.)
+    pub fn allows(&self, name: &str, value: f64) -> bool {
+        value.is_finite() && self.of_variable(name).is_none_or(|lim| value.abs() <= lim)
+    }
+
     /// Refuse `value` for input `name` outside its limit; the message names `field` (the
     /// variable, or its scene path), the value, the range and where it comes from.
     pub fn check(&self, field: &str, name: &str, value: f64) -> Result<()> {
@@ -129,7 +135,7 @@ impl Limits {
                     field,
                     format!("{value:e} {unit}"),
                     format!(
-                        "[{:e}, {lim:e}] {unit}: {} for this bearing (`raceway scene --explain`, plausibility limits)",
+                        "[{:.4e}, {lim:.4e}] {unit}: {} for this bearing (`raceway scene --explain`, plausibility limits)",
                         -lim,
                         why(name)
                     ),
@@ -248,6 +254,6 @@ mod tests {
             m.contains("inputs.initial.shaft.x") && m.contains("-1e0 m"),
             "{m}"
         );
-        assert!(m.contains(&format!("{:e}", l.radial)), "{m}");
+        assert!(m.contains(&format!("{:.4e}", l.radial)), "{m}");
     }
 }
