@@ -383,3 +383,65 @@ fn step_cpu_of_shipped_scenes() {
         "the default budget must be far above every shipped scene's step"
     );
 }
+
+/// The C ABI passes through the same doors: an implausible value is refused with
+/// `InvalidArgument` (all or nothing for `set_reals`), a spent budget is `StepFailed`,
+/// and the instance stays usable.
+#[test]
+fn c_abi_refuses_implausible_values_and_reports_the_budget() {
+    use raceway::capi::*;
+    use std::ffi::{CStr, CString};
+    let text = CString::new(full_with(
+        "atol_m = 1e-9",
+        "atol_m = 1e-9\nmax_step_cpu_s = 0.05",
+    ))
+    .unwrap();
+    let mut err = [0 as std::ffi::c_char; 512];
+    // SAFETY: valid NUL-terminated scene and error buffer; the instance is freed below.
+    let c = unsafe { raceway_create(text.as_ptr(), err.as_mut_ptr(), err.len()) };
+    assert!(!c.is_null());
+    let msg = || {
+        unsafe { CStr::from_ptr(raceway_last_error(c)) }
+            .to_string_lossy()
+            .into_owned()
+    };
+    unsafe {
+        assert_eq!(
+            raceway_do_step(c, 0.0, 1e-4),
+            RacewayStatus::Ok,
+            "{}",
+            msg()
+        );
+        let mut y0 = f64::NAN;
+        assert_eq!(
+            raceway_get_real(c, vr("shaft.y"), &mut y0),
+            RacewayStatus::Ok
+        );
+        let st = raceway_set_real(c, vr("shaft.y"), -1e-3);
+        assert_eq!(st, RacewayStatus::InvalidArgument);
+        assert!(
+            msg().contains("shaft.y") && msg().contains("allowed"),
+            "{}",
+            msg()
+        );
+        let vrs = [vr("shaft.y"), vr("shaft.x")];
+        let vals = [-1e-6, 5.0];
+        let st = raceway_set_reals(c, vrs.as_ptr(), vals.as_ptr(), 2);
+        assert_eq!(st, RacewayStatus::InvalidArgument, "{}", msg());
+        let mut y = f64::NAN;
+        assert_eq!(
+            raceway_get_real(c, vr("shaft.y"), &mut y),
+            RacewayStatus::Ok
+        );
+        assert_eq!(y.to_bits(), y0.to_bits(), "nothing set");
+        assert_eq!(raceway_do_step(c, 1e-4, 2e-2), RacewayStatus::StepFailed);
+        assert!(msg().contains("solver.max_step_cpu_s"), "{}", msg());
+        assert_eq!(
+            raceway_do_step(c, 1e-4, 1e-4),
+            RacewayStatus::Ok,
+            "{}",
+            msg()
+        );
+        raceway_free(c);
+    }
+}
