@@ -445,3 +445,29 @@ fn c_abi_refuses_implausible_values_and_reports_the_budget() {
         raceway_free(c);
     }
 }
+
+/// A whole `raceway run` stops at its first step over budget with a clean error that names
+/// the budget (exit status non-zero, no hang).
+#[test]
+fn a_run_stops_on_the_budget() {
+    let dir = std::env::temp_dir().join(format!("raceway-budget-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let scene = dir.join("budget.toml");
+    std::fs::write(
+        &scene,
+        full_with("atol_m = 1e-9", "atol_m = 1e-9\nmax_step_cpu_s = 1e-6"),
+    )
+    .unwrap();
+    let t0 = Instant::now();
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_raceway"))
+        .args(["run", "-q", "--duration", "0.002", "--out"])
+        .arg(dir.join("out"))
+        .arg(&scene)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success(), "{stderr}");
+    assert!(stderr.contains("solver.max_step_cpu_s"), "{stderr}");
+    assert!(t0.elapsed().as_secs_f64() < 30.0);
+    let _ = std::fs::remove_dir_all(&dir);
+}
