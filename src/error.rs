@@ -50,6 +50,18 @@ pub enum Error {
         /// Why.
         reason: String,
     },
+    /// A step that exceeded its work budget (sub-steps or CPU time) and was stopped; the
+    /// component state is unchanged. A host may retry with a shorter step (FMI: discard).
+    Budget {
+        /// Communication time at which the step started.
+        t: f64,
+        /// The scene field that sets the budget, e.g. `solver.max_step_cpu_s`.
+        field: &'static str,
+        /// The budget, with its unit.
+        limit: String,
+        /// What the step had used when it was stopped.
+        used: String,
+    },
     /// A call that is not allowed in the current state.
     CallOrder {
         /// The call.
@@ -101,6 +113,17 @@ impl fmt::Display for Error {
             Error::StepFailed { t, reason } => {
                 write!(f, "step from t = {t} s failed, state unchanged: {reason}")
             }
+            Error::Budget {
+                t,
+                field,
+                limit,
+                used,
+            } => write!(
+                f,
+                "step from t = {t} s stopped, state unchanged: it exceeded the work budget \
+                 `{field}` = {limit} (used {used}); raise `{field}` in the scene or shorten \
+                 the communication step"
+            ),
             Error::CallOrder { call, reason } => write!(f, "`{call}` refused: {reason}"),
             Error::Io(m) => write!(f, "{m}"),
         }

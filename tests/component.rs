@@ -73,7 +73,7 @@ fn failed_step_leaves_state_unchanged_and_says_why() {
     let before = c.get_state();
     // A huge step needs more sub-steps than the scene allows.
     let e = c.do_step(1e-4, 1e3).unwrap_err();
-    assert!(matches!(e, Error::StepFailed { .. }), "{e}");
+    assert!(matches!(e, Error::Budget { .. }), "{e}");
     assert!(e.to_string().contains("max_substeps"), "{e}");
     assert_eq!(c.get_state(), before);
     // Still usable.

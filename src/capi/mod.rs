@@ -104,7 +104,9 @@ impl From<Error> for Failure {
                 RacewayStatus::InvalidArgument
             }
             Error::CallOrder { .. } => RacewayStatus::CallOrder,
-            Error::StepFailed { .. } | Error::NotConverged { .. } => RacewayStatus::StepFailed,
+            Error::StepFailed { .. } | Error::NotConverged { .. } | Error::Budget { .. } => {
+                RacewayStatus::StepFailed
+            }
             Error::Io(_) => RacewayStatus::Error,
         };
         Failure::new(status, e.to_string())

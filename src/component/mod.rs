@@ -7,6 +7,7 @@
 
 pub mod level;
 pub mod levels;
+pub mod limits;
 pub mod scene;
 pub mod schema;
 pub mod state;
@@ -66,6 +67,80 @@ const I_C: usize = 61;
 /// Time offset of the central difference that gives output derivatives, s.
 const DT_DERIV: f64 = 1e-7;
 
+/// Largest communication time and step, s (about 32 years): beyond it a step of a
+/// millisecond is no longer resolved by a double.
+pub const T_MAX: f64 = 1e9;
+
+/// Most evaluations between two reads of the CPU clock (a read costs 0.2 µs, one
+/// right-hand side of the cheapest level 0.3 µs: at most 0.3 % of a step).
+const BUDGET_EVERY: u32 = 256;
+
+/// CPU time aimed at between two reads of the clock, s: evaluations that cost more are
+/// checked more often, down to every one, so a step whose every right-hand side takes a
+/// second still stops within a second of its budget.
+const BUDGET_READ_S: f64 = 1e-3;
+
+/// CPU time of the calling thread, s (`CLOCK_THREAD_CPUTIME_ID`).
+pub fn thread_cpu_s() -> f64 {
+    let mut ts = libc::timespec {
+        tv_sec: 0,
+        tv_nsec: 0,
+    };
+    // SAFETY: `ts` is a valid, writable timespec; the clock id is a constant.
+    unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut ts) };
+    ts.tv_sec as f64 + 1e-9 * ts.tv_nsec as f64
+}
+
+/// The CPU-time budget of one communication step.
+#[derive(Debug, Clone, Copy)]
+struct Budget {
+    start: f64,
+    limit: f64,
+    evals: u32,
+    /// Evaluation count at which the clock is read next.
+    next: u32,
+    /// CPU time used when the budget ran out.
+    spent: Option<f64>,
+}
+
+impl Budget {
+    fn new(limit: f64) -> Self {
+        Budget {
+            start: thread_cpu_s(),
+            limit,
+            evals: 0,
+            next: 1,
+            spent: None,
+        }
+    }
+    /// Count one evaluation; `true` once the budget is spent. The clock is read about
+    /// every [`BUDGET_READ_S`] of CPU time as estimated from the evaluations so far, and
+    /// at least every [`BUDGET_EVERY`] evaluations.
+    fn spent(&mut self) -> bool {
+        if self.spent.is_some() {
+            return true;
+        }
+        self.evals = self.evals.saturating_add(1);
+        if self.evals >= self.next {
+            let used = thread_cpu_s() - self.start;
+            if used > self.limit {
+                self.spent = Some(used);
+                return true;
+            }
+            // This call precedes its evaluation: `evals - 1` of them are done.
+            let done = self.evals - 1;
+            let gap = if done == 0 {
+                1.0
+            } else {
+                let per_eval = used / done as f64;
+                (BUDGET_READ_S / per_eval.max(1e-12)).clamp(1.0, BUDGET_EVERY as f64)
+            };
+            self.next = self.evals.saturating_add(gap as u32);
+        }
+        false
+    }
+}
+
 /// FNV-1a over bytes: a stable fingerprint (not cryptographic).
 pub fn fingerprint(bytes: &[u8]) -> u64 {
     let mut h: u64 = 0xcbf2_9ce4_8422_2325;
@@ -118,6 +193,8 @@ struct Sys<'a> {
     /// The last error the level raised at a trial point (the integrator sees NaN there and
     /// retries with a smaller step; if it gives up, this is the cause it reports).
     last_error: Option<Error>,
+    /// The step's CPU budget (none for output evaluations).
+    budget: Option<Budget>,
 }
 
 impl Sys<'_> {
@@ -161,6 +238,9 @@ impl OdeSystem for Sys<'_> {
         self.st.x.len()
     }
     fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) -> std::result::Result<(), String> {
+        if self.budget.as_mut().is_some_and(Budget::spent) {
+            return Err("CPU budget spent".into());
+        }
         // A trial state can be far off (a too-large trial step through a stiff contact):
         // a level that cannot evaluate there makes the step fail and shrink, not the run.
         if let Err(e) = self.eval(t - self.t0, y, dy, None) {
@@ -170,6 +250,9 @@ impl OdeSystem for Sys<'_> {
         Ok(())
     }
     fn jacobian(&mut self, t: f64, y: &[f64], jac: &mut nalgebra::DMatrix<f64>) -> bool {
+        if self.budget.as_mut().is_some_and(Budget::spent) {
+            return false;
+        }
         let Some(jw) = self.jw.as_deref_mut() else {
             return false;
         };
@@ -232,6 +315,7 @@ pub struct Component {
     jwork: JacWork,
     integrator: Integrator,
     opts: Options,
+    limits: limits::Limits,
 }
 
 /// The scene's integrator and its options. `Auto` picks DOPRI5: the levels so far are not
@@ -414,6 +498,7 @@ impl Component {
             wm: vec![0.0; 50],
         };
         let mut c = Component {
+            limits: limits::Limits::of(&bearing),
             jwork,
             scene,
             bearing,
@@ -440,6 +525,10 @@ impl Component {
     /// The validated bearing.
     pub fn bearing(&self) -> &Bearing {
         &self.bearing
+    }
+    /// The plausibility limits of the inputs (see [`limits`]).
+    pub fn limits(&self) -> &limits::Limits {
+        &self.limits
     }
     /// The causality.
     pub fn causality(&self) -> Causality {
@@ -481,7 +570,9 @@ impl Component {
                 reason: format!("`{}` is not an input of this causality", v.name),
             });
         }
-        if !value.is_finite() {
+        if call == "set_real" {
+            self.limits.check(v.name, v.name, value)?;
+        } else if !value.is_finite() {
             return Err(Error::invalid(v.name, value, "a finite number"));
         }
         Ok(index_of(vr).expect("in table"))
@@ -562,13 +653,35 @@ impl Component {
     /// Advance from `t` to `t + h`, sub-stepping inside. On error the state is unchanged
     /// and the message says why.
     pub fn do_step(&mut self, t: f64, h: f64) -> Result<()> {
-        if !(h.is_finite() && h > 0.0) {
-            return Err(Error::invalid("h", h, "a finite number > 0"));
+        if !(h.is_finite() && h > 0.0 && h <= T_MAX) {
+            return Err(Error::invalid(
+                "h",
+                h,
+                format!("a finite step > 0 and <= {T_MAX:e} s"),
+            ));
         }
-        if !t.is_finite() {
-            return Err(Error::invalid("t", t, "a finite number"));
+        if !(t.is_finite() && t.abs() + h <= T_MAX) {
+            return Err(Error::invalid(
+                "t",
+                t,
+                format!("a finite time with |t| + h <= {T_MAX:e} s (h = {h} s)"),
+            ));
         }
-        let tol = 1e-9 * (1.0 + self.state.t.abs()).max(h);
+        // The step must advance time by h as a double can tell (to 1 ppm): from t = 1e15 s
+        // a step of 1e-4 s would otherwise leave time where it was.
+        if ((t + h) - t - h).abs() > 1e-6 * h {
+            let least = 1e6 * f64::EPSILON * (t.abs() + h);
+            return Err(Error::invalid(
+                "h",
+                h,
+                format!(
+                    "at least {least:.3e} s at t = {t} s (t + h must differ from t by h to 1 ppm)"
+                ),
+            ));
+        }
+        // An absolute bound on the mismatch (not one that grows with h: a step of 1e10 s
+        // must not excuse a jump of 5 s).
+        let tol = 1e-9 * (1.0 + self.state.t.abs());
         if self.state.started && (t - self.state.t).abs() > tol {
             return Err(Error::CallOrder {
                 call: "do_step",
@@ -579,6 +692,7 @@ impl Component {
             });
         }
         self.require_inputs("do_step")?;
+        self.check_inputs_at(h)?;
         self.scratch.clone_from(&self.state);
         let mut sc = std::mem::take(&mut self.scratch);
         // The host owns time: re-sync to its communication point (within the tolerance).
@@ -593,7 +707,7 @@ impl Component {
         }
         self.scratch = sc;
         r.map_err(|e| match e {
-            Error::StepFailed { .. } => e,
+            Error::StepFailed { .. } | Error::Budget { .. } => e,
             other => Error::StepFailed {
                 t,
                 reason: other.to_string(),
@@ -626,6 +740,7 @@ impl Component {
             naux,
             t0,
             last_error: None,
+            budget: Some(Budget::new(self.scene.solver.max_step_cpu_s)),
         };
         let r = self.integrator.integrate(
             &mut sys,
@@ -636,10 +751,22 @@ impl Component {
             &self.opts,
         );
         if let Err(e) = r {
+            if let Some(used) = sys.budget.and_then(|b| b.spent) {
+                return Err(Error::Budget {
+                    t: t0,
+                    field: "solver.max_step_cpu_s",
+                    limit: format!("{} s", self.scene.solver.max_step_cpu_s),
+                    used: format!("{used:.3e} s of CPU time, reaching t = {}", e_time(&e)),
+                });
+            }
             let hint = match e {
-                SolverError::TooManySteps { .. } => {
-                    " (the scene's limit solver.max_substeps; raise it or shorten the step)"
-                        .to_string()
+                SolverError::TooManySteps { t, max_steps } => {
+                    return Err(Error::Budget {
+                        t: t0,
+                        field: "solver.max_substeps",
+                        limit: format!("{max_steps} sub-steps"),
+                        used: format!("all of them, reaching t = {t} s of t = {} s", t0 + h),
+                    });
                 }
                 _ => sys
                     .last_error
@@ -674,6 +801,24 @@ impl Component {
         }
         for j in 0..nl {
             sc.x[j] += h / 6.0 * (k0[j] + 4.0 * k1[j] + k2[j]);
+        }
+        Ok(())
+    }
+
+    /// Refuse a step whose inputs, moved along the scene's rule to the step end `h`, leave
+    /// their plausibility limits (a velocity or derivative that carries a position off).
+    fn check_inputs_at(&self, h: f64) -> Result<()> {
+        let c = self.causality();
+        for (i, v) in SCALARS.iter().enumerate() {
+            if !v.is_input(c) {
+                continue;
+            }
+            let u = input_at(&self.state, i, h, self.scene.inputs.rule);
+            if self.limits.allows(v.name, u) {
+                continue;
+            }
+            self.limits
+                .check(&format!("{} at the step end t + h", v.name), v.name, u)?;
         }
         Ok(())
     }
@@ -746,6 +891,7 @@ impl Component {
             naux: self.n_level_aux,
             t0,
             last_error: None,
+            budget: None,
         };
         let mut r = sys.eval(s, &w.y, &mut w.k[0], None);
         for (sign, dest) in [(1.0, &mut fwd), (-1.0, &mut bwd)] {
@@ -1031,6 +1177,18 @@ fn all_finite(v: &[f64]) -> bool {
     const EXP: u64 = 0x7ff0_0000_0000_0000;
     !v.iter()
         .fold(false, |bad, x| bad | (x.to_bits() & EXP == EXP))
+}
+
+/// The time an integration failure reached (for messages).
+fn e_time(e: &SolverError) -> String {
+    match e {
+        SolverError::TooManySteps { t, .. }
+        | SolverError::StepSizeUnderflow { t, .. }
+        | SolverError::Rhs { t, .. }
+        | SolverError::NonFinite { t, .. }
+        | SolverError::Singular { t, .. } => format!("{t} s"),
+        SolverError::Invalid { .. } => "the start".into(),
+    }
 }
 
 /// Input `i` at `s` after the step start under `rule`.

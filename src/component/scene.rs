@@ -319,7 +319,12 @@ impl FullSpec {
                 0.0,
                 1e3,
             )? * 1e-6,
-            pocket_v_s: positive(&f("pocket_v_s"), self.pocket_v_s)?,
+            pocket_v_s: in_range(
+                &f("pocket_v_s"),
+                self.pocket_v_s,
+                super::limits::SLIP_SPEED_MIN,
+                1e3,
+            )?,
             guide_width: gw,
             guide_stiffness: positive(&f("guide_stiffness"), self.guide_stiffness)?,
             guide_eps_max: in_range(&f("guide_eps_max"), self.guide_eps_max, 0.05, 0.999)?,
@@ -399,9 +404,18 @@ pub struct SolverSpec {
     pub atol_m: f64,
     /// Largest internal sub-step, s (0: no limit beyond the communication step).
     pub max_substep_s: f64,
-    /// Most internal steps in one communication step before the step fails.
+    /// Most internal steps in one communication step before the step fails (the work
+    /// budget in sub-steps).
     pub max_substeps: u32,
+    /// Most thread CPU time one communication step may take, s, before it stops with
+    /// [`Error::Budget`] and the state as before (the work budget in time).
+    pub max_step_cpu_s: f64,
 }
+
+/// Default of [`SolverSpec::max_step_cpu_s`], s: far above any shipped scene's step (the
+/// full level's costliest takes well under a second) and short enough that a host never
+/// waits minutes on a step that cannot finish.
+pub const MAX_STEP_CPU_S: f64 = 20.0;
 
 impl Default for SolverSpec {
     fn default() -> Self {
@@ -411,6 +425,7 @@ impl Default for SolverSpec {
             atol_m: 1e-10,
             max_substep_s: 0.0,
             max_substeps: 100_000,
+            max_step_cpu_s: MAX_STEP_CPU_S,
         }
     }
 }
@@ -501,7 +516,7 @@ impl BearingRef {
                     .try_into::<BearingSpec>()
                     .map_err(|e| Error::Parse {
                         what: "scene [bearing]".into(),
-                        message: e.to_string(),
+                        message: super::schema::user_words(&e.to_string()),
                     })
             }
         }
@@ -535,18 +550,81 @@ pub struct Scene {
 }
 
 impl Scene {
+    /// The `[run]` excitations within the bearing's plausibility limits: the speed at the
+    /// end of the ramp, the orbit radius and the rotating load.
+    fn check_run_limits(&self, lim: &super::limits::Limits) -> Result<()> {
+        let r = &self.run;
+        let rpm = std::f64::consts::PI / 30.0;
+        let w0 = self
+            .inputs
+            .initial
+            .get("shaft.omega")
+            .copied()
+            .unwrap_or(0.0);
+        let w_end = w0 + r.speed_ramp_rpm_per_s * rpm * r.duration_s;
+        if !(w_end.is_finite() && w_end.abs() <= lim.omega) {
+            let most = (lim.omega - w0.abs()).max(0.0) / (rpm * r.duration_s);
+            return Err(Error::invalid(
+                "run.speed_ramp_rpm_per_s",
+                r.speed_ramp_rpm_per_s,
+                format!(
+                    "|ramp| <= {most:.4e} rpm/s: the speed at the end of the run must stay within the bearing's burst speed {:.4e} rpm",
+                    lim.omega / rpm
+                ),
+            ));
+        }
+        if r.orbit_um.abs() * 1e-6 > lim.radial {
+            return Err(Error::invalid(
+                "run.orbit_um",
+                r.orbit_um,
+                format!(
+                    "|orbit| <= {:.4e} µm (the bearing's radial displacement limit)",
+                    lim.radial * 1e6
+                ),
+            ));
+        }
+        if r.rotating_load_n.abs() > lim.force {
+            return Err(Error::invalid(
+                "run.rotating_load_n",
+                r.rotating_load_n,
+                format!(
+                    "|load| <= {:.4e} N (every ball at the {} GPa load)",
+                    lim.force,
+                    super::limits::P_CONTACT_MAX * 1e-9
+                ),
+            ));
+        }
+        Ok(())
+    }
+
     /// Parse TOML or JSON (JSON when the first non-blank character is `{`).
+    ///
+    /// A list where the scene has a table (`run = [0.1]`, `model = ["ring", "load"]`) is
+    /// refused, not read by position; messages use the scene's words, not Rust type names.
     pub fn from_text(text: &str) -> Result<Scene> {
-        if text.trim_start().starts_with('{') {
-            serde_json::from_str(text).map_err(|e| Error::Parse {
-                what: "scene (JSON)".into(),
-                message: e.to_string(),
-            })
+        let json = text.trim_start().starts_with('{');
+        let what = if json { "scene (JSON)" } else { "scene (TOML)" };
+        let parse = |message: String| Error::Parse {
+            what: what.into(),
+            message: super::schema::user_words(&message),
+        };
+        // The untyped tree first: a list where a table belongs is named as such before
+        // serde reads it by position or names a Rust type.
+        let tree = if json {
+            serde_json::from_str::<serde_json::Value>(text).map_err(|e| parse(e.to_string()))?
         } else {
-            toml::from_str(text).map_err(|e| Error::Parse {
-                what: "scene (TOML)".into(),
-                message: e.to_string(),
-            })
+            let table = toml::from_str::<toml::Table>(text).map_err(|e| parse(e.to_string()))?;
+            serde_json::to_value(table).map_err(|e| parse(e.to_string()))?
+        };
+        if let Some((path, expected)) = super::schema::list_for_table(&tree) {
+            return Err(parse(format!(
+                "`{path}` is a list; expected {expected} (`[{path}]` with its fields, or `{path} = {{ ... }}`)"
+            )));
+        }
+        if json {
+            serde_json::from_str(text).map_err(|e| parse(e.to_string()))
+        } else {
+            toml::from_str(text).map_err(|e| parse(e.to_string()))
         }
     }
 
@@ -567,8 +645,19 @@ impl Scene {
         if !(s.rtol.is_finite() && s.rtol >= 1e-14 && s.rtol <= 0.1) {
             return Err(Error::invalid("solver.rtol", s.rtol, "in [1e-14, 0.1]"));
         }
-        if !(s.atol_m.is_finite() && s.atol_m > 0.0 && s.atol_m <= 1e-3) {
-            return Err(Error::invalid("solver.atol_m", s.atol_m, "in (0, 1e-3]"));
+        if !(s.atol_m.is_finite() && (1e-15..=1e-3).contains(&s.atol_m)) {
+            return Err(Error::invalid(
+                "solver.atol_m",
+                s.atol_m,
+                "in [1e-15, 1e-3] m (below a femtometre no displacement error is resolvable)",
+            ));
+        }
+        if !(s.max_step_cpu_s.is_finite() && s.max_step_cpu_s > 0.0 && s.max_step_cpu_s <= 1e6) {
+            return Err(Error::invalid(
+                "solver.max_step_cpu_s",
+                s.max_step_cpu_s,
+                "in (0, 1e6] s of CPU time per communication step",
+            ));
         }
         if !(s.max_substep_s.is_finite() && s.max_substep_s >= 0.0) {
             return Err(Error::invalid(
@@ -611,6 +700,7 @@ impl Scene {
         ] {
             crate::error::finite(f, v)?;
         }
+        let lim = super::limits::Limits::of(&b);
         let m = &self.model;
         if !(m.ring_dof == 2 || m.ring_dof == 5) {
             return Err(Error::invalid("model.ring_dof", m.ring_dof, "2 or 5"));
@@ -646,6 +736,17 @@ impl Scene {
         ] {
             crate::error::finite(&format!("model.operating_point.{f}"), v)?;
         }
+        let rpm = std::f64::consts::PI / 30.0;
+        for (f, name, v) in [
+            ("speed_rpm", "shaft.omega", op.speed_rpm * rpm),
+            ("fx", "load.x", op.fx),
+            ("fy", "load.y", op.fy),
+            ("fz", "load.z", op.fz),
+            ("mx", "load.mx", op.mx),
+            ("my", "load.my", op.my),
+        ] {
+            lim.check(&format!("model.operating_point.{f} (SI)"), name, v)?;
+        }
         for (name, value) in &self.inputs.initial {
             let var = variables::by_name(name).ok_or_else(|| Error::Unknown {
                 what: "input variable",
@@ -663,8 +764,9 @@ impl Scene {
                     "only inputs of this causality",
                 ));
             }
-            crate::error::finite(&format!("inputs.initial.{name}"), *value)?;
+            lim.check(&format!("inputs.initial.{name}"), name, *value)?;
         }
+        self.check_run_limits(&lim)?;
         Ok(b)
     }
 }

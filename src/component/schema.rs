@@ -279,7 +279,7 @@ pub const TABLE: &[Field] = &[
     f("model.operating_point.my", Float, "N m", ANY, "", "linear level: moment about y"),
     f("model.skidding.traction.law", Enum(LAWS), "-", ANY, "the other traction fields belong to one law each", "skidding level: traction law at the race contacts"),
     f("model.skidding.traction.mu_max", Float, "-", ANY, "law = \"coulomb\", required there", "largest traction coefficient of mu = mu_max tanh(dv/v_s)"),
-    f("model.skidding.traction.v_s", Float, "m/s", gt(0.0), "law = \"coulomb\" (required) or \"mixed_ehl\" (default 0.01)", "regularising slip speed"),
+    f("model.skidding.traction.v_s", Float, "m/s", ge(super::limits::SLIP_SPEED_MIN), "law = \"coulomb\" (required) or \"mixed_ehl\" (default 0.01)", "regularising slip speed"),
     f("model.skidding.traction.a", Float, "-", ANY, "law = \"fitted\", required there", "A of mu = tanh(s/s_reg) [(A + B|s|) exp(-C|s|) + D]"),
     f("model.skidding.traction.b", Float, "-", ANY, "law = \"fitted\", required there", "B of the fitted law"),
     f("model.skidding.traction.c", Float, "-", between(0.0, true, 1e6, true), "law = \"fitted\", required there", "C of the fitted law"),
@@ -311,7 +311,7 @@ pub const TABLE: &[Field] = &[
     f("model.skidding.seed", Int, "-", ge(0.0), "", "skidding level: seed of the scatter"),
     f("model.full.traction.law", Enum(LAWS), "-", ANY, "the other traction fields belong to one law each", "full level: traction law at the race contacts"),
     f("model.full.traction.mu_max", Float, "-", ANY, "law = \"coulomb\", required there", "largest traction coefficient of mu = mu_max tanh(dv/v_s)"),
-    f("model.full.traction.v_s", Float, "m/s", gt(0.0), "law = \"coulomb\" (required) or \"mixed_ehl\" (default 0.01)", "regularising slip speed"),
+    f("model.full.traction.v_s", Float, "m/s", ge(super::limits::SLIP_SPEED_MIN), "law = \"coulomb\" (required) or \"mixed_ehl\" (default 0.01)", "regularising slip speed"),
     f("model.full.traction.a", Float, "-", ANY, "law = \"fitted\", required there", "A of mu = tanh(s/s_reg) [(A + B|s|) exp(-C|s|) + D]"),
     f("model.full.traction.b", Float, "-", ANY, "law = \"fitted\", required there", "B of the fitted law"),
     f("model.full.traction.c", Float, "-", between(0.0, true, 1e6, true), "law = \"fitted\", required there", "C of the fitted law"),
@@ -340,7 +340,7 @@ pub const TABLE: &[Field] = &[
     f("model.full.pocket_clearance_mm", Float, "mm", gt(0.0), "absent: the bearing's cage pocket clearance", "full level: diametral pocket play"),
     f("model.full.pocket_friction", Float, "-", between(0.0, true, 2.0, true), "", "full level: ball–pocket friction coefficient"),
     f("model.full.pocket_roughness_um", Float, "µm", between(0.0, true, 1e3, true), "", "full level: composite roughness of ball and pocket"),
-    f("model.full.pocket_v_s", Float, "m/s", gt(0.0), "", "full level: regularising slip speed of the pocket friction"),
+    f("model.full.pocket_v_s", Float, "m/s", between(super::limits::SLIP_SPEED_MIN, true, 1e3, true), "", "full level: regularising slip speed of the pocket friction"),
     f("model.full.guide_width_mm", Float, "mm", gt(0.0), "absent: half the cage width", "full level: guide land width"),
     f("model.full.guide_stiffness", Float, "N/m", gt(0.0), "", "full level: guide-land contact stiffness beyond guide_eps_max"),
     f("model.full.guide_eps_max", Float, "-", between(0.05, true, 0.999, true), "", "full level: eccentricity ratio where the guide-land contact starts"),
@@ -354,12 +354,13 @@ pub const TABLE: &[Field] = &[
     // Solver.
     f("solver.method", Enum(METHODS), "-", ANY, "", "integrator (auto: the level's default)"),
     f("solver.rtol", Float, "-", between(1e-14, true, 0.1, true), "", "relative tolerance"),
-    f("solver.atol_m", Float, "m", between(0.0, false, 1e-3, true), "", "absolute tolerance on displacements"),
+    f("solver.atol_m", Float, "m", between(1e-15, true, 1e-3, true), "", "absolute tolerance on displacements"),
     f("solver.max_substep_s", Float, "s", ge(0.0), "", "largest internal sub-step (0: the communication step)"),
-    f("solver.max_substeps", Int, "-", between(1.0, true, u32::MAX as f64, true), "", "most internal steps per communication step"),
+    f("solver.max_substeps", Int, "-", between(1.0, true, u32::MAX as f64, true), "", "work budget: most internal steps per communication step (raise it when a step stops on it)"),
+    f("solver.max_step_cpu_s", Float, "s", between(0.0, false, 1e6, true), "thread CPU time", "work budget: most CPU time one communication step may take before it stops, state unchanged (raise it when a step stops on it)"),
     // Inputs.
     f("inputs.rule", Enum(RULES), "-", ANY, "", "how inputs move inside a step"),
-    f("inputs.initial.<variable>", Float, "SI unit of the variable", ANY, "only inputs of the scene's causality; absent: 0", "input value at the start, by variable name (e.g. \"shaft.omega\" in rad/s)"),
+    f("inputs.initial.<variable>", Float, "SI unit of the variable", ANY, "only inputs of the scene's causality; absent: 0; within the bearing's plausibility limits (below)", "input value at the start, by variable name (e.g. \"shaft.omega\" in rad/s)"),
     // Effects.
     f("effects.defects[].race", Enum(ELEMENTS), "-", ANY, "", "element carrying the defect"),
     f("effects.defects[].angle_deg", Float, "deg", ANY, "", "defect centre at t = 0: azimuth from +x on a race, spin angle on a ball"),
@@ -407,10 +408,10 @@ pub const TABLE: &[Field] = &[
     // Run.
     f("run.duration_s", Float, "s", between(0.0, false, 1e4, true), "at most 1e7 steps of step_s", "simulated time of `raceway run`"),
     f("run.step_s", Float, "s", gt(0.0), "<= duration_s, at most 1e7 steps", "communication (output) step"),
-    f("run.speed_ramp_rpm_per_s", Float, "rpm/s", ANY, "", "shaft speed ramp added to the initial shaft.omega"),
-    f("run.orbit_um", Float, "µm", ANY, "", "motion-driven: radius of a circular shaft orbit"),
+    f("run.speed_ramp_rpm_per_s", Float, "rpm/s", ANY, "the speed at the end of the run within the burst speed (plausibility limits)", "shaft speed ramp added to the initial shaft.omega"),
+    f("run.orbit_um", Float, "µm", ANY, "within the radial displacement limit (plausibility limits)", "motion-driven: radius of a circular shaft orbit"),
     f("run.orbit_hz", Float, "Hz", ANY, "", "motion-driven: orbit frequency (0: synchronous)"),
-    f("run.rotating_load_n", Float, "N", ANY, "", "load-driven: load rotating with the shaft (unbalance)"),
+    f("run.rotating_load_n", Float, "N", ANY, "within the force limit (plausibility limits)", "load-driven: load rotating with the shaft (unbalance)"),
 ];
 
 /// The entry of a normalised path.
@@ -436,6 +437,99 @@ fn normalise_child(parent_norm: &str, key: &str) -> String {
     } else {
         format!("{parent_norm}.{key}")
     }
+}
+
+/// The first place in a parsed scene where a list stands for a table (serde would read
+/// `model = ["ring", "load"]` by position), as `(path, expected)` with the path as the
+/// scene spells it; `None` when there is none.
+pub fn list_for_table(v: &serde_json::Value) -> Option<(String, &'static str)> {
+    fn is_table(norm: &str) -> bool {
+        let body = norm
+            .strip_prefix("bearing.materials.")
+            .is_some_and(|b| BODIES.contains(&b));
+        body || TABLE.iter().any(|f| {
+            f.path.len() > norm.len() + 1
+                && f.path.starts_with(norm)
+                && f.path.as_bytes()[norm.len()] == b'.'
+        })
+    }
+    fn is_list(norm: &str) -> bool {
+        let p = format!("{norm}[]");
+        TABLE.iter().any(|f| f.path.starts_with(&p))
+    }
+    fn walk(v: &serde_json::Value, norm: &str, path: &str) -> Option<(String, &'static str)> {
+        match v {
+            serde_json::Value::Array(items) => {
+                if is_list(norm) {
+                    let item = format!("{norm}[]");
+                    items
+                        .iter()
+                        .enumerate()
+                        .find_map(|(i, x)| walk(x, &item, &format!("{path}[{i}]")))
+                } else if is_table(norm) || norm.is_empty() {
+                    Some((path.to_string(), "a table"))
+                } else {
+                    None
+                }
+            }
+            serde_json::Value::Object(m) => m.iter().find_map(|(k, x)| {
+                let child = normalise_child(norm, k);
+                let p = if path.is_empty() {
+                    k.clone()
+                } else {
+                    format!("{path}.{k}")
+                };
+                walk(x, &child, &p)
+            }),
+            _ => None,
+        }
+    }
+    walk(v, "", "")
+}
+
+/// A serde message in the scene's words: Rust type names (`struct RunSpec`, `enum Level`,
+/// `f64`, `u32`, `a sequence`, `a map`) become what a scene writes.
+pub fn user_words(message: &str) -> String {
+    let message = message
+        .replace(
+            "data did not match any variant of untagged enum BearingRef",
+            "expected a bearing preset name or a table of bearing fields",
+        )
+        .replace("internally tagged enum ", "struct ");
+    let mut out = String::with_capacity(message.len());
+    let mut rest = message.as_str();
+    while let Some(i) = rest.find("struct ").or_else(|| rest.find("enum ")) {
+        let (head, tail) = rest.split_at(i);
+        out.push_str(head);
+        let (word, after) = tail.split_at(tail.find(' ').unwrap_or(tail.len()) + 1);
+        let end = after
+            .find(|c: char| !(c.is_alphanumeric() || c == '_'))
+            .unwrap_or(after.len());
+        if end > 0 && after.starts_with(|c: char| c.is_ascii_uppercase()) {
+            out.push_str(if word == "struct " {
+                "a table"
+            } else {
+                "one of the allowed names"
+            });
+            rest = &after[end..];
+        } else {
+            out.push_str(word);
+            rest = after;
+        }
+    }
+    out.push_str(rest);
+    for (from, to) in [
+        ("expected f64", "expected a number"),
+        ("expected u32", "expected a non-negative integer"),
+        ("expected u64", "expected a non-negative integer"),
+        ("expected usize", "expected a non-negative integer"),
+        ("a sequence", "a list"),
+        ("sequence", "list"),
+        ("a map", "a table"),
+    ] {
+        out = out.replace(from, to);
+    }
+    out
 }
 
 // ---------------------------------------------------------------------------------------
@@ -924,6 +1018,8 @@ pub fn explain(json: bool) -> String {
             r.path, r.type_name, r.unit, r.default, r.range, r.description
         );
     }
+    s.push('\n');
+    s.push_str(super::limits::EXPLAIN);
     s
 }
 

@@ -230,10 +230,22 @@ impl TractionLaw {
     /// Check the coefficients; errors name `field.<coefficient>`.
     pub fn validate(&self, field: &str) -> crate::error::Result<()> {
         use crate::error::{finite, positive};
+        let slip_speed = |f: &str, v: f64| {
+            let lo = crate::component::limits::SLIP_SPEED_MIN;
+            if v.is_finite() && v >= lo {
+                Ok(v)
+            } else {
+                Err(crate::Error::invalid(
+                    f,
+                    v,
+                    format!("a finite speed >= {lo:e} m/s (a floor no contact creeps below; smaller makes the law a step no integrator resolves)"),
+                ))
+            }
+        };
         match *self {
             TractionLaw::Coulomb { mu_max, v_s } => {
                 finite(&format!("{field}.mu_max"), mu_max)?;
-                positive(&format!("{field}.v_s"), v_s)?;
+                slip_speed(&format!("{field}.v_s"), v_s)?;
             }
             TractionLaw::Fitted {
                 a,
@@ -257,7 +269,7 @@ impl TractionLaw {
                 crate::error::in_range(&format!("{field}.f_c"), m.f_c, 0.0, 2.0)?;
                 crate::error::in_range(&format!("{field}.roughness"), m.roughness, 0.0, 1e-3)?;
                 positive(&format!("{field}.hardness"), m.hardness)?;
-                positive(&format!("{field}.v_s"), m.v_s)?;
+                slip_speed(&format!("{field}.v_s"), m.v_s)?;
             }
         }
         Ok(())

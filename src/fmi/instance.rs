@@ -803,7 +803,9 @@ impl Instance {
             Err(e) => {
                 let numerical = matches!(
                     e,
-                    crate::Error::StepFailed { .. } | crate::Error::NotConverged { .. }
+                    crate::Error::StepFailed { .. }
+                        | crate::Error::NotConverged { .. }
+                        | crate::Error::Budget { .. }
                 );
                 Err((numerical, Fail::from(e)))
             }

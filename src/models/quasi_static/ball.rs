@@ -342,14 +342,23 @@ impl Geo {
             let mg = -(rm * rr * sb) * (self.inertia * w2);
             // Friction couple with its traction limit (module docs).
             let fbase = mg / self.d;
+            // phi = t / (1 + t^4)^(1/4) with t = mu Q_h / |F_base|, evaluated as
+            // 1 / (1 + s^4)^(1/4) with s = 1/t when t > 1: the same function, but a tiny
+            // couple (a groove offset of 1e-200 m gives |F_base| ~ 1e-200 N) no longer
+            // overflows t^4 and its derivatives to inf and NaN.
+            let sum = qi + qo;
+            let qh = if sum.v > 0.0 { qi * qo / sum } else { zero };
+            let (num, den) = (qh * self.mu, fbase.abs());
             let phi = if fbase.v == 0.0 || !self.mu.is_finite() {
                 Dual::cst(1.0)
-            } else {
-                let sum = qi + qo;
-                let qh = if sum.v > 0.0 { qi * qo / sum } else { zero };
-                let t = qh * self.mu / fbase.abs();
+            } else if num.v <= den.v {
+                let t = num / den;
                 let t2 = t * t;
                 t / (1.0 + t2 * t2).sqrt().sqrt()
+            } else {
+                let s = den / num;
+                let s2 = s * s;
+                Dual::cst(1.0) / (1.0 + s2 * s2).sqrt().sqrt()
             };
             fi = fbase * phi * self.lam_i;
             fo = fbase * phi * self.lam_o;
