@@ -4,7 +4,8 @@
 use raceway::analysis::{
     amplitude_spectrum, characteristic_marks, find_peaks, whirl_index, Window,
 };
-use raceway::component::{Causality, Scene};
+use raceway::component::scene::DEFAULT_SCENE;
+use raceway::component::{schema, Causality, Scene};
 use raceway::geometry::kinematics;
 use raceway::models::quasi_static::{azimuths, BallResult, BallState, Options, QuasiStatic};
 use raceway::plot::{plot, Axes, Marker, Series};
@@ -36,29 +37,29 @@ fn io(path: &Path, e: std::io::Error) -> Error {
 
 /// Run and report; returns the text for standard output.
 pub fn run(a: RunArgs) -> Result<String> {
-    let (mut scene, name) = match &a.scene {
-        Some(p) => {
-            let text = std::fs::read_to_string(p)
-                .map_err(|e| Error::Io(format!("cannot read scene `{}`: {e}", p.display())))?;
-            let scene = Scene::from_text(&text).map_err(|e| match e {
-                Error::Parse { message, .. } => Error::Parse {
-                    what: format!("scene `{}`", p.display()),
-                    message,
-                },
-                other => other,
-            })?;
-            (
-                scene,
-                p.file_stem()
-                    .map(|s| s.to_string_lossy().into_owned())
-                    .unwrap_or_else(|| "scene".into()),
-            )
-        }
-        None => (Scene::default_scene(), "default".to_string()),
+    // One validation path: the file is checked as `raceway scene --check` checks it (every
+    // problem at once), then again with the command-line overrides applied.
+    let (text, file, name) = match &a.scene {
+        Some(p) => (
+            std::fs::read_to_string(p)
+                .map_err(|e| Error::Io(format!("cannot read scene `{}`: {e}", p.display())))?,
+            p.display().to_string(),
+            p.file_stem()
+                .map(|s| s.to_string_lossy().into_owned())
+                .unwrap_or_else(|| "scene".into()),
+        ),
+        None => (
+            DEFAULT_SCENE.to_string(),
+            "default".to_string(),
+            "default".to_string(),
+        ),
     };
+    let mut overrides = Vec::new();
     if let Some(d) = a.duration {
-        scene.run.duration_s = d;
+        overrides.push(("run.duration_s", d));
     }
+    let scene = schema::load(&text, &overrides)
+        .map_err(|problems| crate::scene_cmd::problems_error(&file, &problems))?;
     let out = a
         .out
         .clone()
