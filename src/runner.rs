@@ -133,17 +133,39 @@ pub fn prepare(scene: &Scene) -> Result<Component> {
     Ok(c)
 }
 
+/// What a run records besides the scalar inputs and outputs.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Record {
+    /// The stiffness `K.i.j` and damping `C.i.j` matrices (50 columns more).
+    pub stiffness_damping: bool,
+}
+
 /// Run `scene` for its `[run]` duration. `progress` receives the completed fraction now
 /// and then. The component's state after the run is returned too.
 pub fn run(scene: &Scene, progress: &mut dyn FnMut(f64)) -> Result<(Series, Component)> {
+    run_recording(scene, Record::default(), progress)
+}
+
+/// [`run`], recording what `record` asks for too.
+pub fn run_recording(
+    scene: &Scene,
+    record: Record,
+    progress: &mut dyn FnMut(f64),
+) -> Result<(Series, Component)> {
     let mut c = prepare(scene)?;
     let r = &scene.run;
     let causality = scene.model.causality;
     let n = (r.duration_s / r.step_s).round().max(1.0) as usize;
     let h = r.duration_s / n as f64;
+    let matrices = variables::STIFFNESS
+        .iter()
+        .chain(&variables::DAMPING)
+        .flatten()
+        .filter(|_| record.stiffness_damping);
     let vars: Vec<&variables::Variable> = variables::SCALARS
         .iter()
         .filter(|v| v.is_input(causality) || v.is_output(causality))
+        .chain(matrices)
         .collect();
     let mut series = Series {
         names: vars.iter().map(|v| v.name).collect(),
@@ -202,5 +224,23 @@ mod tests {
             );
         }
         assert!(s.to_csv().starts_with("t [s],shaft.x [m]"));
+        // K and C when asked: the same run with 50 columns more; K.x.x, the radial
+        // stiffness of the loaded ring, is positive and of the order of 1e7..1e9 N/m.
+        let (k, _) = run_recording(
+            &scene,
+            Record {
+                stiffness_damping: true,
+            },
+            &mut |_| {},
+        )
+        .unwrap();
+        assert_eq!(k.names.len(), s.names.len() + 50);
+        assert_eq!(k.column("force.x").unwrap(), s.column("force.x").unwrap());
+        let kxx = k.column("K.x.x").unwrap();
+        assert!(kxx.iter().all(|v| *v > 1e6), "{:?}", &kxx[..3]);
+        assert_eq!(
+            k.units[k.names.iter().position(|n| *n == "C.y.y").unwrap()],
+            "N.s/m"
+        );
     }
 }

@@ -291,13 +291,18 @@ fn run_writes_series_summary_and_plots_from_the_data() {
         bpfo["found_hz"].as_f64().unwrap(),
     );
     assert!((e - f).abs() < 4.0, "BPFO expected {e} Hz, found {f} Hz");
-    for png in [
-        "orbit.png",
-        "force.png",
-        "spectrum.png",
-        "ball-loads.png",
-        "cage-slip.png",
-    ] {
+    assert_eq!(bpfo["verdict"], "found");
+    assert!(bpfo["over_floor"].as_f64().unwrap() >= 4.0);
+    let text = std::fs::read_to_string(dir.join("summary.txt")).unwrap();
+    assert!(
+        text.contains("d x D x B 25.000 x 52.000 x 15.000 mm") && text.contains("Dw 7.9"),
+        "{text}"
+    );
+    // The quasi-static level has no cage dynamics: no flat-zero cage-slip plot, and the
+    // summary says why.
+    assert!(!dir.join("cage-slip.png").exists());
+    assert!(text.contains("0 by construction"), "{text}");
+    for png in ["orbit.png", "force.png", "spectrum.png", "ball-loads.png"] {
         let b = std::fs::read(dir.join(png)).unwrap();
         assert_eq!(&b[1..4], b"PNG", "{png}");
         assert!(b.len() > 10_000, "{png} is only {} bytes", b.len());

@@ -370,6 +370,9 @@ impl FoundPeak {
     pub fn verdict_text(&self, record_scale: f64) -> String {
         match self.verdict {
             Verdict::Found => format!("found, {:.1} x the floor", self.over_floor),
+            Verdict::BelowFloor if !self.found.is_finite() => {
+                "not found (no local maximum within the tolerance)".into()
+            }
             Verdict::BelowFloor => format!(
                 "not found ({:.1} x the floor < {FOUND_OVER_FLOOR})",
                 self.over_floor
