@@ -436,8 +436,11 @@ fn draw_area(
                             draw_point(chart.plotting_area(), shape[i], *p, c).map_err(io)?;
                         }
                     } else {
+                        // Thick polylines get mitred spikes at sharp reversals (plotters
+                        // joins segments with mitres): dense data is drawn 1 px wide.
+                        let w = if pts.len() > 500 { 1 } else { 2 };
                         chart
-                            .draw_series(LineSeries::new(pts.clone(), c.stroke_width(2)))
+                            .draw_series(LineSeries::new(pts.clone(), c.stroke_width(w)))
                             .map_err(io)?;
                     }
                     drawn.push(Drawn {
