@@ -202,8 +202,9 @@ pub fn legend_place(area: Rect, size: (f64, f64), pad: f64, data: &[Drawn]) -> O
                 x1: b.x1 + d.radius + 1.0,
                 y1: b.y1 + d.radius + 1.0,
             };
-            !d.points.iter().any(|p| g.contains(*p))
-                && !(d.line && d.points.windows(2).any(|s| g.meets_segment(s[0], s[1])))
+            let point_in = d.points.iter().any(|p| g.contains(*p));
+            let line_through = d.line && d.points.windows(2).any(|s| g.meets_segment(s[0], s[1]));
+            !(point_in || line_through)
         });
         free.then_some(b)
     })

@@ -192,8 +192,12 @@ pub struct Ctx<'a> {
     /// The main lines and what became of them.
     pub found: Vec<FoundPeak>,
     /// Defect scenes: the envelope spectrum and its lines.
-    pub envelope: Option<(Spectrum, Option<(f64, f64)>, Vec<FoundPeak>)>,
+    pub envelope: Option<Envelope>,
 }
+
+/// The envelope spectrum, the band-pass before it (Hz; none: the whole signal) and the
+/// lines found in it.
+pub type Envelope = (Spectrum, Option<(f64, f64)>, Vec<FoundPeak>);
 
 const MAIN: [&str; 7] = ["fs", "FTF", "BSF", "1xBPFO", "1xBPFI", "1x2BSF", "2xBPFO"];
 
