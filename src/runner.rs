@@ -199,6 +199,27 @@ pub fn run_recording(
 mod tests {
     use super::*;
 
+    /// The skidding level's own ball loads: their inner-contact vector sum carries the
+    /// 500 N radial load of study [2]'s 6012 (small contact angles under a radial load, so
+    /// within 5 %) pointing down like the load; the quasi-static level has none of its own.
+    #[test]
+    fn skidding_ball_loads_carry_the_load() {
+        let text = include_str!("../examples/scenes/6012-skidding.toml");
+        let mut scene = Scene::from_text(text).unwrap();
+        scene.run.duration_s = 0.02;
+        let (_, c) = run(&scene, &mut |_| {}).unwrap();
+        let loads = c
+            .ball_loads()
+            .expect("the skidding level resolves its balls");
+        assert_eq!(loads.len(), c.bearing().z);
+        let (sx, sy) = loads.iter().fold((0.0, 0.0), |(x, y), (psi, qi, _)| {
+            (x + qi * psi.cos(), y + qi * psi.sin())
+        });
+        assert!((sy + 500.0).abs() < 25.0 && sx.abs() < 25.0, "{sx} {sy}");
+        let qs = Component::new(Scene::default_scene()).unwrap();
+        assert!(qs.ball_loads().is_none());
+    }
+
     /// A motion-driven ring run with a synchronous orbit: the recorded inputs follow the
     /// prescribed circle exactly and the force opposes the displacement.
     #[test]

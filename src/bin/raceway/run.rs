@@ -648,36 +648,55 @@ fn spectrum_plot(
     Ok(())
 }
 
-/// Ball loads around the circumference: the Jones–Harris equilibrium at the final motion
-/// and speed, balls at their reference azimuths.
+/// Ball loads around the circumference at the end of the run: the level's own loads when
+/// it resolves the balls (skidding), else the Jones–Harris equilibrium at the final motion
+/// and speed with the balls at their reference azimuths (the quasi-static, ring and linear
+/// levels' ball model).
 fn ball_loads_plot(out: &Path, c: &Ctx) -> Result<()> {
     let b = c.comp.bearing();
-    let q: [f64; 5] = std::array::from_fn(|k| {
-        c.col(["shaft.x", "shaft.y", "shaft.z", "shaft.rx", "shaft.ry"][k])
-            .last()
-            .copied()
-            .unwrap_or(0.0)
-    });
-    let omega = c.col("shaft.omega").last().copied().unwrap_or(0.0);
-    let qs = QuasiStatic::new(
-        b,
-        Options {
-            race_control: c.scene.model.race_control,
-            ..Options::default()
-        },
-    )?;
-    let psi = azimuths(b.z, 0.0);
-    let mut st = vec![BallState::default(); b.z];
-    let mut res = vec![BallResult::default(); b.z];
-    qs.evaluate(&q, omega, &psi, &mut st, None, Some(&mut res))?;
-    let deg: Vec<f64> = psi.iter().map(|p| p.to_degrees()).collect();
-    let qi: Vec<f64> = res.iter().map(|r| r.q_i).collect();
-    let qo: Vec<f64> = res.iter().map(|r| r.q_o).collect();
     let level = c.scene.model.level.name();
-    let title = if matches!(level, "skidding" | "full") {
-        format!("ball loads, Jones–Harris at the final motion (not the {level} level's own)")
+    let (deg, qi, qo, title) = if let Some(l) = c.comp.ball_loads() {
+        let mut l: Vec<(f64, f64, f64)> = l
+            .into_iter()
+            .map(|(p, i, o)| (p.to_degrees().rem_euclid(360.0), i, o))
+            .collect();
+        l.sort_by(|a, b| a.0.total_cmp(&b.0));
+        (
+            l.iter().map(|v| v.0).collect::<Vec<_>>(),
+            l.iter().map(|v| v.1).collect::<Vec<_>>(),
+            l.iter().map(|v| v.2).collect::<Vec<_>>(),
+            format!("ball loads of the {level} model at the end of the run"),
+        )
     } else {
-        "ball loads around the circumference (final motion)".to_string()
+        let q: [f64; 5] = std::array::from_fn(|k| {
+            c.col(["shaft.x", "shaft.y", "shaft.z", "shaft.rx", "shaft.ry"][k])
+                .last()
+                .copied()
+                .unwrap_or(0.0)
+        });
+        let omega = c.col("shaft.omega").last().copied().unwrap_or(0.0);
+        let qs = QuasiStatic::new(
+            b,
+            Options {
+                race_control: c.scene.model.race_control,
+                ..Options::default()
+            },
+        )?;
+        let psi = azimuths(b.z, 0.0);
+        let mut st = vec![BallState::default(); b.z];
+        let mut res = vec![BallResult::default(); b.z];
+        qs.evaluate(&q, omega, &psi, &mut st, None, Some(&mut res))?;
+        let title = if level == "full" {
+            "ball loads, Jones–Harris at the final motion (not the full level's own)".to_string()
+        } else {
+            "ball loads around the circumference (Jones–Harris, final motion)".to_string()
+        };
+        (
+            psi.iter().map(|p| p.to_degrees()).collect(),
+            res.iter().map(|r| r.q_i).collect(),
+            res.iter().map(|r| r.q_o).collect(),
+            title,
+        )
     };
     plot(
         &out.join("ball-loads.png"),
