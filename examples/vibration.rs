@@ -10,7 +10,8 @@
 //! (frequency, amplitude spectrum of shaft.y, envelope spectrum of force.y).
 
 use raceway::analysis::{
-    amplitude_spectrum, characteristic_marks, envelope_spectrum, find_peaks, Window,
+    amplitude_spectrum, characteristic_marks, envelope_spectrum, find_peaks, Verdict, Window,
+    FOUND_OVER_FLOOR,
 };
 use raceway::component::variables;
 use raceway::geometry::kinematics;
@@ -93,22 +94,34 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     );
     let marks = characteristic_marks(&kin, shaft_hz, 3, 1);
     let tol = 2.0 * spec.resolution();
+    // One rule for "found" (raceway::analysis::find_peaks, shared with `raceway run`): a
+    // local maximum within ±2 bins at least FOUND_OVER_FLOOR times the median floor, and
+    // the line resolved from its neighbours at this record length.
+    println!(
+        "found: a peak within ±{tol:.2} Hz at least {FOUND_OVER_FLOOR} x the floor (median in [f/2, 2f]); record {:.3} s",
+        1.0 / spec.resolution()
+    );
     println!(
         "{:<16} {:>10} | {:>10} {:>12} {:>7} | {:>10} {:>12} {:>7}",
         "mark", "expected", "shaft.y", "amp (m)", "/floor", "envelope", "amp (N)", "/floor"
     );
+    let shown = |p: &raceway::analysis::FoundPeak| match p.verdict {
+        Verdict::Found => format!("{:.2}", p.found),
+        Verdict::BelowFloor => "-".to_string(),
+        Verdict::Unresolved { .. } => "unresolved".to_string(),
+    };
     for (a, b) in find_peaks(&spec, &marks, tol)
         .iter()
         .zip(find_peaks(&env, &marks, tol))
     {
         println!(
-            "{:<16} {:>10.2} | {:>10.2} {:>12.3e} {:>7.1} | {:>10.2} {:>12.3e} {:>7.1}",
+            "{:<16} {:>10.2} | {:>10} {:>12.3e} {:>7.1} | {:>10} {:>12.3e} {:>7.1}",
             a.label,
             a.expected,
-            a.found,
+            shown(a),
             a.amplitude,
             a.over_floor,
-            b.found,
+            shown(&b),
             b.amplitude,
             b.over_floor
         );

@@ -51,18 +51,121 @@ fn vr(name: &str) -> u32 {
     variables::by_name(name).expect("a contract variable").vr
 }
 
+/// Set the inputs `scene`'s `[run]` prescribes at time `t`: the shaft speed (with its
+/// ramp) and, motion-driven, the shaft motion with the orbit, or, load-driven, the loads
+/// with the rotating load.
+fn set_inputs(c: &mut Component, scene: &Scene, t: f64) -> Result<()> {
+    let r = &scene.run;
+    let init = |name: &str| scene.inputs.initial.get(name).copied().unwrap_or(0.0);
+    let omega0 = init("shaft.omega");
+    let ramp = rpm_to_rad_s(r.speed_ramp_rpm_per_s);
+    // Shaft angle at time t under the ramp.
+    let shaft_angle = omega0 * t + 0.5 * ramp * t * t;
+    let omega = omega0 + ramp * t;
+    c.set_real(vr("shaft.omega"), omega)?;
+    if ramp != 0.0 {
+        c.set_input_derivative(vr("shaft.omega"), 1, ramp)?;
+    }
+    match scene.model.causality {
+        Causality::Motion => {
+            let (w, ph) = if r.orbit_hz > 0.0 {
+                (2.0 * PI * r.orbit_hz, 2.0 * PI * r.orbit_hz * t)
+            } else {
+                (omega, shaft_angle)
+            };
+            let a = r.orbit_um * 1e-6;
+            let (s, co) = ph.sin_cos();
+            for (name, v) in [
+                ("shaft.x", init("shaft.x") + a * co),
+                ("shaft.y", init("shaft.y") + a * s),
+                ("shaft.vx", init("shaft.vx") - a * w * s),
+                ("shaft.vy", init("shaft.vy") + a * w * co),
+            ] {
+                c.set_real(vr(name), v)?;
+            }
+            for name in [
+                "shaft.z", "shaft.rx", "shaft.ry", "shaft.vz", "shaft.wx", "shaft.wy",
+            ] {
+                c.set_real(vr(name), init(name))?;
+            }
+        }
+        Causality::Load => {
+            let (s, co) = shaft_angle.sin_cos();
+            let f = r.rotating_load_n;
+            c.set_real(vr("load.x"), init("load.x") + f * co)?;
+            c.set_real(vr("load.y"), init("load.y") + f * s)?;
+            for name in ["load.z", "load.mx", "load.my"] {
+                c.set_real(vr(name), init(name))?;
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The component of `scene` ready to run: built; the inputs the run prescribes at its end
+/// (the speed after the ramp) accepted and the outputs there computed, on a separate
+/// component so nothing of it carries over; the inputs of the start set and the outputs
+/// computed. This is the last check of `raceway scene --check` too, so a scene that
+/// passes it starts running.
+pub fn prepare(scene: &Scene) -> Result<Component> {
+    let at_end = |e: crate::Error| match e {
+        crate::Error::Invalid {
+            field,
+            value,
+            allowed,
+        } => crate::Error::Invalid {
+            field: format!(
+                "{field} (prescribed by [run] at t = {} s)",
+                scene.run.duration_s
+            ),
+            value,
+            allowed,
+        },
+        other => other,
+    };
+    let mut end = Component::new(scene.clone())?;
+    set_inputs(&mut end, scene, scene.run.duration_s)
+        .and_then(|_| end.refresh_outputs())
+        .map_err(at_end)?;
+    let mut c = Component::new(scene.clone())?;
+    set_inputs(&mut c, scene, 0.0)?;
+    c.refresh_outputs()?;
+    Ok(c)
+}
+
+/// What a run records besides the scalar inputs and outputs.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Record {
+    /// The stiffness `K.i.j` and damping `C.i.j` matrices (50 columns more).
+    pub stiffness_damping: bool,
+}
+
 /// Run `scene` for its `[run]` duration. `progress` receives the completed fraction now
 /// and then. The component's state after the run is returned too.
 pub fn run(scene: &Scene, progress: &mut dyn FnMut(f64)) -> Result<(Series, Component)> {
-    let mut c = Component::new(scene.clone())?;
+    run_recording(scene, Record::default(), progress)
+}
+
+/// [`run`], recording what `record` asks for too.
+pub fn run_recording(
+    scene: &Scene,
+    record: Record,
+    progress: &mut dyn FnMut(f64),
+) -> Result<(Series, Component)> {
+    let mut c = prepare(scene)?;
     let r = &scene.run;
     let causality = scene.model.causality;
-    let init = |name: &str| scene.inputs.initial.get(name).copied().unwrap_or(0.0);
     let n = (r.duration_s / r.step_s).round().max(1.0) as usize;
     let h = r.duration_s / n as f64;
+    let matrices = variables::STIFFNESS
+        .iter()
+        .chain(&variables::DAMPING)
+        .flatten()
+        .filter(|_| record.stiffness_damping);
     let vars: Vec<&variables::Variable> = variables::SCALARS
         .iter()
         .filter(|v| v.is_input(causality) || v.is_output(causality))
+        .chain(matrices)
         .collect();
     let mut series = Series {
         names: vars.iter().map(|v| v.name).collect(),
@@ -70,53 +173,7 @@ pub fn run(scene: &Scene, progress: &mut dyn FnMut(f64)) -> Result<(Series, Comp
         t: Vec::with_capacity(n + 1),
         columns: vec![Vec::with_capacity(n + 1); vars.len()],
     };
-    let omega0 = init("shaft.omega");
-    let ramp = rpm_to_rad_s(r.speed_ramp_rpm_per_s);
-    // Shaft angle at time t under the ramp.
-    let shaft_angle = |t: f64| omega0 * t + 0.5 * ramp * t * t;
-    let set_inputs = |c: &mut Component, t: f64| -> Result<()> {
-        let omega = omega0 + ramp * t;
-        c.set_real(vr("shaft.omega"), omega)?;
-        if ramp != 0.0 {
-            c.set_input_derivative(vr("shaft.omega"), 1, ramp)?;
-        }
-        match causality {
-            Causality::Motion => {
-                let (w, ph) = if r.orbit_hz > 0.0 {
-                    (2.0 * PI * r.orbit_hz, 2.0 * PI * r.orbit_hz * t)
-                } else {
-                    (omega, shaft_angle(t))
-                };
-                let a = r.orbit_um * 1e-6;
-                let (s, co) = ph.sin_cos();
-                for (name, v) in [
-                    ("shaft.x", init("shaft.x") + a * co),
-                    ("shaft.y", init("shaft.y") + a * s),
-                    ("shaft.vx", init("shaft.vx") - a * w * s),
-                    ("shaft.vy", init("shaft.vy") + a * w * co),
-                ] {
-                    c.set_real(vr(name), v)?;
-                }
-                for name in [
-                    "shaft.z", "shaft.rx", "shaft.ry", "shaft.vz", "shaft.wx", "shaft.wy",
-                ] {
-                    c.set_real(vr(name), init(name))?;
-                }
-            }
-            Causality::Load => {
-                let (s, co) = shaft_angle(t).sin_cos();
-                let f = r.rotating_load_n;
-                c.set_real(vr("load.x"), init("load.x") + f * co)?;
-                c.set_real(vr("load.y"), init("load.y") + f * s)?;
-                for name in ["load.z", "load.mx", "load.my"] {
-                    c.set_real(vr(name), init(name))?;
-                }
-            }
-        }
-        Ok(())
-    };
-    set_inputs(&mut c, 0.0)?;
-    c.refresh_outputs()?;
+
     let record = |c: &Component, series: &mut Series, t: f64| {
         series.t.push(t);
         for (col, v) in series.columns.iter_mut().zip(&vars) {
@@ -127,7 +184,7 @@ pub fn run(scene: &Scene, progress: &mut dyn FnMut(f64)) -> Result<(Series, Comp
     let every = (n / 100).max(1);
     for i in 0..n {
         let t = i as f64 * h;
-        set_inputs(&mut c, t)?;
+        set_inputs(&mut c, scene, t)?;
         c.do_step(t, h)?;
         record(&c, &mut series, (i + 1) as f64 * h);
         if i % every == 0 {
@@ -141,6 +198,27 @@ pub fn run(scene: &Scene, progress: &mut dyn FnMut(f64)) -> Result<(Series, Comp
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The skidding level's own ball loads: their inner-contact vector sum carries the
+    /// 500 N radial load of study [2]'s 6012 (small contact angles under a radial load, so
+    /// within 5 %) pointing down like the load; the quasi-static level has none of its own.
+    #[test]
+    fn skidding_ball_loads_carry_the_load() {
+        let text = include_str!("../examples/scenes/6012-skidding.toml");
+        let mut scene = Scene::from_text(text).unwrap();
+        scene.run.duration_s = 0.02;
+        let (_, c) = run(&scene, &mut |_| {}).unwrap();
+        let loads = c
+            .ball_loads()
+            .expect("the skidding level resolves its balls");
+        assert_eq!(loads.len(), c.bearing().z);
+        let (sx, sy) = loads.iter().fold((0.0, 0.0), |(x, y), (psi, qi, _)| {
+            (x + qi * psi.cos(), y + qi * psi.sin())
+        });
+        assert!((sy + 500.0).abs() < 25.0 && sx.abs() < 25.0, "{sx} {sy}");
+        let qs = Component::new(Scene::default_scene()).unwrap();
+        assert!(qs.ball_loads().is_none());
+    }
 
     /// A motion-driven ring run with a synchronous orbit: the recorded inputs follow the
     /// prescribed circle exactly and the force opposes the displacement.
@@ -167,5 +245,23 @@ mod tests {
             );
         }
         assert!(s.to_csv().starts_with("t [s],shaft.x [m]"));
+        // K and C when asked: the same run with 50 columns more; K.x.x, the radial
+        // stiffness of the loaded ring, is positive and of the order of 1e7..1e9 N/m.
+        let (k, _) = run_recording(
+            &scene,
+            Record {
+                stiffness_damping: true,
+            },
+            &mut |_| {},
+        )
+        .unwrap();
+        assert_eq!(k.names.len(), s.names.len() + 50);
+        assert_eq!(k.column("force.x").unwrap(), s.column("force.x").unwrap());
+        let kxx = k.column("K.x.x").unwrap();
+        assert!(kxx.iter().all(|v| *v > 1e6), "{:?}", &kxx[..3]);
+        assert_eq!(
+            k.units[k.names.iter().position(|n| *n == "C.y.y").unwrap()],
+            "N.s/m"
+        );
     }
 }

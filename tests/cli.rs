@@ -291,13 +291,18 @@ fn run_writes_series_summary_and_plots_from_the_data() {
         bpfo["found_hz"].as_f64().unwrap(),
     );
     assert!((e - f).abs() < 4.0, "BPFO expected {e} Hz, found {f} Hz");
-    for png in [
-        "orbit.png",
-        "force.png",
-        "spectrum.png",
-        "ball-loads.png",
-        "cage-slip.png",
-    ] {
+    assert_eq!(bpfo["verdict"], "found");
+    assert!(bpfo["over_floor"].as_f64().unwrap() >= 4.0);
+    let text = std::fs::read_to_string(dir.join("summary.txt")).unwrap();
+    assert!(
+        text.contains("d x D x B 25.000 x 52.000 x 15.000 mm") && text.contains("Dw 7.9"),
+        "{text}"
+    );
+    // The quasi-static level has no cage dynamics: no flat-zero cage-slip plot, and the
+    // summary says why.
+    assert!(!dir.join("cage-slip.png").exists());
+    assert!(text.contains("0 by construction"), "{text}");
+    for png in ["orbit.png", "force.png", "spectrum.png", "ball-loads.png"] {
         let b = std::fs::read(dir.join(png)).unwrap();
         assert_eq!(&b[1..4], b"PNG", "{png}");
         assert!(b.len() > 10_000, "{png} is only {} bytes", b.len());
@@ -401,4 +406,75 @@ fn quasi_static_reports_life_safety_and_warnings() {
         ],
         &["--contamination", "2"],
     );
+}
+
+fn tmp_scene(tag: &str, text: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("raceway-{tag}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let f = dir.join(format!("{tag}.toml"));
+    std::fs::write(&f, text).unwrap();
+    f
+}
+
+/// `raceway run` lists every problem of a scene at once, the very lines `scene --check`
+/// gives, and writes nothing.
+#[test]
+fn run_reports_every_problem_as_scene_check_does() {
+    let f = tmp_scene(
+        "six",
+        "bearing = \"6205\"\n[model]\nlevl = \"ring\"\n[solver]\nrtol = 0.5\natol_m = -1.0\n[run]\nduration_s = -1.0\nstep_s = 0.0\norbit_um = \"big\"\n",
+    );
+    let check = run(&["scene", "--check", f.to_str().unwrap()]);
+    let out_dir = f.with_extension("out");
+    let ran = run(&[
+        "run",
+        "--quiet",
+        f.to_str().unwrap(),
+        "--out",
+        out_dir.to_str().unwrap(),
+    ]);
+    assert!(!check.status.success() && !ran.status.success());
+    let lines = |o: &Output| -> Vec<String> {
+        String::from_utf8_lossy(&o.stderr)
+            .lines()
+            .filter(|l| l.contains(".toml:"))
+            .map(String::from)
+            .collect()
+    };
+    let (a, b) = (lines(&check), lines(&ran));
+    assert_eq!(a.len(), 6, "six problems: {a:?}");
+    assert_eq!(a, b, "run and scene --check disagree");
+    assert!(!out_dir.exists(), "nothing written for a refused scene");
+}
+
+/// A NaN duration in the file is refused by `run` whether or not `--duration` is given
+/// (the file is checked before the override), and an override that is itself out of
+/// range is refused with the field, the value and the range.
+#[test]
+fn run_checks_the_file_then_the_overrides() {
+    let f = tmp_scene("nan", "bearing = \"6205\"\n[run]\nduration_s = nan\n");
+    for extra in [&[][..], &["--duration", "0.001"][..]] {
+        let mut args = vec!["run", "--quiet", f.to_str().unwrap()];
+        args.extend_from_slice(extra);
+        let out = run(&args);
+        assert!(!out.status.success(), "NaN duration ran with {extra:?}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(
+            err.contains("run.duration_s") && err.contains("NaN"),
+            "{err}"
+        );
+    }
+    let good = tmp_scene("good", "bearing = \"6205\"\n");
+    for bad in ["NaN", "-1", "1e9"] {
+        let flag = format!("--duration={bad}");
+        let out = run(&["run", "--quiet", good.to_str().unwrap(), &flag]);
+        assert!(!out.status.success(), "--duration {bad} ran");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(
+            err.contains("run.duration_s")
+                && err.contains("(0, 10000]")
+                && err.contains("override"),
+            "{err}"
+        );
+    }
 }

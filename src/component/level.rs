@@ -65,6 +65,11 @@ pub trait LevelModel: Send + std::fmt::Debug {
     fn n_aux(&self) -> usize {
         0
     }
+    /// The level's own ball loads at its last evaluation, `(azimuth rad, inner N, outer
+    /// N)` per ball, when it resolves the balls itself; `None` (default) otherwise.
+    fn ball_loads(&self) -> Option<Vec<(f64, f64, f64)>> {
+        None
+    }
     /// Which ring coordinates the level resolves (load-driven integrates only these).
     fn ring_dofs(&self) -> &'static [usize] {
         &[0, 1, 2, 3, 4]

@@ -530,6 +530,12 @@ impl Component {
     pub fn limits(&self) -> &limits::Limits {
         &self.limits
     }
+    /// The level's own ball loads at its last evaluation, `(azimuth rad, inner N, outer
+    /// N)` per ball, for the levels that resolve the balls themselves (skidding); `None`
+    /// for the others.
+    pub fn ball_loads(&self) -> Option<Vec<(f64, f64, f64)>> {
+        self.level.ball_loads()
+    }
     /// The causality.
     pub fn causality(&self) -> Causality {
         self.scene.model.causality

@@ -1500,11 +1500,12 @@ pub fn check(text: &str) -> Vec<Problem> {
     if !c.problems.is_empty() {
         return c.problems;
     }
-    // Cross-field problems: the library's own checks, in the order a component runs them.
+    // Cross-field problems: the library's own checks, in the order a run meets them (the
+    // component built, the run's inputs at its end and start set, the first outputs).
     let result = Scene::from_text(text).and_then(|s| {
         let b = s.validate()?;
         s.effects.validate_for(&b)?;
-        crate::Component::new(s).map(|_| ())
+        crate::runner::prepare(&s).map(|_| ())
     });
     if let Err(e) = result {
         let field = match &e {
@@ -1537,6 +1538,73 @@ pub fn check(text: &str) -> Vec<Problem> {
         }
     }
     c.problems
+}
+
+/// The one validation path of a scene file, shared by `raceway run` and `raceway scene
+/// --check`: the text is checked exactly as [`check`] does (every problem at once); then
+/// the command-line `overrides` (`(field path, value)`, e.g. `("run.duration_s", 0.1)`)
+/// are written into it and the result is checked again the same way, so an override can
+/// neither smuggle in a value the file could not hold nor hide one it holds. Problems of
+/// the second pass carry no line (the file does not hold the overridden scene) and say
+/// which overrides were applied. `Ok` is a scene that builds a component.
+pub fn load(text: &str, overrides: &[(&str, f64)]) -> std::result::Result<Scene, Vec<Problem>> {
+    let whole = |message: String| {
+        vec![Problem {
+            path: String::new(),
+            line_col: None,
+            message,
+        }]
+    };
+    let problems = check(text);
+    if !problems.is_empty() {
+        return Err(problems);
+    }
+    if overrides.is_empty() {
+        return Scene::from_text(text).map_err(|e| whole(e.to_string()));
+    }
+    // The scene as a TOML table (a JSON scene is converted), the overrides written in.
+    let doc: std::result::Result<toml::Table, String> = if text.trim_start().starts_with('{') {
+        serde_json::from_str::<serde_json::Value>(text)
+            .map_err(|e| e.to_string())
+            .and_then(|v| toml::Table::try_from(v).map_err(|e| e.to_string()))
+    } else {
+        toml::from_str(text).map_err(|e| e.to_string())
+    };
+    let mut doc = doc.map_err(|e| whole(format!("cannot apply the overrides: {e}")))?;
+    for (path, value) in overrides {
+        let mut keys: Vec<&str> = path.split('.').collect();
+        let last = keys.pop().unwrap_or_default();
+        let mut table = &mut doc;
+        for k in keys {
+            let entry = table
+                .entry(k.to_string())
+                .or_insert_with(|| toml::Value::Table(toml::Table::new()));
+            table = match entry {
+                toml::Value::Table(t) => t,
+                _ => return Err(whole(format!("cannot apply the override of `{path}`"))),
+            };
+        }
+        table.insert(last.to_string(), toml::Value::Float(*value));
+    }
+    let applied = overrides
+        .iter()
+        .map(|(p, v)| format!("{p} = {v}"))
+        .collect::<Vec<_>>()
+        .join(", ");
+    let text2 = toml::to_string(&doc)
+        .map_err(|e| whole(format!("cannot apply the overrides ({applied}): {e}")))?;
+    let problems = check(&text2);
+    if !problems.is_empty() {
+        return Err(problems
+            .into_iter()
+            .map(|p| Problem {
+                line_col: None,
+                message: format!("{} (with the command-line override {applied})", p.message),
+                ..p
+            })
+            .collect());
+    }
+    Scene::from_text(&text2).map_err(|e| whole(e.to_string()))
 }
 
 /// `line L, column C` in a parser's message.

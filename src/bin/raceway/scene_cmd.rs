@@ -55,12 +55,19 @@ pub fn scene(a: SceneArgs) -> Result<String> {
             schema::summary(&scene)
         ));
     }
+    Err(problems_error(&path.display().to_string(), &problems))
+}
+
+/// Every problem of a scene, one per line with its place: the error of `raceway scene
+/// --check` and of `raceway run` alike.
+pub fn problems_error(file: &str, problems: &[schema::Problem]) -> Error {
     let mut message = format!("{} problem(s)", problems.len());
-    for p in &problems {
-        message += &format!("\n{}:{p}", path.display());
+    for p in problems {
+        let sep = if p.line_col.is_some() { ":" } else { ": " };
+        message += &format!("\n{file}{sep}{p}");
     }
-    Err(Error::Parse {
-        what: format!("scene `{}`", path.display()),
+    Error::Parse {
+        what: format!("scene `{file}`"),
         message,
-    })
+    }
 }

@@ -87,6 +87,15 @@ impl LevelModel for SkiddingLevel {
     fn name(&self) -> &'static str {
         "skidding"
     }
+    fn ball_loads(&self) -> Option<Vec<(f64, f64, f64)>> {
+        Some(
+            self.model
+                .balls
+                .iter()
+                .map(|b| (b.psi, b.q_i, b.q_o))
+                .collect(),
+        )
+    }
     fn n_states(&self) -> usize {
         self.model.n_states()
     }
