@@ -28,13 +28,13 @@ fn run(
     scene: &Scene,
     duration: f64,
     h: f64,
-    mut each: impl FnMut(&Component),
+    mut each: impl FnMut(&mut Component),
 ) -> Result<Component, Box<dyn std::error::Error>> {
     let mut c = Component::new(scene.clone())?;
     let n = (duration / h).round() as usize;
     for i in 0..n {
         c.do_step(i as f64 * h, h)?;
-        each(&c);
+        each(&mut c);
     }
     Ok(c)
 }
@@ -50,7 +50,7 @@ fn wear_case(label: &str, scene: &Scene) -> Result<(), Box<dyn std::error::Error
     let mut history = Vec::new();
     let mut orbits: Vec<(Vec<f64>, Vec<f64>)> = vec![(vec![], vec![]); w.cycles as usize + 1];
     let (vx, vy) = (vr("shaft.x"), vr("shaft.y"));
-    let c = run(scene, duration, h, |c| {
+    let mut c = run(scene, duration, h, |c| {
         let st = c.get_state();
         let done = layout.wear_cycles(&st).unwrap_or(0.0) as usize;
         if done > maps.len() {
@@ -185,7 +185,7 @@ fn thermal_study() -> Result<(), Box<dyn std::error::Error>> {
         let mut s = base.clone();
         let omega = n as f64 * std::f64::consts::TAU / 60.0;
         s.inputs.initial.insert("shaft.omega".into(), omega);
-        let c = run(&s, s.run.duration_s, s.run.step_s, |_| {})?;
+        let mut c = run(&s, s.run.duration_s, s.run.step_s, |_| {})?;
         let st = c.get_state();
         let th = layout.thermal(&st).expect("thermal on");
         let pd_op = pd + th[8];

@@ -174,19 +174,19 @@ pub fn run_recording(
         columns: vec![Vec::with_capacity(n + 1); vars.len()],
     };
 
-    let record = |c: &Component, series: &mut Series, t: f64| {
+    let record = |c: &mut Component, series: &mut Series, t: f64| {
         series.t.push(t);
         for (col, v) in series.columns.iter_mut().zip(&vars) {
             col.push(c.get_real(v.vr).unwrap_or(0.0));
         }
     };
-    record(&c, &mut series, 0.0);
+    record(&mut c, &mut series, 0.0);
     let every = (n / 100).max(1);
     for i in 0..n {
         let t = i as f64 * h;
         set_inputs(&mut c, scene, t)?;
         c.do_step(t, h)?;
-        record(&c, &mut series, (i + 1) as f64 * h);
+        record(&mut c, &mut series, (i + 1) as f64 * h);
         if i % every == 0 {
             progress((i + 1) as f64 / n as f64);
         }

@@ -102,7 +102,7 @@ fn expected_static_sag(scene: &str, load: f64, omega: f64) -> (f64, f64) {
 fn expected_orbit_amplitudes(scene: &str, sag: f64, omega: f64) -> (f64, f64) {
     let mut c = Component::from_text(scene).unwrap();
     bearing_at(&mut c, sag, omega);
-    let get = |vr: u32| c.get_real(vr).unwrap();
+    let mut get = |vr: u32| c.get_real(vr).unwrap();
     let k = [
         [get(VR_K0), get(VR_K0 + 1)],
         [get(VR_K0 + 5), get(VR_K0 + 6)],

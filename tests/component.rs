@@ -30,7 +30,7 @@ fn vr(name: &str) -> u32 {
     variables::by_name(name).unwrap().vr
 }
 
-fn outputs(c: &Component) -> Vec<u64> {
+fn outputs(c: &mut Component) -> Vec<u64> {
     variables::all()
         .map(|v| c.get_real(v.vr).unwrap().to_bits())
         .collect()
@@ -48,19 +48,23 @@ fn restored_state_continues_bit_for_bit() {
     for i in 20..40 {
         c.do_step(i as f64 * h, h).unwrap();
     }
-    let a = outputs(&c);
+    let a = outputs(&mut c);
     c.set_state(&saved).unwrap();
     for i in 20..40 {
         c.do_step(i as f64 * h, h).unwrap();
     }
-    assert_eq!(a, outputs(&c), "set_state continues identically");
+    assert_eq!(a, outputs(&mut c), "set_state continues identically");
     // Another instance of the same scene, restored from bytes.
     let mut d = Component::from_text(RING_LOAD).unwrap();
     d.deserialize_state(&bytes).unwrap();
     for i in 20..40 {
         d.do_step(i as f64 * h, h).unwrap();
     }
-    assert_eq!(a, outputs(&d), "deserialised state continues identically");
+    assert_eq!(
+        a,
+        outputs(&mut d),
+        "deserialised state continues identically"
+    );
     // A state of another scene is refused.
     let mut other = Component::from_text(RING_MOTION).unwrap();
     assert!(other.deserialize_state(&bytes).is_err());

@@ -705,7 +705,7 @@ initial = {{ "shaft.x" = 0.0, "shaft.y" = {:e}, "shaft.z" = {:e}, "shaft.rx" = 0
     let forces = |s: f64, c: f64| {
         let mut comp = Component::from_text(&scene(s, c)).unwrap();
         comp.refresh_outputs().unwrap();
-        let g = |n: &str| comp.get_real(vr(n)).unwrap();
+        let mut g = |n: &str| comp.get_real(vr(n)).unwrap();
         (
             [g("force.x"), g("force.y"), g("force.z")],
             g("balls.loaded"),

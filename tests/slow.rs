@@ -62,7 +62,7 @@ fn lubricated(rough: f64) -> String {
     )
 }
 
-fn max_depth(c: &Component) -> f64 {
+fn max_depth(c: &mut Component) -> f64 {
     c.get_real(vr("wear.max_depth")).unwrap()
 }
 
@@ -76,15 +76,15 @@ fn no_sliding_or_no_load_gives_no_wear() {
     assert!(st.x[x0..x0 + 2 * n].iter().all(|&v| v == 0.0));
     // Turning but centred inside the clearance: no ball loaded, no wear after two cycles.
     let s = scene(0.0, 2000.0, 100.0, &wear_line(", regime = \"dry\""));
-    let c = run(&s, 2.2 * REV);
+    let mut c = run(&s, 2.2 * REV);
     let st = c.get_state();
     let layout = SlowLayout::of(&s).unwrap();
     assert_eq!(layout.wear_cycles(&st), Some(2.0));
     assert!(st.x[x0..x0 + 2 * n].iter().all(|&v| v == 0.0));
-    assert_eq!(max_depth(&c), 0.0);
+    assert_eq!(max_depth(&mut c), 0.0);
     // The same held off-centre and turning does wear.
     let s = scene(12.0, 2000.0, 100.0, &wear_line(", regime = \"dry\""));
-    assert!(max_depth(&run(&s, 2.2 * REV)) > 0.0);
+    assert!(max_depth(&mut run(&s, 2.2 * REV)) > 0.0);
 }
 
 #[test]
@@ -120,15 +120,15 @@ fn wear_concentrates_in_the_load_zone() {
 
 #[test]
 fn rougher_races_wear_faster_and_the_dry_limit_much_faster() {
-    let smooth = max_depth(&run(
+    let smooth = max_depth(&mut run(
         &scene(12.0, 2000.0, 100.0, &lubricated(0.2)),
         2.2 * REV,
     ));
-    let rough = max_depth(&run(
+    let rough = max_depth(&mut run(
         &scene(12.0, 2000.0, 100.0, &lubricated(0.42)),
         2.2 * REV,
     ));
-    let dry = max_depth(&run(
+    let dry = max_depth(&mut run(
         &scene(
             12.0,
             2000.0,
@@ -162,7 +162,7 @@ fn capacities(s: &Scene) -> [f64; 4] {
 #[test]
 fn heat_balance_closes() {
     let s = scene(12.0, 2000.0, 100.0, THERMAL);
-    let c = run(&s, 0.05);
+    let mut c = run(&s, 0.05);
     let st = c.get_state();
     let th = SlowLayout::of(&s).unwrap().thermal(&st).unwrap().to_vec();
     let cap = capacities(&s);
@@ -239,7 +239,7 @@ fn slow_state_survives_get_set_serialise_bit_for_bit() {
     for i in 0..200 {
         a.do_step(i as f64 * h, h).unwrap();
     }
-    assert!(max_depth(&a) > 0.0, "a wear cycle has happened");
+    assert!(max_depth(&mut a) > 0.0, "a wear cycle has happened");
     let bytes = a.serialize_state();
     let mut b = Component::new(s.clone()).unwrap();
     b.deserialize_state(&bytes).unwrap();
@@ -290,7 +290,7 @@ fn switching_the_effect_off_recovers_the_plain_model() {
             );
         }
     }
-    assert_eq!(max_depth(&q), 0.0);
+    assert_eq!(max_depth(&mut q), 0.0);
     assert_eq!(p.get_real(vr("power.loss")).unwrap(), 0.0);
     assert!(q.get_real(vr("power.loss")).unwrap() > 0.0);
 }

@@ -318,7 +318,7 @@ fn film_damping_vanishes_with_viscosity() {
     assert!(last < 1e-4, "{last}");
 }
 
-fn outputs(c: &Component) -> Vec<u64> {
+fn outputs(c: &mut Component) -> Vec<u64> {
     variables::all()
         .map(|v| c.get_real(v.vr).unwrap().to_bits())
         .collect()
@@ -345,8 +345,8 @@ fn effects_off_recover_the_plain_model_exactly() {
             o.do_step(i as f64 * H, H).unwrap();
         }
     }
-    for o in &others {
-        assert_eq!(outputs(&a), outputs(o));
+    for o in &mut others {
+        assert_eq!(outputs(&mut a), outputs(o));
         assert_eq!(a.get_state().x.len(), o.get_state().x.len());
     }
     assert_eq!(a.get_real(vr("film.min_thickness")).unwrap(), 0.0);
@@ -563,7 +563,7 @@ fn effects_round_trip_through_json() {
         a.do_step(i as f64 * H, H).unwrap();
         b.do_step(i as f64 * H, H).unwrap();
     }
-    assert_eq!(outputs(&a), outputs(&b));
+    assert_eq!(outputs(&mut a), outputs(&mut b));
 }
 
 /// Ball waviness: a ball's diameter varies with its even orders only (`w(phi) + w(phi+pi)`):

@@ -447,6 +447,7 @@ impl Component {
             input_derivatives: vec![0.0; 3 * n],
             outputs: vec![0.0; n],
             output_derivatives: vec![0.0; n],
+            outputs_stale: true,
             ..State::default()
         };
         for (name, value) in &scene.inputs.initial {
@@ -562,6 +563,7 @@ impl Component {
         self.state.inputs[i] = value;
         self.state.input_derivatives[3 * i..3 * i + 3].fill(0.0);
         self.state.inputs_set |= 1 << i;
+        self.state.outputs_stale = true;
         Ok(())
     }
 
@@ -592,24 +594,46 @@ impl Component {
             return Err(Error::invalid("order", order, "1, 2 or 3"));
         }
         self.state.input_derivatives[3 * i + (order as usize - 1)] = value;
+        self.state.outputs_stale = true;
         Ok(())
     }
 
-    /// Get an input or output by value reference. Outputs are those of the last step (or
-    /// of [`Component::refresh_outputs`]).
-    pub fn get_real(&self, vr: u32) -> Result<f64> {
+    /// Get an input or output by value reference. Outputs always belong to the current
+    /// inputs and state: those of the last step, or, when an input or the state was set
+    /// since, evaluated now (see [`Component::ensure_outputs`]); an output read while an
+    /// input was never set is refused naming it.
+    pub fn get_real(&mut self, vr: u32) -> Result<f64> {
         let v = variables::by_vr(vr)
             .ok_or_else(|| Error::invalid("value reference", vr, "a variable of the table"))?;
         let i = index_of(vr).expect("in table");
         Ok(if v.is_input(self.causality()) {
             self.state.inputs[i]
         } else {
+            self.ensure_outputs()?;
             self.state.outputs[i]
         })
     }
 
+    /// Are the stored outputs behind the inputs or state? (Then the next output read
+    /// evaluates them.)
+    pub fn outputs_stale(&self) -> bool {
+        self.state.outputs_stale
+    }
+
+    /// Make the outputs current: evaluate them at the current time and inputs when an input
+    /// or the state was set since they were computed; otherwise nothing. The outputs are
+    /// computed when read, not when inputs are set, so a host that sets inputs and steps
+    /// without reading in between pays nothing extra; every read (after creation, after
+    /// setting inputs, after restoring a state, after a step) sees current values.
+    pub fn ensure_outputs(&mut self) -> Result<()> {
+        if self.state.outputs_stale {
+            self.refresh_outputs()?;
+        }
+        Ok(())
+    }
+
     /// Get the time derivative (order 1) of an output at the current time.
-    pub fn get_output_derivative(&self, vr: u32, order: u32) -> Result<f64> {
+    pub fn get_output_derivative(&mut self, vr: u32, order: u32) -> Result<f64> {
         let v = variables::by_vr(vr)
             .ok_or_else(|| Error::invalid("value reference", vr, "a variable of the table"))?;
         if !v.is_output(self.causality()) {
@@ -618,6 +642,7 @@ impl Component {
         if order != 1 {
             return Err(Error::invalid("order", order, "1"));
         }
+        self.ensure_outputs()?;
         Ok(self.state.output_derivatives[index_of(vr).expect("in table")])
     }
 
@@ -650,6 +675,7 @@ impl Component {
         let mut sc = std::mem::take(&mut self.scratch);
         let r = self.compute_outputs(&mut sc, 0.0);
         if r.is_ok() {
+            sc.outputs_stale = false;
             std::mem::swap(&mut self.state, &mut sc);
         }
         self.scratch = sc;
@@ -709,6 +735,7 @@ impl Component {
         if r.is_ok() {
             sc.t = t + h;
             sc.started = true;
+            sc.outputs_stale = false;
             std::mem::swap(&mut self.state, &mut sc);
         }
         self.scratch = sc;
@@ -969,8 +996,13 @@ impl Component {
     /// `knowns`, at the current state. Forces and moments respond to displacements through
     /// `-K` and to velocities through `-C` (motion-driven); other pairs have no direct
     /// dependence and give 0.
+    ///
+    /// Any finite seed gives finite values or a refusal: the seed is scaled by its largest
+    /// magnitude before the products (so no intermediate overflows) and scaled back after;
+    /// a result beyond the range of `f64` (e.g. `K seed` with a seed of 1e308 m) is refused
+    /// naming the seed, not returned as infinity.
     pub fn directional_derivative(
-        &self,
+        &mut self,
         unknowns: &[u32],
         knowns: &[u32],
         seed: &[f64],
@@ -983,15 +1015,26 @@ impl Component {
                 "seed as long as knowns, out as long as unknowns",
             ));
         }
-        for &k in knowns {
-            if variables::by_vr(k).is_none() {
+        for (&k, &s) in knowns.iter().zip(seed) {
+            let Some(v) = variables::by_vr(k) else {
                 return Err(Error::invalid(
                     "directional derivative known",
                     k,
                     "a variable of the table",
                 ));
+            };
+            if !s.is_finite() {
+                return Err(Error::invalid(
+                    format!("directional derivative seed of `{}`", v.name),
+                    s,
+                    "a finite number",
+                ));
             }
         }
+        self.ensure_outputs()?;
+        let scale = seed.iter().fold(0.0f64, |m, s| m.max(s.abs()));
+        // s / scale is within [-1, 1] (and no 1/scale overflows for a subnormal scale).
+        let unit = |s: f64| if scale > 0.0 { s / scale } else { 0.0 };
         let motion = self.causality() == Causality::Motion;
         for (o, &u) in out.iter_mut().zip(unknowns) {
             let ui = index_of(u).ok_or_else(|| {
@@ -1009,10 +1052,23 @@ impl Component {
             for (&k, &s) in knowns.iter().zip(seed) {
                 let ki = index_of(k).expect("checked");
                 if (I_Q..I_Q + 5).contains(&ki) {
-                    *o -= self.state.outputs[I_K + 5 * r + (ki - I_Q)] * s;
+                    *o -= self.state.outputs[I_K + 5 * r + (ki - I_Q)] * unit(s);
                 } else if (I_V..I_V + 5).contains(&ki) {
-                    *o -= self.state.outputs[I_C + 5 * r + (ki - I_V)] * s;
+                    *o -= self.state.outputs[I_C + 5 * r + (ki - I_V)] * unit(s);
                 }
+            }
+            *o *= scale;
+            if !o.is_finite() {
+                return Err(Error::invalid(
+                    "directional derivative seed",
+                    format!("of largest magnitude {scale:e}"),
+                    format!(
+                        "a seed whose product with the Jacobian stays within ±{:e} \
+                         (`{}` overflows)",
+                        f64::MAX,
+                        variables::by_vr(u).map_or("?", |v| v.name)
+                    ),
+                ));
             }
         }
         Ok(())

@@ -21,6 +21,10 @@ pub struct State {
     pub t: f64,
     /// Has the first step (or initialisation) happened?
     pub started: bool,
+    /// Are `outputs` behind the inputs or state (set since they were computed)? The
+    /// component recomputes them on the next read. Stored as bit 1 of the `started` word,
+    /// so the byte layout is unchanged.
+    pub outputs_stale: bool,
     /// Continuous states of the model.
     pub x: Vec<f64>,
     /// Algebraic and solver memory (warm starts, next step size, ...).
@@ -50,6 +54,7 @@ impl Clone for State {
         self.scene_fingerprint = o.scene_fingerprint;
         self.t = o.t;
         self.started = o.started;
+        self.outputs_stale = o.outputs_stale;
         self.inputs_set = o.inputs_set;
         self.x.clone_from(&o.x);
         self.aux.clone_from(&o.aux);
@@ -132,7 +137,8 @@ impl State {
         out.extend_from_slice(&FORMAT_VERSION.to_le_bytes());
         out.extend_from_slice(&self.scene_fingerprint.to_le_bytes());
         out.extend_from_slice(&self.t.to_le_bytes());
-        out.extend_from_slice(&(self.started as u64).to_le_bytes());
+        let flags = self.started as u64 | (self.outputs_stale as u64) << 1;
+        out.extend_from_slice(&flags.to_le_bytes());
         out.extend_from_slice(&self.inputs_set.to_le_bytes());
         put_vec(out, &self.x);
         put_vec(out, &self.aux);
@@ -160,12 +166,14 @@ impl State {
         }
         let scene_fingerprint = r.u64()?;
         let t = r.f64()?;
-        let started = r.u64()? != 0;
+        let flags = r.u64()?;
+        let (started, outputs_stale) = (flags & 1 != 0, flags & 2 != 0);
         let inputs_set = r.u64()?;
         let s = State {
             scene_fingerprint,
             t,
             started,
+            outputs_stale,
             inputs_set,
             x: r.vec()?,
             aux: r.vec()?,
@@ -194,6 +202,7 @@ mod tests {
             scene_fingerprint: 42,
             t: 0.125,
             started: true,
+            outputs_stale: true,
             x: vec![1.0, -0.0, f64::MIN_POSITIVE],
             aux: vec![3.5],
             inputs: vec![1e-6; 11],

@@ -226,7 +226,7 @@ pub fn cosimulated(
         for b in bearings.iter_mut() {
             b.do_step(t, h).map_err(|e| e.to_string())?;
         }
-        for (k, b) in bearings.iter().enumerate() {
+        for (k, b) in bearings.iter_mut().enumerate() {
             f[k] = [b.get_real(ifx).unwrap(), b.get_real(ify).unwrap()];
             df[k] = [
                 b.get_output_derivative(ifx, 1).unwrap(),
