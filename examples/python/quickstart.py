@@ -1,16 +1,18 @@
 """The shortest use of the raceway FMU from fmpy (docs/fmi.md, "Shortest use")."""
 
 import numpy as np
-from fmpy import simulate_fmu
+from fmpy import read_model_description, simulate_fmu
 
-# shaft motion: 20 µm downward, turning at 1750 rpm
-t = np.linspace(0.0, 0.01, 11)
-motion = np.array(
-    [(ti, -20e-6, 0.0, 183.26) for ti in t],
-    dtype=[("time", float), ("shaft.y", float), ("shaft.vy", float), ("shaft.omega", float)],
-)
+fmu = "target/fmu/raceway-fmi2.fmu"
+inputs = [v.name for v in read_model_description(fmu).modelVariables if v.causality == "input"]
+
+# shaft motion: 20 µm downward, turning at 1750 rpm (every input in the table, others 0)
+motion = np.zeros(11, dtype=[("time", float)] + [(name, float) for name in inputs])
+motion["time"] = np.linspace(0.0, 0.01, 11)
+motion["shaft.y"] = -20e-6
+motion["shaft.omega"] = 183.26
 result = simulate_fmu(
-    "target/fmu/raceway-fmi2.fmu",
+    fmu,
     stop_time=0.01,
     output_interval=1e-3,
     input=motion,

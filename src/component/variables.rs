@@ -458,3 +458,86 @@ pub const PARAMETERS: &[Parameter] = &[
         description: "relative tolerance of the internal integrator (applied only when set)",
     },
 ];
+
+/// How people read a unit: `(SI unit, display unit, factor)` with
+/// `value in display unit = factor × value in SI unit` (the FMI `DisplayUnit` convention,
+/// spec2 §2.2.2, spec3 §2.4.3). The first row of a unit is the one its variables show.
+pub const DISPLAY_UNITS: &[(&str, &str, f64)] = &[
+    ("m", "µm", 1e6),
+    ("m", "mm", 1e3),
+    ("rad", "deg", 180.0 / std::f64::consts::PI),
+    ("rad/s", "rpm", 30.0 / std::f64::consts::PI),
+    ("Pa", "GPa", 1e-9),
+    ("Pa", "MPa", 1e-6),
+    ("N", "kN", 1e-3),
+    ("N/m", "N/µm", 1e-6),
+];
+
+/// The display unit a variable of SI unit `unit` shows (and its factor), if any.
+pub fn display_unit(unit: &str) -> Option<(&'static str, f64)> {
+    DISPLAY_UNITS
+        .iter()
+        .find(|(u, _, _)| *u == unit)
+        .map(|&(_, d, f)| (d, f))
+}
+
+/// Declared ranges `(name, min, max)` (SI) of the inputs and parameters: what the FMUs
+/// declare as `min`/`max` and refuse outside. They are plausibility bounds, wide enough
+/// for any ball bearing the models cover: ring displacements within 1 mm and tilts within
+/// 0.1 rad (both far beyond clearance plus contact deflection, tens of µm and a few mrad),
+/// ring velocities those of a 1 mm / 0.1 rad vibration up to about 15 kHz, shaft speeds up
+/// to 2e4 rad/s (about 191 000 rpm), loads up to 10 MN and 1 MN·m; the parameters' ranges
+/// are those the scene accepts (`params.rs`, `Scene::validate`).
+pub const RANGES: &[(&str, f64, f64)] = &[
+    ("shaft.x", -1e-3, 1e-3),
+    ("shaft.y", -1e-3, 1e-3),
+    ("shaft.z", -1e-3, 1e-3),
+    ("shaft.rx", -0.1, 0.1),
+    ("shaft.ry", -0.1, 0.1),
+    ("shaft.vx", -100.0, 100.0),
+    ("shaft.vy", -100.0, 100.0),
+    ("shaft.vz", -100.0, 100.0),
+    ("shaft.wx", -1e4, 1e4),
+    ("shaft.wy", -1e4, 1e4),
+    ("shaft.omega", -2e4, 2e4),
+    ("load.x", -1e7, 1e7),
+    ("load.y", -1e7, 1e7),
+    ("load.z", -1e7, 1e7),
+    ("load.mx", -1e6, 1e6),
+    ("load.my", -1e6, 1e6),
+    // -1 is the "as the bearing has it" value of the clearance parameter.
+    ("clearance", -1.0, 1e-3),
+    ("rtol", 1e-14, 0.1),
+];
+
+/// The declared range of input or parameter `name`, if it has one.
+pub fn range(name: &str) -> Option<(f64, f64)> {
+    RANGES
+        .iter()
+        .find(|(n, _, _)| *n == name)
+        .map(|&(_, lo, hi)| (lo, hi))
+}
+
+#[cfg(test)]
+mod metadata_tests {
+    use super::*;
+
+    #[test]
+    fn every_input_and_real_parameter_has_a_range_and_display_units_are_consistent() {
+        for v in all().filter(|v| v.role != Role::Output) {
+            let (lo, hi) = range(v.name).unwrap_or_else(|| panic!("{} has no range", v.name));
+            assert!(lo < 0.0 && hi > 0.0, "{}: 0 (the start) is inside", v.name);
+        }
+        for p in PARAMETERS.iter().filter(|p| p.ty == ParamType::Real) {
+            let (lo, hi) = range(p.name).unwrap();
+            let s: f64 = p.start.parse().unwrap();
+            assert!(lo <= s && s <= hi, "{}: start {s} in [{lo}, {hi}]", p.name);
+        }
+        // rpm: 1750 rpm is 183.26 rad/s; µm and GPa by their prefixes.
+        let (d, f) = display_unit("rad/s").unwrap();
+        assert_eq!(d, "rpm");
+        assert!((183.259_571 * f - 1750.0).abs() < 1e-3);
+        assert_eq!(display_unit("m"), Some(("µm", 1e6)));
+        assert_eq!(display_unit("Pa"), Some(("GPa", 1e-9)));
+    }
+}

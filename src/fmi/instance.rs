@@ -156,6 +156,17 @@ pub(crate) fn classify(vr: u32) -> Option<Var> {
     params::index(vr).map(Var::Param)
 }
 
+/// Refuse `value` outside the range the model description declares for `name`
+/// (`variables::RANGES`), naming the variable, the value and the range.
+fn in_range(name: &str, kind: &str, value: f64) -> Result<(), Fail> {
+    match crate::component::variables::range(name) {
+        Some((lo, hi)) if !(lo..=hi).contains(&value) => Err(Fail::from(format!(
+            "{kind} `{name}` = {value}: allowed [{lo}, {hi}] (its declared min and max)"
+        ))),
+        _ => Ok(()),
+    }
+}
+
 fn name_of(vr: u32) -> String {
     match classify(vr) {
         Some(Var::Time) => "time".into(),
@@ -561,7 +572,7 @@ impl Instance {
     pub(crate) fn get_real(&mut self, vr: u32) -> Result<f64, Fail> {
         match classify(vr) {
             Some(Var::Time) => Ok(self.time),
-            Some(Var::Input(i)) => match &self.component {
+            Some(Var::Input(i)) => match &mut self.component {
                 Some(c) => Ok(c.get_real(vr)?),
                 None => Ok(self.inputs[i]),
             },
@@ -598,6 +609,7 @@ impl Instance {
                         name_of(vr)
                     )));
                 }
+                in_range(&name_of(vr), "input", value)?;
                 if let Some(c) = &mut self.component {
                     c.set_real(vr, value)?;
                 }
@@ -613,6 +625,7 @@ impl Instance {
                         PARAMETERS[i].name
                     )));
                 }
+                in_range(PARAMETERS[i].name, "parameter", value)?;
                 self.params[i] = Some(ParamValue::Real(value));
                 self.component = None;
                 Ok(())

@@ -7,7 +7,8 @@
 //! start values on inputs, every unit defined, exactly one independent variable in FMI 3).
 
 use crate::component::variables::{
-    self, Causality, ParamType, Parameter, Variable, DAMPING, PARAMETERS, SCALARS, STIFFNESS,
+    self, Causality, ParamType, Parameter, Variable, DAMPING, DISPLAY_UNITS, PARAMETERS, RANGES,
+    SCALARS, STIFFNESS,
 };
 use std::fmt::Write;
 
@@ -73,6 +74,20 @@ const fn table_hash(basis: u64) -> u64 {
     while p < PARAMETERS.len() {
         h = hash_parameter(h, &PARAMETERS[p]);
         p += 1;
+    }
+    let mut d = 0;
+    while d < DISPLAY_UNITS.len() {
+        h = fnv(h, DISPLAY_UNITS[d].0.as_bytes());
+        h = fnv(h, DISPLAY_UNITS[d].1.as_bytes());
+        h = fnv(h, &DISPLAY_UNITS[d].2.to_bits().to_le_bytes());
+        d += 1;
+    }
+    let mut r = 0;
+    while r < RANGES.len() {
+        h = fnv(h, RANGES[r].0.as_bytes());
+        h = fnv(h, &RANGES[r].1.to_bits().to_le_bytes());
+        h = fnv(h, &RANGES[r].2.to_bits().to_le_bytes());
+        r += 1;
     }
     h
 }
@@ -192,10 +207,17 @@ fn unit_definitions(x: &mut String) {
                 let _ = write!(attrs, " {name}=\"{k}\"");
             }
         }
-        if attrs.is_empty() {
+        let mut body = String::new();
+        if !attrs.is_empty() {
+            let _ = write!(body, "<BaseUnit{attrs}/>");
+        }
+        for (_, d, f) in DISPLAY_UNITS.iter().filter(|(si, _, _)| *si == u) {
+            let _ = write!(body, "<DisplayUnit name=\"{}\" factor=\"{f}\"/>", esc(d));
+        }
+        if body.is_empty() {
             let _ = writeln!(x, "    <Unit name=\"{}\"/>", esc(u));
         } else {
-            let _ = writeln!(x, "    <Unit name=\"{}\"><BaseUnit{attrs}/></Unit>", esc(u));
+            let _ = writeln!(x, "    <Unit name=\"{}\">{body}</Unit>", esc(u));
         }
     }
     x.push_str("  </UnitDefinitions>\n");
@@ -225,6 +247,20 @@ const DEFAULT_EXPERIMENT: &str =
 
 fn param_start(p: &Parameter) -> String {
     esc(p.start)
+}
+
+/// ` displayUnit="…"` for a variable of SI unit `unit` that has one, else "".
+fn display_attr(unit: &str) -> String {
+    variables::display_unit(unit).map_or(String::new(), |(d, _)| {
+        format!(" displayUnit=\"{}\"", esc(d))
+    })
+}
+
+/// ` min="…" max="…"` for an input or parameter with a declared range, else "".
+fn range_attr(name: &str) -> String {
+    variables::range(name).map_or(String::new(), |(lo, hi)| {
+        format!(" min=\"{lo}\" max=\"{hi}\"")
+    })
 }
 
 /// FMI 2.0 co-simulation `modelDescription.xml`.
@@ -260,20 +296,21 @@ pub fn fmi2() -> String {
         let input = v.is_input(Causality::Motion);
         let (caus, init, start) = if input {
             input_idx.push(index);
-            ("input", "", " start=\"0\"")
+            ("input", "", format!("{} start=\"0\"", range_attr(v.name)))
         } else {
             output_idx.push(index);
-            ("output", " initial=\"calculated\"", "")
+            ("output", " initial=\"calculated\"", String::new())
         };
         let _ = writeln!(
             x,
             "    <!-- {index} --><ScalarVariable name=\"{}\" valueReference=\"{}\" \
              causality=\"{caus}\" variability=\"continuous\"{init} description=\"{}\">\
-             <Real unit=\"{}\"{start}/></ScalarVariable>",
+             <Real unit=\"{}\"{}{start}/></ScalarVariable>",
             esc(v.name),
             v.vr,
             esc(v.description),
-            esc(v.unit)
+            esc(v.unit),
+            display_attr(v.unit)
         );
     }
     for p in PARAMETERS {
@@ -281,8 +318,10 @@ pub fn fmi2() -> String {
         param_idx.push(index);
         let ty = match p.ty {
             ParamType::Real => format!(
-                "<Real unit=\"{}\" start=\"{}\"/>",
+                "<Real unit=\"{}\"{}{} start=\"{}\"/>",
                 esc(p.unit),
+                display_attr(p.unit),
+                range_attr(p.name),
                 param_start(p)
             ),
             ParamType::String => format!("<String start=\"{}\"/>", param_start(p)),
@@ -348,18 +387,19 @@ pub fn fmi3() -> String {
     for v in io_variables() {
         let input = v.is_input(Causality::Motion);
         let (caus, extra) = if input {
-            ("input", " start=\"0\"")
+            ("input", format!("{} start=\"0\"", range_attr(v.name)))
         } else {
-            ("output", " initial=\"calculated\"")
+            ("output", " initial=\"calculated\"".to_string())
         };
         let _ = writeln!(
             x,
             "    <Float64 name=\"{}\" valueReference=\"{}\" causality=\"{caus}\" \
-             variability=\"continuous\" description=\"{}\" unit=\"{}\"{extra}/>",
+             variability=\"continuous\" description=\"{}\" unit=\"{}\"{}{extra}/>",
             esc(v.name),
             v.vr,
             esc(v.description),
-            esc(v.unit)
+            esc(v.unit),
+            display_attr(v.unit)
         );
     }
     for p in PARAMETERS {
@@ -368,12 +408,14 @@ pub fn fmi3() -> String {
                 let _ = writeln!(
                     x,
                     "    <Float64 name=\"{}\" valueReference=\"{}\" causality=\"parameter\" \
-                     variability=\"fixed\" initial=\"exact\" description=\"{}\" unit=\"{}\" \
+                     variability=\"fixed\" initial=\"exact\" description=\"{}\" unit=\"{}\"{}{} \
                      start=\"{}\"/>",
                     esc(p.name),
                     p.vr,
                     esc(p.description),
                     esc(p.unit),
+                    display_attr(p.unit),
+                    range_attr(p.name),
                     param_start(p)
                 );
             }
@@ -416,48 +458,153 @@ pub fn fmi3() -> String {
     x
 }
 
-/// The Markdown variable table of `docs/fmi.md` (between the `BEGIN/END generated` markers).
-pub fn markdown_table() -> String {
-    let mut t = String::new();
-    let _ = writeln!(t, "GUID / instantiationToken of this build: `{GUID}`\n");
-    t.push_str("| name | value reference | causality | unit | start | description |\n");
-    t.push_str("|---|---|---|---|---|---|\n");
-    t.push_str("| `time` (FMI 3 only) | 0 | independent | s | | simulation time |\n");
+/// The platforms the FMUs carry binaries for (FMI 2 folder, FMI 3 tuple). Other targets
+/// need toolchains this build machine does not have.
+pub const PLATFORMS: &[(&str, &str)] = &[("linux64", "x86_64-linux")];
+
+/// One row of the variable table: name, value reference, causality, unit, display unit,
+/// range, start, description (the cells as plain text).
+fn rows() -> Vec<[String; 8]> {
+    let shown =
+        |u: &str| variables::display_unit(u).map_or(String::new(), |(d, f)| format!("{d} (× {f})"));
+    let range =
+        |n: &str| variables::range(n).map_or(String::new(), |(lo, hi)| format!("[{lo}, {hi}]"));
+    let mut r = vec![[
+        "time (FMI 3 only)".to_string(),
+        VR_TIME.to_string(),
+        "independent".into(),
+        "s".into(),
+        String::new(),
+        String::new(),
+        String::new(),
+        "simulation time".into(),
+    ]];
     for v in io_variables() {
         let (c, s) = if v.is_input(Causality::Motion) {
             ("input", "0")
         } else {
             ("output", "")
         };
-        let _ = writeln!(
-            t,
-            "| `{}` | {} | {c} | {} | {s} | {} |",
-            v.name,
-            v.vr,
-            v.unit,
-            v.description.replace('|', "\\|")
-        );
+        r.push([
+            v.name.into(),
+            v.vr.to_string(),
+            c.into(),
+            v.unit.into(),
+            shown(v.unit),
+            range(v.name),
+            s.into(),
+            v.description.into(),
+        ]);
     }
     for p in PARAMETERS {
-        let ty = match p.ty {
-            ParamType::Real => "",
-            ParamType::String => " (string)",
+        let (ty, start) = match p.ty {
+            ParamType::Real => ("", p.start.to_string()),
+            ParamType::String => (" (string)", format!("\"{}\"", p.start)),
         };
-        let start = if p.ty == ParamType::String {
-            format!("\"{}\"", p.start)
-        } else {
-            p.start.to_string()
+        r.push([
+            p.name.into(),
+            p.vr.to_string(),
+            format!("parameter (fixed){ty}"),
+            p.unit.into(),
+            shown(p.unit),
+            range(p.name),
+            start,
+            p.description.into(),
+        ]);
+    }
+    r
+}
+
+const HEADER: [&str; 8] = [
+    "name",
+    "value reference",
+    "causality",
+    "unit",
+    "display unit (× factor)",
+    "range (SI)",
+    "start",
+    "description",
+];
+
+fn platform_line() -> String {
+    let list: Vec<String> = PLATFORMS
+        .iter()
+        .map(|(a, b)| format!("{a} (FMI 2) / {b} (FMI 3)"))
+        .collect();
+    format!(
+        "Platforms with a binary in the FMUs: {}. Other platforms need a build of the \
+         library there (`scripts/build-fmu`).",
+        list.join(", ")
+    )
+}
+
+/// The Markdown variable table of `docs/fmi.md` (between the `BEGIN/END generated` markers).
+pub fn markdown_table() -> String {
+    let mut t = String::new();
+    let _ = writeln!(t, "GUID / instantiationToken of this build: `{GUID}`\n");
+    let _ = writeln!(t, "{}\n", platform_line());
+    let _ = writeln!(t, "| {} |", HEADER.join(" | "));
+    let _ = writeln!(t, "|{}", "---|".repeat(HEADER.len()));
+    for mut row in rows() {
+        row[0] = match row[0].split_once(' ') {
+            Some((name, note)) => format!("`{name}` {note}"),
+            None => format!("`{}`", row[0]),
         };
-        let _ = writeln!(
-            t,
-            "| `{}` | {} | parameter (fixed){ty} | {} | {start} | {} |",
-            p.name,
-            p.vr,
-            p.unit,
-            p.description.replace('|', "\\|")
-        );
+        let cells: Vec<String> = row.iter().map(|c| c.replace('|', "\\|")).collect();
+        let _ = writeln!(t, "| {} |", cells.join(" | "));
     }
     t
+}
+
+/// `documentation/index.html` of the FMUs: what the FMU is, its platforms and the variable
+/// table, generated like the model descriptions.
+pub fn documentation_html() -> String {
+    let mut h = String::new();
+    let _ = write!(
+        h,
+        "<!DOCTYPE html>\n<html lang=\"en\">\n<head><meta charset=\"utf-8\">\
+         <title>raceway {ver}</title>\n<style>body{{font-family:sans-serif;max-width:70em}}\
+         table{{border-collapse:collapse}}td,th{{border:1px solid #999;padding:2px 6px;\
+         text-align:left;vertical-align:top}}</style></head>\n<body>\n<h1>raceway {ver}</h1>\n\
+         <p>{}.</p>\n<p>Co-simulation, motion-driven: the host sets the shaft's motion \
+         (<code>shaft.*</code>) and reads the bearing's forces, moments, stiffness \
+         <code>K.i.j</code> and damping <code>C.i.j</code>. Outputs are valid from the end of \
+         initialisation on. Units are SI; the display units are those people read.</p>\n\
+         <p>{}</p>\n<p>GUID / instantiationToken: <code>{GUID}</code>. License: \
+         <a href=\"licenses/license.txt\">licenses/license.txt</a>.</p>\n<table>\n<tr>",
+        esc(DESCRIPTION),
+        esc(&platform_line()),
+        ver = env!("CARGO_PKG_VERSION")
+    );
+    for c in HEADER {
+        let _ = write!(h, "<th>{}</th>", esc(c));
+    }
+    h.push_str("</tr>\n");
+    for row in rows() {
+        h.push_str("<tr>");
+        for (i, c) in row.iter().enumerate() {
+            if i == 0 {
+                let _ = write!(h, "<td><code>{}</code></td>", esc(c));
+            } else {
+                let _ = write!(h, "<td>{}</td>", esc(c));
+            }
+        }
+        h.push_str("</tr>\n");
+    }
+    h.push_str("</table>\n</body>\n</html>\n");
+    h
+}
+
+/// `documentation/licenses/license.txt` of the FMUs (the crate's license).
+pub fn license_text() -> String {
+    format!(
+        "raceway {} is licensed under {} (SPDX), at your option:\n\
+         the MIT license or the Apache License, Version 2.0.\n\n\
+         The FMU's binary contains raceway and the Rust crates it depends on, each under its \
+         own permissive license (MIT, Apache-2.0 or compatible).\n",
+        env!("CARGO_PKG_VERSION"),
+        env!("CARGO_PKG_LICENSE")
+    )
 }
 
 /// Marker lines around the generated table in `docs/fmi.md`.

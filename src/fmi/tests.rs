@@ -178,3 +178,71 @@ fn status_values_are_the_fmi_ones() {
     assert_eq!(Status::Discard as i32, 2);
     assert_eq!(Status::Error as i32, 3);
 }
+
+#[test]
+fn outputs_are_valid_after_initialisation_restore_and_reset() {
+    let mut a = instance();
+    a.set_real(2, -1e-5).unwrap(); // shaft.y
+    a.set_real(11, 183.26).unwrap(); // shaft.omega
+    a.exit_initialization().unwrap();
+    let fy = a.get_real(102).unwrap();
+    assert!(fy > 100.0, "force.y at t0 = {fy} N");
+    let snap = a.snapshot();
+    a.set_real(2, -2e-5).unwrap();
+    assert!(
+        a.get_real(102).unwrap() > 2.0 * fy,
+        "follows a changed input"
+    );
+    a.restore(&snap).unwrap();
+    assert_eq!(a.get_real(102).unwrap(), fy);
+    a.reset();
+    a.set_real(2, -1e-5).unwrap();
+    a.set_real(11, 183.26).unwrap();
+    a.exit_initialization().unwrap();
+    assert_eq!(a.get_real(102).unwrap(), fy);
+}
+
+#[test]
+fn declared_ranges_and_display_units_are_in_the_descriptions_and_enforced() {
+    let (x2, x3) = (md::fmi2(), md::fmi3());
+    for x in [&x2, &x3] {
+        assert!(x.contains("<DisplayUnit name=\"rpm\" factor=\"9.549296585513721\"/>"));
+        assert!(x.contains("<DisplayUnit name=\"µm\" factor=\"1000000\"/>"));
+        assert!(x.contains("displayUnit=\"GPa\""));
+        assert!(x.contains("min=\"-0.001\" max=\"0.001\""));
+        assert!(x.contains("min=\"0.00000000000001\" max=\"0.1\""));
+    }
+    let mut a = instance();
+    let e = a.set_real(1, 2e-3).unwrap_err();
+    assert!(e.msg.contains("shaft.x") && e.msg.contains("[-0.001, 0.001]"));
+    let e = a.set_real(1005, 0.5).unwrap_err();
+    assert!(e.msg.contains("rtol"), "{}", e.msg);
+    assert!(a.set_real(1, 1e-3).is_ok());
+    let html = md::documentation_html();
+    assert!(html.contains("linux64") && html.contains("<code>K.y.y</code>"));
+}
+
+#[test]
+fn directional_derivatives_are_finite_or_refused_for_any_finite_seed() {
+    let mut a = instance();
+    a.set_real(2, -1e-5).unwrap();
+    a.set_real(11, 183.26).unwrap();
+    a.exit_initialization().unwrap();
+    let mut out = [0.0; 1];
+    a.directional_derivative(&[102], &[2], &[1e-9], &mut out)
+        .unwrap();
+    let small = out[0];
+    assert!(small < 0.0, "dF_y/dy = -K_yy < 0: {small}");
+    // A moderate huge seed scales exactly; one beyond f64 is refused, not -inf.
+    a.directional_derivative(&[102], &[2], &[1e290], &mut out)
+        .unwrap();
+    assert!(out[0].is_finite() && (out[0] / small / 1e299 - 1.0).abs() < 1e-12);
+    let e = a
+        .directional_derivative(&[102], &[2], &[1e308], &mut out)
+        .unwrap_err();
+    assert!(e.msg.contains("seed"), "{}", e.msg);
+    // Two seeds whose products overflow alone but not together.
+    a.directional_derivative(&[102], &[2, 2], &[1e305, -1e305], &mut out)
+        .unwrap();
+    assert_eq!(out[0], 0.0);
+}

@@ -17,6 +17,8 @@ def test_docs_snippet_is_the_quickstart_and_runs():
     fmu_path("fmi2")
     proc = subprocess.run([sys.executable, "examples/python/quickstart.py"], cwd=ROOT,
                           capture_output=True, text=True, check=True)
+    # every input has a column: fmpy prints no "missing input" warning
+    assert "arning" not in proc.stdout + proc.stderr, proc.stdout + proc.stderr
     force, unit = proc.stdout.split()[-2:]
     assert unit == "N"
     # the shaft is pushed 20 µm down: the bearing pushes it back up

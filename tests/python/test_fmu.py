@@ -89,7 +89,8 @@ def test_fmpy_validation_finds_no_problem(version):
 def test_archive_layout(version, platform):
     with zipfile.ZipFile(fmu_path(version)) as z:
         names = sorted(z.namelist())
-        assert names == ["binaries/%s/raceway.so" % platform, "modelDescription.xml"]
+        assert names == ["binaries/%s/raceway.so" % platform, "documentation/index.html",
+                         "documentation/licenses/license.txt", "modelDescription.xml"]
         for info in z.infolist():
             assert info.compress_type == zipfile.ZIP_DEFLATED
             assert "\\" not in info.filename and not info.filename.startswith(("/", "."))

@@ -7,7 +7,8 @@
 //! ```
 //!
 //! Writes `<dir>/fmi2/` and `<dir>/fmi3/` (modelDescription.xml, binaries/<platform>/
-//! raceway.so, resources/scene.toml when `--scene` is given) and `<dir>/variables.md`.
+//! raceway.so, documentation/index.html, documentation/licenses/license.txt,
+//! resources/scene.toml when `--scene` is given) and `<dir>/variables.md`.
 
 use raceway_core::fmi::model_description as md;
 use std::path::{Path, PathBuf};
@@ -74,6 +75,15 @@ fn run() -> Result<(), String> {
             }
             write(&root.join("modelDescription.xml"), xml.as_bytes())?;
             write(&root.join("binaries").join(platform).join(&file), &so)?;
+            let docs = root.join("documentation");
+            write(
+                &docs.join("index.html"),
+                md::documentation_html().as_bytes(),
+            )?;
+            write(
+                &docs.join("licenses").join("license.txt"),
+                md::license_text().as_bytes(),
+            )?;
             if let Some(t) = &scene_text {
                 write(&root.join("resources").join("scene.toml"), t.as_bytes())?;
             }
