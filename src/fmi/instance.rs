@@ -161,7 +161,9 @@ pub(crate) fn classify(vr: u32) -> Option<Var> {
 fn in_range(name: &str, kind: &str, value: f64) -> Result<(), Fail> {
     match crate::component::variables::range(name) {
         Some((lo, hi)) if !(lo..=hi).contains(&value) => Err(Fail::from(format!(
-            "{kind} `{name}` = {value}: allowed [{lo}, {hi}] (its declared min and max)"
+            "{kind} `{name}` = {value}: allowed [{}, {}] (its declared min and max)",
+            md::num(lo),
+            md::num(hi)
         ))),
         _ => Ok(()),
     }

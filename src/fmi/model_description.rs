@@ -249,6 +249,16 @@ fn param_start(p: &Parameter) -> String {
     esc(p.start)
 }
 
+/// A number as people write it: plain between 1e-4 and 1e6, else in exponent form
+/// (`1e-14`, not `0.00000000000001`); both are valid `xs:double` and round-trip exactly.
+pub(crate) fn num(x: f64) -> String {
+    if x == 0.0 || (1e-4..1e6).contains(&x.abs()) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
+}
+
 /// ` displayUnit="…"` for a variable of SI unit `unit` that has one, else "".
 fn display_attr(unit: &str) -> String {
     variables::display_unit(unit).map_or(String::new(), |(d, _)| {
@@ -259,7 +269,7 @@ fn display_attr(unit: &str) -> String {
 /// ` min="…" max="…"` for an input or parameter with a declared range, else "".
 fn range_attr(name: &str) -> String {
     variables::range(name).map_or(String::new(), |(lo, hi)| {
-        format!(" min=\"{lo}\" max=\"{hi}\"")
+        format!(" min=\"{}\" max=\"{}\"", num(lo), num(hi))
     })
 }
 
@@ -465,10 +475,14 @@ pub const PLATFORMS: &[(&str, &str)] = &[("linux64", "x86_64-linux")];
 /// One row of the variable table: name, value reference, causality, unit, display unit,
 /// range, start, description (the cells as plain text).
 fn rows() -> Vec<[String; 8]> {
-    let shown =
-        |u: &str| variables::display_unit(u).map_or(String::new(), |(d, f)| format!("{d} (× {f})"));
-    let range =
-        |n: &str| variables::range(n).map_or(String::new(), |(lo, hi)| format!("[{lo}, {hi}]"));
+    let shown = |u: &str| {
+        variables::display_unit(u).map_or(String::new(), |(d, f)| format!("{d} (× {})", num(f)))
+    };
+    let range = |n: &str| {
+        variables::range(n).map_or(String::new(), |(lo, hi)| {
+            format!("[{}, {}]", num(lo), num(hi))
+        })
+    };
     let mut r = vec![[
         "time (FMI 3 only)".to_string(),
         VR_TIME.to_string(),

@@ -210,7 +210,7 @@ fn declared_ranges_and_display_units_are_in_the_descriptions_and_enforced() {
         assert!(x.contains("<DisplayUnit name=\"µm\" factor=\"1000000\"/>"));
         assert!(x.contains("displayUnit=\"GPa\""));
         assert!(x.contains("min=\"-0.001\" max=\"0.001\""));
-        assert!(x.contains("min=\"0.00000000000001\" max=\"0.1\""));
+        assert!(x.contains("min=\"1e-14\" max=\"0.1\""));
     }
     let mut a = instance();
     let e = a.set_real(1, 2e-3).unwrap_err();

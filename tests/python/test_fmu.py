@@ -509,7 +509,7 @@ def test_bad_values_give_an_error_naming_the_cause(host, version):
         # (what is set, words the log must contain)
         ({"shaft.x": float("nan")}, ["shaft.x", "NaN", "finite"]),
         ({"clearance": float("inf")}, ["clearance", "finite"]),
-        ({"rtol": 5.0}, ["solver.rtol", "5"]),
+        ({"rtol": 5.0}, ["rtol", "5", "[1e-14, 0.1]"]),
         ({"scene": "this is [not a scene"}, ["parameter `scene`", "TOML"]),
         ({"bearing": "no-such-bearing"}, ["parameter `bearing`", "no-such-bearing", "6205"]),
         ({"level": "quantum"}, ["parameter `level`", "quantum", "quasi_static"]),
