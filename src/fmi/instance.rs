@@ -969,15 +969,6 @@ impl Snapshot {
                 "serialised FMU state: format {ver}, this binary reads {STATE_FORMAT}"
             ));
         }
-        // Damaged bytes are refused before any field is read.
-        let (b, sum) = b.split_at(b.len().saturating_sub(8).max(8));
-        if sum.len() != 8 || crate::component::fingerprint(b).to_le_bytes() != sum {
-            return Err(
-                "serialised FMU state: checksum mismatch: the bytes are damaged or truncated"
-                    .into(),
-            );
-        }
-        let mut r = Reader { b, at: r.at };
         let guid = r.bytes()?;
         if guid != GUID.as_bytes() {
             return Err(format!(
@@ -985,6 +976,22 @@ impl Snapshot {
                 String::from_utf8_lossy(guid)
             ));
         }
+        // Damaged bytes are refused before any other field is read (the magic, the
+        // format and the GUID name foreign bytes first).
+        if b.len() < r.at + 8 {
+            return Err(format!(
+                "serialised FMU state: truncated at byte {}",
+                b.len()
+            ));
+        }
+        let (b, sum) = b.split_at(b.len() - 8);
+        if crate::component::fingerprint(b).to_le_bytes() != sum {
+            return Err(
+                "serialised FMU state: checksum mismatch: the bytes are damaged or truncated"
+                    .into(),
+            );
+        }
+        let mut r = Reader { b, at: r.at };
         let mode = r.u32()?;
         if mode.count_ones() != 1 || mode & ANY == 0 {
             return Err(format!("serialised FMU state: bad mode {mode}"));
