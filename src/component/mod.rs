@@ -50,6 +50,15 @@ pub fn index_of(vr: u32) -> Option<usize> {
     variables::all().position(|v| v.vr == vr)
 }
 
+/// A bulk call's value references and values pair up.
+fn same_length(vrs: &[u32], values: &[f64]) -> std::result::Result<(), (usize, Error)> {
+    if vrs.len() == values.len() {
+        return Ok(());
+    }
+    let e = Error::invalid("values", values.len(), "as many values as value references");
+    Err((0, e))
+}
+
 // Positions in the table of the variables the component reads and writes on its hot
 // path; `slots_match_the_table` checks them against the names.
 const I_Q: usize = 0; // shaft.x .. shaft.ry
@@ -577,10 +586,7 @@ impl Component {
         vrs: &[u32],
         values: &[f64],
     ) -> std::result::Result<(), (usize, Error)> {
-        if vrs.len() != values.len() {
-            let e = Error::invalid("values", values.len(), "as many values as value references");
-            return Err((0, e));
-        }
+        same_length(vrs, values)?;
         for (k, (&vr, &v)) in vrs.iter().zip(values).enumerate() {
             self.input_slot("set_real", vr, v).map_err(|e| (k, e))?;
         }
@@ -599,10 +605,7 @@ impl Component {
         order: u32,
         values: &[f64],
     ) -> std::result::Result<(), (usize, Error)> {
-        if vrs.len() != values.len() {
-            let e = Error::invalid("values", values.len(), "as many values as value references");
-            return Err((0, e));
-        }
+        same_length(vrs, values)?;
         for (k, (&vr, &v)) in vrs.iter().zip(values).enumerate() {
             self.derivative_slot(vr, order, v).map_err(|e| (k, e))?;
         }
