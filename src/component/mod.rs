@@ -1037,7 +1037,7 @@ impl Component {
                     "bits of inputs of this causality only",
                 ));
             }
-            self.input_slot("set_state", v.vr, s.inputs[i])?;
+            self.input_slot("set_real", v.vr, s.inputs[i])?; // with the plausibility limits
         }
         if SCALARS.len() < 64 && s.inputs_set >> SCALARS.len() != 0 {
             return Err(Error::invalid(
