@@ -72,7 +72,8 @@ fn main() {
              falls faster as H shrinks. Beyond about 5e-5 s the explicit coupling of a \
              1e8 N/m contact with an 8 kg rotor loses stability (fmi.md §5.3).\n"
         );
-        std::fs::write("docs/coupling.md", doc).expect("write docs/coupling.md");
+        raceway::fsutil::write_atomic(std::path::Path::new("docs/coupling.md"), doc)
+            .expect("write docs/coupling.md");
         println!("wrote docs/coupling.md");
     }
 }

@@ -64,20 +64,29 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
     let wall = started.elapsed().as_secs_f64();
     std::fs::create_dir_all("out")?;
-    let mut f = std::io::BufWriter::new(std::fs::File::create(format!("out/{name}-series.csv"))?);
-    writeln!(f, "t_s,{}", names.join(","))?;
-    for r in &rows {
-        writeln!(f, "{},{},{},{},{},{}", r[0], r[1], r[2], r[3], r[4], r[5])?;
-    }
+    // Written under a temporary name and renamed: never half-written.
+    let path = format!("out/{name}-series.csv");
+    raceway::fsutil::write_atomic_with(std::path::Path::new(&path), |tmp| {
+        let mut f = std::io::BufWriter::new(std::fs::File::create(tmp)?);
+        writeln!(f, "t_s,{}", names.join(","))?;
+        for r in &rows {
+            writeln!(f, "{},{},{},{},{},{}", r[0], r[1], r[2], r[3], r[4], r[5])?;
+        }
+        f.flush()
+    })?;
     let y: Vec<f64> = rows.iter().map(|r| r[2]).collect();
     let fy: Vec<f64> = rows.iter().map(|r| r[4]).collect();
     let spec = amplitude_spectrum(&y, fs, Window::Hann);
     let env = envelope_spectrum(&fy, fs, Some((500.0, 4500.0)));
-    let mut f = std::io::BufWriter::new(std::fs::File::create(format!("out/{name}-spectrum.csv"))?);
-    writeln!(f, "f_hz,shaft_y_amp_m,force_y_envelope_amp_n")?;
-    for k in 0..spec.freq.len() {
-        writeln!(f, "{},{},{}", spec.freq[k], spec.amp[k], env.amp[k])?;
-    }
+    let path = format!("out/{name}-spectrum.csv");
+    raceway::fsutil::write_atomic_with(std::path::Path::new(&path), |tmp| {
+        let mut f = std::io::BufWriter::new(std::fs::File::create(tmp)?);
+        writeln!(f, "f_hz,shaft_y_amp_m,force_y_envelope_amp_n")?;
+        for k in 0..spec.freq.len() {
+            writeln!(f, "{},{},{}", spec.freq[k], spec.amp[k], env.amp[k])?;
+        }
+        f.flush()
+    })?;
     let kin = kinematics(c.bearing(), omega);
     let shaft_hz = omega / (2.0 * std::f64::consts::PI);
     println!(

@@ -48,82 +48,82 @@
 #define RACEWAY_VARIABLE_COUNT 86
 
 /*
- `shaft.x` (m): inner-ring centre displacement x relative to the outer ring.
+ `shaft.x` (m): inner-ring centre displacement x relative to the outer ring; plausible: |x| <= radial play + approach at 7.5 GPa Hertz (scene --explain).
  */
 #define RACEWAY_VR_SHAFT_X 1
 
 /*
- `shaft.y` (m): inner-ring centre displacement y.
+ `shaft.y` (m): inner-ring centre displacement y; plausible: |y| <= radial play + approach at 7.5 GPa Hertz (scene --explain).
  */
 #define RACEWAY_VR_SHAFT_Y 2
 
 /*
- `shaft.z` (m): inner-ring centre displacement z (axial).
+ `shaft.z` (m): inner-ring centre displacement z (axial); plausible: |z| <= axial play + approach at 7.5 GPa Hertz (scene --explain).
  */
 #define RACEWAY_VR_SHAFT_Z 3
 
 /*
- `shaft.rx` (rad): inner-ring tilt about x.
+ `shaft.rx` (rad): inner-ring tilt about x; plausible: |rx| <= axial limit / inner groove radius.
  */
 #define RACEWAY_VR_SHAFT_RX 4
 
 /*
- `shaft.ry` (rad): inner-ring tilt about y.
+ `shaft.ry` (rad): inner-ring tilt about y; plausible: |ry| <= axial limit / inner groove radius.
  */
 #define RACEWAY_VR_SHAFT_RY 5
 
 /*
- `shaft.vx` (m/s): inner-ring velocity x.
+ `shaft.vx` (m/s): inner-ring velocity x; plausible: |vx| <= ring burst rim speed.
  */
 #define RACEWAY_VR_SHAFT_VX 6
 
 /*
- `shaft.vy` (m/s): inner-ring velocity y.
+ `shaft.vy` (m/s): inner-ring velocity y; plausible: |vy| <= ring burst rim speed.
  */
 #define RACEWAY_VR_SHAFT_VY 7
 
 /*
- `shaft.vz` (m/s): inner-ring velocity z.
+ `shaft.vz` (m/s): inner-ring velocity z; plausible: |vz| <= ring burst rim speed.
  */
 #define RACEWAY_VR_SHAFT_VZ 8
 
 /*
- `shaft.wx` (rad/s): inner-ring tilt rate about x.
+ `shaft.wx` (rad/s): inner-ring tilt rate about x; plausible: |wx| <= ring burst speed.
  */
 #define RACEWAY_VR_SHAFT_WX 9
 
 /*
- `shaft.wy` (rad/s): inner-ring tilt rate about y.
+ `shaft.wy` (rad/s): inner-ring tilt rate about y; plausible: |wy| <= ring burst speed.
  */
 #define RACEWAY_VR_SHAFT_WY 10
 
 /*
- `shaft.omega` (rad/s): inner-ring spin speed about z.
+ `shaft.omega` (rad/s): inner-ring spin speed about z; plausible: |omega| <= inner-ring burst speed (scene --explain).
  */
 #define RACEWAY_VR_SHAFT_OMEGA 11
 
 /*
- `load.x` (N): external force on the inner ring, x.
+ `load.x` (N): external force on the inner ring, x; plausible: |F| <= Z balls at the 7.5 GPa load.
  */
 #define RACEWAY_VR_LOAD_X 21
 
 /*
- `load.y` (N): external force on the inner ring, y.
+ `load.y` (N): external force on the inner ring, y; plausible: |F| <= Z balls at the 7.5 GPa load.
  */
 #define RACEWAY_VR_LOAD_Y 22
 
 /*
- `load.z` (N): external force on the inner ring, z.
+ `load.z` (N): external force on the inner ring, z; plausible: |F| <= Z balls at the 7.5 GPa load.
  */
 #define RACEWAY_VR_LOAD_Z 23
 
 /*
- `load.mx` (N.m): external moment on the inner ring about x.
+ `load.mx` (N.m): external moment on the inner ring about x; plausible: |M| <= Z balls at the 7.5 GPa load on the inner groove radius.
  */
 #define RACEWAY_VR_LOAD_MX 24
 
 /*
- `load.my` (N.m): external moment on the inner ring about y.
+ `load.my` (N.m): external moment on the inner ring about y; plausible: |M| <= Z balls at the 7.5 GPa load on the inner groove radius.
  */
 #define RACEWAY_VR_LOAD_MY 25
 
@@ -515,16 +515,23 @@ typedef enum {
    An internal error (a caught panic); the instance is poisoned and must be freed.
    */
   RACEWAY_STATUS_PANIC = 7,
+  /*
+   A handle that is not a live instance or state of this library (freed already,
+   never created, or of the other kind).
+   */
+  RACEWAY_STATUS_INVALID_HANDLE = 8,
 } RacewayStatus;
 
 /*
- An opaque bearing instance (from [`raceway_create`], freed by [`raceway_free`]).
+ An opaque bearing instance (from [`raceway_create`], freed by [`raceway_free`]). The
+ pointer is a handle, not an address: never dereference it.
  */
 typedef struct RacewayComponent RacewayComponent;
 
 /*
  An opaque copy of an instance's complete state (from [`raceway_state_get`] or
- [`raceway_state_deserialize`], freed by [`raceway_state_free`]).
+ [`raceway_state_deserialize`], freed by [`raceway_state_free`]); a handle like
+ [`RacewayComponent`].
  */
 typedef struct RacewayState RacewayState;
 
@@ -618,19 +625,21 @@ const char *raceway_variable_description(uint32_t vr);
 RacewayComponent *raceway_create(const char *scene, char *error, size_t error_len);
 
 /*
- Free an instance (NULL is ignored). The pointer must not be used afterwards.
+ Free an instance. NULL, a handle freed before, a handle never created and an instance
+ another thread is inside a call on right now are ignored (nothing is freed).
 
  # Safety
- `c` is NULL or a pointer from [`raceway_create`] not freed before.
+ None beyond the C signature: `c` is only compared with the live handles.
  */
 void raceway_free(RacewayComponent *c);
 
 /*
  The message of the last refused call on `c` (`""` when the last call succeeded). Valid
- until the next call on `c`. For a NULL `c`, a static message saying so.
+ until the next call on `c`. For NULL or a handle that is not live, a static message
+ saying so.
 
  # Safety
- `c` is NULL or a live instance.
+ None beyond the C signature: `c` is only compared with the live handles.
  */
 const char *raceway_last_error(const RacewayComponent *c);
 
@@ -752,11 +761,11 @@ RacewayStatus raceway_get_stats(RacewayComponent *c, RacewayStats *stats);
 
 /*
  Copy the instance's complete state into `*state`: when `*state` is NULL a new state is
- allocated (free it with [`raceway_state_free`]); otherwise `*state` must be a state
- from this library and is overwritten in place.
+ made (free it with [`raceway_state_free`]); otherwise `*state` must be a live state
+ and is overwritten in place (no allocation).
 
  # Safety
- `c` is NULL or a live instance; `state` is NULL or points to NULL or a live state.
+ `c` is any handle; `state` is NULL or valid for a read and a write.
  */
 RacewayStatus raceway_state_get(RacewayComponent *c, RacewayState **state);
 
@@ -766,15 +775,16 @@ RacewayStatus raceway_state_get(RacewayComponent *c, RacewayState **state);
  another scene is refused.
 
  # Safety
- `c` is NULL or a live instance; `state` is NULL or a live state.
+ None beyond the C signature: `c` and `state` are only compared with the live handles.
  */
 RacewayStatus raceway_state_set(RacewayComponent *c, const RacewayState *state);
 
 /*
- Free a state (NULL is ignored).
+ Free a state. NULL, a handle freed before, one never created and a state in use by
+ another thread right now are ignored.
 
  # Safety
- `state` is NULL or a state from this library not freed before.
+ None beyond the C signature: `state` is only compared with the live handles.
  */
 void raceway_state_free(RacewayState *state);
 
@@ -782,19 +792,19 @@ void raceway_state_free(RacewayState *state);
  The number of bytes [`raceway_state_serialize`] writes for `state`.
 
  # Safety
- `c` is NULL or a live instance (it receives the error message); `state` is NULL or a
- live state; `size` is NULL or valid for a write.
+ `c` is any handle (it receives the error message); `state` is any handle; `size` is
+ NULL or valid for a write.
  */
 RacewayStatus raceway_state_size(RacewayComponent *c, const RacewayState *state, size_t *size);
 
 /*
  Serialise `state` into `buffer` (`len` bytes, at least [`raceway_state_size`]). The
- bytes are versioned and hold no pointers: they may be stored and read back by another
- process of the same library version.
+ bytes hold no pointers and carry a format version, the scene's fingerprint and a
+ checksum: they may be stored and restored by another process of the same library
+ version; damaged bytes are refused on reading.
 
  # Safety
- `c` is NULL or a live instance; `state` is NULL or a live state; `buffer` is NULL or
- valid for `len` bytes.
+ `c` and `state` are any handles; `buffer` is NULL or valid for `len` bytes.
  */
 RacewayStatus raceway_state_serialize(RacewayComponent *c,
                                       const RacewayState *state,
@@ -804,12 +814,13 @@ RacewayStatus raceway_state_serialize(RacewayComponent *c,
 /*
  Read a state from `len` bytes written by [`raceway_state_serialize`] into a new state
  `*state` (free it with [`raceway_state_free`]; restore it with [`raceway_state_set`]).
- Refused: damaged or truncated bytes, another format version, a state of another
- scene than `c`'s. `*state` is written only on success.
+ Refused with a message, before any value is used: truncated or damaged bytes (the
+ checksum), another format version, a state of another scene than `c`'s, a number not
+ finite or outside its range. `*state` is written only on success.
 
  # Safety
- `c` is NULL or a live instance; `buffer` is NULL or valid for `len` bytes; `state` is
- NULL or valid for a write.
+ `c` is any handle; `buffer` is NULL or valid for `len` bytes; `state` is NULL or valid
+ for a write.
  */
 RacewayStatus raceway_state_deserialize(RacewayComponent *c,
                                         const uint8_t *buffer,

@@ -162,3 +162,9 @@ pub fn in_range(field: &str, value: f64, lo: f64, hi: f64) -> Result<f64> {
         ))
     }
 }
+
+impl From<std::io::Error> for Error {
+    fn from(e: std::io::Error) -> Self {
+        Error::Io(e.to_string())
+    }
+}

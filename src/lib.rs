@@ -18,6 +18,7 @@ pub mod analysis;
 pub mod component;
 pub mod contact;
 pub mod error;
+pub mod fsutil;
 pub mod geometry;
 pub mod lubrication;
 pub mod models;

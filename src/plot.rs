@@ -245,10 +245,12 @@ type Area<'a> = DrawingArea<BitMapBackend<'a>, plotters::coord::Shift>;
 /// marker labels are stacked in rows above the plot so that none overlaps another.
 pub fn plot(path: &Path, axes: &Axes<'_>, series: &[Series<'_>], markers: &[Marker]) -> Result<()> {
     register_font();
-    let root = BitMapBackend::new(path, (800, 500)).into_drawing_area();
-    draw_area(&root, axes, series, markers)?;
-    root.present().map_err(io)?;
-    Ok(())
+    // Under a temporary name, then renamed: never half-written.
+    crate::fsutil::write_atomic_with(path, |tmp| {
+        let root = BitMapBackend::new(tmp, (800, 500)).into_drawing_area();
+        draw_area(&root, axes, series, markers)?;
+        root.present().map_err(io)
+    })
 }
 
 /// Panels stacked vertically in one PNG (800 x 250 px per panel) under one `title`, each
@@ -256,18 +258,19 @@ pub fn plot(path: &Path, axes: &Axes<'_>, series: &[Series<'_>], markers: &[Mark
 pub fn plot_stack(path: &Path, title: &str, panels: &[(Axes<'_>, Vec<Series<'_>>)]) -> Result<()> {
     register_font();
     let h = 40 + 250 * panels.len().max(1) as u32;
-    let root = BitMapBackend::new(path, (800, h)).into_drawing_area();
-    root.fill(&WHITE).map_err(io)?;
-    let body = root.titled(title, ("sans-serif", 20)).map_err(io)?;
-    for (area, (axes, series)) in body
-        .split_evenly((panels.len().max(1), 1))
-        .iter()
-        .zip(panels)
-    {
-        draw_area(area, axes, series, &[])?;
-    }
-    root.present().map_err(io)?;
-    Ok(())
+    crate::fsutil::write_atomic_with(path, |tmp| {
+        let root = BitMapBackend::new(tmp, (800, h)).into_drawing_area();
+        root.fill(&WHITE).map_err(io)?;
+        let body = root.titled(title, ("sans-serif", 20)).map_err(io)?;
+        for (area, (axes, series)) in body
+            .split_evenly((panels.len().max(1), 1))
+            .iter()
+            .zip(panels)
+        {
+            draw_area(area, axes, series, &[])?;
+        }
+        root.present().map_err(io)
+    })
 }
 
 /// Shape of the `k`-th point series.

@@ -596,3 +596,147 @@ fn instances_on_several_threads_match_a_single_threaded_run() {
     // The runs differ from one another (the comparison is not vacuous).
     assert_ne!(bits(&serial[0][0]), bits(&serial[1][0]));
 }
+
+/// Handles are checked: double free, use after free, a made-up handle and a state handle
+/// given where an instance is expected are refused with a status, never dereferenced.
+#[test]
+fn freed_foreign_and_doubly_freed_handles_are_refused() {
+    let c = create();
+    c.run(0, 1, 0.3, 1e-4);
+    let raw = c.0;
+    let mut s: *mut RacewayState = null_mut();
+    assert_eq!(unsafe { raceway_state_get(raw, &mut s) }, RacewayStatus::Ok);
+    drop(c); // raceway_free
+    let mut t = 0.0;
+    unsafe {
+        // Use after free.
+        assert_eq!(
+            raceway_do_step(raw, 1e-4, 1e-4),
+            RacewayStatus::InvalidHandle
+        );
+        assert_eq!(raceway_get_time(raw, &mut t), RacewayStatus::InvalidHandle);
+        assert_eq!(raceway_state_set(raw, s), RacewayStatus::InvalidHandle);
+        let msg = CStr::from_ptr(raceway_last_error(raw)).to_str().unwrap();
+        assert!(msg.contains("not a live instance"), "{msg}");
+        // Double free: ignored, no abort.
+        raceway_free(raw);
+        // Made-up handles, and a state handle where an instance is expected.
+        for fake in [8usize, 0x10_0010 * 1000, s as usize] {
+            let f = fake as *mut RacewayComponent;
+            assert_eq!(raceway_do_step(f, 0.0, 1e-4), RacewayStatus::InvalidHandle);
+            raceway_free(f);
+        }
+    }
+    // The state outlives its instance; freeing it twice is ignored; a freed state is
+    // refused by a live instance.
+    let d = create();
+    assert_eq!(unsafe { raceway_state_set(d.0, s) }, RacewayStatus::Ok);
+    unsafe { raceway_state_free(s) };
+    unsafe { raceway_state_free(s) };
+    assert_eq!(
+        unsafe { raceway_state_set(d.0, s) },
+        RacewayStatus::InvalidHandle
+    );
+    assert!(
+        d.msg().contains("`state` is not a live handle"),
+        "{}",
+        d.msg()
+    );
+    let mut n = 0usize;
+    assert_eq!(
+        unsafe { raceway_state_size(d.0, s, &mut n) },
+        RacewayStatus::InvalidHandle
+    );
+    // An instance handle where a state is expected.
+    assert_eq!(
+        unsafe { raceway_state_set(d.0, d.0 as *const RacewayState) },
+        RacewayStatus::InvalidHandle
+    );
+    // A state handle overwritten in place must be live.
+    let mut stale = s;
+    assert_eq!(
+        unsafe { raceway_state_get(d.0, &mut stale) },
+        RacewayStatus::InvalidHandle
+    );
+    // The instance is unharmed.
+    d.run(1, 1, 0.3, 1e-4);
+}
+
+/// Damaged state bytes are refused with a message and never read: every single-byte
+/// change, every truncation, and a NaN written into number slots of a real state.
+#[test]
+fn damaged_state_bytes_are_refused_and_the_instance_is_unchanged() {
+    let c = create();
+    c.run(0, 2, 0.4, 1e-4);
+    let bytes = c.state_bytes();
+    let before = bits(&c.outputs());
+    let mut refused = 0;
+    for i in (0..bytes.len()).step_by(7) {
+        let mut bad = bytes.clone();
+        bad[i] ^= 0x20;
+        let st = c.restore_bytes(&bad);
+        assert_ne!(st, RacewayStatus::Ok, "flip at byte {i} of {}", bytes.len());
+        assert!(!c.msg().is_empty());
+        refused += 1;
+    }
+    for n in [0, 3, 8, 40, bytes.len() / 2, bytes.len() - 1] {
+        assert_eq!(c.restore_bytes(&bytes[..n]), RacewayStatus::InvalidArgument);
+        assert!(c.msg().contains("serialised state"), "{}", c.msg());
+    }
+    assert!(refused > 100);
+    assert_eq!(bits(&c.outputs()), before, "nothing restored");
+    assert_eq!(c.restore_bytes(&bytes), RacewayStatus::Ok);
+}
+
+/// Child half of `state_bytes_restore_in_another_process_bit_for_bit`: runs only when the
+/// parent sets `RACEWAY_STATE_CHILD` to a folder.
+#[test]
+fn state_bytes_child_process() {
+    let Some(dir) = std::env::var_os("RACEWAY_STATE_CHILD") else {
+        return;
+    };
+    let dir = std::path::PathBuf::from(dir);
+    let c = create();
+    c.run(0, 3, 0.7, 1e-4);
+    std::fs::write(dir.join("state.bin"), c.state_bytes()).unwrap();
+    let next: Vec<u8> = c
+        .run(3, 5, 0.7, 1e-4)
+        .iter()
+        .flat_map(|x| x.to_le_bytes())
+        .collect();
+    std::fs::write(dir.join("outputs.bin"), next).unwrap();
+}
+
+/// Bytes written by one process restore in another, and the run continues bit for bit.
+#[test]
+fn state_bytes_restore_in_another_process_bit_for_bit() {
+    let dir = std::env::temp_dir().join(format!("raceway-xproc-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let out = std::process::Command::new(std::env::current_exe().unwrap())
+        .args([
+            "--exact",
+            "state_bytes_child_process",
+            "--nocapture",
+            "--test-threads=1",
+        ])
+        .env("RACEWAY_STATE_CHILD", &dir)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let bytes = std::fs::read(dir.join("state.bin")).unwrap();
+    let theirs: Vec<u64> = std::fs::read(dir.join("outputs.bin"))
+        .unwrap()
+        .chunks(8)
+        .map(|b| u64::from_le_bytes(b.try_into().unwrap()))
+        .collect();
+    std::fs::remove_dir_all(&dir).unwrap();
+    let c = create();
+    assert_eq!(c.restore_bytes(&bytes), RacewayStatus::Ok, "{}", c.msg());
+    let ours = bits(&c.run(3, 5, 0.7, 1e-4));
+    assert_eq!(ours.len(), 5 * OUTPUTS.len());
+    assert_eq!(ours, theirs);
+}

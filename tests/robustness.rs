@@ -246,7 +246,7 @@ fn vague_messages_now_name_field_value_and_range() {
     // atol_m = 5e-324 (was "step size underflow (h = 0e0)").
     let atol = DEFAULT.replace("[inputs]", "[solver]\natol_m = 5e-324\n[inputs]");
     let m = Component::from_text(&atol).unwrap_err().to_string();
-    assert!(m.contains("solver.atol_m") && m.contains("1e-15"), "{m}");
+    assert!(m.contains("solver.atol_m") && m.contains("1e-20"), "{m}");
     // An array for bearing.clearance_um names the key.
     let m = Component::from_text("bearing = { preset = \"6205\", clearance_um = [1.0] }\n")
         .unwrap_err()

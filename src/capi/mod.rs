@@ -9,8 +9,15 @@
 //!   was) and stores a message naming the cause in the instance, read with
 //!   [`raceway_last_error`] (valid until the next call on that instance).
 //! - Creation errors go to a caller-provided buffer (there is no instance yet).
-//! - No global mutable state: many instances may live in one process and be used from
-//!   several threads, each instance from one thread at a time.
+//! - Handles are numbers from a registry, never addresses, and never issued twice: a
+//!   freed, doubly freed or made-up handle is refused with
+//!   [`RacewayStatus::InvalidHandle`] (freeing one is ignored), never dereferenced.
+//! - Threads: many instances may live in one process and be stepped in parallel, each in
+//!   its own thread, with results bit for bit those of a serial run. One instance is used
+//!   by one thread at a time: a call on an instance that another thread is inside right
+//!   now is refused with [`RacewayStatus::CallOrder`]. The last error is per instance.
+//! - The coupling loop (`set_real(s)`, `do_step`, `get_real(s)`, `last_error` after a
+//!   successful call) performs no heap allocation.
 //! - Every body runs inside `catch_unwind`: a panic never crosses the boundary. After an
 //!   internal panic the instance is poisoned (every later call returns
 //!   [`RacewayStatus::Panic`]) because its state may be half-updated; free it.
@@ -19,10 +26,12 @@
 
 use crate::component::{variables, Component, State};
 use crate::error::Error;
+use handles::{Refusal, Registry};
 use std::ffi::{c_char, CStr, CString};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::OnceLock;
 
+mod handles;
 mod vr;
 pub use vr::*;
 
@@ -48,6 +57,9 @@ pub enum RacewayStatus {
     BufferTooSmall = 6,
     /// An internal error (a caught panic); the instance is poisoned and must be freed.
     Panic = 7,
+    /// A handle that is not a live instance or state of this library (freed already,
+    /// never created, or of the other kind).
+    InvalidHandle = 8,
 }
 
 /// Cost counters of the internal integration (see [`raceway_get_stats`]).
@@ -66,17 +78,58 @@ pub struct RacewayStats {
     pub rejected: u64,
 }
 
-/// An opaque bearing instance (from [`raceway_create`], freed by [`raceway_free`]).
+/// An opaque bearing instance (from [`raceway_create`], freed by [`raceway_free`]). The
+/// pointer is a handle, not an address: never dereference it.
 pub struct RacewayComponent {
+    _opaque: [u8; 0],
+}
+
+/// An opaque copy of an instance's complete state (from [`raceway_state_get`] or
+/// [`raceway_state_deserialize`], freed by [`raceway_state_free`]); a handle like
+/// [`RacewayComponent`].
+pub struct RacewayState {
+    _opaque: [u8; 0],
+}
+
+/// What an instance handle stands for.
+struct Instance {
     component: Component,
     last_error: CString,
     poisoned: bool,
 }
 
-/// An opaque copy of an instance's complete state (from [`raceway_state_get`] or
-/// [`raceway_state_deserialize`], freed by [`raceway_state_free`]).
-pub struct RacewayState {
-    state: State,
+/// Live instances and states. Instance handles are `0x100000 + 16 k`, state handles
+/// `0x200008 + 16 k`: the two kinds never share a number.
+static INSTANCES: Registry<Instance> = Registry::new(0x10_0000);
+static STATES: Registry<State> = Registry::new(0x20_0008);
+
+/// The refusal of a handle argument `name`.
+fn handle_failure(name: &str, r: Refusal) -> Failure {
+    match r {
+        Refusal::Unknown => Failure::new(
+            RacewayStatus::InvalidHandle,
+            format!(
+                "`{name}` is not a live handle of this library (freed already, or never created)"
+            ),
+        ),
+        Refusal::Busy => Failure::new(
+            RacewayStatus::CallOrder,
+            format!("`{name}` is in use by another thread right now (one thread at a time)"),
+        ),
+    }
+}
+
+/// Exclusive use of state handle `s` for this call (NULL refused).
+fn state_lease<'a>(
+    s: *const RacewayState,
+    name: &str,
+) -> Result<handles::Lease<'a, State>, Failure> {
+    if s.is_null() {
+        return Err(Failure::null(name));
+    }
+    STATES
+        .acquire(s as usize)
+        .map_err(|r| handle_failure(name, r))
 }
 
 /// A refusal: status and message.
@@ -115,6 +168,18 @@ impl From<Error> for Failure {
 
 type Outcome = Result<(), Failure>;
 
+/// The failure of value `i` (for value reference `vr`) of a bulk set.
+fn bad_value(i: usize, vr: u32, e: Error) -> Failure {
+    let f = Failure::from(e);
+    Failure::new(f.status, format!("values[{i}] (vr {vr}): {}", f.message))
+}
+
+/// The failure of value reference `i` of a bulk get.
+fn bad_vr(i: usize, vr: u32, e: Error) -> Failure {
+    let f = Failure::from(e);
+    Failure::new(f.status, format!("vrs[{i}] = {vr}: {}", f.message))
+}
+
 /// A C string from a Rust one (interior NULs, impossible in our messages, become `?`).
 fn c_string(s: &str) -> CString {
     CString::new(s.replace('\0', "?")).unwrap_or_default()
@@ -131,50 +196,49 @@ fn panic_text(payload: &(dyn std::any::Any + Send)) -> String {
     }
 }
 
-/// Run `f` on the instance behind `c`: refuse NULL and poisoned instances, clear the last
-/// error, store the new one, catch panics.
-///
-/// # Safety
-/// `c` is NULL or a live pointer from [`raceway_create`] not used by another thread now.
-unsafe fn with_instance(
-    c: *mut RacewayComponent,
+/// Run `f` on the instance behind handle `c`: refuse NULL, unknown, busy and poisoned
+/// instances, clear the last error (without allocating when it is clear already), store
+/// the new one, catch panics.
+fn with_instance(
+    c: *const RacewayComponent,
     call: &str,
     f: impl FnOnce(&mut Component) -> Outcome,
 ) -> RacewayStatus {
-    let run = catch_unwind(AssertUnwindSafe(|| {
-        // SAFETY: the caller passes NULL or a live, exclusively used instance.
-        let Some(inst) = (unsafe { c.as_mut() }) else {
+    guarded(RacewayStatus::Panic, || {
+        if c.is_null() {
             return RacewayStatus::NullPointer;
+        }
+        let mut lease = match INSTANCES.acquire(c as usize) {
+            Ok(l) => l,
+            Err(r) => return handle_failure("c", r).status,
         };
+        let inst = lease.get();
         if inst.poisoned {
             inst.last_error = c_string(&format!(
                 "{call}: refused: the instance was poisoned by an earlier internal error; free it"
             ));
             return RacewayStatus::Panic;
         }
-        inst.last_error = CString::default();
-        match f(&mut inst.component) {
-            Ok(()) => RacewayStatus::Ok,
-            Err(fail) => {
+        if !inst.last_error.is_empty() {
+            inst.last_error = CString::default();
+        }
+        let component = &mut inst.component;
+        match catch_unwind(AssertUnwindSafe(|| f(component))) {
+            Ok(Ok(())) => RacewayStatus::Ok,
+            Ok(Err(fail)) => {
                 inst.last_error = c_string(&format!("{call}: {}", fail.message));
                 fail.status
             }
-        }
-    }));
-    match run {
-        Ok(status) => status,
-        Err(payload) => {
-            // SAFETY: as above; the closure's borrow has ended.
-            if let Some(inst) = unsafe { c.as_mut() } {
+            Err(payload) => {
                 inst.poisoned = true;
                 inst.last_error = c_string(&format!(
                     "{call}: internal error (panic: {}); the instance is poisoned, free it",
                     panic_text(payload.as_ref())
                 ));
+                RacewayStatus::Panic
             }
-            RacewayStatus::Panic
         }
-    }
+    })
 }
 
 /// Run `f` with no instance (catching panics).
@@ -417,11 +481,12 @@ pub unsafe extern "C" fn raceway_create(
     }));
     let message = match made {
         Ok(Ok(component)) => {
-            return Box::into_raw(Box::new(RacewayComponent {
+            let inst = Box::new(Instance {
                 component,
                 last_error: CString::default(),
                 poisoned: false,
-            }))
+            });
+            return INSTANCES.insert(inst) as *mut RacewayComponent;
         }
         Ok(Err(m)) => m,
         Err(p) => format!(
@@ -436,33 +501,47 @@ pub unsafe extern "C" fn raceway_create(
     std::ptr::null_mut()
 }
 
-/// Free an instance (NULL is ignored). The pointer must not be used afterwards.
+/// Free an instance. NULL, a handle freed before, a handle never created and an instance
+/// another thread is inside a call on right now are ignored (nothing is freed).
 ///
 /// # Safety
-/// `c` is NULL or a pointer from [`raceway_create`] not freed before.
+/// None beyond the C signature: `c` is only compared with the live handles.
 #[no_mangle]
 pub unsafe extern "C" fn raceway_free(c: *mut RacewayComponent) {
     if c.is_null() {
         return;
     }
     let _ = catch_unwind(AssertUnwindSafe(|| {
-        // SAFETY: from `Box::into_raw` in `raceway_create`, freed once.
-        drop(unsafe { Box::from_raw(c) })
+        if let Ok(inst) = INSTANCES.remove(c as usize) {
+            drop(inst)
+        }
     }));
 }
 
 /// The message of the last refused call on `c` (`""` when the last call succeeded). Valid
-/// until the next call on `c`. For a NULL `c`, a static message saying so.
+/// until the next call on `c`. For NULL or a handle that is not live, a static message
+/// saying so.
 ///
 /// # Safety
-/// `c` is NULL or a live instance.
+/// None beyond the C signature: `c` is only compared with the live handles.
 #[no_mangle]
 pub unsafe extern "C" fn raceway_last_error(c: *const RacewayComponent) -> *const c_char {
-    // SAFETY: promised by the caller.
-    match unsafe { c.as_ref() } {
-        Some(inst) => inst.last_error.as_ptr(),
-        None => c"raceway_last_error: the instance is NULL".as_ptr(),
+    if c.is_null() {
+        return c"raceway_last_error: the instance is NULL".as_ptr();
     }
+    guarded(c"raceway_last_error: internal error".as_ptr(), || {
+        match INSTANCES.acquire(c as usize) {
+            // The string lives in the instance until its next call.
+            Ok(mut inst) => inst.get().last_error.as_ptr(),
+            Err(Refusal::Busy) => {
+                c"raceway_last_error: the instance is in use by another thread right now".as_ptr()
+            }
+            Err(Refusal::Unknown) => {
+                c"raceway_last_error: not a live instance (freed already, or never created)"
+                    .as_ptr()
+            }
+        }
+    })
 }
 
 /// Set one input by value reference. Refused: unknown references, outputs, non-finite
@@ -476,8 +555,7 @@ pub unsafe extern "C" fn raceway_set_real(
     vr: u32,
     value: f64,
 ) -> RacewayStatus {
-    // SAFETY: promised by the caller.
-    unsafe { with_instance(c, "raceway_set_real", |comp| Ok(comp.set_real(vr, value)?)) }
+    with_instance(c, "raceway_set_real", |comp| Ok(comp.set_real(vr, value)?))
 }
 
 /// Set `n` inputs: `values[i]` to `vrs[i]`. All or nothing: when one is refused, none is
@@ -497,18 +575,8 @@ pub unsafe extern "C" fn raceway_set_reals(
         with_instance(c, "raceway_set_reals", |comp| {
             let vrs = slice(vrs, n, "vrs")?;
             let values = slice(values, n, "values")?;
-            let before = comp.get_state();
-            for (i, (&vr, &v)) in vrs.iter().zip(values).enumerate() {
-                if let Err(e) = comp.set_real(vr, v) {
-                    comp.set_state(&before)?;
-                    let f = Failure::from(e);
-                    return Err(Failure::new(
-                        f.status,
-                        format!("values[{i}] (vr {vr}): {}", f.message),
-                    ));
-                }
-            }
-            Ok(())
+            comp.set_reals(vrs, values)
+                .map_err(|(i, e)| bad_value(i, vrs[i], e))
         })
     }
 }
@@ -525,12 +593,9 @@ pub unsafe extern "C" fn raceway_set_input_derivative(
     order: u32,
     value: f64,
 ) -> RacewayStatus {
-    // SAFETY: promised by the caller.
-    unsafe {
-        with_instance(c, "raceway_set_input_derivative", |comp| {
-            Ok(comp.set_input_derivative(vr, order, value)?)
-        })
-    }
+    with_instance(c, "raceway_set_input_derivative", |comp| {
+        Ok(comp.set_input_derivative(vr, order, value)?)
+    })
 }
 
 /// Set the `order`-th derivatives of `n` inputs; all or nothing.
@@ -550,18 +615,8 @@ pub unsafe extern "C" fn raceway_set_input_derivatives(
         with_instance(c, "raceway_set_input_derivatives", |comp| {
             let vrs = slice(vrs, n, "vrs")?;
             let values = slice(values, n, "values")?;
-            let before = comp.get_state();
-            for (i, (&vr, &v)) in vrs.iter().zip(values).enumerate() {
-                if let Err(e) = comp.set_input_derivative(vr, order, v) {
-                    comp.set_state(&before)?;
-                    let f = Failure::from(e);
-                    return Err(Failure::new(
-                        f.status,
-                        format!("values[{i}] (vr {vr}): {}", f.message),
-                    ));
-                }
-            }
-            Ok(())
+            comp.set_input_derivatives(vrs, order, values)
+                .map_err(|(i, e)| bad_value(i, vrs[i], e))
         })
     }
 }
@@ -578,8 +633,7 @@ pub unsafe extern "C" fn raceway_do_step(
     t: f64,
     h: f64,
 ) -> RacewayStatus {
-    // SAFETY: promised by the caller.
-    unsafe { with_instance(c, "raceway_do_step", |comp| Ok(comp.do_step(t, h)?)) }
+    with_instance(c, "raceway_do_step", |comp| Ok(comp.do_step(t, h)?))
 }
 
 /// Get one input or output by value reference into `*value`.
@@ -622,17 +676,13 @@ pub unsafe extern "C" fn raceway_get_reals(
         with_instance(c, "raceway_get_reals", |comp| {
             let vrs = slice(vrs, n, "vrs")?;
             let out = slice_mut(values, n, "values")?;
-            let got = vrs
-                .iter()
-                .enumerate()
-                .map(|(i, &vr)| {
-                    comp.get_real(vr).map_err(|e| {
-                        let f = Failure::from(e);
-                        Failure::new(f.status, format!("vrs[{i}] = {vr}: {}", f.message))
-                    })
-                })
-                .collect::<Result<Vec<f64>, Failure>>()?;
-            out.copy_from_slice(&got);
+            // Every reference checked before `values` is written (all or nothing).
+            for (i, &vr) in vrs.iter().enumerate() {
+                comp.get_real(vr).map_err(|e| bad_vr(i, vr, e))?;
+            }
+            for (i, (o, &vr)) in out.iter_mut().zip(vrs).enumerate() {
+                *o = comp.get_real(vr).map_err(|e| bad_vr(i, vr, e))?;
+            }
             Ok(())
         })
     }
@@ -737,30 +787,33 @@ pub unsafe extern "C" fn raceway_get_stats(
 // State
 
 /// Copy the instance's complete state into `*state`: when `*state` is NULL a new state is
-/// allocated (free it with [`raceway_state_free`]); otherwise `*state` must be a state
-/// from this library and is overwritten in place.
+/// made (free it with [`raceway_state_free`]); otherwise `*state` must be a live state
+/// and is overwritten in place (no allocation).
 ///
 /// # Safety
-/// `c` is NULL or a live instance; `state` is NULL or points to NULL or a live state.
+/// `c` is any handle; `state` is NULL or valid for a read and a write.
 #[no_mangle]
 pub unsafe extern "C" fn raceway_state_get(
     c: *mut RacewayComponent,
     state: *mut *mut RacewayState,
 ) -> RacewayStatus {
-    // SAFETY: promised by the caller.
-    unsafe {
-        with_instance(c, "raceway_state_get", |comp| {
-            if state.is_null() {
-                return Err(Failure::null("state"));
-            }
-            let s = comp.get_state();
-            match (*state).as_mut() {
-                Some(existing) => existing.state = s,
-                None => *state = Box::into_raw(Box::new(RacewayState { state: s })),
-            }
-            Ok(())
-        })
-    }
+    with_instance(c, "raceway_state_get", |comp| {
+        if state.is_null() {
+            return Err(Failure::null("state"));
+        }
+        // SAFETY: non-NULL, valid by the caller's promise.
+        let existing = unsafe { *state };
+        if existing.is_null() {
+            let id = STATES.insert(Box::new(comp.get_state()));
+            // SAFETY: as above.
+            unsafe { *state = id as *mut RacewayState };
+        } else {
+            state_lease(existing, "*state")?
+                .get()
+                .clone_from(comp.state());
+        }
+        Ok(())
+    })
 }
 
 /// Restore a state taken from this instance (or one built from the same scene); the
@@ -768,63 +821,59 @@ pub unsafe extern "C" fn raceway_state_get(
 /// another scene is refused.
 ///
 /// # Safety
-/// `c` is NULL or a live instance; `state` is NULL or a live state.
+/// None beyond the C signature: `c` and `state` are only compared with the live handles.
 #[no_mangle]
 pub unsafe extern "C" fn raceway_state_set(
     c: *mut RacewayComponent,
     state: *const RacewayState,
 ) -> RacewayStatus {
-    // SAFETY: promised by the caller.
-    unsafe {
-        with_instance(c, "raceway_state_set", |comp| {
-            let s = state.as_ref().ok_or_else(|| Failure::null("state"))?;
-            Ok(comp.set_state(&s.state)?)
-        })
-    }
+    with_instance(c, "raceway_state_set", |comp| {
+        Ok(comp.set_state(state_lease(state, "state")?.get())?)
+    })
 }
 
-/// Free a state (NULL is ignored).
+/// Free a state. NULL, a handle freed before, one never created and a state in use by
+/// another thread right now are ignored.
 ///
 /// # Safety
-/// `state` is NULL or a state from this library not freed before.
+/// None beyond the C signature: `state` is only compared with the live handles.
 #[no_mangle]
 pub unsafe extern "C" fn raceway_state_free(state: *mut RacewayState) {
     if state.is_null() {
         return;
     }
     let _ = catch_unwind(AssertUnwindSafe(|| {
-        // SAFETY: from `Box::into_raw`, freed once.
-        drop(unsafe { Box::from_raw(state) })
+        if let Ok(s) = STATES.remove(state as usize) {
+            drop(s)
+        }
     }));
 }
 
 /// The number of bytes [`raceway_state_serialize`] writes for `state`.
 ///
 /// # Safety
-/// `c` is NULL or a live instance (it receives the error message); `state` is NULL or a
-/// live state; `size` is NULL or valid for a write.
+/// `c` is any handle (it receives the error message); `state` is any handle; `size` is
+/// NULL or valid for a write.
 #[no_mangle]
 pub unsafe extern "C" fn raceway_state_size(
     c: *mut RacewayComponent,
     state: *const RacewayState,
     size: *mut usize,
 ) -> RacewayStatus {
-    // SAFETY: promised by the caller.
-    unsafe {
-        with_instance(c, "raceway_state_size", |_| {
-            let s = state.as_ref().ok_or_else(|| Failure::null("state"))?;
-            put(size, "size", s.state.byte_len())
-        })
-    }
+    with_instance(c, "raceway_state_size", |_| {
+        let n = state_lease(state, "state")?.get().byte_len();
+        // SAFETY: promised by the caller.
+        unsafe { put(size, "size", n) }
+    })
 }
 
 /// Serialise `state` into `buffer` (`len` bytes, at least [`raceway_state_size`]). The
-/// bytes are versioned and hold no pointers: they may be stored and read back by another
-/// process of the same library version.
+/// bytes hold no pointers and carry a format version, the scene's fingerprint and a
+/// checksum: they may be stored and restored by another process of the same library
+/// version; damaged bytes are refused on reading.
 ///
 /// # Safety
-/// `c` is NULL or a live instance; `state` is NULL or a live state; `buffer` is NULL or
-/// valid for `len` bytes.
+/// `c` and `state` are any handles; `buffer` is NULL or valid for `len` bytes.
 #[no_mangle]
 pub unsafe extern "C" fn raceway_state_serialize(
     c: *mut RacewayComponent,
@@ -832,32 +881,32 @@ pub unsafe extern "C" fn raceway_state_serialize(
     buffer: *mut u8,
     len: usize,
 ) -> RacewayStatus {
-    // SAFETY: promised by the caller.
-    unsafe {
-        with_instance(c, "raceway_state_serialize", |_| {
-            let s = state.as_ref().ok_or_else(|| Failure::null("state"))?;
-            let need = s.state.byte_len();
-            if len < need {
-                return Err(Failure::new(
-                    RacewayStatus::BufferTooSmall,
-                    format!("buffer of {len} bytes, the state needs {need}"),
-                ));
-            }
-            let out = slice_mut(buffer, need, "buffer")?;
-            out.copy_from_slice(&s.state.to_bytes());
-            Ok(())
-        })
-    }
+    with_instance(c, "raceway_state_serialize", |_| {
+        let mut lease = state_lease(state, "state")?;
+        let s = lease.get();
+        let need = s.byte_len();
+        if len < need {
+            return Err(Failure::new(
+                RacewayStatus::BufferTooSmall,
+                format!("buffer of {len} bytes, the state needs {need}"),
+            ));
+        }
+        // SAFETY: promised by the caller.
+        let out = unsafe { slice_mut(buffer, need, "buffer")? };
+        s.write_into(out);
+        Ok(())
+    })
 }
 
 /// Read a state from `len` bytes written by [`raceway_state_serialize`] into a new state
 /// `*state` (free it with [`raceway_state_free`]; restore it with [`raceway_state_set`]).
-/// Refused: damaged or truncated bytes, another format version, a state of another
-/// scene than `c`'s. `*state` is written only on success.
+/// Refused with a message, before any value is used: truncated or damaged bytes (the
+/// checksum), another format version, a state of another scene than `c`'s, a number not
+/// finite or outside its range. `*state` is written only on success.
 ///
 /// # Safety
-/// `c` is NULL or a live instance; `buffer` is NULL or valid for `len` bytes; `state` is
-/// NULL or valid for a write.
+/// `c` is any handle; `buffer` is NULL or valid for `len` bytes; `state` is NULL or valid
+/// for a write.
 #[no_mangle]
 pub unsafe extern "C" fn raceway_state_deserialize(
     c: *mut RacewayComponent,
@@ -865,20 +914,20 @@ pub unsafe extern "C" fn raceway_state_deserialize(
     len: usize,
     state: *mut *mut RacewayState,
 ) -> RacewayStatus {
-    // SAFETY: promised by the caller.
-    unsafe {
-        with_instance(c, "raceway_state_deserialize", |comp| {
-            if state.is_null() {
-                return Err(Failure::null("state"));
-            }
-            let bytes = slice(buffer, len, "buffer")?;
-            let s = State::from_bytes(bytes)?;
-            // Check it fits this instance now rather than at `raceway_state_set`.
-            comp.check_state(&s)?;
-            *state = Box::into_raw(Box::new(RacewayState { state: s }));
-            Ok(())
-        })
-    }
+    with_instance(c, "raceway_state_deserialize", |comp| {
+        if state.is_null() {
+            return Err(Failure::null("state"));
+        }
+        // SAFETY: promised by the caller.
+        let bytes = unsafe { slice(buffer, len, "buffer")? };
+        let s = State::from_bytes(bytes)?;
+        // Check it fits this instance now rather than at `raceway_state_set`.
+        comp.check_state(&s)?;
+        let id = STATES.insert(Box::new(s));
+        // SAFETY: non-NULL, valid by the caller's promise.
+        unsafe { *state = id as *mut RacewayState };
+        Ok(())
+    })
 }
 
 #[cfg(test)]
@@ -902,7 +951,7 @@ mod tests {
         let text = std::ffi::CString::new(crate::component::scene::DEFAULT_SCENE).unwrap();
         let c = unsafe { raceway_create(text.as_ptr(), std::ptr::null_mut(), 0) };
         assert!(!c.is_null());
-        let status = unsafe { with_instance(c, "test", |_| panic!("boom")) };
+        let status = with_instance(c, "test", |_| panic!("boom"));
         assert_eq!(status, RacewayStatus::Panic);
         let msg = unsafe { CStr::from_ptr(raceway_last_error(c)) };
         assert!(msg.to_str().unwrap().contains("boom"), "{msg:?}");

@@ -7,52 +7,52 @@
 /// Number of variables in the table.
 pub const RACEWAY_VARIABLE_COUNT: usize = 86;
 
-/// `shaft.x` (m): inner-ring centre displacement x relative to the outer ring.
+/// `shaft.x` (m): inner-ring centre displacement x relative to the outer ring; plausible: |x| <= radial play + approach at 7.5 GPa Hertz (scene --explain).
 pub const RACEWAY_VR_SHAFT_X: u32 = 1;
 
-/// `shaft.y` (m): inner-ring centre displacement y.
+/// `shaft.y` (m): inner-ring centre displacement y; plausible: |y| <= radial play + approach at 7.5 GPa Hertz (scene --explain).
 pub const RACEWAY_VR_SHAFT_Y: u32 = 2;
 
-/// `shaft.z` (m): inner-ring centre displacement z (axial).
+/// `shaft.z` (m): inner-ring centre displacement z (axial); plausible: |z| <= axial play + approach at 7.5 GPa Hertz (scene --explain).
 pub const RACEWAY_VR_SHAFT_Z: u32 = 3;
 
-/// `shaft.rx` (rad): inner-ring tilt about x.
+/// `shaft.rx` (rad): inner-ring tilt about x; plausible: |rx| <= axial limit / inner groove radius.
 pub const RACEWAY_VR_SHAFT_RX: u32 = 4;
 
-/// `shaft.ry` (rad): inner-ring tilt about y.
+/// `shaft.ry` (rad): inner-ring tilt about y; plausible: |ry| <= axial limit / inner groove radius.
 pub const RACEWAY_VR_SHAFT_RY: u32 = 5;
 
-/// `shaft.vx` (m/s): inner-ring velocity x.
+/// `shaft.vx` (m/s): inner-ring velocity x; plausible: |vx| <= ring burst rim speed.
 pub const RACEWAY_VR_SHAFT_VX: u32 = 6;
 
-/// `shaft.vy` (m/s): inner-ring velocity y.
+/// `shaft.vy` (m/s): inner-ring velocity y; plausible: |vy| <= ring burst rim speed.
 pub const RACEWAY_VR_SHAFT_VY: u32 = 7;
 
-/// `shaft.vz` (m/s): inner-ring velocity z.
+/// `shaft.vz` (m/s): inner-ring velocity z; plausible: |vz| <= ring burst rim speed.
 pub const RACEWAY_VR_SHAFT_VZ: u32 = 8;
 
-/// `shaft.wx` (rad/s): inner-ring tilt rate about x.
+/// `shaft.wx` (rad/s): inner-ring tilt rate about x; plausible: |wx| <= ring burst speed.
 pub const RACEWAY_VR_SHAFT_WX: u32 = 9;
 
-/// `shaft.wy` (rad/s): inner-ring tilt rate about y.
+/// `shaft.wy` (rad/s): inner-ring tilt rate about y; plausible: |wy| <= ring burst speed.
 pub const RACEWAY_VR_SHAFT_WY: u32 = 10;
 
-/// `shaft.omega` (rad/s): inner-ring spin speed about z.
+/// `shaft.omega` (rad/s): inner-ring spin speed about z; plausible: |omega| <= inner-ring burst speed (scene --explain).
 pub const RACEWAY_VR_SHAFT_OMEGA: u32 = 11;
 
-/// `load.x` (N): external force on the inner ring, x.
+/// `load.x` (N): external force on the inner ring, x; plausible: |F| <= Z balls at the 7.5 GPa load.
 pub const RACEWAY_VR_LOAD_X: u32 = 21;
 
-/// `load.y` (N): external force on the inner ring, y.
+/// `load.y` (N): external force on the inner ring, y; plausible: |F| <= Z balls at the 7.5 GPa load.
 pub const RACEWAY_VR_LOAD_Y: u32 = 22;
 
-/// `load.z` (N): external force on the inner ring, z.
+/// `load.z` (N): external force on the inner ring, z; plausible: |F| <= Z balls at the 7.5 GPa load.
 pub const RACEWAY_VR_LOAD_Z: u32 = 23;
 
-/// `load.mx` (N.m): external moment on the inner ring about x.
+/// `load.mx` (N.m): external moment on the inner ring about x; plausible: |M| <= Z balls at the 7.5 GPa load on the inner groove radius.
 pub const RACEWAY_VR_LOAD_MX: u32 = 24;
 
-/// `load.my` (N.m): external moment on the inner ring about y.
+/// `load.my` (N.m): external moment on the inner ring about y; plausible: |M| <= Z balls at the 7.5 GPa load on the inner groove radius.
 pub const RACEWAY_VR_LOAD_MY: u32 = 25;
 
 /// `force.x` (N): force of the bearing on the shaft, x.

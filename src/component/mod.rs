@@ -50,6 +50,15 @@ pub fn index_of(vr: u32) -> Option<usize> {
     variables::all().position(|v| v.vr == vr)
 }
 
+/// A bulk call's value references and values pair up.
+fn same_length(vrs: &[u32], values: &[f64]) -> std::result::Result<(), (usize, Error)> {
+    if vrs.len() == values.len() {
+        return Ok(());
+    }
+    let e = Error::invalid("values", values.len(), "as many values as value references");
+    Err((0, e))
+}
+
 // Positions in the table of the variables the component reads and writes on its hot
 // path; `slots_match_the_table` checks them against the names.
 const I_Q: usize = 0; // shaft.x .. shaft.ry
@@ -560,10 +569,53 @@ impl Component {
     /// Set an input by value reference. Setting a value clears that input's derivatives.
     pub fn set_real(&mut self, vr: u32, value: f64) -> Result<()> {
         let i = self.input_slot("set_real", vr, value)?;
+        self.write_input(i, value);
+        Ok(())
+    }
+
+    fn write_input(&mut self, i: usize, value: f64) {
         self.state.inputs[i] = value;
         self.state.input_derivatives[3 * i..3 * i + 3].fill(0.0);
         self.state.inputs_set |= 1 << i;
         self.state.outputs_stale = true;
+    }
+
+    /// Set `values[k]` to `vrs[k]`, all or nothing: every pair is checked before any is
+    /// written (no copy of the state, no allocation). A refusal gives the index of the
+    /// first refused pair with its error.
+    pub fn set_reals(
+        &mut self,
+        vrs: &[u32],
+        values: &[f64],
+    ) -> std::result::Result<(), (usize, Error)> {
+        same_length(vrs, values)?;
+        for (k, (&vr, &v)) in vrs.iter().zip(values).enumerate() {
+            self.input_slot("set_real", vr, v).map_err(|e| (k, e))?;
+        }
+        for (&vr, &v) in vrs.iter().zip(values) {
+            let i = index_of(vr).expect("checked above");
+            self.write_input(i, v);
+        }
+        Ok(())
+    }
+
+    /// Set the `order`-th derivatives of several inputs, all or nothing, as
+    /// [`Component::set_reals`].
+    pub fn set_input_derivatives(
+        &mut self,
+        vrs: &[u32],
+        order: u32,
+        values: &[f64],
+    ) -> std::result::Result<(), (usize, Error)> {
+        same_length(vrs, values)?;
+        for (k, (&vr, &v)) in vrs.iter().zip(values).enumerate() {
+            self.derivative_slot(vr, order, v).map_err(|e| (k, e))?;
+        }
+        for (&vr, &v) in vrs.iter().zip(values) {
+            let i = index_of(vr).expect("checked above");
+            self.state.input_derivatives[3 * i + (order as usize - 1)] = v;
+            self.state.outputs_stale = true;
+        }
         Ok(())
     }
 
@@ -589,13 +641,18 @@ impl Component {
     /// Set the `order`-th time derivative (1..=3) of an input at the start of the next
     /// step, used with [`InputRule::Derivatives`]. They hold until the input is set again.
     pub fn set_input_derivative(&mut self, vr: u32, order: u32, value: f64) -> Result<()> {
+        let i = self.derivative_slot(vr, order, value)?;
+        self.state.input_derivatives[3 * i + (order as usize - 1)] = value;
+        self.state.outputs_stale = true;
+        Ok(())
+    }
+
+    fn derivative_slot(&self, vr: u32, order: u32, value: f64) -> Result<usize> {
         let i = self.input_slot("set_input_derivative", vr, value)?;
         if !(1..=3).contains(&order) {
             return Err(Error::invalid("order", order, "1, 2 or 3"));
         }
-        self.state.input_derivatives[3 * i + (order as usize - 1)] = value;
-        self.state.outputs_stale = true;
-        Ok(())
+        Ok(i)
     }
 
     /// Get an input or output by value reference. Outputs always belong to the current
@@ -956,6 +1013,12 @@ impl Component {
         self.state.clone()
     }
 
+    /// The complete state (copy it into a state of the same scene with
+    /// `clone_from`, which does not allocate).
+    pub fn state(&self) -> &State {
+        &self.state
+    }
+
     /// Restore a state taken from this component (or one built from the same scene).
     pub fn set_state(&mut self, s: &State) -> Result<()> {
         self.check_state(s)?;
@@ -977,6 +1040,39 @@ impl Component {
                 call: "set_state",
                 reason: "the state belongs to another scene".into(),
             });
+        }
+        // Values (bytes read back pass `State::from_bytes`, which refuses non-finite
+        // numbers; a state built in memory may not have): every number finite, only
+        // inputs of this causality marked set, each set input one `set_real` accepts.
+        let numbers = std::iter::once(&s.t)
+            .chain(&s.x)
+            .chain(&s.aux)
+            .chain(&s.inputs)
+            .chain(&s.input_derivatives)
+            .chain(&s.outputs)
+            .chain(&s.output_derivatives);
+        if let Some(v) = numbers.into_iter().find(|v| !v.is_finite()) {
+            return Err(Error::invalid("state value", v, "finite numbers only"));
+        }
+        for (i, v) in SCALARS.iter().enumerate() {
+            if s.inputs_set & (1 << i) == 0 {
+                continue;
+            }
+            if !v.is_input(self.causality()) {
+                return Err(Error::invalid(
+                    "state input mask",
+                    s.inputs_set,
+                    "bits of inputs of this causality only",
+                ));
+            }
+            self.input_slot("set_real", v.vr, s.inputs[i])?; // with the plausibility limits
+        }
+        if SCALARS.len() < 64 && s.inputs_set >> SCALARS.len() != 0 {
+            return Err(Error::invalid(
+                "state input mask",
+                s.inputs_set,
+                "bits of inputs of this causality only",
+            ));
         }
         Ok(())
     }

@@ -645,11 +645,11 @@ impl Scene {
         if !(s.rtol.is_finite() && s.rtol >= 1e-14 && s.rtol <= 0.1) {
             return Err(Error::invalid("solver.rtol", s.rtol, "in [1e-14, 0.1]"));
         }
-        if !(s.atol_m.is_finite() && (1e-15..=1e-3).contains(&s.atol_m)) {
+        if !(s.atol_m.is_finite() && (1e-20..=1e-3).contains(&s.atol_m)) {
             return Err(Error::invalid(
                 "solver.atol_m",
                 s.atol_m,
-                "in [1e-15, 1e-3] m (below a femtometre no displacement error is resolvable)",
+                "in [1e-20, 1e-3] m (below 1e-20 m the tolerance is under the rounding of any displacement; the work-precision references use 1e-16 m)",
             ));
         }
         if !(s.max_step_cpu_s.is_finite() && s.max_step_cpu_s > 0.0 && s.max_step_cpu_s <= 1e6) {

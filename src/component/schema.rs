@@ -354,7 +354,7 @@ pub const TABLE: &[Field] = &[
     // Solver.
     f("solver.method", Enum(METHODS), "-", ANY, "", "integrator (auto: the level's default)"),
     f("solver.rtol", Float, "-", between(1e-14, true, 0.1, true), "", "relative tolerance"),
-    f("solver.atol_m", Float, "m", between(1e-15, true, 1e-3, true), "", "absolute tolerance on displacements"),
+    f("solver.atol_m", Float, "m", between(1e-20, true, 1e-3, true), "", "absolute tolerance on displacements"),
     f("solver.max_substep_s", Float, "s", ge(0.0), "", "largest internal sub-step (0: the communication step)"),
     f("solver.max_substeps", Int, "-", between(1.0, true, u32::MAX as f64, true), "", "work budget: most internal steps per communication step (raise it when a step stops on it)"),
     f("solver.max_step_cpu_s", Float, "s", between(0.0, false, 1e6, true), "thread CPU time", "work budget: most CPU time one communication step may take before it stops, state unchanged (raise it when a step stops on it)"),

@@ -1,15 +1,25 @@
 //! The component's complete mutable state, and its byte form.
 //!
-//! Byte layout (little-endian, no pointers): magic `RWST`, format version `u32`, scene
-//! fingerprint `u64`, then each field in declaration order; a `Vec<f64>` is its length as
-//! `u64` followed by the values. A state from another scene or format is refused.
+//! Byte layout, format 2 (little-endian, no pointers): magic `RWST`, format version `u32`,
+//! scene fingerprint `u64`, time `f64`, started `u64` (0 or 1), inputs-set mask `u64`,
+//! then six vectors (`x`, `aux`, `inputs`, `input_derivatives`, `outputs`,
+//! `output_derivatives`), each its length as `u64` followed by the values; last, a
+//! checksum `u64`: FNV-1a (Fowler, Noll and Vo; IETF draft-eastlake-fnv) over every byte
+//! before it. Each step of FNV-1a (xor a byte, multiply by an odd prime modulo 2^64) is a
+//! bijection of the running hash, so a change confined to one byte always changes the sum;
+//! wider damage escapes it with probability about 2^-64.
+//!
+//! Reading checks, in this order and before any value is used: the length, the magic,
+//! the version (another version is refused by number, not read), the checksum, the
+//! structure, and that every number is finite. The component then checks that the state
+//! belongs to its scene and its inputs are inputs it accepts ([`super::Component::check_state`]).
 
 use crate::error::{Error, Result};
 
 /// Magic bytes at the start of a serialised state.
 pub const MAGIC: &[u8; 4] = b"RWST";
-/// Format version of the serialised state.
-pub const FORMAT_VERSION: u32 = 1;
+/// Format version of the serialised state (2: with checksum and value checks).
+pub const FORMAT_VERSION: u32 = 2;
 
 /// Everything that changes while a component runs: restoring it makes the component
 /// continue bit for bit.
@@ -65,10 +75,32 @@ impl Clone for State {
     }
 }
 
-fn put_vec(out: &mut Vec<u8>, v: &[f64]) {
-    out.extend_from_slice(&(v.len() as u64).to_le_bytes());
-    for x in v {
-        out.extend_from_slice(&x.to_le_bytes());
+/// Writes bytes into a slice of exactly the right length.
+struct Writer<'a> {
+    b: &'a mut [u8],
+    at: usize,
+}
+
+impl Writer<'_> {
+    fn put(&mut self, x: &[u8]) {
+        self.b[self.at..self.at + x.len()].copy_from_slice(x);
+        self.at += x.len();
+    }
+    fn u64(&mut self, x: u64) {
+        self.put(&x.to_le_bytes());
+    }
+    fn vec(&mut self, v: &[f64]) {
+        self.u64(v.len() as u64);
+        for x in v {
+            self.put(&x.to_le_bytes());
+        }
+    }
+}
+
+fn refused(message: String) -> Error {
+    Error::Parse {
+        what: "serialised state".into(),
+        message,
     }
 }
 
@@ -79,50 +111,64 @@ struct Reader<'a> {
 
 impl Reader<'_> {
     fn take(&mut self, n: usize) -> Result<&[u8]> {
-        if self.at + n > self.b.len() {
-            return Err(Error::Parse {
-                what: "serialised state".into(),
-                message: format!("truncated at byte {} of {}", self.at, self.b.len()),
-            });
+        if n > self.b.len() - self.at {
+            return Err(refused(format!(
+                "truncated at byte {} of {}",
+                self.at,
+                self.b.len()
+            )));
         }
         let s = &self.b[self.at..self.at + n];
         self.at += n;
         Ok(s)
     }
     fn u64(&mut self) -> Result<u64> {
-        Ok(u64::from_le_bytes(self.take(8)?.try_into().unwrap()))
+        Ok(u64::from_le_bytes(
+            self.take(8)?.try_into().expect("8 bytes"),
+        ))
     }
-    fn f64(&mut self) -> Result<f64> {
-        Ok(f64::from_bits(self.u64()?))
+    /// A finite number called `what`.
+    fn f64(&mut self, what: &str) -> Result<f64> {
+        self.finite(what, None)
     }
-    fn vec(&mut self) -> Result<Vec<f64>> {
-        let n = self.u64()? as usize;
-        if n > (self.b.len() - self.at) / 8 {
-            return Err(Error::Parse {
-                what: "serialised state".into(),
-                message: format!("vector length {n} exceeds the data"),
-            });
+    fn finite(&mut self, what: &str, index: Option<u64>) -> Result<f64> {
+        let at = self.at;
+        let x = f64::from_bits(self.u64()?);
+        if !x.is_finite() {
+            let name = match index {
+                Some(i) => format!("{what}[{i}]"),
+                None => what.to_string(),
+            };
+            return Err(refused(format!(
+                "`{name}` = {x} at byte {at}: allowed finite numbers only"
+            )));
         }
-        (0..n).map(|_| self.f64()).collect()
+        Ok(x)
+    }
+    fn vec(&mut self, what: &str) -> Result<Vec<f64>> {
+        let n = self.u64()?;
+        if n > ((self.b.len() - self.at) / 8) as u64 {
+            return Err(refused(format!("`{what}`: length {n} exceeds the data")));
+        }
+        (0..n).map(|i| self.finite(what, Some(i))).collect()
     }
 }
+
+/// Bytes in the fixed part: magic, version, fingerprint, time, started, mask, six
+/// lengths, checksum.
+const FIXED: usize = 4 + 4 + 8 + 8 + 8 + 8 + 8 * 6 + 8;
 
 impl State {
     /// Serialise to bytes.
     pub fn to_bytes(&self) -> Vec<u8> {
-        let mut out = Vec::with_capacity(self.byte_len());
-        self.write_bytes(&mut out);
+        let mut out = vec![0; self.byte_len()];
+        self.write_into(&mut out);
         out
     }
 
     /// Exact length of [`State::to_bytes`].
     pub fn byte_len(&self) -> usize {
-        4 + 4
-            + 8
-            + 8
-            + 8
-            + 8
-            + 8 * 6
+        FIXED
             + 8 * (self.x.len()
                 + self.aux.len()
                 + self.inputs.len()
@@ -131,43 +177,68 @@ impl State {
                 + self.output_derivatives.len())
     }
 
-    /// Append the byte form to `out`.
-    pub fn write_bytes(&self, out: &mut Vec<u8>) {
-        out.extend_from_slice(MAGIC);
-        out.extend_from_slice(&FORMAT_VERSION.to_le_bytes());
-        out.extend_from_slice(&self.scene_fingerprint.to_le_bytes());
-        out.extend_from_slice(&self.t.to_le_bytes());
-        let flags = self.started as u64 | (self.outputs_stale as u64) << 1;
-        out.extend_from_slice(&flags.to_le_bytes());
-        out.extend_from_slice(&self.inputs_set.to_le_bytes());
-        put_vec(out, &self.x);
-        put_vec(out, &self.aux);
-        put_vec(out, &self.inputs);
-        put_vec(out, &self.input_derivatives);
-        put_vec(out, &self.outputs);
-        put_vec(out, &self.output_derivatives);
+    /// Write the byte form into `out` (exactly [`State::byte_len`] bytes; no allocation).
+    ///
+    /// # Panics
+    /// When `out` has another length.
+    pub fn write_into(&self, out: &mut [u8]) {
+        assert_eq!(out.len(), self.byte_len(), "state buffer length");
+        let mut w = Writer { b: out, at: 0 };
+        w.put(MAGIC);
+        w.put(&FORMAT_VERSION.to_le_bytes());
+        w.u64(self.scene_fingerprint);
+        w.put(&self.t.to_le_bytes());
+        w.u64(self.started as u64 | (self.outputs_stale as u64) << 1);
+        w.u64(self.inputs_set);
+        w.vec(&self.x);
+        w.vec(&self.aux);
+        w.vec(&self.inputs);
+        w.vec(&self.input_derivatives);
+        w.vec(&self.outputs);
+        w.vec(&self.output_derivatives);
+        let end = w.at;
+        let sum = super::fingerprint(&w.b[..end]);
+        w.u64(sum);
     }
 
-    /// Parse bytes written by [`State::to_bytes`].
+    /// Parse bytes written by [`State::to_bytes`]; damaged, truncated or foreign bytes
+    /// and non-finite numbers are refused with a message.
     pub fn from_bytes(b: &[u8]) -> Result<State> {
-        let mut r = Reader { b, at: 0 };
-        if r.take(4)? != MAGIC {
-            return Err(Error::Parse {
-                what: "serialised state".into(),
-                message: "not a raceway state (bad magic)".into(),
-            });
+        if b.len() < 8 {
+            return Err(refused(format!(
+                "{} bytes: too short for a raceway state",
+                b.len()
+            )));
         }
-        let ver = u32::from_le_bytes(r.take(4)?.try_into().unwrap());
+        if &b[..4] != MAGIC {
+            return Err(refused("not a raceway state (bad magic)".into()));
+        }
+        let ver = u32::from_le_bytes(b[4..8].try_into().expect("4 bytes"));
         if ver != FORMAT_VERSION {
-            return Err(Error::Parse {
-                what: "serialised state".into(),
-                message: format!("format version {ver}, this build reads {FORMAT_VERSION}"),
-            });
+            return Err(refused(format!(
+                "format version {ver}, this build reads version {FORMAT_VERSION} only"
+            )));
         }
+        if b.len() < FIXED {
+            return Err(refused(format!(
+                "truncated: {} bytes, a state has at least {FIXED}",
+                b.len()
+            )));
+        }
+        let (body, sum) = b.split_at(b.len() - 8);
+        let sum = u64::from_le_bytes(sum.try_into().expect("8 bytes"));
+        if super::fingerprint(body) != sum {
+            return Err(refused(
+                "checksum mismatch: the bytes are damaged or truncated".into(),
+            ));
+        }
+        let mut r = Reader { b: body, at: 8 };
         let scene_fingerprint = r.u64()?;
-        let t = r.f64()?;
-        let flags = r.u64()?;
-        let (started, outputs_stale) = (flags & 1 != 0, flags & 2 != 0);
+        let t = r.f64("t")?;
+        let (started, outputs_stale) = match r.u64()? {
+            k @ 0..=3 => (k & 1 != 0, k & 2 != 0),
+            k => return Err(refused(format!("flags = {k}: allowed 0 to 3 (started, outputs stale)"))),
+        };
         let inputs_set = r.u64()?;
         let s = State {
             scene_fingerprint,
@@ -175,18 +246,15 @@ impl State {
             started,
             outputs_stale,
             inputs_set,
-            x: r.vec()?,
-            aux: r.vec()?,
-            inputs: r.vec()?,
-            input_derivatives: r.vec()?,
-            outputs: r.vec()?,
-            output_derivatives: r.vec()?,
+            x: r.vec("x")?,
+            aux: r.vec("aux")?,
+            inputs: r.vec("inputs")?,
+            input_derivatives: r.vec("input_derivatives")?,
+            outputs: r.vec("outputs")?,
+            output_derivatives: r.vec("output_derivatives")?,
         };
-        if r.at != b.len() {
-            return Err(Error::Parse {
-                what: "serialised state".into(),
-                message: format!("{} trailing bytes", b.len() - r.at),
-            });
+        if r.at != body.len() {
+            return Err(refused(format!("{} trailing bytes", body.len() - r.at)));
         }
         Ok(s)
     }
@@ -196,9 +264,8 @@ impl State {
 mod tests {
     use super::*;
 
-    #[test]
-    fn bytes_round_trip_exactly_and_refuse_damage() {
-        let s = State {
+    fn sample() -> State {
+        State {
             scene_fingerprint: 42,
             t: 0.125,
             started: true,
@@ -210,7 +277,12 @@ mod tests {
             inputs_set: 0b111,
             outputs: vec![2.0; 80],
             output_derivatives: vec![0.5; 80],
-        };
+        }
+    }
+
+    #[test]
+    fn bytes_round_trip_exactly_and_refuse_damage() {
+        let s = sample();
         let b = s.to_bytes();
         assert_eq!(b.len(), s.byte_len());
         let back = State::from_bytes(&b).unwrap();
@@ -223,5 +295,79 @@ mod tests {
             .unwrap_err()
             .to_string()
             .contains("magic"));
+    }
+
+    #[test]
+    fn every_single_byte_change_and_every_truncation_is_refused() {
+        let b = sample().to_bytes();
+        for i in 0..b.len() {
+            for flip in [0x01u8, 0x80, 0xff] {
+                let mut bad = b.clone();
+                bad[i] ^= flip;
+                assert!(State::from_bytes(&bad).is_err(), "byte {i} ^ {flip:#x}");
+            }
+        }
+        for n in 0..b.len() {
+            let e = State::from_bytes(&b[..n]).unwrap_err().to_string();
+            assert!(e.contains("serialised state"), "{n}: {e}");
+        }
+        let mut longer = b.clone();
+        longer.push(0);
+        assert!(State::from_bytes(&longer).is_err());
+    }
+
+    /// A NaN or infinity in any number slot is refused by name even when the checksum is
+    /// made to match (bytes written by a faulty writer, not damaged in transit).
+    #[test]
+    fn non_finite_numbers_are_refused_even_with_a_valid_checksum() {
+        let s = sample();
+        let slots = 1
+            + s.x.len()
+            + s.aux.len()
+            + s.inputs.len()
+            + s.input_derivatives.len()
+            + s.outputs.len()
+            + s.output_derivatives.len();
+        let mut refused_slots = 0;
+        for k in 0..slots {
+            for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+                let mut m = s.clone();
+                let mut all: Vec<&mut f64> = std::iter::once(&mut m.t)
+                    .chain(m.x.iter_mut())
+                    .chain(m.aux.iter_mut())
+                    .chain(m.inputs.iter_mut())
+                    .chain(m.input_derivatives.iter_mut())
+                    .chain(m.outputs.iter_mut())
+                    .chain(m.output_derivatives.iter_mut())
+                    .collect();
+                *all[k] = bad;
+                let e = State::from_bytes(&m.to_bytes()).unwrap_err().to_string();
+                assert!(e.contains("allowed finite numbers only"), "{e}");
+                refused_slots += 1;
+            }
+        }
+        assert_eq!(refused_slots, 3 * slots);
+        let mut other = s.clone();
+        other.started = true;
+        let mut b = other.to_bytes();
+        b[24] = 7; // started = 7
+        let n = b.len();
+        let sum = crate::component::fingerprint(&b[..n - 8]);
+        b[n - 8..].copy_from_slice(&sum.to_le_bytes());
+        assert!(State::from_bytes(&b)
+            .unwrap_err()
+            .to_string()
+            .contains("`started` = 7"));
+    }
+
+    #[test]
+    fn another_format_version_is_refused_by_number() {
+        let mut b = sample().to_bytes();
+        b[4..8].copy_from_slice(&1u32.to_le_bytes());
+        let e = State::from_bytes(&b).unwrap_err().to_string();
+        assert!(
+            e.contains("format version 1") && e.contains("version 2"),
+            "{e}"
+        );
     }
 }

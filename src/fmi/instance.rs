@@ -899,7 +899,8 @@ impl Instance {
 }
 
 const STATE_MAGIC: &[u8; 4] = b"RWFU";
-const STATE_FORMAT: u32 = 1;
+/// 2: a checksum (FNV-1a, as `component::state`) over everything before it, at the end.
+const STATE_FORMAT: u32 = 2;
 
 impl Snapshot {
     pub(crate) fn into_raw(self) -> *mut c_void {
@@ -967,6 +968,8 @@ impl Snapshot {
                 bytes(&mut b, &s.to_bytes());
             }
         }
+        let sum = crate::component::fingerprint(&b);
+        b.extend_from_slice(&sum.to_le_bytes());
         b
     }
 
@@ -988,6 +991,22 @@ impl Snapshot {
                 String::from_utf8_lossy(guid)
             ));
         }
+        // Damaged bytes are refused before any other field is read (the magic, the
+        // format and the GUID name foreign bytes first).
+        if b.len() < r.at + 8 {
+            return Err(format!(
+                "serialised FMU state: truncated at byte {}",
+                b.len()
+            ));
+        }
+        let (b, sum) = b.split_at(b.len() - 8);
+        if crate::component::fingerprint(b).to_le_bytes() != sum {
+            return Err(
+                "serialised FMU state: checksum mismatch: the bytes are damaged or truncated"
+                    .into(),
+            );
+        }
+        let mut r = Reader { b, at: r.at };
         let mode = r.u32()?;
         if mode.count_ones() != 1 || mode & ANY == 0 {
             return Err(format!("serialised FMU state: bad mode {mode}"));
@@ -1040,6 +1059,22 @@ impl Snapshot {
             return Err(format!(
                 "serialised FMU state: {} trailing bytes",
                 b.len() - r.at
+            ));
+        }
+        let reals = params.iter().filter_map(|p| match p {
+            Some(ParamValue::Real(x)) => Some(*x),
+            _ => None,
+        });
+        let mut numbers = [time, start_time]
+            .into_iter()
+            .chain(stop_time)
+            .chain(tolerance)
+            .chain(reals)
+            .chain(inputs.iter().copied())
+            .chain(pending_derivatives.iter().map(|p| p.2));
+        if let Some(x) = numbers.find(|x| !x.is_finite()) {
+            return Err(format!(
+                "serialised FMU state: a number is {x}: allowed finite numbers only"
             ));
         }
         Ok(Snapshot {

@@ -29,4 +29,6 @@ pub use instance::Status;
 pub use model_description::GUID;
 
 #[cfg(test)]
+mod state_tests;
+#[cfg(test)]
 mod tests;

@@ -133,7 +133,7 @@ fn parameters_map_onto_the_scene() {
     assert!(e.starts_with("resources/scene.toml"), "{e}");
 }
 
-fn instance() -> Instance {
+pub(super) fn instance() -> Instance {
     Instance::new(
         2,
         "t",

@@ -293,5 +293,6 @@ pub(crate) fn write_file(path: &Path, text: &str) -> Result<()> {
     if let Some(d) = path.parent() {
         std::fs::create_dir_all(d).map_err(|e| Error::Io(format!("{}: {e}", d.display())))?;
     }
-    std::fs::write(path, text).map_err(|e| Error::Io(format!("{}: {e}", path.display())))
+    crate::fsutil::write_atomic(path, text)
+        .map_err(|e| Error::Io(format!("{}: {e}", path.display())))
 }

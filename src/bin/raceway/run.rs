@@ -99,7 +99,7 @@ pub fn run(a: RunArgs) -> Result<String> {
     let cpu = raceway::report::thread_cpu_s() - cpu0;
 
     let csv = out.join("series.csv");
-    std::fs::write(&csv, series.to_csv()).map_err(|e| io(&csv, e))?;
+    raceway::fsutil::write_atomic(&csv, series.to_csv()).map_err(|e| io(&csv, e))?;
 
     let ctx = Ctx::new(&scene, &name, &series, &comp, cpu);
     let mut sm = Summary::default();
@@ -109,9 +109,9 @@ pub fn run(a: RunArgs) -> Result<String> {
     frequency_lines(&ctx, &mut sm);
     rating_lines(&ctx, &mut sm);
     let summary = out.join("summary.txt");
-    std::fs::write(&summary, &sm.text).map_err(|e| io(&summary, e))?;
+    raceway::fsutil::write_atomic(&summary, &sm.text).map_err(|e| io(&summary, e))?;
     let sj = out.join("summary.json");
-    std::fs::write(
+    raceway::fsutil::write_atomic(
         &sj,
         serde_json::to_string_pretty(&serde_json::Value::Object(sm.json)).unwrap_or_default(),
     )
