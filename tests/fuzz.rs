@@ -286,24 +286,29 @@ fn msg(c: *mut RacewayComponent) -> String {
         .into_owned()
 }
 
-/// Observable state of an instance: time and every variable (None when not live).
+/// Observable state of an instance: time and every variable with the status of its read
+/// (None when not live). Outputs are evaluated lazily on the first read after an input or
+/// the state changed, and refused while an input was never set, so each variable is read
+/// on its own and a refused read is part of what is observed (its value reads 0).
 fn observe(c: *mut RacewayComponent) -> Option<Vec<u64>> {
     let mut t = 0.0;
     if unsafe { raceway_get_time(c, &mut t) } != RacewayStatus::Ok {
         return None;
     }
-    let n = raceway_variable_count();
-    let vrs: Vec<u32> = (0..n)
-        .map(|i| {
-            let mut vr = 0;
-            unsafe { raceway_variable_at(i, &mut vr) };
-            vr
-        })
-        .collect();
-    let mut v = vec![0.0; n];
-    let st = unsafe { raceway_get_reals(c, vrs.as_ptr(), v.as_mut_ptr(), n) };
-    assert_eq!(st, RacewayStatus::Ok);
-    Some(std::iter::once(t).chain(v).map(f64::to_bits).collect())
+    let mut seen = vec![t.to_bits()];
+    for i in 0..raceway_variable_count() {
+        let mut vr = 0;
+        unsafe { raceway_variable_at(i, &mut vr) };
+        let mut v = 0.0;
+        let st = unsafe { raceway_get_real(c, vr, &mut v) };
+        if st == RacewayStatus::Ok {
+            seen.push(v.to_bits());
+        } else {
+            seen.push(0f64.to_bits());
+            seen.push(st as u64);
+        }
+    }
+    Some(seen)
 }
 
 #[test]
