@@ -1305,7 +1305,7 @@ mod tests {
 
     #[test]
     fn csv_numbers_round_trip_exactly() {
-        let x = 0.1 + 0.2;
+        let x: f64 = 0.1 + 0.2;
         let text = csv_field(&Json::from(x));
         assert_eq!(text.parse::<f64>().unwrap().to_bits(), x.to_bits());
         assert_eq!(csv_field(&Json::from("a,\"b\"")), "\"a,\"\"b\"\"\"");
