@@ -903,6 +903,10 @@ impl Sweep {
 /// scene, the series, the component after the run and the run's thread CPU time, s.
 pub type Summarize = dyn Fn(&Scene, &Series, &Component, f64) -> Json + Sync;
 
+/// The summary columns that are measurements of the machine, not results: they differ from
+/// run to run; every other column is the same bit for bit whatever the threads or shards.
+pub const MEASUREMENTS: [&str; 2] = ["cpu_s", "load_average"];
+
 /// One finished point.
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Row {

@@ -63,12 +63,13 @@ fn raceway(args: &[&str]) -> (bool, String, String) {
     )
 }
 
-/// The rows without their CPU time (the one column that is a measurement, not a result).
+/// The rows without the measurements of the machine (CPU time, load average).
 fn results(dir: &Path) -> Vec<Row> {
     read_rows(dir)
         .into_iter()
         .map(|mut r| {
-            r.summary.retain(|(c, _)| c != "cpu_s");
+            r.summary
+                .retain(|(c, _)| !raceway::sweep::MEASUREMENTS.contains(&c.as_str()));
             r
         })
         .collect()
