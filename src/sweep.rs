@@ -996,23 +996,13 @@ fn flatten_unit(prefix: &str, unit: Option<&str>, v: &Json, out: &mut Vec<(Strin
     }
 }
 
-/// Write a file atomically: a temporary file in the same folder, then a rename, so a reader
-/// (or a resumed sweep) sees the whole file or none.
+/// Write a file atomically ([`crate::fsutil::write_atomic`]: a temporary file in the same
+/// folder, then a rename), making the folder first, so a reader (or a resumed sweep) sees the
+/// whole file or none.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
     let io = |e: std::io::Error| Error::Io(format!("cannot write `{}`: {e}", path.display()));
-    let dir = path.parent().unwrap_or(Path::new("."));
-    std::fs::create_dir_all(dir).map_err(io)?;
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy())
-        .unwrap_or_default();
-    let tmp = dir.join(format!(
-        ".{name}.{}.{:?}.tmp",
-        std::process::id(),
-        std::thread::current().id()
-    ));
-    std::fs::write(&tmp, bytes).map_err(io)?;
-    std::fs::rename(&tmp, path).map_err(io)
+    std::fs::create_dir_all(path.parent().unwrap_or(Path::new("."))).map_err(io)?;
+    crate::fsutil::write_atomic(path, bytes).map_err(io)
 }
 
 fn row_path(dir: &Path, index: usize) -> PathBuf {
