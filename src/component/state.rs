@@ -237,7 +237,11 @@ impl State {
         let t = r.f64("t")?;
         let (started, outputs_stale) = match r.u64()? {
             k @ 0..=3 => (k & 1 != 0, k & 2 != 0),
-            k => return Err(refused(format!("flags = {k}: allowed 0 to 3 (started, outputs stale)"))),
+            k => {
+                return Err(refused(format!(
+                    "`started` = {k}: allowed 0 to 3 (bit 0 started, bit 1 outputs stale)"
+                )))
+            }
         };
         let inputs_set = r.u64()?;
         let s = State {
