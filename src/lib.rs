@@ -28,6 +28,7 @@ pub mod ratings;
 pub mod report;
 pub mod runner;
 pub mod solver;
+pub mod sweep;
 pub mod units;
 
 #[cfg(feature = "capi")]

@@ -1198,6 +1198,22 @@ fn children(norm: &str) -> Vec<String> {
     out
 }
 
+/// The 1-based line and column (in characters) of a byte offset of `text`; also what
+/// `raceway sweep` uses to place the problems of a sweep file.
+pub fn line_col(text: &str, offset: usize) -> (usize, usize) {
+    let mut off = offset.min(text.len());
+    while !text.is_char_boundary(off) {
+        off -= 1;
+    }
+    let before = &text[..off];
+    let line = before.matches('\n').count() + 1;
+    let col = before
+        .rfind('\n')
+        .map_or(before.chars().count(), |i| before[i + 1..].chars().count())
+        + 1;
+    (line, col)
+}
+
 struct Checker<'a> {
     text: Option<&'a str>,
     problems: Vec<Problem>,
@@ -1207,14 +1223,7 @@ struct Checker<'a> {
 
 impl Checker<'_> {
     fn line_col(&self, offset: Option<usize>) -> Option<(usize, usize)> {
-        let (text, off) = (self.text?, offset?);
-        let before = &text[..off.min(text.len())];
-        let line = before.matches('\n').count() + 1;
-        let col = before
-            .rfind('\n')
-            .map_or(before.chars().count(), |i| before[i + 1..].chars().count())
-            + 1;
-        Some((line, col))
+        Some(line_col(self.text?, offset?))
     }
 
     fn report(&mut self, path: &str, offset: Option<usize>, message: String) {

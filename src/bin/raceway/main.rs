@@ -23,6 +23,7 @@ mod bench;
 mod report;
 mod run;
 mod scene_cmd;
+mod sweep_cmd;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use raceway::component::scene::{RaceControl, Scene};
@@ -68,6 +69,10 @@ enum Cmd {
     QuasiStatic(QsArgs),
     /// Scene files: document every field (--explain [--json]) or check one (--check FILE).
     Scene(scene_cmd::SceneArgs),
+    /// Parameter sweep: a base scene and axes (lists, ranges, grids, random or Latin-hypercube
+    /// samples); one summary row per point in <out>/sweep.csv, all cores, resumable,
+    /// shardable (--shard k/n, then --merge).
+    Sweep(sweep_cmd::SweepArgs),
 }
 
 #[derive(ValueEnum, Clone, Copy, Debug)]
@@ -127,6 +132,7 @@ fn main() -> ExitCode {
         Cmd::Run(a) => run::run(a),
         Cmd::Bench(a) => bench::bench(a),
         Cmd::Scene(a) => scene_cmd::scene(a),
+        Cmd::Sweep(a) => sweep_cmd::sweep(a),
     };
     match out {
         Ok(text) => {

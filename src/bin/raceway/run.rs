@@ -102,12 +102,7 @@ pub fn run(a: RunArgs) -> Result<String> {
     raceway::fsutil::write_atomic(&csv, series.to_csv()).map_err(|e| io(&csv, e))?;
 
     let ctx = Ctx::new(&scene, &name, &series, &comp, cpu);
-    let mut sm = Summary::default();
-    scene_lines(&ctx, &mut sm);
-    load_lines(&ctx, &mut sm);
-    cage_lines(&ctx, &mut sm);
-    frequency_lines(&ctx, &mut sm);
-    rating_lines(&ctx, &mut sm);
+    let sm = summary_of(&ctx);
     let summary = out.join("summary.txt");
     raceway::fsutil::write_atomic(&summary, &sm.text).map_err(|e| io(&summary, e))?;
     let sj = out.join("summary.json");
@@ -131,6 +126,29 @@ pub fn run(a: RunArgs) -> Result<String> {
     )
     .ok();
     Ok(s)
+}
+
+/// The sections of the summary, in order.
+fn summary_of(ctx: &Ctx) -> Summary {
+    let mut sm = Summary::default();
+    scene_lines(ctx, &mut sm);
+    load_lines(ctx, &mut sm);
+    cage_lines(ctx, &mut sm);
+    frequency_lines(ctx, &mut sm);
+    rating_lines(ctx, &mut sm);
+    sm
+}
+
+/// The summary of a finished run (`cpu_s`: its thread CPU time), as `raceway run` writes it
+/// to summary.txt and summary.json; what `raceway sweep` flattens into a row.
+pub fn summarize(
+    scene: &Scene,
+    name: &str,
+    series: &Run,
+    comp: &raceway::Component,
+    cpu_s: f64,
+) -> Summary {
+    summary_of(&Ctx::new(scene, name, series, comp, cpu_s))
 }
 
 /// The summary: text lines and the same facts as JSON. A section is a function
