@@ -696,3 +696,48 @@ fn cage_unbalance_adds_the_rotating_load() {
     let fc = b.cage.mass * u * wc * wc;
     assert!(fc > 0.05 && (f - fc).abs() < 1e-3 * fc, "{f} {fc}");
 }
+
+/// The component reports the full level's own ball loads (what `raceway run` plots): at
+/// the start, from the quasi-static solution, they are the Jones–Harris loads at the same
+/// motion ball by ball (to the centrifugal-radius change and the tractions, as
+/// `quasi_static_start_equals_the_quasi_static_solver` measures, well inside 2 %), and the
+/// loaded balls carry the axial load.
+#[test]
+fn component_reports_the_full_levels_own_ball_loads() {
+    let text = include_str!("../examples/scenes/7004-30000.toml");
+    let mut c = Component::from_text(text).unwrap();
+    let fz = c.get_real(vr("force.z")).unwrap();
+    let loads = c.ball_loads().expect("the full level resolves its balls");
+    let b = c.bearing().clone();
+    assert_eq!(loads.len(), b.z);
+    let q: [f64; 5] = std::array::from_fn(|k| {
+        c.get_real(vr([
+            "shaft.x", "shaft.y", "shaft.z", "shaft.rx", "shaft.ry",
+        ][k]))
+            .unwrap()
+    });
+    let omega = c.get_real(vr("shaft.omega")).unwrap();
+    let qs = QuasiStatic::new(&b, Options::default()).unwrap();
+    let psi: Vec<f64> = loads.iter().map(|l| l.0).collect();
+    let mut st = vec![BallState::default(); b.z];
+    let mut res = vec![BallResult::default(); b.z];
+    qs.evaluate(&q, omega, &psi, &mut st, None, Some(&mut res))
+        .unwrap();
+    for ((_, qi, qo), r) in loads.iter().zip(&res) {
+        assert!((qi - r.q_i).abs() < 0.02 * r.q_i, "{qi} vs {}", r.q_i);
+        assert!((qo - r.q_o).abs() < 0.02 * r.q_o, "{qo} vs {}", r.q_o);
+    }
+    // The axial load is carried: sum Q_i sin(alpha_i) of the Jones–Harris angles.
+    let axial: f64 = loads
+        .iter()
+        .zip(&res)
+        .map(|((_, qi, _), r)| qi * r.alpha_i.sin())
+        .sum();
+    println!("axial {axial} vs force.z {fz}; loads {loads:?}");
+    assert!(
+        (axial - fz.abs()).abs() < 0.03 * fz.abs(),
+        "{axial} vs {fz}"
+    );
+    let qs_level = Component::new(raceway::component::scene::Scene::default_scene()).unwrap();
+    assert!(qs_level.ball_loads().is_none());
+}

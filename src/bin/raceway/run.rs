@@ -654,7 +654,7 @@ fn spectrum_plot(
 }
 
 /// Ball loads around the circumference at the end of the run: the level's own loads when
-/// it resolves the balls (skidding), else the Jones–Harris equilibrium at the final motion
+/// it resolves the balls (skidding, full), else the Jones–Harris equilibrium at the final motion
 /// and speed with the balls at their reference azimuths (the quasi-static, ring and linear
 /// levels' ball model).
 fn ball_loads_plot(out: &Path, c: &Ctx) -> Result<()> {
@@ -691,11 +691,7 @@ fn ball_loads_plot(out: &Path, c: &Ctx) -> Result<()> {
         let mut st = vec![BallState::default(); b.z];
         let mut res = vec![BallResult::default(); b.z];
         qs.evaluate(&q, omega, &psi, &mut st, None, Some(&mut res))?;
-        let title = if level == "full" {
-            "ball loads, Jones–Harris at the final motion (not the full level's own)".to_string()
-        } else {
-            "ball loads around the circumference (Jones–Harris, final motion)".to_string()
-        };
+        let title = "ball loads around the circumference (Jones–Harris, final motion)".to_string();
         (
             psi.iter().map(|p| p.to_degrees()).collect(),
             res.iter().map(|r| r.q_i).collect(),

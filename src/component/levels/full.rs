@@ -63,6 +63,17 @@ impl LevelModel for FullLevel {
     fn name(&self) -> &'static str {
         "full"
     }
+    /// The model's own per-ball loads at its last evaluation (the current state's: the
+    /// outputs evaluate it last, after their perturbed evaluations).
+    fn ball_loads(&self) -> Option<Vec<(f64, f64, f64)>> {
+        Some(
+            self.model
+                .balls
+                .iter()
+                .map(|b| (b.psi, b.q_i, b.q_o))
+                .collect(),
+        )
+    }
     fn n_states(&self) -> usize {
         self.model.n_states()
     }
