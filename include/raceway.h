@@ -45,7 +45,7 @@
 /*
  Number of variables in the table.
  */
-#define RACEWAY_VARIABLE_COUNT 86
+#define RACEWAY_VARIABLE_COUNT 89
 
 /*
  `shaft.x` (m): inner-ring centre displacement x relative to the outer ring; plausible: |x| <= radial play + approach at 7.5 GPa Hertz (scene --explain).
@@ -226,6 +226,21 @@
  `guide.force` (N): cage guide-land force (full level).
  */
 #define RACEWAY_VR_GUIDE_FORCE 120
+
+/*
+ `safety.S0` (1): static safety factor C0/P0 (ISO 76) of the bearing force; 1e6 when unloaded, 0 where ISO 76 does not cover the bearing.
+ */
+#define RACEWAY_VR_SAFETY_S0 121
+
+/*
+ `life.L10` (1): basic rating life (C/P)^3 (ISO 281) of the bearing force, in millions of revolutions; 1e12 when unloaded, 0 where ISO 281 does not cover the bearing.
+ */
+#define RACEWAY_VR_LIFE_L10 122
+
+/*
+ `warnings.active` (1): number of active warnings: peak contact pressure beyond ISO 76's limit, fewer than two loaded balls.
+ */
+#define RACEWAY_VR_WARNINGS_ACTIVE 123
 
 /*
  `K.x.x` (N/m): stiffness -dF_i/dq_j.

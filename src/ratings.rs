@@ -267,8 +267,9 @@ pub fn dynamic_factors(b: &Bearing, r: &LoadRatings, fr: f64, fa: f64) -> (f64, 
         BearingKind::AngularContact => {
             let a = b.alpha0.to_degrees().clamp(15.0, 45.0);
             let (e15, y15) = interp_rows(&AC15, rel);
-            let mut rows = vec![(15.0, e15, 0.44, y15)];
-            rows.extend_from_slice(&AC);
+            // A fixed array, not a Vec: the co-simulation outputs call this every step.
+            let mut rows = [(15.0, e15, 0.44, y15); 7];
+            rows[1..].copy_from_slice(&AC);
             let k = rows
                 .windows(2)
                 .position(|w| a <= w[1].0)
@@ -1025,5 +1026,62 @@ mod tests {
         });
         let (edge, sh) = t.expect("truncation warning at 14 kN axial");
         assert!(edge > sh && (sh - shi).abs() < 1e-12, "{edge} {sh} {shi}");
+    }
+}
+
+/// Largest static safety factor reported as an output (an unloaded bearing's `C0/0`).
+pub const S0_UNLOADED: f64 = 1e6;
+/// Largest basic rating life reported as an output, millions of revolutions.
+pub const L10_UNLOADED: f64 = 1e12;
+
+/// What the co-simulation outputs `safety.S0`, `life.L10` and `warnings.active` need of
+/// the ratings, computed once when a component is built: `None` where ISO 281/76 do not
+/// cover the bearing (the outputs then read 0).
+#[derive(Debug, Clone, Copy)]
+pub struct RatingOutputs {
+    ratings: Option<LoadRatings>,
+    x0y0: (f64, f64),
+    limit: f64,
+}
+
+impl RatingOutputs {
+    /// The ratings of `b` (computed here, once).
+    pub fn of(b: &Bearing) -> Self {
+        RatingOutputs {
+            ratings: load_ratings(b).ok(),
+            x0y0: static_factors(b),
+            limit: STATIC_PRESSURE_LIMIT,
+        }
+    }
+
+    /// `[S0, L10, warnings]` for the bearing force `wrench` (force on the shaft, N; its
+    /// radial and axial parts are the loads `Fr`, `Fa`), the peak contact pressure (Pa) and
+    /// the loaded-ball count. `S0 = C0/P0` (ISO 76) capped at [`S0_UNLOADED`], `L10 =
+    /// (C/P)^3` (ISO 281, millions of revolutions) capped at [`L10_UNLOADED`]; the warning
+    /// count is the pressure beyond ISO 76's limit plus fewer than two loaded balls (the
+    /// cheap ones of [`Warning`]; the ellipse truncation and κ need the per-ball solution
+    /// and the oil, and are in [`assess`]). Finite for any finite input.
+    pub fn outputs(&self, b: &Bearing, wrench: &[f64; 5], pressure: f64, loaded: f64) -> [f64; 3] {
+        let warnings = f64::from(u8::from(pressure > self.limit) + u8::from(loaded < 2.0));
+        let Some(r) = &self.ratings else {
+            return [0.0, 0.0, warnings];
+        };
+        let fr = wrench[0].hypot(wrench[1]);
+        let fa = wrench[2].abs();
+        let (x0, y0) = self.x0y0;
+        let p0 = (x0 * fr + y0 * fa).max(fr);
+        let s0 = if p0 * S0_UNLOADED > r.c0 {
+            r.c0 / p0
+        } else {
+            S0_UNLOADED
+        };
+        let (x, y, _) = dynamic_factors(b, r, fr, fa);
+        let p = x * fr + y * fa;
+        let l10 = if p > 0.0 {
+            (r.c / p).powi(3).min(L10_UNLOADED)
+        } else {
+            L10_UNLOADED
+        };
+        [s0, l10, warnings]
     }
 }

@@ -255,3 +255,56 @@ fn quasi_static_contact_damping_settles_a_released_ring() {
         "damped spread {spread_d} N vs undamped {spread_0} N"
     );
 }
+
+/// The rating outputs are ISO 76/281 of the bearing force: under the default scene's pure
+/// radial load `S0 = C0 / max(0.6 Fr + 0.5 Fa, Fr) = C0/Fr` and `L10 = (C/Fr)^3` exactly;
+/// a centred shaft with no clearance and no load reads the documented caps and warns of
+/// fewer than two loaded balls; a shaft pushed 100 µm passes ISO 76's 4 200 MPa and
+/// warns, with S0 below 1.
+#[test]
+fn rating_outputs_follow_iso_281_and_76() {
+    let text = raceway::component::scene::DEFAULT_SCENE;
+    let mut c = Component::from_text(text).unwrap();
+    for n in [
+        "shaft.x", "shaft.z", "shaft.rx", "shaft.ry", "shaft.vx", "shaft.vy", "shaft.vz",
+        "shaft.wx", "shaft.wy",
+    ] {
+        c.set_real(vr(n), 0.0).unwrap();
+    }
+    let b = c.bearing().clone();
+    let r = raceway::ratings::load_ratings(&b).unwrap();
+    let g = |c: &mut Component, n: &str| c.get_real(vr(n)).unwrap();
+    let (fx, fy, fz) = (
+        g(&mut c, "force.x"),
+        g(&mut c, "force.y"),
+        g(&mut c, "force.z"),
+    );
+    assert!(fz.abs() < 1e-9 * fy.abs(), "pure radial: {fz}");
+    let fr = fx.hypot(fy);
+    let s0 = g(&mut c, "safety.S0");
+    let l10 = g(&mut c, "life.L10");
+    assert!((s0 - r.c0 / fr).abs() < 1e-12 * s0, "{s0} vs {}", r.c0 / fr);
+    assert!(
+        (l10 - (r.c / fr).powi(3)).abs() < 1e-12 * l10,
+        "{l10} vs {}",
+        (r.c / fr).powi(3)
+    );
+    assert_eq!(g(&mut c, "warnings.active"), 0.0);
+
+    for (y, s0_cap, warned) in [(0.0, true, 1.0), (-100e-6, false, 1.0)] {
+        c.set_real(vr("shaft.y"), y).unwrap();
+        let s0 = g(&mut c, "safety.S0");
+        let l10 = g(&mut c, "life.L10");
+        let p = g(&mut c, "contact.max_pressure");
+        if s0_cap {
+            assert_eq!(s0, raceway::ratings::S0_UNLOADED);
+            assert_eq!(l10, raceway::ratings::L10_UNLOADED);
+        } else {
+            assert!(
+                p > raceway::ratings::STATIC_PRESSURE_LIMIT && s0 < 1.0,
+                "{p} {s0}"
+            );
+        }
+        assert_eq!(g(&mut c, "warnings.active"), warned, "y = {y}, p = {p}");
+    }
+}

@@ -5,7 +5,7 @@
 //! edit. Regenerate with `RACEWAY_BLESS=1 cargo test --test capi_header`.
 
 /// Number of variables in the table.
-pub const RACEWAY_VARIABLE_COUNT: usize = 86;
+pub const RACEWAY_VARIABLE_COUNT: usize = 89;
 
 /// `shaft.x` (m): inner-ring centre displacement x relative to the outer ring; plausible: |x| <= radial play + approach at 7.5 GPa Hertz (scene --explain).
 pub const RACEWAY_VR_SHAFT_X: u32 = 1;
@@ -114,6 +114,15 @@ pub const RACEWAY_VR_POCKET_MAX_FORCE: u32 = 119;
 
 /// `guide.force` (N): cage guide-land force (full level).
 pub const RACEWAY_VR_GUIDE_FORCE: u32 = 120;
+
+/// `safety.S0` (1): static safety factor C0/P0 (ISO 76) of the bearing force; 1e6 when unloaded, 0 where ISO 76 does not cover the bearing.
+pub const RACEWAY_VR_SAFETY_S0: u32 = 121;
+
+/// `life.L10` (1): basic rating life (C/P)^3 (ISO 281) of the bearing force, in millions of revolutions; 1e12 when unloaded, 0 where ISO 281 does not cover the bearing.
+pub const RACEWAY_VR_LIFE_L10: u32 = 122;
+
+/// `warnings.active` (1): number of active warnings: peak contact pressure beyond ISO 76's limit, fewer than two loaded balls.
+pub const RACEWAY_VR_WARNINGS_ACTIVE: u32 = 123;
 
 /// `K.x.x` (N/m): stiffness -dF_i/dq_j.
 pub const RACEWAY_VR_K_X_X: u32 = 200;

@@ -70,8 +70,9 @@ const I_TORQUE: usize = 21;
 const I_CAGE_OMEGA: usize = 22;
 const I_DIAG: usize = 23; // cage.slip, balls.loaded, contact.max_load, contact.max_pressure, film, power, wear
 const I_CAGE: usize = 30; // cage.x, cage.y, cage.speed, cage.speed_ratio, pocket.max_force, guide.force
-const I_K: usize = 36;
-const I_C: usize = 61;
+const I_RATING: usize = 36; // safety.S0, life.L10, warnings.active
+const I_K: usize = 39;
+const I_C: usize = 64;
 
 /// Time offset of the central difference that gives output derivatives, s.
 const DT_DERIV: f64 = 1e-7;
@@ -325,6 +326,8 @@ pub struct Component {
     integrator: Integrator,
     opts: Options,
     limits: limits::Limits,
+    /// ISO 281/76 ratings for the `safety.S0`, `life.L10` and `warnings.active` outputs.
+    rating: crate::ratings::RatingOutputs,
 }
 
 /// The scene's integrator and its options. `Auto` picks DOPRI5: the levels so far are not
@@ -509,6 +512,7 @@ impl Component {
         };
         let mut c = Component {
             limits: limits::Limits::of(&bearing),
+            rating: crate::ratings::RatingOutputs::of(&bearing),
             jwork,
             scene,
             bearing,
@@ -948,6 +952,12 @@ impl Component {
             out.guide_force,
         ];
         o[I_CAGE..I_CAGE + 6].copy_from_slice(&cage);
+        o[I_RATING..I_RATING + 3].copy_from_slice(&self.rating.outputs(
+            &self.bearing,
+            &out.wrench,
+            out.max_pressure,
+            out.balls_loaded,
+        ));
         for r in 0..5 {
             o[I_K + 5 * r..I_K + 5 * r + 5].copy_from_slice(&out.k[r]);
             o[I_C + 5 * r..I_C + 5 * r + 5].copy_from_slice(&out.c[r]);
@@ -1430,6 +1440,8 @@ mod tests {
         assert_eq!(at(I_DIAG + 6), "wear.max_depth");
         assert_eq!(at(I_CAGE), "cage.x");
         assert_eq!(at(I_CAGE + 5), "guide.force");
+        assert_eq!(at(I_RATING), "safety.S0");
+        assert_eq!(at(I_RATING + 2), "warnings.active");
         assert_eq!(at(I_K), "K.x.x");
         assert_eq!(at(I_C + 24), "C.ry.ry");
         assert_eq!(variables::by_vr(variables::VR_K0).unwrap().name, "K.x.x");

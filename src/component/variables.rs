@@ -297,6 +297,27 @@ pub const SCALARS: &[Variable] = &[
         Output,
         "cage guide-land force (full level)",
     ),
+    v(
+        "safety.S0",
+        121,
+        "1",
+        Output,
+        "static safety factor C0/P0 (ISO 76) of the bearing force; 1e6 when unloaded, 0 where ISO 76 does not cover the bearing",
+    ),
+    v(
+        "life.L10",
+        122,
+        "1",
+        Output,
+        "basic rating life (C/P)^3 (ISO 281) of the bearing force, in millions of revolutions; 1e12 when unloaded, 0 where ISO 281 does not cover the bearing",
+    ),
+    v(
+        "warnings.active",
+        123,
+        "1",
+        Output,
+        "number of active warnings: peak contact pressure beyond ISO 76's limit, fewer than two loaded balls",
+    ),
 ];
 
 /// Unit of row `i` (force or moment) divided by column `j` (displacement or tilt).
