@@ -5,6 +5,7 @@
 //! call either succeeds or returns an error that names the cause and leaves the component
 //! exactly as it was.
 
+pub mod fields;
 pub mod level;
 pub mod levels;
 pub mod limits;

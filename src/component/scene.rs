@@ -1,6 +1,10 @@
 //! The scene: one serde schema (TOML for people, JSON for programs) that says everything a
 //! component needs. Anything a scene leaves out is not computed.
 
+use super::fields::{
+    between, choice, closed, flag, ge, gt, int_choice, integer, name, name_or_table, number, table,
+    text, Names, ANY,
+};
 use super::variables::{self, Causality};
 use crate::error::{Error, Result};
 use crate::geometry::{presets, Bearing, BearingSpec};
@@ -110,18 +114,14 @@ pub struct OperatingPoint {
     pub my: f64,
 }
 
-impl Default for OperatingPoint {
-    fn default() -> Self {
-        OperatingPoint {
-            speed_rpm: 0.0,
-            fx: 0.0,
-            fy: 1000.0,
-            fz: 0.0,
-            mx: 0.0,
-            my: 0.0,
-        }
-    }
-}
+crate::declare_fields!(OperatingPoint {
+    speed_rpm: 0.0 => number("rpm", ANY, "linear level: shaft speed of the operating point"),
+    fx: 0.0 => number("N", ANY, "linear level: load x"),
+    fy: 1000.0 => number("N", ANY, "linear level: load y"),
+    fz: 0.0 => number("N", ANY, "linear level: axial load z"),
+    mx: 0.0 => number("N m", ANY, "linear level: moment about x"),
+    my: 0.0 => number("N m", ANY, "linear level: moment about y"),
+});
 
 /// `[model.skidding]`: options of the skidding level (SI unless the name says otherwise).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -159,58 +159,55 @@ pub struct SkiddingSpec {
     pub ball_radial_mass: bool,
 }
 
-impl Default for SkiddingSpec {
-    fn default() -> Self {
-        let p = crate::models::skidding::SkiddingParams::default();
-        SkiddingSpec {
-            traction: p.traction,
-            pocket_clearance_mm: None,
-            pocket_stiffness: p.pocket_stiffness,
-            pocket_damping: p.pocket_damping,
-            pocket_friction: p.pocket_friction,
-            drag_coefficient: p.drag_coefficient,
-            drag_density: p.drag_density,
-            drag_viscosity: p.drag_viscosity,
-            cage_drag: p.cage_drag,
-            spacing_scatter: p.spacing_scatter,
-            seed: p.seed,
-            gyro_traction: p.gyro_traction,
-            spin_friction: p.spin_friction,
-            ball_radial_mass: p.ball_radial_mass,
-        }
-    }
-}
+crate::declare_fields!(SkiddingSpec {
+    traction: crate::contact::traction::TractionLaw::default() => table(),
+    pocket_clearance_mm: None => number("mm", gt(0.0), "skidding level: pocket clearance per side")
+        .note("absent: the bearing's cage pocket clearance"),
+    pocket_stiffness: 1e7 => number("N/m", gt(0.0), "skidding level: pocket contact stiffness"),
+    pocket_damping: 200.0 => number("N s/m", closed(0.0, 1e9), "skidding level: pocket contact damping"),
+    pocket_friction: 0.05 => number("-", closed(0.0, 2.0), "skidding level: pocket friction coefficient"),
+    drag_coefficient: 0.5 => number("-", closed(0.0, 1e3), "skidding level: drag coefficient of an orbiting ball"),
+    drag_density: 10.0 => number("kg/m³", closed(0.0, 1e4), "skidding level: density of the oil–air mixture around the balls"),
+    drag_viscosity: 0.0 => number("Pa s", closed(0.0, 10.0), "skidding level: oil viscosity of the ball spin drag"),
+    cage_drag: 0.0 => number("N m s", closed(0.0, 1e3), "skidding level: cage drag"),
+    spacing_scatter: 0.0 => number("-", closed(0.0, 1.0), "skidding level: ball spacing scatter as a fraction of the pocket clearance"),
+    seed: 1 => integer(ge(0.0), "skidding level: seed of the scatter"),
+    gyro_traction: 0.3 => number("-", closed(0.0, 10.0), "skidding level: traction coefficient limiting the lateral friction that carries the balls' gyroscopic couple")
+        .note("0 turns the gyroscopic friction off"),
+    spin_friction: 0.0 => number("-", closed(0.0, 2.0), "skidding level: friction coefficient of the spinning moment (3/8) mu Q a E at the race contacts")
+        .note("0: no spinning moment"),
+    ball_radial_mass: false => flag("skidding level: give the balls radial mass (position along the contact line as a state, damped by model.contact_damping) instead of the quasi-static split")
+        .note("default false"),
+});
 
 impl SkiddingSpec {
     /// Validated model parameters for bearing `b`; errors name `model.skidding.<field>`.
     pub fn params(&self, b: &Bearing) -> Result<crate::models::skidding::SkiddingParams> {
-        use crate::error::{in_range, positive};
         self.traction.validate("model.skidding.traction")?;
-        let cp = match self.pocket_clearance_mm {
-            Some(v) => positive("model.skidding.pocket_clearance_mm", v)? * 1e-3,
-            None => b.cage.pocket_clearance,
-        };
-        let f = |n: &str| format!("model.skidding.{n}");
+        super::fields::check("model.skidding", Self::FIELDS, self)?;
+        let cp = self
+            .pocket_clearance_mm
+            .map_or(b.cage.pocket_clearance, |v| v * 1e-3);
         Ok(crate::models::skidding::SkiddingParams {
             traction: self.traction,
-            pocket_clearance: positive(&f("pocket_clearance (m)"), cp)?,
-            pocket_stiffness: positive(&f("pocket_stiffness"), self.pocket_stiffness)?,
-            pocket_damping: in_range(&f("pocket_damping"), self.pocket_damping, 0.0, 1e9)?,
-            pocket_friction: in_range(&f("pocket_friction"), self.pocket_friction, 0.0, 2.0)?,
-            drag_coefficient: in_range(&f("drag_coefficient"), self.drag_coefficient, 0.0, 1e3)?,
-            drag_density: in_range(&f("drag_density"), self.drag_density, 0.0, 1e4)?,
-            drag_viscosity: in_range(&f("drag_viscosity"), self.drag_viscosity, 0.0, 10.0)?,
-            cage_drag: in_range(&f("cage_drag"), self.cage_drag, 0.0, 1e3)?,
-            spacing_scatter: in_range(&f("spacing_scatter"), self.spacing_scatter, 0.0, 1.0)?,
+            pocket_clearance: crate::error::positive("model.skidding.pocket_clearance (m)", cp)?,
+            pocket_stiffness: self.pocket_stiffness,
+            pocket_damping: self.pocket_damping,
+            pocket_friction: self.pocket_friction,
+            drag_coefficient: self.drag_coefficient,
+            drag_density: self.drag_density,
+            drag_viscosity: self.drag_viscosity,
+            cage_drag: self.cage_drag,
+            spacing_scatter: self.spacing_scatter,
             seed: self.seed,
             contact_damping: 0.0,
-            gyroscopic: in_range(&f("gyro_traction"), self.gyro_traction, 0.0, 10.0)? > 0.0,
+            gyroscopic: self.gyro_traction > 0.0,
             gyro_traction: if self.gyro_traction > 0.0 {
                 self.gyro_traction
             } else {
                 1.0
             },
-            spin_friction: in_range(&f("spin_friction"), self.spin_friction, 0.0, 2.0)?,
+            spin_friction: self.spin_friction,
             ball_radial_mass: self.ball_radial_mass,
             ..Default::default()
         })
@@ -257,32 +254,31 @@ pub struct FullSpec {
     pub cage_unbalance_um: f64,
 }
 
-impl Default for FullSpec {
-    fn default() -> Self {
-        let b = crate::geometry::preset("7004")
-            .and_then(|s| s.build())
-            .expect("the 7004 preset builds");
-        let p = crate::models::full::FullParams::for_bearing(&b);
-        FullSpec {
-            traction: p.traction,
-            ball_contacts: p.ball_contacts,
-            cage: p.cage,
-            reference_load_n: p.reference_load,
-            drag_factor: p.drag,
-            drag_density: p.drag_density,
-            viscosity: p.viscosity,
-            pocket_clearance_mm: None,
-            pocket_friction: p.pocket_friction,
-            pocket_roughness_um: p.pocket_roughness * 1e6,
-            pocket_v_s: p.pocket_v_s,
-            guide_width_mm: None,
-            guide_stiffness: p.guide_stiffness,
-            guide_eps_max: p.guide_eps_max,
-            guidance: None,
-            cage_unbalance_um: 0.0,
-        }
-    }
-}
+crate::declare_fields!(FullSpec {
+    traction: crate::contact::traction::TractionLaw::default() => table(),
+    ball_contacts: crate::models::full::BallContacts::default() => choice(BALL_CONTACTS, "full level: ball radial/axial position in quasi-static equilibrium (study [0]) or integrated with the ball mass (dynamic)"),
+    cage: crate::models::full::CageModel::default() => choice(CAGE_MODELS, "full level: cage with six degrees of freedom (free) or centred, rotation only (ideal)"),
+    reference_load_n: 1000.0 => number("N", closed(1e-3, 1e9), "full level: reference force F_ref of the nondimensional states (time scale sqrt(m_b D / (2 F_ref)))"),
+    drag_factor: 1.0 => number("-", closed(0.0, 1e3), "full level: factor on the boundary-layer drag of balls and cage (0: off)"),
+    drag_density: 10.0 => number("kg/m³", closed(0.0, 1e4), "full level: effective density of the oil–air mixture"),
+    viscosity: 3e-3 => number("Pa s", closed(0.0, 10.0), "full level: oil viscosity (drag, pockets, guide land)"),
+    pocket_clearance_mm: None => number("mm", gt(0.0), "full level: diametral pocket play")
+        .note("absent: the bearing's cage pocket clearance"),
+    pocket_friction: 0.1 => number("-", closed(0.0, 2.0), "full level: ball–pocket friction coefficient"),
+    pocket_roughness_um: 0.3 => number("µm", closed(0.0, 1e3), "full level: composite roughness of ball and pocket"),
+    pocket_v_s: 0.05 => number("m/s", closed(super::limits::SLIP_SPEED_MIN, 1e3), "full level: regularising slip speed of the pocket friction"),
+    guide_width_mm: None => number("mm", gt(0.0), "full level: guide land width")
+        .note("absent: half the cage width"),
+    guide_stiffness: 1e7 => number("N/m", gt(0.0), "full level: guide-land contact stiffness beyond guide_eps_max"),
+    guide_eps_max: 0.9 => number("-", closed(0.05, 0.999), "full level: eccentricity ratio where the guide-land contact starts"),
+    guidance: None => choice(crate::geometry::bearing::GUIDANCE, "full level: cage guidance, on the outer-ring land (land radius = cage OD/2) or the inner-ring land (= cage bore/2), or ball-riding (no land)")
+        .note("absent: bearing.cage.guidance"),
+    cage_unbalance_um: 0.0 => number("µm", closed(0.0, 1e3), "full level: cage mass unbalance, offset of the mass centre from the geometric centre (a load rotating with the cage, m_c u w_c²)")
+        .note("default 0"),
+});
+
+const BALL_CONTACTS: &[&str] = &["quasi_static", "dynamic"];
+const CAGE_MODELS: &[&str] = &["free", "ideal"];
 
 impl FullSpec {
     /// Validated model parameters for bearing `b`; errors name `model.full.<field>`.
@@ -291,46 +287,28 @@ impl FullSpec {
         b: &Bearing,
         race_control: RaceControl,
     ) -> Result<crate::models::full::FullParams> {
-        use crate::error::{in_range, positive};
-        let f = |n: &str| format!("model.full.{n}");
-        self.traction.validate(&f("traction"))?;
-        let cp = match self.pocket_clearance_mm {
-            Some(v) => positive(&f("pocket_clearance_mm"), v)? * 1e-3,
-            None => b.cage.pocket_clearance,
-        };
-        let gw = match self.guide_width_mm {
-            Some(v) => positive(&f("guide_width_mm"), v)? * 1e-3,
-            None => 0.5 * b.cage.width,
-        };
+        self.traction.validate("model.full.traction")?;
+        super::fields::check("model.full", Self::FIELDS, self)?;
         Ok(crate::models::full::FullParams {
             traction: self.traction,
             ball_contacts: self.ball_contacts,
             cage: self.cage,
-            reference_load: in_range(&f("reference_load_n"), self.reference_load_n, 1e-3, 1e9)?,
+            reference_load: self.reference_load_n,
             race_control,
-            drag: in_range(&f("drag_factor"), self.drag_factor, 0.0, 1e3)?,
-            drag_density: in_range(&f("drag_density"), self.drag_density, 0.0, 1e4)?,
-            viscosity: in_range(&f("viscosity"), self.viscosity, 0.0, 10.0)?,
-            pocket_clearance: cp,
-            pocket_friction: in_range(&f("pocket_friction"), self.pocket_friction, 0.0, 2.0)?,
-            pocket_roughness: in_range(
-                &f("pocket_roughness_um"),
-                self.pocket_roughness_um,
-                0.0,
-                1e3,
-            )? * 1e-6,
-            pocket_v_s: in_range(
-                &f("pocket_v_s"),
-                self.pocket_v_s,
-                super::limits::SLIP_SPEED_MIN,
-                1e3,
-            )?,
-            guide_width: gw,
-            guide_stiffness: positive(&f("guide_stiffness"), self.guide_stiffness)?,
-            guide_eps_max: in_range(&f("guide_eps_max"), self.guide_eps_max, 0.05, 0.999)?,
+            drag: self.drag_factor,
+            drag_density: self.drag_density,
+            viscosity: self.viscosity,
+            pocket_clearance: self
+                .pocket_clearance_mm
+                .map_or(b.cage.pocket_clearance, |v| v * 1e-3),
+            pocket_friction: self.pocket_friction,
+            pocket_roughness: self.pocket_roughness_um * 1e-6,
+            pocket_v_s: self.pocket_v_s,
+            guide_width: self.guide_width_mm.map_or(0.5 * b.cage.width, |v| v * 1e-3),
+            guide_stiffness: self.guide_stiffness,
+            guide_eps_max: self.guide_eps_max,
             guidance: self.guidance.unwrap_or(b.cage.guidance),
-            cage_unbalance: in_range(&f("cage_unbalance_um"), self.cage_unbalance_um, 0.0, 1e3)?
-                * 1e-6,
+            cage_unbalance: self.cage_unbalance_um * 1e-6,
         })
     }
 }
@@ -362,22 +340,19 @@ pub struct ModelSpec {
     pub start: Start,
 }
 
-impl Default for ModelSpec {
-    fn default() -> Self {
-        ModelSpec {
-            level: Level::default(),
-            causality: Causality::default(),
-            race_control: RaceControl::default(),
-            ring_dof: 2,
-            contact_damping: 0.0,
-            operating_point: OperatingPoint::default(),
-            attached_mass_kg: 0.0,
-            skidding: SkiddingSpec::default(),
-            full: FullSpec::default(),
-            start: Start::default(),
-        }
-    }
-}
+crate::declare_fields!(ModelSpec {
+    level: Level::default() => choice(&Level::NAMES, "model level: constant K and C (linear), per-ball equilibrium at kinematic cage positions (quasi_static), ring on massless balls (ring), ball orbit and spin with cage, traction and drag (skidding), 6-DOF balls and cage with pocket and guide-land forces (full)")
+        .note("effects need `ring`"),
+    causality: Causality::default() => choice(&["motion", "load"], "motion: shaft motion in, forces out; load: loads in, the inner ring is integrated inside"),
+    race_control: RaceControl::default() => choice(&["outer", "none"], "race control of the quasi-static kernels (Harris ch. 8)"),
+    ring_dof: 2 => int_choice(&[2, 5], "ring level: 2 (x, y) or 5 (x, y, z, rx, ry) degrees of freedom"),
+    contact_damping: 0.0 => number("N s/m", ge(0.0), "contact damping per loaded ball (ring level)"),
+    operating_point: OperatingPoint::default() => table(),
+    attached_mass_kg: 0.0 => number("kg", ge(0.0), "load-driven: mass attached to the inner ring (added to its own)"),
+    skidding: SkiddingSpec::default() => table(),
+    full: FullSpec::default() => table(),
+    start: Start::default() => choice(&["equilibrium", "rest"], "load-driven: the inner ring starts at rest in static equilibrium under the initial loads (equilibrium) or at zero displacement (rest)"),
+});
 
 /// Integrator choice.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
@@ -417,27 +392,41 @@ pub struct SolverSpec {
 /// waits minutes on a step that cannot finish.
 pub const MAX_STEP_CPU_S: f64 = 20.0;
 
-impl Default for SolverSpec {
-    fn default() -> Self {
-        SolverSpec {
-            method: Method::Auto,
-            rtol: 1e-6,
-            atol_m: 1e-10,
-            max_substep_s: 0.0,
-            max_substeps: 100_000,
-            max_step_cpu_s: MAX_STEP_CPU_S,
-        }
-    }
-}
+crate::declare_fields!(SolverSpec {
+    method: Method::Auto => choice(&["auto", "dopri5", "rosenbrock"], "integrator (auto: the level's default)"),
+    rtol: 1e-6 => number("-", closed(1e-14, 0.1), "relative tolerance"),
+    atol_m: 1e-10 => number("m", closed(1e-20, 1e-3), "absolute tolerance on displacements")
+        .why("below 1e-20 m the tolerance is under the rounding of any displacement; the work-precision references use 1e-16 m"),
+    max_substep_s: 0.0 => number("s", ge(0.0), "largest internal sub-step (0: the communication step)"),
+    max_substeps: 100_000 => integer(closed(1.0, u32::MAX as f64), "work budget: most internal steps per communication step (raise it when a step stops on it)"),
+    max_step_cpu_s: MAX_STEP_CPU_S => number("s", between(0.0, false, 1e6, true), "work budget: most CPU time one communication step may take before it stops, state unchanged (raise it when a step stops on it)")
+        .note("thread CPU time"),
+});
 
 /// Inputs section: the rule and the values at the start.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct InputSpec {
     /// How inputs move inside a step.
     pub rule: InputRule,
     /// Values at the start, by variable name (e.g. `"shaft.omega" = 183.26`).
     pub initial: BTreeMap<String, f64>,
+}
+
+crate::declare_fields!(InputSpec {
+    rule: InputRule::default() => choice(&["hold", "velocity", "derivatives"], "how inputs move inside a step"),
+    initial: BTreeMap::new() => table(),
+});
+
+impl InputSpec {
+    /// The one row of `inputs.initial`, a table keyed by input variable.
+    pub const INITIAL: &'static [super::fields::FieldDecl] = &[number(
+        "SI unit of the variable",
+        ANY,
+        "input value at the start, by variable name (e.g. \"shaft.omega\" in rad/s)",
+    )
+    .note("only inputs of the scene's causality; absent: 0; within the bearing's plausibility limits (below)")
+    .named("<variable>")];
 }
 
 /// The `[run]` section: what a stand-alone run (`raceway run`) does with the scene. Hosts
@@ -460,18 +449,19 @@ pub struct RunSpec {
     pub rotating_load_n: f64,
 }
 
-impl Default for RunSpec {
-    fn default() -> Self {
-        RunSpec {
-            duration_s: 0.2,
-            step_s: 1e-4,
-            speed_ramp_rpm_per_s: 0.0,
-            orbit_um: 0.0,
-            orbit_hz: 0.0,
-            rotating_load_n: 0.0,
-        }
-    }
-}
+crate::declare_fields!(RunSpec {
+    duration_s: 0.2 => number("s", between(0.0, false, 1e4, true), "simulated time of `raceway run`")
+        .note("at most 1e7 steps of step_s"),
+    step_s: 1e-4 => number("s", gt(0.0), "communication (output) step")
+        .note("<= duration_s, at most 1e7 steps"),
+    speed_ramp_rpm_per_s: 0.0 => number("rpm/s", ANY, "shaft speed ramp added to the initial shaft.omega")
+        .note("the speed at the end of the run within the burst speed (plausibility limits)"),
+    orbit_um: 0.0 => number("µm", ANY, "motion-driven: radius of a circular shaft orbit")
+        .note("within the radial displacement limit (plausibility limits)"),
+    orbit_hz: 0.0 => number("Hz", ANY, "motion-driven: orbit frequency (0: synchronous)"),
+    rotating_load_n: 0.0 => number("N", ANY, "load-driven: load rotating with the shaft (unbalance)")
+        .note("within the force limit (plausibility limits)"),
+});
 
 /// The bearing of a scene: a preset name, or a table with an optional `preset` and any
 /// bearing-file fields overriding it.
@@ -485,6 +475,13 @@ pub enum BearingRef {
 }
 
 impl BearingRef {
+    /// The key a bearing table has beyond the bearing-file fields.
+    pub const FIELDS: &'static [super::fields::FieldDecl] = &[name(
+        Names::BearingPreset,
+        "preset the table starts from (without it, name, ball_diameter_mm, pitch_diameter_mm and ball_count are required)",
+    )
+    .named("preset")];
+
     /// Resolve to a spec (preset plus overrides).
     pub fn spec(&self) -> Result<BearingSpec> {
         match self {
@@ -548,6 +545,16 @@ pub struct Scene {
     #[serde(default)]
     pub run: RunSpec,
 }
+
+crate::declare_fields!(Scene {
+    title => text("free title"),
+    bearing => name_or_table(Names::BearingPreset, "the bearing: a preset name (`raceway bearings`) or a catalogue designation (60xx, 62xx, 63xx; 70xx, 72xx, 73xx + C, AC or B; internal geometry estimated, `raceway bearings 6206`), or a table with an optional `preset` and bearing-file fields overriding it"),
+    model => table(),
+    solver => table(),
+    inputs => table(),
+    effects => table(),
+    run => table(),
+});
 
 impl Scene {
     /// The `[run]` excitations within the bearing's plausibility limits: the speed at the
@@ -640,45 +647,13 @@ impl Scene {
 
     /// Validate everything; each refusal names the field, the value and the allowed range.
     pub fn validate(&self) -> Result<Bearing> {
+        use super::fields::check;
         let b = self.build_bearing()?;
-        let s = &self.solver;
-        if !(s.rtol.is_finite() && s.rtol >= 1e-14 && s.rtol <= 0.1) {
-            return Err(Error::invalid("solver.rtol", s.rtol, "in [1e-14, 0.1]"));
-        }
-        if !(s.atol_m.is_finite() && (1e-20..=1e-3).contains(&s.atol_m)) {
-            return Err(Error::invalid(
-                "solver.atol_m",
-                s.atol_m,
-                "in [1e-20, 1e-3] m (below 1e-20 m the tolerance is under the rounding of any displacement; the work-precision references use 1e-16 m)",
-            ));
-        }
-        if !(s.max_step_cpu_s.is_finite() && s.max_step_cpu_s > 0.0 && s.max_step_cpu_s <= 1e6) {
-            return Err(Error::invalid(
-                "solver.max_step_cpu_s",
-                s.max_step_cpu_s,
-                "in (0, 1e6] s of CPU time per communication step",
-            ));
-        }
-        if !(s.max_substep_s.is_finite() && s.max_substep_s >= 0.0) {
-            return Err(Error::invalid(
-                "solver.max_substep_s",
-                s.max_substep_s,
-                ">= 0",
-            ));
-        }
-        if s.max_substeps == 0 {
-            return Err(Error::invalid("solver.max_substeps", 0, ">= 1"));
-        }
+        check("solver", SolverSpec::FIELDS, &self.solver)?;
         self.effects.validate()?;
         let r = &self.run;
-        if !(r.duration_s.is_finite() && r.duration_s > 0.0 && r.duration_s <= 1e4) {
-            return Err(Error::invalid(
-                "run.duration_s",
-                r.duration_s,
-                "in (0, 1e4] s",
-            ));
-        }
-        if !(r.step_s.is_finite() && r.step_s > 0.0 && r.step_s <= r.duration_s) {
+        check("run", RunSpec::FIELDS, r)?;
+        if r.step_s > r.duration_s {
             return Err(Error::invalid(
                 "run.step_s",
                 r.step_s,
@@ -692,50 +667,21 @@ impl Scene {
                 "at least run.duration_s / 1e7 (at most 1e7 output steps)",
             ));
         }
-        for (f, v) in [
-            ("run.speed_ramp_rpm_per_s", r.speed_ramp_rpm_per_s),
-            ("run.orbit_um", r.orbit_um),
-            ("run.orbit_hz", r.orbit_hz),
-            ("run.rotating_load_n", r.rotating_load_n),
-        ] {
-            crate::error::finite(f, v)?;
-        }
         let lim = super::limits::Limits::of(&b);
         let m = &self.model;
-        if !(m.ring_dof == 2 || m.ring_dof == 5) {
-            return Err(Error::invalid("model.ring_dof", m.ring_dof, "2 or 5"));
-        }
-        if !(m.contact_damping.is_finite() && m.contact_damping >= 0.0) {
-            return Err(Error::invalid(
-                "model.contact_damping",
-                m.contact_damping,
-                ">= 0",
-            ));
-        }
-        if !(m.attached_mass_kg.is_finite() && m.attached_mass_kg >= 0.0) {
-            return Err(Error::invalid(
-                "model.attached_mass_kg",
-                m.attached_mass_kg,
-                ">= 0",
-            ));
-        }
+        check("model", ModelSpec::FIELDS, m)?;
         if m.level == Level::Skidding {
             m.skidding.params(&b)?;
         }
         // The full level's options are checked whatever the level (cheap, and a bad value
         // is named even in a scene that does not use it yet).
         m.full.params(&b, m.race_control)?;
+        check(
+            "model.operating_point",
+            OperatingPoint::FIELDS,
+            &m.operating_point,
+        )?;
         let op = &m.operating_point;
-        for (f, v) in [
-            ("speed_rpm", op.speed_rpm),
-            ("fx", op.fx),
-            ("fy", op.fy),
-            ("fz", op.fz),
-            ("mx", op.mx),
-            ("my", op.my),
-        ] {
-            crate::error::finite(&format!("model.operating_point.{f}"), v)?;
-        }
         let rpm = std::f64::consts::PI / 30.0;
         for (f, name, v) in [
             ("speed_rpm", "shaft.omega", op.speed_rpm * rpm),

@@ -17,160 +17,23 @@
 //!   field path their message names. TOML spans come from the `toml` crate's spanned
 //!   document tables ([`toml::de::DeTable::parse_recoverable`]).
 
+use super::fields::FieldDecl;
 use super::scene::{
-    BearingRef, InputSpec, Level, ModelSpec, RunSpec, Scene, SkiddingSpec, SolverSpec,
+    BearingRef, FullSpec, InputSpec, ModelSpec, OperatingPoint, RunSpec, Scene, SkiddingSpec,
+    SolverSpec,
 };
 use super::variables;
-use crate::contact::traction::TractionLaw;
+use crate::contact::traction::{AsperityFit, TractionLaw};
 use crate::geometry::bearing::{CageSpec, MaterialSpec, MaterialsSpec};
-use crate::geometry::{presets, BearingSpec, Material};
+use crate::geometry::{BearingSpec, Material};
 use crate::models::effects::{
-    DefectSpec, Effects, Element, FilmKind, LubricationSpec, SpacingSpec, WavinessSpec,
+    DefectSpec, Effects, Element, FilmKind, LubricationSpec, SpacingSpec, ThermalSpec,
+    WavinessSpec, WearSpec,
 };
 use std::collections::{BTreeMap, BTreeSet};
 use std::fmt::Write as _;
 
-/// Named sets of allowed strings that come from the library's own lists.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Names {
-    /// Bearing presets ([`presets::presets`]).
-    BearingPreset,
-    /// Material presets ([`Material::presets`]).
-    Material,
-    /// Lubricant presets.
-    Lubricant,
-    /// Input variables of either causality ([`variables::SCALARS`]).
-    InputVariable,
-}
-
-impl Names {
-    /// The allowed names.
-    pub fn list(self) -> Vec<String> {
-        match self {
-            Names::BearingPreset => presets::presets().into_iter().map(|p| p.name).collect(),
-            Names::Material => Material::presets().into_iter().map(|m| m.name).collect(),
-            Names::Lubricant => vec!["study2".into()],
-            Names::InputVariable => variables::SCALARS
-                .iter()
-                .filter(|v| {
-                    v.is_input(variables::Causality::Motion)
-                        || v.is_input(variables::Causality::Load)
-                })
-                .map(|v| v.name.to_string())
-                .collect(),
-        }
-    }
-
-    /// Is `name` allowed (bearing presets and materials ignore case, as the library does)?
-    pub fn contains(self, name: &str) -> bool {
-        match self {
-            Names::BearingPreset => presets::preset(name).is_ok(),
-            Names::Material => Material::by_name(name).is_ok(),
-            _ => self.list().iter().any(|n| n == name),
-        }
-    }
-}
-
-/// The type of a field.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Kind {
-    /// A number (integers are accepted).
-    Float,
-    /// A non-negative integer.
-    Int,
-    /// Free text.
-    Text,
-    /// One of fixed spellings (a serde enum).
-    Enum(&'static [&'static str]),
-    /// One of the integers listed.
-    IntChoice(&'static [i64]),
-    /// A name from a library list.
-    Name(Names),
-    /// A name from a library list, or a table of fields (the paths below this one).
-    NameOrTable(Names),
-    /// `true` or `false`.
-    Bool,
-}
-
-impl Kind {
-    /// Short type name for the documentation.
-    pub fn type_name(&self) -> &'static str {
-        match self {
-            Kind::Float => "number",
-            Kind::Int | Kind::IntChoice(_) => "integer",
-            Kind::Text | Kind::Enum(_) | Kind::Name(_) => "string",
-            Kind::NameOrTable(_) => "string or table",
-            Kind::Bool => "boolean",
-        }
-    }
-}
-
-/// Allowed interval of a number: `(value, inclusive)` at each end, `None` unbounded.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Bounds {
-    /// Lower end.
-    pub lo: Option<(f64, bool)>,
-    /// Upper end.
-    pub hi: Option<(f64, bool)>,
-}
-
-const ANY: Bounds = Bounds { lo: None, hi: None };
-const fn gt(x: f64) -> Bounds {
-    Bounds {
-        lo: Some((x, false)),
-        hi: None,
-    }
-}
-const fn ge(x: f64) -> Bounds {
-    Bounds {
-        lo: Some((x, true)),
-        hi: None,
-    }
-}
-const fn between(lo: f64, lo_in: bool, hi: f64, hi_in: bool) -> Bounds {
-    Bounds {
-        lo: Some((lo, lo_in)),
-        hi: Some((hi, hi_in)),
-    }
-}
-
-impl Bounds {
-    /// Does `v` lie inside (and is it finite)?
-    pub fn contains(&self, v: f64) -> bool {
-        v.is_finite()
-            && self
-                .lo
-                .is_none_or(|(lo, inc)| if inc { v >= lo } else { v > lo })
-            && self
-                .hi
-                .is_none_or(|(hi, inc)| if inc { v <= hi } else { v < hi })
-    }
-
-    /// `[0, 1]`, `(0, 1e4]`, `> 0`, `>= 1`, `any finite number`.
-    pub fn text(&self) -> String {
-        match (self.lo, self.hi) {
-            (None, None) => "any finite number".into(),
-            (Some((lo, inc)), None) => format!("{} {}", if inc { ">=" } else { ">" }, num(lo)),
-            (None, Some((hi, inc))) => format!("{} {}", if inc { "<=" } else { "<" }, num(hi)),
-            (Some((lo, li)), Some((hi, hi_in))) => format!(
-                "{}{}, {}{}",
-                if li { "[" } else { "(" },
-                num(lo),
-                num(hi),
-                if hi_in { "]" } else { ")" }
-            ),
-        }
-    }
-}
-
-fn num(x: f64) -> String {
-    let a = x.abs();
-    if a != 0.0 && !(1e-3..1e5).contains(&a) && !(x.fract() == 0.0 && a < 1e10) {
-        format!("{x:e}")
-    } else {
-        format!("{x}")
-    }
-}
+pub use super::fields::{Bounds, Kind, Names};
 
 /// One documented field.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -189,230 +52,91 @@ pub struct Field {
     pub description: &'static str,
 }
 
-const fn f(
-    path: &'static str,
-    kind: Kind,
-    unit: &'static str,
-    bounds: Bounds,
-    note: &'static str,
-    description: &'static str,
-) -> Field {
-    Field {
-        path,
-        kind,
-        unit,
-        bounds,
-        note,
-        description,
+/// Where each spec's declared fields sit in a scene: `(prefix, rows)`. The schema writes
+/// no row itself: every row is declared once beside its spec ([`super::fields`]); a spec
+/// used in two places (the traction law) is mounted twice.
+pub const MOUNTS: &[(&str, &[FieldDecl])] = &[
+    ("", Scene::FIELDS),
+    ("bearing", BearingRef::FIELDS),
+    ("bearing", BearingSpec::FIELDS),
+    ("bearing.cage", CageSpec::FIELDS),
+    ("bearing.materials", MaterialsSpec::FIELDS),
+    ("bearing.materials.<body>", Material::FIELDS),
+    ("model", ModelSpec::FIELDS),
+    ("model.operating_point", OperatingPoint::FIELDS),
+    ("model.skidding", SkiddingSpec::FIELDS),
+    ("model.skidding.traction", TractionLaw::FIELDS),
+    ("model.skidding.traction.fit", AsperityFit::FIELDS),
+    ("model.full", FullSpec::FIELDS),
+    ("model.full.traction", TractionLaw::FIELDS),
+    ("model.full.traction.fit", AsperityFit::FIELDS),
+    ("solver", SolverSpec::FIELDS),
+    ("inputs", InputSpec::FIELDS),
+    ("inputs.initial", InputSpec::INITIAL),
+    ("effects.defects[]", DefectSpec::FIELDS),
+    ("effects.waviness[]", WavinessSpec::FIELDS),
+    ("effects.ball_spacing", SpacingSpec::FIELDS),
+    ("effects.lubrication", LubricationSpec::FIELDS),
+    ("effects.wear", WearSpec::FIELDS),
+    ("effects.thermal", ThermalSpec::FIELDS),
+    ("run", RunSpec::FIELDS),
+];
+
+/// Every documented field: the mounted rows ([`MOUNTS`]) with their full paths. Iterate
+/// it (`for f in TABLE`, `TABLE.iter()`); paths match the serde schema exactly
+/// (`tests: table_matches_schema`).
+pub const TABLE: Table = Table;
+
+/// The mounted rows, built once (see [`TABLE`]).
+#[derive(Debug, Clone, Copy)]
+pub struct Table;
+
+impl Table {
+    /// The rows, in mount order.
+    pub fn iter(self) -> std::slice::Iter<'static, Field> {
+        static ROWS: std::sync::LazyLock<Vec<Field>> = std::sync::LazyLock::new(|| {
+            MOUNTS
+                .iter()
+                .flat_map(|(prefix, rows)| rows.iter().map(move |d| (*prefix, d)))
+                .filter(|(_, d)| d.kind != Kind::Table)
+                .map(|(prefix, d)| Field {
+                    // Once per row for the life of the process: the paths are `'static`.
+                    path: if prefix.is_empty() {
+                        d.name
+                    } else {
+                        Box::leak(format!("{prefix}.{}", d.name).into_boxed_str())
+                    },
+                    kind: d.kind,
+                    unit: d.unit,
+                    bounds: d.bounds,
+                    note: d.note,
+                    description: d.description,
+                })
+                .collect()
+        });
+        ROWS.iter()
+    }
+
+    /// Number of rows.
+    pub fn len(self) -> usize {
+        self.iter().len()
+    }
+
+    /// No rows?
+    pub fn is_empty(self) -> bool {
+        self.len() == 0
     }
 }
 
-const LEVELS: &[&str] = &Level::NAMES;
-const BALL_CONTACTS: &[&str] = &["quasi_static", "dynamic"];
-const CAGE_MODELS: &[&str] = &["free", "ideal"];
-const CAUSALITIES: &[&str] = &["motion", "load"];
-const RACE_CONTROL: &[&str] = &["outer", "none"];
-const METHODS: &[&str] = &["auto", "dopri5", "rosenbrock"];
-const RULES: &[&str] = &["hold", "velocity", "derivatives"];
-const KINDS: &[&str] = &["deep_groove", "angular_contact"];
-const GUIDANCE: &[&str] = &["outer_ring", "inner_ring", "ball"];
-const ELEMENTS: &[&str] = &["outer", "inner", "ball"];
-const FILMS: &[&str] = &["ehl", "dry"];
-const STARTS: &[&str] = &["equilibrium", "rest"];
-const LAWS: &[&str] = &["coulomb", "fitted", "mixed_ehl"];
-const WEAR_REGIMES: &[&str] = &["auto", "dry"];
+impl IntoIterator for Table {
+    type Item = &'static Field;
+    type IntoIter = std::slice::Iter<'static, Field>;
+    fn into_iter(self) -> Self::IntoIter {
+        self.iter()
+    }
+}
 
 use Kind::*;
-
-/// Unit, range and meaning of every scene field: the one hand-written table. Paths must
-/// match the serde schema exactly (`tests: table_matches_schema`).
-pub const TABLE: &[Field] = &[
-    f("title", Text, "-", ANY, "", "free title"),
-    // Bearing.
-    f("bearing", NameOrTable(Names::BearingPreset), "-", ANY, "", "the bearing: a preset name (`raceway bearings`) or a catalogue designation (60xx, 62xx, 63xx; 70xx, 72xx, 73xx + C, AC or B; internal geometry estimated, `raceway bearings 6206`), or a table with an optional `preset` and bearing-file fields overriding it"),
-    f("bearing.preset", Name(Names::BearingPreset), "-", ANY, "", "preset the table starts from (without it, name, ball_diameter_mm, pitch_diameter_mm and ball_count are required)"),
-    f("bearing.name", Text, "-", ANY, "", "designation"),
-    f("bearing.kind", Enum(KINDS), "-", ANY, "", "deep-groove (radial) or angular-contact"),
-    f("bearing.ball_diameter_mm", Float, "mm", gt(0.0), "< pitch_diameter_mm", "ball diameter D"),
-    f("bearing.pitch_diameter_mm", Float, "mm", gt(0.0), "", "pitch diameter dm"),
-    f("bearing.ball_count", Int, "-", between(1.0, true, u32::MAX as f64, true), "balls must not overlap on the pitch circle: dm sin(pi/Z) > D", "number of balls Z"),
-    f("bearing.inner_curvature", Float, "-", between(0.5, false, 1.0, false), "may be left out with outer_curvature when both contact_angle_deg > 0 and clearance_um > 0 are given", "inner groove curvature ratio f_i = r_i/D"),
-    f("bearing.outer_curvature", Float, "-", between(0.5, false, 1.0, false), "", "outer groove curvature ratio f_o = r_o/D"),
-    f("bearing.contact_angle_deg", Float, "deg", between(0.0, true, 80.0, true), "give this or clearance_um (angular-contact)", "free contact angle alpha0"),
-    f("bearing.clearance_um", Float, "µm", ANY, "deep-groove (-0.1 D, 2A); angular-contact [0, 2A), A = (f_i + f_o - 1) D", "diametral clearance Pd (negative: preload)"),
-    f("bearing.bore_mm", Float, "mm", gt(0.0), "< dm - D; absent: dm - 1.6 D", "bore"),
-    f("bearing.outer_diameter_mm", Float, "mm", gt(0.0), "> dm + D; absent: dm + 1.6 D", "outside diameter"),
-    f("bearing.width_mm", Float, "mm", gt(0.0), "absent: 1.2 D", "width"),
-    f("bearing.inner_ring_mass_kg", Float, "kg", gt(0.0), "absent: estimated from the envelope", "inner-ring mass"),
-    f("bearing.outer_ring_mass_kg", Float, "kg", gt(0.0), "absent: estimated from the envelope", "outer-ring mass"),
-    f("bearing.cage.inner_diameter_mm", Float, "mm", gt(0.0), "bore < cage bore < dm; absent: dm - 0.35 D", "cage bore"),
-    f("bearing.cage.outer_diameter_mm", Float, "mm", gt(0.0), "dm < cage OD < outside diameter; absent: dm + 0.35 D", "cage outside diameter"),
-    f("bearing.cage.width_mm", Float, "mm", gt(0.0), "absent: 0.8 D", "cage width"),
-    f("bearing.cage.mass_kg", Float, "kg", gt(0.0), "absent: annulus less the pockets", "cage mass"),
-    f("bearing.cage.inertia_kg_m2", Float, "kg m²", gt(0.0), "absent: thin annulus", "cage polar moment of inertia"),
-    f("bearing.cage.pocket_clearance_mm", Float, "mm", gt(0.0), "absent: 0.02 D", "diametral play of a ball in its pocket"),
-    f("bearing.cage.guide_clearance_mm", Float, "mm", gt(0.0), "absent: 0.005 dm", "radial guide-land clearance"),
-    f("bearing.cage.guidance", Enum(GUIDANCE), "-", ANY, "", "how the cage is guided"),
-    f("bearing.materials.ball", NameOrTable(Names::Material), "-", ANY, "", "ball material: a preset name or a table of material fields"),
-    f("bearing.materials.inner_ring", NameOrTable(Names::Material), "-", ANY, "", "inner-ring material"),
-    f("bearing.materials.outer_ring", NameOrTable(Names::Material), "-", ANY, "", "outer-ring material"),
-    f("bearing.materials.cage", NameOrTable(Names::Material), "-", ANY, "", "cage material"),
-    f("bearing.materials.<body>.name", Text, "-", ANY, "", "label of an inline material (<body>: ball, inner_ring, outer_ring or cage)"),
-    f("bearing.materials.<body>.youngs_modulus", Float, "Pa", gt(0.0), "", "Young's modulus"),
-    f("bearing.materials.<body>.poisson_ratio", Float, "-", between(0.0, true, 0.5, false), "", "Poisson's ratio"),
-    f("bearing.materials.<body>.density", Float, "kg/m³", gt(0.0), "", "density"),
-    f("bearing.materials.<body>.thermal_expansion", Float, "1/K", ge(0.0), "", "linear thermal expansion coefficient"),
-    f("bearing.materials.<body>.conductivity", Float, "W/(m K)", ge(0.0), "", "thermal conductivity"),
-    f("bearing.materials.<body>.heat_capacity", Float, "J/(kg K)", ge(0.0), "", "specific heat capacity"),
-    f("bearing.source", Text, "-", ANY, "", "where the data come from"),
-    // Model.
-    f("model.level", Enum(LEVELS), "-", ANY, "effects need `ring`", "model level: constant K and C (linear), per-ball equilibrium at kinematic cage positions (quasi_static), ring on massless balls (ring), ball orbit and spin with cage, traction and drag (skidding), 6-DOF balls and cage with pocket and guide-land forces (full)"),
-    f("model.causality", Enum(CAUSALITIES), "-", ANY, "", "motion: shaft motion in, forces out; load: loads in, the inner ring is integrated inside"),
-    f("model.race_control", Enum(RACE_CONTROL), "-", ANY, "", "race control of the quasi-static kernels (Harris ch. 8)"),
-    f("model.ring_dof", IntChoice(&[2, 5]), "-", ANY, "", "ring level: 2 (x, y) or 5 (x, y, z, rx, ry) degrees of freedom"),
-    f("model.contact_damping", Float, "N s/m", ge(0.0), "", "contact damping per loaded ball (ring level)"),
-    f("model.operating_point.speed_rpm", Float, "rpm", ANY, "", "linear level: shaft speed of the operating point"),
-    f("model.operating_point.fx", Float, "N", ANY, "", "linear level: load x"),
-    f("model.operating_point.fy", Float, "N", ANY, "", "linear level: load y"),
-    f("model.operating_point.fz", Float, "N", ANY, "", "linear level: axial load z"),
-    f("model.operating_point.mx", Float, "N m", ANY, "", "linear level: moment about x"),
-    f("model.operating_point.my", Float, "N m", ANY, "", "linear level: moment about y"),
-    f("model.skidding.traction.law", Enum(LAWS), "-", ANY, "the other traction fields belong to one law each", "skidding level: traction law at the race contacts"),
-    f("model.skidding.traction.mu_max", Float, "-", ANY, "law = \"coulomb\", required there", "largest traction coefficient of mu = mu_max tanh(dv/v_s)"),
-    f("model.skidding.traction.v_s", Float, "m/s", ge(super::limits::SLIP_SPEED_MIN), "law = \"coulomb\" (required) or \"mixed_ehl\" (default 0.01)", "regularising slip speed"),
-    f("model.skidding.traction.a", Float, "-", ANY, "law = \"fitted\", required there", "A of mu = tanh(s/s_reg) [(A + B|s|) exp(-C|s|) + D]"),
-    f("model.skidding.traction.b", Float, "-", ANY, "law = \"fitted\", required there", "B of the fitted law"),
-    f("model.skidding.traction.c", Float, "-", between(0.0, true, 1e6, true), "law = \"fitted\", required there", "C of the fitted law"),
-    f("model.skidding.traction.d", Float, "-", ANY, "law = \"fitted\", required there", "D of the fitted law"),
-    f("model.skidding.traction.s_reg", Float, "-", gt(0.0), "law = \"fitted\", required there", "regularising slide-to-roll ratio"),
-    f("model.skidding.traction.u_min", Float, "m/s", gt(0.0), "law = \"fitted\", required there", "smallest rolling speed in the slide-to-roll ratio"),
-    f("model.skidding.traction.viscosity", Float, "Pa s", gt(0.0), "law = \"mixed_ehl\" (default 0.04667)", "inlet viscosity of the mixed-EHL law"),
-    f("model.skidding.traction.alpha_p", Float, "1/Pa", between(0.0, true, 1e-6, true), "law = \"mixed_ehl\" (default 2.1e-8)", "pressure-viscosity coefficient"),
-    f("model.skidding.traction.lambda_lim", Float, "-", gt(0.0), "law = \"mixed_ehl\" (default 0.04)", "limiting-shear coefficient"),
-    f("model.skidding.traction.f_c", Float, "-", between(0.0, true, 2.0, true), "law = \"mixed_ehl\" (default 0.1)", "boundary (asperity) friction coefficient"),
-    f("model.skidding.traction.roughness", Float, "m", between(0.0, true, 1e-3, true), "law = \"mixed_ehl\" (default 4.65e-7)", "composite rms roughness"),
-    f("model.skidding.traction.hardness", Float, "Pa", gt(0.0), "law = \"mixed_ehl\" (default 2.39e9)", "hardness"),
-    f("model.skidding.traction.fit.c", Float, "-", ANY, "law = \"mixed_ehl\"", "asperity load ratio regression: leading constant"),
-    f("model.skidding.traction.fit.e_kappa", Float, "-", ANY, "law = \"mixed_ehl\"", "asperity regression: exponent of the ellipticity"),
-    f("model.skidding.traction.fit.e_w", Float, "-", ANY, "law = \"mixed_ehl\"", "asperity regression: exponent of the load parameter W"),
-    f("model.skidding.traction.fit.e_u", Float, "-", ANY, "law = \"mixed_ehl\"", "asperity regression: exponent of the speed parameter U"),
-    f("model.skidding.traction.fit.e_g", Float, "-", ANY, "law = \"mixed_ehl\"", "asperity regression: exponent of the material parameter G"),
-    f("model.skidding.traction.fit.e_sigma", Float, "-", ANY, "law = \"mixed_ehl\"", "asperity regression: exponent of the roughness sigma/Rx"),
-    f("model.skidding.traction.fit.e_v", Float, "-", ANY, "law = \"mixed_ehl\"", "asperity regression: exponent of the hardness ratio H/E'"),
-    f("model.skidding.pocket_clearance_mm", Float, "mm", gt(0.0), "absent: the bearing's cage pocket clearance", "skidding level: pocket clearance per side"),
-    f("model.skidding.pocket_stiffness", Float, "N/m", gt(0.0), "", "skidding level: pocket contact stiffness"),
-    f("model.skidding.pocket_damping", Float, "N s/m", between(0.0, true, 1e9, true), "", "skidding level: pocket contact damping"),
-    f("model.skidding.pocket_friction", Float, "-", between(0.0, true, 2.0, true), "", "skidding level: pocket friction coefficient"),
-    f("model.skidding.drag_coefficient", Float, "-", between(0.0, true, 1e3, true), "", "skidding level: drag coefficient of an orbiting ball"),
-    f("model.skidding.drag_density", Float, "kg/m³", between(0.0, true, 1e4, true), "", "skidding level: density of the oil–air mixture around the balls"),
-    f("model.skidding.drag_viscosity", Float, "Pa s", between(0.0, true, 10.0, true), "", "skidding level: oil viscosity of the ball spin drag"),
-    f("model.skidding.cage_drag", Float, "N m s", between(0.0, true, 1e3, true), "", "skidding level: cage drag"),
-    f("model.skidding.spacing_scatter", Float, "-", between(0.0, true, 1.0, true), "", "skidding level: ball spacing scatter as a fraction of the pocket clearance"),
-    f("model.skidding.seed", Int, "-", ge(0.0), "", "skidding level: seed of the scatter"),
-    f("model.full.traction.law", Enum(LAWS), "-", ANY, "the other traction fields belong to one law each", "full level: traction law at the race contacts"),
-    f("model.full.traction.mu_max", Float, "-", ANY, "law = \"coulomb\", required there", "largest traction coefficient of mu = mu_max tanh(dv/v_s)"),
-    f("model.full.traction.v_s", Float, "m/s", ge(super::limits::SLIP_SPEED_MIN), "law = \"coulomb\" (required) or \"mixed_ehl\" (default 0.01)", "regularising slip speed"),
-    f("model.full.traction.a", Float, "-", ANY, "law = \"fitted\", required there", "A of mu = tanh(s/s_reg) [(A + B|s|) exp(-C|s|) + D]"),
-    f("model.full.traction.b", Float, "-", ANY, "law = \"fitted\", required there", "B of the fitted law"),
-    f("model.full.traction.c", Float, "-", between(0.0, true, 1e6, true), "law = \"fitted\", required there", "C of the fitted law"),
-    f("model.full.traction.d", Float, "-", ANY, "law = \"fitted\", required there", "D of the fitted law"),
-    f("model.full.traction.s_reg", Float, "-", gt(0.0), "law = \"fitted\", required there", "regularising slide-to-roll ratio"),
-    f("model.full.traction.u_min", Float, "m/s", gt(0.0), "law = \"fitted\", required there", "smallest rolling speed in the slide-to-roll ratio"),
-    f("model.full.traction.viscosity", Float, "Pa s", gt(0.0), "law = \"mixed_ehl\" (default 0.04667)", "inlet viscosity of the mixed-EHL law"),
-    f("model.full.traction.alpha_p", Float, "1/Pa", between(0.0, true, 1e-6, true), "law = \"mixed_ehl\" (default 2.1e-8)", "pressure-viscosity coefficient"),
-    f("model.full.traction.lambda_lim", Float, "-", gt(0.0), "law = \"mixed_ehl\" (default 0.04)", "limiting-shear coefficient"),
-    f("model.full.traction.f_c", Float, "-", between(0.0, true, 2.0, true), "law = \"mixed_ehl\" (default 0.1)", "boundary (asperity) friction coefficient"),
-    f("model.full.traction.roughness", Float, "m", between(0.0, true, 1e-3, true), "law = \"mixed_ehl\" (default 4.65e-7)", "composite rms roughness"),
-    f("model.full.traction.hardness", Float, "Pa", gt(0.0), "law = \"mixed_ehl\" (default 2.39e9)", "hardness"),
-    f("model.full.traction.fit.c", Float, "-", ANY, "law = \"mixed_ehl\"", "asperity load ratio regression: leading constant"),
-    f("model.full.traction.fit.e_kappa", Float, "-", ANY, "law = \"mixed_ehl\"", "asperity regression: exponent of the ellipticity"),
-    f("model.full.traction.fit.e_w", Float, "-", ANY, "law = \"mixed_ehl\"", "asperity regression: exponent of the load parameter W"),
-    f("model.full.traction.fit.e_u", Float, "-", ANY, "law = \"mixed_ehl\"", "asperity regression: exponent of the speed parameter U"),
-    f("model.full.traction.fit.e_g", Float, "-", ANY, "law = \"mixed_ehl\"", "asperity regression: exponent of the material parameter G"),
-    f("model.full.traction.fit.e_sigma", Float, "-", ANY, "law = \"mixed_ehl\"", "asperity regression: exponent of the roughness sigma/Rx"),
-    f("model.full.traction.fit.e_v", Float, "-", ANY, "law = \"mixed_ehl\"", "asperity regression: exponent of the hardness ratio H/E'"),
-    f("model.full.ball_contacts", Enum(BALL_CONTACTS), "-", ANY, "", "full level: ball radial/axial position in quasi-static equilibrium (study [0]) or integrated with the ball mass (dynamic)"),
-    f("model.full.cage", Enum(CAGE_MODELS), "-", ANY, "", "full level: cage with six degrees of freedom (free) or centred, rotation only (ideal)"),
-    f("model.full.reference_load_n", Float, "N", between(1e-3, true, 1e9, true), "", "full level: reference force F_ref of the nondimensional states (time scale sqrt(m_b D / (2 F_ref)))"),
-    f("model.full.drag_factor", Float, "-", between(0.0, true, 1e3, true), "", "full level: factor on the boundary-layer drag of balls and cage (0: off)"),
-    f("model.full.drag_density", Float, "kg/m³", between(0.0, true, 1e4, true), "", "full level: effective density of the oil–air mixture"),
-    f("model.full.viscosity", Float, "Pa s", between(0.0, true, 10.0, true), "", "full level: oil viscosity (drag, pockets, guide land)"),
-    f("model.full.pocket_clearance_mm", Float, "mm", gt(0.0), "absent: the bearing's cage pocket clearance", "full level: diametral pocket play"),
-    f("model.full.pocket_friction", Float, "-", between(0.0, true, 2.0, true), "", "full level: ball–pocket friction coefficient"),
-    f("model.full.pocket_roughness_um", Float, "µm", between(0.0, true, 1e3, true), "", "full level: composite roughness of ball and pocket"),
-    f("model.full.pocket_v_s", Float, "m/s", between(super::limits::SLIP_SPEED_MIN, true, 1e3, true), "", "full level: regularising slip speed of the pocket friction"),
-    f("model.full.guide_width_mm", Float, "mm", gt(0.0), "absent: half the cage width", "full level: guide land width"),
-    f("model.full.guide_stiffness", Float, "N/m", gt(0.0), "", "full level: guide-land contact stiffness beyond guide_eps_max"),
-    f("model.full.guide_eps_max", Float, "-", between(0.05, true, 0.999, true), "", "full level: eccentricity ratio where the guide-land contact starts"),
-    f("model.full.guidance", Enum(GUIDANCE), "-", ANY, "absent: bearing.cage.guidance", "full level: cage guidance, on the outer-ring land (land radius = cage OD/2) or the inner-ring land (= cage bore/2), or ball-riding (no land)"),
-    f("model.full.cage_unbalance_um", Float, "µm", between(0.0, true, 1e3, true), "default 0", "full level: cage mass unbalance, offset of the mass centre from the geometric centre (a load rotating with the cage, m_c u w_c²)"),
-    f("model.skidding.gyro_traction", Float, "-", between(0.0, true, 10.0, true), "0 turns the gyroscopic friction off", "skidding level: traction coefficient limiting the lateral friction that carries the balls' gyroscopic couple"),
-    f("model.skidding.ball_radial_mass", Bool, "-", ANY, "default false", "skidding level: give the balls radial mass (position along the contact line as a state, damped by model.contact_damping) instead of the quasi-static split"),
-    f("model.skidding.spin_friction", Float, "-", between(0.0, true, 2.0, true), "0: no spinning moment", "skidding level: friction coefficient of the spinning moment (3/8) mu Q a E at the race contacts"),
-    f("model.start", Enum(STARTS), "-", ANY, "", "load-driven: the inner ring starts at rest in static equilibrium under the initial loads (equilibrium) or at zero displacement (rest)"),
-    f("model.attached_mass_kg", Float, "kg", ge(0.0), "", "load-driven: mass attached to the inner ring (added to its own)"),
-    // Solver.
-    f("solver.method", Enum(METHODS), "-", ANY, "", "integrator (auto: the level's default)"),
-    f("solver.rtol", Float, "-", between(1e-14, true, 0.1, true), "", "relative tolerance"),
-    f("solver.atol_m", Float, "m", between(1e-20, true, 1e-3, true), "", "absolute tolerance on displacements"),
-    f("solver.max_substep_s", Float, "s", ge(0.0), "", "largest internal sub-step (0: the communication step)"),
-    f("solver.max_substeps", Int, "-", between(1.0, true, u32::MAX as f64, true), "", "work budget: most internal steps per communication step (raise it when a step stops on it)"),
-    f("solver.max_step_cpu_s", Float, "s", between(0.0, false, 1e6, true), "thread CPU time", "work budget: most CPU time one communication step may take before it stops, state unchanged (raise it when a step stops on it)"),
-    // Inputs.
-    f("inputs.rule", Enum(RULES), "-", ANY, "", "how inputs move inside a step"),
-    f("inputs.initial.<variable>", Float, "SI unit of the variable", ANY, "only inputs of the scene's causality; absent: 0; within the bearing's plausibility limits (below)", "input value at the start, by variable name (e.g. \"shaft.omega\" in rad/s)"),
-    // Effects.
-    f("effects.defects[].race", Enum(ELEMENTS), "-", ANY, "", "element carrying the defect"),
-    f("effects.defects[].angle_deg", Float, "deg", ANY, "", "defect centre at t = 0: azimuth from +x on a race, spin angle on a ball"),
-    f("effects.defects[].width_mm", Float, "mm", gt(0.0), "< ball diameter", "circumferential width"),
-    f("effects.defects[].depth_um", Float, "µm", between(0.0, false, 5000.0, true), "", "depth"),
-    f("effects.defects[].ball", Int, "-", ge(0.0), "< Z; race = \"ball\" only (absent: ball 0)", "ball carrying the defect (0-based)"),
-    f("effects.waviness[].race", Enum(ELEMENTS), "-", ANY, "", "element carrying the waviness"),
-    f("effects.waviness[].order", Int, "-", between(1.0, true, 10000.0, true), "", "order k of A sin(k theta + beta)"),
-    f("effects.waviness[].amplitude_um", Float, "µm", between(-100.0, true, 100.0, true), "", "amplitude A"),
-    f("effects.waviness[].phase_deg", Float, "deg", ANY, "", "phase beta"),
-    f("effects.waviness[].ball", Int, "-", ge(0.0), "< Z; race = \"ball\" only (absent: every ball)", "ball carrying the waviness (0-based)"),
-    f("effects.ball_spacing.scatter", Float, "-", between(0.0, true, 1.0, true), "", "ball-spacing scatter as a fraction of the pocket play"),
-    f("effects.ball_spacing.seed", Int, "-", ge(0.0), "", "seed of the SplitMix64 generator"),
-    f("effects.lubrication.film", Enum(FILMS), "-", ANY, "", "Hamrock–Dowson EHL film in series with Hertz (ehl) or none (dry)"),
-    f("effects.lubrication.lubricant", Name(Names::Lubricant), "-", ANY, "", "lubricant preset"),
-    f("effects.lubrication.viscosity_pa_s", Float, "Pa s", between(0.0, true, 100.0, true), "absent: the preset's", "inlet viscosity"),
-    f("effects.lubrication.pressure_viscosity_m2_per_n", Float, "m²/N", between(0.0, true, 1e-6, true), "absent: the preset's", "pressure-viscosity coefficient"),
-    f("effects.lubrication.density_kg_m3", Float, "kg/m³", between(0.0, false, 1e5, true), "absent: the preset's", "lubricant density"),
-    f("effects.lubrication.roughness_um", Float, "µm", between(0.0, true, 100.0, true), "absent: the preset's", "composite rms roughness of ball and race"),
-    f("effects.wear.cells", Int, "-", between(1.0, true, 1000.0, true), "", "cells of the circumferential wear map of each race"),
-    f("effects.wear.coefficient", Float, "-", gt(0.0), "", "Archard wear coefficient K"),
-    f("effects.wear.hardness_gpa", Float, "GPa", gt(0.0), "", "hardness Hv"),
-    f("effects.wear.regime", Enum(WEAR_REGIMES), "-", ANY, "", "auto: lubricated with an EHL film in the scene, else dry; dry: the dry limit La = 100, psi = 1"),
-    f("effects.wear.defect_length_m", Float, "m", gt(0.0), "", "film-defect length a_x"),
-    f("effects.wear.defect_time_s", Float, "s", gt(0.0), "", "film-defect time t0"),
-    f("effects.wear.activation_energy_j_mol", Float, "J/mol", ge(0.0), "", "adsorption activation energy Ea"),
-    f("effects.wear.surface_temperature_c", Float, "°C", gt(-273.15), "", "surface temperature Ts without the thermal model"),
-    f("effects.wear.window_revs", Float, "rev", gt(0.0), "", "shaft revolutions of dynamics per wear cycle"),
-    f("effects.wear.cycle_revs", Float, "rev", gt(0.0), ">= window_revs", "shaft revolutions each wear cycle stands for"),
-    f("effects.wear.cycles", Int, "-", ge(0.0), "", "wear cycles applied"),
-    f("effects.thermal.f0", Float, "-", ge(0.0), "", "Palmgren factor f0 (load-independent torque)"),
-    f("effects.thermal.f1", Float, "-", ge(0.0), "", "Palmgren factor f1 (load-dependent torque)"),
-    f("effects.thermal.viscosity_cst", Float, "cSt", gt(0.0), "absent: from the lubricant, else 20", "oil kinematic viscosity"),
-    f("effects.thermal.spin_friction", Float, "-", ge(0.0), "", "spin friction coefficient mu_s"),
-    f("effects.thermal.hysteresis_loss", Float, "-", ge(0.0), "", "hysteresis loss fraction alpha_h"),
-    f("effects.thermal.ambient_c", Float, "°C", gt(-273.15), "", "ambient and initial temperature"),
-    f("effects.thermal.shaft_conductance_w_k", Float, "W/K", ge(0.0), "", "inner ring to ambient through the shaft"),
-    f("effects.thermal.housing_conductance_w_k", Float, "W/K", ge(0.0), "", "outer ring to ambient through the housing"),
-    f("effects.thermal.oil_conductance_w_k", Float, "W/K", ge(0.0), "", "oil to ambient (oil flow)"),
-    f("effects.thermal.oil_heat_capacity_j_k", Float, "J/K", gt(0.0), "", "heat capacity of the oil in the bearing"),
-    f("effects.thermal.contact_conductance_w_k", Float, "W/K", ge(0.0), "absent: Holm constriction of the loaded contacts", "ball–ring conductance per race"),
-    f("effects.thermal.dt_s", Float, "s", gt(0.0), "", "thermal time step"),
-    f("effects.thermal.time_scale", Float, "-", gt(0.0), "", "thermal seconds per second of dynamics"),
-    f("effects.thermal.growth_factor", Float, "-", ge(0.0), "", "factor on the thermal growth's change of the clearance (0: off)"),
-    // Run.
-    f("run.duration_s", Float, "s", between(0.0, false, 1e4, true), "at most 1e7 steps of step_s", "simulated time of `raceway run`"),
-    f("run.step_s", Float, "s", gt(0.0), "<= duration_s, at most 1e7 steps", "communication (output) step"),
-    f("run.speed_ramp_rpm_per_s", Float, "rpm/s", ANY, "the speed at the end of the run within the burst speed (plausibility limits)", "shaft speed ramp added to the initial shaft.omega"),
-    f("run.orbit_um", Float, "µm", ANY, "within the radial displacement limit (plausibility limits)", "motion-driven: radius of a circular shaft orbit"),
-    f("run.orbit_hz", Float, "Hz", ANY, "", "motion-driven: orbit frequency (0: synchronous)"),
-    f("run.rotating_load_n", Float, "N", ANY, "within the force limit (plausibility limits)", "load-driven: load rotating with the shaft (unbalance)"),
-];
 
 /// The entry of a normalised path.
 pub fn field(path: &str) -> Option<&'static Field> {
@@ -961,6 +685,7 @@ pub fn range_text(f: &Field) -> String {
         ),
         Name(n) | NameOrTable(n) => format!("one of {}", n.list().join(", ")),
         Bool => "true or false".into(),
+        Kind::Table => "a table".into(),
     };
     let base = if matches!(f.kind, NameOrTable(_)) {
         format!("{base}, or a table")

@@ -528,8 +528,12 @@ pub const RANGES: &[(&str, f64, f64)] = &[
     ("load.my", -1e6, 1e6),
     // -1 is the "as the bearing has it" value of the clearance parameter.
     ("clearance", -1.0, 1e-3),
-    ("rtol", 1e-14, 0.1),
+    ("rtol", RTOL.min(), RTOL.max()),
 ];
+
+/// The scene's `solver.rtol` range, as its row declares it.
+const RTOL: super::fields::Bounds =
+    super::fields::find(super::scene::SolverSpec::FIELDS, "rtol").bounds;
 
 /// The declared range of input or parameter `name`, if it has one.
 pub fn range(name: &str) -> Option<(f64, f64)> {

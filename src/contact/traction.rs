@@ -33,6 +33,8 @@
 //!   negative exponent of speed: smooth surfaces give `La -> 0`; no film (`U -> 0`) gives
 //!   `La -> 100`.
 
+use crate::component::fields::{choice, closed, ge, gt, number, table, ANY};
+use crate::component::limits::SLIP_SPEED_MIN;
 use std::f64::consts::PI;
 
 /// `tanh(x)` through one `exp` (about twice as fast as `f64::tanh`, which goes through
@@ -217,6 +219,49 @@ pub enum TractionLaw {
     MixedEhl(MixedEhl),
 }
 
+crate::declare_fields!(TractionLaw {
+    law => choice(&["coulomb", "fitted", "mixed_ehl"], "traction law at the race contacts")
+        .note("the other traction fields belong to one law each"),
+    mu_max => number("-", ANY, "largest traction coefficient of mu = mu_max tanh(dv/v_s)")
+        .note("law = \"coulomb\", required there"),
+    v_s => number("m/s", ge(SLIP_SPEED_MIN), "regularising slip speed")
+        .note("law = \"coulomb\" (required) or \"mixed_ehl\" (default 0.01)")
+        .why("a floor no contact creeps below; smaller makes the law a step no integrator resolves"),
+    a => number("-", ANY, "A of mu = tanh(s/s_reg) [(A + B|s|) exp(-C|s|) + D]")
+        .note("law = \"fitted\", required there"),
+    b => number("-", ANY, "B of the fitted law").note("law = \"fitted\", required there"),
+    c => number("-", closed(0.0, 1e6), "C of the fitted law").note("law = \"fitted\", required there"),
+    d => number("-", ANY, "D of the fitted law").note("law = \"fitted\", required there"),
+    s_reg => number("-", gt(0.0), "regularising slide-to-roll ratio")
+        .note("law = \"fitted\", required there"),
+    u_min => number("m/s", gt(0.0), "smallest rolling speed in the slide-to-roll ratio")
+        .note("law = \"fitted\", required there"),
+    viscosity => number("Pa s", gt(0.0), "inlet viscosity of the mixed-EHL law")
+        .note("law = \"mixed_ehl\" (default 0.04667)"),
+    alpha_p => number("1/Pa", closed(0.0, 1e-6), "pressure-viscosity coefficient")
+        .note("law = \"mixed_ehl\" (default 2.1e-8)"),
+    lambda_lim => number("-", gt(0.0), "limiting-shear coefficient")
+        .note("law = \"mixed_ehl\" (default 0.04)"),
+    f_c => number("-", closed(0.0, 2.0), "boundary (asperity) friction coefficient")
+        .note("law = \"mixed_ehl\" (default 0.1)"),
+    roughness => number("m", closed(0.0, 1e-3), "composite rms roughness")
+        .note("law = \"mixed_ehl\" (default 4.65e-7)"),
+    hardness => number("Pa", gt(0.0), "hardness").note("law = \"mixed_ehl\" (default 2.39e9)"),
+    fit => table(),
+});
+
+crate::declare_fields!(AsperityFit {
+    c => number("-", ANY, "asperity load ratio regression: leading constant").note(MIXED),
+    e_kappa => number("-", ANY, "asperity regression: exponent of the ellipticity").note(MIXED),
+    e_w => number("-", ANY, "asperity regression: exponent of the load parameter W").note(MIXED),
+    e_u => number("-", ANY, "asperity regression: exponent of the speed parameter U").note(MIXED),
+    e_g => number("-", ANY, "asperity regression: exponent of the material parameter G").note(MIXED),
+    e_sigma => number("-", ANY, "asperity regression: exponent of the roughness sigma/Rx").note(MIXED),
+    e_v => number("-", ANY, "asperity regression: exponent of the hardness ratio H/E'").note(MIXED),
+});
+
+const MIXED: &str = "law = \"mixed_ehl\"";
+
 impl Default for TractionLaw {
     fn default() -> Self {
         TractionLaw::Coulomb {
@@ -227,50 +272,13 @@ impl Default for TractionLaw {
 }
 
 impl TractionLaw {
-    /// Check the coefficients; errors name `field.<coefficient>`.
+    /// Check the coefficients against [`TractionLaw::FIELDS`]; errors name
+    /// `field.<coefficient>`.
     pub fn validate(&self, field: &str) -> crate::error::Result<()> {
-        use crate::error::{finite, positive};
-        let slip_speed = |f: &str, v: f64| {
-            let lo = crate::component::limits::SLIP_SPEED_MIN;
-            if v.is_finite() && v >= lo {
-                Ok(v)
-            } else {
-                Err(crate::Error::invalid(
-                    f,
-                    v,
-                    format!("a finite speed >= {lo:e} m/s (a floor no contact creeps below; smaller makes the law a step no integrator resolves)"),
-                ))
-            }
-        };
-        match *self {
-            TractionLaw::Coulomb { mu_max, v_s } => {
-                finite(&format!("{field}.mu_max"), mu_max)?;
-                slip_speed(&format!("{field}.v_s"), v_s)?;
-            }
-            TractionLaw::Fitted {
-                a,
-                b,
-                c,
-                d,
-                s_reg,
-                u_min,
-            } => {
-                finite(&format!("{field}.a"), a)?;
-                finite(&format!("{field}.b"), b)?;
-                crate::error::in_range(&format!("{field}.c"), c, 0.0, 1e6)?;
-                finite(&format!("{field}.d"), d)?;
-                positive(&format!("{field}.s_reg"), s_reg)?;
-                positive(&format!("{field}.u_min"), u_min)?;
-            }
-            TractionLaw::MixedEhl(m) => {
-                positive(&format!("{field}.viscosity"), m.viscosity)?;
-                crate::error::in_range(&format!("{field}.alpha_p"), m.alpha_p, 0.0, 1e-6)?;
-                positive(&format!("{field}.lambda_lim"), m.lambda_lim)?;
-                crate::error::in_range(&format!("{field}.f_c"), m.f_c, 0.0, 2.0)?;
-                crate::error::in_range(&format!("{field}.roughness"), m.roughness, 0.0, 1e-3)?;
-                positive(&format!("{field}.hardness"), m.hardness)?;
-                slip_speed(&format!("{field}.v_s"), m.v_s)?;
-            }
+        use crate::component::fields::check;
+        check(field, Self::FIELDS, self)?;
+        if let TractionLaw::MixedEhl(m) = self {
+            check(&format!("{field}.fit"), AsperityFit::FIELDS, &m.fit)?;
         }
         Ok(())
     }

@@ -144,7 +144,9 @@ pub(crate) fn scene(
         }
         scene.solver.rtol = r;
     } else if let Some(tol) = tolerance {
-        if tol.is_finite() && (1e-14..=0.1).contains(&tol) {
+        let rtol =
+            crate::component::fields::find(crate::component::scene::SolverSpec::FIELDS, "rtol");
+        if rtol.bounds.contains(tol) {
             scene.solver.rtol = tol;
         }
     }

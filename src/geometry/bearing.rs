@@ -7,6 +7,9 @@
 //! by `Pd = 2 A (1 - cos alpha0)` (physics.md §1).
 
 use super::material::{effective_modulus, Material};
+use crate::component::fields::{
+    between, choice, gt, integer, name_or_table, number, table, text, Names, ANY,
+};
 use crate::error::{finite, positive, Error, Result};
 use crate::units::{deg, mm, um};
 use serde::{Deserialize, Serialize};
@@ -36,6 +39,9 @@ pub enum Guidance {
     /// Ball-riding cage.
     Ball,
 }
+
+/// The spellings of [`Guidance`].
+pub const GUIDANCE: &[&str] = &["outer_ring", "inner_ring", "ball"];
 
 /// A material given by preset key or inline (SI fields).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -83,6 +89,13 @@ pub struct MaterialsSpec {
     pub cage: MaterialSpec,
 }
 
+crate::declare_fields!(MaterialsSpec {
+    ball => name_or_table(Names::Material, "ball material: a preset name or a table of material fields"),
+    inner_ring => name_or_table(Names::Material, "inner-ring material"),
+    outer_ring => name_or_table(Names::Material, "outer-ring material"),
+    cage => name_or_table(Names::Material, "cage material"),
+});
+
 impl Default for MaterialsSpec {
     fn default() -> Self {
         MaterialsSpec {
@@ -117,6 +130,20 @@ pub struct CageSpec {
     #[serde(default)]
     pub guidance: Guidance,
 }
+
+crate::declare_fields!(CageSpec {
+    inner_diameter_mm => number("mm", gt(0.0), "cage bore").note("bore < cage bore < dm; absent: dm - 0.35 D"),
+    outer_diameter_mm => number("mm", gt(0.0), "cage outside diameter")
+        .note("dm < cage OD < outside diameter; absent: dm + 0.35 D"),
+    width_mm => number("mm", gt(0.0), "cage width").note("absent: 0.8 D"),
+    mass_kg => number("kg", gt(0.0), "cage mass").note("absent: annulus less the pockets"),
+    inertia_kg_m2 => number("kg m²", gt(0.0), "cage polar moment of inertia").note("absent: thin annulus"),
+    pocket_clearance_mm => number("mm", gt(0.0), "diametral play of a ball in its pocket")
+        .note("absent: 0.02 D"),
+    guide_clearance_mm => number("mm", gt(0.0), "radial guide-land clearance")
+        .note("absent: 0.005 dm"),
+    guidance => choice(GUIDANCE, "how the cage is guided"),
+});
 
 /// A bearing as a preset or a TOML bearing file describes it (edge units).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -162,6 +189,30 @@ pub struct BearingSpec {
     #[serde(default)]
     pub source: String,
 }
+
+crate::declare_fields!(BearingSpec {
+    name => text("designation"),
+    kind => choice(&["deep_groove", "angular_contact"], "deep-groove (radial) or angular-contact"),
+    ball_diameter_mm => number("mm", gt(0.0), "ball diameter D").note("< pitch_diameter_mm"),
+    pitch_diameter_mm => number("mm", gt(0.0), "pitch diameter dm"),
+    ball_count => integer(between(1.0, true, u32::MAX as f64, true), "number of balls Z")
+        .note("balls must not overlap on the pitch circle: dm sin(pi/Z) > D"),
+    inner_curvature => number("-", between(0.5, false, 1.0, false), "inner groove curvature ratio f_i = r_i/D")
+        .note("may be left out with outer_curvature when both contact_angle_deg > 0 and clearance_um > 0 are given"),
+    outer_curvature => number("-", between(0.5, false, 1.0, false), "outer groove curvature ratio f_o = r_o/D"),
+    contact_angle_deg => number("deg", between(0.0, true, 80.0, true), "free contact angle alpha0")
+        .note("give this or clearance_um (angular-contact)"),
+    clearance_um => number("µm", ANY, "diametral clearance Pd (negative: preload)")
+        .note("deep-groove (-0.1 D, 2A); angular-contact [0, 2A), A = (f_i + f_o - 1) D"),
+    bore_mm => number("mm", gt(0.0), "bore").note("< dm - D; absent: dm - 1.6 D"),
+    outer_diameter_mm => number("mm", gt(0.0), "outside diameter").note("> dm + D; absent: dm + 1.6 D"),
+    width_mm => number("mm", gt(0.0), "width").note("absent: 1.2 D"),
+    inner_ring_mass_kg => number("kg", gt(0.0), "inner-ring mass").note("absent: estimated from the envelope"),
+    outer_ring_mass_kg => number("kg", gt(0.0), "outer-ring mass").note("absent: estimated from the envelope"),
+    cage => table(),
+    materials => table(),
+    source => text("where the data come from"),
+});
 
 /// Cage, SI. Defaults when a file is silent: bore `dm - 0.35 D`, outside diameter
 /// `dm + 0.35 D`, width `0.8 D`, mass from the annulus less the pockets, inertia of a thin

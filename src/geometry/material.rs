@@ -4,6 +4,7 @@
 //! (Harris & Kotzalas, *Rolling Bearing Analysis* 5th ed., Vol. 1, Table 5.x; supplier sheets
 //! for the ceramics) and only matter for the thermal model.
 
+use crate::component::fields::{between, ge, gt, number, text};
 use crate::error::{positive, Error, Result};
 use serde::{Deserialize, Serialize};
 
@@ -26,6 +27,16 @@ pub struct Material {
     /// Specific heat capacity, J/(kg K).
     pub heat_capacity: f64,
 }
+
+crate::declare_fields!(Material {
+    name => text("label of an inline material (<body>: ball, inner_ring, outer_ring or cage)"),
+    youngs_modulus => number("Pa", gt(0.0), "Young's modulus"),
+    poisson_ratio => number("-", between(0.0, true, 0.5, false), "Poisson's ratio"),
+    density => number("kg/m³", gt(0.0), "density"),
+    thermal_expansion => number("1/K", ge(0.0), "linear thermal expansion coefficient"),
+    conductivity => number("W/(m K)", ge(0.0), "thermal conductivity"),
+    heat_capacity => number("J/(kg K)", ge(0.0), "specific heat capacity"),
+});
 
 impl Material {
     fn preset(name: &str, e_gpa: f64, nu: f64, rho: f64, alpha: f64, k: f64, c: f64) -> Self {

@@ -13,6 +13,9 @@
 
 use super::defects::{Defect, DefectSite};
 use super::waviness::{spacing_offsets, Harmonic, WavySite};
+use crate::component::fields::{
+    between, check, choice, closed, ge, gt, integer, name, number, Names, ANY,
+};
 use crate::error::{Error, Result};
 use crate::geometry::{kinematics, Bearing};
 use crate::lubrication::Lubricant;
@@ -49,6 +52,18 @@ pub struct DefectSpec {
     pub ball: Option<u32>,
 }
 
+/// The spellings of [`Element`].
+const ELEMENTS: &[&str] = &["outer", "inner", "ball"];
+
+crate::declare_fields!(DefectSpec {
+    race => choice(ELEMENTS, "element carrying the defect"),
+    angle_deg => number("deg", ANY, "defect centre at t = 0: azimuth from +x on a race, spin angle on a ball"),
+    width_mm => number("mm", gt(0.0), "circumferential width").note("< ball diameter"),
+    depth_um => number("µm", between(0.0, false, 5000.0, true), "depth"),
+    ball => integer(ge(0.0), "ball carrying the defect (0-based)")
+        .note("< Z; race = \"ball\" only (absent: ball 0)"),
+});
+
 /// One waviness harmonic `A sin(k theta + beta)`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -67,6 +82,15 @@ pub struct WavinessSpec {
     pub ball: Option<u32>,
 }
 
+crate::declare_fields!(WavinessSpec {
+    race => choice(ELEMENTS, "element carrying the waviness"),
+    order => integer(closed(1.0, 10000.0), "order k of A sin(k theta + beta)"),
+    amplitude_um => number("µm", closed(-100.0, 100.0), "amplitude A"),
+    phase_deg => number("deg", ANY, "phase beta"),
+    ball => integer(ge(0.0), "ball carrying the waviness (0-based)")
+        .note("< Z; race = \"ball\" only (absent: every ball)"),
+});
+
 /// Seeded random scatter of the ball spacing within the pocket play (study \[3\]).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -77,6 +101,11 @@ pub struct SpacingSpec {
     #[serde(default)]
     pub seed: u64,
 }
+
+crate::declare_fields!(SpacingSpec {
+    scatter => number("-", closed(0.0, 1.0), "ball-spacing scatter as a fraction of the pocket play"),
+    seed => integer(ge(0.0), "seed of the SplitMix64 generator"),
+});
 
 /// Film law.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
@@ -112,6 +141,18 @@ pub struct LubricationSpec {
     #[serde(default)]
     pub roughness_um: Option<f64>,
 }
+
+crate::declare_fields!(LubricationSpec {
+    film => choice(&["ehl", "dry"], "Hamrock–Dowson EHL film in series with Hertz (ehl) or none (dry)"),
+    lubricant => name(Names::Lubricant, "lubricant preset"),
+    viscosity_pa_s => number("Pa s", closed(0.0, 100.0), "inlet viscosity").note("absent: the preset's"),
+    pressure_viscosity_m2_per_n => number("m²/N", closed(0.0, 1e-6), "pressure-viscosity coefficient")
+        .note("absent: the preset's"),
+    density_kg_m3 => number("kg/m³", between(0.0, false, 1e5, true), "lubricant density")
+        .note("absent: the preset's"),
+    roughness_um => number("µm", closed(0.0, 100.0), "composite rms roughness of ball and race")
+        .note("absent: the preset's"),
+});
 
 fn default_lubricant() -> String {
     "study2".into()
@@ -177,23 +218,20 @@ pub enum WearRegime {
     Dry,
 }
 
-impl Default for WearSpec {
-    fn default() -> Self {
-        WearSpec {
-            cells: 360,
-            coefficient: 5e-4,
-            hardness_gpa: 2.39,
-            regime: WearRegime::Auto,
-            defect_length_m: 3e-12,
-            defect_time_s: 3e-12,
-            activation_energy_j_mol: 49e3,
-            surface_temperature_c: 20.0,
-            window_revs: 2.0,
-            cycle_revs: 1e6,
-            cycles: 10,
-        }
-    }
-}
+crate::declare_fields!(WearSpec {
+    cells: 360 => integer(closed(1.0, 1000.0), "cells of the circumferential wear map of each race"),
+    coefficient: 5e-4 => number("-", gt(0.0), "Archard wear coefficient K"),
+    hardness_gpa: 2.39 => number("GPa", gt(0.0), "hardness Hv"),
+    regime: WearRegime::Auto => choice(&["auto", "dry"], "auto: lubricated with an EHL film in the scene, else dry; dry: the dry limit La = 100, psi = 1"),
+    defect_length_m: 3e-12 => number("m", gt(0.0), "film-defect length a_x"),
+    defect_time_s: 3e-12 => number("s", gt(0.0), "film-defect time t0"),
+    activation_energy_j_mol: 49e3 => number("J/mol", ge(0.0), "adsorption activation energy Ea"),
+    surface_temperature_c: 20.0 => number("°C", gt(-273.15), "surface temperature Ts without the thermal model"),
+    window_revs: 2.0 => number("rev", gt(0.0), "shaft revolutions of dynamics per wear cycle"),
+    cycle_revs: 1e6 => number("rev", gt(0.0), "shaft revolutions each wear cycle stands for")
+        .note(">= window_revs"),
+    cycles: 10 => integer(ge(0.0), "wear cycles applied"),
+});
 
 /// `[effects.thermal]`: friction power (Palmgren, spin, hysteresis, cage), a lumped
 /// thermal network and the ring growth it causes (`crate::models::thermal`).
@@ -231,34 +269,24 @@ pub struct ThermalSpec {
     pub growth_factor: f64,
 }
 
-impl Default for ThermalSpec {
-    fn default() -> Self {
-        ThermalSpec {
-            f0: 2.0,
-            f1: 7e-4,
-            viscosity_cst: None,
-            spin_friction: 0.03,
-            hysteresis_loss: 0.01,
-            ambient_c: 20.0,
-            shaft_conductance_w_k: 5.0,
-            housing_conductance_w_k: 10.0,
-            oil_conductance_w_k: 5.0,
-            oil_heat_capacity_j_k: 20.0,
-            contact_conductance_w_k: None,
-            dt_s: 0.5,
-            time_scale: 1.0,
-            growth_factor: 1.0,
-        }
-    }
-}
-
-fn check(field: String, v: f64, ok: bool, allowed: &str) -> Result<()> {
-    if v.is_finite() && ok {
-        Ok(())
-    } else {
-        Err(Error::invalid(field, v, allowed))
-    }
-}
+crate::declare_fields!(ThermalSpec {
+    f0: 2.0 => number("-", ge(0.0), "Palmgren factor f0 (load-independent torque)"),
+    f1: 7e-4 => number("-", ge(0.0), "Palmgren factor f1 (load-dependent torque)"),
+    viscosity_cst: None => number("cSt", gt(0.0), "oil kinematic viscosity")
+        .note("absent: from the lubricant, else 20"),
+    spin_friction: 0.03 => number("-", ge(0.0), "spin friction coefficient mu_s"),
+    hysteresis_loss: 0.01 => number("-", ge(0.0), "hysteresis loss fraction alpha_h"),
+    ambient_c: 20.0 => number("°C", gt(-273.15), "ambient and initial temperature"),
+    shaft_conductance_w_k: 5.0 => number("W/K", ge(0.0), "inner ring to ambient through the shaft"),
+    housing_conductance_w_k: 10.0 => number("W/K", ge(0.0), "outer ring to ambient through the housing"),
+    oil_conductance_w_k: 5.0 => number("W/K", ge(0.0), "oil to ambient (oil flow)"),
+    oil_heat_capacity_j_k: 20.0 => number("J/K", gt(0.0), "heat capacity of the oil in the bearing"),
+    contact_conductance_w_k: None => number("W/K", ge(0.0), "ball–ring conductance per race")
+        .note("absent: Holm constriction of the loaded contacts"),
+    dt_s: 0.5 => number("s", gt(0.0), "thermal time step"),
+    time_scale: 1.0 => number("-", gt(0.0), "thermal seconds per second of dynamics"),
+    growth_factor: 1.0 => number("-", ge(0.0), "factor on the thermal growth's change of the clearance (0: off)"),
+});
 
 impl LubricationSpec {
     /// The lubricant: preset plus overrides.
@@ -309,24 +337,7 @@ impl Effects {
     pub fn validate(&self) -> Result<()> {
         for (i, d) in self.defects.iter().enumerate() {
             let p = format!("effects.defects[{i}]");
-            check(
-                format!("{p}.angle_deg"),
-                d.angle_deg,
-                true,
-                "a finite number",
-            )?;
-            check(
-                format!("{p}.width_mm"),
-                d.width_mm,
-                d.width_mm > 0.0,
-                "> 0 and < the ball diameter",
-            )?;
-            check(
-                format!("{p}.depth_um"),
-                d.depth_um,
-                d.depth_um > 0.0 && d.depth_um <= 5000.0,
-                "in (0, 5000]",
-            )?;
+            check(&p, DefectSpec::FIELDS, d)?;
             if d.race != Element::Ball && d.ball.is_some() {
                 return Err(Error::invalid(
                     format!("{p}.ball"),
@@ -337,25 +348,7 @@ impl Effects {
         }
         for (i, w) in self.waviness.iter().enumerate() {
             let p = format!("effects.waviness[{i}]");
-            if !(1..=10_000).contains(&w.order) {
-                return Err(Error::invalid(
-                    format!("{p}.order"),
-                    w.order,
-                    "an integer in [1, 10000]",
-                ));
-            }
-            check(
-                format!("{p}.amplitude_um"),
-                w.amplitude_um,
-                w.amplitude_um.abs() <= 100.0,
-                "in [-100, 100]",
-            )?;
-            check(
-                format!("{p}.phase_deg"),
-                w.phase_deg,
-                true,
-                "a finite number",
-            )?;
+            check(&p, WavinessSpec::FIELDS, w)?;
             if w.race != Element::Ball && w.ball.is_some() {
                 return Err(Error::invalid(
                     format!("{p}.ball"),
@@ -365,110 +358,24 @@ impl Effects {
             }
         }
         if let Some(s) = &self.ball_spacing {
-            check(
-                "effects.ball_spacing.scatter".into(),
-                s.scatter,
-                (0.0..=1.0).contains(&s.scatter),
-                "in [0, 1]",
-            )?;
+            check("effects.ball_spacing", SpacingSpec::FIELDS, s)?;
         }
         if let Some(l) = &self.lubrication {
-            let p = "effects.lubrication";
-            if let Some(v) = l.viscosity_pa_s {
-                check(
-                    format!("{p}.viscosity_pa_s"),
-                    v,
-                    (0.0..=100.0).contains(&v),
-                    "in [0, 100]",
-                )?;
-            }
-            if let Some(v) = l.pressure_viscosity_m2_per_n {
-                check(
-                    format!("{p}.pressure_viscosity_m2_per_n"),
-                    v,
-                    (0.0..=1e-6).contains(&v),
-                    "in [0, 1e-6]",
-                )?;
-            }
-            if let Some(v) = l.density_kg_m3 {
-                check(
-                    format!("{p}.density_kg_m3"),
-                    v,
-                    v > 0.0 && v <= 1e5,
-                    "in (0, 1e5]",
-                )?;
-            }
-            if let Some(v) = l.roughness_um {
-                check(
-                    format!("{p}.roughness_um"),
-                    v,
-                    (0.0..=100.0).contains(&v),
-                    "in [0, 100]",
-                )?;
-            }
+            check("effects.lubrication", LubricationSpec::FIELDS, l)?;
             l.lubricant()?;
         }
         if let Some(w) = &self.wear {
-            let p = "effects.wear";
-            if !(1..=1000).contains(&w.cells) {
+            check("effects.wear", WearSpec::FIELDS, w)?;
+            if w.cycle_revs < w.window_revs {
                 return Err(Error::invalid(
-                    format!("{p}.cells"),
-                    w.cells,
-                    "an integer in [1, 1000]",
+                    "effects.wear.cycle_revs",
+                    w.cycle_revs,
+                    ">= window_revs",
                 ));
             }
-            let pos = |f: &str, v: f64| check(format!("{p}.{f}"), v, v > 0.0, "> 0");
-            pos("coefficient", w.coefficient)?;
-            pos("hardness_gpa", w.hardness_gpa)?;
-            pos("defect_length_m", w.defect_length_m)?;
-            pos("defect_time_s", w.defect_time_s)?;
-            check(
-                format!("{p}.activation_energy_j_mol"),
-                w.activation_energy_j_mol,
-                w.activation_energy_j_mol >= 0.0,
-                ">= 0",
-            )?;
-            check(
-                format!("{p}.surface_temperature_c"),
-                w.surface_temperature_c,
-                w.surface_temperature_c > -273.15,
-                "> -273.15",
-            )?;
-            pos("window_revs", w.window_revs)?;
-            check(
-                format!("{p}.cycle_revs"),
-                w.cycle_revs,
-                w.cycle_revs >= w.window_revs,
-                ">= window_revs",
-            )?;
         }
         if let Some(t) = &self.thermal {
-            let p = "effects.thermal";
-            let nonneg = |f: &str, v: f64| check(format!("{p}.{f}"), v, v >= 0.0, ">= 0");
-            nonneg("f0", t.f0)?;
-            nonneg("f1", t.f1)?;
-            nonneg("spin_friction", t.spin_friction)?;
-            nonneg("hysteresis_loss", t.hysteresis_loss)?;
-            nonneg("shaft_conductance_w_k", t.shaft_conductance_w_k)?;
-            nonneg("housing_conductance_w_k", t.housing_conductance_w_k)?;
-            nonneg("oil_conductance_w_k", t.oil_conductance_w_k)?;
-            if let Some(v) = t.contact_conductance_w_k {
-                nonneg("contact_conductance_w_k", v)?;
-            }
-            if let Some(v) = t.viscosity_cst {
-                check(format!("{p}.viscosity_cst"), v, v > 0.0, "> 0")?;
-            }
-            check(
-                format!("{p}.ambient_c"),
-                t.ambient_c,
-                t.ambient_c > -273.15,
-                "> -273.15",
-            )?;
-            let pos = |f: &str, v: f64| check(format!("{p}.{f}"), v, v > 0.0, "> 0");
-            pos("oil_heat_capacity_j_k", t.oil_heat_capacity_j_k)?;
-            nonneg("growth_factor", t.growth_factor)?;
-            pos("dt_s", t.dt_s)?;
-            pos("time_scale", t.time_scale)?;
+            check("effects.thermal", ThermalSpec::FIELDS, t)?;
         }
         Ok(())
     }

@@ -159,26 +159,29 @@ pub struct SkiddingParams {
 }
 
 impl Default for SkiddingParams {
+    /// The scene's declared defaults (`[model.skidding]`), plus those of the settings a
+    /// scene does not expose.
     fn default() -> Self {
+        let s = crate::component::scene::SkiddingSpec::default();
         SkiddingParams {
-            traction: TractionLaw::default(),
+            traction: s.traction,
             pocket_clearance: 0.1e-3,
-            pocket_stiffness: 1e7,
-            pocket_damping: 200.0,
-            pocket_friction: 0.05,
+            pocket_stiffness: s.pocket_stiffness,
+            pocket_damping: s.pocket_damping,
+            pocket_friction: s.pocket_friction,
             pocket_smoothing: 1e-6,
-            drag_coefficient: 0.5,
-            drag_density: 10.0,
-            drag_viscosity: 0.0,
-            cage_drag: 0.0,
-            spacing_scatter: 0.0,
-            seed: 1,
+            drag_coefficient: s.drag_coefficient,
+            drag_density: s.drag_density,
+            drag_viscosity: s.drag_viscosity,
+            cage_drag: s.cage_drag,
+            spacing_scatter: s.spacing_scatter,
+            seed: s.seed,
             friction_v_s: 0.05,
             contact_damping: 0.0,
-            gyroscopic: true,
-            gyro_traction: 0.3,
-            spin_friction: 0.0,
-            ball_radial_mass: false,
+            gyroscopic: s.gyro_traction > 0.0,
+            gyro_traction: s.gyro_traction,
+            spin_friction: s.spin_friction,
+            ball_radial_mass: s.ball_radial_mass,
         }
     }
 }

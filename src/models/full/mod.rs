@@ -188,24 +188,26 @@ pub struct FullParams {
 impl FullParams {
     /// Defaults for bearing `b` (its cage's pocket play and width).
     pub fn for_bearing(b: &Bearing) -> Self {
+        // The scene's declared defaults (`[model.full]`).
+        let s = crate::component::scene::FullSpec::default();
         FullParams {
-            traction: TractionLaw::default(),
-            ball_contacts: BallContacts::default(),
-            cage: CageModel::default(),
-            reference_load: 1000.0,
+            traction: s.traction,
+            ball_contacts: s.ball_contacts,
+            cage: s.cage,
+            reference_load: s.reference_load_n,
             race_control: RaceControl::Outer,
-            drag: 1.0,
-            drag_density: 10.0,
-            viscosity: 3e-3,
+            drag: s.drag_factor,
+            drag_density: s.drag_density,
+            viscosity: s.viscosity,
             pocket_clearance: b.cage.pocket_clearance,
-            pocket_friction: 0.1,
-            pocket_roughness: 0.3e-6,
-            pocket_v_s: 0.05,
+            pocket_friction: s.pocket_friction,
+            pocket_roughness: s.pocket_roughness_um * 1e-6,
+            pocket_v_s: s.pocket_v_s,
             guide_width: 0.5 * b.cage.width,
-            guide_stiffness: 1e7,
-            guide_eps_max: 0.9,
+            guide_stiffness: s.guide_stiffness,
+            guide_eps_max: s.guide_eps_max,
             guidance: b.cage.guidance,
-            cage_unbalance: 0.0,
+            cage_unbalance: s.cage_unbalance_um * 1e-6,
         }
     }
 }
