@@ -297,38 +297,22 @@ fn full_bearing(materials: MaterialsSpec) -> BearingSpec {
 }
 
 /// A scene with every optional section, field, list and map filled (two list items per
-/// effect would add nothing: the paths of items are normalised to `[]`).
+/// effect would add nothing: the paths of items are normalised to `[]`). Fields with a
+/// value by default come with it (`..Default::default()`); an optional field must be given
+/// `Some` here, or `table_matches_schema` names its row.
 fn full_scene(bearing: BearingRef, traction: TractionLaw) -> Scene {
     let mut initial = BTreeMap::new();
     initial.insert("shaft.omega".to_string(), 100.0);
-    let d = ModelSpec::default();
-    let sk = SkiddingSpec::default();
     Scene {
         title: "full".into(),
         bearing,
         model: ModelSpec {
             level: super::Level::Ring,
-            causality: d.causality,
-            race_control: d.race_control,
-            ring_dof: d.ring_dof,
-            contact_damping: d.contact_damping,
-            operating_point: d.operating_point,
-            attached_mass_kg: d.attached_mass_kg,
             skidding: SkiddingSpec {
                 traction,
                 pocket_clearance_mm: Some(0.1),
-                pocket_stiffness: sk.pocket_stiffness,
-                pocket_damping: sk.pocket_damping,
-                pocket_friction: sk.pocket_friction,
-                drag_coefficient: sk.drag_coefficient,
-                drag_density: sk.drag_density,
-                drag_viscosity: sk.drag_viscosity,
-                cage_drag: sk.cage_drag,
-                spacing_scatter: sk.spacing_scatter,
-                seed: sk.seed,
-                gyro_traction: sk.gyro_traction,
                 spin_friction: 0.02,
-                ball_radial_mass: false,
+                ..Default::default()
             },
             full: super::scene::FullSpec {
                 traction,
@@ -338,7 +322,7 @@ fn full_scene(bearing: BearingRef, traction: TractionLaw) -> Scene {
                 cage_unbalance_um: 2.0,
                 ..Default::default()
             },
-            start: d.start,
+            ..Default::default()
         },
         solver: SolverSpec::default(),
         inputs: InputSpec {
