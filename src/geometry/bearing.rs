@@ -10,7 +10,7 @@ use super::material::{effective_modulus, Material};
 use crate::component::fields::{
     between, choice, gt, integer, name_or_table, number, table, text, Names, ANY,
 };
-use crate::error::{finite, positive, Error, Result};
+use crate::error::{Error, Result};
 use crate::units::{deg, mm, um};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
@@ -281,25 +281,15 @@ pub struct Bearing {
     pub cage_material: Material,
 }
 
-fn opt_pos(field: &str, v: Option<f64>) -> Result<Option<f64>> {
-    v.map(|x| positive(field, x)).transpose()
-}
-
 impl BearingSpec {
     /// Validate and convert to SI. Every refusal names the field and the allowed range.
     pub fn build(&self) -> Result<Bearing> {
-        let d = mm(positive("bearing.ball_diameter_mm", self.ball_diameter_mm)?);
-        let dm = mm(positive(
-            "bearing.pitch_diameter_mm",
-            self.pitch_diameter_mm,
-        )?);
-        if self.ball_count < 1 {
-            return Err(Error::invalid(
-                "bearing.ball_count",
-                self.ball_count,
-                ">= 1",
-            ));
-        }
+        // Every field within its declared row ([`BearingSpec::FIELDS`], [`CageSpec::FIELDS`]);
+        // the rules across fields follow.
+        crate::component::fields::check("bearing", Self::FIELDS, self)?;
+        crate::component::fields::check("bearing.cage", CageSpec::FIELDS, &self.cage)?;
+        let d = mm(self.ball_diameter_mm);
+        let dm = mm(self.pitch_diameter_mm);
         let z = self.ball_count as usize;
         if d >= dm {
             return Err(Error::invalid(
@@ -317,14 +307,8 @@ impl BearingSpec {
                 format!("<= {zmax} (more balls of this size overlap on the pitch circle)"),
             ));
         }
-        let alpha_in = self
-            .contact_angle_deg
-            .map(|a| crate::error::in_range("bearing.contact_angle_deg", a, 0.0, 80.0).map(deg))
-            .transpose()?;
-        let pd_in = self
-            .clearance_um
-            .map(|c| finite("bearing.clearance_um", c).map(um))
-            .transpose()?;
+        let alpha_in = self.contact_angle_deg.map(deg);
+        let pd_in = self.clearance_um.map(um);
 
         let (fi, fo) = match (self.inner_curvature, self.outer_curvature) {
             (Some(fi), Some(fo)) => (fi, fo),
@@ -411,15 +395,9 @@ impl BearingSpec {
             }
         };
 
-        let bore = opt_pos("bearing.bore_mm", self.bore_mm)?
-            .map(mm)
-            .unwrap_or(dm - 1.6 * d);
-        let od = opt_pos("bearing.outer_diameter_mm", self.outer_diameter_mm)?
-            .map(mm)
-            .unwrap_or(dm + 1.6 * d);
-        let width = opt_pos("bearing.width_mm", self.width_mm)?
-            .map(mm)
-            .unwrap_or(1.2 * d);
+        let bore = self.bore_mm.map(mm).unwrap_or(dm - 1.6 * d);
+        let od = self.outer_diameter_mm.map(mm).unwrap_or(dm + 1.6 * d);
+        let width = self.width_mm.map(mm).unwrap_or(1.2 * d);
         if bore >= dm - d {
             return Err(Error::invalid(
                 "bearing.bore_mm",
@@ -450,22 +428,16 @@ impl BearingSpec {
 
         // Ring masses: annuli from the bore to the race bottom and from the race bottom to
         // the outside diameter, 90 % full (shoulders and grooves), when not given.
-        let inner_ring_mass = opt_pos("bearing.inner_ring_mass_kg", self.inner_ring_mass_kg)?
-            .unwrap_or_else(|| {
-                0.9 * inner_material.density * PI / 4.0 * ((dm - d).powi(2) - bore * bore) * width
-            });
-        let outer_ring_mass = opt_pos("bearing.outer_ring_mass_kg", self.outer_ring_mass_kg)?
-            .unwrap_or_else(|| {
-                0.9 * outer_material.density * PI / 4.0 * (od * od - (dm + d).powi(2)) * width
-            });
+        let inner_ring_mass = self.inner_ring_mass_kg.unwrap_or_else(|| {
+            0.9 * inner_material.density * PI / 4.0 * ((dm - d).powi(2) - bore * bore) * width
+        });
+        let outer_ring_mass = self.outer_ring_mass_kg.unwrap_or_else(|| {
+            0.9 * outer_material.density * PI / 4.0 * (od * od - (dm + d).powi(2)) * width
+        });
 
         let c = &self.cage;
-        let cid = opt_pos("bearing.cage.inner_diameter_mm", c.inner_diameter_mm)?
-            .map(mm)
-            .unwrap_or(dm - 0.35 * d);
-        let cod = opt_pos("bearing.cage.outer_diameter_mm", c.outer_diameter_mm)?
-            .map(mm)
-            .unwrap_or(dm + 0.35 * d);
+        let cid = c.inner_diameter_mm.map(mm).unwrap_or(dm - 0.35 * d);
+        let cod = c.outer_diameter_mm.map(mm).unwrap_or(dm + 0.35 * d);
         if !(cid < dm && cod > dm && cid > bore && cod < od) {
             return Err(Error::invalid(
                 "bearing.cage",
@@ -473,22 +445,17 @@ impl BearingSpec {
                 "bore < cage ID < dm < cage OD < outside diameter",
             ));
         }
-        let cw = opt_pos("bearing.cage.width_mm", c.width_mm)?
-            .map(mm)
-            .unwrap_or(0.8 * d);
-        let cmass = opt_pos("bearing.cage.mass_kg", c.mass_kg)?.unwrap_or_else(|| {
+        let cw = c.width_mm.map(mm).unwrap_or(0.8 * d);
+        let cmass = c.mass_kg.unwrap_or_else(|| {
             let ring = PI / 4.0 * (cod * cod - cid * cid) * cw;
             let pockets = z as f64 * PI / 4.0 * d * d * (cod - cid) / 2.0;
             cage_material.density * (ring - pockets).max(0.2 * ring)
         });
-        let cinertia = opt_pos("bearing.cage.inertia_kg_m2", c.inertia_kg_m2)?
+        let cinertia = c
+            .inertia_kg_m2
             .unwrap_or(cmass * (cod * cod + cid * cid) / 8.0);
-        let pocket_clearance = opt_pos("bearing.cage.pocket_clearance_mm", c.pocket_clearance_mm)?
-            .map(mm)
-            .unwrap_or(0.02 * d);
-        let guide_clearance = opt_pos("bearing.cage.guide_clearance_mm", c.guide_clearance_mm)?
-            .map(mm)
-            .unwrap_or(0.005 * dm);
+        let pocket_clearance = c.pocket_clearance_mm.map(mm).unwrap_or(0.02 * d);
+        let guide_clearance = c.guide_clearance_mm.map(mm).unwrap_or(0.005 * dm);
 
         Ok(Bearing {
             name: self.name.clone(),

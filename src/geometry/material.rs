@@ -5,7 +5,7 @@
 //! for the ceramics) and only matter for the thermal model.
 
 use crate::component::fields::{between, ge, gt, number, text};
-use crate::error::{positive, Error, Result};
+use crate::error::{Error, Result};
 use serde::{Deserialize, Serialize};
 
 /// Mechanical and thermal properties of one body, SI units.
@@ -77,29 +77,7 @@ impl Material {
 
     /// Check every field; errors name `prefix.field`.
     pub fn validate(&self, prefix: &str) -> Result<()> {
-        positive(&format!("{prefix}.youngs_modulus"), self.youngs_modulus)?;
-        positive(&format!("{prefix}.density"), self.density)?;
-        let nu = self.poisson_ratio;
-        if !(nu.is_finite() && (0.0..0.5).contains(&nu)) {
-            return Err(Error::invalid(
-                format!("{prefix}.poisson_ratio"),
-                nu,
-                "in [0, 0.5)",
-            ));
-        }
-        for (f, v) in [
-            ("thermal_expansion", self.thermal_expansion),
-            ("conductivity", self.conductivity),
-            ("heat_capacity", self.heat_capacity),
-        ] {
-            if !(v.is_finite() && v >= 0.0) {
-                return Err(Error::invalid(
-                    format!("{prefix}.{f}"),
-                    v,
-                    "a finite number >= 0",
-                ));
-            }
-        }
+        crate::component::fields::check(prefix, Self::FIELDS, self)?;
         Ok(())
     }
 
