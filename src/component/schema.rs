@@ -35,21 +35,21 @@ use std::fmt::Write as _;
 
 pub use super::fields::{Bounds, Kind, Names};
 
-/// One documented field.
+/// One documented field: a declared row ([`FieldDecl`], whose fields it derefs to) at its
+/// full path.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Field {
     /// Dotted path (`[]`: any array item; `<variable>`, `<body>`: placeholders).
     pub path: &'static str,
-    /// Type.
-    pub kind: Kind,
-    /// Unit (`-`: none).
-    pub unit: &'static str,
-    /// Numeric range (numbers only).
-    pub bounds: Bounds,
-    /// What the range does not say (bounds that depend on other fields).
-    pub note: &'static str,
-    /// Meaning.
-    pub description: &'static str,
+    /// The row as its spec declares it.
+    pub decl: FieldDecl,
+}
+
+impl std::ops::Deref for Field {
+    type Target = FieldDecl;
+    fn deref(&self) -> &FieldDecl {
+        &self.decl
+    }
 }
 
 /// Where each spec's declared fields sit in a scene: `(prefix, rows)`. The schema writes
@@ -106,11 +106,7 @@ impl Table {
                     } else {
                         Box::leak(format!("{prefix}.{}", d.name).into_boxed_str())
                     },
-                    kind: d.kind,
-                    unit: d.unit,
-                    bounds: d.bounds,
-                    note: d.note,
-                    description: d.description,
+                    decl: *d,
                 })
                 .collect()
         });
