@@ -13,7 +13,7 @@
 //!   (the traction law's rows once, mounted under both `model.skidding.traction` and
 //!   `model.full.traction`), which `raceway scene --explain`, `--check` and the scene
 //!   documentation read;
-//! - the FMI parameter ranges that are scene ranges ([`decl`] is `const`, so
+//! - the FMI parameter ranges that are scene ranges ([`find`] is `const`, so
 //!   [`super::variables::RANGES`] reads `solver.rtol`'s bounds from its row).
 //!
 //! A new scene option is one struct field and one row beside it, in one file.

@@ -5,9 +5,11 @@
 //!   four material bodies) with its type, unit, default, allowed range and meaning. The list
 //!   of paths is not written by hand: it is enumerated from the serde serialisation of a
 //!   scene whose every optional field and list is filled ([`schema_paths`]), and the
-//!   defaults come from deserialising a scene that gives only the required fields. The one
-//!   hand-written part is [`TABLE`] (unit, range, description per path); a test fails when
-//!   a serialised path has no entry or an entry names no path.
+//!   defaults come from deserialising a scene that gives only the required fields (the
+//!   specs' `Default`s, declared in their rows). Unit, range and description come from each
+//!   spec's declared rows ([`super::fields`]), which [`MOUNTS`] places under the spec's
+//!   prefix to make [`TABLE`]; a test fails when a serialised path has no entry or an entry
+//!   names no path.
 //! - [`check`] reports every problem of a scene text at once, each with its place
 //!   (`line:column` for TOML, the field path for JSON): syntax errors, unknown keys (with
 //!   the nearest known name), wrong types, values outside [`TABLE`]'s ranges, unknown

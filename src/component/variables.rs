@@ -508,7 +508,8 @@ pub fn display_unit(unit: &str) -> Option<(&'static str, f64)> {
 /// 0.1 rad (both far beyond clearance plus contact deflection, tens of µm and a few mrad),
 /// ring velocities those of a 1 mm / 0.1 rad vibration up to about 15 kHz, shaft speeds up
 /// to 2e4 rad/s (about 191 000 rpm), loads up to 10 MN and 1 MN·m; the parameters' ranges
-/// are those the scene accepts (`params.rs`, `Scene::validate`).
+/// are those the scene accepts (`params.rs`; `rtol` reads its range from the
+/// `solver.rtol` row, [`super::scene::SolverSpec::FIELDS`]).
 pub const RANGES: &[(&str, f64, f64)] = &[
     ("shaft.x", -1e-3, 1e-3),
     ("shaft.y", -1e-3, 1e-3),
