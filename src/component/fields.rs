@@ -549,10 +549,20 @@ impl ser::Serializer for Flat {
 /// giving the spec its `FIELDS` table and its `Default` (the defaults of the rows). Specs
 /// without a `Default` (required fields) write `field => declaration`.
 ///
-/// ```ignore
-/// declare_fields!(RunSpec {
-///     duration_s: 0.2 => number("s", between(0.0, false, 1e4, true), "simulated time"),
+/// ```
+/// use raceway::component::fields::{check, gt, number};
+///
+/// #[derive(serde::Serialize)]
+/// struct Demo {
+///     gain: f64,
+/// }
+/// raceway::declare_fields!(Demo {
+///     gain: 2.0 => number("-", gt(0.0), "a gain"),
 /// });
+/// assert_eq!(Demo::default().gain, 2.0);
+/// assert_eq!((Demo::FIELDS[0].name, Demo::FIELDS[0].description), ("gain", "a gain"));
+/// let e = check("demo", Demo::FIELDS, &Demo { gain: 0.0 }).unwrap_err();
+/// assert_eq!(e.to_string(), "invalid `demo.gain` = 0: allowed a finite number > 0");
 /// ```
 #[macro_export]
 macro_rules! declare_fields {
