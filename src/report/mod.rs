@@ -126,6 +126,22 @@ pub fn drive(
     events: &[InputEvent],
     ramp: Option<(&str, f64)>,
 ) -> Result<(Samples, f64)> {
+    let (s, cpu, _) = drive_until(c, t_end, h, events, ramp, |_, _| Ok(None))?;
+    Ok((s, cpu))
+}
+
+/// [`drive`]'s loop with a check after every macro step: `check(c, t)` (t = the
+/// communication point just reached, s) returns `Some(reason)` to stop the run there.
+/// Returns the forces up to the stop, the thread CPU time spent (checks included), s, and
+/// the reason it stopped early, if it did.
+pub(crate) fn drive_until(
+    c: &mut Component,
+    t_end: f64,
+    h: f64,
+    events: &[InputEvent],
+    ramp: Option<(&str, f64)>,
+    mut check: impl FnMut(&mut Component, f64) -> Result<Option<String>>,
+) -> Result<(Samples, f64, Option<String>)> {
     let vr = |n: &str| {
         variables::by_name(n)
             .map(|v| v.vr)
@@ -166,8 +182,11 @@ pub fn drive(
             c.get_real(fvr[1])?,
             c.get_real(fvr[2])?,
         ]);
+        if let Some(stop) = check(c, t + step)? {
+            return Ok((s, thread_cpu_s() - start, Some(stop)));
+        }
     }
-    Ok((s, thread_cpu_s() - start))
+    Ok((s, thread_cpu_s() - start, None))
 }
 
 /// CPU time consumed by the calling thread, s (`CLOCK_THREAD_CPUTIME_ID`, POSIX): unlike a

@@ -729,9 +729,9 @@ fn panic_text(p: &(dyn std::any::Any + Send)) -> String {
         .unwrap_or_default()
 }
 
-/// The shared driver's loop ([`super::drive`]: events when their time comes, the ramp
-/// with its derivative) that also checks after every macro step that every output of the
-/// variable table (forces, motion, K and C, cage and contact outputs) and its derivative
+/// The shared driver's loop ([`super::drive_until`]: events when their time comes, the
+/// ramp with its derivative) that also checks after every macro step that every output of
+/// the variable table (forces, motion, K and C, cage and contact outputs) and its derivative
 /// is finite. Returns the forces, and the first non-finite output (the run stops there).
 fn drive_checked(
     c: &mut Component,
@@ -741,42 +741,21 @@ fn drive_checked(
     ramp: Option<(&str, f64)>,
 ) -> Result<(Samples, Option<String>)> {
     use crate::component::variables;
-    let vr = |n: &str| variables::by_name(n).expect("a variable of the table").vr;
     let outputs: Vec<&'static variables::Variable> = variables::all()
         .filter(|v| v.is_output(c.causality()))
         .collect();
-    let fvr = super::FORCE_NAMES.map(vr);
-    let n = (t_end / h - 1e-9).ceil().max(1.0) as usize;
-    let mut s = Samples::default();
-    let mut next_event = 0;
-    for i in 0..n {
-        let t = i as f64 * h;
-        let step = if i + 1 == n { t_end - t } else { h };
-        while next_event < events.len() && events[next_event].t <= t + 1e-12 {
-            c.set_real(vr(&events[next_event].name), events[next_event].value)?;
-            next_event += 1;
-        }
-        if let Some((name, rate)) = ramp {
-            c.set_real(vr(name), rate * t)?;
-            c.set_input_derivative(vr(name), 1, rate)?;
-        }
-        c.do_step(t, step)?;
-        s.t.push(t + step);
-        s.f.push([
-            c.get_real(fvr[0])?,
-            c.get_real(fvr[1])?,
-            c.get_real(fvr[2])?,
-        ]);
+    let (s, _, bad) = super::drive_until(c, t_end, h, events, ramp, |c, t| {
         for v in &outputs {
             let x = c.get_real(v.vr)?;
             let d = c.get_output_derivative(v.vr, 1).unwrap_or(0.0);
             if !(x.is_finite() && d.is_finite()) {
-                let at = format!("at t = {:e} s", t + step);
-                return Ok((s, Some(format!("{} = {x}, d/dt = {d} {at}", v.name))));
+                let at = format!("at t = {t:e} s");
+                return Ok(Some(format!("{} = {x}, d/dt = {d} {at}", v.name)));
             }
         }
-    }
-    Ok((s, None))
+        Ok(None)
+    })?;
+    Ok((s, bad))
 }
 
 /// The cells of the campaign. `long`: for every level base the full product of speed,
