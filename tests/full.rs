@@ -11,6 +11,10 @@ use raceway::models::quasi_static::{BallResult, BallState, Options, QuasiStatic}
 use raceway::solver::{OdeSystem, Options as SolverOptions, Rosenbrock};
 use std::f64::consts::PI;
 
+#[path = "common/motion_scene.rs"]
+mod motion_scene;
+use motion_scene::motion_scene;
+
 fn vr(name: &str) -> u32 {
     variables::by_name(name).unwrap().vr
 }
@@ -64,24 +68,7 @@ fn qs_displacement(omega: f64) -> [f64; 5] {
 /// A motion-driven 7004 scene at displacement `q` and speed `omega`, extra
 /// `[model.full]` lines.
 fn scene_7004(q: [f64; 5], omega: f64, full: &str) -> String {
-    format!(
-        r#"
-bearing = "7004"
-[model]
-level = "full"
-[model.full]
-{full}
-[solver]
-rtol = 1e-5
-atol_m = 1e-9
-[inputs]
-rule = "derivatives"
-initial = {{ "shaft.x" = {:e}, "shaft.y" = {:e}, "shaft.z" = {:e}, "shaft.rx" = {:e}, "shaft.ry" = {:e},
-            "shaft.vx" = 0.0, "shaft.vy" = 0.0, "shaft.vz" = 0.0, "shaft.wx" = 0.0, "shaft.wy" = 0.0,
-            "shaft.omega" = {omega:e} }}
-"#,
-        q[0], q[1], q[2], q[3], q[4]
-    )
+    motion_scene("7004", "full", q, omega, full)
 }
 
 #[test]

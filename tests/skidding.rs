@@ -6,30 +6,15 @@ use raceway::component::{variables, Component};
 use raceway::geometry::{kinematics::kinematics, preset};
 use raceway::models::skidding::{SkiddingModel, SkiddingParams};
 use raceway::solver::{OdeSystem, Options, Rosenbrock};
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::cell::Cell;
 use std::f64::consts::PI;
 
-// A per-thread allocation counter (tests run on threads; only the calling thread counts).
-thread_local! {
-    static ALLOCS: Cell<usize> = const { Cell::new(0) };
-}
-struct Counting;
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, l: Layout) -> *mut u8 {
-        let _ = ALLOCS.try_with(|c| c.set(c.get() + 1));
-        unsafe { System.alloc(l) }
-    }
-    unsafe fn dealloc(&self, p: *mut u8, l: Layout) {
-        unsafe { System.dealloc(p, l) }
-    }
-    unsafe fn realloc(&self, p: *mut u8, l: Layout, n: usize) -> *mut u8 {
-        let _ = ALLOCS.try_with(|c| c.set(c.get() + 1));
-        unsafe { System.realloc(p, l, n) }
-    }
-}
+#[path = "common/motion_scene.rs"]
+mod motion_scene;
+use motion_scene::motion_scene;
+#[path = "common/thread_alloc.rs"]
+mod thread_alloc;
 #[global_allocator]
-static A: Counting = Counting;
+static A: thread_alloc::Counting = thread_alloc::Counting;
 
 fn vr(name: &str) -> u32 {
     variables::by_name(name).unwrap().vr
@@ -38,23 +23,7 @@ fn vr(name: &str) -> u32 {
 /// A motion-driven 6012 scene: radial displacement `y` (m), shaft speed `omega` (rad/s),
 /// extra `[model.skidding]` lines.
 fn scene_6012(y: f64, omega: f64, skid: &str) -> String {
-    format!(
-        r#"
-bearing = "6012"
-[model]
-level = "skidding"
-[model.skidding]
-{skid}
-[solver]
-rtol = 1e-5
-atol_m = 1e-9
-[inputs]
-rule = "derivatives"
-initial = {{ "shaft.x" = 0.0, "shaft.y" = {y:e}, "shaft.z" = 0.0, "shaft.rx" = 0.0, "shaft.ry" = 0.0,
-            "shaft.vx" = 0.0, "shaft.vy" = 0.0, "shaft.vz" = 0.0, "shaft.wx" = 0.0, "shaft.wy" = 0.0,
-            "shaft.omega" = {omega:e} }}
-"#
-    )
+    motion_scene("6012", "skidding", [0.0, y, 0.0, 0.0, 0.0], omega, skid)
 }
 
 /// Run `n` steps of `h`, returning per-step (t, cage slip, cage speed, Fy).
@@ -290,9 +259,9 @@ fn load_driven_6012_carries_its_load_without_allocating() {
     let mut c = Component::from_text(text).unwrap();
     let r = run(&mut c, 40, 1e-3);
     let fy = mean(r[20..].iter().map(|x| x.3));
-    let before = ALLOCS.with(|a| a.get());
+    let before = thread_alloc::allocations();
     let r2 = run_steps_only(&mut c, 10, 1e-3);
-    let allocs = ALLOCS.with(|a| a.get()) - before;
+    let allocs = thread_alloc::allocations() - before;
     let slip = c.get_real(vr("cage.slip")).unwrap();
     println!(
         "6012 load-driven: mean Fy {fy:.2} N, slip {slip:.4}, {r2} steps, {allocs} allocations"

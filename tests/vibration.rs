@@ -15,30 +15,12 @@ use raceway::geometry::{kinematics, preset, Kinematics};
 use raceway::lubrication::{central_film, minimum_film, FilmModel, Lubricant};
 use raceway::models::defects::{edge_depth, Defect, DefectSite};
 use raceway::Component;
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::cell::Cell;
 use std::f64::consts::PI;
 
-// A per-thread counting allocator (tests run on threads; each counts its own).
-struct Counting;
-thread_local! {
-    static ALLOCS: Cell<usize> = const { Cell::new(0) };
-}
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, l: Layout) -> *mut u8 {
-        let _ = ALLOCS.try_with(|c| c.set(c.get() + 1));
-        unsafe { System.alloc(l) }
-    }
-    unsafe fn dealloc(&self, p: *mut u8, l: Layout) {
-        unsafe { System.dealloc(p, l) }
-    }
-    unsafe fn realloc(&self, p: *mut u8, l: Layout, n: usize) -> *mut u8 {
-        let _ = ALLOCS.try_with(|c| c.set(c.get() + 1));
-        unsafe { System.realloc(p, l, n) }
-    }
-}
+#[path = "common/thread_alloc.rs"]
+mod thread_alloc;
 #[global_allocator]
-static A: Counting = Counting;
+static A: thread_alloc::Counting = thread_alloc::Counting;
 
 const OMEGA: f64 = 183.259571; // 1750 rpm
 const H: f64 = 1e-4;
@@ -491,9 +473,9 @@ lubrication = { film = "ehl" }
         .replace("\"6205\"", "\"7008ce\"")
         .replace("level = \"ring\"", "level = \"ring\"\nring_dof = 5")
         .replace("\"load.z\" = 0.0", "\"load.z\" = 200.0");
-    let probe = ALLOCS.with(|a| a.get());
+    let probe = thread_alloc::allocations();
     std::hint::black_box(Vec::<u8>::with_capacity(16));
-    assert!(ALLOCS.with(|a| a.get()) > probe, "the counter counts");
+    assert!(thread_alloc::allocations() > probe, "the counter counts");
     for text in [
         scene(all),
         five,
@@ -504,11 +486,11 @@ lubrication = { film = "ehl" }
         for i in 0..3 {
             c.do_step(i as f64 * H, H).unwrap();
         }
-        let before = ALLOCS.with(|a| a.get());
+        let before = thread_alloc::allocations();
         for i in 3..30 {
             c.do_step(i as f64 * H, H).unwrap();
         }
-        assert_eq!(ALLOCS.with(|a| a.get()) - before, 0, "{text}");
+        assert_eq!(thread_alloc::allocations() - before, 0, "{text}");
         let film = c.get_real(vr("film.min_thickness")).unwrap();
         assert!(film > 0.0 && film < 2e-6, "{film}");
         let fy = c.get_real(vr("force.y")).unwrap();
