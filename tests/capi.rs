@@ -8,20 +8,9 @@ use std::ptr::{null, null_mut};
 
 const SCENE: &str = raceway::component::scene::DEFAULT_SCENE;
 
-/// The motion inputs, in the table's order.
-const MOTION: [u32; 11] = [
-    RACEWAY_VR_SHAFT_X,
-    RACEWAY_VR_SHAFT_Y,
-    RACEWAY_VR_SHAFT_Z,
-    RACEWAY_VR_SHAFT_RX,
-    RACEWAY_VR_SHAFT_RY,
-    RACEWAY_VR_SHAFT_VX,
-    RACEWAY_VR_SHAFT_VY,
-    RACEWAY_VR_SHAFT_VZ,
-    RACEWAY_VR_SHAFT_WX,
-    RACEWAY_VR_SHAFT_WY,
-    RACEWAY_VR_SHAFT_OMEGA,
-];
+#[path = "common/motion.rs"]
+mod motion;
+use motion::MOTION;
 
 /// Outputs read after each step.
 const OUTPUTS: [u32; 6] = [

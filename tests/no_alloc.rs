@@ -42,19 +42,9 @@ fn allocations_in_steps(scene: &str, h: f64) -> usize {
     ALLOCS.load(Ordering::SeqCst) - before
 }
 
-const MOTION: [u32; 11] = [
-    RACEWAY_VR_SHAFT_X,
-    RACEWAY_VR_SHAFT_Y,
-    RACEWAY_VR_SHAFT_Z,
-    RACEWAY_VR_SHAFT_RX,
-    RACEWAY_VR_SHAFT_RY,
-    RACEWAY_VR_SHAFT_VX,
-    RACEWAY_VR_SHAFT_VY,
-    RACEWAY_VR_SHAFT_VZ,
-    RACEWAY_VR_SHAFT_WX,
-    RACEWAY_VR_SHAFT_WY,
-    RACEWAY_VR_SHAFT_OMEGA,
-];
+#[path = "common/motion.rs"]
+mod motion;
+use motion::MOTION;
 
 const OUTPUTS: [u32; 8] = [
     RACEWAY_VR_FORCE_X,
