@@ -172,6 +172,19 @@ impl<S: OdeSystem> OdeSystem for FailsAfter<S> {
     }
 }
 
+/// Integrates `Forced` over [0, 1] at tolerance 1e-6, failing beyond t = 0.5 (an Err, or
+/// a NaN right-hand side with `nan`); returns the error the integrator reports.
+fn fails_after_half(integ: &mut Integrator, nan: bool, y: &mut [f64], h: &mut f64) -> SolverError {
+    let mut sys = FailsAfter {
+        inner: Forced,
+        t_fail: 0.5,
+        nan,
+    };
+    integ
+        .integrate(&mut sys, 0.0, 1.0, y, h, &Options::new(1, 1e-6, 1e-6))
+        .unwrap_err()
+}
+
 fn dopri(n: usize) -> Integrator {
     Integrator::Dopri5(Dopri5::new(n))
 }
@@ -489,21 +502,7 @@ fn a_failing_rhs_leaves_the_state_untouched_and_names_the_cause() {
         let y_before = [0.75];
         let mut y = y_before;
         let mut h = 0.01;
-        let mut sys = FailsAfter {
-            inner: Forced,
-            t_fail: 0.5,
-            nan: false,
-        };
-        let err = integ
-            .integrate(
-                &mut sys,
-                0.0,
-                1.0,
-                &mut y,
-                &mut h,
-                &Options::new(1, 1e-6, 1e-6),
-            )
-            .unwrap_err();
+        let err = fails_after_half(&mut integ, false, &mut y, &mut h);
         assert_eq!(y, y_before);
         assert_eq!(h, 0.01);
         match &err {
@@ -520,21 +519,7 @@ fn a_failing_rhs_leaves_the_state_untouched_and_names_the_cause() {
         );
 
         // a non-finite right-hand side: rejected, retried smaller, then reported
-        let mut sys = FailsAfter {
-            inner: Forced,
-            t_fail: 0.5,
-            nan: true,
-        };
-        let err = integ
-            .integrate(
-                &mut sys,
-                0.0,
-                1.0,
-                &mut y,
-                &mut h,
-                &Options::new(1, 1e-6, 1e-6),
-            )
-            .unwrap_err();
+        let err = fails_after_half(&mut integ, true, &mut y, &mut h);
         assert_eq!(y, y_before);
         assert_eq!(h, 0.01);
         assert!(
