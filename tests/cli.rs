@@ -243,11 +243,14 @@ fn nonsense_is_refused_with_its_cause() {
 #[test]
 fn run_writes_series_summary_and_plots_from_the_data() {
     let dir = std::env::temp_dir().join(format!("raceway-run-{}", std::process::id()));
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_raceway"))
-        .args(["run", "--quiet", "--duration", "0.5", "--out"])
-        .arg(&dir)
-        .output()
-        .unwrap();
+    let out = run(&[
+        "run",
+        "--quiet",
+        "--duration",
+        "0.5",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
     assert!(
         out.status.success(),
         "{}",
@@ -316,11 +319,7 @@ fn run_refuses_a_bad_scene_with_its_cause() {
     std::fs::create_dir_all(&dir).unwrap();
     let f = dir.join("bad.toml");
     std::fs::write(&f, "bearing = \"6205\"\n[run]\nduration_s = -1.0\n").unwrap();
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_raceway"))
-        .arg("run")
-        .arg(&f)
-        .output()
-        .unwrap();
+    let out = run(&["run", f.to_str().unwrap()]);
     assert!(!out.status.success());
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("run.duration_s"), "{err}");
