@@ -30,6 +30,13 @@ fn vr(name: &str) -> u32 {
     variables::by_name(name).unwrap().vr
 }
 
+/// Macro steps `range` of `h` (step i from t = i h).
+fn steps(c: &mut Component, range: std::ops::Range<usize>, h: f64) {
+    for i in range {
+        c.do_step(i as f64 * h, h).unwrap();
+    }
+}
+
 fn outputs(c: &mut Component) -> Vec<u64> {
     variables::all()
         .map(|v| c.get_real(v.vr).unwrap().to_bits())
@@ -40,26 +47,18 @@ fn outputs(c: &mut Component) -> Vec<u64> {
 fn restored_state_continues_bit_for_bit() {
     let mut c = Component::from_text(RING_LOAD).unwrap();
     let h = 1e-4;
-    for i in 0..20 {
-        c.do_step(i as f64 * h, h).unwrap();
-    }
+    steps(&mut c, 0..20, h);
     let saved = c.get_state();
     let bytes = c.serialize_state();
-    for i in 20..40 {
-        c.do_step(i as f64 * h, h).unwrap();
-    }
+    steps(&mut c, 20..40, h);
     let a = outputs(&mut c);
     c.set_state(&saved).unwrap();
-    for i in 20..40 {
-        c.do_step(i as f64 * h, h).unwrap();
-    }
+    steps(&mut c, 20..40, h);
     assert_eq!(a, outputs(&mut c), "set_state continues identically");
     // Another instance of the same scene, restored from bytes.
     let mut d = Component::from_text(RING_LOAD).unwrap();
     d.deserialize_state(&bytes).unwrap();
-    for i in 20..40 {
-        d.do_step(i as f64 * h, h).unwrap();
-    }
+    steps(&mut d, 20..40, h);
     assert_eq!(
         a,
         outputs(&mut d),
@@ -202,9 +201,7 @@ fn motion_driven_ring_matches_the_model() {
 fn load_driven_ring_settles_to_static_balance() {
     let mut c = Component::from_text(RING_LOAD).unwrap();
     let h = 1e-4;
-    for i in 0..600 {
-        c.do_step(i as f64 * h, h).unwrap();
-    }
+    steps(&mut c, 0..600, h);
     let fy = c.get_real(vr("force.y")).unwrap();
     let y = c.get_real(vr("shaft.y")).unwrap();
     assert!((fy - 1000.0).abs() < 20.0, "force.y = {fy}");
