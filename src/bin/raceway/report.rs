@@ -266,6 +266,16 @@ pub fn bearing_detail(name: &str, as_json: bool) -> Result<String> {
     Ok(s)
 }
 
+/// One line of a 5-vector of forces and moments (Fx, Fy, Fz N; Mx, My N m) after its
+/// label, the values aligned with the other lines of [`quasi_static_text`].
+fn wrench_line(s: &mut String, label: &str, w: &[f64; 5]) {
+    let _ = writeln!(
+        s,
+        "{label:<34}Fx {:.3} N  Fy {:.3} N  Fz {:.3} N  Mx {:.4} N m  My {:.4} N m",
+        w[0], w[1], w[2], w[3], w[4]
+    );
+}
+
 pub fn quasi_static_text(
     p: &Problem,
     sol: &Solution,
@@ -281,12 +291,7 @@ pub fn quasi_static_text(
         p.speed_rpm,
         control_name(p.race_control)
     );
-    let l = sol.load;
-    let _ = writeln!(
-        s,
-        "external load on the inner ring:  Fx {:.3} N  Fy {:.3} N  Fz {:.3} N  Mx {:.4} N m  My {:.4} N m",
-        l[0], l[1], l[2], l[3], l[4]
-    );
+    wrench_line(&mut s, "external load on the inner ring:", &sol.load);
     let q = sol.q;
     let _ = writeln!(
         s,
@@ -297,12 +302,7 @@ pub fn quasi_static_text(
         q[3] * 1e3,
         q[4] * 1e3
     );
-    let f = sol.forces;
-    let _ = writeln!(
-        s,
-        "bearing force on the shaft:       Fx {:.3} N  Fy {:.3} N  Fz {:.3} N  Mx {:.4} N m  My {:.4} N m",
-        f[0], f[1], f[2], f[3], f[4]
-    );
+    wrench_line(&mut s, "bearing force on the shaft:", &sol.forces);
     let k = sol.stiffness;
     let _ = writeln!(
         s,
