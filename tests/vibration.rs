@@ -16,6 +16,7 @@ use raceway::lubrication::{central_film, minimum_film, FilmModel, Lubricant};
 use raceway::models::defects::{edge_depth, Defect, DefectSite};
 use raceway::Component;
 use std::f64::consts::PI;
+use std::sync::OnceLock;
 
 #[path = "common/thread_alloc.rs"]
 mod thread_alloc;
@@ -64,6 +65,22 @@ fn run(text: &str) -> (Vec<f64>, Vec<f64>) {
         }
     }
     (y, f)
+}
+
+/// [`run`] of the healthy bearing (`scene("")`), run once per test process: several tests
+/// compare against it.
+fn healthy() -> &'static (Vec<f64>, Vec<f64>) {
+    static HEALTHY: OnceLock<(Vec<f64>, Vec<f64>)> = OnceLock::new();
+    HEALTHY.get_or_init(|| run(&scene("")))
+}
+
+/// The y displacement of `scene(extra)` and of the healthy bearing, and their amplitude
+/// spectra.
+fn with_healthy(extra: &str) -> (Vec<f64>, &'static [f64], Spectrum, Spectrum) {
+    let (y, _) = run(&scene(extra));
+    let yh = &healthy().0;
+    let (s, sh) = (spectrum(&y), spectrum(yh));
+    (y, yh, s, sh)
 }
 
 fn max_diff(a: &[f64], b: &[f64]) -> f64 {
@@ -122,8 +139,7 @@ fn assert_line(s: &Spectrum, label: &str, f: f64, min_over_floor: f64) {
 #[test]
 fn healthy_bearing_peaks_at_varying_compliance_frequency() {
     let (k, _) = kin();
-    let (y, _) = run(&scene(""));
-    let s = spectrum(&y);
+    let s = spectrum(&healthy().0);
     let (f, _) = s.peak_in(20.0, 2000.0).unwrap();
     println!(
         "largest peak of y in 20..2000 Hz: {f:.2} Hz (BPFO {:.2})",
@@ -149,8 +165,7 @@ fn outer_race_defect_gives_bpfo_and_harmonics() {
     for h in 1..=3 {
         assert_line(&e, &format!("{h} BPFO"), h as f64 * k.bpfo, 20.0);
     }
-    let (_, fh) = run(&scene(""));
-    let eh = envelope(&fh);
+    let eh = envelope(&healthy().1);
     let ratio = e.at(k.bpfo) / eh.at(k.bpfo);
     println!("envelope at BPFO, spall / healthy = {ratio:.1}");
     assert!(ratio > 10.0, "{ratio}");
@@ -191,11 +206,8 @@ fn ball_defect_gives_twice_bsf_with_cage_sidebands() {
 #[test]
 fn outer_race_waviness_of_order_pz_excites_p_bpfo() {
     let (k, _) = kin();
-    let (y, _) = run(&scene(
-        r#"waviness = [{ race = "outer", order = 18, amplitude_um = 0.5 }]"#,
-    ));
-    let (yh, _) = run(&scene(""));
-    let (s, sh) = (spectrum(&y), spectrum(&yh));
+    let (_, _, s, sh) =
+        with_healthy(r#"waviness = [{ race = "outer", order = 18, amplitude_um = 0.5 }]"#);
     let (f, _) = s.peak_in(20.0, 2000.0).unwrap();
     println!(
         "largest peak with k = 18: {f:.2} Hz (2 BPFO {:.2})",
@@ -212,8 +224,7 @@ fn outer_race_waviness_of_order_pz_excites_p_bpfo() {
 #[test]
 fn inner_race_waviness_of_order_pz_pm_m_gives_bpfi_sidebands() {
     let (k, fs) = kin();
-    let (yh, _) = run(&scene(""));
-    let sh = spectrum(&yh);
+    let sh = spectrum(&healthy().0);
     for (order, label, f, mirror) in [
         (8, "BPFI - fs", k.bpfi - fs, k.bpfi + fs),
         (10, "BPFI + fs", k.bpfi + fs, k.bpfi - fs),
@@ -518,9 +529,7 @@ fn outer_and_inner_defects_together_show_both_signatures() {
 #[test]
 fn spacing_scatter_adds_lines_at_multiples_of_the_cage_frequency() {
     let (k, _) = kin();
-    let (y, _) = run(&scene("ball_spacing = { scatter = 1.0, seed = 7 }"));
-    let (yh, _) = run(&scene(""));
-    let (s, sh) = (spectrum(&y), spectrum(&yh));
+    let (_, _, s, sh) = with_healthy("ball_spacing = { scatter = 1.0, seed = 7 }");
     for n in 1..=4 {
         let f = n as f64 * k.ftf;
         let label = format!("{n} FTF");
@@ -554,11 +563,8 @@ fn effects_round_trip_through_json() {
 #[test]
 fn ball_waviness_of_even_order_excites_its_spin_harmonic() {
     let (k, _) = kin();
-    let (y, _) = run(&scene(
-        r#"waviness = [{ race = "ball", order = 2, amplitude_um = 0.3 }]"#,
-    ));
-    let (yh, _) = run(&scene(""));
-    let (s, sh) = (spectrum(&y), spectrum(&yh));
+    let (y, yh, s, sh) =
+        with_healthy(r#"waviness = [{ race = "ball", order = 2, amplitude_um = 0.3 }]"#);
     assert_line(&s, "2 BSF", 2.0 * k.bsf, 100.0);
     let ratio = s.at(2.0 * k.bsf) / sh.at(2.0 * k.bsf);
     println!("ball order 2: y at 2 BSF, wavy / healthy = {ratio:.3e}");
@@ -568,7 +574,7 @@ fn ball_waviness_of_even_order_excites_its_spin_harmonic() {
     ));
     // Unchanged to the integration tolerance (the odd orders' offsets cancel to round-off,
     // but the shaft-angle state they add changes the integrator's error norm and steps).
-    let (d3, d2) = (max_diff(&y3, &yh), max_diff(&y, &yh));
+    let (d3, d2) = (max_diff(&y3, yh), max_diff(&y, yh));
     println!("ball waviness: max |y - healthy| order 3 {d3:.3e} m, order 2 {d2:.3e} m");
     assert!(
         d3 < 1e-4 * d2,
