@@ -75,7 +75,7 @@ pub fn presets() -> Vec<BearingSpec> {
     };
     v.push(b7004);
 
-    v.push(spec(
+    let acbb16 = spec(
         "acbb16",
         AngularContact,
         22.23,
@@ -86,20 +86,15 @@ pub fn presets() -> Vec<BearingSpec> {
         None,
         (100.0, 170.0, 28.0),
         "study [1] (Jiang, Yang, Chang), 16-ball angular-contact bearing, steel balls; envelope assumed",
-    ));
-    let mut hybrid = spec(
-        "acbb16-si3n4",
-        AngularContact,
-        22.23,
-        135.0,
-        16,
-        Some((0.523, 0.523)),
-        Some(40.0),
-        None,
-        (100.0, 170.0, 28.0),
-        "study [1], the same bearing with Si3N4 balls",
     );
-    hybrid.materials = mat("si3n4", "steel", "phenolic");
+    // The same bearing with other materials: its geometry is acbb16's by construction.
+    let hybrid = BearingSpec {
+        name: "acbb16-si3n4".into(),
+        materials: mat("si3n4", "steel", "phenolic"),
+        source: "study [1], the same bearing with Si3N4 balls".into(),
+        ..acbb16.clone()
+    };
+    v.push(acbb16);
     v.push(hybrid);
 
     let mut b6012 = spec(
