@@ -313,6 +313,14 @@ impl FullSpec {
     }
 }
 
+/// Upper end of `model.contact_damping`, N s/m: a plausibility limit, not a fit. It is
+/// above the critical damping 2·sqrt(k·m) of a one-tonne rotor on one heavily loaded ball
+/// contact (Hertz stiffness k = 1.5·K^(2/3)·Q^(1/3) ≈ 1.5e8 N/m for K = 1e10 N/m^1.5,
+/// Q = 1e4 N: 2·sqrt(1.5e8·1e3) ≈ 7.7e5 N s/m), so no bearing of the presets needs more;
+/// without it a value near `f64::MAX` passes the field check and the outputs overflow to
+/// infinity at the first step (found by `tests/props_scene.rs`).
+pub const MAX_CONTACT_DAMPING: f64 = 1e6;
+
 /// Model section.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -346,7 +354,7 @@ crate::declare_fields!(ModelSpec {
     causality: Causality::default() => choice(&["motion", "load"], "motion: shaft motion in, forces out; load: loads in, the inner ring is integrated inside"),
     race_control: RaceControl::default() => choice(&["outer", "none"], "race control of the quasi-static kernels (Harris ch. 8)"),
     ring_dof: 2 => int_choice(&[2, 5], "ring level: 2 (x, y) or 5 (x, y, z, rx, ry) degrees of freedom"),
-    contact_damping: 0.0 => number("N s/m", ge(0.0), "contact damping per loaded ball (ring level)"),
+    contact_damping: 0.0 => number("N s/m", closed(0.0, MAX_CONTACT_DAMPING), "contact damping per loaded ball (ring level)"),
     operating_point: OperatingPoint::default() => table(),
     attached_mass_kg: 0.0 => number("kg", ge(0.0), "load-driven: mass attached to the inner ring (added to its own)"),
     skidding: SkiddingSpec::default() => table(),
