@@ -1323,10 +1323,12 @@ pub fn load(text: &str, overrides: &[(&str, f64)]) -> std::result::Result<Scene,
     Scene::from_text(&text2).map_err(|e| whole(e.to_string()))
 }
 
-/// `line L, column C` in a parser's message.
+/// `line L, column C` (TOML) or `line L column C` (JSON) in a parser's message.
 fn line_col_in(message: &str) -> Option<(usize, usize)> {
     let rest = &message[message.find("line ")? + 5..];
-    let (l, rest) = rest.split_once(", column ")?;
+    let (l, rest) = rest
+        .split_once(", column ")
+        .or_else(|| rest.split_once(" column "))?;
     let c: String = rest.chars().take_while(char::is_ascii_digit).collect();
     Some((l.trim().parse().ok()?, c.parse().ok()?))
 }
