@@ -503,6 +503,14 @@ impl Instance {
         if !start.is_finite() {
             return Err(Fail::from(format!("startTime = {start}: must be finite")));
         }
+        // A tolerance outside the solver's range is ignored when the component is built
+        // (`params::scene`), but a non-finite one would be kept in the FMU state, whose
+        // bytes then could not be restored (they must hold finite numbers only).
+        if let Some(t) = tolerance.filter(|t| !t.is_finite()) {
+            return Err(Fail::from(format!(
+                "tolerance = {t}: must be a finite number (or toleranceDefined false)"
+            )));
+        }
         if let Some(s) = stop {
             if !(s.is_finite() && s >= start) {
                 return Err(Fail::from(format!(
