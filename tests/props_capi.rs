@@ -17,7 +17,7 @@
 
 mod props_util;
 
-use props_util::{config, number};
+use props_util::number;
 use proptest::prelude::*;
 use proptest::sample::Index;
 use raceway::capi::*;
@@ -543,14 +543,10 @@ fn run(w: &mut World, call: &Call) -> Result<(), String> {
     Ok(())
 }
 
-proptest! {
-    #![proptest_config(config(256))]
-
-    #[test]
-    fn c_abi_call_sequences_never_panic_and_refusals_change_nothing(
-        first in any::<Index>(),
-        calls in proptest::collection::vec(call(), 1..40),
-    ) {
+#[test]
+fn c_abi_call_sequences_never_panic_and_refusals_change_nothing() {
+    let strategy = (any::<Index>(), proptest::collection::vec(call(), 1..40));
+    props_util::check("C ABI", file!(), 1024, strategy, |(first, calls)| {
         let mut w = World::default();
         // Every sequence starts with a live, stepping instance.
         if let Err(e) = run(&mut w, &Call::Create(first, true)) {
@@ -561,5 +557,6 @@ proptest! {
                 prop_assert!(false, "call {} of {}: {:?}: {}", k, calls.len(), c, e);
             }
         }
-    }
+        Ok(())
+    });
 }

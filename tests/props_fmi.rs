@@ -28,7 +28,7 @@
 
 mod props_util;
 
-use props_util::{config, number};
+use props_util::number;
 use proptest::prelude::*;
 use proptest::sample::Index;
 use raceway::component::{variables, Causality};
@@ -551,26 +551,30 @@ fn count_panics() {
 const PROLOGUE2: [Call; 3] = [Call::Setup(None, 0.0), Call::EnterInit, Call::ExitInit];
 const PROLOGUE3: [Call; 3] = [Call::GetState, Call::EnterInit, Call::ExitInit];
 
-proptest! {
-    #![proptest_config(config(128))]
-
-    #[test]
-    fn fmi2_calls_in_any_order_follow_the_state_machine_and_refusals_change_nothing(
-        prologue in 0usize..4,
-        calls in proptest::collection::vec(call(), 1..30),
-    ) {
-        count_panics();
-        let r = run(Version::Fmi2, &[&PROLOGUE2[..prologue], &calls[..]].concat());
+#[test]
+fn fmi2_calls_in_any_order_follow_the_state_machine_and_refusals_change_nothing() {
+    count_panics();
+    let strategy = (0usize..4, proptest::collection::vec(call(), 1..30));
+    props_util::check("FMI 2", file!(), 512, strategy, |(prologue, calls)| {
+        let r = run(
+            Version::Fmi2,
+            &[&PROLOGUE2[..prologue], &calls[..]].concat(),
+        );
         prop_assert!(r.is_ok(), "{}", r.unwrap_err());
-    }
+        Ok(())
+    });
+}
 
-    #[test]
-    fn fmi3_calls_in_any_order_follow_the_state_machine_and_refusals_change_nothing(
-        prologue in 0usize..4,
-        calls in proptest::collection::vec(call(), 1..30),
-    ) {
-        count_panics();
-        let r = run(Version::Fmi3, &[&PROLOGUE3[..prologue], &calls[..]].concat());
+#[test]
+fn fmi3_calls_in_any_order_follow_the_state_machine_and_refusals_change_nothing() {
+    count_panics();
+    let strategy = (0usize..4, proptest::collection::vec(call(), 1..30));
+    props_util::check("FMI 3", file!(), 512, strategy, |(prologue, calls)| {
+        let r = run(
+            Version::Fmi3,
+            &[&PROLOGUE3[..prologue], &calls[..]].concat(),
+        );
         prop_assert!(r.is_ok(), "{}", r.unwrap_err());
-    }
+        Ok(())
+    });
 }

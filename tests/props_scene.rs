@@ -19,7 +19,7 @@
 
 mod props_util;
 
-use props_util::{config, number};
+use props_util::number;
 use proptest::prelude::*;
 use proptest::sample::Index;
 use raceway::component::{schema, variables, Component};
@@ -251,62 +251,91 @@ fn build_and_step(text: &str) -> Result<Result<Vec<&'static str>, String>, Strin
     })())
 }
 
-proptest! {
-    #![proptest_config(config(96))]
-
-    #[test]
-    fn mutated_scenes_are_refused_by_field_or_build_and_step_finitely(
-        which in any::<Index>(),
-        mutations in proptest::collection::vec(mutation(), 1..4),
-        form in form(),
-    ) {
-        let all = scenes();
-        let (name, base) = &all[which.index(all.len())];
-        let mut t = base.clone();
-        for m in &mutations {
-            apply(&mut t, m);
-        }
-        let text = write(&t, &form);
-        let ctx = format!("scene {name}, mutated:\n{text}");
-
-        let problems = schema::check(&text);
-        let loaded = schema::load(&text, &[]);
-        // `--check` and `run` agree.
-        prop_assert_eq!(
-            problems.is_empty(),
-            loaded.is_ok(),
-            "check: {:?}\nload: {:?}\n{}", problems, loaded.as_ref().err(), ctx
-        );
-        if problems.is_empty() {
-            // The scene's own duration given on the command line (`run --duration`) does
-            // not change the verdict, nor the scene.
-            let own = loaded.as_ref().unwrap().run.duration_s;
-            let with = schema::load(&text, &[("run.duration_s", own)]);
-            prop_assert!(with.is_ok(), "refused with --duration {}: {:?}\n{}", own, with.err(), ctx);
-            // It builds (as `raceway_create` builds it) and steps finitely.
-            match build_and_step(&text) {
-                Err(e) => prop_assert!(false, "passes --check but does not build: {}\n{}", e, ctx),
-                Ok(Ok(bad)) => prop_assert!(bad.is_empty(), "non-finite outputs {:?}\n{}", bad, ctx),
-                Ok(Err(e)) => prop_assert!(
-                    clear(&e) && !e.contains("NaN") && !e.contains("= inf"),
-                    "unclear step refusal `{}`\n{}", e, ctx
-                ),
+#[test]
+fn mutated_scenes_are_refused_by_field_or_build_and_step_finitely() {
+    let strategy = (
+        any::<Index>(),
+        proptest::collection::vec(mutation(), 1..4),
+        form(),
+    );
+    props_util::check(
+        "scenes",
+        file!(),
+        512,
+        strategy,
+        |(which, mutations, form)| {
+            let all = scenes();
+            let (name, base) = &all[which.index(all.len())];
+            let mut t = base.clone();
+            for m in &mutations {
+                apply(&mut t, m);
             }
-        } else {
-            // A command-line override hides no problem of the file.
-            prop_assert!(schema::load(&text, &[("run.duration_s", 1e-3)]).is_err(), "{}", ctx);
-            // `raceway_create` (and the FMU's `scene` parameter) refuse it too.
-            prop_assert!(
-                Component::from_text(&text).is_err(),
-                "refused by --check, built by Component::from_text: {}\n{}", problems[0], ctx
+            let text = write(&t, &form);
+            let ctx = format!("scene {name}, mutated:\n{text}");
+
+            let problems = schema::check(&text);
+            let loaded = schema::load(&text, &[]);
+            // `--check` and `run` agree.
+            prop_assert_eq!(
+                problems.is_empty(),
+                loaded.is_ok(),
+                "check: {:?}\nload: {:?}\n{}",
+                problems,
+                loaded.as_ref().err(),
+                ctx
             );
-            for p in &problems {
+            if problems.is_empty() {
+                // The scene's own duration given on the command line (`run --duration`) does
+                // not change the verdict, nor the scene.
+                let own = loaded.as_ref().unwrap().run.duration_s;
+                let with = schema::load(&text, &[("run.duration_s", own)]);
                 prop_assert!(
-                    !p.path.is_empty() || p.line_col.is_some(),
-                    "problem names no field and no place: {}\n{}", p, ctx
+                    with.is_ok(),
+                    "refused with --duration {}: {:?}\n{}",
+                    own,
+                    with.err(),
+                    ctx
                 );
-                prop_assert!(clear(&p.message), "unclear problem `{}`\n{}", p, ctx);
+                // It builds (as `raceway_create` builds it) and steps finitely.
+                match build_and_step(&text) {
+                    Err(e) => {
+                        prop_assert!(false, "passes --check but does not build: {}\n{}", e, ctx)
+                    }
+                    Ok(Ok(bad)) => {
+                        prop_assert!(bad.is_empty(), "non-finite outputs {:?}\n{}", bad, ctx)
+                    }
+                    Ok(Err(e)) => prop_assert!(
+                        clear(&e) && !e.contains("NaN") && !e.contains("= inf"),
+                        "unclear step refusal `{}`\n{}",
+                        e,
+                        ctx
+                    ),
+                }
+            } else {
+                // A command-line override hides no problem of the file.
+                prop_assert!(
+                    schema::load(&text, &[("run.duration_s", 1e-3)]).is_err(),
+                    "{}",
+                    ctx
+                );
+                // `raceway_create` (and the FMU's `scene` parameter) refuse it too.
+                prop_assert!(
+                    Component::from_text(&text).is_err(),
+                    "refused by --check, built by Component::from_text: {}\n{}",
+                    problems[0],
+                    ctx
+                );
+                for p in &problems {
+                    prop_assert!(
+                        !p.path.is_empty() || p.line_col.is_some(),
+                        "problem names no field and no place: {}\n{}",
+                        p,
+                        ctx
+                    );
+                    prop_assert!(clear(&p.message), "unclear problem `{}`\n{}", p, ctx);
+                }
             }
-        }
-    }
+            Ok(())
+        },
+    );
 }

@@ -12,10 +12,42 @@
 #![allow(dead_code)]
 
 use proptest::prelude::*;
-use proptest::test_runner::{Config, FileFailurePersistence, RngSeed};
+use proptest::test_runner::{Config, FileFailurePersistence, RngSeed, TestCaseError, TestRunner};
 
 /// The fixed seed of CI runs.
 const CI_SEED: u64 = 0x5eed_2026_1124_0021;
+
+/// Run the property `test` over `strategy` with the configuration of [`config`] and print
+/// one line for `scripts/fuzz` (cases, thread CPU time, load average); on a failure,
+/// panic with proptest's report: the reason and the minimal (shrunk) failing input.
+/// `source` is the calling file (`file!()`), where a failure's seed is recorded.
+pub fn check<S>(
+    name: &str,
+    source: &'static str,
+    ci_cases: u32,
+    strategy: S,
+    test: impl Fn(S::Value) -> Result<(), TestCaseError>,
+) where
+    S: Strategy,
+    S::Value: std::fmt::Debug,
+{
+    let mut c = config(ci_cases);
+    c.source_file = Some(source);
+    let cases = c.cases;
+    let seed = c.rng_seed;
+    let mut runner = TestRunner::new(c);
+    let cpu0 = thread_cpu();
+    let result = runner.run(&strategy, test);
+    println!(
+        "props {name}: {cases} cases, seed {seed}, {:.1} s of thread CPU (load average {}): {}",
+        thread_cpu() - cpu0,
+        raceway::report::load_average(),
+        if result.is_ok() { "passed" } else { "FAILED" }
+    );
+    if let Err(e) = result {
+        panic!("{e}");
+    }
+}
 
 /// The configuration of a property test whose CI default is `ci_cases` cases.
 pub fn config(ci_cases: u32) -> Config {
