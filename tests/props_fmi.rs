@@ -571,3 +571,28 @@ fn fmi2_calls_in_any_order_follow_the_state_machine_and_refusals_change_nothing(
 fn fmi3_calls_in_any_order_follow_the_state_machine_and_refusals_change_nothing() {
     state_machine_property(Version::Fmi3, "FMI 3", &PROLOGUE3);
 }
+
+/// The shrunk case the property found, kept as a plain test: a NaN tolerance was kept in
+/// the FMU state, whose bytes then did not deserialise.
+#[test]
+fn found_a_nan_tolerance_is_refused_and_the_state_bytes_still_restore() {
+    for v in [Version::Fmi2, Version::Fmi3] {
+        let mut f = Fmu::new(v);
+        let before = f.bytes();
+        let (st, _) = unsafe { f.call(&Call::Setup(Some(f64::NAN), 0.0)) };
+        assert_eq!(st, Status::Error, "{v:?}");
+        let after = f.bytes();
+        assert_eq!(without_mode(&after), without_mode(&before), "{v:?}");
+        let mut s = null_mut();
+        let st = unsafe {
+            match v {
+                Version::Fmi2 => {
+                    fmi2DeSerializeFMUstate(f.c, after.as_ptr().cast(), after.len(), &mut s)
+                }
+                Version::Fmi3 => fmi3DeserializeFMUState(f.c, after.as_ptr(), after.len(), &mut s),
+            }
+        };
+        assert_eq!(st, Status::Ok, "{v:?}");
+        unsafe { f.free_state(s) };
+    }
+}

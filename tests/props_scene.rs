@@ -339,3 +339,34 @@ fn mutated_scenes_are_refused_by_field_or_build_and_step_finitely() {
         },
     );
 }
+
+/// The shrunk cases the property found, kept as plain tests.
+#[test]
+fn found_a_huge_contact_damping_is_refused_by_name_everywhere() {
+    let text = include_str!("../examples/scenes/6205-linear.toml").replace(
+        "contact_damping = 200.0",
+        "contact_damping = 1.7976931348623157e308",
+    );
+    let problems = schema::check(&text);
+    assert_eq!(problems.len(), 1, "{problems:?}");
+    assert_eq!(problems[0].path, "model.contact_damping");
+    assert!(problems[0].line_col.is_some());
+    let e = Component::from_text(&text)
+        .err()
+        .expect("refused")
+        .to_string();
+    assert!(e.contains("model.contact_damping"), "{e}");
+    // The upper end itself is accepted.
+    let text = text.replace("1.7976931348623157e308", "1e6");
+    assert!(schema::check(&text).is_empty());
+}
+
+#[test]
+fn found_a_serde_refusal_of_a_json_scene_has_its_line_and_column() {
+    let json = "{\n  \"bearing\": \"6012\",\n  \"model\": {\n    \"level\": \"skidding\",\n    \"skidding\": { \"traction\": { \"mu_max\": 0.05 } }\n  }\n}\n";
+    let problems = schema::check(json);
+    assert!(!problems.is_empty());
+    for p in &problems {
+        assert!(!p.path.is_empty() || p.line_col.is_some(), "{p}");
+    }
+}
