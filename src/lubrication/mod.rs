@@ -32,6 +32,7 @@
 //! from his thesis that this crate could not verify; the Reynolds squeeze film is a closed
 //! form that can be checked by hand.
 
+pub mod asperity;
 pub mod drag;
 pub mod guide_land;
 pub mod pocket;

@@ -1,0 +1,251 @@
+//! Asperity load share `La` (per cent of the contact load carried by the asperities) of a
+//! rough elliptical EHL contact: the one function the wear law (`crate::models::wear`) and
+//! the mixed-EHL traction law (`crate::contact::traction`) share.
+//!
+//! **Source and form.** Study \[2\] (Cao et al.) takes `La` from the point-contact
+//! regression of Masjedi & Khonsari (Tribol. Int. 82 (2015) 228–244; line-contact
+//! companion J. Tribol. 134 (2012) 011503), a function `f(kappa, W, U, G, sigma_bar, V)` of
+//! `W = Q/(E' Rx²)`, `U = eta0 u/(E' Rx)`, `G = alpha_p E'`, `sigma_bar = sigma/Rx`,
+//! `V = H/E'`. The paper's text was not reachable here (two searches of the stored pages,
+//! docs and code found only its abstract), so the form is the one study \[2\] prints as
+//! its eq. (8):
+//!
+//! `La = 10 W^-0.083 U^0.143 G^0.314 ln(1 + 0.689^(1/4) V^0.509 W^-0.501 U^-2.9 G^-2.87)`.
+//!
+//! **The garbled term.** `0.689^(1/4)` raises a constant to a power and carries no
+//! roughness, although `La` must depend on it (the paper's stated limit `La -> 0` for
+//! smooth surfaces). What is restored: the roughness factor `sigma_bar^s` inside the
+//! logarithm, `X = 0.689 sigma_bar^s V^0.509 W^-0.501 U^-2.9 G^-2.87`. The printed exponent
+//! `1/4` cannot be `s`: at study \[2\]'s own outer contact (6012, 500 N, 2000 rpm,
+//! `sigma = 0.2 um`) it gives `La ≈ 550 %`, an impossible share (see the test
+//! `printed_quarter_exponent_is_impossible`). The exponent used, [`SIGMA_EXPONENT`]
+//! `= 2.9/0.67 ≈ 4.33`, makes the roughness enter the logarithm through the same combination
+//! as the speed enters the film: the film thickness grows as `U^0.67` (Hamrock–Dowson,
+//! physics.md §6), so `U^-2.9` is `(h/Rx)^(-2.9/0.67)` and the film parameter
+//! `Lambda = h/sigma` appears as `Lambda^-4.33` — roughness and speed trade against each
+//! other as they do in `Lambda`. This is a reconstruction, not the paper: the alternative
+//! reading `s = 4` (the `4` of the printed `1/4`) is [`AsperityReading::Quartic`], and the
+//! study page (docs/study-wear.md) shows both side by side. Dimensions: every group is
+//! dimensionless, so any `s` is dimensionally admissible; the limits decide.
+//!
+//! **Range.** A regression holds inside its data. As `U -> 0` the printed form first
+//! rises and then falls again (the prefactor's `U^0.143` wins over the logarithm's
+//! `-2.9 ln U` beyond `X* ≈ exp(2.9/0.143)`, see [`x_turn`]). Past that turning point the
+//! regression is outside its data, and the share is continued from its value `La*` at the
+//! turning speed `U*` to the dry limit, `La = La* + (100 - La*)(1 - (U/U*)^0.143)` (the
+//! prefactor's own speed exponent; an extrapolation choice, named here), so `La -> 100`
+//! as the film vanishes. The share is capped at 100 %. `u = 0` (no entrainment, no film)
+//! is `La = 100` exactly; zero roughness is `La = 0` exactly.
+//! The result is continuous in all arguments and monotone: rising with roughness, falling
+//! with speed.
+
+/// Exponent of `sigma_bar` restored in the logarithm (`2.9/0.67`; module notes).
+pub const SIGMA_EXPONENT: f64 = 2.9 / 0.67;
+
+/// Which exponent of the roughness the restored form uses (module notes).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum AsperityReading {
+    /// `s = 2.9/0.67`: roughness and speed enter as they enter the film parameter.
+    #[default]
+    FilmParameter,
+    /// `s = 4`: the `4` of the printed `1/4`.
+    Quartic,
+}
+
+impl AsperityReading {
+    /// The roughness exponent `s`.
+    pub fn exponent(self) -> f64 {
+        match self {
+            AsperityReading::FilmParameter => SIGMA_EXPONENT,
+            AsperityReading::Quartic => 4.0,
+        }
+    }
+}
+
+/// Dimensionless groups of one contact (module notes), all `>= 0`.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Groups {
+    /// Ellipticity `a/b` (the printed form does not use it).
+    pub kappa: f64,
+    /// Load `Q/(E' Rx²)`.
+    pub w: f64,
+    /// Speed `eta0 u/(E' Rx)`.
+    pub u: f64,
+    /// Material `alpha_p E'`.
+    pub g: f64,
+    /// Roughness `sigma/Rx`.
+    pub sigma: f64,
+    /// Hardness `H/E'`.
+    pub v: f64,
+}
+
+impl Groups {
+    /// From SI data: load `q` N, entrainment speed `u` m/s, effective radius `rx` m,
+    /// modulus `e_eff` Pa, inlet viscosity `eta0` Pa s, pressure–viscosity `alpha_p` 1/Pa,
+    /// composite rms roughness `sigma` m, hardness `h` Pa, ellipticity `kappa`.
+    #[allow(clippy::too_many_arguments)]
+    pub fn new(
+        q: f64,
+        u: f64,
+        rx: f64,
+        e_eff: f64,
+        eta0: f64,
+        alpha_p: f64,
+        sigma: f64,
+        h: f64,
+        kappa: f64,
+    ) -> Self {
+        Groups {
+            kappa,
+            w: q / (e_eff * rx * rx),
+            u: eta0 * u.abs() / (e_eff * rx),
+            g: alpha_p * e_eff,
+            sigma: sigma / rx,
+            v: h / e_eff,
+        }
+    }
+}
+
+/// Exponent of `U` in the prefactor and in the logarithm.
+const A_U: f64 = 0.143;
+const B_U: f64 = 2.9;
+
+/// `X*`: the logarithm's argument where the printed form of `La` is largest as `U`
+/// falls, the root of `(1 + X) ln(1 + X) / X = 2.9/0.143` (module notes).
+pub fn x_turn() -> f64 {
+    // y = ln(1 + X): y e^y / (e^y - 1) = r; fixed point y = r (1 - e^-y), converging fast
+    // from y = r because e^-r is tiny.
+    let r = B_U / A_U;
+    let mut y = r;
+    for _ in 0..8 {
+        y = r * (1.0 - (-y).exp());
+    }
+    y.exp_m1()
+}
+
+/// Asperity load share `La`, per cent, in `[0, 100]` (module notes).
+pub fn asperity_share(g: &Groups, reading: AsperityReading) -> f64 {
+    if !(g.sigma > 0.0) {
+        return 0.0;
+    }
+    if !(g.u > 0.0) {
+        return 100.0;
+    }
+    // x1 = X U^2.9 (the speed-free part of the logarithm's argument).
+    let ln_x1 = (0.689f64).ln()
+        + reading.exponent() * g.sigma.ln()
+        + 0.509 * g.v.ln()
+        - 0.501 * g.w.ln()
+        - 2.87 * g.g.ln();
+    let ln_x = ln_x1 - B_U * g.u.ln();
+    let ln_xt = x_turn().ln();
+    // Past the turning point, the share at the turning speed, then blended to 100 %.
+    let (ln_x, ln_u, beyond) = if ln_x > ln_xt {
+        let ln_ut = (ln_x1 - ln_xt) / B_U;
+        (ln_xt, ln_ut, Some(g.u.ln() - ln_ut))
+    } else {
+        (ln_x, g.u.ln(), None)
+    };
+    let log_term = if ln_x > 30.0 {
+        ln_x
+    } else {
+        ln_x.exp().ln_1p()
+    };
+    let la = 10.0 * (-0.083 * g.w.ln() + A_U * ln_u + 0.314 * g.g.ln()).exp() * log_term;
+    if la.is_nan() {
+        return 100.0;
+    }
+    let la = la.clamp(0.0, 100.0);
+    match beyond {
+        // (U/U*)^0.143 falls from 1 at the turning point to 0 with the film.
+        Some(ln_ratio) => la + (100.0 - la) * (1.0 - (A_U * ln_ratio).exp()),
+        None => la,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Study [2]'s outer contact: 6012 (D 10.45 mm, dm 77.6 mm), a ball load near the
+    /// peak of 500 N radial, 2000 rpm, its oil (physics.md §10), steel E' = 2.28e11 Pa.
+    fn study(sigma: f64) -> Groups {
+        let (d, dm) = (10.45e-3, 77.6e-3);
+        let gamma = d / dm;
+        let rx = 0.5 * d * (1.0 + gamma);
+        let omega = 2000.0 * std::f64::consts::PI / 30.0;
+        let u = 0.25 * dm * omega * (1.0 - gamma * gamma);
+        Groups::new(180.0, u, rx, 2.28e11, 0.04667, 2.1e-8, sigma, 2.39e9, 8.0)
+    }
+
+    #[test]
+    fn smooth_and_filmless_limits() {
+        let g = study(0.2e-6);
+        let la = asperity_share(&g, AsperityReading::default());
+        assert!(la > 0.0 && la < 100.0, "{la}");
+        // Smooth surfaces: La -> 0 (exactly 0 at sigma = 0).
+        let smooth = Groups { sigma: 1e-9, ..g };
+        assert!(asperity_share(&smooth, AsperityReading::default()) < 1e-9);
+        assert_eq!(asperity_share(&Groups { sigma: 0.0, ..g }, AsperityReading::default()), 0.0);
+        // Film vanishing (U -> 0): La -> 100 (exactly 100 at U = 0).
+        for (f, min) in [(1e-3, 95.0), (1e-6, 99.0), (1e-30, 99.999)] {
+            let thin = Groups { u: g.u * f, ..g };
+            let l = asperity_share(&thin, AsperityReading::default());
+            assert!(l >= min, "{f}: {l}");
+        }
+        for s in [0.2e-6, 0.42e-6] {
+            for r in [AsperityReading::FilmParameter, AsperityReading::Quartic] {
+                eprintln!("sigma {s:e} {r:?}: La {}", asperity_share(&study(s), r));
+            }
+        }
+        assert_eq!(asperity_share(&Groups { u: 0.0, ..g }, AsperityReading::default()), 100.0);
+        // Very rough surfaces: the asperities carry everything.
+        let rough = Groups { sigma: g.sigma * 100.0, ..g };
+        assert_eq!(asperity_share(&rough, AsperityReading::default()), 100.0);
+    }
+
+    /// Monotone: rising with roughness, falling with speed, continuous across the
+    /// turning point (both readings).
+    #[test]
+    fn monotone_in_roughness_and_speed() {
+        for reading in [AsperityReading::FilmParameter, AsperityReading::Quartic] {
+            let g = study(0.2e-6);
+            let mut prev = 0.0;
+            for k in 0..400 {
+                let s = g.sigma * 10f64.powf(-2.0 + 4.0 * k as f64 / 400.0);
+                let l = asperity_share(&Groups { sigma: s, ..g }, reading);
+                assert!(l >= prev, "{reading:?} sigma {s:e}: {l} < {prev}");
+                prev = l;
+            }
+            let mut prev = 100.0;
+            for k in 0..800 {
+                let u = g.u * 10f64.powf(-12.0 + 14.0 * k as f64 / 800.0);
+                let l = asperity_share(&Groups { u, ..g }, reading);
+                assert!(l <= prev + 1e-12, "{reading:?} U {u:e}: {l} > {prev}");
+                assert!((prev - l) < 5.0, "{reading:?} continuous: {prev} -> {l}");
+                prev = l;
+            }
+        }
+    }
+
+    /// The turning point solves its equation, and the printed form is flat there.
+    #[test]
+    fn turning_point() {
+        let x = x_turn();
+        let r = B_U / A_U;
+        assert!(((1.0 + x) * x.ln_1p() / x - r).abs() < 1e-9 * r);
+    }
+
+    /// The printed exponent 1/4 on the roughness gives an impossible share (> 100 %) at
+    /// study [2]'s own operating point: it cannot be the lost roughness exponent.
+    #[test]
+    fn printed_quarter_exponent_is_impossible() {
+        let g = study(0.2e-6);
+        let ln_x = 0.689f64.ln() + 0.25 * g.sigma.ln() + 0.509 * g.v.ln()
+            - 0.501 * g.w.ln()
+            - 2.9 * g.u.ln()
+            - 2.87 * g.g.ln();
+        let la = 10.0 * g.w.powf(-0.083) * g.u.powf(0.143) * g.g.powf(0.314) * ln_x;
+        assert!(la > 300.0, "{la}");
+    }
+}
