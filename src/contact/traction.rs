@@ -14,24 +14,31 @@
 //!   odd-extended: `mu(s) = tanh(s / s_reg) [(A + B|s|) exp(-C|s|) + D]`, so it passes
 //!   through 0 continuously even when `A + D != 0`. `s` uses a regularised rolling speed
 //!   `sqrt(u² + u_min²)` so it stays finite at rest.
-//! - **Mixed EHL** (study \[2\], after Masjedi & Khonsari): the load is shared between the
-//!   asperities (`La` per cent) and the film. Asperity share
+//! - **Mixed EHL** (study \[2\]'s eq. (7), after Masjedi & Khonsari): the load is shared
+//!   between the asperities (`La` per cent) and the film. Asperity share
 //!   `f_a = f_c Q (La/100) tanh(dv/v_s)` (boundary friction coefficient `f_c`, made
 //!   continuous); film share `f_f = Lambda_lim p_h (1 - exp(-eta |dv| / (Lambda_lim p_h h_c)))
 //!   pi a b sign(dv)` (a limiting-shear-stress Newtonian film: the shear stress
 //!   `eta dv / h_c` saturating at `Lambda_lim p_h`; Bair & Winer's limiting-shear model),
 //!   with `p_h = (1 - La/100) Q / (pi a b)` the film's share of the mean pressure, `h_c` the
-//!   Hamrock–Dowson central film thickness (physics.md §6) and `eta` the Barus
-//!   pressure-corrected viscosity at `p_h` (Hamrock & Dowson, *Ball Bearing Lubrication*,
-//!   ch. 4). The asperity load ratio is the regression of Masjedi & Khonsari (Tribology
-//!   International 82 (2015) 228–244, point contact), a power law
-//!   `La = C kappa^e_k W^e_w U^e_u G^e_g (sigma/Rx)^e_s V^e_v` (`V = H/E'` the hardness
-//!   ratio), saturated smoothly at 100 %: `La = 100 (1 - exp(-La_fit / 100))`. Its
-//!   coefficients are fields of [`AsperityFit`]; the defaults are **not verified against
-//!   the paper** (its text was not reachable when this was written) and should be checked
-//!   before quantitative use. The limits hold for any positive exponents of roughness and
-//!   negative exponent of speed: smooth surfaces give `La -> 0`; no film (`U -> 0`) gives
-//!   `La -> 100`.
+//!   Hamrock–Dowson central film thickness (physics.md §6). `La` is the one asperity-share
+//!   function of the crate, [`crate::lubrication::asperity`] (study \[2\]'s eq. (8), its
+//!   roughness term restored; the user-set power law [`AsperityFit`] remains only as an
+//!   override, `fit = {...}` in the scene). The viscosity `eta` is corrected for pressure
+//!   (Barus, at `p_h`, exponent capped at 50) and for the flash temperature
+//!   (`eta = eta0 exp(alpha_p p_h - beta dT)`, `beta` the viscosity–temperature
+//!   coefficient, 0.04 /K for study \[2\]'s oil):
+//!   `dT = 2 b (q_a + q_h) / (sqrt(pi) [k1 sqrt(1 + Pe1) + k2 sqrt(1 + Pe2)])`, study \[2\]'s
+//!   form with `k1 = 60.5` and `k2 = 0.145 W/(m K)`, `q_a + q_h = (f_a + f_f) |dv| / (pi a b)`
+//!   the frictional heat flux of both shares, and the Péclet numbers `Pe = |u| b / (2 chi)`
+//!   of the surfaces moving at the rolling speed `u` through the contact half-width `b`.
+//!   The study does not give the diffusivities `chi`; `k1 = 60.5` and `k2 = 0.145` are
+//!   Incropera & DeWitt's plain carbon steel and engine oil at 300 K (*Fundamentals of
+//!   Heat and Mass Transfer*, Tables A.1 and A.5), whose diffusivities are
+//!   `chi1 = 17.7e-6` and `chi2 = 0.0859e-6 m²/s` — used here ([`FlashTemperature`]). The
+//!   temperature and the friction depend on each other: `dT = r (f_a + f_f(dT))` is solved
+//!   by Newton's method (one root, as `f_f` falls with `dT`), so the law stays a
+//!   continuous function of the slip.
 
 use crate::component::fields::{choice, closed, ge, gt, number, table, ANY};
 use crate::component::limits::SLIP_SPEED_MIN;
@@ -70,7 +77,9 @@ pub struct ContactState {
     pub e_eff: f64,
 }
 
-/// Regression coefficients of the asperity load ratio (per cent).
+/// A user-set power law of the asperity load ratio (per cent), an override of
+/// [`crate::lubrication::asperity`]: `La = 100 (1 - exp(-La_fit/100))`,
+/// `La_fit = c kappa^e_kappa W^e_w U^e_u G^e_g (sigma/Rx)^e_sigma V^e_v`.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct AsperityFit {
@@ -92,7 +101,7 @@ pub struct AsperityFit {
 
 impl Default for AsperityFit {
     fn default() -> Self {
-        // Unverified defaults of the published form (see the module docs).
+        // The coefficients this law carried before the shared function; not from a source.
         AsperityFit {
             c: 0.0871,
             e_kappa: 0.0,
@@ -103,6 +112,59 @@ impl Default for AsperityFit {
             e_v: 0.0,
         }
     }
+}
+
+/// Flash-temperature data of the mixed-EHL law (module notes; study \[2\] and Incropera).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FlashTemperature {
+    /// Conductivity of body 1 (steel), W/(m K).
+    pub k1: f64,
+    /// Conductivity of body 2 (oil, as study \[2\] gives it), W/(m K).
+    pub k2: f64,
+    /// Diffusivity of body 1, m²/s.
+    pub chi1: f64,
+    /// Diffusivity of body 2, m²/s.
+    pub chi2: f64,
+    /// Viscosity–temperature coefficient `beta`, 1/K.
+    pub beta: f64,
+}
+
+impl Default for FlashTemperature {
+    fn default() -> Self {
+        FlashTemperature {
+            k1: 60.5,
+            k2: 0.145,
+            chi1: 17.7e-6,
+            chi2: 0.0859e-6,
+            beta: 0.04,
+        }
+    }
+}
+
+impl FlashTemperature {
+    /// `dT` of a contact of half-width `b` (along rolling) rolling at `u` under the heat
+    /// flux `q` (W/m²), K.
+    #[inline]
+    pub fn rise(&self, q: f64, b: f64, u: f64) -> f64 {
+        let (pe1, pe2) = (
+            u.abs() * b / (2.0 * self.chi1),
+            u.abs() * b / (2.0 * self.chi2),
+        );
+        2.0 * b * q / (PI.sqrt() * (self.k1 * (1.0 + pe1).sqrt() + self.k2 * (1.0 + pe2).sqrt()))
+    }
+}
+
+/// What the mixed-EHL law gives at one contact.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct MixedEhlOut {
+    /// Tangential force, N.
+    pub force: f64,
+    /// Asperity load share, per cent.
+    pub la: f64,
+    /// Flash temperature rise, K.
+    pub flash: f64,
+    /// Central film thickness, m.
+    pub h_c: f64,
 }
 
 /// Lubricant and surface data of the mixed-EHL law.
@@ -123,8 +185,14 @@ pub struct MixedEhl {
     pub hardness: f64,
     /// Regularising slip speed of the asperity share, m/s.
     pub v_s: f64,
-    /// Regression of the asperity load ratio.
-    pub fit: AsperityFit,
+    /// Override of the asperity load ratio (absent: [`crate::lubrication::asperity`]).
+    pub fit: Option<AsperityFit>,
+    /// Reading of the asperity share's restored roughness term (Rust API only).
+    #[serde(skip)]
+    pub reading: crate::lubrication::asperity::AsperityReading,
+    /// Flash-temperature data (Rust API only; study \[2\]'s values).
+    #[serde(skip)]
+    pub flash: FlashTemperature,
 }
 
 impl Default for MixedEhl {
@@ -139,7 +207,9 @@ impl Default for MixedEhl {
             roughness: (0.2e-6_f64.powi(2) + 0.42e-6_f64.powi(2)).sqrt(),
             hardness: 2.39e9,
             v_s: 0.01,
-            fit: AsperityFit::default(),
+            fit: None,
+            reading: Default::default(),
+            flash: FlashTemperature::default(),
         }
     }
 }
@@ -165,8 +235,23 @@ impl MixedEhl {
         (uu, g, w)
     }
 
-    /// Asperity load ratio `La`, per cent, in `[0, 100]`.
+    /// Asperity load ratio `La`, per cent, in `[0, 100]`: the shared function, or the
+    /// override `fit`.
     pub fn asperity_load_ratio(&self, c: &ContactState, u: f64) -> f64 {
+        let Some(f) = &self.fit else {
+            let g = crate::lubrication::asperity::Groups::new(
+                c.q,
+                u,
+                c.rx,
+                c.e_eff,
+                self.viscosity,
+                self.alpha_p,
+                self.roughness,
+                self.hardness,
+                c.kappa,
+            );
+            return crate::lubrication::asperity::asperity_share(&g, self.reading);
+        };
         let (uu, g, w) = self.groups(c, u);
         if self.roughness <= 0.0 {
             return 0.0;
@@ -174,7 +259,6 @@ impl MixedEhl {
         if uu <= 0.0 {
             return 100.0;
         }
-        let f = &self.fit;
         let la = f.c
             * c.kappa.max(1.0).powf(f.e_kappa)
             * w.max(1e-30).powf(f.e_w)
@@ -186,6 +270,63 @@ impl MixedEhl {
             return 100.0;
         }
         100.0 * (1.0 - (-la / 100.0).exp())
+    }
+
+    /// Force, asperity share, flash temperature and film of one contact at slip `dv` and
+    /// rolling speed `u` (module notes). Odd in `dv`.
+    pub fn evaluate(&self, dv: f64, u: f64, c: &ContactState) -> MixedEhlOut {
+        if c.q <= 0.0 {
+            return MixedEhlOut::default();
+        }
+        let la = self.asperity_load_ratio(c, u);
+        let fa = self.f_c * c.q * la / 100.0 * tanh(dv / self.v_s);
+        let area = PI * c.a * c.b;
+        let h_c = self.film_thickness(c, u);
+        let ph = (1.0 - la / 100.0) * c.q / area;
+        let film = area > 0.0 && ph > 0.0 && h_c > 0.0;
+        let tau_l = self.lambda_lim * ph;
+        let barus = (self.alpha_p * ph).min(50.0);
+        // Film share at flash temperature dt and its derivative, magnitudes:
+        // ff = tau_l A (1 - exp(-k e^(-beta dt))), k = eta(0) |dv| / (tau_l h_c).
+        let k = if film {
+            self.viscosity * barus.exp() * dv.abs() / (tau_l * h_c)
+        } else {
+            0.0
+        };
+        let beta = self.flash.beta;
+        let film_force = |dt: f64| {
+            if !film {
+                return (0.0, 0.0);
+            }
+            let z = k * (-beta * dt).exp();
+            let e = (-z).exp();
+            (tau_l * area * -(-z).exp_m1(), -tau_l * area * e * z * beta)
+        };
+        // dT = r (|f_a| + f_f(dT)), r the rise per newton of friction.
+        let r = if area > 0.0 {
+            self.flash.rise(dv.abs() / area, c.b, u)
+        } else {
+            0.0
+        };
+        // g(dT) = dT - r (|f_a| + f_f(dT)) rises with slope >= 1 (f_f falls with dT): one
+        // root, solved to 1e-9 K; converged, the law is continuous in the slip.
+        let mut flash = 0.0;
+        for _ in 0..50 {
+            let (f, df) = film_force(flash);
+            let g = flash - r * (fa.abs() + f);
+            let step = g / (1.0 - r * df);
+            flash = (flash - step).max(0.0);
+            if step.abs() <= 1e-9 * (1.0 + flash) {
+                break;
+            }
+        }
+        let ff = film_force(flash).0;
+        MixedEhlOut {
+            force: fa + ff.copysign(dv),
+            la,
+            flash,
+            h_c,
+        }
     }
 }
 
@@ -308,23 +449,7 @@ impl TractionLaw {
                 let sa = s.abs();
                 (s / s_reg).tanh() * ((a + b * sa) * (-cc * sa).exp() + d) * c.q
             }
-            TractionLaw::MixedEhl(m) => {
-                let la = m.asperity_load_ratio(c, u);
-                let fa = m.f_c * c.q * la / 100.0 * (dv / m.v_s).tanh();
-                let area = PI * c.a * c.b;
-                if area <= 0.0 {
-                    return fa;
-                }
-                let ph = (1.0 - la / 100.0) * c.q / area;
-                let hc = m.film_thickness(c, u);
-                if ph <= 0.0 || hc <= 0.0 {
-                    return fa;
-                }
-                let eta = m.viscosity * (m.alpha_p * ph).min(50.0).exp();
-                let tau_l = m.lambda_lim * ph;
-                let ff = tau_l * (1.0 - (-eta * dv.abs() / (tau_l * hc)).exp()) * area;
-                fa + ff.copysign(dv)
-            }
+            TractionLaw::MixedEhl(m) => m.evaluate(dv, u, c).force,
         }
     }
 }
@@ -433,5 +558,68 @@ mod tests {
         };
         let f = TractionLaw::MixedEhl(m).force(50.0, 5.0, &c);
         assert!((f / c.q - m.lambda_lim).abs() < 1e-3, "{}", f / c.q);
+    }
+
+    /// The flash temperature: zero without slip, the stationary-source limit
+    /// `2 b q / (sqrt(pi) (k1 + k2))` at zero Péclet number, falling with rolling speed;
+    /// a hotter film carries less shear below the limiting stress.
+    #[test]
+    fn flash_temperature_limits() {
+        let f = FlashTemperature::default();
+        let (q, b) = (1e8, 0.15e-3);
+        let still = f.rise(q, b, 0.0);
+        let want = 2.0 * b * q / (PI.sqrt() * (f.k1 + f.k2));
+        assert!((still - want).abs() < 1e-12 * want);
+        assert!(f.rise(q, b, 5.0) < still);
+        let c = contact();
+        let m = MixedEhl {
+            roughness: 0.0,
+            ..MixedEhl::default()
+        };
+        assert_eq!(m.evaluate(0.0, 5.0, &c).flash, 0.0);
+        let hot = m.evaluate(0.05, 5.0, &c);
+        let cold = MixedEhl {
+            flash: FlashTemperature {
+                beta: 0.0,
+                ..FlashTemperature::default()
+            },
+            ..m
+        }
+        .evaluate(0.05, 5.0, &c);
+        assert!(
+            hot.flash > 0.0 && hot.force < cold.force,
+            "{hot:?} {cold:?}"
+        );
+    }
+
+    /// The user-set power law still overrides the shared function.
+    #[test]
+    fn fit_overrides_the_shared_share() {
+        let c = contact();
+        let shared = MixedEhl::default();
+        let over = MixedEhl {
+            fit: Some(AsperityFit::default()),
+            ..shared
+        };
+        let (a, b) = (
+            shared.asperity_load_ratio(&c, 5.0),
+            over.asperity_load_ratio(&c, 5.0),
+        );
+        assert!(a != b && a > 0.0 && b > 0.0, "{a} {b}");
+        let g = crate::lubrication::asperity::Groups::new(
+            c.q,
+            5.0,
+            c.rx,
+            c.e_eff,
+            shared.viscosity,
+            shared.alpha_p,
+            shared.roughness,
+            shared.hardness,
+            c.kappa,
+        );
+        assert_eq!(
+            a,
+            crate::lubrication::asperity::asperity_share(&g, shared.reading)
+        );
     }
 }

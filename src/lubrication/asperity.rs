@@ -132,9 +132,7 @@ pub fn asperity_share(g: &Groups, reading: AsperityReading) -> f64 {
         return 100.0;
     }
     // x1 = X U^2.9 (the speed-free part of the logarithm's argument).
-    let ln_x1 = (0.689f64).ln()
-        + reading.exponent() * g.sigma.ln()
-        + 0.509 * g.v.ln()
+    let ln_x1 = (0.689f64).ln() + reading.exponent() * g.sigma.ln() + 0.509 * g.v.ln()
         - 0.501 * g.w.ln()
         - 2.87 * g.g.ln();
     let ln_x = ln_x1 - B_U * g.u.ln();
@@ -186,7 +184,10 @@ mod tests {
         // Smooth surfaces: La -> 0 (exactly 0 at sigma = 0).
         let smooth = Groups { sigma: 1e-9, ..g };
         assert!(asperity_share(&smooth, AsperityReading::default()) < 1e-9);
-        assert_eq!(asperity_share(&Groups { sigma: 0.0, ..g }, AsperityReading::default()), 0.0);
+        assert_eq!(
+            asperity_share(&Groups { sigma: 0.0, ..g }, AsperityReading::default()),
+            0.0
+        );
         // Film vanishing (U -> 0): La -> 100 (exactly 100 at U = 0).
         for (f, min) in [(1e-3, 95.0), (1e-6, 99.0), (1e-30, 99.999)] {
             let thin = Groups { u: g.u * f, ..g };
@@ -198,9 +199,15 @@ mod tests {
                 eprintln!("sigma {s:e} {r:?}: La {}", asperity_share(&study(s), r));
             }
         }
-        assert_eq!(asperity_share(&Groups { u: 0.0, ..g }, AsperityReading::default()), 100.0);
+        assert_eq!(
+            asperity_share(&Groups { u: 0.0, ..g }, AsperityReading::default()),
+            100.0
+        );
         // Very rough surfaces: the asperities carry everything.
-        let rough = Groups { sigma: g.sigma * 100.0, ..g };
+        let rough = Groups {
+            sigma: g.sigma * 100.0,
+            ..g
+        };
         assert_eq!(asperity_share(&rough, AsperityReading::default()), 100.0);
     }
 
