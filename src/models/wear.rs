@@ -9,14 +9,11 @@
 //! - `psi = 1 - exp(-(a_x / (u_s t0)) exp(-Ea / (Rg Ts)))`, the film-defect fraction of
 //!   Stolarski's adsorption model as study \[2\] uses it (`a_x = 3e-12 m`, `t0 = 3e-12 s`,
 //!   `Ea = 49 kJ/mol`, `Rg = 8.31 J/(mol K)`).
-//! - `La` the asperity load share in percent. Study \[2\] takes it from the Masjedi–Khonsari
-//!   regression (Tribol. Int. 82 (2015) 228–244); its coefficients could not be verified
-//!   here, so `La` is the Greenwood–Tripp estimate [`asperity_share`]: the asperity pressure
-//!   at the film's separation relative to touching surfaces, `F_5/2(Lambda)/F_5/2(0)` with
-//!   the usual curve fit `F_5/2(H) ∝ (4 - H)^6.804` for `H < 4` (Greenwood & Tripp,
-//!   Proc. IMechE 185 (1970); fit as in Patir & Cheng's mixed-lubrication work). It gives
-//!   100 % with no film (`Lambda = 0`) and 0 for `Lambda >= 4` (smooth surfaces).
-//!   The dry limit is `La = 100`, `psi = 1`.
+//! - `La` the asperity load share in percent: the crate's one asperity-share function,
+//!   [`crate::lubrication::asperity`] (study \[2\]'s eq. (8), Masjedi & Khonsari's
+//!   point-contact regression, its lost roughness term restored as documented there),
+//!   from the contact's load, rolling speed, radius, modulus, the oil, the composite
+//!   roughness and the hardness `Hv`. The dry limit is `La = 100`, `psi = 1`.
 //!
 //! Per ball contact the map receives a wear *area* rate (depth times race length per unit
 //! time): a race point under the contact centre line sees `int p dt = (int p dx) / v_pass`
@@ -34,11 +31,15 @@
 //! `s0 - s0³/3 = 1/3`, i.e. `s0 = 2 cos 80° = 0.3473`. The wear uses the line-load-weighted
 //! mean slip `u_s = omega_rel a² m / (2 R_c)`, `m = int |s² - s0²| (1 - s²) ds / (4/3)`.
 //! `omega_rel` is the ball's rotation relative to the race (`|omega_b| - omega_c` at the
-//! outer race, `|omega_b| + omega - omega_c` at the inner). A skidding level's slip can
-//! replace this function.
+//! outer race, `|omega_b| + omega - omega_c` at the inner). **This is the ring level's
+//! kinematic-slip estimate**: the ring level has massless balls at the kinematic cage
+//! speed, so it has no skidding slip of its own. The skidding level's wear
+//! ([`crate::models::wear_map`]) uses the per-ball slip speeds of the dynamics instead, as
+//! study \[2\] does.
 
 use crate::contact::PointContact;
-use crate::lubrication::{central_film, Lubricant};
+use crate::lubrication::asperity::{self, AsperityReading, Groups};
+use crate::lubrication::Lubricant;
 
 /// Universal gas constant used by study \[2\], J/(mol K).
 pub const RG: f64 = 8.31;
@@ -95,18 +96,6 @@ pub fn heathcote_slip(omega_rel: f64, a: f64, f: f64, d: f64, m: f64) -> f64 {
     omega_rel.abs() * a * a * m / (2.0 * rc)
 }
 
-/// Greenwood–Tripp asperity load share, percent, at film parameter `lambda` (module notes).
-#[inline]
-pub fn asperity_share(lambda: f64) -> f64 {
-    if lambda.is_nan() || lambda <= 0.0 {
-        100.0
-    } else if lambda >= 4.0 {
-        0.0
-    } else {
-        100.0 * ((4.0 - lambda) / 4.0).powf(6.804)
-    }
-}
-
 /// Film-defect fraction `psi` (study \[2\]); 1 at zero sliding.
 #[inline]
 pub fn film_defect_fraction(us: f64, ax: f64, t0: f64, ea: f64, ts: f64) -> f64 {
@@ -126,20 +115,40 @@ impl WearLaw {
     }
 
     /// `(La, psi)` of a contact carrying `q` with entrainment speed `u`, sliding `us`,
-    /// surface temperature `ts`.
+    /// surface temperature `ts` (the asperity share's default reading).
     #[inline]
     pub fn factors(&self, c: &PointContact, q: f64, u: f64, us: f64, ts: f64) -> (f64, f64) {
+        self.factors_read(c, q, u, us, ts, AsperityReading::default())
+    }
+
+    /// [`Self::factors`] with a chosen reading of the asperity share's roughness term.
+    #[inline]
+    pub fn factors_read(
+        &self,
+        c: &PointContact,
+        q: f64,
+        u: f64,
+        us: f64,
+        ts: f64,
+        reading: AsperityReading,
+    ) -> (f64, f64) {
         match &self.film {
             None => (100.0, 1.0),
             Some(f) => {
-                let h = central_film(&f.lubricant, c, u, q);
-                let lambda = if f.lubricant.roughness > 0.0 {
-                    h / f.lubricant.roughness
-                } else {
-                    f64::INFINITY
-                };
+                let l = &f.lubricant;
+                let g = Groups::new(
+                    q,
+                    u,
+                    c.curvature.rx,
+                    c.e_eff,
+                    l.viscosity,
+                    l.pressure_viscosity,
+                    l.roughness,
+                    self.hardness,
+                    c.ellipse.kappa,
+                );
                 (
-                    asperity_share(lambda),
+                    asperity::asperity_share(&g, reading),
                     film_defect_fraction(us, f.ax, f.t0, f.ea, ts),
                 )
             }
@@ -237,12 +246,42 @@ mod tests {
 
     #[test]
     fn limits_of_the_factors() {
-        assert_eq!(asperity_share(0.0), 100.0);
-        assert_eq!(asperity_share(5.0), 0.0);
-        assert!(asperity_share(1.0) > asperity_share(2.0));
         assert_eq!(film_defect_fraction(0.0, 3e-12, 3e-12, 49e3, 293.15), 1.0);
         let p = film_defect_fraction(0.02, 3e-12, 3e-12, 49e3, 293.15);
         assert!(p > 0.0 && p < 1e-6, "{p}");
+    }
+
+    /// Dry is the limit La = 100, psi = 1; lubricated, La is the shared function and
+    /// rises with the roughness.
+    #[test]
+    fn factors_dry_and_lubricated() {
+        use crate::contact::{Curvature, Race};
+        let c = PointContact::new(
+            Curvature::ball_race(10.45e-3, 77.6e-3, 0.0, 0.52, Race::Outer),
+            2.28e11,
+        );
+        let law = |sigma: f64| WearLaw {
+            k: 5e-4,
+            hardness: 2.39e9,
+            film: Some(FilmDefect {
+                lubricant: Lubricant {
+                    roughness: sigma,
+                    ..Lubricant::study2()
+                },
+                ax: 3e-12,
+                t0: 3e-12,
+                ea: 49e3,
+            }),
+            surface_temperature: 293.15,
+        };
+        let dry = WearLaw {
+            film: None,
+            ..law(0.2e-6)
+        };
+        assert_eq!(dry.factors(&c, 180.0, 4.0, 0.01, 293.15), (100.0, 1.0));
+        let (l1, _) = law(0.2e-6).factors(&c, 180.0, 4.0, 0.01, 293.15);
+        let (l2, _) = law(0.42e-6).factors(&c, 180.0, 4.0, 0.01, 293.15);
+        assert!(0.0 < l1 && l1 < l2 && l2 < 100.0, "{l1} {l2}");
     }
 
     #[test]

@@ -5,7 +5,10 @@
 //! Slow state (only when the scene turns wear or thermal on; see [`SlowLayout`]):
 //! - continuous states after the cage (and shaft) angle: the wear depth accumulated since
 //!   the start on each cell of the outer-race map, then of the inner-race map (m), rates
-//!   from `crate::models::wear` integrated with the dynamics;
+//!   from `crate::models::wear` integrated with the dynamics. The sliding speed is a
+//!   **kinematic-slip estimate** (Heathcote slip at the kinematic cage speed: massless
+//!   balls do not skid); the skidding level's wear (`crate::models::wear_map`) uses the
+//!   dynamics' own slip;
 //! - memory (`aux`): the wear maps that act on the clearance (outer, inner), the
 //!   accumulated depth at the start of the current window (outer, inner), the window's
 //!   start in shaft revolutions and the cycles done; then the thermal block: the four node
