@@ -142,7 +142,9 @@ fn rougher_races_wear_faster_and_the_dry_limit_much_faster() {
     ));
     println!("max depth: Ra 0.2 {smooth:.3e}, Ra 0.42 {rough:.3e}, dry {dry:.3e} m");
     assert!(smooth > 0.0);
-    assert!(rough > 10.0 * smooth, "rough {rough} vs smooth {smooth}");
+    // Same slip and film-defect fraction: the ratio is the asperity shares' ratio, about
+    // 5.5 at the study's contact with the restored eq. (8) (lubrication::asperity).
+    assert!(rough > 2.0 * smooth, "rough {rough} vs smooth {smooth}");
     assert!(dry > 1e6 * rough, "dry {dry} vs lubricated {rough}");
 }
 
