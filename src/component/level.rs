@@ -65,6 +65,11 @@ pub trait LevelModel: Send + std::fmt::Debug {
     fn n_aux(&self) -> usize {
         0
     }
+    /// The skidding level itself (its per-ball contacts and outer-race wear profile feed
+    /// the wear cycles); `None` (default) for the other levels.
+    fn as_skidding_mut(&mut self) -> Option<&mut super::levels::SkiddingLevel> {
+        None
+    }
     /// The level's own ball loads at its last evaluation, `(azimuth rad, inner N, outer
     /// N)` per ball, when it resolves the balls itself; `None` (default) otherwise.
     fn ball_loads(&self) -> Option<Vec<(f64, f64, f64)>> {

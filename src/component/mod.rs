@@ -551,6 +551,12 @@ impl Component {
     pub fn ball_loads(&self) -> Option<Vec<(f64, f64, f64)>> {
         self.level.ball_loads()
     }
+    /// The skidding level (its per-ball contacts and outer-race wear profile, for
+    /// `crate::wear_cycles`); `None` for the other levels. Changing the profile makes the
+    /// outputs stale.
+    pub fn skidding_mut(&mut self) -> Option<&mut levels::SkiddingLevel> {
+        self.level.as_skidding_mut()
+    }
     /// The causality.
     pub fn causality(&self) -> Causality {
         self.scene.model.causality

@@ -9,3 +9,4 @@ pub mod skidding;
 pub mod thermal;
 pub mod waviness;
 pub mod wear;
+pub mod wear_map;

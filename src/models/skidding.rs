@@ -156,6 +156,10 @@ pub struct SkiddingParams {
     /// Give each ball radial mass: its position along the contact line (the outer
     /// approach `u`) and `u'` become states instead of the quasi-static split.
     pub ball_radial_mass: bool,
+    /// Worn depth of the outer race per cell (cell `k` centred at azimuth `2 pi k / n`), m;
+    /// empty: unworn. It widens the clearance under a ball at `psi` by the interpolated
+    /// depth (`crate::models::wear_map`; its `d/dpsi` is left out of the Jacobian).
+    pub outer_wear: Vec<f64>,
 }
 
 impl Default for SkiddingParams {
@@ -182,6 +186,7 @@ impl Default for SkiddingParams {
             gyro_traction: s.gyro_traction,
             spin_friction: s.spin_friction,
             ball_radial_mass: s.ball_radial_mass,
+            outer_wear: Vec::new(),
         }
     }
 }
@@ -642,7 +647,11 @@ impl SkiddingModel {
             c,
             n,
             l,
-            delta: l - self.a,
+            delta: if self.p.outer_wear.is_empty() {
+                l - self.a
+            } else {
+                l - self.a - crate::models::wear::sample(&self.p.outer_wear, psi)
+            },
             g: [
                 n[1] * c,
                 n[1] * s,
@@ -1385,6 +1394,15 @@ impl SkiddingModel {
                 jm[(ic + 1) * 10 + col] += (0..3).map(|kp| dcage[kp] * chain[kp]).sum::<f64>() / jc;
             }
         }
+    }
+
+    /// Ball `j`'s outer-race contact at the last evaluation: the contact data of the
+    /// traction law, the slip `dv_o` and the rolling speed `u_o` (m/s).
+    pub fn outer_contact(&self, j: usize) -> (ContactState, f64, f64) {
+        let b = &self.balls[j];
+        let r = (b.q_o.max(0.0) / self.outer.kc).cbrt().sqrt();
+        let u_o = 0.5 * (0.5 * self.do_ * b.w_b + 0.5 * self.d * b.w_s);
+        (self.contact_state(false, b.q_o.max(0.0), r), b.dv_o, u_o)
     }
 
     /// Peak Hertz pressure at the larger of a ball's two loads, Pa.

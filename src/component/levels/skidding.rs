@@ -81,11 +81,26 @@ impl SkiddingLevel {
     pub fn totals(&self) -> &SkidTotals {
         &self.last
     }
+
+    /// Set the worn depth of the outer race per cell, m (`crate::models::wear_map`); an
+    /// empty map is the unworn race. Errors name `wear map` when a depth is negative or not
+    /// finite; nothing changes then.
+    pub fn set_outer_wear(&mut self, map: &[f64]) -> Result<()> {
+        if let Some(&d) = map.iter().find(|d| !(d.is_finite() && **d >= 0.0)) {
+            return Err(Error::invalid("wear map (m)", d, "finite depths >= 0"));
+        }
+        self.model.p.outer_wear = map.to_vec();
+        self.memo_valid = false;
+        Ok(())
+    }
 }
 
 impl LevelModel for SkiddingLevel {
     fn name(&self) -> &'static str {
         "skidding"
+    }
+    fn as_skidding_mut(&mut self) -> Option<&mut SkiddingLevel> {
+        Some(self)
     }
     fn ball_loads(&self) -> Option<Vec<(f64, f64, f64)>> {
         Some(

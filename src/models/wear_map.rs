@@ -1,0 +1,192 @@
+//! Outer-race wear from the skidding dynamics (study \[2\], physics.md §7): the wear law of
+//! [`crate::models::wear`] fed with what the skidding level resolves per ball — the
+//! outer-contact load, the slip speed `u_s = |dv_o|` of the ball over the race and the
+//! rolling speed — as study \[2\] feeds its dynamic model's slip ("considering clearance,
+//! friction and slip") into Archard's law. The ring level, which has no skidding, keeps
+//! its kinematic-slip estimate (`crate::models::wear::heathcote_slip`).
+//!
+//! Per contact: `La` from the shared asperity share ([`crate::lubrication::asperity`]) and
+//! the flash temperature `dT` from study \[2\]'s friction law (the `mixed_ehl` traction
+//! law, [`crate::contact::traction::MixedEhl::evaluate`]) at this slip and rolling speed;
+//! the film-defect fraction `psi` at the surface temperature `T0 + dT`; the wear area rate
+//! `K psi (La/100) u_s (3Q/(4a)) / Hv` (the depth rate integrated over the ball's pass,
+//! see `crate::models::wear`) deposited at the ball's azimuth on the circumferential map.
+//! Dry is the limit `La = 100`, `psi = 1`. The profile acts back through
+//! [`crate::models::skidding::SkiddingParams::outer_wear`]; the cycles (run, extrapolate,
+//! update, run again) are driven by [`crate::wear_cycles`].
+
+use super::skidding::SkiddingModel;
+use super::wear::{self, WearLaw};
+use crate::contact::traction::{ContactState, FlashTemperature, MixedEhl};
+use crate::lubrication::asperity::AsperityReading;
+
+/// The wear of one outer contact at one instant.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ContactWear {
+    /// Asperity load share, per cent.
+    pub la: f64,
+    /// Film-defect fraction.
+    pub psi: f64,
+    /// Flash temperature rise, K.
+    pub flash: f64,
+    /// Sliding speed, m/s.
+    pub us: f64,
+    /// Wear area rate (depth times race length per time), m²/s.
+    pub area_rate: f64,
+}
+
+/// Outer-race wear law of the skidding level.
+#[derive(Debug, Clone, PartialEq)]
+pub struct OuterRaceWear {
+    /// Archard law, hardness, film-defect constants and the inlet (bulk) temperature `T0`
+    /// (`surface_temperature`, K); `film = None` is the dry limit.
+    pub law: WearLaw,
+    /// Reading of the asperity share's restored roughness term.
+    pub reading: AsperityReading,
+    /// Limiting-shear coefficient of the friction law (study \[2\]: 0.04).
+    pub lambda_lim: f64,
+    /// Boundary friction coefficient of the asperities.
+    pub f_c: f64,
+}
+
+impl OuterRaceWear {
+    /// The friction law whose flash temperature and asperity share the wear uses.
+    pub fn friction(&self) -> Option<MixedEhl> {
+        let f = self.law.film.as_ref()?;
+        let l = &f.lubricant;
+        Some(MixedEhl {
+            viscosity: l.viscosity,
+            alpha_p: l.pressure_viscosity,
+            lambda_lim: self.lambda_lim,
+            f_c: self.f_c,
+            roughness: l.roughness,
+            hardness: self.law.hardness,
+            reading: self.reading,
+            flash: FlashTemperature {
+                beta: l.viscosity_temperature,
+                ..FlashTemperature::default()
+            },
+            ..MixedEhl::default()
+        })
+    }
+
+    /// Wear of a contact `c` with slip `dv` and rolling speed `u` (m/s).
+    pub fn contact(&self, c: &ContactState, dv: f64, u: f64) -> ContactWear {
+        if c.q <= 0.0 {
+            return ContactWear::default();
+        }
+        let us = dv.abs();
+        let (la, psi, flash) = match (&self.law.film, self.friction()) {
+            (Some(f), Some(m)) => {
+                let e = m.evaluate(dv, u, c);
+                let ts = self.law.surface_temperature + e.flash;
+                (
+                    e.la,
+                    wear::film_defect_fraction(us, f.ax, f.t0, f.ea, ts),
+                    e.flash,
+                )
+            }
+            _ => (100.0, 1.0, 0.0),
+        };
+        ContactWear {
+            la,
+            psi,
+            flash,
+            us,
+            area_rate: self.law.area_rate(c.q, c.a, us, la, psi),
+        }
+    }
+
+    /// Add every ball's wear rate at the skidding model's last evaluation to `rates`
+    /// (depth rate per cell, m/s; cells of length `cell_len`), weighted by `dt` (s): the
+    /// map then holds depth. Also adds each loaded ball's `La` and a count to `la_sum`,
+    /// `la_n` at its nearest cell. Returns the largest outer load, N.
+    pub fn deposit(
+        &self,
+        m: &SkiddingModel,
+        dt: f64,
+        map: &mut [f64],
+        cell_len: f64,
+        la_sum: &mut [f64],
+        la_n: &mut [f64],
+    ) -> f64 {
+        let n = map.len();
+        let mut q_max: f64 = 0.0;
+        for j in 0..m.z() {
+            let (c, dv, u) = m.outer_contact(j);
+            if c.q <= 0.0 {
+                continue;
+            }
+            q_max = q_max.max(c.q);
+            let w = self.contact(&c, dv, u);
+            let psi = m.balls[j].psi;
+            wear::deposit(map, psi, w.area_rate * dt, cell_len);
+            let k = ((psi.rem_euclid(std::f64::consts::TAU) / std::f64::consts::TAU * n as f64)
+                .round() as usize)
+                % n;
+            la_sum[k] += w.la;
+            la_n[k] += 1.0;
+        }
+        q_max
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::lubrication::Lubricant;
+    use crate::models::wear::FilmDefect;
+
+    fn law(sigma: Option<f64>) -> OuterRaceWear {
+        OuterRaceWear {
+            law: WearLaw {
+                k: 5e-4,
+                hardness: 2.39e9,
+                film: sigma.map(|s| FilmDefect {
+                    lubricant: Lubricant {
+                        roughness: s,
+                        ..Lubricant::study2()
+                    },
+                    ax: 3e-12,
+                    t0: 3e-12,
+                    ea: 49e3,
+                }),
+                surface_temperature: 293.15,
+            },
+            reading: AsperityReading::default(),
+            lambda_lim: 0.04,
+            f_c: 0.1,
+        }
+    }
+
+    fn contact() -> ContactState {
+        ContactState {
+            q: 180.0,
+            a: 1.3e-3,
+            b: 0.17e-3,
+            rx: 5.93e-3,
+            kappa: 8.0,
+            e_eff: 2.28e11,
+        }
+    }
+
+    /// Dry is Archard's law with `La = 100`, `psi = 1`; no slip, no wear; a lubricated
+    /// contact wears less, and a rougher one more than a smoother one; the flash
+    /// temperature raises the film-defect fraction.
+    #[test]
+    fn dry_limit_and_ordering() {
+        let c = contact();
+        let dry = law(None).contact(&c, 0.02, 4.0);
+        let want = 5e-4 * 0.02 * 0.75 * c.q / c.a / 2.39e9;
+        assert_eq!((dry.la, dry.psi), (100.0, 1.0));
+        assert!((dry.area_rate - want).abs() < 1e-15 * want);
+        assert_eq!(law(None).contact(&c, 0.0, 4.0).area_rate, 0.0);
+        let smooth = law(Some(0.2e-6)).contact(&c, 0.02, 4.0);
+        let rough = law(Some(0.42e-6)).contact(&c, 0.02, 4.0);
+        assert!(0.0 < smooth.area_rate && smooth.area_rate < rough.area_rate);
+        assert!(rough.area_rate < dry.area_rate);
+        assert!(smooth.flash > 0.0);
+        let cold = wear::film_defect_fraction(0.02, 3e-12, 3e-12, 49e3, 293.15);
+        assert!(smooth.psi > cold, "{} vs {cold}", smooth.psi);
+    }
+}
