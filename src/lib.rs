@@ -30,6 +30,7 @@ pub mod runner;
 pub mod solver;
 pub mod sweep;
 pub mod units;
+pub mod wear_cycles;
 
 #[cfg(feature = "capi")]
 pub mod capi;

@@ -1405,6 +1405,11 @@ impl SkiddingModel {
         (self.contact_state(false, b.q_o.max(0.0), r), b.dv_o, u_o)
     }
 
+    /// Hertz approach of the outer contact under load `q`, m.
+    pub fn outer_approach(&self, q: f64) -> f64 {
+        (q.max(0.0) / self.outer.kc).powf(2.0 / 3.0)
+    }
+
     /// Peak Hertz pressure at the larger of a ball's two loads, Pa.
     pub fn peak_pressure(&self, q_i: f64, q_o: f64) -> f64 {
         // p0 = 3Q/(2 pi a b) with a b = ca cb Q^(2/3) (coefficients per sqrt(delta) here).
