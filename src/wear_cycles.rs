@@ -130,7 +130,8 @@ impl WearCycles {
     }
 
     /// Run every cycle; `out` receives `cycle-NN.csv` after each (atomically). `each` is
-    /// told of every completed cycle (its error stops the run like a failed cycle).
+    /// told of every completed cycle before its map is written (its error stops the run
+    /// like a failed cycle: that cycle's map is not written).
     pub fn run(
         &self,
         out: Option<&Path>,
@@ -171,12 +172,12 @@ impl WearCycles {
                 map: map.clone(),
                 ..w.record
             };
+            each(&rec)?;
             if let Some(d) = out {
                 let p = d.join(format!("cycle-{k:02}.csv"));
                 crate::fsutil::write_atomic(&p, rec.csv())
                     .map_err(|e| Error::invalid("wear output", p.display(), e.to_string()))?;
             }
-            each(&rec)?;
             done.push(rec);
         }
         Ok(done)
@@ -185,13 +186,18 @@ impl WearCycles {
     /// Run the dynamics on profile `map` and measure the window.
     pub fn window(&self, map: &[f64]) -> Result<Window> {
         let mut c = Component::new(self.scene.clone())?;
-        let lvl = c.skidding_mut().ok_or_else(|| {
-            Error::invalid("model.level", "not skidding", "\"skidding\"")
-        })?;
+        let lvl = c
+            .skidding_mut()
+            .ok_or_else(|| Error::invalid("model.level", "not skidding", "\"skidding\""))?;
         lvl.set_outer_wear(map)?;
         c.refresh_outputs()?;
         let vr = |n: &str| variables::by_name(n).map_or(0, |v| v.vr);
-        let (vx, vy, vw, vs) = (vr("shaft.x"), vr("shaft.y"), vr("cage.omega"), vr("cage.slip"));
+        let (vx, vy, vw, vs) = (
+            vr("shaft.x"),
+            vr("shaft.y"),
+            vr("cage.omega"),
+            vr("cage.slip"),
+        );
         let h = self.step_s;
         let mut t = c.time();
         let end = t + self.settle_s;
@@ -208,7 +214,11 @@ impl WearCycles {
         let target = self.window_cage_revs * TAU;
         // A cage at a thousandth of its kinematic speed is not turning: give up then.
         let omega = c.get_real(vr("shaft.omega"))?;
-        let (wk, _) = c.skidding_mut().expect("skidding level").model().kinematic(omega);
+        let (wk, _) = c
+            .skidding_mut()
+            .expect("skidding level")
+            .model()
+            .kinematic(omega);
         let max_steps = if wk.abs() > 0.0 {
             (1e3 * target / (wk.abs() * h)).min(1e7) as usize
         } else {
@@ -245,7 +255,11 @@ impl WearCycles {
             .zip(&la_n)
             .map(|(s, n)| if *n > 0.0 { s / n } else { f64::NAN })
             .collect();
-        let approach = c.skidding_mut().expect("skidding level").model().outer_approach(q_max);
+        let approach = c
+            .skidding_mut()
+            .expect("skidding level")
+            .model()
+            .outer_approach(q_max);
         Ok(Window {
             rate: rate.clone(),
             approach,

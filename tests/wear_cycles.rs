@@ -1,0 +1,131 @@
+//! Wear cycles on the skidding level (`raceway::wear_cycles`): the clearance hook, the
+//! cycle update, where the wear goes, bad input and what a failed run leaves on disk.
+
+use raceway::component::Scene;
+use raceway::contact::traction::{MixedEhl, TractionLaw};
+use raceway::lubrication::asperity::AsperityReading;
+use raceway::lubrication::Lubricant;
+use raceway::models::wear::{FilmDefect, WearLaw};
+use raceway::models::wear_map::OuterRaceWear;
+use raceway::wear_cycles::WearCycles;
+
+/// Study [2]'s 6012 (500 N, 2000 rpm) with its friction law, short windows.
+fn cycles(sigma: Option<f64>) -> WearCycles {
+    let mut scene =
+        Scene::from_text(include_str!("../examples/scenes/6012-skidding.toml")).unwrap();
+    scene.model.skidding.traction = TractionLaw::MixedEhl(MixedEhl {
+        roughness: sigma.unwrap_or(1e-4),
+        ..MixedEhl::default()
+    });
+    WearCycles {
+        scene,
+        wear: OuterRaceWear {
+            law: WearLaw {
+                k: 5e-4,
+                hardness: 2.39e9,
+                film: sigma.map(|s| FilmDefect {
+                    lubricant: Lubricant {
+                        roughness: s,
+                        ..Lubricant::study2()
+                    },
+                    ax: 3e-12,
+                    t0: 3e-12,
+                    ea: 49e3,
+                }),
+                surface_temperature: 293.15,
+            },
+            reading: AsperityReading::default(),
+            lambda_lim: 0.04,
+            f_c: 0.1,
+        },
+        cells: 180,
+        settle_s: 0.01,
+        window_cage_revs: 0.3,
+        cycle_cage_revs: 1e7,
+        cycles: 2,
+        step_s: 1e-4,
+        max_step_fraction: 0.1,
+    }
+}
+
+fn mean_y(o: &[[f64; 2]]) -> f64 {
+    o.iter().map(|p| p[1]).sum::<f64>() / o.len() as f64
+}
+
+/// A uniformly worn outer race is a larger clearance: the load-driven shaft sinks by the
+/// worn depth, plus a little more Hertz approach as fewer balls share the 500 N (at
+/// Pd = 10 µm, +4 µm of clearance loads fewer balls: a few tenths of a µm).
+#[test]
+fn uniform_wear_lowers_the_shaft_by_its_depth() {
+    let w = cycles(Some(0.2e-6));
+    let y0 = mean_y(&w.window(&[]).unwrap().record.orbit);
+    let d = 2e-6;
+    let y1 = mean_y(&w.window(&vec![d; 180]).unwrap().record.orbit);
+    let shift = y0 - y1;
+    assert!(shift > d && shift < 1.25 * d, "shift {shift:e} vs {d:e}");
+}
+
+/// Lubricated wear sits in the load zone (load line at 270°); the rougher race wears
+/// faster; the map adds each cycle's extrapolated rate (nm-deep profiles barely change the
+/// dynamics, so two cycles double the depth); dry wear per revolution is far larger.
+#[test]
+fn wear_goes_to_the_load_zone_and_accumulates() {
+    let smooth = cycles(Some(0.2e-6)).run(None, |_| Ok(())).unwrap();
+    let rough = cycles(Some(0.42e-6)).run(None, |_| Ok(())).unwrap();
+    let (d1, a1) = smooth[0].deepest();
+    assert!(
+        (a1.to_degrees() - 270.0).abs() < 30.0,
+        "{}",
+        a1.to_degrees()
+    );
+    let (d2, _) = smooth[1].deepest();
+    assert!((d2 / d1 - 2.0).abs() < 0.05, "{d1:e} {d2:e}");
+    assert!(rough[0].deepest().0 > 2.0 * d1);
+    let mut dry = cycles(None);
+    dry.cycle_cage_revs = 100.0;
+    dry.cycles = 1;
+    let dry = dry.run(None, |_| Ok(())).unwrap();
+    let per_rev = |r: &raceway::wear_cycles::CycleRecord| r.deepest().0 / r.cage_revs;
+    assert!(per_rev(&dry[0]) > 1e3 * per_rev(&rough[0]));
+}
+
+/// Bad input is named; a cycle longer than the profile update allows stops in cycle 1
+/// with the largest allowed length; a run failing in cycle k keeps cycles 1..k-1 on disk.
+#[test]
+fn bad_input_and_failed_runs() {
+    let err = |w: WearCycles| w.run(None, |_| Ok(())).unwrap_err().to_string();
+    let e = err(cycles(Some(-0.1e-6)));
+    assert!(e.contains("wear.roughness"), "{e}");
+    let mut w = cycles(None);
+    w.wear.law.hardness = 0.0;
+    assert!(err(w).contains("wear.hardness"));
+    let dir = std::env::temp_dir().join(format!("raceway-wear-cycles-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let mut w = cycles(None);
+    w.cycle_cage_revs = 1e9;
+    let e = w.run(Some(&dir), |_| Ok(())).unwrap_err().to_string();
+    assert!(
+        e.contains("wear.cycle_cage_revs") && e.contains("cycle 1"),
+        "{e}"
+    );
+    assert!(!dir.join("cycle-01.csv").exists());
+    let mut w = cycles(Some(0.2e-6));
+    w.cycles = 4;
+    w.window_cage_revs = 0.1;
+    let mut kept = Vec::new();
+    let e = w.run(Some(&dir), |r| {
+        if r.cycle == 3 {
+            return Err(raceway::Error::invalid("test", 3, "fails in cycle 3"));
+        }
+        kept.push(r.csv());
+        Ok(())
+    });
+    assert!(e.is_err());
+    for (k, csv) in kept.iter().enumerate() {
+        let on_disk = std::fs::read_to_string(dir.join(format!("cycle-{:02}.csv", k + 1))).unwrap();
+        assert_eq!(&on_disk, csv);
+    }
+    assert_eq!(kept.len(), 2);
+    assert!(!dir.join("cycle-03.csv").exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}
