@@ -125,10 +125,10 @@ pub fn x_turn() -> f64 {
 
 /// Asperity load share `La`, per cent, in `[0, 100]` (module notes).
 pub fn asperity_share(g: &Groups, reading: AsperityReading) -> f64 {
-    if !(g.sigma > 0.0) {
+    if g.sigma.is_nan() || g.sigma <= 0.0 {
         return 0.0;
     }
-    if !(g.u > 0.0) {
+    if g.u.is_nan() || g.u <= 0.0 {
         return 100.0;
     }
     // x1 = X U^2.9 (the speed-free part of the logarithm's argument).
