@@ -402,7 +402,11 @@ pub fn full_scenes() -> Vec<Scene> {
         ),
         full_scene(
             BearingRef::Preset("6205".into()),
-            TractionLaw::MixedEhl(Default::default()),
+            // With the optional override of the asperity share, so its rows are walked.
+            TractionLaw::MixedEhl(crate::contact::traction::MixedEhl {
+                fit: Some(Default::default()),
+                ..Default::default()
+            }),
         ),
     ]
 }

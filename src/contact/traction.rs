@@ -401,7 +401,7 @@ crate::declare_fields!(AsperityFit {
     e_v => number("-", ANY, "asperity regression: exponent of the hardness ratio H/E'").note(MIXED),
 });
 
-const MIXED: &str = "law = \"mixed_ehl\"";
+const MIXED: &str = "law = \"mixed_ehl\"; the whole fit table is an optional override of the shared asperity share (lubrication::asperity)";
 
 impl Default for TractionLaw {
     fn default() -> Self {
