@@ -10,8 +10,6 @@
 use raceway::component::Scene;
 use raceway::contact::traction::{MixedEhl, TractionLaw};
 use raceway::lubrication::asperity::AsperityReading;
-use raceway::lubrication::Lubricant;
-use raceway::models::wear::{FilmDefect, WearLaw};
 use raceway::models::wear_map::OuterRaceWear;
 use raceway::plot::{plot, Axes, Series};
 use raceway::wear_cycles::{CycleRecord, WearCycles};
@@ -22,7 +20,6 @@ type Res<T> = Result<T, Box<dyn std::error::Error>>;
 
 /// Study [2]'s data (physics.md §10).
 const ROUGHNESS: [f64; 2] = [0.2e-6, 0.42e-6];
-const T0: f64 = 293.15;
 
 struct Run {
     label: String,
@@ -42,28 +39,6 @@ fn friction(sigma: f64, reading: AsperityReading) -> MixedEhl {
         roughness: sigma,
         reading,
         ..MixedEhl::default()
-    }
-}
-
-fn law(sigma: Option<f64>, reading: AsperityReading) -> OuterRaceWear {
-    OuterRaceWear {
-        law: WearLaw {
-            k: 5e-4,
-            hardness: 2.39e9,
-            film: sigma.map(|s| FilmDefect {
-                lubricant: Lubricant {
-                    roughness: s,
-                    ..Lubricant::study2()
-                },
-                ax: 3e-12,
-                t0: 3e-12,
-                ea: 49e3,
-            }),
-            surface_temperature: T0,
-        },
-        reading,
-        lambda_lim: 0.04,
-        f_c: MixedEhl::default().f_c,
     }
 }
 
@@ -88,7 +63,7 @@ fn run(
     let traction = TractionLaw::MixedEhl(friction(sigma.unwrap_or(1e-4), reading));
     let w = WearCycles {
         scene: scene(traction)?,
-        wear: law(sigma, reading),
+        wear: OuterRaceWear::study2(sigma, reading),
         cells: 360,
         settle_s: plan.settle_s,
         window_cage_revs: plan.window,

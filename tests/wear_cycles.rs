@@ -4,8 +4,6 @@
 use raceway::component::Scene;
 use raceway::contact::traction::{MixedEhl, TractionLaw};
 use raceway::lubrication::asperity::AsperityReading;
-use raceway::lubrication::Lubricant;
-use raceway::models::wear::{FilmDefect, WearLaw};
 use raceway::models::wear_map::OuterRaceWear;
 use raceway::wear_cycles::WearCycles;
 
@@ -19,25 +17,7 @@ fn cycles(sigma: Option<f64>) -> WearCycles {
     });
     WearCycles {
         scene,
-        wear: OuterRaceWear {
-            law: WearLaw {
-                k: 5e-4,
-                hardness: 2.39e9,
-                film: sigma.map(|s| FilmDefect {
-                    lubricant: Lubricant {
-                        roughness: s,
-                        ..Lubricant::study2()
-                    },
-                    ax: 3e-12,
-                    t0: 3e-12,
-                    ea: 49e3,
-                }),
-                surface_temperature: 293.15,
-            },
-            reading: AsperityReading::default(),
-            lambda_lim: 0.04,
-            f_c: 0.1,
-        },
+        wear: OuterRaceWear::study2(sigma, AsperityReading::default()),
         cells: 180,
         settle_s: 0.01,
         window_cage_revs: 0.3,

@@ -16,9 +16,10 @@
 //! update, run again) are driven by [`crate::wear_cycles`].
 
 use super::skidding::SkiddingModel;
-use super::wear::{self, WearLaw};
+use super::wear::{self, FilmDefect, WearLaw};
 use crate::contact::traction::{ContactState, FlashTemperature, MixedEhl};
 use crate::lubrication::asperity::AsperityReading;
+use crate::lubrication::Lubricant;
 
 /// The wear of one outer contact at one instant.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -50,6 +51,31 @@ pub struct OuterRaceWear {
 }
 
 impl OuterRaceWear {
+    /// Study \[2\]'s wear data (physics.md §10): `K = 5e-4`, `Hv = 2.39 GPa`, its oil with
+    /// composite roughness `sigma` (m; `None`: dry), `a_x = t0 = 3e-12`, `Ea = 49 kJ/mol`,
+    /// inlet temperature 293.15 K, limiting shear 0.04 and the traction law's default `f_c`.
+    pub fn study2(sigma: Option<f64>, reading: AsperityReading) -> Self {
+        OuterRaceWear {
+            law: WearLaw {
+                k: 5e-4,
+                hardness: 2.39e9,
+                film: sigma.map(|s| FilmDefect {
+                    lubricant: Lubricant {
+                        roughness: s,
+                        ..Lubricant::study2()
+                    },
+                    ax: 3e-12,
+                    t0: 3e-12,
+                    ea: 49e3,
+                }),
+                surface_temperature: 293.15,
+            },
+            reading,
+            lambda_lim: 0.04,
+            f_c: MixedEhl::default().f_c,
+        }
+    }
+
     /// The friction law whose flash temperature and asperity share the wear uses.
     pub fn friction(&self) -> Option<MixedEhl> {
         let f = self.law.film.as_ref()?;
@@ -134,29 +160,9 @@ impl OuterRaceWear {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::lubrication::Lubricant;
-    use crate::models::wear::FilmDefect;
 
     fn law(sigma: Option<f64>) -> OuterRaceWear {
-        OuterRaceWear {
-            law: WearLaw {
-                k: 5e-4,
-                hardness: 2.39e9,
-                film: sigma.map(|s| FilmDefect {
-                    lubricant: Lubricant {
-                        roughness: s,
-                        ..Lubricant::study2()
-                    },
-                    ax: 3e-12,
-                    t0: 3e-12,
-                    ea: 49e3,
-                }),
-                surface_temperature: 293.15,
-            },
-            reading: AsperityReading::default(),
-            lambda_lim: 0.04,
-            f_c: 0.1,
-        }
+        OuterRaceWear::study2(sigma, AsperityReading::default())
     }
 
     fn contact() -> ContactState {
