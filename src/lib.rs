@@ -28,6 +28,7 @@ pub mod ratings;
 pub mod report;
 pub mod runner;
 pub mod solver;
+pub mod summary;
 pub mod sweep;
 pub mod units;
 pub mod wear_cycles;

@@ -35,10 +35,10 @@
 //! is checked exactly as `raceway scene --check` checks a file ([`schema::check`]).
 
 use crate::component::schema::{self, Problem};
-use crate::component::{Component, Scene};
+use crate::component::Scene;
 use crate::error::{Error, Result};
 use crate::report::thread_cpu_s;
-use crate::runner::{self, Series};
+use crate::runner;
 use serde_json::Value as Json;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -828,10 +828,11 @@ impl Sweep {
         })
     }
 
-    /// Run point `index`: scene, run, summary (by `summarize`, given the thread CPU time of
-    /// the run), flattened into a row. Never fails: an error (or a panic) becomes the row's
+    /// Run point `index`: scene, run, the summary `raceway run` writes
+    /// ([`crate::summary::summarize`], with the thread CPU time of the run), flattened into a
+    /// row. Never fails: an error (or a panic) becomes the row's
     /// `error`. With `series`, the run's series is written there (atomically).
-    pub fn run_point(&self, index: usize, summarize: &Summarize, series: Option<&Path>) -> Row {
+    pub fn run_point(&self, index: usize, series: Option<&Path>) -> Row {
         let axes: Vec<(String, Json)> = self
             .axes
             .iter()
@@ -847,7 +848,8 @@ impl Sweep {
                 write_atomic(p, run.to_csv().as_bytes())?;
             }
             let mut cols = Vec::new();
-            flatten("", &summarize(&scene, &run, &comp, cpu), &mut cols);
+            let summary = crate::summary::summarize(&scene, "sweep point", &run, &comp, cpu);
+            flatten("", &Json::Object(summary.json), &mut cols);
             Ok(cols)
         };
         let (error, summary) = match std::panic::catch_unwind(std::panic::AssertUnwindSafe(attempt))
@@ -898,10 +900,6 @@ impl Sweep {
         format!("{h:016x}")
     }
 }
-
-/// What turns a finished run into its summary (JSON, nested as in `summary.json`): the
-/// scene, the series, the component after the run and the run's thread CPU time, s.
-pub type Summarize = dyn Fn(&Scene, &Series, &Component, f64) -> Json + Sync;
 
 /// The summary columns that are measurements of the machine, not results: they differ from
 /// run to run; every other column is the same bit for bit whatever the threads or shards.
@@ -1121,7 +1119,9 @@ pub struct Outcome {
 
 const ID_FILE: &str = "sweep.id";
 
-fn claim_dir(dir: &Path, id: &str) -> Result<()> {
+/// Claim `dir` for the sweep of fingerprint `id` ([`Sweep::fingerprint`]): a folder holding
+/// another sweep's rows is refused.
+pub fn claim_dir(dir: &Path, id: &str) -> Result<()> {
     let path = dir.join(ID_FILE);
     match std::fs::read_to_string(&path) {
         Ok(old) if old.trim() != id => Err(Error::Parse {
@@ -1144,7 +1144,6 @@ pub fn execute(
     sweep: &Sweep,
     dir: &Path,
     exec: Exec,
-    summarize: &Summarize,
     progress: &(dyn Fn(usize, usize, usize) + Sync),
 ) -> Result<Outcome> {
     let (k, n) = exec.shard;
@@ -1184,7 +1183,7 @@ pub fn execute(
                     let series = sweep
                         .series
                         .then(|| dir.join("series").join(format!("{i:08}.csv")));
-                    let row = sweep.run_point(i, summarize, series.as_deref());
+                    let row = sweep.run_point(i, series.as_deref());
                     if row.error.is_some() {
                         failed.fetch_add(1, Ordering::Relaxed);
                     }
@@ -1218,6 +1217,22 @@ pub fn execute(
         finished: rows.len(),
         cpu_s: cpu.into_inner().unwrap_or(0.0),
     })
+}
+
+/// Store rows finished elsewhere (another executor, e.g. Dask workers) in `dir` as
+/// [`execute`] does: each row atomically into `dir/rows/` (a row already there is kept), then
+/// `dir/sweep.csv` from every finished row of the folder. Returns the CSV text. Claim the
+/// folder first ([`claim_dir`]).
+pub fn store(dir: &Path, rows: &[Row]) -> Result<String> {
+    for r in rows {
+        let p = row_path(dir, r.index);
+        if !p.exists() {
+            write_atomic(&p, &serde_json::to_vec(r).expect("a row serialises"))?;
+        }
+    }
+    let text = csv(&read_rows(dir));
+    write_atomic(&dir.join("sweep.csv"), text.as_bytes())?;
+    Ok(text)
 }
 
 /// Join the rows of shard folders (same sweep) into `out`: its rows and `out/sweep.csv`.

@@ -27,11 +27,9 @@ mod sweep_cmd;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use raceway::component::scene::{RaceControl, Scene};
-use raceway::geometry::{preset, Bearing, BearingSpec};
-use raceway::models::quasi_static::{Options, QuasiStatic};
-use raceway::ratings::{assess, LifeInputs};
-use raceway::units::{rad_s_to_rpm, rpm_to_rad_s};
-use raceway::{Error, Result};
+use raceway::summary::reports::{self, QsProblem};
+use raceway::units::rad_s_to_rpm;
+use raceway::Result;
 use std::process::ExitCode;
 
 #[derive(Parser, Debug)]
@@ -146,51 +144,11 @@ fn main() -> ExitCode {
     }
 }
 
-/// A bearing from a preset name or a TOML file.
-fn load_bearing(arg: &str) -> Result<Bearing> {
-    match preset(arg) {
-        Ok(spec) => spec.build(),
-        Err(unknown) => {
-            let path = std::path::Path::new(arg);
-            if path.exists() || arg.ends_with(".toml") {
-                let text = std::fs::read_to_string(path)
-                    .map_err(|e| Error::Io(format!("cannot read bearing file `{arg}`: {e}")))?;
-                let spec = BearingSpec::from_toml(&text).map_err(|e| match e {
-                    Error::Parse { message, .. } => Error::Parse {
-                        what: format!("bearing file `{arg}`"),
-                        message,
-                    },
-                    other => other,
-                })?;
-                spec.build()
-            } else {
-                Err(unknown)
-            }
-        }
-    }
-}
-
-fn check(flag: &str, v: f64) -> Result<f64> {
-    if v.is_finite() {
-        Ok(v)
-    } else {
-        Err(Error::invalid(flag, v, "a finite number"))
-    }
-}
-
 /// The problem the `quasi-static` subcommand solves, after defaults and checks.
-#[derive(Debug, Clone)]
-pub(crate) struct Problem {
-    pub bearing: Bearing,
-    pub speed_rpm: f64,
-    pub load: [f64; 5],
-    pub race_control: RaceControl,
-}
-
-fn problem(a: &QsArgs) -> Result<Problem> {
+fn problem(a: &QsArgs) -> Result<QsProblem> {
     let scene = Scene::default_scene();
     let bearing = match &a.bearing {
-        Some(b) => load_bearing(b)?,
+        Some(b) => reports::load_bearing(b)?,
         None => scene.build_bearing()?,
     };
     // No operating-point flag at all: the default scene's operating point. Otherwise what
@@ -207,56 +165,31 @@ fn problem(a: &QsArgs) -> Result<Problem> {
     } else {
         (0.0, [0.0; 5])
     };
-    let speed_rpm = check("--speed-rpm", a.speed_rpm.unwrap_or(speed0))?;
-    if speed_rpm < 0.0 {
-        return Err(Error::invalid(
-            "--speed-rpm",
-            speed_rpm,
-            ">= 0 (the inner ring turns, the outer ring is fixed; the direction does not change the equilibrium)",
-        ));
-    }
-    let load = [
-        check("--fx", a.fx.unwrap_or(load0[0]))?,
-        check("--fy", a.fy.unwrap_or(load0[1]))?,
-        check("--fz", a.fz.unwrap_or(load0[2]))?,
-        check("--mx", a.mx.unwrap_or(load0[3]))?,
-        check("--my", a.my.unwrap_or(load0[4]))?,
-    ];
     let race_control = match a.race_control {
         Some(RaceControlArg::Outer) => RaceControl::Outer,
         Some(RaceControlArg::None) => RaceControl::None,
         None => scene.model.race_control,
     };
-    Ok(Problem {
+    QsProblem::new(
         bearing,
-        speed_rpm,
-        load,
+        a.speed_rpm.unwrap_or(speed0),
+        [
+            a.fx.unwrap_or(load0[0]),
+            a.fy.unwrap_or(load0[1]),
+            a.fz.unwrap_or(load0[2]),
+            a.mx.unwrap_or(load0[3]),
+            a.my.unwrap_or(load0[4]),
+        ],
         race_control,
-    })
+        a.kappa,
+        a.contamination,
+        &reports::CLI_NAMES,
+    )
 }
 
 fn quasi_static(a: QsArgs) -> Result<String> {
     let p = problem(&a)?;
-    let opts = Options {
-        race_control: p.race_control,
-        ..Options::default()
-    };
-    let model = QuasiStatic::new(&p.bearing, opts)?;
-    let sol = model.solve(&p.load, rpm_to_rad_s(p.speed_rpm))?;
-    let inputs = LifeInputs {
-        speed_rpm: p.speed_rpm,
-        kappa: a
-            .kappa
-            .map(|k| raceway::error::positive("--kappa", k))
-            .transpose()?,
-        contamination: a
-            .contamination
-            .map(|e| raceway::error::in_range("--contamination", e, 0.0, 1.0))
-            .transpose()?,
-    };
-    // A bearing outside the standards' range (Dw cos a / Dpw > 0.4) still gets its
-    // equilibrium; the ratings say why they are missing.
-    let rating = assess(&p.bearing, &sol, &inputs).map_err(|e| e.to_string());
+    let (sol, rating) = p.solve()?;
     if a.json {
         report::quasi_static_json(&p, &sol, &rating)
     } else {

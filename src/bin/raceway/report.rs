@@ -1,95 +1,14 @@
 //! Text and JSON reports of the `raceway` program (edge units in text: mm, µm, degrees,
 //! rpm, GPa; SI in JSON).
 
-use crate::Problem;
-use raceway::component::scene::RaceControl;
-use raceway::contact::{Curvature, PointContact, Race};
-use raceway::geometry::{preset, presets, Bearing, BearingKind};
+use raceway::geometry::{preset, presets, BearingKind};
 use raceway::models::quasi_static::Solution;
-use raceway::ratings::{load_ratings, Assessment, LoadRatings};
+use raceway::ratings::Assessment;
+use raceway::summary::reports::{self, control_name, preset_row, QsProblem};
 use raceway::units::rad_s_to_rpm;
 use raceway::{Error, Result};
 use serde::Serialize;
 use std::fmt::Write;
-
-/// One preset, as `raceway bearings --json` lists it.
-#[derive(Debug, Serialize)]
-pub struct PresetRow {
-    /// Designation.
-    pub name: String,
-    /// `deep_groove` or `angular_contact`.
-    pub kind: BearingKind,
-    /// Ball diameter, mm.
-    pub ball_diameter_mm: f64,
-    /// Pitch diameter, mm.
-    pub pitch_diameter_mm: f64,
-    /// Number of balls.
-    pub ball_count: usize,
-    /// Inner groove curvature ratio.
-    pub inner_curvature: f64,
-    /// Outer groove curvature ratio.
-    pub outer_curvature: f64,
-    /// Free contact angle, degrees.
-    pub free_contact_angle_deg: f64,
-    /// Nominal contact angle (0 for deep-groove), degrees.
-    pub nominal_contact_angle_deg: f64,
-    /// Diametral clearance, µm.
-    pub clearance_um: f64,
-    /// Groove-centre distance `A = (f_i + f_o - 1) D`, mm.
-    pub groove_centre_distance_mm: f64,
-    /// Ball mass, kg.
-    pub ball_mass_kg: f64,
-    /// Hertz constant, inner contact at the nominal angle, N/m^1.5.
-    pub kc_inner: f64,
-    /// Hertz constant, outer contact at the nominal angle, N/m^1.5.
-    pub kc_outer: f64,
-    /// Ball material.
-    pub ball_material: String,
-    /// Ring material (inner).
-    pub ring_material: String,
-    /// ISO 281 basic dynamic load rating `C`, N (absent outside the standard's range).
-    pub dynamic_rating_n: Option<f64>,
-    /// ISO 76 basic static load rating `C0`, N.
-    pub static_rating_n: Option<f64>,
-    /// Where the data come from.
-    pub source: String,
-}
-
-fn kc(b: &Bearing, race: Race) -> f64 {
-    let (f, e) = match race {
-        Race::Inner => (b.fi, b.e_eff_inner()),
-        Race::Outer => (b.fo, b.e_eff_outer()),
-    };
-    PointContact::new(
-        Curvature::ball_race(b.d, b.dm, b.nominal_contact_angle(), f, race),
-        e,
-    )
-    .kc
-}
-
-fn row(spec_source: &str, b: &Bearing) -> PresetRow {
-    PresetRow {
-        name: b.name.clone(),
-        kind: b.kind,
-        ball_diameter_mm: b.d * 1e3,
-        pitch_diameter_mm: b.dm * 1e3,
-        ball_count: b.z,
-        inner_curvature: b.fi,
-        outer_curvature: b.fo,
-        free_contact_angle_deg: b.alpha0.to_degrees(),
-        nominal_contact_angle_deg: b.nominal_contact_angle().to_degrees(),
-        clearance_um: b.pd * 1e6,
-        groove_centre_distance_mm: b.a() * 1e3,
-        ball_mass_kg: b.ball_mass(),
-        kc_inner: kc(b, Race::Inner),
-        kc_outer: kc(b, Race::Outer),
-        ball_material: b.ball_material.name.clone(),
-        ring_material: b.inner_material.name.clone(),
-        dynamic_rating_n: load_ratings(b).ok().map(|r| r.c),
-        static_rating_n: load_ratings(b).ok().map(|r| r.c0),
-        source: spec_source.to_string(),
-    }
-}
 
 fn json<T: Serialize>(v: &T) -> Result<String> {
     serde_json::to_string_pretty(v)
@@ -102,7 +21,7 @@ pub fn bearings(as_json: bool) -> Result<String> {
     let mut rows = Vec::new();
     for spec in presets() {
         let b = spec.build()?;
-        rows.push(row(&spec.source, &b));
+        rows.push(preset_row(&spec.source, &b));
     }
     if as_json {
         return json(&rows);
@@ -149,76 +68,21 @@ pub fn bearings(as_json: bool) -> Result<String> {
     Ok(s)
 }
 
-fn control_name(c: RaceControl) -> &'static str {
-    match c {
-        RaceControl::Outer => "outer",
-        RaceControl::None => "none",
-    }
-}
-
-/// The JSON document of `raceway quasi-static --json`.
-#[derive(Serialize)]
-struct QsJson<'a> {
-    bearing: &'a str,
-    speed_rpm: f64,
-    race_control: &'static str,
-    /// Everything else in SI: the library's [`Solution`].
-    solution: &'a Solution,
-    /// ISO ratings, lives (millions of revolutions and hours), static safety, peak
-    /// pressure (Pa), typed warnings: the library's [`Assessment`] (null when the bearing
-    /// is outside the standards' range; then `rating_error` says why).
-    rating: Option<&'a Assessment>,
-    /// Why there is no rating.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    rating_error: Option<&'a str>,
-    /// Warnings as sentences (the same list, typed, is `rating.warnings`).
-    warnings: Vec<String>,
-}
-
+/// `raceway quasi-static --json`.
 pub fn quasi_static_json(
-    p: &Problem,
+    p: &QsProblem,
     sol: &Solution,
     rating: &std::result::Result<Assessment, String>,
 ) -> Result<String> {
-    json(&QsJson {
-        bearing: &p.bearing.name,
-        speed_rpm: p.speed_rpm,
-        race_control: control_name(p.race_control),
-        solution: sol,
-        rating: rating.as_ref().ok(),
-        rating_error: rating.as_ref().err().map(|e| e.as_str()),
-        warnings: rating
-            .as_ref()
-            .map(|a| a.warning_texts())
-            .unwrap_or_default(),
-    })
+    json(&reports::quasi_static_report(p, sol, rating))
 }
 
 /// `raceway bearings NAME`: one bearing, its data, ratings and provenance.
 pub fn bearing_detail(name: &str, as_json: bool) -> Result<String> {
     let spec = preset(name)?;
     let b = spec.build()?;
-    let r = load_ratings(&b)?;
-    #[derive(Serialize)]
-    struct Detail<'a> {
-        #[serde(flatten)]
-        row: PresetRow,
-        bore_mm: f64,
-        outer_diameter_mm: f64,
-        width_mm: f64,
-        /// true when the internal geometry is estimated (catalogue designation).
-        estimated: bool,
-        ratings: &'a LoadRatings,
-    }
-    let estimated = spec.source.contains("ESTIMATED");
-    let d = Detail {
-        row: row(&spec.source, &b),
-        bore_mm: b.bore * 1e3,
-        outer_diameter_mm: b.outer_diameter * 1e3,
-        width_mm: b.width * 1e3,
-        estimated,
-        ratings: &r,
-    };
+    let d = reports::bearing_detail(name)?;
+    let (r, estimated) = (&d.ratings, d.estimated);
     if as_json {
         return json(&d);
     }
@@ -277,7 +141,7 @@ fn wrench_line(s: &mut String, label: &str, w: &[f64; 5]) {
 }
 
 pub fn quasi_static_text(
-    p: &Problem,
+    p: &QsProblem,
     sol: &Solution,
     rating: &std::result::Result<Assessment, String>,
 ) -> String {

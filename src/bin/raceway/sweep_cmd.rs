@@ -118,15 +118,7 @@ pub fn sweep(a: SweepArgs) -> Result<String> {
         );
         let _ = std::io::stderr().flush();
     };
-    let summarize = |scene: &raceway::component::Scene,
-                     series: &raceway::runner::Series,
-                     comp: &raceway::Component,
-                     cpu: f64| {
-        serde_json::Value::Object(
-            crate::run::summarize(scene, "sweep point", series, comp, cpu).json,
-        )
-    };
-    let o = sweep::execute(&sw, &out, exec, &summarize, &progress)?;
+    let o = sweep::execute(&sw, &out, exec, &progress)?;
     if bar_on {
         eprintln!();
     }

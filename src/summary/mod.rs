@@ -1,0 +1,368 @@
+//! The summary of a stand-alone run: what `raceway run` prints and writes to summary.txt and
+//! summary.json, what `raceway sweep` flattens into a row and what the Python package's
+//! `raceway.run` returns. One implementation, so the three agree.
+//!
+//! Sections: the scene and bearing, peak loads and pressures, cage slip (and whirl on the
+//! full level), the characteristic frequencies found in the spectrum of the second half of the
+//! run (and in the envelope spectrum for defect scenes), ISO ratings and life.
+
+pub mod reports;
+
+use crate::analysis::{
+    amplitude_spectrum, characteristic_marks, envelope_spectrum, find_peaks, whirl_index,
+    FoundPeak, Spectrum, Verdict, Window, FOUND_OVER_FLOOR,
+};
+use crate::component::{Causality, Scene};
+use crate::geometry::kinematics;
+use crate::runner::Series;
+
+/// The sections of the summary, in order.
+pub fn summary_of(ctx: &Ctx) -> Summary {
+    let mut sm = Summary::default();
+    scene_lines(ctx, &mut sm);
+    load_lines(ctx, &mut sm);
+    cage_lines(ctx, &mut sm);
+    frequency_lines(ctx, &mut sm);
+    rating_lines(ctx, &mut sm);
+    sm
+}
+
+/// The summary of a finished run (`cpu_s`: its thread CPU time), as `raceway run` writes it
+/// to summary.txt and summary.json; what `raceway sweep` flattens into a row.
+pub fn summarize(
+    scene: &Scene,
+    name: &str,
+    series: &Series,
+    comp: &crate::Component,
+    cpu_s: f64,
+) -> Summary {
+    summary_of(&Ctx::new(scene, name, series, comp, cpu_s))
+}
+
+/// The summary: text lines and the same facts as JSON. A section is a function
+/// `fn x_lines(ctx: &Ctx, s: &mut Summary)` called in [`summary_of`]; add lines with
+/// [`Summary::line`] and values with [`Summary::set`].
+#[derive(Default)]
+pub struct Summary {
+    /// summary.txt and standard output.
+    pub text: String,
+    /// summary.json.
+    pub json: serde_json::Map<String, serde_json::Value>,
+}
+
+impl Summary {
+    /// One line of text.
+    pub fn line(&mut self, l: impl AsRef<str>) {
+        self.text += l.as_ref();
+        self.text.push('\n');
+    }
+    /// One JSON value.
+    pub fn set(&mut self, key: &str, v: serde_json::Value) {
+        self.json.insert(key.to_string(), v);
+    }
+}
+
+/// What the summary sections and plots read: the scene, the run and the analyses.
+pub struct Ctx<'a> {
+    /// The scene as run.
+    pub scene: &'a Scene,
+    /// Scene name (file stem).
+    pub name: &'a str,
+    /// The recorded run.
+    pub series: &'a Series,
+    /// The component after the run.
+    pub comp: &'a crate::Component,
+    /// CPU time of the run, s.
+    pub cpu_s: f64,
+    /// Shaft frequency at the end, Hz.
+    pub shaft_hz: f64,
+    /// Index of the first sample analysed (the second half of the run).
+    pub start: usize,
+    /// Name and unit of the signal whose spectrum is analysed.
+    pub signal: (&'static str, &'static str),
+    /// Its amplitude spectrum over the analysed part.
+    pub spec: Spectrum,
+    /// The characteristic frequencies.
+    pub marks: Vec<crate::analysis::Mark>,
+    /// The main lines and what became of them.
+    pub found: Vec<FoundPeak>,
+    /// Defect scenes: the envelope spectrum and its lines.
+    pub envelope: Option<Envelope>,
+}
+
+/// The envelope spectrum, the band-pass before it (Hz; none: the whole signal) and the
+/// lines found in it.
+pub type Envelope = (Spectrum, Option<(f64, f64)>, Vec<FoundPeak>);
+
+const MAIN: [&str; 7] = ["fs", "FTF", "BSF", "1xBPFO", "1xBPFI", "1x2BSF", "2xBPFO"];
+
+impl<'a> Ctx<'a> {
+    /// The analyses of a finished run (`cpu_s`: its thread CPU time; `name`: the scene's
+    /// name in the summary).
+    pub fn new(
+        scene: &'a Scene,
+        name: &'a str,
+        series: &'a Series,
+        comp: &'a crate::Component,
+        cpu_s: f64,
+    ) -> Ctx<'a> {
+        let col = |n: &str| series.column(n).unwrap_or(&[]);
+        let omega = col("shaft.omega").last().copied().unwrap_or(0.0);
+        let kin = kinematics(comp.bearing(), omega);
+        let shaft_hz = omega / (2.0 * std::f64::consts::PI);
+        // The signal whose spectrum tells the frequencies: ring motion when load-driven,
+        // the force when motion-driven; over the second half of the run (past the start
+        // transient).
+        let signal = if scene.model.causality == Causality::Load {
+            ("shaft.y", "m")
+        } else {
+            ("force.y", "N")
+        };
+        let n = series.t.len();
+        let start = n / 2;
+        let sig = &col(signal.0)[start.min(n)..];
+        let dt = scene.run.duration_s / (n - 1).max(1) as f64;
+        let spec = amplitude_spectrum(sig, 1.0 / dt, Window::Hann);
+        let marks = characteristic_marks(&kin, shaft_hz, 3, 1);
+        let main: Vec<_> = marks
+            .iter()
+            .filter(|m| MAIN.contains(&m.label.as_str()))
+            .cloned()
+            .collect();
+        let tol = 2.0 * spec.resolution();
+        let found = find_peaks(&spec, &main, tol);
+        // Defects: the envelope spectrum (Randall & Antoni 2011, §4), band-passed above the
+        // third multiple of the highest defect frequency (the impacts excite the band, the
+        // envelope keeps their repetition rate) up to 0.8 of the Nyquist frequency.
+        let envelope = (!scene.effects.defects.is_empty()).then(|| {
+            let top = kin.bpfi.max(kin.bpfo).max(2.0 * kin.bsf);
+            let nyq = 0.5 / dt;
+            let band = (3.0 * top < 0.8 * nyq).then_some((3.0 * top, 0.8 * nyq));
+            let env = envelope_spectrum(sig, 1.0 / dt, band);
+            let lines: Vec<_> = marks
+                .iter()
+                .filter(|m| ["fs", "FTF", "1xBPFO", "1xBPFI", "1x2BSF"].contains(&m.label.as_str()))
+                .cloned()
+                .collect();
+            let f = find_peaks(&env, &lines, 2.0 * env.resolution());
+            (env, band, f)
+        });
+        Ctx {
+            scene,
+            name,
+            series,
+            comp,
+            cpu_s,
+            shaft_hz,
+            start,
+            signal,
+            spec,
+            marks,
+            found,
+            envelope,
+        }
+    }
+
+    /// The recorded column of a variable (empty when absent).
+    pub fn col(&self, n: &str) -> &[f64] {
+        self.series.column(n).unwrap_or(&[])
+    }
+
+    /// The largest magnitude of a recorded column.
+    pub fn peak(&self, n: &str) -> f64 {
+        self.col(n).iter().fold(0.0f64, |m, v| m.max(v.abs()))
+    }
+
+    /// Whether the level integrates the cage (its slip is otherwise 0 by construction).
+    pub fn cage_dynamics(&self) -> bool {
+        matches!(self.scene.model.level.name(), "skidding" | "full")
+    }
+
+    /// The run length over the length analysed.
+    pub fn record_scale(&self) -> f64 {
+        let n = self.series.t.len().max(2);
+        (n - 1) as f64 / (n - 1 - self.start.min(n - 2)) as f64
+    }
+}
+
+fn scene_lines(c: &Ctx, s: &mut Summary) {
+    let sc = c.scene;
+    let b = c.comp.bearing();
+    s.line(format!(
+        "scene: {} ({}; level {}, {:?}-driven)",
+        c.name,
+        sc.title,
+        sc.model.level.name(),
+        sc.model.causality
+    ));
+    s.line(format!(
+        "bearing: {}, d x D x B {:.3} x {:.3} x {:.3} mm; Z {} balls of Dw {:.3} mm on dm {:.3} mm; diametral clearance Pd {:.2} µm",
+        b.name,
+        b.bore * 1e3,
+        b.outer_diameter * 1e3,
+        b.width * 1e3,
+        b.z,
+        b.d * 1e3,
+        b.dm * 1e3,
+        b.pd * 1e6
+    ));
+    let n = c.series.t.len();
+    let load = crate::report::load_average();
+    s.line(format!(
+        "simulated {:.4} s in {} steps, {:.3} s of thread CPU ({:.2}x real time; load average {load})",
+        sc.run.duration_s,
+        n.saturating_sub(1),
+        c.cpu_s,
+        sc.run.duration_s / c.cpu_s.max(1e-9)
+    ));
+    s.set("scene", c.name.into());
+    s.set("level", sc.model.level.name().into());
+    s.set("duration_s", sc.run.duration_s.into());
+    s.set("cpu_s", c.cpu_s.into());
+    s.set("load_average", load.into());
+    s.set(
+        "bearing",
+        serde_json::json!({"name": b.name, "bore_mm": b.bore * 1e3, "outside_diameter_mm": b.outer_diameter * 1e3,
+            "width_mm": b.width * 1e3, "z": b.z, "ball_diameter_mm": b.d * 1e3, "pitch_diameter_mm": b.dm * 1e3,
+            "diametral_clearance_um": b.pd * 1e6}),
+    );
+}
+
+fn load_lines(c: &Ctx, s: &mut Summary) {
+    let (fx, fy, fz) = (c.peak("force.x"), c.peak("force.y"), c.peak("force.z"));
+    s.line(format!(
+        "peak |force.x| {fx:.2} N, |force.y| {fy:.2} N, |force.z| {fz:.2} N"
+    ));
+    s.line(format!(
+        "peak contact load {:.2} N, peak Hertz pressure {:.3} GPa",
+        c.peak("contact.max_load"),
+        c.peak("contact.max_pressure") * 1e-9
+    ));
+    s.set("peak_force_n", serde_json::json!([fx, fy, fz]));
+    s.set("peak_contact_load_n", c.peak("contact.max_load").into());
+    s.set("peak_pressure_pa", c.peak("contact.max_pressure").into());
+}
+
+fn cage_lines(c: &Ctx, s: &mut Summary) {
+    let slip = c.col("cage.slip").last().copied().unwrap_or(0.0);
+    if c.cage_dynamics() {
+        s.line(format!("cage slip: final {slip:.4}"));
+        s.set("final_cage_slip", slip.into());
+    } else {
+        s.line(format!(
+            "cage slip: 0 by construction (the {} level runs the cage at its kinematic speed; the skidding and full levels integrate it)",
+            c.scene.model.level.name()
+        ));
+        s.set("final_cage_slip", serde_json::Value::Null);
+    }
+    // Cage dynamics (the full level): whirl index over the second half of the run.
+    if c.scene.model.level.name() != "full" {
+        return;
+    }
+    let sigma = whirl_index(&c.col("cage.speed")[c.start.min(c.col("cage.speed").len())..]);
+    let orbit_max = c
+        .col("cage.x")
+        .iter()
+        .zip(c.col("cage.y"))
+        .fold(0.0f64, |m, (x, y)| m.max(x.hypot(*y)));
+    s.line(format!(
+        "cage: whirl index sigma {} (second half), largest orbit {:.3} guide clearances, \
+         peak pocket force {:.2} N, peak guide force {:.2} N, final speed ratio {:.4}",
+        sigma.map_or("-".to_string(), |v| format!("{v:.4}")),
+        orbit_max,
+        c.peak("pocket.max_force"),
+        c.peak("guide.force"),
+        c.col("cage.speed_ratio").last().copied().unwrap_or(0.0)
+    ));
+    s.set("cage_whirl_sigma", serde_json::json!(sigma));
+    s.set("cage_orbit_max", orbit_max.into());
+    s.set("peak_pocket_force_n", c.peak("pocket.max_force").into());
+    s.set("peak_guide_force_n", c.peak("guide.force").into());
+}
+
+/// ISO ratings, life, static safety and warnings at the run's mean load over the second
+/// half (crate::ratings).
+fn rating_lines(c: &Ctx, s: &mut Summary) {
+    let rating = crate::ratings::assess_run(c.comp.bearing(), c.series, c.start);
+    match &rating {
+        Ok(a) => s.text += &format!("at the mean load of the second half:\n{}", a.text()),
+        Err(e) => s.line(format!("ratings and life: not available ({e})")),
+    }
+    s.set(
+        "rating",
+        serde_json::to_value(rating.as_ref().ok()).unwrap_or_default(),
+    );
+    s.set(
+        "warnings",
+        rating
+            .as_ref()
+            .map(|a| a.warning_texts())
+            .unwrap_or_default()
+            .into(),
+    );
+}
+
+/// The lines of one spectrum: expected, found (or why not), significance.
+fn line_table(s: &mut Summary, found: &[FoundPeak], scale: f64) -> serde_json::Value {
+    for p in found {
+        let f = if p.is_found() {
+            format!("{:.3}", p.found)
+        } else {
+            "-".to_string()
+        };
+        s.line(format!(
+            "  {:<8} {:>10.3} Hz  {:>10} Hz  {}",
+            p.label,
+            p.expected,
+            f,
+            p.verdict_text(scale)
+        ));
+    }
+    let finite = |v: f64| v.is_finite().then_some(v);
+    serde_json::Value::Array(
+        found
+            .iter()
+            .map(|p| {
+                let (verdict, needs) = match p.verdict {
+                    Verdict::Found => ("found", None),
+                    Verdict::BelowFloor => ("below floor", None),
+                    Verdict::Unresolved { needs_s } => ("not resolved", finite(needs_s * scale)),
+                };
+                serde_json::json!({"label": p.label, "expected_hz": p.expected,
+                    "found_hz": if p.is_found() { finite(p.found) } else { None },
+                    "over_floor": finite(p.over_floor), "verdict": verdict, "needs_duration_s": needs})
+            })
+            .collect(),
+    )
+}
+
+fn frequency_lines(c: &Ctx, s: &mut Summary) {
+    let scale = c.record_scale();
+    s.line(format!(
+        "shaft {:.2} Hz; characteristic frequencies in the {} spectrum ({}, second half of the run: {:.4} s, bins {:.3} Hz); \
+         found = a peak within ±2 bins at least {FOUND_OVER_FLOOR} x the median floor in [f/2, 2f]:",
+        c.shaft_hz,
+        c.signal.0,
+        c.signal.1,
+        1.0 / c.spec.resolution().max(1e-300),
+        c.spec.resolution()
+    ));
+    s.line(format!(
+        "  {:<8} {:>13}  {:>13}",
+        "line", "expected", "found"
+    ));
+    let v = line_table(s, &c.found, scale);
+    s.set("frequencies", v);
+    if let Some((env, band, found)) = &c.envelope {
+        s.line(format!(
+            "envelope spectrum of {} (defect scene; band {}):",
+            c.signal.0,
+            band.map_or("whole signal".to_string(), |(lo, hi)| format!(
+                "{lo:.0}-{hi:.0} Hz"
+            ))
+        ));
+        let _ = env;
+        let v = line_table(s, found, scale);
+        s.set("envelope_frequencies", v);
+    }
+}

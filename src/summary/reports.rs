@@ -1,0 +1,352 @@
+//! The data of `raceway bearings --json`, `raceway bearings NAME --json` and
+//! `raceway quasi-static --json`, shared by the command line and the Python package so both
+//! report the same numbers under the same names (SI, except the presets' table: mm, µm,
+//! degrees as the command line prints them).
+
+use crate::component::scene::RaceControl;
+use crate::contact::{Curvature, PointContact, Race};
+use crate::error::{in_range, positive, Error, Result};
+use crate::geometry::{preset, presets, Bearing, BearingKind, BearingSpec};
+use crate::models::quasi_static::{Options, QuasiStatic, Solution};
+use crate::ratings::{assess, load_ratings, Assessment, LifeInputs, LoadRatings};
+use crate::units::rpm_to_rad_s;
+use serde::Serialize;
+
+/// One preset, as `raceway bearings --json` lists it.
+#[derive(Debug, Clone, Serialize)]
+pub struct PresetRow {
+    /// Designation.
+    pub name: String,
+    /// `deep_groove` or `angular_contact`.
+    pub kind: BearingKind,
+    /// Ball diameter, mm.
+    pub ball_diameter_mm: f64,
+    /// Pitch diameter, mm.
+    pub pitch_diameter_mm: f64,
+    /// Number of balls.
+    pub ball_count: usize,
+    /// Inner groove curvature ratio.
+    pub inner_curvature: f64,
+    /// Outer groove curvature ratio.
+    pub outer_curvature: f64,
+    /// Free contact angle, degrees.
+    pub free_contact_angle_deg: f64,
+    /// Nominal contact angle (0 for deep-groove), degrees.
+    pub nominal_contact_angle_deg: f64,
+    /// Diametral clearance, µm.
+    pub clearance_um: f64,
+    /// Groove-centre distance `A = (f_i + f_o - 1) D`, mm.
+    pub groove_centre_distance_mm: f64,
+    /// Ball mass, kg.
+    pub ball_mass_kg: f64,
+    /// Hertz constant, inner contact at the nominal angle, N/m^1.5.
+    pub kc_inner: f64,
+    /// Hertz constant, outer contact at the nominal angle, N/m^1.5.
+    pub kc_outer: f64,
+    /// Ball material.
+    pub ball_material: String,
+    /// Ring material (inner).
+    pub ring_material: String,
+    /// ISO 281 basic dynamic load rating `C`, N (absent outside the standard's range).
+    pub dynamic_rating_n: Option<f64>,
+    /// ISO 76 basic static load rating `C0`, N.
+    pub static_rating_n: Option<f64>,
+    /// Where the data come from.
+    pub source: String,
+}
+
+fn kc(b: &Bearing, race: Race) -> f64 {
+    let (f, e) = match race {
+        Race::Inner => (b.fi, b.e_eff_inner()),
+        Race::Outer => (b.fo, b.e_eff_outer()),
+    };
+    PointContact::new(
+        Curvature::ball_race(b.d, b.dm, b.nominal_contact_angle(), f, race),
+        e,
+    )
+    .kc
+}
+
+/// The table row of a built bearing (`source`: where its data come from).
+pub fn preset_row(source: &str, b: &Bearing) -> PresetRow {
+    PresetRow {
+        name: b.name.clone(),
+        kind: b.kind,
+        ball_diameter_mm: b.d * 1e3,
+        pitch_diameter_mm: b.dm * 1e3,
+        ball_count: b.z,
+        inner_curvature: b.fi,
+        outer_curvature: b.fo,
+        free_contact_angle_deg: b.alpha0.to_degrees(),
+        nominal_contact_angle_deg: b.nominal_contact_angle().to_degrees(),
+        clearance_um: b.pd * 1e6,
+        groove_centre_distance_mm: b.a() * 1e3,
+        ball_mass_kg: b.ball_mass(),
+        kc_inner: kc(b, Race::Inner),
+        kc_outer: kc(b, Race::Outer),
+        ball_material: b.ball_material.name.clone(),
+        ring_material: b.inner_material.name.clone(),
+        dynamic_rating_n: load_ratings(b).ok().map(|r| r.c),
+        static_rating_n: load_ratings(b).ok().map(|r| r.c0),
+        source: source.to_string(),
+    }
+}
+
+/// Every preset's row (`raceway bearings --json`).
+pub fn bearing_rows() -> Result<Vec<PresetRow>> {
+    presets()
+        .into_iter()
+        .map(|spec| Ok(preset_row(&spec.source, &spec.build()?)))
+        .collect()
+}
+
+/// One bearing's data, ratings and provenance (`raceway bearings NAME --json`).
+#[derive(Debug, Clone, Serialize)]
+pub struct BearingDetail {
+    /// The preset table's row.
+    #[serde(flatten)]
+    pub row: PresetRow,
+    /// Bore d, mm.
+    pub bore_mm: f64,
+    /// Outside diameter D, mm.
+    pub outer_diameter_mm: f64,
+    /// Width B, mm.
+    pub width_mm: f64,
+    /// true when the internal geometry is estimated (catalogue designation).
+    pub estimated: bool,
+    /// ISO 281/76 ratings.
+    pub ratings: LoadRatings,
+}
+
+/// The detail of a preset or catalogue designation.
+pub fn bearing_detail(name: &str) -> Result<BearingDetail> {
+    let spec = preset(name)?;
+    let b = spec.build()?;
+    Ok(BearingDetail {
+        row: preset_row(&spec.source, &b),
+        bore_mm: b.bore * 1e3,
+        outer_diameter_mm: b.outer_diameter * 1e3,
+        width_mm: b.width * 1e3,
+        estimated: spec.source.contains("ESTIMATED"),
+        ratings: load_ratings(&b)?,
+    })
+}
+
+/// A bearing from a preset or catalogue name, or a TOML bearing file.
+pub fn load_bearing(arg: &str) -> Result<Bearing> {
+    match preset(arg) {
+        Ok(spec) => spec.build(),
+        Err(unknown) => {
+            let path = std::path::Path::new(arg);
+            if path.exists() || arg.ends_with(".toml") {
+                let text = std::fs::read_to_string(path)
+                    .map_err(|e| Error::Io(format!("cannot read bearing file `{arg}`: {e}")))?;
+                let spec = BearingSpec::from_toml(&text).map_err(|e| match e {
+                    Error::Parse { message, .. } => Error::Parse {
+                        what: format!("bearing file `{arg}`"),
+                        message,
+                    },
+                    other => other,
+                })?;
+                spec.build()
+            } else {
+                Err(unknown)
+            }
+        }
+    }
+}
+
+/// What the arguments of a quasi-static problem are called where they come from, so an error
+/// names the argument the user typed.
+#[derive(Debug, Clone, Copy)]
+pub struct QsNames {
+    /// Shaft speed, rpm.
+    pub speed_rpm: &'static str,
+    /// Loads and moments `(Fx, Fy, Fz, Mx, My)`.
+    pub load: [&'static str; 5],
+    /// Viscosity ratio.
+    pub kappa: &'static str,
+    /// ISO 281 contamination factor.
+    pub contamination: &'static str,
+}
+
+/// The command line's flags.
+pub const CLI_NAMES: QsNames = QsNames {
+    speed_rpm: "--speed-rpm",
+    load: ["--fx", "--fy", "--fz", "--mx", "--my"],
+    kappa: "--kappa",
+    contamination: "--contamination",
+};
+
+/// The Python package's keyword arguments.
+pub const PYTHON_NAMES: QsNames = QsNames {
+    speed_rpm: "speed_rpm",
+    load: ["fx", "fy", "fz", "mx", "my"],
+    kappa: "kappa",
+    contamination: "contamination",
+};
+
+/// A checked quasi-static problem: the bearing under an external load on the inner ring at a
+/// shaft speed (outer ring fixed).
+#[derive(Debug, Clone)]
+pub struct QsProblem {
+    /// The bearing.
+    pub bearing: Bearing,
+    /// Shaft speed, rpm (>= 0).
+    pub speed_rpm: f64,
+    /// External load `(Fx, Fy, Fz, Mx, My)`, N and N m.
+    pub load: [f64; 5],
+    /// Race control assumption.
+    pub race_control: RaceControl,
+    /// What the life needs beyond the loads.
+    pub life: LifeInputs,
+}
+
+fn finite(field: &str, v: f64) -> Result<f64> {
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(Error::invalid(field, v, "a finite number"))
+    }
+}
+
+impl QsProblem {
+    /// Check the arguments (errors name them by `names`).
+    pub fn new(
+        bearing: Bearing,
+        speed_rpm: f64,
+        load: [f64; 5],
+        race_control: RaceControl,
+        kappa: Option<f64>,
+        contamination: Option<f64>,
+        names: &QsNames,
+    ) -> Result<QsProblem> {
+        let speed_rpm = finite(names.speed_rpm, speed_rpm)?;
+        if speed_rpm < 0.0 {
+            return Err(Error::invalid(
+                names.speed_rpm,
+                speed_rpm,
+                ">= 0 (the inner ring turns, the outer ring is fixed; the direction does not change the equilibrium)",
+            ));
+        }
+        let mut checked = [0.0; 5];
+        for k in 0..5 {
+            checked[k] = finite(names.load[k], load[k])?;
+        }
+        Ok(QsProblem {
+            bearing,
+            speed_rpm,
+            load: checked,
+            race_control,
+            life: LifeInputs {
+                speed_rpm,
+                kappa: kappa.map(|k| positive(names.kappa, k)).transpose()?,
+                contamination: contamination
+                    .map(|e| in_range(names.contamination, e, 0.0, 1.0))
+                    .transpose()?,
+            },
+        })
+    }
+
+    /// The Jones–Harris equilibrium and its ISO assessment. A bearing outside the standards'
+    /// range (Dw cos a / Dpw > 0.4) still gets its equilibrium; the assessment's error says
+    /// why the ratings are missing.
+    pub fn solve(&self) -> Result<(Solution, std::result::Result<Assessment, String>)> {
+        let opts = Options {
+            race_control: self.race_control,
+            ..Options::default()
+        };
+        let model = QuasiStatic::new(&self.bearing, opts)?;
+        let sol = model.solve(&self.load, rpm_to_rad_s(self.speed_rpm))?;
+        let rating = assess(&self.bearing, &sol, &self.life).map_err(|e| e.to_string());
+        Ok((sol, rating))
+    }
+}
+
+/// The name of a race-control assumption as the command line spells it.
+pub fn control_name(c: RaceControl) -> &'static str {
+    match c {
+        RaceControl::Outer => "outer",
+        RaceControl::None => "none",
+    }
+}
+
+/// The JSON document of `raceway quasi-static --json` (serialise it; the field order is
+/// the document's).
+#[derive(Serialize)]
+pub struct QsReport<'a> {
+    /// Bearing designation.
+    pub bearing: &'a str,
+    /// Shaft speed, rpm.
+    pub speed_rpm: f64,
+    /// `outer` or `none`.
+    pub race_control: &'static str,
+    /// Everything else in SI: the library's [`Solution`].
+    pub solution: &'a Solution,
+    /// ISO ratings, lives (millions of revolutions and hours), static safety, peak
+    /// pressure (Pa), typed warnings: the library's [`Assessment`] (null when the bearing
+    /// is outside the standards' range; then `rating_error` says why).
+    pub rating: Option<&'a Assessment>,
+    /// Why there is no rating.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub rating_error: Option<&'a str>,
+    /// Warnings as sentences (the same list, typed, is `rating.warnings`).
+    pub warnings: Vec<String>,
+}
+
+/// `raceway quasi-static --json`'s document.
+pub fn quasi_static_report<'a>(
+    p: &'a QsProblem,
+    sol: &'a Solution,
+    rating: &'a std::result::Result<Assessment, String>,
+) -> QsReport<'a> {
+    QsReport {
+        bearing: &p.bearing.name,
+        speed_rpm: p.speed_rpm,
+        race_control: control_name(p.race_control),
+        solution: sol,
+        rating: rating.as_ref().ok(),
+        rating_error: rating.as_ref().err().map(|e| e.as_str()),
+        warnings: rating
+            .as_ref()
+            .map(|a| a.warning_texts())
+            .unwrap_or_default(),
+    }
+}
+
+/// The per-ball results as columns, each named `field [unit]` (SI; the units of
+/// [`crate::models::quasi_static::BallResult`]'s fields).
+pub fn ball_columns(sol: &Solution) -> (Vec<String>, Vec<Vec<f64>>) {
+    type Get = fn(&crate::models::quasi_static::BallResult) -> f64;
+    const COLUMNS: [(&str, &str, Get); 20] = [
+        ("psi", "rad", |b| b.psi),
+        ("q_i", "N", |b| b.q_i),
+        ("q_o", "N", |b| b.q_o),
+        ("alpha_i", "rad", |b| b.alpha_i),
+        ("alpha_o", "rad", |b| b.alpha_o),
+        ("delta_i", "m", |b| b.delta_i),
+        ("delta_o", "m", |b| b.delta_o),
+        ("a_i", "m", |b| b.a_i),
+        ("b_i", "m", |b| b.b_i),
+        ("p_i", "Pa", |b| b.p_i),
+        ("a_o", "m", |b| b.a_o),
+        ("b_o", "m", |b| b.b_o),
+        ("p_o", "Pa", |b| b.p_o),
+        ("fc", "N", |b| b.fc),
+        ("mg", "N m", |b| b.mg),
+        ("omega_m", "rad/s", |b| b.omega_m),
+        ("omega_r", "rad/s", |b| b.omega_r),
+        ("beta", "rad", |b| b.beta),
+        ("spin_roll_i", "-", |b| b.spin_roll_i),
+        ("spin_roll_o", "-", |b| b.spin_roll_o),
+    ];
+    COLUMNS
+        .iter()
+        .map(|(n, u, get)| {
+            (
+                format!("{n} [{u}]"),
+                sol.balls.iter().map(get).collect::<Vec<f64>>(),
+            )
+        })
+        .unzip()
+}
