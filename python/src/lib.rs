@@ -1,0 +1,704 @@
+//! `raceway._raceway`: the PyO3 binding of the raceway library, the native half of the Python
+//! package `raceway` (`python/python/raceway/` adds pandas and numpy on top).
+//!
+//! FFI only: every number comes from the library (`raceway::component`, `raceway::runner`,
+//! `raceway::summary`, `raceway::sweep`); this file converts arguments, releases the GIL
+//! around the library's work (`Python::detach`, PyO3's `allow_threads`) and turns the
+//! library's errors into `raceway.Error` carrying the library's message.
+
+use pyo3::create_exception;
+use pyo3::exceptions::PyException;
+use pyo3::prelude::*;
+use pyo3::types::{PyBytes, PyDict, PyList, PyString, PyTuple};
+use raceway::component::scene::RaceControl;
+use raceway::component::{schema, variables, Component as Inner, State as InnerState};
+use raceway::summary::reports;
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+
+create_exception!(
+    raceway,
+    Error,
+    PyException,
+    "Any failure of the library; `message` is the project's message, `kind` its kind, \
+     `field` the field or argument at fault (or None)."
+);
+
+/// The kind and the field of a library error.
+fn kind_field(e: &raceway::Error) -> (&'static str, Option<String>) {
+    use raceway::Error as E;
+    match e {
+        E::Invalid { field, .. } => ("invalid", Some(field.clone())),
+        E::Unknown { what, .. } => ("unknown", Some(what.to_string())),
+        E::Parse { .. } => ("parse", None),
+        E::NotConverged { .. } => ("not_converged", None),
+        E::StepFailed { .. } => ("step_failed", None),
+        E::Budget { field, .. } => ("budget", Some(field.to_string())),
+        E::CallOrder { .. } => ("call_order", None),
+        E::Io(_) => ("io", None),
+    }
+}
+
+/// A `raceway.Error` with the message, kind and field as attributes.
+fn py_error(py: Python<'_>, message: String, kind: &str, field: Option<String>) -> PyErr {
+    let err = Error::new_err(message.clone());
+    let v = err.value(py);
+    // Setting attributes on a fresh exception instance cannot fail.
+    let _ = v.setattr("message", message);
+    let _ = v.setattr("kind", kind);
+    let _ = v.setattr("field", field);
+    err
+}
+
+fn to_py(py: Python<'_>, e: raceway::Error) -> PyErr {
+    let (kind, field) = kind_field(&e);
+    py_error(py, e.to_string(), kind, field)
+}
+
+/// Every problem of a scene or sweep at once, one per line, as `raceway scene --check`
+/// prints them; the field is the first problem's.
+fn problems_error(py: Python<'_>, what: &str, problems: &[schema::Problem]) -> PyErr {
+    let mut message = format!("{what}: {} problem(s)", problems.len());
+    for p in problems {
+        message += &format!("\n{p}");
+    }
+    let field = problems
+        .first()
+        .map(|p| p.path.clone())
+        .filter(|p| !p.is_empty());
+    py_error(py, message, "parse", field)
+}
+
+fn io_error(py: Python<'_>, what: &str, path: &Path, e: std::io::Error) -> PyErr {
+    py_error(
+        py,
+        format!("cannot read {what} `{}`: {e}", path.display()),
+        "io",
+        None,
+    )
+}
+
+/// A scene or sweep argument: TOML/JSON text, a path, or a mapping. Returns the text and the
+/// folder relative paths inside it are taken from (the file's folder, else the working
+/// directory).
+fn text_of(py: Python<'_>, obj: &Bound<'_, PyAny>, what: &str) -> PyResult<(String, PathBuf)> {
+    let cwd = PathBuf::from(".");
+    let read = |p: PathBuf| -> PyResult<(String, PathBuf)> {
+        let text = std::fs::read_to_string(&p).map_err(|e| io_error(py, what, &p, e))?;
+        let dir = p.parent().map(Path::to_path_buf).unwrap_or(cwd.clone());
+        Ok((text, dir))
+    };
+    if let Ok(s) = obj.cast::<PyString>() {
+        let s: String = s.extract()?;
+        let s = s.as_str();
+        let one_line = !s.contains('\n');
+        let looks_like_file =
+            one_line && (Path::new(s).is_file() || s.ends_with(".toml") || s.ends_with(".json"));
+        return if looks_like_file {
+            read(PathBuf::from(s))
+        } else {
+            Ok((s.to_string(), cwd))
+        };
+    }
+    if obj.hasattr("__fspath__")? {
+        let p: PathBuf = obj.extract()?;
+        return read(p);
+    }
+    if obj.cast::<PyDict>().is_ok() || obj.hasattr("keys")? {
+        let json: String = py
+            .import("json")?
+            .call_method1("dumps", (obj,))?
+            .extract()?;
+        return Ok((json, cwd));
+    }
+    Err(py_error(
+        py,
+        format!(
+            "{what}: expected TOML or JSON text, a path or a dict, found {}",
+            obj.get_type().name()?
+        ),
+        "invalid",
+        Some(what.to_string()),
+    ))
+}
+
+/// The scene text of an optional scene argument (None: the embedded default scene).
+fn scene_text(py: Python<'_>, scene: Option<&Bound<'_, PyAny>>) -> PyResult<String> {
+    match scene {
+        None => Ok(raceway::component::scene::DEFAULT_SCENE.to_string()),
+        Some(s) if s.is_none() => Ok(raceway::component::scene::DEFAULT_SCENE.to_string()),
+        Some(s) => Ok(text_of(py, s, "scene")?.0),
+    }
+}
+
+/// A scene checked as `raceway scene --check` checks a file (every problem at once), with
+/// overrides (`run.duration_s`).
+fn load_scene(py: Python<'_>, text: &str, overrides: &[(&str, f64)]) -> PyResult<raceway::Scene> {
+    schema::load(text, overrides).map_err(|p| problems_error(py, "scene", &p))
+}
+
+fn variable(py: Python<'_>, name: &str) -> PyResult<&'static variables::Variable> {
+    variables::by_name(name).ok_or_else(|| {
+        to_py(
+            py,
+            raceway::Error::Unknown {
+                what: "variable",
+                name: name.to_string(),
+                known: variables::all().map(|v| v.name.to_string()).collect(),
+            },
+        )
+    })
+}
+
+/// An opaque snapshot of a component's state.
+#[pyclass(module = "raceway._raceway", frozen)]
+pub struct State {
+    inner: InnerState,
+}
+
+#[pymethods]
+impl State {
+    /// The time of the snapshot, s.
+    #[getter]
+    fn time(&self) -> f64 {
+        self.inner.t
+    }
+
+    fn __bytes__<'py>(&self, py: Python<'py>) -> Bound<'py, PyBytes> {
+        PyBytes::new(py, &self.inner.to_bytes())
+    }
+
+    /// A state from its bytes (what pickling uses).
+    #[staticmethod]
+    fn from_bytes(py: Python<'_>, data: &[u8]) -> PyResult<State> {
+        InnerState::from_bytes(data)
+            .map(|inner| State { inner })
+            .map_err(|e| to_py(py, e))
+    }
+
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyTuple>> {
+        let py = slf.py();
+        let ctor = slf.get_type().getattr("from_bytes")?;
+        let bytes = PyBytes::new(py, &slf.get().inner.to_bytes());
+        PyTuple::new(py, [ctor.into_any(), PyTuple::new(py, [bytes])?.into_any()])
+    }
+
+    fn __repr__(&self) -> String {
+        format!("<raceway.State at t = {} s>", self.inner.t)
+    }
+}
+
+/// The bearing as a co-simulation component (see `raceway/__init__.pyi`).
+#[pyclass(module = "raceway._raceway")]
+pub struct Component {
+    // A Mutex makes the class Sync, as PyO3 requires; the `&mut self` methods reach the
+    // component without locking (`get_mut`).
+    inner: Mutex<Inner>,
+}
+
+impl Component {
+    fn inner(&self) -> std::sync::MutexGuard<'_, Inner> {
+        self.inner.lock().unwrap_or_else(|e| e.into_inner())
+    }
+
+    fn inner_mut(&mut self) -> &mut Inner {
+        self.inner.get_mut().unwrap_or_else(|e| e.into_inner())
+    }
+}
+
+#[pymethods]
+impl Component {
+    #[new]
+    #[pyo3(signature = (scene=None))]
+    fn new(py: Python<'_>, scene: Option<&Bound<'_, PyAny>>) -> PyResult<Self> {
+        let text = scene_text(py, scene)?;
+        let scene = load_scene(py, &text, &[])?;
+        let inner = py.detach(|| Inner::new(scene)).map_err(|e| to_py(py, e))?;
+        Ok(Component {
+            inner: Mutex::new(inner),
+        })
+    }
+
+    #[getter]
+    fn time(&self) -> f64 {
+        self.inner().time()
+    }
+
+    #[getter]
+    fn level(&self) -> &'static str {
+        self.inner().scene().model.level.name()
+    }
+
+    #[getter]
+    fn causality(&self) -> &'static str {
+        match self.inner().causality() {
+            variables::Causality::Motion => "motion",
+            variables::Causality::Load => "load",
+        }
+    }
+
+    #[getter]
+    fn bearing(&self) -> String {
+        self.inner().bearing().name.clone()
+    }
+
+    /// Set one input, or several from a mapping (all or none).
+    #[pyo3(signature = (name, value=None))]
+    fn set(&mut self, py: Python<'_>, name: &Bound<'_, PyAny>, value: Option<f64>) -> PyResult<()> {
+        let pairs: Vec<(String, f64)> = if let Ok(n) = name.extract::<String>() {
+            let v = value.ok_or_else(|| {
+                py_error(
+                    py,
+                    format!("set(\"{n}\"): a value is needed"),
+                    "invalid",
+                    Some(n.clone()),
+                )
+            })?;
+            vec![(n, v)]
+        } else {
+            let d = name.call_method0("items")?;
+            let mut out = Vec::new();
+            for item in d.try_iter()? {
+                out.push(item?.extract::<(String, f64)>()?);
+            }
+            out
+        };
+        let mut vrs = Vec::with_capacity(pairs.len());
+        for (n, _) in &pairs {
+            vrs.push(variable(py, n)?.vr);
+        }
+        let values: Vec<f64> = pairs.iter().map(|p| p.1).collect();
+        self.inner_mut()
+            .set_reals(&vrs, &values)
+            .map_err(|(_, e)| to_py(py, e))
+    }
+
+    /// The value of one variable by name.
+    fn get(&mut self, py: Python<'_>, name: &str) -> PyResult<f64> {
+        let vr = variable(py, name)?.vr;
+        let inner = self.inner_mut();
+        py.detach(|| inner.get_real(vr)).map_err(|e| to_py(py, e))
+    }
+
+    /// Advance from `t` to `t + h` (the GIL released while the bearing sub-steps).
+    fn do_step(&mut self, py: Python<'_>, t: f64, h: f64) -> PyResult<()> {
+        let inner = self.inner_mut();
+        py.detach(|| inner.do_step(t, h)).map_err(|e| to_py(py, e))
+    }
+
+    /// Every output at the current time, by name.
+    fn outputs<'py>(&mut self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let inner = self.inner_mut();
+        let causality = inner.causality();
+        let values = py
+            .detach(|| {
+                inner.ensure_outputs()?;
+                variables::all()
+                    .filter(|v| v.is_output(causality))
+                    .map(|v| inner.get_real(v.vr).map(|x| (v.name, x)))
+                    .collect::<raceway::Result<Vec<_>>>()
+            })
+            .map_err(|e| to_py(py, e))?;
+        let d = PyDict::new(py);
+        for (k, v) in values {
+            d.set_item(k, v)?;
+        }
+        Ok(d)
+    }
+
+    /// Every input of this causality, by name.
+    fn inputs<'py>(&mut self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let inner = self.inner_mut();
+        let causality = inner.causality();
+        let d = PyDict::new(py);
+        for v in variables::all().filter(|v| v.is_input(causality)) {
+            let x = inner.get_real(v.vr).map_err(|e| to_py(py, e))?;
+            d.set_item(v.name, x)?;
+        }
+        Ok(d)
+    }
+
+    fn get_state(&self) -> State {
+        State {
+            inner: self.inner().get_state(),
+        }
+    }
+
+    fn set_state(&mut self, py: Python<'_>, state: &State) -> PyResult<()> {
+        self.inner_mut()
+            .set_state(&state.inner)
+            .map_err(|e| to_py(py, e))
+    }
+
+    fn state_bytes<'py>(&self, py: Python<'py>) -> Bound<'py, PyBytes> {
+        PyBytes::new(py, &self.inner().serialize_state())
+    }
+
+    fn set_state_bytes(&mut self, py: Python<'_>, data: &[u8]) -> PyResult<()> {
+        self.inner_mut()
+            .deserialize_state(data)
+            .map_err(|e| to_py(py, e))
+    }
+
+    fn __repr__(&self) -> String {
+        let c = self.inner();
+        format!(
+            "<raceway.Component {} at level {}, t = {} s>",
+            c.bearing().name,
+            c.scene().model.level.name(),
+            c.time()
+        )
+    }
+}
+
+/// The variable table: (name, vr, unit, role, description) per variable.
+#[pyfunction]
+fn variable_table() -> Vec<(&'static str, u32, &'static str, &'static str, &'static str)> {
+    variables::all()
+        .map(|v| {
+            let role = match v.role {
+                variables::Role::Motion => "motion",
+                variables::Role::Speed => "speed",
+                variables::Role::Load => "load",
+                variables::Role::Output => "output",
+            };
+            (v.name, v.vr, v.unit, role, v.description)
+        })
+        .collect()
+}
+
+/// A stand-alone run: (column names with units, columns, summary JSON).
+#[pyfunction]
+#[pyo3(signature = (scene=None, duration=None, kc=false))]
+fn run(
+    py: Python<'_>,
+    scene: Option<&Bound<'_, PyAny>>,
+    duration: Option<f64>,
+    kc: bool,
+) -> PyResult<(Vec<String>, Vec<Vec<f64>>, String)> {
+    let text = scene_text(py, scene)?;
+    let overrides: Vec<(&str, f64)> = duration
+        .map(|d| ("run.duration_s", d))
+        .into_iter()
+        .collect();
+    let scene = load_scene(py, &text, &overrides)?;
+    let (names, columns, summary) = py
+        .detach(|| -> raceway::Result<_> {
+            let c0 = raceway::report::thread_cpu_s();
+            let (series, comp) = raceway::runner::run_recording(
+                &scene,
+                raceway::runner::Record {
+                    stiffness_damping: kc,
+                },
+                &mut |_| {},
+            )?;
+            let cpu = raceway::report::thread_cpu_s() - c0;
+            let summary = raceway::summary::summarize(&scene, "python", &series, &comp, cpu);
+            let mut names = vec!["t [s]".to_string()];
+            for (n, u) in series.names.iter().zip(&series.units) {
+                names.push(format!("{n} [{u}]"));
+            }
+            let mut columns = vec![series.t];
+            columns.extend(series.columns);
+            Ok((
+                names,
+                columns,
+                serde_json::Value::Object(summary.json).to_string(),
+            ))
+        })
+        .map_err(|e| to_py(py, e))?;
+    Ok((names, columns, summary))
+}
+
+/// `raceway quasi-static --json` as text, plus (ball columns with units, their values).
+#[pyfunction]
+#[pyo3(signature = (bearing, speed_rpm, load, race_control, kappa, contamination))]
+#[allow(clippy::type_complexity)]
+fn quasi_static(
+    py: Python<'_>,
+    bearing: Option<String>,
+    speed_rpm: f64,
+    load: [f64; 5],
+    race_control: Option<String>,
+    kappa: Option<f64>,
+    contamination: Option<f64>,
+) -> PyResult<(String, Vec<String>, Vec<Vec<f64>>)> {
+    py.detach(|| -> raceway::Result<_> {
+        let scene = raceway::Scene::default_scene();
+        let bearing = match bearing.as_deref() {
+            Some(b) => reports::load_bearing(b)?,
+            None => scene.build_bearing()?,
+        };
+        let race_control = match race_control.as_deref() {
+            None => scene.model.race_control,
+            Some("outer") => RaceControl::Outer,
+            Some("none") => RaceControl::None,
+            Some(other) => {
+                return Err(raceway::Error::invalid(
+                    "race_control",
+                    format!("\"{other}\""),
+                    "\"outer\" or \"none\"",
+                ))
+            }
+        };
+        let problem = reports::QsProblem::new(
+            bearing,
+            speed_rpm,
+            load,
+            race_control,
+            kappa,
+            contamination,
+            &reports::PYTHON_NAMES,
+        )?;
+        let (sol, rating) = problem.solve()?;
+        let json = serde_json::to_string(&reports::quasi_static_report(&problem, &sol, &rating))
+            .expect("the report serialises");
+        let (names, columns) = reports::ball_columns(&sol);
+        Ok((json, names, columns))
+    })
+    .map_err(|e| to_py(py, e))
+}
+
+/// `raceway bearings --json`.
+#[pyfunction]
+fn bearings_json(py: Python<'_>) -> PyResult<String> {
+    reports::bearing_rows()
+        .map(|rows| serde_json::to_string(&rows).unwrap_or_default())
+        .map_err(|e| to_py(py, e))
+}
+
+/// `raceway bearings NAME --json`.
+#[pyfunction]
+fn bearing_json(py: Python<'_>, name: &str) -> PyResult<String> {
+    reports::bearing_detail(name)
+        .map(|d| serde_json::to_string(&d).unwrap_or_default())
+        .map_err(|e| to_py(py, e))
+}
+
+/// A parsed sweep; pickles as its self-contained TOML text (base scene inlined).
+#[pyclass(module = "raceway._raceway", frozen)]
+pub struct Sweep {
+    inner: raceway::sweep::Sweep,
+    text: String,
+}
+
+impl Sweep {
+    fn parse(py: Python<'_>, text: &str, dir: &Path) -> PyResult<Sweep> {
+        // A dict arrives as JSON: the sweep file is TOML, so convert it.
+        let text = if text.trim_start().starts_with('{') {
+            serde_json::from_str::<serde_json::Value>(text)
+                .map_err(|e| e.to_string())
+                .and_then(|v| toml::Table::try_from(v).map_err(|e| e.to_string()))
+                .and_then(|t| toml::to_string(&t).map_err(|e| e.to_string()))
+                .map_err(|e| py_error(py, format!("sweep: {e}"), "parse", None))?
+        } else {
+            text.to_string()
+        };
+        let inner = raceway::sweep::Sweep::from_text(&text, dir)
+            .map_err(|p| problems_error(py, "sweep", &p))?;
+        // Self-contained: the base scene (read from its file, if any) inlined as [scene].
+        let mut doc: toml::Table = text.parse().unwrap_or_default();
+        doc.insert("scene".into(), toml::Value::Table(inner.base.clone()));
+        let text = toml::to_string(&doc).map_err(|e| py_error(py, e.to_string(), "parse", None))?;
+        Ok(Sweep { inner, text })
+    }
+
+    fn index(&self, py: Python<'_>, index: usize) -> PyResult<usize> {
+        if index < self.inner.len() {
+            Ok(index)
+        } else {
+            Err(to_py(
+                py,
+                raceway::Error::invalid(
+                    "index",
+                    index,
+                    format!("0..{} (the sweep's points)", self.inner.len()),
+                ),
+            ))
+        }
+    }
+}
+
+fn row_json(row: &raceway::sweep::Row) -> String {
+    serde_json::to_string(row).expect("a row serialises")
+}
+
+#[pymethods]
+impl Sweep {
+    #[new]
+    fn new(py: Python<'_>, sweep: &Bound<'_, PyAny>) -> PyResult<Self> {
+        let (text, dir) = text_of(py, sweep, "sweep")?;
+        Sweep::parse(py, &text, &dir)
+    }
+
+    fn __len__(&self) -> usize {
+        self.inner.len()
+    }
+
+    #[getter]
+    fn columns(&self) -> Vec<String> {
+        self.inner.axes.iter().map(|a| a.column.clone()).collect()
+    }
+
+    /// The self-contained sweep text (what pickling carries).
+    #[getter]
+    fn text(&self) -> &str {
+        &self.text
+    }
+
+    /// The axes' values at a point, as a JSON object by column.
+    fn point_json(&self, py: Python<'_>, index: usize) -> PyResult<String> {
+        let i = self.index(py, index)?;
+        let row = raceway::sweep::Row {
+            index: i,
+            axes: self
+                .inner
+                .axes
+                .iter()
+                .zip(self.inner.point(i))
+                .map(|(a, v)| {
+                    (
+                        a.column.clone(),
+                        serde_json::to_value(&v).unwrap_or_default(),
+                    )
+                })
+                .collect(),
+            error: None,
+            summary: Vec::new(),
+        };
+        let m: serde_json::Map<String, serde_json::Value> = row.axes.into_iter().collect();
+        Ok(serde_json::Value::Object(m).to_string())
+    }
+
+    fn scene_text(&self, py: Python<'_>, index: usize) -> PyResult<String> {
+        let i = self.index(py, index)?;
+        self.inner.scene_text(i).map_err(|e| to_py(py, e))
+    }
+
+    /// Run points (GIL released); each row as JSON. `series_dir`: write each run's series
+    /// there as `<index>.csv` when the sweep asks for series.
+    #[pyo3(signature = (indices, series_dir=None))]
+    fn run_points_json(
+        &self,
+        py: Python<'_>,
+        indices: Vec<usize>,
+        series_dir: Option<PathBuf>,
+    ) -> PyResult<Vec<String>> {
+        for &i in &indices {
+            self.index(py, i)?;
+        }
+        let sw = &self.inner;
+        Ok(py.detach(|| {
+            indices
+                .iter()
+                .map(|&i| {
+                    let series = series_dir
+                        .as_ref()
+                        .filter(|_| sw.series)
+                        .map(|d| d.join(format!("{i:08}.csv")));
+                    row_json(&sw.run_point(i, series.as_deref()))
+                })
+                .collect()
+        }))
+    }
+
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyTuple>> {
+        let py = slf.py();
+        let args = PyTuple::new(py, [slf.get().text.clone()])?;
+        PyTuple::new(py, [slf.get_type().into_any(), args.into_any()])
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "<raceway.Sweep of {} points over {}>",
+            self.inner.len(),
+            self.columns().join(", ")
+        )
+    }
+}
+
+fn rows_of(py: Python<'_>, rows: Vec<String>) -> PyResult<Vec<raceway::sweep::Row>> {
+    rows.iter()
+        .map(|r| {
+            serde_json::from_str(r)
+                .map_err(|e| py_error(py, format!("not a sweep row: {e}"), "parse", None))
+        })
+        .collect()
+}
+
+/// The CSV table of rows (JSON), exactly as `raceway sweep` writes sweep.csv.
+#[pyfunction]
+fn sweep_csv(py: Python<'_>, rows: Vec<String>) -> PyResult<String> {
+    let mut rows = rows_of(py, rows)?;
+    rows.sort_by_key(|r| r.index);
+    rows.dedup_by_key(|r| r.index);
+    Ok(raceway::sweep::csv(&rows))
+}
+
+/// Run a sweep into `out` as `raceway sweep` does (threads, shard, resumable).
+#[pyfunction]
+#[pyo3(signature = (sweep, out, jobs=None, shard=None))]
+fn sweep_execute(
+    py: Python<'_>,
+    sweep: &Sweep,
+    out: PathBuf,
+    jobs: Option<usize>,
+    shard: Option<(usize, usize)>,
+) -> PyResult<()> {
+    let jobs = match jobs {
+        Some(0) => {
+            return Err(to_py(py, raceway::Error::invalid("jobs", 0, ">= 1")));
+        }
+        Some(j) => j,
+        None => std::thread::available_parallelism().map_or(1, |n| n.get()),
+    };
+    let exec = raceway::sweep::Exec {
+        jobs,
+        shard: shard.unwrap_or((0, 1)),
+    };
+    let sw = &sweep.inner;
+    py.detach(|| raceway::sweep::execute(sw, &out, exec, &|_, _, _| {}))
+        .map(|_| ())
+        .map_err(|e| to_py(py, e))
+}
+
+/// The indices of the finished rows in `out` (claiming the folder for this sweep, as
+/// `raceway sweep` does: another sweep's folder is refused).
+#[pyfunction]
+fn sweep_finished(py: Python<'_>, sweep: &Sweep, out: PathBuf) -> PyResult<Vec<usize>> {
+    raceway::sweep::claim_dir(&out, &sweep.inner.fingerprint()).map_err(|e| to_py(py, e))?;
+    Ok(raceway::sweep::read_rows(&out)
+        .into_iter()
+        .map(|r| r.index)
+        .collect())
+}
+
+/// Write rows (JSON) into `out/rows/` atomically, then `out/sweep.csv` from every finished
+/// row there; returns the CSV text.
+#[pyfunction]
+fn sweep_store(py: Python<'_>, out: PathBuf, rows: Vec<String>) -> PyResult<String> {
+    let rows = rows_of(py, rows)?;
+    py.detach(|| raceway::sweep::store(&out, &rows))
+        .map_err(|e| to_py(py, e))
+}
+
+#[pymodule]
+fn _raceway(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    let py = m.py();
+    m.add("Error", py.get_type::<Error>())?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    m.add("DOF", PyList::new(py, variables::DOF)?)?;
+    m.add_class::<State>()?;
+    m.add_class::<Component>()?;
+    m.add_class::<Sweep>()?;
+    m.add_function(wrap_pyfunction!(variable_table, m)?)?;
+    m.add_function(wrap_pyfunction!(run, m)?)?;
+    m.add_function(wrap_pyfunction!(quasi_static, m)?)?;
+    m.add_function(wrap_pyfunction!(bearings_json, m)?)?;
+    m.add_function(wrap_pyfunction!(bearing_json, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep_csv, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep_execute, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep_finished, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep_store, m)?)?;
+    Ok(())
+}
