@@ -546,28 +546,22 @@ impl Sweep {
         &self.text
     }
 
-    /// The axes' values at a point, as a JSON object by column.
+    /// The axes' values at a point, as JSON `[[column, value], ...]` in axis order.
     fn point_json(&self, py: Python<'_>, index: usize) -> PyResult<String> {
         let i = self.index(py, index)?;
-        let row = raceway::sweep::Row {
-            index: i,
-            axes: self
-                .inner
-                .axes
-                .iter()
-                .zip(self.inner.point(i))
-                .map(|(a, v)| {
-                    (
-                        a.column.clone(),
-                        serde_json::to_value(&v).unwrap_or_default(),
-                    )
-                })
-                .collect(),
-            error: None,
-            summary: Vec::new(),
-        };
-        let m: serde_json::Map<String, serde_json::Value> = row.axes.into_iter().collect();
-        Ok(serde_json::Value::Object(m).to_string())
+        let pairs: Vec<(String, serde_json::Value)> = self
+            .inner
+            .axes
+            .iter()
+            .zip(self.inner.point(i))
+            .map(|(a, v)| {
+                (
+                    a.column.clone(),
+                    serde_json::to_value(&v).unwrap_or_default(),
+                )
+            })
+            .collect();
+        Ok(serde_json::to_string(&pairs).expect("values serialise"))
     }
 
     fn scene_text(&self, py: Python<'_>, index: usize) -> PyResult<String> {

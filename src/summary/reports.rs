@@ -333,7 +333,7 @@ pub fn ball_columns(sol: &Solution) -> (Vec<String>, Vec<Vec<f64>>) {
         ("b_o", "m", |b| b.b_o),
         ("p_o", "Pa", |b| b.p_o),
         ("fc", "N", |b| b.fc),
-        ("mg", "N m", |b| b.mg),
+        ("mg", "N.m", |b| b.mg),
         ("omega_m", "rad/s", |b| b.omega_m),
         ("omega_r", "rad/s", |b| b.omega_r),
         ("beta", "rad", |b| b.beta),

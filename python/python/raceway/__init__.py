@@ -135,7 +135,7 @@ class Sweep:
         return self._native.columns
 
     def point(self, index: int) -> dict:
-        return json.loads(self._native.point_json(index))
+        return dict(json.loads(self._native.point_json(index)))
 
     def scene_text(self, index: int) -> str:
         return self._native.scene_text(index)

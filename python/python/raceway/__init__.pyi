@@ -149,7 +149,7 @@ class QuasiStaticResult:
     contact angles ``alpha_i [rad]``, ``alpha_o [rad]``, approaches ``delta_i [m]``,
     ``delta_o [m]``, semi-axes ``a_i [m]``, ``b_i [m]``, ``a_o [m]``, ``b_o [m]``, peak
     pressures ``p_i [Pa]``, ``p_o [Pa]``, centrifugal force ``fc [N]``, gyroscopic moment
-    ``mg [N m]``, orbital speed ``omega_m [rad/s]``, spin ``omega_r [rad/s]``, attitude
+    ``mg [N.m]``, orbital speed ``omega_m [rad/s]``, spin ``omega_r [rad/s]``, attitude
     ``beta [rad]``, spin-to-roll ratios ``spin_roll_i [-]``, ``spin_roll_o [-]``."""
     K: npt.NDArray[np.float64]
     """Stiffness ``K = -dF/dq``, 5×5, order ``(x, y, z, rx, ry)``; N/m, N/rad, N m/m, N m/rad."""
