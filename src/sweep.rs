@@ -1,7 +1,7 @@
 //! Parameter sweeps: a base scene and axes of values, each run a pure function
 //! run index → scene → summary row, so any executor (the `raceway sweep` threads, a
-//! `--shard k/n` job array, later a Python/Dask layer) maps the same index space and gets the
-//! same rows.
+//! `--shard k/n` job array, the Python package and its Dask layer) maps the same index space
+//! and gets the same rows.
 //!
 //! A sweep file (TOML):
 //!

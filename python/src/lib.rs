@@ -78,15 +78,24 @@ fn io_error(py: Python<'_>, what: &str, path: &Path, e: std::io::Error) -> PyErr
     )
 }
 
-/// A scene or sweep argument: TOML/JSON text, a path, or a mapping. Returns the text and the
-/// folder relative paths inside it are taken from (the file's folder, else the working
-/// directory).
-fn text_of(py: Python<'_>, obj: &Bound<'_, PyAny>, what: &str) -> PyResult<(String, PathBuf)> {
+/// A scene or sweep argument as text.
+struct Source {
+    text: String,
+    /// The folder relative paths inside it are taken from (the file's, else the working
+    /// directory).
+    dir: PathBuf,
+    /// The file's stem, when it came from a file.
+    stem: Option<String>,
+}
+
+/// A scene or sweep argument: TOML/JSON text, a path, or a mapping.
+fn text_of(py: Python<'_>, obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Source> {
     let cwd = PathBuf::from(".");
-    let read = |p: PathBuf| -> PyResult<(String, PathBuf)> {
+    let read = |p: PathBuf| -> PyResult<Source> {
         let text = std::fs::read_to_string(&p).map_err(|e| io_error(py, what, &p, e))?;
         let dir = p.parent().map(Path::to_path_buf).unwrap_or(cwd.clone());
-        Ok((text, dir))
+        let stem = p.file_stem().map(|s| s.to_string_lossy().into_owned());
+        Ok(Source { text, dir, stem })
     };
     if let Ok(s) = obj.cast::<PyString>() {
         let s: String = s.extract()?;
@@ -97,7 +106,11 @@ fn text_of(py: Python<'_>, obj: &Bound<'_, PyAny>, what: &str) -> PyResult<(Stri
         return if looks_like_file {
             read(PathBuf::from(s))
         } else {
-            Ok((s.to_string(), cwd))
+            Ok(Source {
+                text: s.to_string(),
+                dir: cwd,
+                stem: None,
+            })
         };
     }
     if obj.hasattr("__fspath__")? {
@@ -109,7 +122,11 @@ fn text_of(py: Python<'_>, obj: &Bound<'_, PyAny>, what: &str) -> PyResult<(Stri
             .import("json")?
             .call_method1("dumps", (obj,))?
             .extract()?;
-        return Ok((json, cwd));
+        return Ok(Source {
+            text: json,
+            dir: cwd,
+            stem: None,
+        });
     }
     Err(py_error(
         py,
@@ -122,12 +139,18 @@ fn text_of(py: Python<'_>, obj: &Bound<'_, PyAny>, what: &str) -> PyResult<(Stri
     ))
 }
 
-/// The scene text of an optional scene argument (None: the embedded default scene).
-fn scene_text(py: Python<'_>, scene: Option<&Bound<'_, PyAny>>) -> PyResult<String> {
-    match scene {
-        None => Ok(raceway::component::scene::DEFAULT_SCENE.to_string()),
-        Some(s) if s.is_none() => Ok(raceway::component::scene::DEFAULT_SCENE.to_string()),
-        Some(s) => Ok(text_of(py, s, "scene")?.0),
+/// The text and name of an optional scene argument (None: the embedded default scene,
+/// named `default`; a file: its stem, as `raceway run` names it; else `scene`).
+fn scene_text(py: Python<'_>, scene: Option<&Bound<'_, PyAny>>) -> PyResult<(String, String)> {
+    match scene.filter(|s| !s.is_none()) {
+        None => Ok((
+            raceway::component::scene::DEFAULT_SCENE.to_string(),
+            "default".into(),
+        )),
+        Some(s) => {
+            let src = text_of(py, s, "scene")?;
+            Ok((src.text, src.stem.unwrap_or_else(|| "scene".into())))
+        }
     }
 }
 
@@ -211,7 +234,7 @@ impl Component {
     #[new]
     #[pyo3(signature = (scene=None))]
     fn new(py: Python<'_>, scene: Option<&Bound<'_, PyAny>>) -> PyResult<Self> {
-        let text = scene_text(py, scene)?;
+        let (text, _) = scene_text(py, scene)?;
         let scene = load_scene(py, &text, &[])?;
         let inner = py.detach(|| Inner::new(scene)).map_err(|e| to_py(py, e))?;
         Ok(Component {
@@ -376,7 +399,7 @@ fn run(
     duration: Option<f64>,
     kc: bool,
 ) -> PyResult<(Vec<String>, Vec<Vec<f64>>, String)> {
-    let text = scene_text(py, scene)?;
+    let (text, name) = scene_text(py, scene)?;
     let overrides: Vec<(&str, f64)> = duration
         .map(|d| ("run.duration_s", d))
         .into_iter()
@@ -393,7 +416,7 @@ fn run(
                 &mut |_| {},
             )?;
             let cpu = raceway::report::thread_cpu_s() - c0;
-            let summary = raceway::summary::summarize(&scene, "python", &series, &comp, cpu);
+            let summary = raceway::summary::summarize(&scene, &name, &series, &comp, cpu);
             let mut names = vec!["t [s]".to_string()];
             for (n, u) in series.names.iter().zip(&series.units) {
                 names.push(format!("{n} [{u}]"));
@@ -527,8 +550,8 @@ fn row_json(row: &raceway::sweep::Row) -> String {
 impl Sweep {
     #[new]
     fn new(py: Python<'_>, sweep: &Bound<'_, PyAny>) -> PyResult<Self> {
-        let (text, dir) = text_of(py, sweep, "sweep")?;
-        Sweep::parse(py, &text, &dir)
+        let src = text_of(py, sweep, "sweep")?;
+        Sweep::parse(py, &src.text, &src.dir)
     }
 
     fn __len__(&self) -> usize {
