@@ -62,6 +62,10 @@ class State:
     def time(self) -> float:
         """The time of the snapshot, s."""
     def __bytes__(self) -> bytes: ...
+    @staticmethod
+    def from_bytes(data: bytes) -> State:
+        """A snapshot from its bytes (``bytes(state)`` or :meth:`Component.state_bytes`).
+        Raises :class:`Error` for bytes of another version or a truncated buffer."""
 
 class Component:
     """The bearing as a co-simulation component: set inputs, step, read outputs.
@@ -138,7 +142,8 @@ def run(
     columns of ``series.csv`` (``"t [s]"``, ``"force.y [N]"``, ``"shaft.y [m]"``, ... every
     variable with its SI unit in the name); ``summary`` is the dict ``raceway run`` writes to
     ``summary.json`` (peak loads and pressures, characteristic frequencies found, ISO
-    ratings, ``cpu_s`` thread CPU time, ``load_average``).
+    ratings, ``cpu_s`` thread CPU time, ``load_average``; ``scene`` is the file's stem,
+    ``"default"`` for the default scene, else ``"scene"``).
     """
 
 class QuasiStaticResult:
