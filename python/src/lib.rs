@@ -55,6 +55,28 @@ fn to_py(py: Python<'_>, e: raceway::Error) -> PyErr {
     py_error(py, e.to_string(), kind, field)
 }
 
+/// Run `f` with the GIL released (PyO3's `allow_threads`, now `detach`); a library error, or
+/// a panic (a bug), becomes `raceway.Error` instead of crossing into Python.
+fn compute<T: Send>(py: Python<'_>, f: impl FnOnce() -> raceway::Result<T> + Send) -> PyResult<T> {
+    match py.detach(|| std::panic::catch_unwind(std::panic::AssertUnwindSafe(f))) {
+        Ok(Ok(v)) => Ok(v),
+        Ok(Err(e)) => Err(to_py(py, e)),
+        Err(p) => {
+            let what = p
+                .downcast_ref::<&str>()
+                .map(|s| s.to_string())
+                .or_else(|| p.downcast_ref::<String>().cloned())
+                .unwrap_or_default();
+            Err(py_error(
+                py,
+                format!("internal error (a bug, please report it): panic: {what}"),
+                "panic",
+                None,
+            ))
+        }
+    }
+}
+
 /// Every problem of a scene or sweep at once, one per line, as `raceway scene --check`
 /// prints them; the field is the first problem's.
 fn problems_error(py: Python<'_>, what: &str, problems: &[schema::Problem]) -> PyErr {
@@ -236,7 +258,7 @@ impl Component {
     fn new(py: Python<'_>, scene: Option<&Bound<'_, PyAny>>) -> PyResult<Self> {
         let (text, _) = scene_text(py, scene)?;
         let scene = load_scene(py, &text, &[])?;
-        let inner = py.detach(|| Inner::new(scene)).map_err(|e| to_py(py, e))?;
+        let inner = compute(py, || Inner::new(scene))?;
         Ok(Component {
             inner: Mutex::new(inner),
         })
@@ -300,28 +322,26 @@ impl Component {
     fn get(&mut self, py: Python<'_>, name: &str) -> PyResult<f64> {
         let vr = variable(py, name)?.vr;
         let inner = self.inner_mut();
-        py.detach(|| inner.get_real(vr)).map_err(|e| to_py(py, e))
+        compute(py, || inner.get_real(vr))
     }
 
     /// Advance from `t` to `t + h` (the GIL released while the bearing sub-steps).
     fn do_step(&mut self, py: Python<'_>, t: f64, h: f64) -> PyResult<()> {
         let inner = self.inner_mut();
-        py.detach(|| inner.do_step(t, h)).map_err(|e| to_py(py, e))
+        compute(py, || inner.do_step(t, h))
     }
 
     /// Every output at the current time, by name.
     fn outputs<'py>(&mut self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let inner = self.inner_mut();
         let causality = inner.causality();
-        let values = py
-            .detach(|| {
-                inner.ensure_outputs()?;
-                variables::all()
-                    .filter(|v| v.is_output(causality))
-                    .map(|v| inner.get_real(v.vr).map(|x| (v.name, x)))
-                    .collect::<raceway::Result<Vec<_>>>()
-            })
-            .map_err(|e| to_py(py, e))?;
+        let values = compute(py, || {
+            inner.ensure_outputs()?;
+            variables::all()
+                .filter(|v| v.is_output(causality))
+                .map(|v| inner.get_real(v.vr).map(|x| (v.name, x)))
+                .collect::<raceway::Result<Vec<_>>>()
+        })?;
         let d = PyDict::new(py);
         for (k, v) in values {
             d.set_item(k, v)?;
@@ -405,32 +425,29 @@ fn run(
         .into_iter()
         .collect();
     let scene = load_scene(py, &text, &overrides)?;
-    let (names, columns, summary) = py
-        .detach(|| -> raceway::Result<_> {
-            let c0 = raceway::report::thread_cpu_s();
-            let (series, comp) = raceway::runner::run_recording(
-                &scene,
-                raceway::runner::Record {
-                    stiffness_damping: kc,
-                },
-                &mut |_| {},
-            )?;
-            let cpu = raceway::report::thread_cpu_s() - c0;
-            let summary = raceway::summary::summarize(&scene, &name, &series, &comp, cpu);
-            let mut names = vec!["t [s]".to_string()];
-            for (n, u) in series.names.iter().zip(&series.units) {
-                names.push(format!("{n} [{u}]"));
-            }
-            let mut columns = vec![series.t];
-            columns.extend(series.columns);
-            Ok((
-                names,
-                columns,
-                serde_json::Value::Object(summary.json).to_string(),
-            ))
-        })
-        .map_err(|e| to_py(py, e))?;
-    Ok((names, columns, summary))
+    compute(py, || {
+        let c0 = raceway::report::thread_cpu_s();
+        let (series, comp) = raceway::runner::run_recording(
+            &scene,
+            raceway::runner::Record {
+                stiffness_damping: kc,
+            },
+            &mut |_| {},
+        )?;
+        let cpu = raceway::report::thread_cpu_s() - c0;
+        let summary = raceway::summary::summarize(&scene, &name, &series, &comp, cpu);
+        let mut names = vec!["t [s]".to_string()];
+        for (n, u) in series.names.iter().zip(&series.units) {
+            names.push(format!("{n} [{u}]"));
+        }
+        let mut columns = vec![series.t];
+        columns.extend(series.columns);
+        Ok((
+            names,
+            columns,
+            serde_json::Value::Object(summary.json).to_string(),
+        ))
+    })
 }
 
 /// `raceway quasi-static --json` as text, plus (ball columns with units, their values).
@@ -446,7 +463,7 @@ fn quasi_static(
     kappa: Option<f64>,
     contamination: Option<f64>,
 ) -> PyResult<(String, Vec<String>, Vec<Vec<f64>>)> {
-    py.detach(|| -> raceway::Result<_> {
+    compute(py, || {
         let scene = raceway::Scene::default_scene();
         let bearing = match bearing.as_deref() {
             Some(b) => reports::load_bearing(b)?,
@@ -479,7 +496,6 @@ fn quasi_static(
         let (names, columns) = reports::ball_columns(&sol);
         Ok((json, names, columns))
     })
-    .map_err(|e| to_py(py, e))
 }
 
 /// `raceway bearings --json`.
@@ -674,9 +690,10 @@ fn sweep_execute(
         shard: shard.unwrap_or((0, 1)),
     };
     let sw = &sweep.inner;
-    py.detach(|| raceway::sweep::execute(sw, &out, exec, &|_, _, _| {}))
-        .map(|_| ())
-        .map_err(|e| to_py(py, e))
+    compute(py, || {
+        raceway::sweep::execute(sw, &out, exec, &|_, _, _| {})
+    })
+    .map(|_| ())
 }
 
 /// The indices of the finished rows in `out` (claiming the folder for this sweep, as
@@ -695,8 +712,7 @@ fn sweep_finished(py: Python<'_>, sweep: &Sweep, out: PathBuf) -> PyResult<Vec<u
 #[pyfunction]
 fn sweep_store(py: Python<'_>, out: PathBuf, rows: Vec<String>) -> PyResult<String> {
     let rows = rows_of(py, rows)?;
-    py.detach(|| raceway::sweep::store(&out, &rows))
-        .map_err(|e| to_py(py, e))
+    compute(py, || raceway::sweep::store(&out, &rows))
 }
 
 #[pymodule]

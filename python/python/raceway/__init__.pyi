@@ -45,7 +45,8 @@ class Error(Exception):
     """The project's message."""
     kind: str
     """``"invalid"``, ``"unknown"``, ``"parse"``, ``"not_converged"``, ``"step_failed"``,
-    ``"budget"``, ``"call_order"`` or ``"io"``."""
+    ``"budget"``, ``"call_order"``, ``"io"``, or ``"panic"`` (a bug in the library, caught
+    before it reached Python)."""
     field: Optional[str]
     """The field or argument at fault when the error names one (``"model.level"``,
     ``"shaft.omega"``), else ``None``."""
