@@ -33,12 +33,13 @@ from __future__ import annotations
 import csv
 import itertools
 import math
+import os
 from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 
 import raceway
-from common import Clock, arguments, check, figure_path
+from common import arguments, check, figure_path
 
 LOAD_N = 1000.0
 DEPTH_UM = 30.0
@@ -135,11 +136,11 @@ def main() -> None:
         locations, widths, speeds, duration = ["outer", "inner", "ball"], [0.5, 1.0, 1.5], [1200.0, 1750.0, 2400.0], 1.0
     cases = [(loc, n, w) for loc, w, n in itertools.product(locations, widths, speeds)]
     cases += [("none", n, 0.0) for n in speeds]
-    clock = Clock()
     with ThreadPoolExecutor(max_workers=2) as pool:
         runs = list(pool.map(lambda c: raceway.run(scene(c[0], c[2], c[1], duration)), cases))
     cpu = sum(s["cpu_s"] for _, s in runs)
-    print(clock.report(f"{len(cases)} cases of {duration:g} s") + f"; the runs' own thread CPU time {cpu:.2f} s")
+    load = " ".join(f"{v:.2f}" for v in os.getloadavg())
+    print(f"{len(cases)} cases of {duration:g} s: the runs' thread CPU time {cpu:.2f} s (load average {load})")
 
     series_dir = args.out / "series"
     series_dir.mkdir(exist_ok=True)
