@@ -168,8 +168,6 @@ def main() -> None:
                 out.writerow([w, n, *k.ravel(), *c.ravel()])
     plot_kc(figure_path(args, "kc"), speeds_rpm, table)
 
-    import ross  # noqa: F401 (imported here: it prints a harmless REFPROP notice)
-
     clock = Clock()
     campbells = {}
     for w in (loads[0], loads[-1]):
@@ -178,7 +176,7 @@ def main() -> None:
             warnings.simplefilter("ignore")
             camp = r.run_campbell(campbell_rpm / RPM_PER_RAD_S, frequencies=4)
         campbells[w] = (np.asarray(camp.wd), np.asarray(camp.whirl_values))
-    print(clock.report(f"ROSS Campbell diagrams, {len(campbell_rpm)} speeds each"))
+    print(clock.report(f"ROSS (import, JIT, rotors) and its Campbell diagrams, {len(campbell_rpm)} speeds each"))
     plot_campbell(figure_path(args, "campbell"), campbell_rpm, campbells)
 
     light, heavy = (first_forward(*campbells[w]) / (2 * math.pi) for w in (loads[0], loads[-1]))
