@@ -41,6 +41,29 @@ def figure_path(args: argparse.Namespace, stem: str) -> Path:
     return args.out / f"{stem}.png"
 
 
+def load_average() -> str:
+    """The 1, 5 and 15-minute load averages, to print beside any timing."""
+    return " ".join(f"{v:.2f}" for v in os.getloadavg())
+
+
+def pyplot():
+    """matplotlib's pyplot on the file-only Agg backend."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    return plt
+
+
+def save(fig, path: Path) -> None:
+    """Write a figure and free it."""
+    fig.savefig(path, dpi=110)
+    fig.clf()
+    pyplot().close(fig)
+    print(f"wrote {path}")
+
+
 class Clock:
     """Thread CPU time of this thread (the Rust calls release the GIL but run on it) and
     the load average beside it: the machine is shared, so the wall clock is no measure."""
@@ -50,8 +73,7 @@ class Clock:
 
     def report(self, what: str) -> str:
         cpu = time.thread_time() - self.cpu0
-        load = " ".join(f"{v:.2f}" for v in os.getloadavg())
-        return f"{what}: thread CPU time {cpu:.2f} s (load average {load})"
+        return f"{what}: thread CPU time {cpu:.2f} s (load average {load_average()})"
 
 
 def check(ok: bool, message: str) -> None:

@@ -33,13 +33,12 @@ from __future__ import annotations
 import csv
 import itertools
 import math
-import os
 from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 
 import raceway
-from common import arguments, check, figure_path
+from common import arguments, check, figure_path, load_average, pyplot, save
 
 LOAD_N = 1000.0
 DEPTH_UM = 30.0
@@ -103,11 +102,7 @@ def peak_near(f: np.ndarray, amp: np.ndarray, f0: float, half_width: float) -> t
 
 
 def plot(path, cases, results, rpm, width):
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
+    plt = pyplot()
     shown = [c for c in cases if c[1] == rpm and c[2] in (width, 0.0)]
     fig, axes = plt.subplots(len(shown), 1, figsize=(10, 2.3 * len(shown) + 0.8), sharex=True, constrained_layout=True)
     styles = {"fs": ("k", ":"), "FTF": ("tab:brown", ":"), "BSF": ("tab:purple", ":"), "1xBPFO": ("tab:red", "--"), "1xBPFI": ("tab:green", "--"), "1x2BSF": ("tab:orange", "--")}
@@ -124,8 +119,7 @@ def plot(path, cases, results, rpm, width):
     axes[-1].set_xlabel("frequency [Hz]")
     axes[0].legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8, title="expected lines")
     fig.suptitle(f"6205 at {rpm:g} rpm, {LOAD_N:g} N: envelope spectra of the ring's vertical motion (band {results[shown[0]]['band']})")
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    save(fig, path)
 
 
 def main() -> None:
@@ -139,8 +133,7 @@ def main() -> None:
     with ThreadPoolExecutor(max_workers=2) as pool:
         runs = list(pool.map(lambda c: raceway.run(scene(c[0], c[2], c[1], duration)), cases))
     cpu = sum(s["cpu_s"] for _, s in runs)
-    load = " ".join(f"{v:.2f}" for v in os.getloadavg())
-    print(f"{len(cases)} cases of {duration:g} s: the runs' thread CPU time {cpu:.2f} s (load average {load})")
+    print(f"{len(cases)} cases of {duration:g} s: the runs' thread CPU time {cpu:.2f} s (load average {load_average()})")
 
     series_dir = args.out / "series"
     series_dir.mkdir(exist_ok=True)

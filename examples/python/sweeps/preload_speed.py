@@ -22,14 +22,13 @@ from __future__ import annotations
 
 import csv
 import itertools
-import os
 import time
 from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 
 import raceway
-from common import arguments, check, figure_path
+from common import arguments, check, figure_path, load_average, pyplot, save
 
 BEARING = "7008ce"
 RADIAL_N = 200.0
@@ -46,11 +45,7 @@ def point(preload_n: float, rpm: float) -> tuple[float, float, float, float, flo
 
 
 def plot(path, preloads, speeds, grids):
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
+    plt = pyplot()
     panels = [
         ("peak contact pressure [GPa]", grids["p"] / 1e9, "magma"),
         ("radial stiffness $K_{yy}$ [N/µm]", grids["kyy"] / 1e6, "viridis"),
@@ -62,8 +57,7 @@ def plot(path, preloads, speeds, grids):
         fig.colorbar(m, ax=ax, label=label)
         ax.set(xlabel="shaft speed [1000 rpm]", ylabel="axial preload [N]", title=label.split(" [")[0])
     fig.suptitle(f"{BEARING}, {RADIAL_N:g} N radial: quasi-static equilibrium over preload × speed")
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    save(fig, path)
 
 
 def main() -> None:
@@ -76,8 +70,7 @@ def main() -> None:
     with ThreadPoolExecutor(max_workers=2) as pool:
         values = list(pool.map(lambda g: point(*g), grid))
     cpu = sum(v[4] for v in values)
-    load = " ".join(f"{v:.2f}" for v in os.getloadavg())
-    print(f"{len(grid)} equilibria: the workers' thread CPU time {cpu:.3f} s, {cpu / len(grid) * 1e3:.2f} ms a point (load average {load})")
+    print(f"{len(grid)} equilibria: the workers' thread CPU time {cpu:.3f} s, {cpu / len(grid) * 1e3:.2f} ms a point (load average {load_average()})")
     shape = (len(preloads), len(speeds))
     grids = {k: np.array([v[i] for v in values]).reshape(shape) for i, k in enumerate(("p", "kyy", "kzz", "all"))}
     with open(args.out / "grid.csv", "w", newline="") as f:

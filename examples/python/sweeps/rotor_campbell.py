@@ -26,7 +26,7 @@ import warnings
 import numpy as np
 
 import raceway
-from common import Clock, arguments, check, figure_path
+from common import Clock, arguments, check, figure_path, pyplot, save
 
 BEARING = "6205"
 RPM_PER_RAD_S = 30.0 / math.pi
@@ -103,11 +103,7 @@ def first_forward(wd: np.ndarray, whirl: np.ndarray) -> np.ndarray:
 
 
 def plot_kc(path, speeds_rpm, table):
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
+    plt = pyplot()
     fig, (ak, ac) = plt.subplots(1, 2, figsize=(11, 4.2), constrained_layout=True)
     for w, d in table.items():
         (line,) = ak.plot(speeds_rpm, d["K"][:, 1, 1] / 1e6, marker="o", ms=3, label=f"{w:g} N: $K_{{yy}}$")
@@ -122,16 +118,11 @@ def plot_kc(path, speeds_rpm, table):
         a.grid(alpha=0.3)
         a.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8, title="radial load")
     fig.suptitle(f"{BEARING}: stiffness and damping against speed and radial load")
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    save(fig, path)
 
 
 def plot_campbell(path, speeds_rpm, campbells):
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
+    plt = pyplot()
     fig, axes = plt.subplots(1, len(campbells), figsize=(11, 4.4), sharey=True, constrained_layout=True)
     for ax, (w, (wd, whirl)) in zip(np.atleast_1d(axes), campbells.items()):
         f = wd / (2 * math.pi)
@@ -147,8 +138,7 @@ def plot_campbell(path, speeds_rpm, campbells):
     unique = dict(zip(labels, handles))
     axes[-1].legend(unique.values(), unique.keys(), loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8)
     fig.suptitle("Campbell diagram: rotor on two 6205s (K, C from raceway, modes from ROSS)")
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    save(fig, path)
 
 
 def main() -> None:
@@ -180,7 +170,8 @@ def main() -> None:
     plot_campbell(figure_path(args, "campbell"), campbell_rpm, campbells)
 
     light, heavy = (first_forward(*campbells[w]) / (2 * math.pi) for w in (loads[0], loads[-1]))
-    for n, a, b in zip(campbell_rpm, light, heavy):
+    step = max(1, len(campbell_rpm) // 6)
+    for n, a, b in list(zip(campbell_rpm, light, heavy))[::step]:
         print(f"  {n:7.0f} rpm: first forward mode {a:7.2f} Hz at {loads[0]:g} N, {b:7.2f} Hz at {loads[-1]:g} N")
     kyy = [table[w]["K"][:, 1, 1] for w in (loads[0], loads[-1])]
     check(bool(np.all(kyy[1] > kyy[0])), f"K_yy at {loads[-1]:g} N above K_yy at {loads[0]:g} N at every speed")
