@@ -12,7 +12,7 @@
 //! temperatures, power loss, friction torque and operating clearance
 //! (`out/thermal-sweep.png`).
 
-use raceway::component::levels::ring::SlowLayout;
+use raceway::models::ring::level::SlowLayout;
 use raceway::component::{variables, Scene};
 use raceway::models::wear;
 use raceway::plot::{plot, Axes, Series};

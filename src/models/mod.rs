@@ -3,6 +3,7 @@
 pub mod defects;
 pub mod effects;
 pub mod full;
+pub mod linear;
 pub mod quasi_static;
 pub mod ring;
 pub mod skidding;

@@ -110,6 +110,7 @@
 //! torque ([`Totals::external_mz`]). Exact for `dynamic` ball contacts (tests/full.rs).
 
 mod ball;
+pub mod level;
 
 use crate::contact::traction::{ContactState, TractionLaw};
 use crate::contact::{BallRaceContacts, ContactTable, PointContact, Race};

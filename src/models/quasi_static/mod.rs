@@ -48,6 +48,7 @@
 mod ball;
 mod dual;
 mod kc;
+pub mod level;
 
 pub use crate::component::scene::RaceControl;
 pub use ball::BallState;

@@ -7,7 +7,7 @@
 //! level: `c d(delta)/dt` along each loaded ball's contact line (the ring level's massless
 //! ball geometry), blended in over the first 0.1 µm of approach; off (no cost) at 0.
 
-use super::cage_speed;
+use crate::component::levels::cage_speed;
 use crate::component::level::{LevelModel, LevelOutputs, Motion};
 use crate::component::scene::Scene;
 use crate::error::Result;

@@ -4,7 +4,7 @@
 //! `K` is the exact Jones–Harris stiffness at the operating point; `C` is the contact
 //! damping of the ring level (`model.contact_damping` per loaded ball) at `q0`.
 
-use super::cage_speed;
+use crate::component::levels::cage_speed;
 use crate::component::level::{LevelModel, LevelOutputs, Motion};
 use crate::component::scene::Scene;
 use crate::error::Result;

@@ -12,7 +12,7 @@
 //! wrench with the level's states held (the quasi-static ball positions re-solved: they
 //! are not states), on a scratch copy of `aux` so that the outputs never change the run.
 
-use super::cage_speed;
+use crate::component::levels::cage_speed;
 use crate::component::level::{LevelModel, LevelOutputs, Motion};
 use crate::error::{Error, Result};
 use crate::geometry::Bearing;

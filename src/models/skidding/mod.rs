@@ -107,6 +107,8 @@
 //! pressure on the frontal area); ball spin drag `M = pi eta D³ w_a` (Stokes' rotating
 //! sphere, `8 pi eta R³ w`); cage drag `M_cage = c_cage w_c` (linear viscous).
 
+pub mod level;
+
 use crate::contact::traction::{ContactState, TractionLaw};
 use crate::contact::{BallRaceContacts, PointContact};
 use crate::error::{Error, Result};

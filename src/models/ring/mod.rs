@@ -28,6 +28,8 @@
 //! (`crate::lubrication`: film in series with Hertz, squeeze damping in parallel, the
 //! damping blended in over `DAMPING_RAMP` of Hertz approach like the contact damping).
 
+pub mod level;
+
 use crate::contact::{series_constant, BallRaceContacts, PointContact};
 use crate::geometry::Bearing;
 use crate::lubrication::{FilmModel, Lubricant};

@@ -21,7 +21,7 @@
 //! a defect (`- h_outer(psi) - h_inner(psi - theta_s)`). The thermal network advances at
 //! each communication point over the elapsed time times `time_scale`, on its own step.
 
-use super::cage_speed;
+use crate::component::levels::cage_speed;
 use crate::component::level::{LevelModel, LevelOutputs, Motion};
 use crate::component::{Scene, State};
 use crate::contact::{Curvature, PointContact, Race};

@@ -1,17 +1,11 @@
 //! The levels: glue between the [`LevelModel`](super::level::LevelModel) seam and the
-//! physics in `crate::models`. One file per level.
+//! physics in `crate::models`. Each level's glue lives in its folder, `models/<level>/level.rs`.
 
-pub mod full;
-pub mod linear;
-pub mod quasi_static;
-pub mod ring;
-pub mod skidding;
-
-pub use full::FullLevel;
-pub use linear::LinearLevel;
-pub use quasi_static::QuasiStaticLevel;
-pub use ring::RingLevel;
-pub use skidding::SkiddingLevel;
+pub use crate::models::full::level::FullLevel;
+pub use crate::models::linear::level::LinearLevel;
+pub use crate::models::quasi_static::level::QuasiStaticLevel;
+pub use crate::models::ring::level::RingLevel;
+pub use crate::models::skidding::level::SkiddingLevel;
 
 use crate::geometry::Bearing;
 
