@@ -8,6 +8,7 @@ use super::fields::{
 use super::variables::{self, Causality};
 use crate::error::{Error, Result};
 use crate::geometry::{presets, Bearing, BearingSpec};
+pub use crate::models::quasi_static::RaceControl;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
@@ -72,17 +73,6 @@ pub enum InputRule {
     Velocity,
     /// Taylor polynomial of the derivatives the host set (`fmi2SetRealInputDerivatives`).
     Derivatives,
-}
-
-/// Race control assumption of the quasi-static model (Harris ch. 8).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
-#[serde(rename_all = "snake_case")]
-pub enum RaceControl {
-    /// Outer-race control: `lambda_o = 2`, `lambda_i = 0`.
-    #[default]
-    Outer,
-    /// No race control: `lambda_i = lambda_o = 1`.
-    None,
 }
 
 /// Where a load-driven inner ring starts.

@@ -50,7 +50,6 @@ mod dual;
 mod kc;
 pub mod level;
 
-pub use crate::component::scene::RaceControl;
 pub use ball::BallState;
 
 use crate::contact::{Curvature, PointContact, Race};
@@ -61,6 +60,17 @@ use kc::KcTable;
 use nalgebra::{Matrix5, Vector5};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
+
+/// Race control assumption of the quasi-static model (Harris ch. 8).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum RaceControl {
+    /// Outer-race control: `lambda_o = 2`, `lambda_i = 0`.
+    #[default]
+    Outer,
+    /// No race control: `lambda_i = lambda_o = 1`.
+    None,
+}
 
 /// Model and solver options.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
