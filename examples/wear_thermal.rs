@@ -12,8 +12,8 @@
 //! temperatures, power loss, friction torque and operating clearance
 //! (`out/thermal-sweep.png`).
 
-use raceway::models::ring::level::SlowLayout;
 use raceway::component::{variables, Scene};
+use raceway::models::ring::level::SlowLayout;
 use raceway::models::wear;
 use raceway::plot::{plot, Axes, Series};
 use raceway::Component;

@@ -2,8 +2,8 @@
 //! Motion-driven 6012 (study [2]) with the shaft held off-centre, so each run is a few
 //! revolutions of cheap dynamics.
 
-use raceway::models::ring::level::SlowLayout;
 use raceway::component::{variables, Component, Scene};
+use raceway::models::ring::level::SlowLayout;
 use raceway::models::ring::{RingDof, RingEval, RingModel};
 use raceway::models::wear;
 

@@ -57,8 +57,6 @@ pub struct LevelOutputs {
 
 /// One model level.
 pub trait LevelModel: Send + std::fmt::Debug {
-    /// Level name as a scene spells it.
-    fn name(&self) -> &'static str;
     /// Number of continuous states the level integrates (cage angle, ball states, ...).
     fn n_states(&self) -> usize;
     /// Number of algebraic/memory values (warm starts) kept in the component state.
@@ -67,7 +65,7 @@ pub trait LevelModel: Send + std::fmt::Debug {
     }
     /// The skidding level itself (its per-ball contacts and outer-race wear profile feed
     /// the wear cycles); `None` (default) for the other levels.
-    fn as_skidding_mut(&mut self) -> Option<&mut super::levels::SkiddingLevel> {
+    fn as_skidding_mut(&mut self) -> Option<&mut crate::models::skidding::level::SkiddingLevel> {
         None
     }
     /// The level's own ball loads at its last evaluation, `(azimuth rad, inner N, outer

@@ -1,17 +1,250 @@
-//! The levels: glue between the [`LevelModel`](super::level::LevelModel) seam and the
-//! physics in `crate::models`. Each level's glue lives in its folder, `models/<level>/level.rs`.
+//! The level registry: every model level in one list, [`LEVELS`]. An entry tells the
+//! component the level's scene name (written only there), whether it is stiff, whether it
+//! takes the scene's `[effects]`, and how to build it from a validated scene. The level
+//! itself lives in its own folder, `models/<level>/` (physics in `mod.rs` and beside it,
+//! the [`LevelModel`] glue in `level.rs`); adding a level is that folder plus one line
+//! here. The component asks the registry and never matches on the level.
 
-pub use crate::models::full::level::FullLevel;
-pub use crate::models::linear::level::LinearLevel;
-pub use crate::models::quasi_static::level::QuasiStaticLevel;
-pub use crate::models::ring::level::RingLevel;
-pub use crate::models::skidding::level::SkiddingLevel;
-
+use super::level::LevelModel;
+use super::scene::Scene;
+use crate::error::{Error, Result};
 use crate::geometry::Bearing;
+use crate::models::{full, linear, quasi_static, ring, skidding};
+use serde::{Deserialize, Deserializer, Serialize, Serializer};
+
+/// Builds a level for a validated scene and its bearing (one signature for every level).
+pub type Build = fn(&Scene, &Bearing) -> Result<Box<dyn LevelModel>>;
+
+/// What the component knows about a level.
+#[derive(Clone, Copy)]
+pub struct LevelEntry {
+    /// Scene spelling (`model.level`).
+    pub name: &'static str,
+    /// Stiff (numerics.md §1.2: traction slopes): `solver.method = "auto"` picks RODAS4;
+    /// otherwise DOPRI5.
+    pub stiff: bool,
+    /// Takes the scene's `[effects]` (defects, waviness, films, wear, thermal); a scene
+    /// with effects on and a level that does not take them is refused.
+    pub effects: bool,
+    /// Constructor.
+    pub build: Build,
+}
+
+impl LevelEntry {
+    const fn new(name: &'static str, stiff: bool, effects: bool, build: Build) -> Self {
+        LevelEntry {
+            name,
+            stiff,
+            effects,
+            build,
+        }
+    }
+}
+
+impl std::fmt::Debug for LevelEntry {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("LevelEntry")
+            .field("name", &self.name)
+            .field("stiff", &self.stiff)
+            .field("effects", &self.effects)
+            .finish()
+    }
+}
+
+/// Every level, lowest fidelity first (the order of [`Level::ALL`]).
+#[rustfmt::skip]
+pub const LEVELS: &[LevelEntry] = &[
+    //              name            stiff  effects  constructor
+    LevelEntry::new("linear",       false, false,   linear::level::build),
+    LevelEntry::new("quasi_static", false, false,   quasi_static::level::build),
+    LevelEntry::new("ring",         false, true,    ring::level::build),
+    LevelEntry::new("skidding",     true,  false,   skidding::level::build),
+    LevelEntry::new("full",         true,  false,   full::level::build),
+];
+
+/// Number of levels.
+const N: usize = LEVELS.len();
+
+/// A model level: a position in [`LEVELS`]. Scenes spell it by its entry's name.
+#[derive(Clone, Copy, PartialEq, Eq, Hash)]
+pub struct Level(u8);
+
+#[allow(non_upper_case_globals)]
+impl Level {
+    /// Constant K and C from the quasi-static linearisation at an operating point.
+    pub const Linear: Level = Level::named("linear");
+    /// Per-ball Jones–Harris equilibrium at the current motion, balls at the cage's
+    /// kinematic positions.
+    pub const QuasiStatic: Level = Level::named("quasi_static");
+    /// Ring on massless balls (physics.md §5.1).
+    pub const Ring: Level = Level::named("ring");
+    /// Ball orbit and spin, cage, traction and drag (physics.md §5.2).
+    pub const Skidding: Level = Level::named("skidding");
+    /// High-speed dynamics with cage whirl (physics.md §5.5).
+    pub const Full: Level = Level::named("full");
+
+    /// Every level, lowest fidelity first.
+    pub const ALL: [Level; N] = {
+        let mut all = [Level(0); N];
+        let mut i = 0;
+        while i < N {
+            all[i] = Level(i as u8);
+            i += 1;
+        }
+        all
+    };
+    /// Every scene spelling, in the order of [`Level::ALL`].
+    pub const NAMES: [&'static str; N] = {
+        let mut names = [""; N];
+        let mut i = 0;
+        while i < N {
+            names[i] = LEVELS[i].name;
+            i += 1;
+        }
+        names
+    };
+
+    /// The level registered as `name` (a name not in [`LEVELS`] fails to compile when
+    /// used in a constant).
+    pub const fn named(name: &str) -> Level {
+        let mut i = 0;
+        while i < N {
+            if same(LEVELS[i].name.as_bytes(), name.as_bytes()) {
+                return Level(i as u8);
+            }
+            i += 1;
+        }
+        panic!("no such level in LEVELS")
+    }
+
+    /// The level a scene spells `name`, if any.
+    pub fn from_name(name: &str) -> Option<Level> {
+        Level::NAMES
+            .iter()
+            .position(|n| *n == name)
+            .map(|i| Level(i as u8))
+    }
+
+    /// Scene spelling.
+    pub const fn name(self) -> &'static str {
+        LEVELS[self.0 as usize].name
+    }
+
+    /// The level's registry entry.
+    pub fn entry(self) -> &'static LevelEntry {
+        &LEVELS[self.0 as usize]
+    }
+
+    /// Build the level for a validated scene: refuses effects on a level that does not
+    /// take them, then calls the level's constructor.
+    pub fn build(self, scene: &Scene, b: &Bearing) -> Result<Box<dyn LevelModel>> {
+        let entry = self.entry();
+        if !scene.effects.is_off() && !entry.effects {
+            let takers: Vec<String> = LEVELS
+                .iter()
+                .filter(|l| l.effects)
+                .map(|l| format!("\"{}\"", l.name))
+                .collect();
+            return Err(Error::invalid(
+                "effects",
+                format!("on with level {}", entry.name),
+                format!(
+                    "only with level = {} (the levels that apply defects, waviness and films)",
+                    takers.join(" or ")
+                ),
+            ));
+        }
+        (entry.build)(scene, b)
+    }
+}
+
+/// Byte-wise equality in a `const fn`.
+const fn same(a: &[u8], b: &[u8]) -> bool {
+    if a.len() != b.len() {
+        return false;
+    }
+    let mut i = 0;
+    while i < a.len() {
+        if a[i] != b[i] {
+            return false;
+        }
+        i += 1;
+    }
+    true
+}
+
+impl Default for Level {
+    fn default() -> Self {
+        Level::QuasiStatic
+    }
+}
+
+impl std::fmt::Debug for Level {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl std::fmt::Display for Level {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl Serialize for Level {
+    fn serialize<S: Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        s.serialize_str(self.name())
+    }
+}
+
+impl<'de> Deserialize<'de> for Level {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> std::result::Result<Self, D::Error> {
+        struct Names;
+        impl serde::de::Visitor<'_> for Names {
+            type Value = Level;
+            fn expecting(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+                f.write_str("enum Level")
+            }
+            fn visit_str<E: serde::de::Error>(self, v: &str) -> std::result::Result<Level, E> {
+                Level::from_name(v).ok_or_else(|| E::unknown_variant(v, &Level::NAMES))
+            }
+        }
+        d.deserialize_str(Names)
+    }
+}
 
 /// Kinematic cage speed for the nominal contact angle, outer ring fixed:
 /// `omega_c = omega (1 - gamma) / 2` (physics.md §1).
 pub fn cage_speed(b: &Bearing, omega: f64) -> f64 {
     let gamma = b.d * b.nominal_contact_angle().cos() / b.dm;
     0.5 * omega * (1.0 - gamma)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Names are unique, every level round-trips through its scene spelling, and a name
+    /// no level has is refused listing the allowed ones.
+    #[test]
+    fn names_round_trip_and_unknown_names_are_refused() {
+        for (i, l) in Level::ALL.iter().enumerate() {
+            assert_eq!(Level::from_name(l.name()), Some(*l));
+            assert_eq!(Level::NAMES[i], l.name());
+            let json = serde_json::to_string(l).unwrap();
+            assert_eq!(json, format!("\"{}\"", l.name()));
+            assert_eq!(serde_json::from_str::<Level>(&json).unwrap(), *l);
+        }
+        for (i, a) in Level::NAMES.iter().enumerate() {
+            assert!(!Level::NAMES[..i].contains(a), "`{a}` registered twice");
+        }
+        let e = serde_json::from_str::<Level>("\"best\"")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("unknown variant `best`") && e.contains("`full`"),
+            "{e}"
+        );
+        assert_eq!(Level::default().name(), "quasi_static");
+    }
 }

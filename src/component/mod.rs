@@ -20,7 +20,6 @@ pub use variables::{Causality, Variable};
 
 use crate::error::{Error, Result};
 use crate::geometry::Bearing;
-use crate::models::ring::RingDof;
 use crate::solver::{Dopri5, Integrator, OdeSystem, Options, Rosenbrock, SolverError};
 use level::{LevelModel, LevelOutputs, Motion};
 use variables::SCALARS;
@@ -341,9 +340,8 @@ fn make_integrator(
     ring: Option<&RingBody>,
 ) -> (Integrator, Options) {
     let n = nl + ring.map_or(0, |r| 2 * r.dofs.len());
-    // The skidding and full levels are stiff (traction slope, numerics.md §1.2): RODAS4
-    // by default.
-    let stiff = matches!(scene.model.level, Level::Skidding | Level::Full);
+    // A stiff level (its registry entry) gets RODAS4 by default.
+    let stiff = scene.model.level.entry().stiff;
     // A level with independent blocks of states gets the block-arrowhead solver.
     let rodas = || match level.blocks() {
         Some((nb, s)) if nb * s <= nl => Rosenbrock::with_solver(Box::new(
@@ -384,43 +382,6 @@ fn make_integrator(
     (integrator, opts)
 }
 
-fn build_level(scene: &Scene, b: &Bearing) -> Result<Box<dyn LevelModel>> {
-    let m = &scene.model;
-    if !scene.effects.is_off() && m.level != Level::Ring {
-        return Err(Error::invalid(
-            "effects",
-            format!("on with level {}", m.level.name()),
-            "only with level = \"ring\" (the levels that apply defects, waviness and films)",
-        ));
-    }
-    Ok(match m.level {
-        Level::Ring => {
-            let dof = if m.ring_dof == 5 {
-                RingDof::Five
-            } else {
-                RingDof::Two
-            };
-            Box::new(levels::RingLevel::with_effects(
-                b,
-                dof,
-                m.contact_damping,
-                &scene.effects,
-            )?)
-        }
-        Level::Skidding => {
-            let mut p = m.skidding.params(b)?;
-            p.contact_damping = m.contact_damping;
-            Box::new(levels::SkiddingLevel::new(b, p)?)
-        }
-        Level::Full => Box::new(levels::FullLevel::new(
-            b,
-            m.full.params(b, m.race_control)?,
-        )?),
-        Level::QuasiStatic => Box::new(levels::QuasiStaticLevel::new(scene, b)?),
-        Level::Linear => Box::new(levels::LinearLevel::new(scene, b)?),
-    })
-}
-
 impl Component {
     /// Create from scene text (TOML or JSON).
     pub fn from_text(text: &str) -> Result<Component> {
@@ -430,7 +391,7 @@ impl Component {
     /// Create from a scene. A bad scene is refused with a message naming the field.
     pub fn new(scene: Scene) -> Result<Component> {
         let bearing = scene.validate()?;
-        let mut level = build_level(&scene, &bearing)?;
+        let mut level = scene.model.level.build(&scene, &bearing)?;
         let n = n_variables();
         let fp = fingerprint(serde_json::to_string(&scene).unwrap_or_default().as_bytes());
         let causality = scene.model.causality;
@@ -554,7 +515,7 @@ impl Component {
     /// The skidding level (its per-ball contacts and outer-race wear profile, for
     /// `crate::wear_cycles`); `None` for the other levels. Changing the profile makes the
     /// outputs stale.
-    pub fn skidding_mut(&mut self) -> Option<&mut levels::SkiddingLevel> {
+    pub fn skidding_mut(&mut self) -> Option<&mut crate::models::skidding::level::SkiddingLevel> {
         self.level.as_skidding_mut()
     }
     /// The causality.

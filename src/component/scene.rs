@@ -1,6 +1,7 @@
 //! The scene: one serde schema (TOML for people, JSON for programs) that says everything a
 //! component needs. Anything a scene leaves out is not computed.
 
+pub use super::levels::Level;
 use super::fields::{
     between, choice, closed, flag, ge, gt, int_choice, integer, name, name_or_table, number, table,
     text, Names, ANY,
@@ -14,53 +15,6 @@ use std::collections::BTreeMap;
 
 /// The embedded default scene (the README's main job runs it).
 pub const DEFAULT_SCENE: &str = include_str!("../../examples/scenes/default.toml");
-
-/// Model level.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
-#[serde(rename_all = "snake_case")]
-pub enum Level {
-    /// Constant K and C from the quasi-static linearisation at an operating point.
-    Linear,
-    /// Per-ball Jones–Harris equilibrium at the current motion, balls at the cage's
-    /// kinematic positions.
-    #[default]
-    QuasiStatic,
-    /// Ring on massless balls (physics.md §5.1).
-    Ring,
-    /// Ball orbit and spin, cage, traction and drag (physics.md §5.2).
-    Skidding,
-    /// High-speed dynamics with cage whirl (physics.md §5.5).
-    Full,
-}
-
-impl Level {
-    /// Every level, lowest fidelity first.
-    pub const ALL: [Level; 5] = [
-        Level::Linear,
-        Level::QuasiStatic,
-        Level::Ring,
-        Level::Skidding,
-        Level::Full,
-    ];
-    /// Every scene spelling, in the order of [`Level::ALL`].
-    pub const NAMES: [&'static str; 5] = [
-        Level::ALL[0].name(),
-        Level::ALL[1].name(),
-        Level::ALL[2].name(),
-        Level::ALL[3].name(),
-        Level::ALL[4].name(),
-    ];
-    /// Scene spelling.
-    pub const fn name(self) -> &'static str {
-        match self {
-            Level::Linear => "linear",
-            Level::QuasiStatic => "quasi_static",
-            Level::Ring => "ring",
-            Level::Skidding => "skidding",
-            Level::Full => "full",
-        }
-    }
-}
 
 /// How inputs move inside a step.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]

@@ -12,8 +12,9 @@
 //! wrench with the level's states held (the quasi-static ball positions re-solved: they
 //! are not states), on a scratch copy of `aux` so that the outputs never change the run.
 
-use crate::component::levels::cage_speed;
 use crate::component::level::{LevelModel, LevelOutputs, Motion};
+use crate::component::levels::cage_speed;
+use crate::component::Scene;
 use crate::error::{Error, Result};
 use crate::geometry::Bearing;
 use crate::models::full::{FullModel, FullParams, Totals};
@@ -59,10 +60,17 @@ impl FullLevel {
     }
 }
 
+/// The registry's constructor ([`crate::component::levels::LEVELS`]): the scene's
+/// `[model.full]` options with its race control.
+pub fn build(scene: &Scene, b: &Bearing) -> Result<Box<dyn LevelModel>> {
+    let m = &scene.model;
+    Ok(Box::new(FullLevel::new(
+        b,
+        m.full.params(b, m.race_control)?,
+    )?))
+}
+
 impl LevelModel for FullLevel {
-    fn name(&self) -> &'static str {
-        "full"
-    }
     /// The model's own per-ball loads at its last evaluation (the current state's: the
     /// outputs evaluate it last, after their perturbed evaluations).
     fn ball_loads(&self) -> Option<Vec<(f64, f64, f64)>> {

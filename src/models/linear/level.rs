@@ -4,8 +4,8 @@
 //! `K` is the exact Jones–Harris stiffness at the operating point; `C` is the contact
 //! damping of the ring level (`model.contact_damping` per loaded ball) at `q0`.
 
-use crate::component::levels::cage_speed;
 use crate::component::level::{LevelModel, LevelOutputs, Motion};
+use crate::component::levels::cage_speed;
 use crate::component::scene::Scene;
 use crate::error::Result;
 use crate::geometry::Bearing;
@@ -76,10 +76,12 @@ impl LinearLevel {
     }
 }
 
+/// The registry's constructor ([`crate::component::levels::LEVELS`]).
+pub fn build(scene: &Scene, b: &Bearing) -> Result<Box<dyn LevelModel>> {
+    Ok(Box::new(LinearLevel::new(scene, b)?))
+}
+
 impl LevelModel for LinearLevel {
-    fn name(&self) -> &'static str {
-        "linear"
-    }
     fn n_states(&self) -> usize {
         0
     }

@@ -7,8 +7,8 @@
 //! level: `c d(delta)/dt` along each loaded ball's contact line (the ring level's massless
 //! ball geometry), blended in over the first 0.1 µm of approach; off (no cost) at 0.
 
-use crate::component::levels::cage_speed;
 use crate::component::level::{LevelModel, LevelOutputs, Motion};
+use crate::component::levels::cage_speed;
 use crate::component::scene::Scene;
 use crate::error::Result;
 use crate::geometry::Bearing;
@@ -111,10 +111,12 @@ impl QuasiStaticLevel {
     }
 }
 
+/// The registry's constructor ([`crate::component::levels::LEVELS`]).
+pub fn build(scene: &Scene, b: &Bearing) -> Result<Box<dyn LevelModel>> {
+    Ok(Box::new(QuasiStaticLevel::new(scene, b)?))
+}
+
 impl LevelModel for QuasiStaticLevel {
-    fn name(&self) -> &'static str {
-        "quasi_static"
-    }
     fn n_states(&self) -> usize {
         1
     }

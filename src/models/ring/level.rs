@@ -21,8 +21,8 @@
 //! a defect (`- h_outer(psi) - h_inner(psi - theta_s)`). The thermal network advances at
 //! each communication point over the elapsed time times `time_scale`, on its own step.
 
-use crate::component::levels::cage_speed;
 use crate::component::level::{LevelModel, LevelOutputs, Motion};
+use crate::component::levels::cage_speed;
 use crate::component::{Scene, State};
 use crate::contact::{Curvature, PointContact, Race};
 use crate::error::Result;
@@ -409,10 +409,24 @@ fn eval_ring<F: FnMut(usize, f64, f64)>(
     }
 }
 
+/// The registry's constructor ([`crate::component::levels::LEVELS`]): 2 or 5 ring
+/// coordinates (`model.ring_dof`), contact damping and the scene's effects.
+pub fn build(scene: &Scene, b: &Bearing) -> Result<Box<dyn LevelModel>> {
+    let m = &scene.model;
+    let dof = if m.ring_dof == 5 {
+        RingDof::Five
+    } else {
+        RingDof::Two
+    };
+    Ok(Box::new(RingLevel::with_effects(
+        b,
+        dof,
+        m.contact_damping,
+        &scene.effects,
+    )?))
+}
+
 impl LevelModel for RingLevel {
-    fn name(&self) -> &'static str {
-        "ring"
-    }
     fn n_states(&self) -> usize {
         1 + self.shaft_angle as usize + self.slow.as_ref().map_or(0, Slow::n_states)
     }

@@ -8,6 +8,7 @@
 //! difference, the next step's first stage and `df/dt`) cost nothing.
 
 use crate::component::level::{LevelModel, LevelOutputs, Motion};
+use crate::component::Scene;
 use crate::error::{Error, Result};
 use crate::geometry::Bearing;
 use crate::models::skidding::{BallState, SkidTotals, SkiddingModel, SkiddingParams, BALL0};
@@ -95,10 +96,15 @@ impl SkiddingLevel {
     }
 }
 
+/// The registry's constructor ([`crate::component::levels::LEVELS`]): the scene's
+/// `[model.skidding]` options with its contact damping.
+pub fn build(scene: &Scene, b: &Bearing) -> Result<Box<dyn LevelModel>> {
+    let mut p = scene.model.skidding.params(b)?;
+    p.contact_damping = scene.model.contact_damping;
+    Ok(Box::new(SkiddingLevel::new(b, p)?))
+}
+
 impl LevelModel for SkiddingLevel {
-    fn name(&self) -> &'static str {
-        "skidding"
-    }
     fn as_skidding_mut(&mut self) -> Option<&mut SkiddingLevel> {
         Some(self)
     }
