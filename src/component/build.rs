@@ -1,0 +1,179 @@
+//! Building a component from a scene: the level from the registry, the load-driven ring
+//! body, the state, the static start and the integrator.
+
+use super::inputs::motion_at;
+use super::level::LevelModel;
+use super::static_start::static_start;
+use super::system::{JacWork, RingBody, Work};
+use super::{
+    fingerprint, index_of, limits, n_variables, scene, variables, Causality, Component, Method,
+    Scene, State, I_LOAD,
+};
+use crate::error::Result;
+use crate::geometry::Bearing;
+use crate::solver::{Dopri5, Integrator, Options, Rosenbrock};
+
+/// The scene's integrator and its options. `Auto` picks DOPRI5: the levels so far are not
+/// stiff (a massless-ball ring is a few-kHz oscillator, numerics.md §1.2).
+fn make_integrator(
+    scene: &Scene,
+    b: &Bearing,
+    level: &dyn LevelModel,
+    nl: usize,
+    ring: Option<&RingBody>,
+) -> (Integrator, Options) {
+    let n = nl + ring.map_or(0, |r| 2 * r.dofs.len());
+    // A stiff level (its registry entry) gets RODAS4 by default.
+    let stiff = scene.model.level.entry().stiff;
+    // A level with independent blocks of states gets the block-arrowhead solver.
+    let rodas = || match level.blocks() {
+        Some((nb, s)) if nb * s <= nl => Rosenbrock::with_solver(Box::new(
+            crate::solver::BlockArrowhead::new(nb, s, n - nb * s),
+        )),
+        _ => Rosenbrock::new(n),
+    };
+    let integrator = match scene.solver.method {
+        Method::Auto if stiff => Integrator::Rosenbrock(rodas()),
+        Method::Auto | Method::Dopri5 => Integrator::Dopri5(Dopri5::new(n)),
+        Method::Rosenbrock => Integrator::Rosenbrock(rodas()),
+    };
+    let s = &scene.solver;
+    let mut opts = Options::new(n, s.rtol, s.atol_m);
+    // Angles (cage, shaft, balls): an angle error atol_m / (D/2) moves a ball surface by
+    // atol_m; a level with other states gives its own scales.
+    let angle = s.atol_m / (0.5 * b.d);
+    if !level.state_atol(s.atol_m, &mut opts.atol[..nl]) {
+        opts.atol[..nl].fill(angle);
+    }
+    if let Some(r) = ring {
+        let nd = r.dofs.len();
+        let rate = 2.0 * std::f64::consts::PI * 1e3; // velocities: atol over a 1 kHz period
+        for (k, &d) in r.dofs.iter().enumerate() {
+            let a = if d < 3 {
+                s.atol_m
+            } else {
+                s.atol_m / (0.5 * b.dm)
+            };
+            opts.atol[nl + k] = a;
+            opts.atol[nl + nd + k] = a * rate;
+        }
+    }
+    opts.max_steps = s.max_substeps as u64;
+    if s.max_substep_s > 0.0 {
+        opts.h_max = s.max_substep_s;
+    }
+    (integrator, opts)
+}
+
+impl Component {
+    /// Create from scene text (TOML or JSON).
+    pub fn from_text(text: &str) -> Result<Component> {
+        Component::new(Scene::from_text(text)?)
+    }
+
+    /// Create from a scene. A bad scene is refused with a message naming the field.
+    pub fn new(scene: Scene) -> Result<Component> {
+        let bearing = scene.validate()?;
+        let mut level = scene.model.level.build(&scene, &bearing)?;
+        let n = n_variables();
+        let fp = fingerprint(serde_json::to_string(&scene).unwrap_or_default().as_bytes());
+        let causality = scene.model.causality;
+        let ring = match causality {
+            Causality::Motion => None,
+            Causality::Load => {
+                let m = bearing.inner_ring_mass + scene.model.attached_mass_kg;
+                let ro = 0.5 * (bearing.dm - bearing.d);
+                let ri = 0.5 * bearing.bore;
+                let it = bearing.inner_ring_mass
+                    * (3.0 * (ro * ro + ri * ri) + bearing.width.powi(2))
+                    / 12.0;
+                Some(RingBody {
+                    dofs: level.ring_dofs(),
+                    inertia: [m, m, m, it, it],
+                })
+            }
+        };
+        let n_level = level.n_states();
+        let n_level_aux = level.n_aux();
+        let n_ring = ring.as_ref().map_or(0, |r| 2 * r.dofs.len());
+        let mut state = State {
+            scene_fingerprint: fp,
+            x: vec![0.0; n_level + n_ring],
+            aux: vec![0.0; n_level_aux + 1],
+            inputs: vec![0.0; n],
+            input_derivatives: vec![0.0; 3 * n],
+            outputs: vec![0.0; n],
+            output_derivatives: vec![0.0; n],
+            outputs_stale: true,
+            ..State::default()
+        };
+        for (name, value) in &scene.inputs.initial {
+            let v = variables::by_name(name).expect("validated");
+            let i = index_of(v.vr).expect("in table");
+            state.inputs[i] = *value;
+            state.inputs_set |= 1 << i;
+        }
+        let motion = motion_at(
+            &state,
+            scene.inputs.rule,
+            0.0,
+            causality,
+            ring.as_ref(),
+            n_level,
+        );
+        level.init(
+            &motion,
+            &mut state.x[..n_level],
+            &mut state.aux[..n_level_aux],
+        )?;
+        if let (Some(r), scene::Start::Equilibrium) = (&ring, scene.model.start) {
+            let loads: [f64; 5] = std::array::from_fn(|k| state.inputs[I_LOAD + k]);
+            let q = static_start(
+                level.as_mut(),
+                r.dofs,
+                &loads,
+                motion.omega,
+                0.5 * bearing.dm,
+                &state.x[..n_level],
+                &mut state.aux[..n_level_aux],
+            )?;
+            for (k, &d) in r.dofs.iter().enumerate() {
+                state.x[n_level + k] = q[d];
+            }
+        }
+        let dim = state.x.len();
+        let (integrator, opts) =
+            make_integrator(&scene, &bearing, level.as_ref(), n_level, ring.as_ref());
+        let work = Work {
+            k: std::array::from_fn(|_| vec![0.0; dim]),
+            y: vec![0.0; dim],
+            aux_save: vec![0.0; n_level_aux + 1],
+        };
+        let jwork = JacWork {
+            jx: vec![0.0; n_level * n_level],
+            jm: vec![0.0; n_level * 10],
+            wx: vec![0.0; 5 * n_level],
+            wm: vec![0.0; 50],
+        };
+        let mut c = Component {
+            limits: limits::Limits::of(&bearing),
+            rating: crate::ratings::RatingOutputs::of(&bearing),
+            jwork,
+            scene,
+            bearing,
+            level,
+            ring,
+            n_level,
+            n_level_aux,
+            scratch: state.clone(),
+            state,
+            work,
+            integrator,
+            opts,
+        };
+        if c.missing_inputs().is_empty() {
+            c.refresh_outputs()?;
+        }
+        Ok(c)
+    }
+}

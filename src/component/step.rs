@@ -1,0 +1,289 @@
+//! A step: the transaction around the integration (scratch state, swap on success), the
+//! integration or quadrature of the states, and the outputs with their time derivatives.
+
+use super::inputs::{input_at, motion_at, motion_at_y};
+use super::level::LevelOutputs;
+use super::system::{all_finite, e_time, Budget, Sys};
+use super::{
+    Component, State, I_C, I_CAGE, I_CAGE_OMEGA, I_DIAG, I_FORCE, I_K, I_LOAD, I_Q, I_RATING,
+    I_TORQUE, I_V, T_MAX,
+};
+use crate::error::{Error, Result};
+use crate::solver::SolverError;
+
+/// Time offset of the central difference that gives output derivatives, s.
+const DT_DERIV: f64 = 1e-7;
+
+impl Component {
+    /// Evaluate the outputs at the current time and inputs (for hosts that read outputs
+    /// before the first step, e.g. in FMI initialisation mode). On error nothing changes.
+    pub fn refresh_outputs(&mut self) -> Result<()> {
+        self.require_inputs("refresh_outputs")?;
+        self.scratch.clone_from(&self.state);
+        let mut sc = std::mem::take(&mut self.scratch);
+        let r = self.compute_outputs(&mut sc, 0.0);
+        if r.is_ok() {
+            sc.outputs_stale = false;
+            std::mem::swap(&mut self.state, &mut sc);
+        }
+        self.scratch = sc;
+        r
+    }
+
+    /// Advance from `t` to `t + h`, sub-stepping inside. On error the state is unchanged
+    /// and the message says why.
+    pub fn do_step(&mut self, t: f64, h: f64) -> Result<()> {
+        if !(h.is_finite() && h > 0.0 && h <= T_MAX) {
+            return Err(Error::invalid(
+                "h",
+                h,
+                format!("a finite step > 0 and <= {T_MAX:e} s"),
+            ));
+        }
+        if !(t.is_finite() && t.abs() + h <= T_MAX) {
+            return Err(Error::invalid(
+                "t",
+                t,
+                format!("a finite time with |t| + h <= {T_MAX:e} s (h = {h} s)"),
+            ));
+        }
+        // The step must advance time by h as a double can tell (to 1 ppm): from t = 1e15 s
+        // a step of 1e-4 s would otherwise leave time where it was.
+        if ((t + h) - t - h).abs() > 1e-6 * h {
+            let least = 1e6 * f64::EPSILON * (t.abs() + h);
+            return Err(Error::invalid(
+                "h",
+                h,
+                format!(
+                    "at least {least:.3e} s at t = {t} s (t + h must differ from t by h to 1 ppm)"
+                ),
+            ));
+        }
+        // An absolute bound on the mismatch (not one that grows with h: a step of 1e10 s
+        // must not excuse a jump of 5 s).
+        let tol = 1e-9 * (1.0 + self.state.t.abs());
+        if self.state.started && (t - self.state.t).abs() > tol {
+            return Err(Error::CallOrder {
+                call: "do_step",
+                reason: format!(
+                    "t = {t} s but the component is at {} s (time must not jump or run backwards)",
+                    self.state.t
+                ),
+            });
+        }
+        self.require_inputs("do_step")?;
+        self.check_inputs_at(h)?;
+        self.scratch.clone_from(&self.state);
+        let mut sc = std::mem::take(&mut self.scratch);
+        // The host owns time: re-sync to its communication point (within the tolerance).
+        sc.t = t;
+        let r = self
+            .integrate(&mut sc, h)
+            .and_then(|_| self.compute_outputs(&mut sc, h));
+        if r.is_ok() {
+            sc.t = t + h;
+            sc.started = true;
+            sc.outputs_stale = false;
+            std::mem::swap(&mut self.state, &mut sc);
+        }
+        self.scratch = sc;
+        r.map_err(|e| match e {
+            Error::StepFailed { .. } | Error::Budget { .. } => e,
+            other => Error::StepFailed {
+                t,
+                reason: other.to_string(),
+            },
+        })
+    }
+
+    /// Integrate the states of `sc` over `h` with the scene's integrator; `sc.t` is the
+    /// step start. The step-size memory lives in the last `aux` slot.
+    pub(super) fn integrate(&mut self, sc: &mut State, h: f64) -> Result<()> {
+        let n = sc.x.len();
+        if n == 0 {
+            return Ok(());
+        }
+        if self.ring.is_none() && self.level.states_are_quadrature() {
+            return self.quadrature(sc, h);
+        }
+        let t0 = sc.t;
+        let naux = self.n_level_aux;
+        let mut h_trial = sc.aux[naux];
+        self.work.y.copy_from_slice(&sc.x);
+        let mut sys = Sys {
+            jw: Some(&mut self.jwork),
+            level: self.level.as_mut(),
+            st: sc,
+            ring: self.ring.as_ref(),
+            rule: self.scene.inputs.rule,
+            causality: self.scene.model.causality,
+            nl: self.n_level,
+            naux,
+            t0,
+            last_error: None,
+            budget: Some(Budget::new(self.scene.solver.max_step_cpu_s)),
+        };
+        let r = self.integrator.integrate(
+            &mut sys,
+            t0,
+            t0 + h,
+            &mut self.work.y,
+            &mut h_trial,
+            &self.opts,
+        );
+        if let Err(e) = r {
+            if let Some(used) = sys.budget.and_then(|b| b.spent) {
+                return Err(Error::Budget {
+                    t: t0,
+                    field: "solver.max_step_cpu_s",
+                    limit: format!("{} s", self.scene.solver.max_step_cpu_s),
+                    used: format!("{used:.3e} s of CPU time, reaching t = {}", e_time(&e)),
+                });
+            }
+            let hint = match e {
+                SolverError::TooManySteps { t, max_steps } => {
+                    return Err(Error::Budget {
+                        t: t0,
+                        field: "solver.max_substeps",
+                        limit: format!("{max_steps} sub-steps"),
+                        used: format!("all of them, reaching t = {t} s of t = {} s", t0 + h),
+                    });
+                }
+                _ => sys
+                    .last_error
+                    .map(|m| format!("; the model: {m}"))
+                    .unwrap_or_default(),
+            };
+            return Err(Error::StepFailed {
+                t: t0,
+                reason: format!("{e}{hint}"),
+            });
+        }
+        sc.x.copy_from_slice(&self.work.y);
+        sc.aux[naux] = h_trial;
+        Ok(())
+    }
+
+    /// Motion-driven levels whose states are a quadrature of the inputs (the cage angle):
+    /// Simpson's rule over the step, exact for the inputs' time dependence under every
+    /// input rule (at most cubic in time, [`input_at`]), as the adaptive DOPRI5 step it
+    /// replaces was (its quadrature weights are exact to degree 4), at 3 cheap right-hand
+    /// sides instead of 7 and no step-size control (the step-size memory is left as is).
+    pub(super) fn quadrature(&mut self, sc: &mut State, h: f64) -> Result<()> {
+        let (nl, naux) = (self.n_level, self.n_level_aux);
+        let rule = self.scene.inputs.rule;
+        let causality = self.causality();
+        let [k0, k1, k2] = &mut self.work.k;
+        for (s, k) in [(0.0, &mut *k0), (0.5 * h, &mut *k1), (h, &mut *k2)] {
+            let m = motion_at(sc, rule, s, causality, None, nl);
+            let (aux, _) = sc.aux.split_at_mut(naux);
+            self.level
+                .rhs(sc.t + s, &m, &sc.x[..nl], aux, &mut k[..nl], None)?;
+        }
+        for j in 0..nl {
+            sc.x[j] += h / 6.0 * (k0[j] + 4.0 * k1[j] + k2[j]);
+        }
+        Ok(())
+    }
+
+    /// Fill the outputs of `sc` at `s` after its time (`sc.x` already at that time).
+    pub(super) fn compute_outputs(&mut self, sc: &mut State, s: f64) -> Result<()> {
+        let nl = self.n_level;
+        let rule = self.scene.inputs.rule;
+        let causality = self.causality();
+        let m = motion_at_y(sc, rule, s, causality, self.ring.as_ref(), nl, &sc.x);
+        let mut out = LevelOutputs::default();
+        {
+            let (aux, _) = sc.aux.split_at_mut(self.n_level_aux);
+            self.level
+                .outputs(sc.t + s, &m, &sc.x[..nl], aux, &mut out)?;
+        }
+        let o = &mut sc.outputs;
+        o[I_FORCE..I_FORCE + 5].copy_from_slice(&out.wrench);
+        o[I_TORQUE] = out.torque;
+        o[I_CAGE_OMEGA] = out.cage_omega;
+        let diag = [
+            out.cage_slip,
+            out.balls_loaded,
+            out.max_load,
+            out.max_pressure,
+            out.film_min,
+            out.power_loss,
+            out.wear_max,
+        ];
+        o[I_DIAG..I_DIAG + 7].copy_from_slice(&diag);
+        let cage = [
+            out.cage_xy[0],
+            out.cage_xy[1],
+            out.cage_speed,
+            1.0 - out.cage_slip,
+            out.pocket_force,
+            out.guide_force,
+        ];
+        o[I_CAGE..I_CAGE + 6].copy_from_slice(&cage);
+        o[I_RATING..I_RATING + 3].copy_from_slice(&self.rating.outputs(
+            &self.bearing,
+            &out.wrench,
+            out.max_pressure,
+            out.balls_loaded,
+        ));
+        for r in 0..5 {
+            o[I_K + 5 * r..I_K + 5 * r + 5].copy_from_slice(&out.k[r]);
+            o[I_C + 5 * r..I_C + 5 * r + 5].copy_from_slice(&out.c[r]);
+        }
+        if let Some(ring) = &self.ring {
+            o[I_Q..I_Q + 5].copy_from_slice(&m.q);
+            o[I_V..I_V + 5].copy_from_slice(&m.v);
+            for &d in ring.dofs {
+                let load = input_at(sc, I_LOAD + d, s, rule);
+                sc.output_derivatives[I_Q + d] = m.v[d];
+                sc.output_derivatives[I_V + d] = (out.wrench[d] + load) / ring.inertia[d];
+            }
+        }
+        // dF/dt by a central difference in time along the inputs' rule and the states'
+        // rates; the level's memory (warm starts) is restored afterwards.
+        let n = sc.x.len();
+        let w = &mut self.work;
+        w.aux_save.copy_from_slice(&sc.aux);
+        w.y.copy_from_slice(&sc.x);
+        let mut fwd = [0.0; 5];
+        let mut bwd = [0.0; 5];
+        let t0 = sc.t;
+        let mut sys = Sys {
+            jw: None,
+            level: self.level.as_mut(),
+            st: sc,
+            ring: self.ring.as_ref(),
+            rule,
+            causality,
+            nl,
+            naux: self.n_level_aux,
+            t0,
+            last_error: None,
+            budget: None,
+        };
+        let mut r = sys.eval(s, &w.y, &mut w.k[0], None);
+        for (sign, dest) in [(1.0, &mut fwd), (-1.0, &mut bwd)] {
+            if r.is_err() {
+                break;
+            }
+            for j in 0..n {
+                w.k[2][j] = w.y[j] + sign * DT_DERIV * w.k[0][j];
+            }
+            let [_, dk, yk] = &mut w.k;
+            r = sys.eval(s + sign * DT_DERIV, yk, dk, Some(dest));
+        }
+        sc.aux.copy_from_slice(&w.aux_save);
+        r?;
+        for k in 0..5 {
+            sc.output_derivatives[I_FORCE + k] = (fwd[k] - bwd[k]) / (2.0 * DT_DERIV);
+        }
+        if !all_finite(&sc.outputs) || !all_finite(&sc.output_derivatives) {
+            return Err(Error::StepFailed {
+                t: sc.t,
+                reason: "non-finite output".into(),
+            });
+        }
+        Ok(())
+    }
+}

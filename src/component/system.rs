@@ -1,0 +1,237 @@
+//! The system a step integrates, as the integrators see it ([`OdeSystem`]): the level's
+//! states and, load-driven, the inner ring's, with the step's CPU budget and the
+//! preallocated work space.
+
+use super::inputs::{input_at, motion_at_y};
+use super::level::LevelModel;
+use super::{thread_cpu_s, Causality, InputRule, State, I_LOAD};
+use crate::error::{Error, Result};
+use crate::solver::{OdeSystem, SolverError};
+
+/// Most evaluations between two reads of the CPU clock (a read costs 0.2 µs, one
+/// right-hand side of the cheapest level 0.3 µs: at most 0.3 % of a step).
+pub(super) const BUDGET_EVERY: u32 = 256;
+
+/// CPU time aimed at between two reads of the clock, s: evaluations that cost more are
+/// checked more often, down to every one, so a step whose every right-hand side takes a
+/// second still stops within a second of its budget.
+pub(super) const BUDGET_READ_S: f64 = 1e-3;
+
+/// The CPU-time budget of one communication step.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Budget {
+    pub(super) start: f64,
+    pub(super) limit: f64,
+    pub(super) evals: u32,
+    /// Evaluation count at which the clock is read next.
+    pub(super) next: u32,
+    /// CPU time used when the budget ran out.
+    pub(super) spent: Option<f64>,
+}
+
+impl Budget {
+    pub(super) fn new(limit: f64) -> Self {
+        Budget {
+            start: thread_cpu_s(),
+            limit,
+            evals: 0,
+            next: 1,
+            spent: None,
+        }
+    }
+    /// Count one evaluation; `true` once the budget is spent. The clock is read about
+    /// every [`BUDGET_READ_S`] of CPU time as estimated from the evaluations so far, and
+    /// at least every [`BUDGET_EVERY`] evaluations.
+    pub(super) fn spent(&mut self) -> bool {
+        if self.spent.is_some() {
+            return true;
+        }
+        self.evals = self.evals.saturating_add(1);
+        if self.evals >= self.next {
+            let used = thread_cpu_s() - self.start;
+            if used > self.limit {
+                self.spent = Some(used);
+                return true;
+            }
+            // This call precedes its evaluation: `evals - 1` of them are done.
+            let done = self.evals - 1;
+            let gap = if done == 0 {
+                1.0
+            } else {
+                let per_eval = used / done as f64;
+                (BUDGET_READ_S / per_eval.max(1e-12)).clamp(1.0, BUDGET_EVERY as f64)
+            };
+            self.next = self.evals.saturating_add(gap as u32);
+        }
+        false
+    }
+}
+
+/// The inner ring as a body (load-driven causality).
+#[derive(Debug, Clone)]
+pub(super) struct RingBody {
+    /// Coordinates integrated (indices into q).
+    pub(super) dofs: &'static [usize],
+    /// Mass (translations) or transverse inertia (tilts) per coordinate of `q`.
+    pub(super) inertia: [f64; 5],
+}
+
+/// Preallocated work space of a step (no allocation inside `do_step`).
+#[derive(Debug, Clone, Default)]
+pub(super) struct Work {
+    /// Rates at the output time, rates at a shifted time, and the shifted states (the
+    /// central difference that gives `dF/dt`).
+    pub(super) k: [Vec<f64>; 3],
+    pub(super) y: Vec<f64>,
+    pub(super) aux_save: Vec<f64>,
+}
+
+/// Work space of the level Jacobians (see [`LevelModel::jacobian`]).
+#[derive(Debug, Clone, Default)]
+pub(super) struct JacWork {
+    pub(super) jx: Vec<f64>,
+    pub(super) jm: Vec<f64>,
+    pub(super) wx: Vec<f64>,
+    pub(super) wm: Vec<f64>,
+}
+
+/// The whole system a step integrates: the level's states and, load-driven, the ring's.
+pub(super) struct Sys<'a> {
+    pub(super) jw: Option<&'a mut JacWork>,
+    pub(super) level: &'a mut dyn LevelModel,
+    pub(super) st: &'a mut State,
+    pub(super) ring: Option<&'a RingBody>,
+    pub(super) rule: InputRule,
+    pub(super) causality: Causality,
+    pub(super) nl: usize,
+    pub(super) naux: usize,
+    pub(super) t0: f64,
+    /// The last error the level raised at a trial point (the integrator sees NaN there and
+    /// retries with a smaller step; if it gives up, this is the cause it reports).
+    pub(super) last_error: Option<Error>,
+    /// The step's CPU budget (none for output evaluations).
+    pub(super) budget: Option<Budget>,
+}
+
+impl Sys<'_> {
+    /// Right-hand side at `s` after the step start; with `wrench`, also the bearing force.
+    pub(super) fn eval(
+        &mut self,
+        s: f64,
+        y: &[f64],
+        dy: &mut [f64],
+        wrench: Option<&mut [f64; 5]>,
+    ) -> Result<()> {
+        let nl = self.nl;
+        let m = motion_at_y(self.st, self.rule, s, self.causality, self.ring, nl, y);
+        let t = self.t0 + s;
+        let (aux, _) = self.st.aux.split_at_mut(self.naux);
+        match self.ring {
+            None => self
+                .level
+                .rhs(t, &m, &y[..nl], aux, &mut dy[..nl], wrench)?,
+            Some(ring) => {
+                let mut w = [0.0; 5];
+                self.level
+                    .rhs(t, &m, &y[..nl], aux, &mut dy[..nl], Some(&mut w))?;
+                let nd = ring.dofs.len();
+                for (k, &d) in ring.dofs.iter().enumerate() {
+                    let load = input_at(self.st, I_LOAD + d, s, self.rule);
+                    dy[nl + k] = y[nl + nd + k];
+                    dy[nl + nd + k] = (w[d] + load) / ring.inertia[d];
+                }
+                if let Some(out) = wrench {
+                    *out = w;
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+impl OdeSystem for Sys<'_> {
+    fn dim(&self) -> usize {
+        self.st.x.len()
+    }
+    fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) -> std::result::Result<(), String> {
+        if self.budget.as_mut().is_some_and(Budget::spent) {
+            return Err("CPU budget spent".into());
+        }
+        // A trial state can be far off (a too-large trial step through a stiff contact):
+        // a level that cannot evaluate there makes the step fail and shrink, not the run.
+        if let Err(e) = self.eval(t - self.t0, y, dy, None) {
+            dy.fill(f64::NAN);
+            self.last_error = Some(e);
+        }
+        Ok(())
+    }
+    fn jacobian(&mut self, t: f64, y: &[f64], jac: &mut nalgebra::DMatrix<f64>) -> bool {
+        if self.budget.as_mut().is_some_and(Budget::spent) {
+            return false;
+        }
+        let Some(jw) = self.jw.as_deref_mut() else {
+            return false;
+        };
+        let nl = self.nl;
+        let s = t - self.t0;
+        let m = motion_at_y(self.st, self.rule, s, self.causality, self.ring, nl, y);
+        let (aux, _) = self.st.aux.split_at_mut(self.naux);
+        let (jm, wx, wm) = if self.ring.is_some() {
+            (&mut jw.jm[..], &mut jw.wx[..], &mut jw.wm[..])
+        } else {
+            (&mut [][..], &mut [][..], &mut [][..])
+        };
+        if !self
+            .level
+            .jacobian(t, &m, &y[..nl], aux, &mut jw.jx, jm, wx, wm)
+        {
+            return false;
+        }
+        jac.fill(0.0);
+        for r in 0..nl {
+            for c in 0..nl {
+                jac[(r, c)] = jw.jx[r * nl + c];
+            }
+        }
+        if let Some(ring) = self.ring {
+            let nd = ring.dofs.len();
+            for (k, &d) in ring.dofs.iter().enumerate() {
+                let (iq, iv) = (nl + k, nl + nd + k);
+                let inv = 1.0 / ring.inertia[d];
+                for r in 0..nl {
+                    jac[(r, iq)] = jw.jm[r * 10 + d];
+                    jac[(r, iv)] = jw.jm[r * 10 + 5 + d];
+                }
+                jac[(iq, iv)] = 1.0;
+                for c in 0..nl {
+                    jac[(iv, c)] = jw.wx[d * nl + c] * inv;
+                }
+                for (k2, &d2) in ring.dofs.iter().enumerate() {
+                    jac[(iv, nl + k2)] = jw.wm[d * 10 + d2] * inv;
+                    jac[(iv, nl + nd + k2)] = jw.wm[d * 10 + 5 + d2] * inv;
+                }
+            }
+        }
+        true
+    }
+}
+
+/// No NaN or infinity in `v`: a branch-free OR over the exponent bits (all ones for NaN
+/// and inf), which the compiler vectorises; the outputs are checked after every step.
+pub(super) fn all_finite(v: &[f64]) -> bool {
+    const EXP: u64 = 0x7ff0_0000_0000_0000;
+    !v.iter()
+        .fold(false, |bad, x| bad | (x.to_bits() & EXP == EXP))
+}
+
+/// The time an integration failure reached (for messages).
+pub(super) fn e_time(e: &SolverError) -> String {
+    match e {
+        SolverError::TooManySteps { t, .. }
+        | SolverError::StepSizeUnderflow { t, .. }
+        | SolverError::Rhs { t, .. }
+        | SolverError::NonFinite { t, .. }
+        | SolverError::Singular { t, .. } => format!("{t} s"),
+        SolverError::Invalid { .. } => "the start".into(),
+    }
+}
