@@ -13,8 +13,9 @@ use crate::error::Result;
 use crate::geometry::Bearing;
 use crate::solver::{Dopri5, Integrator, Options, Rosenbrock};
 
-/// The scene's integrator and its options. `Auto` picks DOPRI5: the levels so far are not
-/// stiff (a massless-ball ring is a few-kHz oscillator, numerics.md §1.2).
+/// The scene's integrator and its options. `Auto` picks RODAS4 for a level its registry
+/// entry marks stiff (traction slopes), DOPRI5 for the others (a massless-ball ring is a
+/// few-kHz oscillator, numerics.md §1.2).
 fn make_integrator(
     scene: &Scene,
     b: &Bearing,
