@@ -9,7 +9,6 @@ use super::level::LevelModel;
 use super::scene::Scene;
 use crate::error::{Error, Result};
 use crate::geometry::Bearing;
-use crate::models::{full, linear, quasi_static, ring, skidding};
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 /// Builds a level for a validated scene and its bearing (one signature for every level).
@@ -55,11 +54,11 @@ impl std::fmt::Debug for LevelEntry {
 #[rustfmt::skip]
 pub const LEVELS: &[LevelEntry] = &[
     //              name            stiff  effects  constructor
-    LevelEntry::new("linear",       false, false,   linear::level::build),
-    LevelEntry::new("quasi_static", false, false,   quasi_static::level::build),
-    LevelEntry::new("ring",         false, true,    ring::level::build),
-    LevelEntry::new("skidding",     true,  false,   skidding::level::build),
-    LevelEntry::new("full",         true,  false,   full::level::build),
+    LevelEntry::new("linear",       false, false,   crate::models::linear::level::build),
+    LevelEntry::new("quasi_static", false, false,   crate::models::quasi_static::level::build),
+    LevelEntry::new("ring",         false, true,    crate::models::ring::level::build),
+    LevelEntry::new("skidding",     true,  false,   crate::models::skidding::level::build),
+    LevelEntry::new("full",         true,  false,   crate::models::full::level::build),
 ];
 
 /// Number of levels.
