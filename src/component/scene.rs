@@ -1,15 +1,18 @@
 //! The scene: one serde schema (TOML for people, JSON for programs) that says everything a
 //! component needs. Anything a scene leaves out is not computed.
 
-pub use super::levels::Level;
 use super::fields::{
-    between, choice, closed, flag, ge, gt, int_choice, integer, name, name_or_table, number, table,
-    text, Names, ANY,
+    between, choice, closed, ge, gt, int_choice, integer, name, name_or_table, number, table, text,
+    Names, ANY,
 };
+pub use super::levels::Level;
 use super::variables::{self, Causality};
 use crate::error::{Error, Result};
 use crate::geometry::{presets, Bearing, BearingSpec};
+pub use crate::models::full::spec::FullSpec;
+pub use crate::models::linear::spec::OperatingPoint;
 pub use crate::models::quasi_static::RaceControl;
+pub use crate::models::skidding::spec::SkiddingSpec;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
@@ -38,223 +41,6 @@ pub enum Start {
     Equilibrium,
     /// At rest at zero displacement (the ring falls into its contacts).
     Rest,
-}
-
-/// The operating point the `linear` level linearises about.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct OperatingPoint {
-    /// Shaft speed, rpm.
-    pub speed_rpm: f64,
-    /// Loads on the inner ring, N and N m.
-    pub fx: f64,
-    /// y load, N.
-    pub fy: f64,
-    /// z (axial) load, N.
-    pub fz: f64,
-    /// Moment about x, N m.
-    pub mx: f64,
-    /// Moment about y, N m.
-    pub my: f64,
-}
-
-crate::declare_fields!(OperatingPoint {
-    speed_rpm: 0.0 => number("rpm", ANY, "linear level: shaft speed of the operating point"),
-    fx: 0.0 => number("N", ANY, "linear level: load x"),
-    fy: 1000.0 => number("N", ANY, "linear level: load y"),
-    fz: 0.0 => number("N", ANY, "linear level: axial load z"),
-    mx: 0.0 => number("N m", ANY, "linear level: moment about x"),
-    my: 0.0 => number("N m", ANY, "linear level: moment about y"),
-});
-
-/// `[model.skidding]`: options of the skidding level (SI unless the name says otherwise).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct SkiddingSpec {
-    /// Traction law at the race contacts (`law = "coulomb" | "fitted" | "mixed_ehl"`).
-    pub traction: crate::contact::traction::TractionLaw,
-    /// Pocket clearance per side, mm (default: the bearing's cage pocket clearance).
-    pub pocket_clearance_mm: Option<f64>,
-    /// Pocket contact stiffness, N/m.
-    pub pocket_stiffness: f64,
-    /// Pocket contact damping, N s/m.
-    pub pocket_damping: f64,
-    /// Pocket friction coefficient.
-    pub pocket_friction: f64,
-    /// Drag coefficient of an orbiting ball.
-    pub drag_coefficient: f64,
-    /// Effective density of the oil–air mixture around the balls, kg/m³.
-    pub drag_density: f64,
-    /// Oil viscosity for the ball spin drag, Pa s.
-    pub drag_viscosity: f64,
-    /// Cage drag, N m s.
-    pub cage_drag: f64,
-    /// Ball spacing scatter as a fraction of the pocket clearance (seeded, uniform).
-    pub spacing_scatter: f64,
-    /// Seed of the scatter.
-    pub seed: u64,
-    /// Traction coefficient limiting the lateral friction that carries the balls'
-    /// gyroscopic couple (as `quasi_static`'s `gyro_traction`); 0 turns it off.
-    pub gyro_traction: f64,
-    /// Friction coefficient of the spinning moment at the race contacts (0: off).
-    pub spin_friction: f64,
-    /// Give the balls radial mass (their position along the contact line becomes a
-    /// state, damped by `model.contact_damping`) instead of the quasi-static split.
-    pub ball_radial_mass: bool,
-}
-
-crate::declare_fields!(SkiddingSpec {
-    traction: crate::contact::traction::TractionLaw::default() => table(),
-    pocket_clearance_mm: None => number("mm", gt(0.0), "skidding level: pocket clearance per side")
-        .note("absent: the bearing's cage pocket clearance"),
-    pocket_stiffness: 1e7 => number("N/m", gt(0.0), "skidding level: pocket contact stiffness"),
-    pocket_damping: 200.0 => number("N s/m", closed(0.0, 1e9), "skidding level: pocket contact damping"),
-    pocket_friction: 0.05 => number("-", closed(0.0, 2.0), "skidding level: pocket friction coefficient"),
-    drag_coefficient: 0.5 => number("-", closed(0.0, 1e3), "skidding level: drag coefficient of an orbiting ball"),
-    drag_density: 10.0 => number("kg/m³", closed(0.0, 1e4), "skidding level: density of the oil–air mixture around the balls"),
-    drag_viscosity: 0.0 => number("Pa s", closed(0.0, 10.0), "skidding level: oil viscosity of the ball spin drag"),
-    cage_drag: 0.0 => number("N m s", closed(0.0, 1e3), "skidding level: cage drag"),
-    spacing_scatter: 0.0 => number("-", closed(0.0, 1.0), "skidding level: ball spacing scatter as a fraction of the pocket clearance"),
-    seed: 1 => integer(ge(0.0), "skidding level: seed of the scatter"),
-    gyro_traction: 0.3 => number("-", closed(0.0, 10.0), "skidding level: traction coefficient limiting the lateral friction that carries the balls' gyroscopic couple")
-        .note("0 turns the gyroscopic friction off"),
-    spin_friction: 0.0 => number("-", closed(0.0, 2.0), "skidding level: friction coefficient of the spinning moment (3/8) mu Q a E at the race contacts")
-        .note("0: no spinning moment"),
-    ball_radial_mass: false => flag("skidding level: give the balls radial mass (position along the contact line as a state, damped by model.contact_damping) instead of the quasi-static split")
-        .note("default false"),
-});
-
-impl SkiddingSpec {
-    /// Validated model parameters for bearing `b`; errors name `model.skidding.<field>`.
-    pub fn params(&self, b: &Bearing) -> Result<crate::models::skidding::SkiddingParams> {
-        self.traction.validate("model.skidding.traction")?;
-        super::fields::check("model.skidding", Self::FIELDS, self)?;
-        let cp = self
-            .pocket_clearance_mm
-            .map_or(b.cage.pocket_clearance, |v| v * 1e-3);
-        Ok(crate::models::skidding::SkiddingParams {
-            traction: self.traction,
-            pocket_clearance: crate::error::positive("model.skidding.pocket_clearance (m)", cp)?,
-            pocket_stiffness: self.pocket_stiffness,
-            pocket_damping: self.pocket_damping,
-            pocket_friction: self.pocket_friction,
-            drag_coefficient: self.drag_coefficient,
-            drag_density: self.drag_density,
-            drag_viscosity: self.drag_viscosity,
-            cage_drag: self.cage_drag,
-            spacing_scatter: self.spacing_scatter,
-            seed: self.seed,
-            contact_damping: 0.0,
-            gyroscopic: self.gyro_traction > 0.0,
-            gyro_traction: if self.gyro_traction > 0.0 {
-                self.gyro_traction
-            } else {
-                1.0
-            },
-            spin_friction: self.spin_friction,
-            ball_radial_mass: self.ball_radial_mass,
-            ..Default::default()
-        })
-    }
-}
-
-/// `[model.full]`: options of the full level (SI unless the name says otherwise); see
-/// [`crate::models::full`]. Absent optional fields take the bearing's cage data.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct FullSpec {
-    /// Traction law at the race contacts.
-    pub traction: crate::contact::traction::TractionLaw,
-    /// `quasi_static` (ball radial/axial position in equilibrium) or `dynamic`.
-    pub ball_contacts: crate::models::full::BallContacts,
-    /// `free` (6 DOF) or `ideal` (rotation only).
-    pub cage: crate::models::full::CageModel,
-    /// Reference force of the nondimensional states, N.
-    pub reference_load_n: f64,
-    /// Factor on the boundary-layer drag of balls and cage (0: off).
-    pub drag_factor: f64,
-    /// Effective density of the oil–air mixture, kg/m³.
-    pub drag_density: f64,
-    /// Oil viscosity (drag, pockets, guide land), Pa s.
-    pub viscosity: f64,
-    /// Diametral pocket play, mm (absent: the bearing's).
-    pub pocket_clearance_mm: Option<f64>,
-    /// Pocket friction coefficient.
-    pub pocket_friction: f64,
-    /// Composite roughness of ball and pocket, µm.
-    pub pocket_roughness_um: f64,
-    /// Regularising slip speed of the pocket friction, m/s.
-    pub pocket_v_s: f64,
-    /// Guide land width, mm (absent: half the cage width).
-    pub guide_width_mm: Option<f64>,
-    /// Guide-land contact stiffness beyond `guide_eps_max`, N/m.
-    pub guide_stiffness: f64,
-    /// Eccentricity ratio where the guide-land contact starts.
-    pub guide_eps_max: f64,
-    /// Cage guidance: `outer_ring`, `inner_ring` or `ball` (absent: the bearing's
-    /// `cage.guidance`).
-    pub guidance: Option<crate::geometry::Guidance>,
-    /// Cage mass unbalance: offset of the cage's mass centre from its geometric centre, µm.
-    pub cage_unbalance_um: f64,
-}
-
-crate::declare_fields!(FullSpec {
-    traction: crate::contact::traction::TractionLaw::default() => table(),
-    ball_contacts: crate::models::full::BallContacts::default() => choice(BALL_CONTACTS, "full level: ball radial/axial position in quasi-static equilibrium (study [0]) or integrated with the ball mass (dynamic)"),
-    cage: crate::models::full::CageModel::default() => choice(CAGE_MODELS, "full level: cage with six degrees of freedom (free) or centred, rotation only (ideal)"),
-    reference_load_n: 1000.0 => number("N", closed(1e-3, 1e9), "full level: reference force F_ref of the nondimensional states (time scale sqrt(m_b D / (2 F_ref)))"),
-    drag_factor: 1.0 => number("-", closed(0.0, 1e3), "full level: factor on the boundary-layer drag of balls and cage (0: off)"),
-    drag_density: 10.0 => number("kg/m³", closed(0.0, 1e4), "full level: effective density of the oil–air mixture"),
-    viscosity: 3e-3 => number("Pa s", closed(0.0, 10.0), "full level: oil viscosity (drag, pockets, guide land)"),
-    pocket_clearance_mm: None => number("mm", gt(0.0), "full level: diametral pocket play")
-        .note("absent: the bearing's cage pocket clearance"),
-    pocket_friction: 0.1 => number("-", closed(0.0, 2.0), "full level: ball–pocket friction coefficient"),
-    pocket_roughness_um: 0.3 => number("µm", closed(0.0, 1e3), "full level: composite roughness of ball and pocket"),
-    pocket_v_s: 0.05 => number("m/s", closed(super::limits::SLIP_SPEED_MIN, 1e3), "full level: regularising slip speed of the pocket friction"),
-    guide_width_mm: None => number("mm", gt(0.0), "full level: guide land width")
-        .note("absent: half the cage width"),
-    guide_stiffness: 1e7 => number("N/m", gt(0.0), "full level: guide-land contact stiffness beyond guide_eps_max"),
-    guide_eps_max: 0.9 => number("-", closed(0.05, 0.999), "full level: eccentricity ratio where the guide-land contact starts"),
-    guidance: None => choice(crate::geometry::bearing::GUIDANCE, "full level: cage guidance, on the outer-ring land (land radius = cage OD/2) or the inner-ring land (= cage bore/2), or ball-riding (no land)")
-        .note("absent: bearing.cage.guidance"),
-    cage_unbalance_um: 0.0 => number("µm", closed(0.0, 1e3), "full level: cage mass unbalance, offset of the mass centre from the geometric centre (a load rotating with the cage, m_c u w_c²)")
-        .note("default 0"),
-});
-
-const BALL_CONTACTS: &[&str] = &["quasi_static", "dynamic"];
-const CAGE_MODELS: &[&str] = &["free", "ideal"];
-
-impl FullSpec {
-    /// Validated model parameters for bearing `b`; errors name `model.full.<field>`.
-    pub fn params(
-        &self,
-        b: &Bearing,
-        race_control: RaceControl,
-    ) -> Result<crate::models::full::FullParams> {
-        self.traction.validate("model.full.traction")?;
-        super::fields::check("model.full", Self::FIELDS, self)?;
-        Ok(crate::models::full::FullParams {
-            traction: self.traction,
-            ball_contacts: self.ball_contacts,
-            cage: self.cage,
-            reference_load: self.reference_load_n,
-            race_control,
-            drag: self.drag_factor,
-            drag_density: self.drag_density,
-            viscosity: self.viscosity,
-            pocket_clearance: self
-                .pocket_clearance_mm
-                .map_or(b.cage.pocket_clearance, |v| v * 1e-3),
-            pocket_friction: self.pocket_friction,
-            pocket_roughness: self.pocket_roughness_um * 1e-6,
-            pocket_v_s: self.pocket_v_s,
-            guide_width: self.guide_width_mm.map_or(0.5 * b.cage.width, |v| v * 1e-3),
-            guide_stiffness: self.guide_stiffness,
-            guide_eps_max: self.guide_eps_max,
-            guidance: self.guidance.unwrap_or(b.cage.guidance),
-            cage_unbalance: self.cage_unbalance_um * 1e-6,
-        })
-    }
 }
 
 /// Upper end of `model.contact_damping`, N s/m: a plausibility limit, not a fit. It is

@@ -111,6 +111,7 @@
 
 mod ball;
 pub mod level;
+pub mod spec;
 
 use crate::contact::traction::{ContactState, TractionLaw};
 use crate::contact::{BallRaceContacts, ContactTable, PointContact, Race};
@@ -190,7 +191,7 @@ impl FullParams {
     /// Defaults for bearing `b` (its cage's pocket play and width).
     pub fn for_bearing(b: &Bearing) -> Self {
         // The scene's declared defaults (`[model.full]`).
-        let s = crate::component::scene::FullSpec::default();
+        let s = spec::FullSpec::default();
         FullParams {
             traction: s.traction,
             ball_contacts: s.ball_contacts,

@@ -4,3 +4,4 @@
 //! level ([`level`]).
 
 pub mod level;
+pub mod spec;

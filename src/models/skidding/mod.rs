@@ -108,6 +108,7 @@
 //! sphere, `8 pi eta R³ w`); cage drag `M_cage = c_cage w_c` (linear viscous).
 
 pub mod level;
+pub mod spec;
 
 use crate::contact::traction::{ContactState, TractionLaw};
 use crate::contact::{BallRaceContacts, PointContact};
@@ -168,7 +169,7 @@ impl Default for SkiddingParams {
     /// The scene's declared defaults (`[model.skidding]`), plus those of the settings a
     /// scene does not expose.
     fn default() -> Self {
-        let s = crate::component::scene::SkiddingSpec::default();
+        let s = spec::SkiddingSpec::default();
         SkiddingParams {
             traction: s.traction,
             pocket_clearance: 0.1e-3,
