@@ -27,6 +27,17 @@ pub enum Role {
     Output,
 }
 
+/// The type of a variable's value.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum VarType {
+    /// A real number (FMI 2 `Real`, FMI 3 `Float64`, C `double`).
+    Real,
+    /// A count (FMI 2 `Integer`, FMI 3 `Int32`, C `int32_t`); discrete: it changes only at
+    /// communication points. The Rust API and `raceway_get_real` also give it as an exact
+    /// `f64`.
+    Integer,
+}
+
 /// One variable of the contract.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Variable {
@@ -40,6 +51,8 @@ pub struct Variable {
     pub role: Role,
     /// One-line meaning.
     pub description: &'static str,
+    /// Value type.
+    pub ty: VarType,
 }
 
 impl Variable {
@@ -75,6 +88,20 @@ const fn v(
         unit,
         role,
         description,
+        ty: VarType::Real,
+    }
+}
+
+/// A count: as [`v`], of type [`VarType::Integer`].
+const fn count(
+    name: &'static str,
+    vr: u32,
+    role: Role,
+    description: &'static str,
+) -> Variable {
+    Variable {
+        ty: VarType::Integer,
+        ..v(name, vr, "1", role, description)
     }
 }
 
@@ -219,13 +246,7 @@ pub const SCALARS: &[Variable] = &[
         Output,
         "cage slip ratio 1 - omega_c/omega_c,kinematic",
     ),
-    v(
-        "balls.loaded",
-        109,
-        "1",
-        Output,
-        "number of balls in contact",
-    ),
+    count("balls.loaded", 109, Output, "number of balls in contact"),
     v(
         "contact.max_load",
         110,
@@ -311,10 +332,9 @@ pub const SCALARS: &[Variable] = &[
         Output,
         "basic rating life (C/P)^3 (ISO 281) of the bearing force, in millions of revolutions; 1e12 when unloaded, 0 where ISO 281 does not cover the bearing",
     ),
-    v(
+    count(
         "warnings.active",
         123,
-        "1",
         Output,
         "number of active warnings: peak contact pressure beyond ISO 76's limit, fewer than two loaded balls",
     ),
@@ -408,6 +428,29 @@ pub enum ParamType {
     Real,
     /// A string.
     String,
+    /// A Boolean switch.
+    Boolean,
+    /// One of named items, numbered from 1 (FMI `Enumeration`; FMI 2 `Integer` access,
+    /// FMI 3 `Int64` access). Item 0 of every enumeration here is `scene`: leave the scene's
+    /// own choice.
+    Enumeration {
+        /// Type name in `<TypeDefinitions>`.
+        type_name: &'static str,
+        /// Item names; item `k` has value `k`.
+        items: &'static [&'static str],
+    },
+}
+
+impl ParamType {
+    /// A number per kind (for the GUID hash).
+    pub const fn tag(self) -> u8 {
+        match self {
+            ParamType::Real => 0,
+            ParamType::String => 1,
+            ParamType::Boolean => 2,
+            ParamType::Enumeration { .. } => 3,
+        }
+    }
 }
 
 /// A scene field exposed as a parameter (FMI parameters, C ABI setters).
@@ -427,8 +470,21 @@ pub struct Parameter {
     pub description: &'static str,
 }
 
-/// The scene fields exposed as parameters. A parameter the host never sets leaves the
-/// field as the scene (or the preset) has it; an empty string does the same.
+/// Items of the `level` parameter: `scene`, then every level's scene spelling.
+pub const LEVEL_ITEMS: [&str; 6] = [
+    "scene",
+    crate::component::scene::Level::NAMES[0],
+    crate::component::scene::Level::NAMES[1],
+    crate::component::scene::Level::NAMES[2],
+    crate::component::scene::Level::NAMES[3],
+    crate::component::scene::Level::NAMES[4],
+];
+
+/// Items of the `input_rule` parameter: `scene`, then the scene's `inputs.rule` spellings.
+pub const INPUT_RULE_ITEMS: [&str; 4] = ["scene", "hold", "velocity", "derivatives"];
+
+/// The scene fields exposed as parameters. A parameter the host never sets (or sets to
+/// its start value) leaves the field as the scene (or the preset) has it.
 pub const PARAMETERS: &[Parameter] = &[
     Parameter {
         name: "scene",
@@ -444,31 +500,37 @@ pub const PARAMETERS: &[Parameter] = &[
         ty: ParamType::String,
         unit: "",
         start: "",
-        description: "bearing preset name (overrides the scene's bearing)",
+        description: "bearing preset name (overrides the scene's bearing; empty: the scene's)",
     },
     Parameter {
         name: "level",
         vr: 1002,
-        ty: ParamType::String,
+        ty: ParamType::Enumeration {
+            type_name: "Level",
+            items: &LEVEL_ITEMS,
+        },
         unit: "",
-        start: "",
-        description: "model level: linear, quasi_static, ring, skidding or full",
+        start: "0",
+        description: "model level (scene: as the scene has it)",
     },
     Parameter {
         name: "input_rule",
         vr: 1003,
-        ty: ParamType::String,
+        ty: ParamType::Enumeration {
+            type_name: "InputRule",
+            items: &INPUT_RULE_ITEMS,
+        },
         unit: "",
-        start: "",
-        description: "how inputs move inside a step: hold, velocity or derivatives",
+        start: "0",
+        description: "how inputs move inside a step (scene: as the scene has it)",
     },
     Parameter {
         name: "clearance",
         vr: 1004,
         ty: ParamType::Real,
         unit: "m",
-        start: "-1",
-        description: "diametral clearance, negative for preload (-1: as the bearing has it)",
+        start: "0",
+        description: "diametral clearance, negative for preload; used only when override_clearance is true",
     },
     Parameter {
         name: "rtol",
@@ -477,6 +539,14 @@ pub const PARAMETERS: &[Parameter] = &[
         unit: "1",
         start: "1e-6",
         description: "relative tolerance of the internal integrator (applied only when set)",
+    },
+    Parameter {
+        name: "override_clearance",
+        vr: 1006,
+        ty: ParamType::Boolean,
+        unit: "",
+        start: "false",
+        description: "true: the bearing takes the `clearance` parameter; false: its own clearance",
     },
 ];
 
@@ -527,8 +597,7 @@ pub const RANGES: &[(&str, f64, f64)] = &[
     ("load.z", -1e7, 1e7),
     ("load.mx", -1e6, 1e6),
     ("load.my", -1e6, 1e6),
-    // -1 is the "as the bearing has it" value of the clearance parameter.
-    ("clearance", -1.0, 1e-3),
+    ("clearance", -1e-3, 1e-3),
     ("rtol", RTOL.min(), RTOL.max()),
 ];
 

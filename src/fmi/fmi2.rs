@@ -10,8 +10,9 @@
 #![allow(non_snake_case)]
 
 use super::instance::{
-    guard, no_panic, slice, slice_mut, str_arg, Fail, Fmi2Logger, Instance, Logger, Snapshot,
-    Status, ANY, ERROR, INIT, INSTANTIATED, STEP, TERMINATED,
+    deserialize, get_state, guard, no_panic, serialize, slice, slice_mut, str_arg, Fail,
+    Fmi2Logger, Instance, Logger, Snapshot, Status, ANY, ERROR, INIT, INSTANTIATED, STEP,
+    TERMINATED,
 };
 use std::ffi::{c_char, c_void};
 use std::ptr::null_mut;
@@ -112,11 +113,12 @@ pub unsafe extern "C" fn fmi2Instantiate(
                 "fmuType = {fmu_type}: raceway is a co-simulation FMU (fmi2CoSimulation = 1)"
             ));
         }
-        if let Err(msg) = super::instance::check_guid(str_arg(guid).as_deref()) {
-            return refuse(msg);
-        }
+        let causality = match super::instance::check_guid(str_arg(guid).as_deref()) {
+            Ok(c) => c,
+            Err(msg) => return refuse(msg),
+        };
         let dir = str_arg(resource_location).and_then(|u| super::instance::uri_to_path(&u));
-        Instance::new(2, &name, logger, logging_on != 0, dir.as_deref()).into_raw()
+        Instance::new(2, causality, &name, logger, logging_on != 0, dir.as_deref()).into_raw()
     })
 }
 
@@ -242,16 +244,7 @@ pub unsafe extern "C" fn fmi2SetReal(
     })
 }
 
-fn no_such(kind: &str, vr: &[u32]) -> Result<Status, Fail> {
-    match vr.first() {
-        None => Ok(Status::Ok),
-        Some(r) => Err(Fail::from(format!(
-            "no {kind} variable with value reference {r} (raceway has Real and String variables only)"
-        ))),
-    }
-}
-
-/// `fmi2GetInteger`: raceway has no Integer variables.
+/// `fmi2GetInteger`: the Integer outputs (counts) and the Enumeration parameters.
 ///
 /// # Safety
 /// FMI 2 calling convention.
@@ -260,14 +253,20 @@ pub unsafe extern "C" fn fmi2GetInteger(
     c: Fmi2Component,
     vr: *const u32,
     nvr: usize,
-    _value: *mut i32,
+    value: *mut i32,
 ) -> Status {
-    guard(c, "fmi2GetInteger", GET, |_| {
-        no_such("Integer", slice(vr, nvr, "vr")?)
+    guard(c, "fmi2GetInteger", GET, |inst| {
+        let vr = slice(vr, nvr, "vr")?;
+        let out = slice_mut(value, nvr, "value")?;
+        for (o, &r) in out.iter_mut().zip(vr) {
+            // counts and enumeration items both fit in an i32
+            *o = inst.get_integer(r, "Integer")? as i32;
+        }
+        Ok(Status::Ok)
     })
 }
 
-/// `fmi2GetBoolean`: raceway has no Boolean variables.
+/// `fmi2GetBoolean`: the Boolean parameters.
 ///
 /// # Safety
 /// FMI 2 calling convention.
@@ -276,10 +275,15 @@ pub unsafe extern "C" fn fmi2GetBoolean(
     c: Fmi2Component,
     vr: *const u32,
     nvr: usize,
-    _value: *mut i32,
+    value: *mut i32,
 ) -> Status {
-    guard(c, "fmi2GetBoolean", GET, |_| {
-        no_such("Boolean", slice(vr, nvr, "vr")?)
+    guard(c, "fmi2GetBoolean", GET, |inst| {
+        let vr = slice(vr, nvr, "vr")?;
+        let out = slice_mut(value, nvr, "value")?;
+        for (o, &r) in out.iter_mut().zip(vr) {
+            *o = inst.get_boolean(r)? as i32;
+        }
+        Ok(Status::Ok)
     })
 }
 
@@ -312,7 +316,7 @@ pub unsafe extern "C" fn fmi2GetString(
     })
 }
 
-/// `fmi2SetInteger`: raceway has no Integer variables.
+/// `fmi2SetInteger`: the Enumeration parameters.
 ///
 /// # Safety
 /// FMI 2 calling convention.
@@ -321,14 +325,19 @@ pub unsafe extern "C" fn fmi2SetInteger(
     c: Fmi2Component,
     vr: *const u32,
     nvr: usize,
-    _value: *const i32,
+    value: *const i32,
 ) -> Status {
-    guard(c, "fmi2SetInteger", SET, |_| {
-        no_such("Integer", slice(vr, nvr, "vr")?)
+    guard(c, "fmi2SetInteger", SET, |inst| {
+        let vr = slice(vr, nvr, "vr")?;
+        let vals = slice(value, nvr, "value")?;
+        for (&r, &x) in vr.iter().zip(vals) {
+            inst.set_integer(r, x as i64, "Integer")?;
+        }
+        Ok(Status::Ok)
     })
 }
 
-/// `fmi2SetBoolean`: raceway has no Boolean variables.
+/// `fmi2SetBoolean`: the Boolean parameters.
 ///
 /// # Safety
 /// FMI 2 calling convention.
@@ -337,10 +346,15 @@ pub unsafe extern "C" fn fmi2SetBoolean(
     c: Fmi2Component,
     vr: *const u32,
     nvr: usize,
-    _value: *const i32,
+    value: *const i32,
 ) -> Status {
-    guard(c, "fmi2SetBoolean", SET, |_| {
-        no_such("Boolean", slice(vr, nvr, "vr")?)
+    guard(c, "fmi2SetBoolean", SET, |inst| {
+        let vr = slice(vr, nvr, "vr")?;
+        let vals = slice(value, nvr, "value")?;
+        for (&r, &x) in vr.iter().zip(vals) {
+            inst.set_boolean(r, x != 0)?;
+        }
+        Ok(Status::Ok)
     })
 }
 
@@ -372,22 +386,6 @@ pub unsafe extern "C" fn fmi2SetString(
 #[no_mangle]
 pub unsafe extern "C" fn fmi2GetFMUstate(c: Fmi2Component, state: *mut Fmi2FmuState) -> Status {
     guard(c, "fmi2GetFMUstate", ANY, |inst| get_state(inst, state))
-}
-
-pub(crate) unsafe fn get_state(
-    inst: &mut Instance,
-    state: *mut *mut c_void,
-) -> Result<Status, Fail> {
-    if state.is_null() {
-        return Err(Fail::from("FMUstate pointer is NULL".to_string()));
-    }
-    let snap = inst.snapshot();
-    if (*state).is_null() {
-        *state = snap.into_raw();
-    } else {
-        *Instance::snapshot_ref(*state)? = snap;
-    }
-    Ok(Status::Ok)
 }
 
 /// `fmi2SetFMUstate` (also from the error state: rollback after a failed step).
@@ -451,22 +449,6 @@ pub unsafe extern "C" fn fmi2SerializeFMUstate(
     })
 }
 
-pub(crate) unsafe fn serialize(
-    state: *mut c_void,
-    bytes: *mut u8,
-    size: usize,
-) -> Result<Status, Fail> {
-    let b = Instance::snapshot_ref(state)?.to_bytes();
-    if size != b.len() {
-        return Err(Fail::from(format!(
-            "buffer of {size} bytes, the serialised state has {} (ask SerializedFMUstateSize)",
-            b.len()
-        )));
-    }
-    slice_mut(bytes, size, "serializedState")?.copy_from_slice(&b);
-    Ok(Status::Ok)
-}
-
 /// `fmi2DeSerializeFMUstate`: checks magic, format, GUID and sizes.
 ///
 /// # Safety
@@ -478,26 +460,9 @@ pub unsafe extern "C" fn fmi2DeSerializeFMUstate(
     size: usize,
     state: *mut Fmi2FmuState,
 ) -> Status {
-    guard(c, "fmi2DeSerializeFMUstate", ANY, |_| {
-        deserialize(bytes as *const u8, size, state)
+    guard(c, "fmi2DeSerializeFMUstate", ANY, |inst| {
+        deserialize(inst, bytes as *const u8, size, state)
     })
-}
-
-pub(crate) unsafe fn deserialize(
-    bytes: *const u8,
-    size: usize,
-    state: *mut *mut c_void,
-) -> Result<Status, Fail> {
-    if state.is_null() {
-        return Err(Fail::from("FMUstate pointer is NULL".to_string()));
-    }
-    let snap = Snapshot::from_bytes(slice(bytes, size, "serializedState")?)?;
-    if (*state).is_null() {
-        *state = snap.into_raw();
-    } else {
-        *Instance::snapshot_ref(*state)? = snap;
-    }
-    Ok(Status::Ok)
 }
 
 /// `fmi2GetDirectionalDerivative`: outputs by inputs (the bearing's `-K`, `-C`).

@@ -10,10 +10,10 @@
 //!   Mode functions (`fmi3EnterStepMode`, `fmi3UpdateDiscreteStates`).
 #![allow(non_snake_case)]
 
-use super::fmi2::{deserialize, get_state, serialize};
 use super::instance::{
-    guard, no_panic, slice, slice_mut, str_arg, Fail, Fmi3Logger, Instance, Logger, Snapshot,
-    Status, ANY, EVENT, INIT, INSTANTIATED, STEP, TERMINATED,
+    deserialize, get_state, guard, no_panic, serialize, slice, slice_mut, str_arg, Fail,
+    Fmi3Logger, Instance, Logger, Snapshot, Status, ANY, EVENT, INIT, INSTANTIATED, STEP,
+    TERMINATED,
 };
 use std::ffi::{c_char, c_void, CString};
 use std::path::PathBuf;
@@ -135,12 +135,17 @@ pub unsafe extern "C" fn fmi3InstantiateCoSimulation(
                 "instanceName is NULL or empty",
             );
         }
-        if let Err(msg) = super::instance::check_guid(str_arg(instantiation_token).as_deref()) {
-            return refuse(log_message, instance_environment, instance_name, func, &msg);
-        }
+        let causality = match super::instance::check_guid(str_arg(instantiation_token).as_deref())
+        {
+            Ok(c) => c,
+            Err(msg) => {
+                return refuse(log_message, instance_environment, instance_name, func, &msg)
+            }
+        };
         let dir = str_arg(resource_path).map(PathBuf::from);
         let mut inst = Instance::new(
             3,
+            causality,
             &name,
             Logger::Fmi3(log_message, instance_environment),
             logging_on,
@@ -386,8 +391,8 @@ fn no_such(kind: &str, vr: &[u32]) -> Result<Status, Fail> {
     match vr.first() {
         None => Ok(Status::Ok),
         Some(r) => Err(Fail::from(format!(
-            "no {kind} variable with value reference {r} (raceway has Float64 and String \
-             variables only)"
+            "no {kind} variable with value reference {r} (raceway has Float64, Int32, \
+             Int64 (enumerations), Boolean and String variables only)"
         ))),
     }
 }
@@ -437,11 +442,71 @@ no_variables!(fmi3GetInt8, fmi3SetInt8, i8, "Int8");
 no_variables!(fmi3GetUInt8, fmi3SetUInt8, u8, "UInt8");
 no_variables!(fmi3GetInt16, fmi3SetInt16, i16, "Int16");
 no_variables!(fmi3GetUInt16, fmi3SetUInt16, u16, "UInt16");
-no_variables!(fmi3GetInt32, fmi3SetInt32, i32, "Int32");
+/// Getters and setters of the types raceway has variables of besides Float64 and String:
+/// `$get` reads each value with `$read` and converts it with `$to`; `$set` converts with
+/// `$from` and writes with `$write`.
+macro_rules! typed_variables {
+    ($get:ident, $set:ident, $t:ty, $kind:literal, $doc:literal,
+     |$i:ident, $r:ident| $read:expr, |$j:ident, $w:ident, $x:ident| $write:expr) => {
+        #[doc = concat!("`", stringify!($get), "`: ", $doc, ".")]
+        ///
+        /// # Safety
+        /// FMI 3 calling convention.
+        #[no_mangle]
+        pub unsafe extern "C" fn $get(
+            instance: Fmi3Instance,
+            vrs: *const u32,
+            nvr: usize,
+            values: *mut $t,
+            n_values: usize,
+        ) -> Status {
+            guard(instance, stringify!($get), GET, |$i| {
+                count(nvr, n_values)?;
+                let vr = slice(vrs, nvr, "valueReferences")?;
+                let out = slice_mut(values, nvr, "values")?;
+                for (o, &$r) in out.iter_mut().zip(vr) {
+                    *o = $read;
+                }
+                Ok(Status::Ok)
+            })
+        }
+
+        #[doc = concat!("`", stringify!($set), "`: ", $doc, ".")]
+        ///
+        /// # Safety
+        /// FMI 3 calling convention.
+        #[no_mangle]
+        pub unsafe extern "C" fn $set(
+            instance: Fmi3Instance,
+            vrs: *const u32,
+            nvr: usize,
+            values: *const $t,
+            n_values: usize,
+        ) -> Status {
+            guard(instance, stringify!($set), SET, |$j| {
+                count(nvr, n_values)?;
+                let vr = slice(vrs, nvr, "valueReferences")?;
+                let vals = slice(values, nvr, "values")?;
+                for (&$w, &$x) in vr.iter().zip(vals) {
+                    $write;
+                }
+                Ok(Status::Ok)
+            })
+        }
+    };
+}
+
+typed_variables!(fmi3GetInt32, fmi3SetInt32, i32, "Int32", "the Int32 outputs (counts)",
+    |inst, r| inst.get_int32(r)?,
+    |inst, r, _x| return Err(inst.wrong_type(r, "Int32")));
+typed_variables!(fmi3GetInt64, fmi3SetInt64, i64, "Int64", "the Enumeration parameters",
+    |inst, r| inst.get_enumeration(r)?,
+    |inst, r, x| inst.set_integer(r, x, "Int64")?);
+typed_variables!(fmi3GetBoolean, fmi3SetBoolean, bool, "Boolean", "the Boolean parameters",
+    |inst, r| inst.get_boolean(r)?,
+    |inst, r, x| inst.set_boolean(r, x)?);
 no_variables!(fmi3GetUInt32, fmi3SetUInt32, u32, "UInt32");
-no_variables!(fmi3GetInt64, fmi3SetInt64, i64, "Int64");
 no_variables!(fmi3GetUInt64, fmi3SetUInt64, u64, "UInt64");
-no_variables!(fmi3GetBoolean, fmi3SetBoolean, bool, "Boolean");
 
 /// `fmi3GetBinary`: raceway has no Binary variables.
 ///
@@ -655,8 +720,8 @@ pub unsafe extern "C" fn fmi3DeserializeFMUState(
     size: usize,
     state: *mut Fmi3FmuState,
 ) -> Status {
-    guard(instance, "fmi3DeserializeFMUState", ANY, |_| {
-        deserialize(bytes, size, state)
+    guard(instance, "fmi3DeserializeFMUState", ANY, |inst| {
+        deserialize(inst, bytes, size, state)
     })
 }
 

@@ -8,9 +8,9 @@
 //! fmi3Error, the FMU enters state Terminated"); the host may still roll back with
 //! `SetFMUstate`, `Reset` or free the instance.
 
-use super::model_description::{self as md, GUID, VR_TIME};
+use super::model_description::{self as md, VR_TIME};
 use super::params::{self, ParamValue, ParamValues};
-use crate::component::variables::{ParamType, PARAMETERS};
+use crate::component::variables::{self, Causality, ParamType, VarType, PARAMETERS};
 use crate::component::{Component, State};
 use std::ffi::{c_char, c_void, CStr, CString};
 use std::panic::{catch_unwind, AssertUnwindSafe};
@@ -138,22 +138,29 @@ pub(crate) enum Var {
     Time,
     /// Input, with its slot in the input buffer.
     Input(usize),
-    Output,
+    /// Output, with its type.
+    Output(VarType),
     /// Parameter, with its index in `PARAMETERS`.
     Param(usize),
 }
 
-pub(crate) fn classify(vr: u32) -> Option<Var> {
+/// What value reference `vr` is in the FMU of causality `c`.
+pub(crate) fn classify(c: Causality, vr: u32) -> Option<Var> {
     if vr == VR_TIME {
         return Some(Var::Time);
     }
-    if let Some(i) = md::inputs().position(|v| v.vr == vr) {
+    if let Some(i) = md::inputs(c).position(|v| v.vr == vr) {
         return Some(Var::Input(i));
     }
-    if md::outputs().any(|v| v.vr == vr) {
-        return Some(Var::Output);
+    if let Some(v) = md::outputs(c).find(|v| v.vr == vr) {
+        return Some(Var::Output(v.ty));
     }
     params::index(vr).map(Var::Param)
+}
+
+/// Is `vr` a parameter of type `ty` (its index)?
+fn param_of(vr: u32, ty: fn(ParamType) -> bool) -> Option<usize> {
+    params::index(vr).filter(|&i| ty(PARAMETERS[i].ty))
 }
 
 /// Refuse `value` outside the range the model description declares for `name`
@@ -170,15 +177,13 @@ fn in_range(name: &str, kind: &str, value: f64) -> Result<(), Fail> {
 }
 
 fn name_of(vr: u32) -> String {
-    match classify(vr) {
-        Some(Var::Time) => "time".into(),
-        Some(Var::Param(i)) => PARAMETERS[i].name.into(),
-        Some(_) => md::io_variables()
-            .find(|v| v.vr == vr)
-            .map(|v| v.name.to_string())
-            .unwrap_or_default(),
-        None => format!("#{vr}"),
+    if vr == VR_TIME {
+        return "time".into();
     }
+    if let Some(i) = params::index(vr) {
+        return PARAMETERS[i].name.into();
+    }
+    variables::by_vr(vr).map_or(format!("#{vr}"), |v| v.name.to_string())
 }
 
 const TAG: u64 = 0x5241_4345_5741_5931; // "RACEWAY1"
@@ -188,6 +193,7 @@ const SNAP_TAG: u64 = 0x5241_4345_5741_5953; // "RACEWAYS"
 #[derive(Clone)]
 pub(crate) struct Snapshot {
     tag: u64,
+    causality: Causality,
     mode: u32,
     time: f64,
     start_time: f64,
@@ -204,6 +210,8 @@ pub(crate) struct Snapshot {
 pub(crate) struct Instance {
     tag: u64,
     pub version: u8,
+    /// The variant (the GUID the host instantiated with decides).
+    pub causality: Causality,
     pub name: CString,
     pub logger: Logger,
     pub logging_on: bool,
@@ -378,16 +386,24 @@ pub(crate) fn no_panic<T>(default: T, f: impl FnOnce() -> T) -> T {
     catch_unwind(AssertUnwindSafe(f)).unwrap_or(default)
 }
 
-/// The GUID check of both instantiate functions.
-pub(crate) fn check_guid(given: Option<&str>) -> Result<(), String> {
+/// The GUID check of both instantiate functions: the variant the GUID names.
+pub(crate) fn check_guid(given: Option<&str>) -> Result<Causality, String> {
+    let known = || {
+        md::VARIANTS
+            .map(|c| format!("`{}` ({}-driven)", md::guid(c), md::variant_name(c)))
+            .join(" or ")
+    };
     match given {
-        Some(g) if g == GUID => Ok(()),
-        Some(g) => Err(format!(
-            "wrong GUID / instantiationToken `{g}`: this binary is `{GUID}` (the \
-             modelDescription.xml and the binary do not belong to the same build)"
-        )),
+        Some(g) => md::variant_of(g).ok_or_else(|| {
+            format!(
+                "wrong GUID / instantiationToken `{g}`: this binary is {} (the \
+                 modelDescription.xml and the binary do not belong to the same build)",
+                known()
+            )
+        }),
         None => Err(format!(
-            "GUID / instantiationToken is NULL: this binary is `{GUID}`"
+            "GUID / instantiationToken is NULL: this binary is {}",
+            known()
         )),
     }
 }
@@ -395,6 +411,7 @@ pub(crate) fn check_guid(given: Option<&str>) -> Result<(), String> {
 impl Instance {
     pub(crate) fn new(
         version: u8,
+        causality: Causality,
         name: &str,
         logger: Logger,
         logging_on: bool,
@@ -403,6 +420,7 @@ impl Instance {
         let inst = Instance {
             tag: TAG,
             version,
+            causality,
             name: cstring(name),
             logger,
             logging_on,
@@ -413,7 +431,7 @@ impl Instance {
             start_time: 0.0,
             stop_time: None,
             time: 0.0,
-            inputs: vec![0.0; md::inputs().count()],
+            inputs: vec![0.0; md::inputs(causality).count()],
             inputs_set: 0,
             pending_derivatives: Vec::new(),
             component: None,
@@ -425,7 +443,11 @@ impl Instance {
             (None, Some(d)) => format!("no scene.toml in {}", d.display()),
             _ => "no resource folder".into(),
         };
-        inst.debug(&format!("instantiated (FMI {version}.0, {GUID}); {res}"));
+        inst.debug(&format!(
+            "instantiated (FMI {version}.0, {}-driven, {}); {res}",
+            md::variant_name(causality),
+            md::guid(causality)
+        ));
         inst
     }
 
@@ -536,9 +558,26 @@ impl Instance {
         inputs_set: u64,
         derivatives: &[(u32, u32, f64)],
     ) -> Result<Component, String> {
-        let (mut c, source) = params::component(values, tolerance, self.resource_scene.as_ref())?;
-        for (i, v) in md::inputs().enumerate() {
-            if inputs_set & (1 << i) != 0 {
+        let set = |i: usize| inputs_set & (1 << i) != 0;
+        // Load-driven, the inputs set so far are the scene's initial values: the ring's
+        // static start solves for them when the component is built.
+        let initial: Vec<(&str, f64)> = match self.causality {
+            Causality::Motion => Vec::new(),
+            Causality::Load => md::inputs(self.causality)
+                .enumerate()
+                .filter(|&(i, _)| set(i))
+                .map(|(i, v)| (v.name, inputs[i]))
+                .collect(),
+        };
+        let (mut c, source) = params::component(
+            values,
+            tolerance,
+            self.resource_scene.as_ref(),
+            self.causality,
+            &initial,
+        )?;
+        for (i, v) in md::inputs(self.causality).enumerate() {
+            if set(i) {
                 c.set_real(v.vr, inputs[i]).map_err(|e| e.to_string())?;
             } else if !c.scene().inputs.initial.contains_key(v.name) {
                 c.set_real(v.vr, 0.0).map_err(|e| e.to_string())?;
@@ -549,8 +588,9 @@ impl Instance {
                 .map_err(|e| e.to_string())?;
         }
         self.debug(&format!(
-            "component built from {source} (level {}, bearing {}, clearance {:e} m)",
+            "component built from {source} (level {}, {}-driven, bearing {}, clearance {:e} m)",
             c.scene().model.level.name(),
+            md::variant_name(self.causality),
             c.bearing().name,
             c.bearing().pd
         ));
@@ -579,24 +619,146 @@ impl Instance {
         Ok(Status::Ok)
     }
 
+    fn classify(&self, vr: u32) -> Option<Var> {
+        classify(self.causality, vr)
+    }
+
+    /// A parameter's value: the host's, else its start value.
+    fn param_value(&self, i: usize) -> ParamValue {
+        self.params[i].clone().unwrap_or_else(|| params::start(i))
+    }
+
     pub(crate) fn get_real(&mut self, vr: u32) -> Result<f64, Fail> {
-        match classify(vr) {
+        match self.classify(vr) {
             Some(Var::Time) => Ok(self.time),
             Some(Var::Input(i)) => match &mut self.component {
                 Some(c) => Ok(c.get_real(vr)?),
                 None => Ok(self.inputs[i]),
             },
-            Some(Var::Output) => Ok(self.component()?.get_real(vr)?),
+            Some(Var::Output(VarType::Real)) => Ok(self.component()?.get_real(vr)?),
             Some(Var::Param(i)) if PARAMETERS[i].ty == ParamType::Real => {
-                match self.params[i].clone().unwrap_or_else(|| params::start(i)) {
+                match self.param_value(i) {
                     ParamValue::Real(x) => Ok(x),
-                    ParamValue::Str(_) => unreachable!("a real parameter"),
+                    _ => unreachable!("a real parameter"),
                 }
             }
-            _ => Err(Fail::from(format!(
-                "no Real / Float64 variable with value reference {vr}"
-            ))),
+            _ => Err(self.wrong_type(vr, "Real / Float64")),
         }
+    }
+
+    /// The refusal of `vr` for an accessor of type `ty`, naming its real type.
+    pub(crate) fn wrong_type(&self, vr: u32, ty: &str) -> Fail {
+        let is = match self.classify(vr) {
+            Some(Var::Output(VarType::Integer)) => "an Integer / Int32 output",
+            Some(Var::Output(VarType::Real)) | Some(Var::Input(_)) | Some(Var::Time) => {
+                "a Real / Float64 variable"
+            }
+            Some(Var::Param(i)) => match PARAMETERS[i].ty {
+                ParamType::Real => "a Real / Float64 parameter",
+                ParamType::String => "a String parameter",
+                ParamType::Boolean => "a Boolean parameter",
+                ParamType::Enumeration { .. } => "an Enumeration parameter",
+            },
+            None => {
+                return Fail::from(format!(
+                    "no {ty} variable with value reference {vr} (not a variable of the {}-driven FMU)",
+                    md::variant_name(self.causality)
+                ))
+            }
+        };
+        Fail::from(format!(
+            "`{}` (value reference {vr}) is {is}, not {ty}",
+            name_of(vr)
+        ))
+    }
+
+    /// Integer outputs and Enumeration parameters (FMI 2 `Integer`, FMI 3 `Int32` /
+    /// `Int64` access).
+    pub(crate) fn get_integer(&mut self, vr: u32, ty: &str) -> Result<i64, Fail> {
+        match self.classify(vr) {
+            Some(Var::Output(VarType::Integer)) => {
+                let x = self.component()?.get_real(vr)?;
+                // counts: exact small integers in the component's f64 outputs
+                Ok(x.round().clamp(i32::MIN as f64, i32::MAX as f64) as i64)
+            }
+            Some(Var::Param(i)) if matches!(PARAMETERS[i].ty, ParamType::Enumeration { .. }) => {
+                match self.param_value(i) {
+                    ParamValue::Int(k) => Ok(k),
+                    _ => unreachable!("an enumeration parameter"),
+                }
+            }
+            _ => Err(self.wrong_type(vr, ty)),
+        }
+    }
+
+    /// FMI 3 `Int32`: the Integer outputs only.
+    pub(crate) fn get_int32(&mut self, vr: u32) -> Result<i32, Fail> {
+        match self.classify(vr) {
+            Some(Var::Output(VarType::Integer)) => Ok(self.get_integer(vr, "Int32")? as i32),
+            _ => Err(self.wrong_type(vr, "Int32")),
+        }
+    }
+
+    /// FMI 3 `Int64`: the Enumeration parameters only.
+    pub(crate) fn get_enumeration(&mut self, vr: u32) -> Result<i64, Fail> {
+        match self.classify(vr) {
+            Some(Var::Param(_)) => self.get_integer(vr, "Int64 (Enumeration)"),
+            _ => Err(self.wrong_type(vr, "Int64 (Enumeration)")),
+        }
+    }
+
+    /// Enumeration parameters: `value` must be one of the items.
+    pub(crate) fn set_integer(&mut self, vr: u32, value: i64, ty: &str) -> Result<(), Fail> {
+        let Some(i) = param_of(vr, |t| matches!(t, ParamType::Enumeration { .. })) else {
+            return Err(match self.classify(vr) {
+                Some(Var::Output(_)) => Fail::from(format!(
+                    "`{}` (value reference {vr}) is an output: it cannot be set",
+                    name_of(vr)
+                )),
+                _ => self.wrong_type(vr, ty),
+            });
+        };
+        self.parameter_settable(i)?;
+        let ParamType::Enumeration { type_name, items } = PARAMETERS[i].ty else {
+            unreachable!("an enumeration parameter")
+        };
+        if !(0..items.len() as i64).contains(&value) {
+            return Err(Fail::from(format!(
+                "parameter `{}` = {value}: allowed an item of {type_name}: {}",
+                PARAMETERS[i].name,
+                items
+                    .iter()
+                    .enumerate()
+                    .map(|(k, n)| format!("{k} ({n})"))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )));
+        }
+        self.params[i] = Some(ParamValue::Int(value));
+        self.component = None;
+        Ok(())
+    }
+
+    /// Boolean parameters.
+    pub(crate) fn get_boolean(&self, vr: u32) -> Result<bool, Fail> {
+        match param_of(vr, |t| t == ParamType::Boolean) {
+            Some(i) => match self.param_value(i) {
+                ParamValue::Bool(b) => Ok(b),
+                _ => unreachable!("a Boolean parameter"),
+            },
+            None => Err(self.wrong_type(vr, "Boolean")),
+        }
+    }
+
+    /// Boolean parameters.
+    pub(crate) fn set_boolean(&mut self, vr: u32, value: bool) -> Result<(), Fail> {
+        let Some(i) = param_of(vr, |t| t == ParamType::Boolean) else {
+            return Err(self.wrong_type(vr, "Boolean"));
+        };
+        self.parameter_settable(i)?;
+        self.params[i] = Some(ParamValue::Bool(value));
+        self.component = None;
+        Ok(())
     }
 
     fn parameter_settable(&self, i: usize) -> Result<(), Fail> {
@@ -611,7 +773,7 @@ impl Instance {
     }
 
     pub(crate) fn set_real(&mut self, vr: u32, value: f64) -> Result<(), Fail> {
-        match classify(vr) {
+        match self.classify(vr) {
             Some(Var::Input(i)) => {
                 if !value.is_finite() {
                     return Err(Fail::from(format!(
@@ -620,7 +782,13 @@ impl Instance {
                     )));
                 }
                 in_range(&name_of(vr), "input", value)?;
-                if let Some(c) = &mut self.component {
+                // Load-driven, an input set before initialisation ends is a start value of
+                // the ring's static start: the component is rebuilt with it.
+                let initial = self.causality == Causality::Load
+                    && self.mode & (INSTANTIATED | INIT) != 0;
+                if initial {
+                    self.component = None;
+                } else if let Some(c) = &mut self.component {
                     c.set_real(vr, value)?;
                 }
                 self.inputs[i] = value;
@@ -640,48 +808,38 @@ impl Instance {
                 self.component = None;
                 Ok(())
             }
-            Some(Var::Output) | Some(Var::Time) => Err(Fail::from(format!(
+            Some(Var::Output(VarType::Real)) | Some(Var::Time) => Err(Fail::from(format!(
                 "`{}` (value reference {vr}) is not an input or parameter: it cannot be set",
                 name_of(vr)
             ))),
-            _ => Err(Fail::from(format!(
-                "no Real / Float64 variable with value reference {vr}"
-            ))),
+            _ => Err(self.wrong_type(vr, "Real / Float64")),
         }
     }
 
     pub(crate) fn get_string(&self, vr: u32) -> Result<String, Fail> {
-        match classify(vr) {
-            Some(Var::Param(i)) if PARAMETERS[i].ty == ParamType::String => {
-                match self.params[i].clone().unwrap_or_else(|| params::start(i)) {
-                    ParamValue::Str(s) => Ok(s),
-                    ParamValue::Real(_) => unreachable!("a string parameter"),
-                }
-            }
-            _ => Err(Fail::from(format!(
-                "no String variable with value reference {vr}"
-            ))),
+        match param_of(vr, |t| t == ParamType::String) {
+            Some(i) => match self.param_value(i) {
+                ParamValue::Str(s) => Ok(s),
+                _ => unreachable!("a string parameter"),
+            },
+            None => Err(self.wrong_type(vr, "String")),
         }
     }
 
     pub(crate) fn set_string(&mut self, vr: u32, value: Option<String>) -> Result<(), Fail> {
-        match classify(vr) {
-            Some(Var::Param(i)) if PARAMETERS[i].ty == ParamType::String => {
-                self.parameter_settable(i)?;
-                let Some(value) = value else {
-                    return Err(Fail::from(format!(
-                        "parameter `{}`: the value is NULL or not UTF-8",
-                        PARAMETERS[i].name
-                    )));
-                };
-                self.params[i] = Some(ParamValue::Str(value));
-                self.component = None;
-                Ok(())
-            }
-            _ => Err(Fail::from(format!(
-                "no String variable with value reference {vr}"
-            ))),
-        }
+        let Some(i) = param_of(vr, |t| t == ParamType::String) else {
+            return Err(self.wrong_type(vr, "String"));
+        };
+        self.parameter_settable(i)?;
+        let Some(value) = value else {
+            return Err(Fail::from(format!(
+                "parameter `{}`: the value is NULL or not UTF-8",
+                PARAMETERS[i].name
+            )));
+        };
+        self.params[i] = Some(ParamValue::Str(value));
+        self.component = None;
+        Ok(())
     }
 
     /// FMI 2 `SetRealInputDerivatives` (input interpolation).
@@ -691,7 +849,7 @@ impl Instance {
         order: i64,
         value: f64,
     ) -> Result<(), Fail> {
-        if !matches!(classify(vr), Some(Var::Input(_))) {
+        if !matches!(self.classify(vr), Some(Var::Input(_))) {
             return Err(Fail::from(format!(
                 "`{}` (value reference {vr}) is not an input",
                 name_of(vr)
@@ -719,9 +877,9 @@ impl Instance {
 
     /// `GetRealOutputDerivatives` / `fmi3GetOutputDerivatives`.
     pub(crate) fn get_output_derivative(&mut self, vr: u32, order: i64) -> Result<f64, Fail> {
-        if classify(vr) != Some(Var::Output) {
+        if self.classify(vr) != Some(Var::Output(VarType::Real)) {
             return Err(Fail::from(format!(
-                "`{}` (value reference {vr}) is not an output",
+                "`{}` (value reference {vr}) is not a Real / Float64 output",
                 name_of(vr)
             )));
         }
@@ -743,15 +901,15 @@ impl Instance {
         out: &mut [f64],
     ) -> Result<(), Fail> {
         for &u in unknowns {
-            if classify(u) != Some(Var::Output) {
+            if self.classify(u) != Some(Var::Output(VarType::Real)) {
                 return Err(Fail::from(format!(
-                    "unknown `{}` (value reference {u}) is not an output",
+                    "unknown `{}` (value reference {u}) is not a Real / Float64 output",
                     name_of(u)
                 )));
             }
         }
         for (&k, &s) in knowns.iter().zip(seed) {
-            if !matches!(classify(k), Some(Var::Input(_))) {
+            if !matches!(self.classify(k), Some(Var::Input(_))) {
                 return Err(Fail::from(format!(
                     "known `{}` (value reference {k}) is not an input",
                     name_of(k)
@@ -838,6 +996,7 @@ impl Instance {
     pub(crate) fn snapshot(&self) -> Snapshot {
         Snapshot {
             tag: SNAP_TAG,
+            causality: self.causality,
             mode: self.mode,
             time: self.time,
             start_time: self.start_time,
@@ -856,6 +1015,13 @@ impl Instance {
     pub(crate) fn restore(&mut self, s: &Snapshot) -> Result<(), Fail> {
         if s.tag != SNAP_TAG {
             return Err(Fail::from("not an FMU state of this FMU".to_string()));
+        }
+        if s.causality != self.causality {
+            return Err(Fail::from(format!(
+                "an FMU state of the {}-driven FMU; this instance is {}-driven",
+                md::variant_name(s.causality),
+                md::variant_name(self.causality)
+            )));
         }
         match &s.component {
             Some(state) => {
@@ -908,7 +1074,8 @@ impl Instance {
 
 const STATE_MAGIC: &[u8; 4] = b"RWFU";
 /// 2: a checksum (FNV-1a, as `component::state`) over everything before it, at the end.
-const STATE_FORMAT: u32 = 2;
+/// 3: Boolean and Enumeration parameters (tags 3, 4); the GUID names the variant.
+const STATE_FORMAT: u32 = 3;
 
 impl Snapshot {
     pub(crate) fn into_raw(self) -> *mut c_void {
@@ -938,7 +1105,7 @@ impl Snapshot {
         };
         b.extend_from_slice(STATE_MAGIC);
         b.extend_from_slice(&STATE_FORMAT.to_le_bytes());
-        bytes(&mut b, GUID.as_bytes());
+        bytes(&mut b, md::guid(self.causality).as_bytes());
         b.extend_from_slice(&self.mode.to_le_bytes());
         b.extend_from_slice(&self.time.to_le_bytes());
         b.extend_from_slice(&self.start_time.to_le_bytes());
@@ -955,6 +1122,14 @@ impl Snapshot {
                 Some(ParamValue::Str(s)) => {
                     b.push(2);
                     bytes(&mut b, s.as_bytes());
+                }
+                Some(ParamValue::Bool(x)) => {
+                    b.push(3);
+                    b.push(*x as u8);
+                }
+                Some(ParamValue::Int(k)) => {
+                    b.push(4);
+                    b.extend_from_slice(&k.to_le_bytes());
                 }
             }
         }
@@ -981,7 +1156,9 @@ impl Snapshot {
         b
     }
 
-    pub(crate) fn from_bytes(b: &[u8]) -> Result<Snapshot, String> {
+    /// Read the byte form of an FMU state of the variant of causality `causality`.
+    pub(crate) fn from_bytes(b: &[u8], causality: Causality) -> Result<Snapshot, String> {
+        let own = md::guid(causality);
         let mut r = Reader { b, at: 0 };
         if r.take(4)? != STATE_MAGIC {
             return Err("serialised FMU state: not a raceway FMU state (bad magic)".into());
@@ -993,10 +1170,11 @@ impl Snapshot {
             ));
         }
         let guid = r.bytes()?;
-        if guid != GUID.as_bytes() {
+        if guid != own.as_bytes() {
             return Err(format!(
-                "serialised FMU state: written by FMU `{}`, this binary is `{GUID}`",
-                String::from_utf8_lossy(guid)
+                "serialised FMU state: written by FMU `{}`, this instance is `{own}` ({}-driven)",
+                String::from_utf8_lossy(guid),
+                md::variant_name(causality)
             ));
         }
         // Damaged bytes are refused before any other field is read (the magic, the
@@ -1039,11 +1217,36 @@ impl Snapshot {
                     String::from_utf8(r.bytes()?.to_vec())
                         .map_err(|_| "serialised FMU state: parameter not UTF-8".to_string())?,
                 )),
+                3 => Some(ParamValue::Bool(match r.take(1)?[0] {
+                    0 => false,
+                    1 => true,
+                    x => return Err(format!("serialised FMU state: bad Boolean {x}")),
+                })),
+                4 => Some(ParamValue::Int(r.u64()? as i64)),
                 k => return Err(format!("serialised FMU state: bad parameter tag {k}")),
             });
         }
+        for (p, v) in PARAMETERS.iter().zip(&params) {
+            let fits = match (p.ty, v) {
+                (_, None) => true,
+                (ParamType::Real, Some(ParamValue::Real(_))) => true,
+                (ParamType::String, Some(ParamValue::Str(_))) => true,
+                (ParamType::Boolean, Some(ParamValue::Bool(_))) => true,
+                (ParamType::Enumeration { items, .. }, Some(ParamValue::Int(k))) => {
+                    (0..items.len() as i64).contains(k)
+                }
+                _ => false,
+            };
+            if !fits {
+                return Err(format!(
+                    "serialised FMU state: parameter `{}` holds a value of another type or \
+                     outside its items",
+                    p.name
+                ));
+            }
+        }
         let ni = r.u64()? as usize;
-        if ni != md::inputs().count() {
+        if ni != md::inputs(causality).count() {
             return Err(format!("serialised FMU state: {ni} inputs"));
         }
         let inputs = (0..ni).map(|_| r.f64()).collect::<Result<Vec<_>, _>>()?;
@@ -1087,6 +1290,7 @@ impl Snapshot {
         }
         Ok(Snapshot {
             tag: SNAP_TAG,
+            causality,
             mode,
             time,
             start_time,
@@ -1144,4 +1348,70 @@ impl<'a> Reader<'a> {
         }
         self.take(n as usize)
     }
+}
+
+// ---------------------------------------------------------------------------------------
+// FMU state calls, the same in both versions.
+
+/// `GetFMUstate`: a new state in `*state`, or `*state` overwritten when it is not NULL.
+///
+/// # Safety
+/// `state` is NULL or valid for a read and a write; `*state` is NULL or an FMU state of
+/// this library not yet freed.
+pub(crate) unsafe fn get_state(
+    inst: &mut Instance,
+    state: *mut *mut c_void,
+) -> Result<Status, Fail> {
+    if state.is_null() {
+        return Err(Fail::from("FMUstate pointer is NULL".to_string()));
+    }
+    let snap = inst.snapshot();
+    if (*state).is_null() {
+        *state = snap.into_raw();
+    } else {
+        *Instance::snapshot_ref(*state)? = snap;
+    }
+    Ok(Status::Ok)
+}
+
+/// `SerializeFMUstate`: `size` must be what `SerializedFMUstateSize` gave.
+///
+/// # Safety
+/// `state` as [`Instance::snapshot_ref`]; `bytes` is NULL or valid for `size` bytes.
+pub(crate) unsafe fn serialize(
+    state: *mut c_void,
+    bytes: *mut u8,
+    size: usize,
+) -> Result<Status, Fail> {
+    let b = Instance::snapshot_ref(state)?.to_bytes();
+    if size != b.len() {
+        return Err(Fail::from(format!(
+            "buffer of {size} bytes, the serialised state has {} (ask SerializedFMUstateSize)",
+            b.len()
+        )));
+    }
+    slice_mut(bytes, size, "serializedState")?.copy_from_slice(&b);
+    Ok(Status::Ok)
+}
+
+/// `DeSerializeFMUstate` of an FMU state of `inst`'s variant.
+///
+/// # Safety
+/// `bytes` is NULL or valid for `size` bytes; `state` as in [`get_state`].
+pub(crate) unsafe fn deserialize(
+    inst: &Instance,
+    bytes: *const u8,
+    size: usize,
+    state: *mut *mut c_void,
+) -> Result<Status, Fail> {
+    if state.is_null() {
+        return Err(Fail::from("FMUstate pointer is NULL".to_string()));
+    }
+    let snap = Snapshot::from_bytes(slice(bytes, size, "serializedState")?, inst.causality)?;
+    if (*state).is_null() {
+        *state = snap.into_raw();
+    } else {
+        *Instance::snapshot_ref(*state)? = snap;
+    }
+    Ok(Status::Ok)
 }

@@ -7,8 +7,8 @@
 //! start values on inputs, every unit defined, exactly one independent variable in FMI 3).
 
 use crate::component::variables::{
-    self, Causality, ParamType, Parameter, Variable, DAMPING, DISPLAY_UNITS, PARAMETERS, RANGES,
-    SCALARS, STIFFNESS,
+    self, Causality, ParamType, Parameter, Role, VarType, Variable, DAMPING, DISPLAY_UNITS,
+    PARAMETERS, RANGES, SCALARS, STIFFNESS,
 };
 use std::fmt::Write;
 
@@ -37,23 +37,32 @@ const fn hash_variable(mut h: u64, v: &Variable) -> u64 {
     h = fnv(h, v.name.as_bytes());
     h = fnv(h, &v.vr.to_le_bytes());
     h = fnv(h, v.unit.as_bytes());
-    h = fnv(h, &[v.role as u8]);
+    h = fnv(h, &[v.role as u8, v.ty as u8]);
     fnv(h, v.description.as_bytes())
 }
 
 const fn hash_parameter(mut h: u64, p: &Parameter) -> u64 {
     h = fnv(h, p.name.as_bytes());
     h = fnv(h, &p.vr.to_le_bytes());
-    h = fnv(h, &[p.ty as u8]);
+    h = fnv(h, &[p.ty.tag()]);
+    if let ParamType::Enumeration { type_name, items } = p.ty {
+        h = fnv(h, type_name.as_bytes());
+        let mut i = 0;
+        while i < items.len() {
+            h = fnv(h, items[i].as_bytes());
+            i += 1;
+        }
+    }
     h = fnv(h, p.unit.as_bytes());
     h = fnv(h, p.start.as_bytes());
     fnv(h, p.description.as_bytes())
 }
 
-/// FNV-1a over the whole variable table, the crate version and the generator format,
-/// from a given offset basis (two bases give the 128 bits of the GUID).
-const fn table_hash(basis: u64) -> u64 {
+/// FNV-1a over the whole variable table, the crate version, the generator format and the
+/// variant's causality, from a given offset basis (two bases give the 128 bits of the GUID).
+const fn table_hash(basis: u64, causality: Causality) -> u64 {
     let mut h = fnv(basis, GENERATOR_FORMAT.as_bytes());
+    h = fnv(h, variant_name(causality).as_bytes());
     h = fnv(h, env!("CARGO_PKG_VERSION").as_bytes());
     let mut i = 0;
     while i < SCALARS.len() {
@@ -92,10 +101,10 @@ const fn table_hash(basis: u64) -> u64 {
     h
 }
 
-const fn guid_bytes() -> [u8; 38] {
+const fn guid_bytes(causality: Causality) -> [u8; 38] {
     const HEX: &[u8; 16] = b"0123456789abcdef";
-    let a = table_hash(0xcbf2_9ce4_8422_2325);
-    let b = table_hash(0x6c62_272e_07bb_0142);
+    let a = table_hash(0xcbf2_9ce4_8422_2325, causality);
+    let b = table_hash(0x6c62_272e_07bb_0142, causality);
     let mut nibbles = [0u8; 32];
     let mut i = 0;
     while i < 16 {
@@ -120,29 +129,91 @@ const fn guid_bytes() -> [u8; 38] {
     out
 }
 
-const GUID_BYTES: [u8; 38] = guid_bytes();
+const GUID_BYTES: [u8; 38] = guid_bytes(Causality::Motion);
+const GUID_LOAD_BYTES: [u8; 38] = guid_bytes(Causality::Load);
 
-/// The FMI 2 `guid` and FMI 3 `instantiationToken`: a hash of the variable table, the crate
-/// version and the XML generator's format, evaluated at compile time. The binary checks it
-/// at instantiation; the packer writes the same constant into both model descriptions.
+/// The FMI 2 `guid` and FMI 3 `instantiationToken` of the motion-driven FMU: a hash of the
+/// variable table, the crate version, the XML generator's format and the variant,
+/// evaluated at compile time. The binary checks it at instantiation; the packer writes the
+/// same constant into both model descriptions.
 pub const GUID: &str = match core::str::from_utf8(&GUID_BYTES) {
     Ok(s) => s,
     Err(_) => panic!("GUID is ASCII"),
 };
 
-/// The variables a motion-driven FMU shows (inputs and outputs), in table order.
-pub fn io_variables() -> impl Iterator<Item = &'static Variable> {
-    variables::all().filter(|v| v.is_input(Causality::Motion) || v.is_output(Causality::Motion))
+/// The GUID / instantiation token of the load-driven FMU (see [`GUID`]).
+pub const GUID_LOAD: &str = match core::str::from_utf8(&GUID_LOAD_BYTES) {
+    Ok(s) => s,
+    Err(_) => panic!("GUID is ASCII"),
+};
+
+/// The two FMUs built from one binary: motion-driven (shaft motion in, forces out) and
+/// load-driven (loads in, ring motion and forces out). The GUID a host passes at
+/// instantiation decides which one an instance is.
+pub const VARIANTS: [Causality; 2] = [Causality::Motion, Causality::Load];
+
+/// `motion` or `load`.
+pub const fn variant_name(c: Causality) -> &'static str {
+    match c {
+        Causality::Motion => "motion",
+        Causality::Load => "load",
+    }
 }
 
-/// The inputs of the motion-driven FMU, in table order.
-pub fn inputs() -> impl Iterator<Item = &'static Variable> {
-    variables::all().filter(|v| v.is_input(Causality::Motion))
+/// The GUID / instantiation token of a variant.
+pub const fn guid(c: Causality) -> &'static str {
+    match c {
+        Causality::Motion => GUID,
+        Causality::Load => GUID_LOAD,
+    }
 }
 
-/// The outputs of the motion-driven FMU, in table order.
-pub fn outputs() -> impl Iterator<Item = &'static Variable> {
-    variables::all().filter(|v| v.is_output(Causality::Motion))
+/// The variant a GUID / instantiation token belongs to.
+pub fn variant_of(guid_or_token: &str) -> Option<Causality> {
+    VARIANTS.into_iter().find(|&c| guid(c) == guid_or_token)
+}
+
+/// The archive's file name: `raceway-fmi2.fmu`, `raceway-load-fmi3.fmu`, ...
+pub fn archive_name(c: Causality, fmi: &str) -> String {
+    match c {
+        Causality::Motion => format!("raceway-{fmi}.fmu"),
+        Causality::Load => format!("raceway-load-{fmi}.fmu"),
+    }
+}
+
+/// The model name of a variant.
+pub const fn model_name(c: Causality) -> &'static str {
+    match c {
+        Causality::Motion => "raceway",
+        Causality::Load => "raceway_load",
+    }
+}
+
+/// The variables an FMU of causality `c` shows (inputs and outputs), in table order.
+pub fn io_variables(c: Causality) -> impl Iterator<Item = &'static Variable> {
+    variables::all().filter(move |v| v.is_input(c) || v.is_output(c))
+}
+
+/// The inputs of the FMU of causality `c`, in table order.
+pub fn inputs(c: Causality) -> impl Iterator<Item = &'static Variable> {
+    variables::all().filter(move |v| v.is_input(c))
+}
+
+/// The outputs of the FMU of causality `c`, in table order.
+pub fn outputs(c: Causality) -> impl Iterator<Item = &'static Variable> {
+    variables::all().filter(move |v| v.is_output(c))
+}
+
+/// The inputs output `v` depends on directly at a communication point (`<Outputs>`
+/// dependencies). Motion-driven: every input (the forces follow the motion at once).
+/// Load-driven: the ring's motion is a state, so it depends on no input; the other outputs
+/// follow that state and the speed, and the loads act only through the ring's acceleration.
+pub fn direct_dependencies(c: Causality, v: &Variable) -> Vec<&'static Variable> {
+    match c {
+        Causality::Motion => inputs(c).collect(),
+        Causality::Load if v.role == Role::Motion => Vec::new(),
+        Causality::Load => inputs(c).filter(|i| i.role == Role::Speed).collect(),
+    }
 }
 
 /// Exponents (kg, m, s, rad) of one factor of a unit spelling such as `N.m.s/rad`.
@@ -180,9 +251,13 @@ pub fn base_unit(unit: &str) -> Option<[i32; 4]> {
     Some(e)
 }
 
-fn units() -> Vec<&'static str> {
+fn units(c: Causality) -> Vec<&'static str> {
     let mut u: Vec<&str> = std::iter::once("s")
-        .chain(io_variables().map(|v| v.unit))
+        .chain(
+            io_variables(c)
+                .filter(|v| v.ty == VarType::Real)
+                .map(|v| v.unit),
+        )
         .chain(PARAMETERS.iter().map(|p| p.unit).filter(|u| !u.is_empty()))
         .collect();
     u.sort_unstable();
@@ -197,9 +272,9 @@ fn esc(s: &str) -> String {
         .replace('"', "&quot;")
 }
 
-fn unit_definitions(x: &mut String) {
+fn unit_definitions(x: &mut String, c: Causality) {
     x.push_str("  <UnitDefinitions>\n");
-    for u in units() {
+    for u in units(c) {
         let e = base_unit(u).unwrap_or_else(|| panic!("unit `{u}` has no base-unit rule"));
         let mut attrs = String::new();
         for (name, k) in ["kg", "m", "s", "rad"].iter().zip(e) {
@@ -240,8 +315,18 @@ fn log_categories(x: &mut String) {
     x.push_str("  </LogCategories>\n");
 }
 
-const DESCRIPTION: &str =
-    "Ball bearing (raceway): forces, moments, stiffness and damping from the shaft's motion";
+/// One line on what a variant does.
+pub const fn description(c: Causality) -> &'static str {
+    match c {
+        Causality::Motion => {
+            "Ball bearing (raceway): forces, moments, stiffness and damping from the shaft's motion"
+        }
+        Causality::Load => {
+            "Ball bearing (raceway), load-driven: the inner ring's motion and the bearing's forces from the loads on the ring"
+        }
+    }
+}
+
 const DEFAULT_EXPERIMENT: &str =
     "  <DefaultExperiment startTime=\"0\" stopTime=\"0.1\" stepSize=\"0.0001\"/>\n";
 
@@ -273,14 +358,59 @@ fn range_attr(name: &str) -> String {
     })
 }
 
-/// FMI 2.0 co-simulation `modelDescription.xml`.
-pub fn fmi2() -> String {
+/// The enumeration types of the parameters (name, items), in table order.
+fn enumerations() -> impl Iterator<Item = (&'static str, &'static [&'static str])> {
+    PARAMETERS.iter().filter_map(|p| match p.ty {
+        ParamType::Enumeration { type_name, items } => Some((type_name, items)),
+        _ => None,
+    })
+}
+
+/// `<TypeDefinitions>` of both versions (FMI 2 `SimpleType`/`Enumeration`, FMI 3
+/// `EnumerationType`).
+fn type_definitions(x: &mut String, fmi3: bool) {
+    x.push_str("  <TypeDefinitions>\n");
+    for (name, items) in enumerations() {
+        if fmi3 {
+            let _ = writeln!(x, "    <EnumerationType name=\"{name}\">");
+        } else {
+            let _ = writeln!(x, "    <SimpleType name=\"{name}\">\n      <Enumeration>");
+        }
+        for (k, item) in items.iter().enumerate() {
+            let d = if k == 0 {
+                "as the scene has it"
+            } else {
+                ""
+            };
+            let _ = writeln!(
+                x,
+                "      {}<Item name=\"{}\" value=\"{k}\"{}/>",
+                if fmi3 { "" } else { "  " },
+                esc(item),
+                if d.is_empty() {
+                    String::new()
+                } else {
+                    format!(" description=\"{d}\"")
+                }
+            );
+        }
+        if fmi3 {
+            x.push_str("    </EnumerationType>\n");
+        } else {
+            x.push_str("      </Enumeration>\n    </SimpleType>\n");
+        }
+    }
+    x.push_str("  </TypeDefinitions>\n");
+}
+
+/// FMI 2.0 co-simulation `modelDescription.xml` of the variant of causality `c`.
+pub fn fmi2(c: Causality) -> String {
     let mut x = String::new();
     let _ = write!(
         x,
         "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n\
-         <fmiModelDescription fmiVersion=\"2.0\" modelName=\"raceway\" guid=\"{GUID}\"\n  \
-         description=\"{DESCRIPTION}\"\n  version=\"{ver}\" generationTool=\"raceway {ver}\" \
+         <fmiModelDescription fmiVersion=\"2.0\" modelName=\"{name}\" guid=\"{guid}\"\n  \
+         description=\"{desc}\"\n  version=\"{ver}\" generationTool=\"raceway {ver}\" \
          variableNamingConvention=\"structured\" numberOfEventIndicators=\"0\">\n  \
          <CoSimulation modelIdentifier=\"{MODEL_IDENTIFIER}\" \
          canHandleVariableCommunicationStepSize=\"true\" canInterpolateInputs=\"true\"\n    \
@@ -288,39 +418,52 @@ pub fn fmi2() -> String {
          canBeInstantiatedOnlyOncePerProcess=\"false\"\n    \
          canNotUseMemoryManagementFunctions=\"true\" canGetAndSetFMUstate=\"true\" \
          canSerializeFMUstate=\"true\"\n    providesDirectionalDerivative=\"true\"/>\n",
+        name = model_name(c),
+        guid = guid(c),
+        desc = esc(description(c)),
         ver = env!("CARGO_PKG_VERSION")
     );
-    unit_definitions(&mut x);
+    unit_definitions(&mut x, c);
+    type_definitions(&mut x, false);
     log_categories(&mut x);
     x.push_str(DEFAULT_EXPERIMENT);
     x.push_str("  <ModelVariables>\n");
     // 1-based indices, needed by <ModelStructure>
     let mut index = 0usize;
     let mut input_idx = Vec::new();
-    let mut output_idx = Vec::new();
+    let mut outputs = Vec::new();
     let mut param_idx = Vec::new();
     // No `time` variable in FMI 2: an independent variable has no start value (spec2
     // 2_2_3), which the FMI Library (libcosim) nevertheless reports as an error.
-    for v in io_variables() {
+    for v in io_variables(c) {
         index += 1;
-        let input = v.is_input(Causality::Motion);
+        let input = v.is_input(c);
         let (caus, init, start) = if input {
-            input_idx.push(index);
+            input_idx.push((index, v.vr));
             ("input", "", format!("{} start=\"0\"", range_attr(v.name)))
         } else {
-            output_idx.push(index);
+            outputs.push((index, v));
             ("output", " initial=\"calculated\"", String::new())
+        };
+        let (variability, ty) = match v.ty {
+            VarType::Real => (
+                "continuous",
+                format!(
+                    "<Real unit=\"{}\"{}{start}/>",
+                    esc(v.unit),
+                    display_attr(v.unit)
+                ),
+            ),
+            VarType::Integer => ("discrete", format!("<Integer{start}/>")),
         };
         let _ = writeln!(
             x,
             "    <!-- {index} --><ScalarVariable name=\"{}\" valueReference=\"{}\" \
-             causality=\"{caus}\" variability=\"continuous\"{init} description=\"{}\">\
-             <Real unit=\"{}\"{}{start}/></ScalarVariable>",
+             causality=\"{caus}\" variability=\"{variability}\"{init} description=\"{}\">\
+             {ty}</ScalarVariable>",
             esc(v.name),
             v.vr,
             esc(v.description),
-            esc(v.unit),
-            display_attr(v.unit)
         );
     }
     for p in PARAMETERS {
@@ -335,6 +478,11 @@ pub fn fmi2() -> String {
                 param_start(p)
             ),
             ParamType::String => format!("<String start=\"{}\"/>", param_start(p)),
+            ParamType::Boolean => format!("<Boolean start=\"{}\"/>", param_start(p)),
+            ParamType::Enumeration { type_name, .. } => format!(
+                "<Enumeration declaredType=\"{type_name}\" start=\"{}\"/>",
+                param_start(p)
+            ),
         };
         let _ = writeln!(
             x,
@@ -353,13 +501,21 @@ pub fn fmi2() -> String {
             .collect::<Vec<_>>()
             .join(" ")
     };
-    let deps = join(&input_idx);
-    let init_deps = join(&[input_idx.clone(), param_idx.clone()].concat());
-    for i in &output_idx {
-        let _ = writeln!(x, "      <Unknown index=\"{i}\" dependencies=\"{deps}\"/>");
+    let all_inputs: Vec<usize> = input_idx.iter().map(|&(i, _)| i).collect();
+    let init_deps = join(&[all_inputs, param_idx.clone()].concat());
+    for (i, v) in &outputs {
+        let deps: Vec<usize> = direct_dependencies(c, v)
+            .iter()
+            .filter_map(|d| input_idx.iter().find(|(_, vr)| *vr == d.vr).map(|p| p.0))
+            .collect();
+        let _ = writeln!(
+            x,
+            "      <Unknown index=\"{i}\" dependencies=\"{}\"/>",
+            join(&deps)
+        );
     }
     x.push_str("    </Outputs>\n    <InitialUnknowns>\n");
-    for i in &output_idx {
+    for (i, _) in &outputs {
         let _ = writeln!(
             x,
             "      <Unknown index=\"{i}\" dependencies=\"{init_deps}\"/>"
@@ -369,23 +525,27 @@ pub fn fmi2() -> String {
     x
 }
 
-/// FMI 3.0 co-simulation `modelDescription.xml`.
-pub fn fmi3() -> String {
+/// FMI 3.0 co-simulation `modelDescription.xml` of the variant of causality `c`.
+pub fn fmi3(c: Causality) -> String {
     let mut x = String::new();
     let _ = write!(
         x,
         "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n\
-         <fmiModelDescription fmiVersion=\"3.0\" modelName=\"raceway\" \
-         instantiationToken=\"{GUID}\"\n  description=\"{DESCRIPTION}\"\n  \
+         <fmiModelDescription fmiVersion=\"3.0\" modelName=\"{name}\" \
+         instantiationToken=\"{guid}\"\n  description=\"{desc}\"\n  \
          version=\"{ver}\" generationTool=\"raceway {ver}\" variableNamingConvention=\"structured\">\n  \
          <CoSimulation modelIdentifier=\"{MODEL_IDENTIFIER}\" \
          canHandleVariableCommunicationStepSize=\"true\"\n    maxOutputDerivativeOrder=\"1\" \
          canGetAndSetFMUState=\"true\" canSerializeFMUState=\"true\"\n    \
          providesDirectionalDerivatives=\"true\" providesAdjointDerivatives=\"false\" \
          hasEventMode=\"false\"\n    canBeInstantiatedOnlyOncePerProcess=\"false\"/>\n",
+        name = model_name(c),
+        guid = guid(c),
+        desc = esc(description(c)),
         ver = env!("CARGO_PKG_VERSION")
     );
-    unit_definitions(&mut x);
+    unit_definitions(&mut x, c);
+    type_definitions(&mut x, true);
     log_categories(&mut x);
     x.push_str(DEFAULT_EXPERIMENT);
     x.push_str("  <ModelVariables>\n");
@@ -394,70 +554,79 @@ pub fn fmi3() -> String {
         "    <Float64 name=\"time\" valueReference=\"{VR_TIME}\" causality=\"independent\" \
          variability=\"continuous\" description=\"simulation time\" unit=\"s\"/>"
     );
-    for v in io_variables() {
-        let input = v.is_input(Causality::Motion);
+    for v in io_variables(c) {
+        let input = v.is_input(c);
         let (caus, extra) = if input {
             ("input", format!("{} start=\"0\"", range_attr(v.name)))
         } else {
             ("output", " initial=\"calculated\"".to_string())
         };
-        let _ = writeln!(
-            x,
-            "    <Float64 name=\"{}\" valueReference=\"{}\" causality=\"{caus}\" \
-             variability=\"continuous\" description=\"{}\" unit=\"{}\"{}{extra}/>",
-            esc(v.name),
-            v.vr,
-            esc(v.description),
-            esc(v.unit),
-            display_attr(v.unit)
-        );
+        let _ = match v.ty {
+            VarType::Real => writeln!(
+                x,
+                "    <Float64 name=\"{}\" valueReference=\"{}\" causality=\"{caus}\" \
+                 variability=\"continuous\" description=\"{}\" unit=\"{}\"{}{extra}/>",
+                esc(v.name),
+                v.vr,
+                esc(v.description),
+                esc(v.unit),
+                display_attr(v.unit)
+            ),
+            VarType::Integer => writeln!(
+                x,
+                "    <Int32 name=\"{}\" valueReference=\"{}\" causality=\"{caus}\" \
+                 variability=\"discrete\" description=\"{}\"{extra}/>",
+                esc(v.name),
+                v.vr,
+                esc(v.description),
+            ),
+        };
     }
     for p in PARAMETERS {
-        match p.ty {
-            ParamType::Real => {
-                let _ = writeln!(
-                    x,
-                    "    <Float64 name=\"{}\" valueReference=\"{}\" causality=\"parameter\" \
-                     variability=\"fixed\" initial=\"exact\" description=\"{}\" unit=\"{}\"{}{} \
-                     start=\"{}\"/>",
-                    esc(p.name),
-                    p.vr,
-                    esc(p.description),
-                    esc(p.unit),
-                    display_attr(p.unit),
-                    range_attr(p.name),
-                    param_start(p)
-                );
-            }
-            ParamType::String => {
-                let _ = writeln!(
-                    x,
-                    "    <String name=\"{}\" valueReference=\"{}\" causality=\"parameter\" \
-                     variability=\"fixed\" initial=\"exact\" description=\"{}\">\
-                     <Start value=\"{}\"/></String>",
-                    esc(p.name),
-                    p.vr,
-                    esc(p.description),
-                    param_start(p)
-                );
-            }
-        }
+        let head = format!(
+            "name=\"{}\" valueReference=\"{}\" causality=\"parameter\" variability=\"fixed\" \
+             initial=\"exact\" description=\"{}\"",
+            esc(p.name),
+            p.vr,
+            esc(p.description)
+        );
+        let _ = match p.ty {
+            ParamType::Real => writeln!(
+                x,
+                "    <Float64 {head} unit=\"{}\"{}{} start=\"{}\"/>",
+                esc(p.unit),
+                display_attr(p.unit),
+                range_attr(p.name),
+                param_start(p)
+            ),
+            ParamType::String => writeln!(
+                x,
+                "    <String {head}><Start value=\"{}\"/></String>",
+                param_start(p)
+            ),
+            ParamType::Boolean => writeln!(x, "    <Boolean {head} start=\"{}\"/>", param_start(p)),
+            ParamType::Enumeration { type_name, .. } => writeln!(
+                x,
+                "    <Enumeration {head} declaredType=\"{type_name}\" start=\"{}\"/>",
+                param_start(p)
+            ),
+        };
     }
     x.push_str("  </ModelVariables>\n  <ModelStructure>\n");
     let vrs =
         |it: &mut dyn Iterator<Item = u32>| it.map(|v| v.to_string()).collect::<Vec<_>>().join(" ");
-    let deps = vrs(&mut inputs().map(|v| v.vr));
-    let init_deps = vrs(&mut inputs()
+    let init_deps = vrs(&mut inputs(c)
         .map(|v| v.vr)
         .chain(PARAMETERS.iter().map(|p| p.vr)));
-    for v in outputs() {
+    for v in outputs(c) {
+        let deps = vrs(&mut direct_dependencies(c, v).into_iter().map(|d| d.vr));
         let _ = writeln!(
             x,
             "    <Output valueReference=\"{}\" dependencies=\"{deps}\"/>",
             v.vr
         );
     }
-    for v in outputs() {
+    for v in outputs(c) {
         let _ = writeln!(
             x,
             "    <InitialUnknown valueReference=\"{}\" dependencies=\"{init_deps}\"/>",
@@ -472,9 +641,24 @@ pub fn fmi3() -> String {
 /// need toolchains this build machine does not have.
 pub const PLATFORMS: &[(&str, &str)] = &[("linux64", "x86_64-linux")];
 
-/// One row of the variable table: name, value reference, causality, unit, display unit,
-/// range, start, description (the cells as plain text).
-fn rows() -> Vec<[String; 8]> {
+/// Cells of the variable table, one row per variable of either variant.
+type Row = [String; 10];
+
+/// Causality of `v` in the FMU of causality `c` ("—" when that FMU does not show it).
+fn causality_cell(c: Causality, v: &Variable) -> String {
+    if v.is_input(c) {
+        "input".into()
+    } else if v.is_output(c) {
+        "output".into()
+    } else {
+        "—".into()
+    }
+}
+
+/// The variable table (both variants): name, value reference, type, causality in the
+/// motion-driven and in the load-driven FMU, unit, display unit, range, start,
+/// description (the cells as plain text).
+fn rows() -> Vec<Row> {
     let shown = |u: &str| {
         variables::display_unit(u).map_or(String::new(), |(d, f)| format!("{d} (× {})", num(f)))
     };
@@ -486,6 +670,8 @@ fn rows() -> Vec<[String; 8]> {
     let mut r = vec![[
         "time (FMI 3 only)".to_string(),
         VR_TIME.to_string(),
+        "Float64".into(),
+        "independent".into(),
         "independent".into(),
         "s".into(),
         String::new(),
@@ -493,32 +679,61 @@ fn rows() -> Vec<[String; 8]> {
         String::new(),
         "simulation time".into(),
     ]];
-    for v in io_variables() {
-        let (c, s) = if v.is_input(Causality::Motion) {
-            ("input", "0")
-        } else {
-            ("output", "")
+    for v in variables::all() {
+        let input = VARIANTS.iter().any(|&c| v.is_input(c));
+        let ty = match v.ty {
+            VarType::Real => "Real / Float64",
+            VarType::Integer => "Integer / Int32",
+        };
+        let unit = match v.ty {
+            VarType::Real => v.unit,
+            VarType::Integer => "",
         };
         r.push([
             v.name.into(),
             v.vr.to_string(),
-            c.into(),
-            v.unit.into(),
-            shown(v.unit),
+            ty.into(),
+            causality_cell(Causality::Motion, v),
+            causality_cell(Causality::Load, v),
+            unit.into(),
+            shown(unit),
             range(v.name),
-            s.into(),
+            if input { "0".into() } else { String::new() },
             v.description.into(),
         ]);
     }
     for p in PARAMETERS {
         let (ty, start) = match p.ty {
-            ParamType::Real => ("", p.start.to_string()),
-            ParamType::String => (" (string)", format!("\"{}\"", p.start)),
+            ParamType::Real => ("Real / Float64".to_string(), p.start.to_string()),
+            ParamType::String => ("String".to_string(), format!("\"{}\"", p.start)),
+            ParamType::Boolean => ("Boolean".to_string(), p.start.to_string()),
+            ParamType::Enumeration { type_name, items } => (
+                format!(
+                    "Enumeration {type_name}: {}",
+                    items
+                        .iter()
+                        .enumerate()
+                        .map(|(k, i)| format!("{k} {i}"))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
+                format!(
+                    "{} ({})",
+                    p.start,
+                    p.start
+                        .parse::<usize>()
+                        .ok()
+                        .and_then(|k| items.get(k))
+                        .unwrap_or(&"?")
+                ),
+            ),
         };
         r.push([
             p.name.into(),
             p.vr.to_string(),
-            format!("parameter (fixed){ty}"),
+            ty,
+            "parameter (fixed)".into(),
+            "parameter (fixed)".into(),
             p.unit.into(),
             shown(p.unit),
             range(p.name),
@@ -529,10 +744,12 @@ fn rows() -> Vec<[String; 8]> {
     r
 }
 
-const HEADER: [&str; 8] = [
+const HEADER: [&str; 10] = [
     "name",
     "value reference",
-    "causality",
+    "type",
+    "causality (motion-driven FMU)",
+    "causality (load-driven FMU)",
     "unit",
     "display unit (× factor)",
     "range (SI)",
@@ -555,8 +772,18 @@ fn platform_line() -> String {
 /// The Markdown variable table of `docs/fmi.md` (between the `BEGIN/END generated` markers).
 pub fn markdown_table() -> String {
     let mut t = String::new();
-    let _ = writeln!(t, "GUID / instantiationToken of this build: `{GUID}`\n");
-    let _ = writeln!(t, "{}\n", platform_line());
+    t.push_str("| FMU | archives | GUID / instantiationToken of this build |\n|---|---|---|\n");
+    for c in VARIANTS {
+        let _ = writeln!(
+            t,
+            "| {}-driven | `{}`, `{}` | `{}` |",
+            variant_name(c),
+            archive_name(c, "fmi2"),
+            archive_name(c, "fmi3"),
+            guid(c)
+        );
+    }
+    let _ = writeln!(t, "\n{}\n", platform_line());
     let _ = writeln!(t, "| {} |", HEADER.join(" | "));
     let _ = writeln!(t, "|{}", "---|".repeat(HEADER.len()));
     for mut row in rows() {
@@ -570,37 +797,57 @@ pub fn markdown_table() -> String {
     t
 }
 
-/// `documentation/index.html` of the FMUs: what the FMU is, its platforms and the variable
-/// table, generated like the model descriptions.
-pub fn documentation_html() -> String {
+/// What the host does with a variant (for its documentation page).
+const fn usage(c: Causality) -> &'static str {
+    match c {
+        Causality::Motion => {
+            "Co-simulation, motion-driven: the host sets the shaft's motion \
+             (<code>shaft.*</code>) and speed and reads the bearing's forces, moments, \
+             stiffness <code>K.i.j</code> and damping <code>C.i.j</code>."
+        }
+        Causality::Load => {
+            "Co-simulation, load-driven: the host sets the loads on the inner ring \
+             (<code>load.*</code>) and the shaft speed; the ring (its mass plus \
+             <code>model.attached_mass_kg</code>) moves inside the FMU, which returns its \
+             motion (<code>shaft.*</code>) and the bearing's forces, moments, \
+             <code>K.i.j</code> and <code>C.i.j</code>. By default the ring starts in static \
+             equilibrium under the loads set before initialisation ends."
+        }
+    }
+}
+
+/// `documentation/index.html` of the FMU of causality `c`: what it is, its platforms and
+/// the variable table, generated like the model descriptions.
+pub fn documentation_html(c: Causality) -> String {
     let mut h = String::new();
     let _ = write!(
         h,
         "<!DOCTYPE html>\n<html lang=\"en\">\n<head><meta charset=\"utf-8\">\
-         <title>raceway {ver}</title>\n<style>body{{font-family:sans-serif;max-width:70em}}\
+         <title>{name} {ver}</title>\n<style>body{{font-family:sans-serif;max-width:70em}}\
          table{{border-collapse:collapse}}td,th{{border:1px solid #999;padding:2px 6px;\
-         text-align:left;vertical-align:top}}</style></head>\n<body>\n<h1>raceway {ver}</h1>\n\
-         <p>{}.</p>\n<p>Co-simulation, motion-driven: the host sets the shaft's motion \
-         (<code>shaft.*</code>) and reads the bearing's forces, moments, stiffness \
-         <code>K.i.j</code> and damping <code>C.i.j</code>. Outputs are valid from the end of \
-         initialisation on. Units are SI; the display units are those people read.</p>\n\
-         <p>{}</p>\n<p>GUID / instantiationToken: <code>{GUID}</code>. License: \
+         text-align:left;vertical-align:top}}</style></head>\n<body>\n<h1>{name} {ver}</h1>\n\
+         <p>{}.</p>\n<p>{} Outputs are valid from the end of initialisation on. Units are \
+         SI; the display units are those people read.</p>\n\
+         <p>{}</p>\n<p>GUID / instantiationToken: <code>{}</code>. License: \
          <a href=\"licenses/license.txt\">licenses/license.txt</a>.</p>\n<table>\n<tr>",
-        esc(DESCRIPTION),
+        esc(description(c)),
+        usage(c),
         esc(&platform_line()),
+        guid(c),
+        name = model_name(c),
         ver = env!("CARGO_PKG_VERSION")
     );
-    for c in HEADER {
-        let _ = write!(h, "<th>{}</th>", esc(c));
+    for col in HEADER {
+        let _ = write!(h, "<th>{}</th>", esc(col));
     }
     h.push_str("</tr>\n");
     for row in rows() {
         h.push_str("<tr>");
-        for (i, c) in row.iter().enumerate() {
+        for (i, cell) in row.iter().enumerate() {
             if i == 0 {
-                let _ = write!(h, "<td><code>{}</code></td>", esc(c));
+                let _ = write!(h, "<td><code>{}</code></td>", esc(cell));
             } else {
-                let _ = write!(h, "<td>{}</td>", esc(c));
+                let _ = write!(h, "<td>{}</td>", esc(cell));
             }
         }
         h.push_str("</tr>\n");

@@ -2,21 +2,25 @@
 //!
 //! 1. The scene text: the `scene` parameter when set and not empty, else the FMU's
 //!    `resources/scene.toml` when it carries one, else `Scene::default_scene()`.
-//! 2. On top of it, each parameter the host set (a string parameter set to "" counts as
-//!    not set):
+//! 2. On top of it, each parameter the host set (a string parameter set to "" and an
+//!    enumeration set to item 0, `scene`, count as not set):
 //!    - `bearing` -> `bearing = "<preset>"` (replaces the scene's bearing);
 //!    - `level` -> `model.level`; `input_rule` -> `inputs.rule`;
-//!    - `clearance` (m) -> the bearing's `clearance_um` (the preset or table kept, only the
-//!      clearance overridden);
+//!    - `clearance` (m), when `override_clearance` is true -> the bearing's `clearance_um`
+//!      (the preset or table kept, only the clearance overridden);
 //!    - `rtol` -> `solver.rtol`; when `rtol` is not set, a tolerance the host gave in
 //!      `fmi2SetupExperiment` / `fmi3EnterInitializationMode` is used if it lies in the
 //!      range the solver accepts.
-//! 3. The scene must be motion-driven (the FMUs' inputs are the shaft's motion).
+//! 3. The FMU's variant decides the causality: the motion-driven FMU refuses a load-driven
+//!    scene; the load-driven FMU runs any scene load-driven (`model.causality` = motion is
+//!    the scene default), and with the default scene drops its motion start values. The
+//!    load-driven FMU's inputs set before initialisation ends become `inputs.initial`, so
+//!    the ring's static start solves for the host's loads.
 //!
 //! Every refusal names the parameter (or the scene source) and the cause.
 
 use crate::component::scene::{BearingRef, InputRule, Level};
-use crate::component::variables::{Causality, ParamType, PARAMETERS};
+use crate::component::variables::{self, Causality, ParamType, PARAMETERS};
 use crate::component::{Component, Scene};
 
 /// A value the host set for a parameter.
@@ -24,6 +28,9 @@ use crate::component::{Component, Scene};
 pub(crate) enum ParamValue {
     Real(f64),
     Str(String),
+    Bool(bool),
+    /// An enumeration item.
+    Int(i64),
 }
 
 /// The values the host set, indexed like `PARAMETERS` (`None`: not set).
@@ -42,8 +49,24 @@ fn get<'a>(values: &'a ParamValues, name: &str) -> Option<&'a ParamValue> {
     let i = PARAMETERS.iter().position(|p| p.name == name)?;
     match values.get(i)? {
         Some(ParamValue::Str(s)) if s.trim().is_empty() => None,
+        Some(ParamValue::Int(0)) => None,
         v => v.as_ref(),
     }
+}
+
+/// The item an enumeration parameter was set to (item 0, `scene`, is "not set").
+fn item(values: &ParamValues, name: &str) -> Option<&'static str> {
+    let p = PARAMETERS.iter().find(|p| p.name == name)?;
+    match (get(values, name), p.ty) {
+        (Some(ParamValue::Int(k)), ParamType::Enumeration { items, .. }) => {
+            items.get(usize::try_from(*k).ok()?).copied()
+        }
+        _ => None,
+    }
+}
+
+fn boolean(values: &ParamValues, name: &str) -> bool {
+    matches!(get(values, name), Some(ParamValue::Bool(true)))
 }
 
 fn string<'a>(values: &'a ParamValues, name: &str) -> Option<&'a str> {
@@ -66,6 +89,8 @@ pub(crate) fn start(i: usize) -> ParamValue {
     match p.ty {
         ParamType::Real => ParamValue::Real(p.start.parse().unwrap_or(0.0)),
         ParamType::String => ParamValue::Str(p.start.to_string()),
+        ParamType::Boolean => ParamValue::Bool(p.start == "true"),
+        ParamType::Enumeration { .. } => ParamValue::Int(p.start.parse().unwrap_or(0)),
     }
 }
 
@@ -78,11 +103,14 @@ fn parse_enum<T: serde::de::DeserializeOwned>(
         .map_err(|_| format!("parameter `{param}` = \"{value}\": allowed {allowed}"))
 }
 
-/// The scene the parameters describe, and where its text came from.
+/// The scene the parameters describe for the FMU of causality `causality`, with the
+/// host's `initial` input values, and where its text came from.
 pub(crate) fn scene(
     values: &ParamValues,
     tolerance: Option<f64>,
     resource_scene: Option<&Result<String, String>>,
+    causality: Causality,
+    initial: &[(&str, f64)],
 ) -> Result<(Scene, &'static str), String> {
     let (mut scene, source) = if let Some(text) = string(values, "scene") {
         let s = Scene::from_text(text).map_err(|e| format!("parameter `scene`: {e}"))?;
@@ -96,31 +124,46 @@ pub(crate) fn scene(
     } else {
         (Scene::default_scene(), "the default scene")
     };
-    if scene.model.causality != Causality::Motion {
-        return Err(format!(
-            "{source}: `model.causality` = load is not supported by the FMU, which is \
-             motion-driven (shaft motion in, forces out); use the Rust API or the C ABI for \
-             load-driven runs"
-        ));
+    match (causality, scene.model.causality) {
+        (Causality::Motion, Causality::Load) => {
+            return Err(format!(
+                "{source}: `model.causality` = load, but this is the motion-driven FMU \
+                 (shaft motion in, forces out); use the load-driven FMU (raceway-load-fmi2/3.fmu)"
+            ))
+        }
+        (Causality::Load, _) => {
+            scene.model.causality = Causality::Load;
+            if source == "the default scene" {
+                scene
+                    .inputs
+                    .initial
+                    .retain(|k, _| variables::by_name(k).is_some_and(|v| v.is_input(causality)));
+            }
+        }
+        (Causality::Motion, Causality::Motion) => {}
+    }
+    for &(name, value) in initial {
+        scene.inputs.initial.insert(name.to_string(), value);
     }
     if let Some(name) = string(values, "bearing") {
         crate::geometry::preset(name).map_err(|e| format!("parameter `bearing`: {e}"))?;
         scene.bearing = BearingRef::Preset(name.to_string());
     }
-    if let Some(level) = string(values, "level") {
+    if let Some(level) = item(values, "level") {
         scene.model.level = parse_enum::<Level>("level", level, &Level::NAMES.join(", "))?;
     }
-    if let Some(rule) = string(values, "input_rule") {
+    if let Some(rule) = item(values, "input_rule") {
         scene.inputs.rule =
             parse_enum::<InputRule>("input_rule", rule, "hold, velocity or derivatives")?;
     }
-    // The start value -1 (no bearing has a metre of interference) means "as the bearing
-    // has it", so a host that pushes every start value changes nothing.
-    if let Some(c) = real(values, "clearance").filter(|&c| c != -1.0) {
-        if !(c.is_finite() && c.abs() < 1e-3) {
+    // The clearance applies only when `override_clearance` is true, so a host that pushes
+    // every start value changes nothing.
+    if boolean(values, "override_clearance") {
+        let c = real(values, "clearance").unwrap_or(0.0);
+        if !(c.is_finite() && c.abs() <= 1e-3) {
             return Err(format!(
-                "parameter `clearance` = {c} m: allowed a finite number in (-1e-3, 1e-3) m \
-                 (negative: preload), or -1 for the bearing's own"
+                "parameter `clearance` = {c} m: allowed a finite number in [-1e-3, 1e-3] m \
+                 (negative: preload)"
             ));
         }
         let um = toml::Value::Float(c * 1e6);
@@ -158,8 +201,10 @@ pub(crate) fn component(
     values: &ParamValues,
     tolerance: Option<f64>,
     resource_scene: Option<&Result<String, String>>,
+    causality: Causality,
+    initial: &[(&str, f64)],
 ) -> Result<(Component, &'static str), String> {
-    let (scene, source) = scene(values, tolerance, resource_scene)?;
+    let (scene, source) = scene(values, tolerance, resource_scene, causality, initial)?;
     let c = Component::new(scene).map_err(|e| {
         let set: Vec<&str> = PARAMETERS
             .iter()

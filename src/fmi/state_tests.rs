@@ -3,6 +3,7 @@
 
 use super::instance::{Instance, Snapshot, STEP};
 use super::tests::instance;
+use crate::component::variables::Causality;
 
 /// A stepped instance, `n` steps of 0.1 ms from 0.
 fn stepped(n: usize) -> Instance {
@@ -35,10 +36,10 @@ fn every_single_byte_change_of_fmu_state_bytes_is_refused() {
     for i in 0..bytes.len() {
         let mut bad = bytes.clone();
         bad[i] ^= 0x10;
-        assert!(Snapshot::from_bytes(&bad).is_err(), "byte {i}");
+        assert!(Snapshot::from_bytes(&bad, Causality::Motion).is_err(), "byte {i}");
     }
     for n in 0..bytes.len() {
-        assert!(Snapshot::from_bytes(&bytes[..n]).is_err(), "{n} bytes");
+        assert!(Snapshot::from_bytes(&bytes[..n], Causality::Motion).is_err(), "{n} bytes");
     }
 }
 
@@ -87,7 +88,7 @@ fn fmu_state_bytes_restore_in_another_process_bit_for_bit() {
         .collect();
     std::fs::remove_dir_all(&dir).unwrap();
     let mut b = instance();
-    b.restore(&Snapshot::from_bytes(&bytes).unwrap()).unwrap();
+    b.restore(&Snapshot::from_bytes(&bytes, Causality::Motion).unwrap()).unwrap();
     let ours = continue_run(&mut b, 3, 4);
     assert_eq!(ours.len(), 20);
     assert_eq!(ours, theirs);

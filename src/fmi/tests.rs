@@ -2,10 +2,12 @@
 //! the host-level tests are in `tests/python/`).
 
 use super::instance::{uri_to_path, Instance, Logger, Snapshot, Status};
-use super::model_description::{self as md, base_unit, GUID};
+use super::model_description::{self as md, base_unit, GUID, GUID_LOAD};
 use super::params::{self, ParamValue};
 use crate::component::scene::{BearingRef, InputRule, Level};
-use crate::component::variables::PARAMETERS;
+use crate::component::variables::{Causality, PARAMETERS};
+
+const M: Causality = Causality::Motion;
 
 #[test]
 fn resource_uris_are_percent_decoded() {
@@ -32,12 +34,55 @@ fn guid_is_a_braced_uuid_and_units_have_base_units() {
     assert_eq!(base_unit("Pa"), Some([1, -1, -2, 0]));
     assert_eq!(base_unit("furlong"), None);
     // every unit of the table has a rule (the generators would panic otherwise)
-    let (x2, x3) = (md::fmi2(), md::fmi3());
-    assert!(x2.contains(GUID) && x3.contains(GUID));
-    let outputs = md::outputs().count();
-    assert_eq!(x2.matches("<Unknown index=").count(), 2 * outputs);
-    assert_eq!(x3.matches("<Output valueReference=").count(), outputs);
-    assert_eq!(md::inputs().count(), 11);
+    for c in md::VARIANTS {
+        let (x2, x3) = (md::fmi2(c), md::fmi3(c));
+        assert!(x2.contains(md::guid(c)) && x3.contains(md::guid(c)));
+        let outputs = md::outputs(c).count();
+        assert_eq!(x2.matches("<Unknown index=").count(), 2 * outputs);
+        assert_eq!(x3.matches("<Output valueReference=").count(), outputs);
+    }
+    assert_eq!(md::inputs(M).count(), 11);
+    // load-driven: loads and speed in, the ring's motion out
+    let load_in: Vec<&str> = md::inputs(Causality::Load).map(|v| v.name).collect();
+    assert_eq!(
+        load_in,
+        ["shaft.omega", "load.x", "load.y", "load.z", "load.mx", "load.my"]
+    );
+    assert!(md::outputs(Causality::Load).any(|v| v.name == "shaft.y"));
+    assert_ne!(GUID, GUID_LOAD);
+    assert_eq!(md::variant_of(GUID_LOAD), Some(Causality::Load));
+    assert_eq!(md::variant_of("{x}"), None);
+}
+
+#[test]
+fn counts_are_integers_and_choices_enumerations_in_both_versions() {
+    for c in md::VARIANTS {
+        let (x2, x3) = (md::fmi2(c), md::fmi3(c));
+        assert!(x2.contains(
+            "name=\"balls.loaded\" valueReference=\"109\" causality=\"output\" \
+             variability=\"discrete\""
+        ));
+        assert!(x2.contains("<Integer/></ScalarVariable>"));
+        assert!(x3.contains("<Int32 name=\"balls.loaded\" valueReference=\"109\""));
+        assert!(x3.contains("<Int32 name=\"warnings.active\""));
+        assert!(x2.contains("<SimpleType name=\"Level\">"));
+        assert!(x2.contains("<Item name=\"ring\" value=\"3\"/>"));
+        assert!(x2.contains("<Enumeration declaredType=\"Level\" start=\"0\"/>"));
+        assert!(x3.contains("<EnumerationType name=\"InputRule\">"));
+        assert!(x3.contains("declaredType=\"InputRule\" start=\"0\"/>"));
+        assert!(x2.contains("<Boolean start=\"false\"/>"));
+        assert!(x3.contains("<Boolean name=\"override_clearance\""));
+        // no sentinel: the clearance's start is inside its range
+        assert!(x3.contains("<Float64 name=\"clearance\""));
+        assert!(!x2.contains("start=\"-1\""));
+    }
+    // the items after `scene` are the scene's spellings
+    assert_eq!(&crate::component::variables::LEVEL_ITEMS[1..], &Level::NAMES);
+    for rule in &crate::component::variables::INPUT_RULE_ITEMS[1..] {
+        let r: InputRule =
+            serde_json::from_value(serde_json::Value::String(rule.to_string())).unwrap();
+        assert_eq!(serde_json::to_value(r).unwrap(), *rule);
+    }
 }
 
 #[test]
@@ -65,14 +110,24 @@ fn raceway_default_bearing() -> crate::component::scene::BearingRef {
 #[test]
 fn parameters_map_onto_the_scene() {
     let s = |x: &str| ParamValue::Str(x.into());
+    let item = |p: &str, x: &str| {
+        let items: &[&str] = if p == "level" {
+            &crate::component::variables::LEVEL_ITEMS
+        } else {
+            &crate::component::variables::INPUT_RULE_ITEMS
+        };
+        ParamValue::Int(items.iter().position(|i| *i == x).unwrap() as i64)
+    };
+    let sc = |v: &params::ParamValues, tol, res| params::scene(v, tol, res, M, &[]);
     let v = values(&[
         ("bearing", s("6205")),
-        ("level", s("linear")),
-        ("input_rule", s("derivatives")),
+        ("level", item("level", "linear")),
+        ("input_rule", item("input_rule", "derivatives")),
         ("clearance", ParamValue::Real(12e-6)),
+        ("override_clearance", ParamValue::Bool(true)),
         ("rtol", ParamValue::Real(1e-8)),
     ]);
-    let (scene, source) = params::scene(&v, Some(1e-3), None).unwrap();
+    let (scene, source) = sc(&v, Some(1e-3), None).unwrap();
     assert_eq!(source, "the default scene");
     assert_eq!(scene.model.level, Level::Linear);
     assert_eq!(scene.inputs.rule, InputRule::Derivatives);
@@ -85,57 +140,58 @@ fn parameters_map_onto_the_scene() {
         other => panic!("{other:?}"),
     }
     // the host's tolerance is used when rtol is not set and it is in range
-    let (scene, _) = params::scene(&params::unset(), Some(1e-4), None).unwrap();
+    let (scene, _) = sc(&params::unset(), Some(1e-4), None).unwrap();
     assert_eq!(scene.solver.rtol, 1e-4);
-    let (scene, _) = params::scene(&params::unset(), Some(0.5), None).unwrap();
+    let (scene, _) = sc(&params::unset(), Some(0.5), None).unwrap();
     assert_eq!(
         scene.solver.rtol,
         crate::component::scene::SolverSpec::default().rtol
     );
-    // an empty string is "not set"; refusals name the parameter
-    assert!(params::scene(&values(&[("level", s(""))]), None, None).is_ok());
-    let e = params::scene(&values(&[("level", s("best"))]), None, None).unwrap_err();
-    assert!(e.contains("parameter `level`") && e.contains("best"), "{e}");
-    // every level is accepted, and the refusal and the parameter's description name them all
-    let desc = crate::component::variables::PARAMETERS
-        .iter()
-        .find(|p| p.name == "level")
-        .unwrap()
-        .description;
+    // an empty string and item 0 (`scene`) are "not set"
+    assert!(sc(&values(&[("bearing", s(""))]), None, None).is_ok());
+    let (kept, _) = sc(&values(&[("level", ParamValue::Int(0))]), None, None).unwrap();
+    assert_eq!(kept.model.level, crate::component::Scene::default_scene().model.level);
+    // every level is an item
     for (l, name) in crate::component::Level::ALL
         .iter()
         .zip(crate::component::Level::NAMES)
     {
-        let (sc, _) = params::scene(&values(&[("level", s(name))]), None, None).unwrap();
-        assert_eq!(sc.model.level, *l);
-        assert!(
-            e.contains(name) && desc.contains(name),
-            "{name}: {e} / {desc}"
-        );
+        let (s, _) = sc(&values(&[("level", item("level", name))]), None, None).unwrap();
+        assert_eq!(s.model.level, *l);
     }
-    let e = params::scene(
-        &values(&[("clearance", ParamValue::Real(-0.5))]),
+    let e = sc(
+        &values(&[
+            ("clearance", ParamValue::Real(-0.5)),
+            ("override_clearance", ParamValue::Bool(true)),
+        ]),
         None,
         None,
     )
     .unwrap_err();
     assert!(e.contains("clearance"), "{e}");
-    // -1, the start value, keeps the bearing's own clearance.
-    let (kept, _) = params::scene(
-        &values(&[("clearance", ParamValue::Real(-1.0))]),
-        None,
-        None,
-    )
-    .unwrap();
+    // without override_clearance the clearance parameter changes nothing
+    let (kept, _) = sc(&values(&[("clearance", ParamValue::Real(5e-6))]), None, None).unwrap();
     assert_eq!(kept.bearing, raceway_default_bearing());
     let resource = Ok("bearing = ".to_string());
-    let e = params::scene(&params::unset(), None, Some(&resource)).unwrap_err();
+    let e = sc(&params::unset(), None, Some(&resource)).unwrap_err();
     assert!(e.starts_with("resources/scene.toml"), "{e}");
+    // the variant decides the causality: a load scene is refused by the motion FMU; the
+    // load FMU runs the default scene load-driven with the host's loads as start values
+    let load_scene = "bearing = \"6205\"\n[model]\ncausality = \"load\"\n";
+    let e = sc(&values(&[("scene", s(load_scene))]), None, None).unwrap_err();
+    assert!(e.contains("load-driven FMU"), "{e}");
+    let (ls, _) =
+        params::scene(&params::unset(), None, None, Causality::Load, &[("load.y", -500.0)])
+            .unwrap();
+    assert_eq!(ls.model.causality, Causality::Load);
+    assert_eq!(ls.inputs.initial.get("load.y"), Some(&-500.0));
+    assert!(!ls.inputs.initial.contains_key("shaft.y"));
 }
 
 pub(super) fn instance() -> Instance {
     Instance::new(
         2,
+        M,
         "t",
         Logger::Fmi2(None, std::ptr::null_mut()),
         false,
@@ -147,29 +203,42 @@ pub(super) fn instance() -> Instance {
 fn fmu_state_bytes_round_trip_and_refuse_damage() {
     let mut a = instance();
     a.set_real(2, -2e-5).unwrap();
-    a.set_string(1003, Some("hold".into())).unwrap();
+    a.set_integer(1003, 1, "Integer").unwrap(); // hold
     a.exit_initialization().unwrap();
     a.mode = super::instance::STEP;
     a.do_step(0.0, 1e-4).unwrap();
     let bytes = a.snapshot().to_bytes();
-    let back = Snapshot::from_bytes(&bytes).unwrap();
+    let back = Snapshot::from_bytes(&bytes, M).unwrap();
     assert_eq!(back.to_bytes(), bytes);
     // another instance with other parameters takes everything from the state
     let mut b = instance();
     b.restore(&back).unwrap();
-    assert_eq!(b.get_string(1003).unwrap(), "hold");
+    assert_eq!(b.get_integer(1003, "Integer").unwrap(), 1);
     assert_eq!(b.time, a.time);
     assert_eq!(
         b.get_real(101).unwrap().to_bits(),
         a.get_real(101).unwrap().to_bits()
     );
     for cut in [0, 4, 20, bytes.len() - 1] {
-        assert!(Snapshot::from_bytes(&bytes[..cut]).is_err(), "{cut}");
+        assert!(Snapshot::from_bytes(&bytes[..cut], M).is_err(), "{cut}");
     }
     let mut other = bytes.clone();
     other[20] ^= 1; // inside the GUID
-    let err = Snapshot::from_bytes(&other).err().expect("refused");
-    assert!(err.contains("this binary is"), "{err}");
+    let err = Snapshot::from_bytes(&other, M).err().expect("refused");
+    assert!(err.contains("this instance is"), "{err}");
+    // a motion-driven state is refused by a load-driven instance, in bytes and in memory
+    let err = Snapshot::from_bytes(&bytes, Causality::Load).err().expect("refused");
+    assert!(err.contains("load-driven"), "{err}");
+    let mut l = Instance::new(
+        2,
+        Causality::Load,
+        "l",
+        Logger::Fmi2(None, std::ptr::null_mut()),
+        false,
+        None::<&std::path::Path>,
+    );
+    let e = l.restore(&back).unwrap_err();
+    assert!(e.msg.contains("motion-driven FMU"), "{}", e.msg);
 }
 
 #[test]
@@ -204,7 +273,7 @@ fn outputs_are_valid_after_initialisation_restore_and_reset() {
 
 #[test]
 fn declared_ranges_and_display_units_are_in_the_descriptions_and_enforced() {
-    let (x2, x3) = (md::fmi2(), md::fmi3());
+    let (x2, x3) = (md::fmi2(M), md::fmi3(M));
     for x in [&x2, &x3] {
         assert!(x.contains("<DisplayUnit name=\"rpm\" factor=\"9.549296585513721\"/>"));
         assert!(x.contains("<DisplayUnit name=\"µm\" factor=\"1000000\"/>"));
@@ -218,7 +287,7 @@ fn declared_ranges_and_display_units_are_in_the_descriptions_and_enforced() {
     let e = a.set_real(1005, 0.5).unwrap_err();
     assert!(e.msg.contains("rtol"), "{}", e.msg);
     assert!(a.set_real(1, 1e-3).is_ok());
-    let html = md::documentation_html();
+    let html = md::documentation_html(M);
     assert!(html.contains("linux64") && html.contains("<code>K.y.y</code>"));
 }
 
