@@ -81,7 +81,10 @@ class Bearing:
         self.fmu.instantiate()
         self.fmu.setupExperiment(startTime=0.0)
         # inputs held over each step: the output at t + h belongs to the motion set at t
-        self.fmu.setString([self.vr["input_rule"]], ["hold"])
+        # (input_rule is an Enumeration: its items by name from the model description)
+        hold = next(int(i.value) for v in md.modelVariables if v.name == "input_rule"
+                    for i in v.declaredType.items if i.name == "hold")
+        self.fmu.setInteger([self.vr["input_rule"]], [hold])
         self.fmu.enterInitializationMode()
         self.fmu.exitInitializationMode()
         self.in_vr = [self.vr[n] for n in MOTION + VELOCITY + ["shaft.omega"]]

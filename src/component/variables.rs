@@ -93,12 +93,7 @@ const fn v(
 }
 
 /// A count: as [`v`], of type [`VarType::Integer`].
-const fn count(
-    name: &'static str,
-    vr: u32,
-    role: Role,
-    description: &'static str,
-) -> Variable {
+const fn count(name: &'static str, vr: u32, role: Role, description: &'static str) -> Variable {
     Variable {
         ty: VarType::Integer,
         ..v(name, vr, "1", role, description)

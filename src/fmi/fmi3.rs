@@ -135,8 +135,7 @@ pub unsafe extern "C" fn fmi3InstantiateCoSimulation(
                 "instanceName is NULL or empty",
             );
         }
-        let causality = match super::instance::check_guid(str_arg(instantiation_token).as_deref())
-        {
+        let causality = match super::instance::check_guid(str_arg(instantiation_token).as_deref()) {
             Ok(c) => c,
             Err(msg) => {
                 return refuse(log_message, instance_environment, instance_name, func, &msg)
@@ -496,15 +495,33 @@ macro_rules! typed_variables {
     };
 }
 
-typed_variables!(fmi3GetInt32, fmi3SetInt32, i32, "Int32", "the Int32 outputs (counts)",
+typed_variables!(
+    fmi3GetInt32,
+    fmi3SetInt32,
+    i32,
+    "Int32",
+    "the Int32 outputs (counts)",
     |inst, r| inst.get_int32(r)?,
-    |inst, r, _x| return Err(inst.wrong_type(r, "Int32")));
-typed_variables!(fmi3GetInt64, fmi3SetInt64, i64, "Int64", "the Enumeration parameters",
+    |inst, r, _x| return Err(inst.wrong_type(r, "Int32"))
+);
+typed_variables!(
+    fmi3GetInt64,
+    fmi3SetInt64,
+    i64,
+    "Int64",
+    "the Enumeration parameters",
     |inst, r| inst.get_enumeration(r)?,
-    |inst, r, x| inst.set_integer(r, x, "Int64")?);
-typed_variables!(fmi3GetBoolean, fmi3SetBoolean, bool, "Boolean", "the Boolean parameters",
+    |inst, r, x| inst.set_integer(r, x, "Int64")?
+);
+typed_variables!(
+    fmi3GetBoolean,
+    fmi3SetBoolean,
+    bool,
+    "Boolean",
+    "the Boolean parameters",
     |inst, r| inst.get_boolean(r)?,
-    |inst, r, x| inst.set_boolean(r, x)?);
+    |inst, r, x| inst.set_boolean(r, x)?
+);
 no_variables!(fmi3GetUInt32, fmi3SetUInt32, u32, "UInt32");
 no_variables!(fmi3GetUInt64, fmi3SetUInt64, u64, "UInt64");
 

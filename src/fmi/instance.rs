@@ -660,10 +660,14 @@ impl Instance {
                 ParamType::Enumeration { .. } => "an Enumeration parameter",
             },
             None => {
-                return Fail::from(format!(
-                    "no {ty} variable with value reference {vr} (not a variable of the {}-driven FMU)",
-                    md::variant_name(self.causality)
-                ))
+                let v = md::variant_name(self.causality);
+                return Fail::from(match variables::by_vr(vr) {
+                    Some(var) => format!(
+                        "`{}` (value reference {vr}) is not a variable of the {v}-driven FMU",
+                        var.name
+                    ),
+                    None => format!("no {ty} variable with value reference {vr}"),
+                });
             }
         };
         Fail::from(format!(
@@ -784,8 +788,8 @@ impl Instance {
                 in_range(&name_of(vr), "input", value)?;
                 // Load-driven, an input set before initialisation ends is a start value of
                 // the ring's static start: the component is rebuilt with it.
-                let initial = self.causality == Causality::Load
-                    && self.mode & (INSTANTIATED | INIT) != 0;
+                let initial =
+                    self.causality == Causality::Load && self.mode & (INSTANTIATED | INIT) != 0;
                 if initial {
                     self.component = None;
                 } else if let Some(c) = &mut self.component {
@@ -879,7 +883,7 @@ impl Instance {
     pub(crate) fn get_output_derivative(&mut self, vr: u32, order: i64) -> Result<f64, Fail> {
         if self.classify(vr) != Some(Var::Output(VarType::Real)) {
             return Err(Fail::from(format!(
-                "`{}` (value reference {vr}) is not a Real / Float64 output",
+                "`{}` (value reference {vr}) is not an output of type Real / Float64",
                 name_of(vr)
             )));
         }
@@ -903,7 +907,7 @@ impl Instance {
         for &u in unknowns {
             if self.classify(u) != Some(Var::Output(VarType::Real)) {
                 return Err(Fail::from(format!(
-                    "unknown `{}` (value reference {u}) is not a Real / Float64 output",
+                    "unknown `{}` (value reference {u}) is not an output of type Real / Float64",
                     name_of(u)
                 )));
             }
@@ -1171,9 +1175,13 @@ impl Snapshot {
         }
         let guid = r.bytes()?;
         if guid != own.as_bytes() {
+            let theirs = String::from_utf8_lossy(guid);
+            let which = md::variant_of(&theirs).map_or("of another build".to_string(), |c| {
+                format!("the {}-driven FMU", md::variant_name(c))
+            });
             return Err(format!(
-                "serialised FMU state: written by FMU `{}`, this instance is `{own}` ({}-driven)",
-                String::from_utf8_lossy(guid),
+                "serialised FMU state: written by FMU `{theirs}` ({which}), this instance is \
+                 `{own}` ({}-driven)",
                 md::variant_name(causality)
             ));
         }

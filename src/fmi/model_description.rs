@@ -377,11 +377,7 @@ fn type_definitions(x: &mut String, fmi3: bool) {
             let _ = writeln!(x, "    <SimpleType name=\"{name}\">\n      <Enumeration>");
         }
         for (k, item) in items.iter().enumerate() {
-            let d = if k == 0 {
-                "as the scene has it"
-            } else {
-                ""
-            };
+            let d = if k == 0 { "as the scene has it" } else { "" };
             let _ = writeln!(
                 x,
                 "      {}<Item name=\"{}\" value=\"{k}\"{}/>",

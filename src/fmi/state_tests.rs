@@ -36,10 +36,16 @@ fn every_single_byte_change_of_fmu_state_bytes_is_refused() {
     for i in 0..bytes.len() {
         let mut bad = bytes.clone();
         bad[i] ^= 0x10;
-        assert!(Snapshot::from_bytes(&bad, Causality::Motion).is_err(), "byte {i}");
+        assert!(
+            Snapshot::from_bytes(&bad, Causality::Motion).is_err(),
+            "byte {i}"
+        );
     }
     for n in 0..bytes.len() {
-        assert!(Snapshot::from_bytes(&bytes[..n], Causality::Motion).is_err(), "{n} bytes");
+        assert!(
+            Snapshot::from_bytes(&bytes[..n], Causality::Motion).is_err(),
+            "{n} bytes"
+        );
     }
 }
 
@@ -88,7 +94,8 @@ fn fmu_state_bytes_restore_in_another_process_bit_for_bit() {
         .collect();
     std::fs::remove_dir_all(&dir).unwrap();
     let mut b = instance();
-    b.restore(&Snapshot::from_bytes(&bytes, Causality::Motion).unwrap()).unwrap();
+    b.restore(&Snapshot::from_bytes(&bytes, Causality::Motion).unwrap())
+        .unwrap();
     let ours = continue_run(&mut b, 3, 4);
     assert_eq!(ours.len(), 20);
     assert_eq!(ours, theirs);

@@ -46,7 +46,14 @@ fn guid_is_a_braced_uuid_and_units_have_base_units() {
     let load_in: Vec<&str> = md::inputs(Causality::Load).map(|v| v.name).collect();
     assert_eq!(
         load_in,
-        ["shaft.omega", "load.x", "load.y", "load.z", "load.mx", "load.my"]
+        [
+            "shaft.omega",
+            "load.x",
+            "load.y",
+            "load.z",
+            "load.mx",
+            "load.my"
+        ]
     );
     assert!(md::outputs(Causality::Load).any(|v| v.name == "shaft.y"));
     assert_ne!(GUID, GUID_LOAD);
@@ -77,7 +84,10 @@ fn counts_are_integers_and_choices_enumerations_in_both_versions() {
         assert!(!x2.contains("start=\"-1\""));
     }
     // the items after `scene` are the scene's spellings
-    assert_eq!(&crate::component::variables::LEVEL_ITEMS[1..], &Level::NAMES);
+    assert_eq!(
+        &crate::component::variables::LEVEL_ITEMS[1..],
+        &Level::NAMES
+    );
     for rule in &crate::component::variables::INPUT_RULE_ITEMS[1..] {
         let r: InputRule =
             serde_json::from_value(serde_json::Value::String(rule.to_string())).unwrap();
@@ -150,7 +160,10 @@ fn parameters_map_onto_the_scene() {
     // an empty string and item 0 (`scene`) are "not set"
     assert!(sc(&values(&[("bearing", s(""))]), None, None).is_ok());
     let (kept, _) = sc(&values(&[("level", ParamValue::Int(0))]), None, None).unwrap();
-    assert_eq!(kept.model.level, crate::component::Scene::default_scene().model.level);
+    assert_eq!(
+        kept.model.level,
+        crate::component::Scene::default_scene().model.level
+    );
     // every level is an item
     for (l, name) in crate::component::Level::ALL
         .iter()
@@ -170,7 +183,12 @@ fn parameters_map_onto_the_scene() {
     .unwrap_err();
     assert!(e.contains("clearance"), "{e}");
     // without override_clearance the clearance parameter changes nothing
-    let (kept, _) = sc(&values(&[("clearance", ParamValue::Real(5e-6))]), None, None).unwrap();
+    let (kept, _) = sc(
+        &values(&[("clearance", ParamValue::Real(5e-6))]),
+        None,
+        None,
+    )
+    .unwrap();
     assert_eq!(kept.bearing, raceway_default_bearing());
     let resource = Ok("bearing = ".to_string());
     let e = sc(&params::unset(), None, Some(&resource)).unwrap_err();
@@ -180,9 +198,14 @@ fn parameters_map_onto_the_scene() {
     let load_scene = "bearing = \"6205\"\n[model]\ncausality = \"load\"\n";
     let e = sc(&values(&[("scene", s(load_scene))]), None, None).unwrap_err();
     assert!(e.contains("load-driven FMU"), "{e}");
-    let (ls, _) =
-        params::scene(&params::unset(), None, None, Causality::Load, &[("load.y", -500.0)])
-            .unwrap();
+    let (ls, _) = params::scene(
+        &params::unset(),
+        None,
+        None,
+        Causality::Load,
+        &[("load.y", -500.0)],
+    )
+    .unwrap();
     assert_eq!(ls.model.causality, Causality::Load);
     assert_eq!(ls.inputs.initial.get("load.y"), Some(&-500.0));
     assert!(!ls.inputs.initial.contains_key("shaft.y"));
@@ -227,7 +250,9 @@ fn fmu_state_bytes_round_trip_and_refuse_damage() {
     let err = Snapshot::from_bytes(&other, M).err().expect("refused");
     assert!(err.contains("this instance is"), "{err}");
     // a motion-driven state is refused by a load-driven instance, in bytes and in memory
-    let err = Snapshot::from_bytes(&bytes, Causality::Load).err().expect("refused");
+    let err = Snapshot::from_bytes(&bytes, Causality::Load)
+        .err()
+        .expect("refused");
     assert!(err.contains("load-driven"), "{err}");
     let mut l = Instance::new(
         2,

@@ -18,9 +18,12 @@ FMU_DIR = pathlib.Path(
     os.environ.get("RACEWAY_FMU_DIR", ROOT / os.environ.get("CARGO_TARGET_DIR", "target") / "fmu")
 )
 VERSIONS = ("fmi2", "fmi3")
+# the load-driven FMUs (loads in, ring motion out): same binary, own model descriptions
+LOAD_VERSIONS = ("load-fmi2", "load-fmi3")
 
 
 def fmu_path(version):
+    """The archive of `version`: fmi2, fmi3 (motion-driven), load-fmi2, load-fmi3."""
     p = FMU_DIR / f"raceway-{version}.fmu"
     if not p.exists():
         pytest.fail(f"{p} is missing: run scripts/build-fmu first")
@@ -31,7 +34,7 @@ def fmu_path(version):
 def unzipped(tmp_path_factory):
     """{version: directory} of the extracted archives."""
     out = {}
-    for v in VERSIONS:
+    for v in VERSIONS + LOAD_VERSIONS:
         d = tmp_path_factory.mktemp(f"raceway-{v}")
         with zipfile.ZipFile(fmu_path(v)) as z:
             z.extractall(d)
@@ -46,12 +49,17 @@ class Host:
     (status, message) of every message the FMU sent."""
 
     def __init__(self, version, unzipdir, guid=None, name="bearing", logging_on=False):
-        self.version = version
+        # "fmi2" / "fmi3" for the FMI calls, whatever the variant
+        self.version = version[-4:]
+        self.variant = version
         self.md = read_model_description(str(unzipdir))
         self.vr = {v.name: v.valueReference for v in self.md.modelVariables}
+        self.types = {v.name: v.type for v in self.md.modelVariables}
+        self.items = {v.name: {i.name: int(i.value) for i in v.declaredType.items}
+                      for v in self.md.modelVariables if v.type == "Enumeration"}
         self.logs = []
         token = guid if guid is not None else self.md.guid
-        cls = FMU2Slave if version == "fmi2" else FMU3Slave
+        cls = FMU2Slave if self.version == "fmi2" else FMU3Slave
         self.fmu = cls(
             guid=token,
             unzipDirectory=str(unzipdir),
@@ -106,10 +114,20 @@ class Host:
 
     # values ----------------------------------------------------------------------------
     def set(self, name, value):
+        """Set by the variable's type; an Enumeration takes its item's name or number."""
         vr = [self.vr[name]]
-        if isinstance(value, str):
+        ty = self.types[name]
+        fmi2 = self.version == "fmi2"
+        if ty == "String":
             self.fmu.setString(vr, [value])
-        elif self.version == "fmi2":
+        elif ty == "Enumeration":
+            k = self.items[name][value] if isinstance(value, str) else int(value)
+            self.fmu.setInteger(vr, [k]) if fmi2 else self.fmu.setInt64(vr, [k])
+        elif ty == "Boolean":
+            self.fmu.setBoolean(vr, [bool(value)])
+        elif ty in ("Integer", "Int32"):
+            self.fmu.setInteger(vr, [int(value)]) if fmi2 else self.fmu.setInt32(vr, [int(value)])
+        elif fmi2:
             self.fmu.setReal(vr, [value])
         else:
             self.fmu.setFloat64(vr, [value])
@@ -119,10 +137,27 @@ class Host:
             self.set(k, v)
 
     def get(self, names):
-        vrs = [self.vr[n] for n in names]
-        if self.version == "fmi2":
-            return self.fmu.getReal(vrs)
-        return self.fmu.getFloat64(vrs)
+        """Values of `names` (Real/Float64 and Integer/Int32 variables), in their order."""
+        fmi2 = self.version == "fmi2"
+        ints = [n for n in names if self.types[n] in ("Integer", "Int32")]
+        reals = [n for n in names if n not in ints]
+        got = {}
+        if reals:
+            vrs = [self.vr[n] for n in reals]
+            got.update(zip(reals, self.fmu.getReal(vrs) if fmi2 else self.fmu.getFloat64(vrs)))
+        if ints:
+            vrs = [self.vr[n] for n in ints]
+            got.update(zip(ints, self.fmu.getInteger(vrs) if fmi2 else self.fmu.getInt32(vrs)))
+        return [got[n] for n in names]
+
+    def get_item(self, name):
+        """The item name an Enumeration parameter holds."""
+        vr = [self.vr[name]]
+        k = (self.fmu.getInteger(vr) if self.version == "fmi2" else self.fmu.getInt64(vr))[0]
+        return next(n for n, v in self.items[name].items() if v == k)
+
+    def get_boolean(self, name):
+        return bool(self.fmu.getBoolean([self.vr[name]])[0])
 
     def time(self):
         if self.version == "fmi2":

@@ -212,10 +212,11 @@ def test_simulate_fmi2_with_input_derivatives_matches_velocity_extrapolation():
     table = motion_table(all_inputs=False)
     common = dict(stop_time=0.02, output_interval=5e-4, input=table,
                   output=["force.x", "force.y"])
-    a = simulate_fmu(str(fmu_path("fmi2")), start_values={"input_rule": "velocity"}, **common)
-    b = simulate_fmu(str(fmu_path("fmi2")), start_values={"input_rule": "derivatives"},
+    # input_rule is an Enumeration: 1 hold, 2 velocity, 3 derivatives
+    a = simulate_fmu(str(fmu_path("fmi2")), start_values={"input_rule": 2}, **common)
+    b = simulate_fmu(str(fmu_path("fmi2")), start_values={"input_rule": 3},
                      set_input_derivatives=True, **common)
-    c = simulate_fmu(str(fmu_path("fmi2")), start_values={"input_rule": "hold"}, **common)
+    c = simulate_fmu(str(fmu_path("fmi2")), start_values={"input_rule": 1}, **common)
     for name in ("force.x", "force.y"):
         assert np.all(np.isfinite(b[name]))
         d_vel = np.sqrt(np.mean((a[name] - b[name]) ** 2))
@@ -258,7 +259,7 @@ s = h.deserialize(open(state_file, "rb").read())
 h.set_state(s)
 rtol = h.get(["rtol"])[0]
 _, out = run_steps(h, t, n, names)
-print(json.dumps({"rtol": rtol, "level": h.get_string("input_rule"), "out": out.tolist()}))
+print(json.dumps({"rtol": rtol, "level": h.get_item("input_rule"), "out": out.tolist()}))
 """
 
 
@@ -512,8 +513,9 @@ def test_bad_values_give_an_error_naming_the_cause(host, version):
         ({"rtol": 5.0}, ["rtol", "5", "[1e-14, 0.1]"]),
         ({"scene": "this is [not a scene"}, ["parameter `scene`", "TOML"]),
         ({"bearing": "no-such-bearing"}, ["parameter `bearing`", "no-such-bearing", "6205"]),
-        ({"level": "quantum"}, ["parameter `level`", "quantum", "quasi_static"]),
-        ({"input_rule": "guess"}, ["parameter `input_rule`", "guess", "velocity"]),
+        ({"level": 9}, ["parameter `level`", "9", "quasi_static"]),
+        ({"input_rule": -1}, ["parameter `input_rule`", "-1", "velocity"]),
+        ({"override_clearance": True, "clearance": 0.5}, ["clearance", "[-0.001, 0.001]"]),
         ({"scene": 'bearing = "6205"\n[model]\ncausality = "load"\n'}, ["motion-driven"]),
     ]
     for values, words in cases:
@@ -532,8 +534,11 @@ def test_bad_values_give_an_error_naming_the_cause(host, version):
 @pytest.mark.parametrize("version", VERSIONS)
 def test_parameters_reach_the_component_and_read_back(host, version):
     h = host(version).init(start_values={**MOTION, "input_rule": "hold", "rtol": 1e-8,
-                                         "bearing": "6205", "clearance": 12e-6})
-    assert h.get_string("input_rule") == "hold"
+                                         "bearing": "6205", "clearance": 12e-6,
+                                         "override_clearance": True})
+    assert h.get_item("input_rule") == "hold"
+    assert h.get_item("level") == "scene"
+    assert h.get_boolean("override_clearance")
     assert h.get_string("bearing") == "6205"
     assert h.get(["rtol", "clearance"]) == [1e-8, 12e-6]
     run_steps(h, 0.0, 2, LOADS)

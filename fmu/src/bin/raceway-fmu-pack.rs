@@ -1,14 +1,18 @@
-//! Stages the two FMUs (the archives are zipped by `scripts/build-fmu`) and regenerates the
-//! variable table of `docs/fmi.md`, all from `raceway::component::variables`.
+//! Stages the four FMUs (motion- and load-driven, FMI 2 and FMI 3; the archives are zipped
+//! by `scripts/build-fmu`) and regenerates the variable table of `docs/fmi.md`, all from
+//! `raceway::component::variables`. The four carry the same binary: the GUID a host
+//! instantiates with tells it which variant it is.
 //!
 //! ```text
 //! raceway-fmu-pack --lib <libraceway_fmu.so> --out <dir> [--scene <scene.toml>]
 //!                  [--update-doc <docs/fmi.md>] [--check-doc <docs/fmi.md>]
 //! ```
 //!
-//! Writes `<dir>/fmi2/` and `<dir>/fmi3/` (modelDescription.xml, binaries/<platform>/
+//! Writes `<dir>/stage/<name>/` for each archive name (`raceway-fmi2`, `raceway-fmi3`,
+//! `raceway-load-fmi2`, `raceway-load-fmi3`: modelDescription.xml, binaries/<platform>/
 //! raceway.so, documentation/index.html, documentation/licenses/license.txt,
-//! resources/scene.toml when `--scene` is given) and `<dir>/variables.md`.
+//! resources/scene.toml when `--scene` is given, in the two archives of the scene's
+//! causality) and `<dir>/variables.md`.
 
 use raceway_core::fmi::model_description as md;
 use std::path::{Path, PathBuf};
@@ -60,32 +64,37 @@ fn run() -> Result<(), String> {
             Some(s) => {
                 let t = std::fs::read_to_string(s).map_err(|e| format!("{}: {e}", s.display()))?;
                 // refuse a broken scene at packing time rather than in the host
-                raceway_core::Component::from_text(&t)
+                let c = raceway_core::Component::from_text(&t)
                     .map_err(|e| format!("{}: {e}", s.display()))?;
-                Some(t)
+                Some((t, c.causality()))
             }
             None => None,
         };
         let (p2, p3, ext) = platforms()?;
         let file = format!("{}.{ext}", md::MODEL_IDENTIFIER);
-        for (dir, xml, platform) in [("fmi2", md::fmi2(), p2), ("fmi3", md::fmi3(), p3)] {
-            let root = out.join(dir);
-            if root.exists() {
-                std::fs::remove_dir_all(&root).map_err(|e| format!("{}: {e}", root.display()))?;
-            }
-            write(&root.join("modelDescription.xml"), xml.as_bytes())?;
-            write(&root.join("binaries").join(platform).join(&file), &so)?;
-            let docs = root.join("documentation");
-            write(
-                &docs.join("index.html"),
-                md::documentation_html().as_bytes(),
-            )?;
-            write(
-                &docs.join("licenses").join("license.txt"),
-                md::license_text().as_bytes(),
-            )?;
-            if let Some(t) = &scene_text {
-                write(&root.join("resources").join("scene.toml"), t.as_bytes())?;
+        let stage = out.join("stage");
+        if stage.exists() {
+            std::fs::remove_dir_all(&stage).map_err(|e| format!("{}: {e}", stage.display()))?;
+        }
+        for c in md::VARIANTS {
+            for (version, xml, platform) in [("fmi2", md::fmi2(c), p2), ("fmi3", md::fmi3(c), p3)] {
+                let name = md::archive_name(c, version);
+                let root = stage.join(name.trim_end_matches(".fmu"));
+                write(&root.join("modelDescription.xml"), xml.as_bytes())?;
+                write(&root.join("binaries").join(platform).join(&file), &so)?;
+                let docs = root.join("documentation");
+                write(
+                    &docs.join("index.html"),
+                    md::documentation_html(c).as_bytes(),
+                )?;
+                write(
+                    &docs.join("licenses").join("license.txt"),
+                    md::license_text().as_bytes(),
+                )?;
+                // the scene goes into the FMUs of its own causality
+                if let Some((t, _)) = scene_text.as_ref().filter(|(_, sc)| *sc == c) {
+                    write(&root.join("resources").join("scene.toml"), t.as_bytes())?;
+                }
             }
         }
     }
