@@ -50,3 +50,16 @@ def _env():
     import os
 
     return dict(os.environ)
+
+
+def test_load_driven_example_comes_to_rest_carrying_the_load():
+    proc = subprocess.run(
+        [sys.executable, "examples/python/load_driven.py", str(fmu_path("load-fmi2"))],
+        cwd=ROOT, capture_output=True, text=True, check=True,
+    )
+    assert "arning" not in proc.stdout + proc.stderr, proc.stdout + proc.stderr
+    m = re.search(r"sag (\S+) µm, bearing force (\S+) N, K.y.y (\S+) N/µm, (\d+) balls",
+                  proc.stdout)
+    sag, force, k, balls = float(m[1]), float(m[2]), float(m[3]), int(m[4])
+    # through the radial play (5 µm) into the contacts, the load carried, a few balls loaded
+    assert sag < -5.0 and abs(force - 1000.0) < 1.0 and k > 0.0 and 1 < balls < 9
