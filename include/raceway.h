@@ -168,7 +168,7 @@
 #define RACEWAY_VR_CAGE_SLIP 108
 
 /*
- `balls.loaded` (1): number of balls in contact.
+ `balls.loaded` (integer; `raceway_get_integer`, or exact in `raceway_get_real`): number of balls in contact.
  */
 #define RACEWAY_VR_BALLS_LOADED 109
 
@@ -238,7 +238,7 @@
 #define RACEWAY_VR_LIFE_L10 122
 
 /*
- `warnings.active` (1): number of active warnings: peak contact pressure beyond ISO 76's limit, fewer than two loaded balls.
+ `warnings.active` (integer; `raceway_get_integer`, or exact in `raceway_get_real`): number of active warnings: peak contact pressure beyond ISO 76's limit, fewer than two loaded balls.
  */
 #define RACEWAY_VR_WARNINGS_ACTIVE 123
 
@@ -538,6 +538,21 @@ typedef enum {
 } RacewayStatus;
 
 /*
+ The type of a variable's value (see [`raceway_variable_type`]).
+ */
+typedef enum {
+  /*
+   A real number: [`raceway_get_real`].
+   */
+  RACEWAY_TYPE_REAL = 0,
+  /*
+   A count (`int32_t`): [`raceway_get_integer`]; [`raceway_get_real`] gives it too, as
+   an exact `double`.
+   */
+  RACEWAY_TYPE_INTEGER = 1,
+} RacewayType;
+
+/*
  An opaque bearing instance (from [`raceway_create`], freed by [`raceway_free`]). The
  pointer is a handle, not an address: never dereference it.
  */
@@ -627,6 +642,15 @@ const char *raceway_variable_unit(uint32_t vr);
  The one-line description of variable `vr` (static), or NULL when unknown.
  */
 const char *raceway_variable_description(uint32_t vr);
+
+/*
+ The type of variable `vr` into `*ty`; `RACEWAY_STATUS_INVALID_ARGUMENT` when `vr` is
+ not in the table.
+
+ # Safety
+ `ty` is NULL or valid for a write.
+ */
+RacewayStatus raceway_variable_type(uint32_t vr, RacewayType *ty);
 
 /*
  Create an instance from scene text (TOML or JSON, NUL-terminated UTF-8). Returns NULL
@@ -720,6 +744,15 @@ RacewayStatus raceway_do_step(RacewayComponent *c, double t, double h);
  `c` is NULL or a live instance; `value` is NULL or valid for a write.
  */
 RacewayStatus raceway_get_real(RacewayComponent *c, uint32_t vr, double *value);
+
+/*
+ Get one Integer output (a count, e.g. `RACEWAY_VR_BALLS_LOADED`) into `*value`.
+ Refused with `RACEWAY_STATUS_INVALID_ARGUMENT` for a variable of another type.
+
+ # Safety
+ `c` is NULL or a live instance; `value` is NULL or valid for a write.
+ */
+RacewayStatus raceway_get_integer(RacewayComponent *c, uint32_t vr, int32_t *value);
 
 /*
  Get `n` inputs or outputs: `values[i]` from `vrs[i]`. All or nothing: `values` is

@@ -729,3 +729,45 @@ fn state_bytes_restore_in_another_process_bit_for_bit() {
     assert_eq!(ours.len(), 5 * OUTPUTS.len());
     assert_eq!(ours, theirs);
 }
+
+/// Counts are Integer variables: `raceway_variable_type` says so, `raceway_get_integer`
+/// gives exactly what `raceway_get_real` gives, and refuses a Real variable by name.
+#[test]
+fn counts_read_as_integers_and_reals_are_refused_there() {
+    let mut ty = RacewayType::Real;
+    assert_eq!(
+        unsafe { raceway_variable_type(RACEWAY_VR_BALLS_LOADED, &mut ty) },
+        RacewayStatus::Ok
+    );
+    assert_eq!(ty, RacewayType::Integer);
+    assert_eq!(
+        unsafe { raceway_variable_type(RACEWAY_VR_FORCE_Y, &mut ty) },
+        RacewayStatus::Ok
+    );
+    assert_eq!(ty, RacewayType::Real);
+    assert_eq!(
+        unsafe { raceway_variable_type(99_999, &mut ty) },
+        RacewayStatus::InvalidArgument
+    );
+    let c = create();
+    c.set_motion(0, 0.0);
+    let mut n = -1i32;
+    assert_eq!(
+        unsafe { raceway_get_integer(c.0, RACEWAY_VR_BALLS_LOADED, &mut n) },
+        RacewayStatus::Ok
+    );
+    // the default scene's shaft is pushed down: some but not all of the 9 balls carry it
+    assert!((1..9).contains(&n), "{n}");
+    assert_eq!(n as f64, c.get(RACEWAY_VR_BALLS_LOADED));
+    let mut w = -1i32;
+    assert_eq!(
+        unsafe { raceway_get_integer(c.0, RACEWAY_VR_WARNINGS_ACTIVE, &mut w) },
+        RacewayStatus::Ok
+    );
+    assert_eq!(w as f64, c.get(RACEWAY_VR_WARNINGS_ACTIVE));
+    assert_eq!(
+        unsafe { raceway_get_integer(c.0, RACEWAY_VR_FORCE_Y, &mut n) },
+        RacewayStatus::InvalidArgument
+    );
+    assert!(c.msg().contains("an Integer output"), "{}", c.msg());
+}

@@ -68,10 +68,16 @@ fn vr_source() -> String {
         "/// Number of variables in the table.\npub const RACEWAY_VARIABLE_COUNT: usize = {n};\n"
     );
     for v in variables::all() {
+        let kind = match v.ty {
+            variables::VarType::Real => v.unit.to_string(),
+            variables::VarType::Integer => {
+                "integer; `raceway_get_integer`, or exact in `raceway_get_real`".to_string()
+            }
+        };
         s += &format!(
             "\n/// `{}` ({}): {}.\npub const {}: u32 = {};\n",
             v.name,
-            v.unit,
+            kind,
             v.description,
             c_constant_name(v.name),
             v.vr

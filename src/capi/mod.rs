@@ -62,6 +62,17 @@ pub enum RacewayStatus {
     InvalidHandle = 8,
 }
 
+/// The type of a variable's value (see [`raceway_variable_type`]).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum RacewayType {
+    /// A real number: [`raceway_get_real`].
+    Real = 0,
+    /// A count (`int32_t`): [`raceway_get_integer`]; [`raceway_get_real`] gives it too, as
+    /// an exact `double`.
+    Integer = 1,
+}
+
 /// Cost counters of the internal integration (see [`raceway_get_stats`]).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -449,6 +460,29 @@ pub extern "C" fn raceway_variable_description(vr: u32) -> *const c_char {
     })
 }
 
+/// The type of variable `vr` into `*ty`; `RACEWAY_STATUS_INVALID_ARGUMENT` when `vr` is
+/// not in the table.
+///
+/// # Safety
+/// `ty` is NULL or valid for a write.
+#[no_mangle]
+pub unsafe extern "C" fn raceway_variable_type(vr: u32, ty: *mut RacewayType) -> RacewayStatus {
+    guarded(RacewayStatus::Panic, || {
+        let Some(v) = variables::by_vr(vr) else {
+            return RacewayStatus::InvalidArgument;
+        };
+        let t = match v.ty {
+            variables::VarType::Real => RacewayType::Real,
+            variables::VarType::Integer => RacewayType::Integer,
+        };
+        // SAFETY: promised by the caller.
+        match unsafe { put(ty, "ty", t) } {
+            Ok(()) => RacewayStatus::Ok,
+            Err(f) => f.status,
+        }
+    })
+}
+
 // ---------------------------------------------------------------------------------------
 // Instances
 
@@ -654,6 +688,38 @@ pub unsafe extern "C" fn raceway_get_real(
             }
             let v = comp.get_real(vr)?;
             put(value, "value", v)
+        })
+    }
+}
+
+/// Get one Integer output (a count, e.g. `RACEWAY_VR_BALLS_LOADED`) into `*value`.
+/// Refused with `RACEWAY_STATUS_INVALID_ARGUMENT` for a variable of another type.
+///
+/// # Safety
+/// `c` is NULL or a live instance; `value` is NULL or valid for a write.
+#[no_mangle]
+pub unsafe extern "C" fn raceway_get_integer(
+    c: *mut RacewayComponent,
+    vr: u32,
+    value: *mut i32,
+) -> RacewayStatus {
+    // SAFETY: promised by the caller.
+    unsafe {
+        with_instance(c, "raceway_get_integer", |comp| {
+            if value.is_null() {
+                return Err(Failure::null("value"));
+            }
+            match variables::by_vr(vr) {
+                Some(v) if v.ty == variables::VarType::Integer => {}
+                _ => return Err(Error::invalid("value reference", vr, "an Integer output").into()),
+            }
+            let x = comp.get_real(vr)?;
+            // counts: exact small integers in the component's f64 outputs
+            put(
+                value,
+                "value",
+                x.round().clamp(i32::MIN as f64, i32::MAX as f64) as i32,
+            )
         })
     }
 }

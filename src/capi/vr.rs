@@ -79,7 +79,7 @@ pub const RACEWAY_VR_CAGE_OMEGA: u32 = 107;
 /// `cage.slip` (1): cage slip ratio 1 - omega_c/omega_c,kinematic.
 pub const RACEWAY_VR_CAGE_SLIP: u32 = 108;
 
-/// `balls.loaded` (1): number of balls in contact.
+/// `balls.loaded` (integer; `raceway_get_integer`, or exact in `raceway_get_real`): number of balls in contact.
 pub const RACEWAY_VR_BALLS_LOADED: u32 = 109;
 
 /// `contact.max_load` (N): load of the most loaded contact.
@@ -121,7 +121,7 @@ pub const RACEWAY_VR_SAFETY_S0: u32 = 121;
 /// `life.L10` (1): basic rating life (C/P)^3 (ISO 281) of the bearing force, in millions of revolutions; 1e12 when unloaded, 0 where ISO 281 does not cover the bearing.
 pub const RACEWAY_VR_LIFE_L10: u32 = 122;
 
-/// `warnings.active` (1): number of active warnings: peak contact pressure beyond ISO 76's limit, fewer than two loaded balls.
+/// `warnings.active` (integer; `raceway_get_integer`, or exact in `raceway_get_real`): number of active warnings: peak contact pressure beyond ISO 76's limit, fewer than two loaded balls.
 pub const RACEWAY_VR_WARNINGS_ACTIVE: u32 = 123;
 
 /// `K.x.x` (N/m): stiffness -dF_i/dq_j.
