@@ -35,6 +35,8 @@ pub mod wear_cycles;
 
 #[cfg(feature = "capi")]
 pub mod capi;
+#[cfg(any(feature = "capi", feature = "fmi"))]
+mod ffi;
 #[cfg(feature = "fmi")]
 pub mod fmi;
 

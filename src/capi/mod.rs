@@ -26,12 +26,12 @@
 
 use crate::component::{variables, Component, State};
 use crate::error::Error;
-use handles::{Refusal, Registry};
+use crate::ffi::handles::{self, Refusal, Registry};
+use crate::ffi::{c_string, guarded, panic_text, ArgError, Caught};
 use std::ffi::{c_char, CStr, CString};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::OnceLock;
 
-mod handles;
 mod vr;
 pub use vr::*;
 
@@ -191,22 +191,6 @@ fn bad_vr(i: usize, vr: u32, e: Error) -> Failure {
     Failure::new(f.status, format!("vrs[{i}] = {vr}: {}", f.message))
 }
 
-/// A C string from a Rust one (interior NULs, impossible in our messages, become `?`).
-fn c_string(s: &str) -> CString {
-    CString::new(s.replace('\0', "?")).unwrap_or_default()
-}
-
-/// The text of a panic payload.
-fn panic_text(payload: &(dyn std::any::Any + Send)) -> String {
-    if let Some(s) = payload.downcast_ref::<&str>() {
-        (*s).to_string()
-    } else if let Some(s) = payload.downcast_ref::<String>() {
-        s.clone()
-    } else {
-        "unknown panic".into()
-    }
-}
-
 /// Run `f` on the instance behind handle `c`: refuse NULL, unknown, busy and poisoned
 /// instances, clear the last error (without allocating when it is clear already), store
 /// the new one, catch panics.
@@ -225,78 +209,54 @@ fn with_instance(
         };
         let inst = lease.get();
         if inst.poisoned {
-            inst.last_error = c_string(&format!(
-                "{call}: refused: the instance was poisoned by an earlier internal error; free it"
-            ));
+            inst.last_error = c_string(&format!("{call}: {}", Caught::Poisoned));
             return RacewayStatus::Panic;
         }
         if !inst.last_error.is_empty() {
             inst.last_error = CString::default();
         }
         let component = &mut inst.component;
-        match catch_unwind(AssertUnwindSafe(|| f(component))) {
+        match crate::ffi::catch(&mut inst.poisoned, || f(component)) {
             Ok(Ok(())) => RacewayStatus::Ok,
             Ok(Err(fail)) => {
                 inst.last_error = c_string(&format!("{call}: {}", fail.message));
                 fail.status
             }
-            Err(payload) => {
-                inst.poisoned = true;
-                inst.last_error = c_string(&format!(
-                    "{call}: internal error (panic: {}); the instance is poisoned, free it",
-                    panic_text(payload.as_ref())
-                ));
+            Err(caught) => {
+                inst.last_error = c_string(&format!("{call}: {caught}"));
                 RacewayStatus::Panic
             }
         }
     })
 }
 
-/// Run `f` with no instance (catching panics).
-fn guarded<T>(on_panic: T, f: impl FnOnce() -> T) -> T {
-    catch_unwind(AssertUnwindSafe(f)).unwrap_or(on_panic)
+impl From<ArgError> for Failure {
+    fn from(e: ArgError) -> Failure {
+        let status = match e {
+            ArgError::Null { .. } => RacewayStatus::NullPointer,
+            ArgError::TooLong { .. } => RacewayStatus::InvalidArgument,
+        };
+        Failure::new(status, e.to_string())
+    }
 }
 
-/// A slice from a C pointer and a count (NULL allowed when `n == 0`).
+/// A slice from a C pointer and a count (NULL allowed when `n == 0`): [`crate::ffi::slice`]
+/// with the C statuses.
 ///
 /// # Safety
 /// `p` points to `n` valid values (or `n == 0`).
 unsafe fn slice<'a, T>(p: *const T, n: usize, name: &str) -> Result<&'a [T], Failure> {
-    if n == 0 {
-        return Ok(&[]);
-    }
-    if p.is_null() {
-        return Err(Failure::null(name));
-    }
-    if n > isize::MAX as usize / std::mem::size_of::<T>().max(1) {
-        return Err(Failure::new(
-            RacewayStatus::InvalidArgument,
-            format!("invalid `n` = {n}: allowed a length that fits in memory"),
-        ));
-    }
-    // SAFETY: non-NULL, length checked against isize::MAX, validity promised by the caller.
-    Ok(unsafe { std::slice::from_raw_parts(p, n) })
+    // SAFETY: promised by the caller.
+    Ok(unsafe { crate::ffi::slice(p, n, name) }?)
 }
 
-/// A mutable slice from a C pointer and a count (NULL allowed when `n == 0`).
+/// A mutable slice from a C pointer and a count; see [`slice`].
 ///
 /// # Safety
 /// `p` points to `n` writable values (or `n == 0`).
 unsafe fn slice_mut<'a, T>(p: *mut T, n: usize, name: &str) -> Result<&'a mut [T], Failure> {
-    if n == 0 {
-        return Ok(&mut []);
-    }
-    if p.is_null() {
-        return Err(Failure::null(name));
-    }
-    if n > isize::MAX as usize / std::mem::size_of::<T>().max(1) {
-        return Err(Failure::new(
-            RacewayStatus::InvalidArgument,
-            format!("invalid `n` = {n}: allowed a length that fits in memory"),
-        ));
-    }
-    // SAFETY: as in `slice`.
-    Ok(unsafe { std::slice::from_raw_parts_mut(p, n) })
+    // SAFETY: promised by the caller.
+    Ok(unsafe { crate::ffi::slice_mut(p, n, name) }?)
 }
 
 /// Write through an out-pointer, refusing NULL.

@@ -395,8 +395,7 @@ pub unsafe extern "C" fn fmi2GetFMUstate(c: Fmi2Component, state: *mut Fmi2FmuSt
 #[no_mangle]
 pub unsafe extern "C" fn fmi2SetFMUstate(c: Fmi2Component, state: Fmi2FmuState) -> Status {
     guard(c, "fmi2SetFMUstate", ANY, |inst| {
-        let s = Instance::snapshot_ref(state)?;
-        inst.restore(s)?;
+        inst.restore(Instance::snapshot_lease(state)?.get())?;
         Ok(Status::Ok)
     })
 }
@@ -427,8 +426,8 @@ pub unsafe extern "C" fn fmi2SerializedFMUstateSize(
     size: *mut usize,
 ) -> Status {
     guard(c, "fmi2SerializedFMUstateSize", ANY, |_| {
-        let s = Instance::snapshot_ref(state)?;
-        *slice_mut(size, 1, "size")?.first_mut().expect("one") = s.to_bytes().len();
+        let n = Instance::snapshot_lease(state)?.get().to_bytes().len();
+        *slice_mut(size, 1, "size")?.first_mut().expect("one") = n;
         Ok(Status::Ok)
     })
 }

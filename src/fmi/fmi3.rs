@@ -670,7 +670,7 @@ pub unsafe extern "C" fn fmi3GetFMUState(
 #[no_mangle]
 pub unsafe extern "C" fn fmi3SetFMUState(instance: Fmi3Instance, state: Fmi3FmuState) -> Status {
     guard(instance, "fmi3SetFMUState", SETTABLE, |inst| {
-        inst.restore(Instance::snapshot_ref(state)?)?;
+        inst.restore(Instance::snapshot_lease(state)?.get())?;
         Ok(Status::Ok)
     })
 }
@@ -704,8 +704,8 @@ pub unsafe extern "C" fn fmi3SerializedFMUStateSize(
     size: *mut usize,
 ) -> Status {
     guard(instance, "fmi3SerializedFMUStateSize", ANY, |_| {
-        let s = Instance::snapshot_ref(state)?;
-        slice_mut(size, 1, "size")?[0] = s.to_bytes().len();
+        let n = Instance::snapshot_lease(state)?.get().to_bytes().len();
+        slice_mut(size, 1, "size")?[0] = n;
         Ok(Status::Ok)
     })
 }

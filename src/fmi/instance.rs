@@ -12,8 +12,9 @@ use super::model_description::{self as md, VR_TIME};
 use super::params::{self, ParamValue, ParamValues};
 use crate::component::variables::{self, Causality, ParamType, VarType, PARAMETERS};
 use crate::component::{Component, State};
+use crate::ffi::handles::{Lease, Refusal, Registry};
+use crate::ffi::{ArgError, Caught};
 use std::ffi::{c_char, c_void, CStr, CString};
-use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::{Path, PathBuf};
 
 /// `fmi2Status` / `fmi3Status` (the same values; `fmi2Pending` is never returned).
@@ -70,9 +71,7 @@ pub(crate) enum Logger {
     Fmi3(Option<Fmi3Logger>, *mut c_void),
 }
 
-fn cstring(s: &str) -> CString {
-    CString::new(s.replace('\0', " ")).unwrap_or_default()
-}
+use crate::ffi::c_string as cstring;
 
 fn category(status: Status) -> &'static str {
     match status {
@@ -186,7 +185,6 @@ fn name_of(vr: u32) -> String {
     variables::by_vr(vr).map_or(format!("#{vr}"), |v| v.name.to_string())
 }
 
-const TAG: u64 = 0x5241_4345_5741_5931; // "RACEWAY1"
 const SNAP_TAG: u64 = 0x5241_4345_5741_5953; // "RACEWAYS"
 
 /// Everything that defines an instance's behaviour from now on.
@@ -208,8 +206,10 @@ pub(crate) struct Snapshot {
 
 /// One FMU instance (FMI 2 or FMI 3).
 pub(crate) struct Instance {
-    tag: u64,
     pub version: u8,
+    /// An internal error (a caught panic) happened: every later call but the free is
+    /// refused, because the state may be half-updated.
+    poisoned: bool,
     /// The variant (the GUID the host instantiated with decides).
     pub causality: Causality,
     pub name: CString,
@@ -281,32 +281,21 @@ pub(crate) fn read_resource_scene(dir: Option<&Path>) -> Option<Result<String, S
     }
 }
 
-/// A C string argument, copied; `None` when NULL or not UTF-8.
-///
-/// # Safety
-/// `p` is NULL or a NUL-terminated string.
-pub(crate) unsafe fn str_arg(p: *const c_char) -> Option<String> {
-    if p.is_null() {
-        None
-    } else {
-        CStr::from_ptr(p).to_str().ok().map(str::to_string)
+pub(crate) use crate::ffi::str_arg;
+
+impl From<ArgError> for Fail {
+    fn from(e: ArgError) -> Fail {
+        Fail::from(e.to_string())
     }
 }
 
-/// A slice argument; `n == 0` gives an empty slice whatever the pointer.
+/// A slice argument ([`crate::ffi::slice`]); `n == 0` gives an empty slice whatever the
+/// pointer.
 ///
 /// # Safety
 /// `p` points to `n` values (or is NULL).
 pub(crate) unsafe fn slice<'a, T>(p: *const T, n: usize, what: &str) -> Result<&'a [T], Fail> {
-    if n == 0 {
-        Ok(&[])
-    } else if p.is_null() {
-        Err(Fail::from(format!(
-            "`{what}` is NULL but {n} values were announced"
-        )))
-    } else {
-        Ok(std::slice::from_raw_parts(p, n))
-    }
+    Ok(crate::ffi::slice(p, n, what)?)
 }
 
 /// A mutable slice argument; see [`slice`].
@@ -318,16 +307,20 @@ pub(crate) unsafe fn slice_mut<'a, T>(
     n: usize,
     what: &str,
 ) -> Result<&'a mut [T], Fail> {
-    if n == 0 {
-        Ok(&mut [])
-    } else if p.is_null() {
-        Err(Fail::from(format!(
-            "`{what}` is NULL but {n} values were announced"
-        )))
-    } else {
-        Ok(std::slice::from_raw_parts_mut(p, n))
-    }
+    Ok(crate::ffi::slice_mut(p, n, what)?)
 }
+
+/// Live FMU instances and FMU states: the pointers a host holds are registry handles
+/// (`crate::ffi::handles`), never addresses, so a freed or made-up pointer is refused and
+/// never dereferenced. Instance handles are `0x300004 + 16 k`, state handles
+/// `0x400000 + 16 k + 12`: neither kind ever equals the other or a C ABI handle.
+static INSTANCES: Registry<Instance> = Registry::new(0x30_0004);
+static STATES: Registry<Snapshot> = Registry::new(0x40_000c);
+
+// SAFETY: the only non-Send members are the host's logger environment pointer and
+// callbacks, which FMI lets an instance use from whichever thread calls it; the registry
+// lets one call at a time use an instance.
+unsafe impl Send for Instance {}
 
 /// Run `body` on the instance behind `ptr` if `mask` allows the current state; log and map
 /// failures and panics.
@@ -340,50 +333,43 @@ pub(crate) unsafe fn guard(
     mask: u32,
     body: impl FnOnce(&mut Instance) -> Outcome,
 ) -> Status {
-    let Some(inst) = instance(ptr) else {
-        return Status::Error;
-    };
-    if inst.mode & mask == 0 {
-        let msg = format!(
-            "{func}: Illegal call sequence: not allowed in state {}",
-            mode_name(inst.mode, inst.version)
-        );
-        inst.fail(Status::Error, &msg);
-        return Status::Error;
-    }
-    match catch_unwind(AssertUnwindSafe(|| body(&mut *inst))) {
-        Ok(Ok(s)) => s,
-        Ok(Err(f)) => {
-            inst.fail(f.status, &format!("{func}: {}", f.msg));
-            f.status
+    no_panic(Status::Error, || {
+        // NULL, freed, made-up or busy (another thread inside a call on it): refused
+        let Ok(mut lease) = INSTANCES.acquire(ptr as usize) else {
+            return Status::Error;
+        };
+        let inst = lease.get();
+        if inst.poisoned {
+            inst.log(Status::Error, &format!("{func}: {}", Caught::Poisoned));
+            return Status::Error;
         }
-        Err(panic) => {
-            let what = panic
-                .downcast_ref::<&str>()
-                .map(|s| s.to_string())
-                .or_else(|| panic.downcast_ref::<String>().cloned())
-                .unwrap_or_default();
-            inst.fail(Status::Error, &format!("{func}: internal error: {what}"));
-            Status::Error
+        if inst.mode & mask == 0 {
+            let msg = format!(
+                "{func}: Illegal call sequence: not allowed in state {}",
+                mode_name(inst.mode, inst.version)
+            );
+            inst.fail(Status::Error, &msg);
+            return Status::Error;
         }
-    }
-}
-
-/// The instance behind a host pointer (NULL and foreign pointers give `None`).
-///
-/// # Safety
-/// As [`guard`].
-pub(crate) unsafe fn instance<'a>(ptr: *mut c_void) -> Option<&'a mut Instance> {
-    if ptr.is_null() || (ptr as usize) % std::mem::align_of::<Instance>() != 0 {
-        return None;
-    }
-    let inst = &mut *(ptr as *mut Instance);
-    (inst.tag == TAG).then_some(inst)
+        let mut poisoned = false;
+        match crate::ffi::catch(&mut poisoned, || body(&mut *inst)) {
+            Ok(Ok(s)) => s,
+            Ok(Err(f)) => {
+                inst.fail(f.status, &format!("{func}: {}", f.msg));
+                f.status
+            }
+            Err(caught) => {
+                inst.poisoned = poisoned;
+                inst.fail(Status::Error, &format!("{func}: {caught}"));
+                Status::Error
+            }
+        }
+    })
 }
 
 /// Run `f` catching panics; `default` on panic.
 pub(crate) fn no_panic<T>(default: T, f: impl FnOnce() -> T) -> T {
-    catch_unwind(AssertUnwindSafe(f)).unwrap_or(default)
+    crate::ffi::guarded(default, f)
 }
 
 /// The GUID check of both instantiate functions: the variant the GUID names.
@@ -418,8 +404,8 @@ impl Instance {
         resource_dir: Option<&Path>,
     ) -> Instance {
         let inst = Instance {
-            tag: TAG,
             version,
+            poisoned: false,
             causality,
             name: cstring(name),
             logger,
@@ -451,19 +437,16 @@ impl Instance {
         inst
     }
 
-    /// Into a raw pointer for the host.
+    /// Into a handle for the host.
     pub(crate) fn into_raw(self) -> *mut c_void {
-        Box::into_raw(Box::new(self)) as *mut c_void
+        INSTANCES.insert(Box::new(self)) as *mut c_void
     }
 
-    /// Free an instance given back by the host.
-    ///
-    /// # Safety
-    /// As [`guard`]; the pointer is not used again.
-    pub(crate) unsafe fn free(ptr: *mut c_void) {
-        if let Some(inst) = instance(ptr) {
-            inst.tag = 0;
-            drop(Box::from_raw(inst as *mut Instance));
+    /// Free an instance given back by the host (NULL, unknown and busy handles are left
+    /// alone).
+    pub(crate) fn free(ptr: *mut c_void) {
+        if let Ok(inst) = INSTANCES.remove(ptr as usize) {
+            drop(inst);
         }
     }
 
@@ -1060,19 +1043,19 @@ impl Instance {
         Ok(())
     }
 
-    /// A snapshot given back by the host.
-    ///
-    /// # Safety
-    /// `p` is NULL or a pointer returned by [`Snapshot::into_raw`] and not yet freed.
-    pub(crate) unsafe fn snapshot_ref<'a>(p: *mut c_void) -> Result<&'a mut Snapshot, Fail> {
-        if p.is_null() || (p as usize) % std::mem::align_of::<Snapshot>() != 0 {
+    /// The FMU state behind a host handle, for this call.
+    pub(crate) fn snapshot_lease<'a>(p: *mut c_void) -> Result<Lease<'a, Snapshot>, Fail> {
+        if p.is_null() {
             return Err(Fail::from("the FMU state is NULL".to_string()));
         }
-        let s = &mut *(p as *mut Snapshot);
-        if s.tag != SNAP_TAG {
-            return Err(Fail::from("not an FMU state of this FMU".to_string()));
-        }
-        Ok(s)
+        STATES.acquire(p as usize).map_err(|r| {
+            Fail::from(match r {
+                Refusal::Unknown => {
+                    "not a live FMU state of this FMU (freed already, or never created)".to_string()
+                }
+                Refusal::Busy => "the FMU state is in use by another call right now".to_string(),
+            })
+        })
     }
 }
 
@@ -1082,16 +1065,15 @@ const STATE_MAGIC: &[u8; 4] = b"RWFU";
 const STATE_FORMAT: u32 = 3;
 
 impl Snapshot {
+    /// Into a handle for the host.
     pub(crate) fn into_raw(self) -> *mut c_void {
-        Box::into_raw(Box::new(self)) as *mut c_void
+        STATES.insert(Box::new(self)) as *mut c_void
     }
 
-    /// # Safety
-    /// As [`Instance::snapshot_ref`]; the pointer is not used again.
-    pub(crate) unsafe fn free(p: *mut c_void) {
-        if let Ok(s) = Instance::snapshot_ref(p) {
-            s.tag = 0;
-            drop(Box::from_raw(s as *mut Snapshot));
+    /// Free a state given back by the host (NULL, unknown and busy handles are left alone).
+    pub(crate) fn free(p: *mut c_void) {
+        if let Ok(s) = STATES.remove(p as usize) {
+            drop(s);
         }
     }
 
@@ -1364,8 +1346,8 @@ impl<'a> Reader<'a> {
 /// `GetFMUstate`: a new state in `*state`, or `*state` overwritten when it is not NULL.
 ///
 /// # Safety
-/// `state` is NULL or valid for a read and a write; `*state` is NULL or an FMU state of
-/// this library not yet freed.
+/// `state` is NULL or valid for a read and a write (`*state` is compared with the live
+/// FMU states only).
 pub(crate) unsafe fn get_state(
     inst: &mut Instance,
     state: *mut *mut c_void,
@@ -1377,7 +1359,7 @@ pub(crate) unsafe fn get_state(
     if (*state).is_null() {
         *state = snap.into_raw();
     } else {
-        *Instance::snapshot_ref(*state)? = snap;
+        *Instance::snapshot_lease(*state)?.get() = snap;
     }
     Ok(Status::Ok)
 }
@@ -1385,13 +1367,13 @@ pub(crate) unsafe fn get_state(
 /// `SerializeFMUstate`: `size` must be what `SerializedFMUstateSize` gave.
 ///
 /// # Safety
-/// `state` as [`Instance::snapshot_ref`]; `bytes` is NULL or valid for `size` bytes.
+/// `bytes` is NULL or valid for `size` bytes.
 pub(crate) unsafe fn serialize(
     state: *mut c_void,
     bytes: *mut u8,
     size: usize,
 ) -> Result<Status, Fail> {
-    let b = Instance::snapshot_ref(state)?.to_bytes();
+    let b = Instance::snapshot_lease(state)?.get().to_bytes();
     if size != b.len() {
         return Err(Fail::from(format!(
             "buffer of {size} bytes, the serialised state has {} (ask SerializedFMUstateSize)",
@@ -1419,7 +1401,7 @@ pub(crate) unsafe fn deserialize(
     if (*state).is_null() {
         *state = snap.into_raw();
     } else {
-        *Instance::snapshot_ref(*state)? = snap;
+        *Instance::snapshot_lease(*state)?.get() = snap;
     }
     Ok(Status::Ok)
 }

@@ -340,3 +340,27 @@ fn directional_derivatives_are_finite_or_refused_for_any_finite_seed() {
         .unwrap();
     assert_eq!(out[0], 0.0);
 }
+
+/// A panic inside a call poisons that instance only: every later call on it is refused
+/// (its state may be half-updated), another instance goes on; a freed or made-up handle
+/// is refused, never dereferenced.
+#[test]
+fn a_panic_poisons_its_instance_and_freed_handles_are_refused() {
+    use super::instance::{guard, ANY};
+    let a = instance().into_raw();
+    let b = instance().into_raw();
+    let ok = |_: &mut Instance| Ok(Status::Ok);
+    assert_eq!(unsafe { guard(a, "t", ANY, ok) }, Status::Ok);
+    let boom = |_: &mut Instance| -> super::instance::Outcome { panic!("boom") };
+    assert_eq!(unsafe { guard(a, "t", ANY, boom) }, Status::Error);
+    assert_eq!(unsafe { guard(a, "t", ANY, ok) }, Status::Error);
+    assert_eq!(unsafe { guard(b, "t", ANY, ok) }, Status::Ok);
+    Instance::free(a);
+    Instance::free(a); // a second free is ignored
+    assert_eq!(unsafe { guard(a, "t", ANY, ok) }, Status::Error);
+    assert_eq!(
+        unsafe { guard(0x1234_5670 as *mut std::ffi::c_void, "t", ANY, ok) },
+        Status::Error
+    );
+    Instance::free(b);
+}
