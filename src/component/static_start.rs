@@ -69,94 +69,129 @@ fn newton_static(
     q: &mut [f64; 5],
     scale: f64,
 ) -> Result<f64> {
+    let mut sys = StaticSystem {
+        level,
+        dofs,
+        loads,
+        omega,
+        lever,
+        x,
+        aux,
+        tol: 1e-9 * scale,
+        out: LevelOutputs::default(),
+        now: ([0.0; 5], [[0.0; 5]; 5]),
+        next: ([0.0; 5], [[0.0; 5]; 5]),
+        fresh: false,
+    };
     // Scaled coordinates: translations in m, tilts times the lever.
-    let w = |d: usize| if d < 3 { 1.0 } else { lever };
-    let mut out = LevelOutputs::default();
-    let resid = |q: &[f64; 5],
-                 out: &mut LevelOutputs,
-                 level: &mut dyn LevelModel,
-                 aux: &mut [f64]|
-     -> Result<f64> {
+    let opts = crate::solver::newton::Options {
+        max_iterations: 100,
+        max_halvings: 40,
+        armijo: 0.0,
+        scale: [1.0, 1.0, 1.0, lever, lever],
+        dead_zone_bisections: 60,
+        ..Default::default()
+    };
+    Ok(crate::solver::newton::solve(&mut sys, q, &opts)?.check.norm)
+}
+
+/// `F(q) + loads = 0` over the level's ring coordinates `dofs` as
+/// [`crate::solver::newton::solve`] drives it (the other coordinates stay put): residual in
+/// forces and moments over the lever, Jacobian the level's stiffness, regularised.
+struct StaticSystem<'a> {
+    level: &'a mut dyn LevelModel,
+    dofs: &'a [usize],
+    loads: &'a [f64; 5],
+    omega: f64,
+    lever: f64,
+    x: &'a [f64],
+    aux: &'a mut [f64],
+    tol: f64,
+    out: LevelOutputs,
+    /// `(wrench, K)` at the current point and at the last trial.
+    now: ([f64; 5], [[f64; 5]; 5]),
+    next: ([f64; 5], [[f64; 5]; 5]),
+    /// `now` is the accepted trial's.
+    fresh: bool,
+}
+
+impl StaticSystem<'_> {
+    fn w(&self, d: usize) -> f64 {
+        if d < 3 {
+            1.0
+        } else {
+            self.lever
+        }
+    }
+
+    fn eval(&mut self, q: &[f64; 5]) -> Result<([f64; 5], [[f64; 5]; 5])> {
         let m = Motion {
             q: *q,
             v: [0.0; 5],
-            omega,
+            omega: self.omega,
         };
-        level.outputs(0.0, &m, x, aux, out)?;
-        Ok(dofs
-            .iter()
-            .map(|&d| ((out.wrench[d] + loads[d]) / w(d)).powi(2))
-            .sum::<f64>()
-            .sqrt())
-    };
-    let mut r = resid(q, &mut out, level, aux)?;
-    let n = dofs.len();
-    for _ in 0..100 {
-        if r <= 1e-9 * scale {
-            break;
-        }
-        let mut a = nalgebra::DMatrix::<f64>::zeros(n, n);
-        let mut b = nalgebra::DVector::<f64>::zeros(n);
-        let mut kmax: f64 = 0.0;
-        for (i, &di) in dofs.iter().enumerate() {
-            b[i] = (out.wrench[di] + loads[di]) / w(di);
-            for (j, &dj) in dofs.iter().enumerate() {
-                a[(i, j)] = out.k[di][dj] / (w(di) * w(dj));
-                kmax = kmax.max(a[(i, j)].abs());
-            }
-        }
-        for i in 0..n {
-            a[(i, i)] += 1e-9 * kmax + 1e3;
-        }
-        let Some(dq) = a.lu().solve(&b) else { break };
-        let mut step = 1.0;
-        let mut accepted = false;
-        // The last step that overshot (residual up) before one that changed nothing.
-        let mut over = None;
-        for _ in 0..40 {
-            let mut trial = *q;
-            for (i, &d) in dofs.iter().enumerate() {
-                trial[d] += step * dq[i] / w(d);
-            }
-            if let Ok(rt) = resid(&trial, &mut out, level, aux) {
-                if rt < r {
-                    (*q, r, accepted) = (trial, rt, true);
-                    break;
-                }
-                if rt == r {
-                    // No contact along the whole trial (the residual is exactly the
-                    // load's): the band where the contacts engage and the residual falls
-                    // lies between this step and the last that overshot, narrower than a
-                    // halving (a clearance's dead zone before a Hertzian rise). Bisect it:
-                    // residual unchanged, go further; larger, go back.
-                    if let Some(mut hi) = over {
-                        let mut lo = step;
-                        for _ in 0..60 {
-                            let mid = 0.5 * (lo + hi);
-                            let mut trial = *q;
-                            for (i, &d) in dofs.iter().enumerate() {
-                                trial[d] += mid * dq[i] / w(d);
-                            }
-                            match resid(&trial, &mut out, level, aux) {
-                                Ok(rt) if rt < r => {
-                                    (*q, r, accepted) = (trial, rt, true);
-                                    break;
-                                }
-                                Ok(rt) if rt == r => lo = mid,
-                                _ => hi = mid,
-                            }
-                        }
-                    }
-                    break;
-                }
-                over = Some(step);
-            }
-            step *= 0.5;
-        }
-        if !accepted {
-            break;
-        }
-        resid(q, &mut out, level, aux)?;
+        self.level
+            .outputs(0.0, &m, self.x, self.aux, &mut self.out)?;
+        Ok((self.out.wrench, self.out.k))
     }
-    Ok(r)
+
+    fn check(&self, wrench: &[f64; 5]) -> crate::solver::newton::Check {
+        let norm = self
+            .dofs
+            .iter()
+            .map(|&d| ((wrench[d] + self.loads[d]) / self.w(d)).powi(2))
+            .sum::<f64>()
+            .sqrt();
+        crate::solver::newton::Check {
+            norm,
+            tol: self.tol,
+        }
+    }
+}
+
+impl crate::solver::newton::NewtonSystem<5> for StaticSystem<'_> {
+    type Error = Error;
+
+    fn residual(&mut self, q: &[f64; 5]) -> Result<crate::solver::newton::Check> {
+        self.next = self.eval(q)?;
+        Ok(self.check(&self.next.0))
+    }
+
+    fn linearise(&mut self, q: &[f64; 5]) -> Result<crate::solver::newton::Check> {
+        if !self.fresh {
+            self.now = self.eval(q)?;
+        }
+        self.fresh = false;
+        Ok(self.check(&self.now.0))
+    }
+
+    fn step(&mut self, dq: &mut [f64; 5]) -> bool {
+        // The coordinates outside `dofs` get an identity row and no residual: no step.
+        let mut a = nalgebra::SMatrix::<f64, 5, 5>::identity();
+        let mut b = nalgebra::SVector::<f64, 5>::zeros();
+        let mut kmax: f64 = 0.0;
+        let (wrench, k) = &self.now;
+        for &di in self.dofs {
+            b[di] = (wrench[di] + self.loads[di]) / self.w(di);
+            for &dj in self.dofs {
+                a[(di, dj)] = k[di][dj] / (self.w(di) * self.w(dj));
+                kmax = kmax.max(a[(di, dj)].abs());
+            }
+        }
+        for &d in self.dofs {
+            a[(d, d)] += 1e-9 * kmax + 1e3;
+        }
+        match a.lu().solve(&b) {
+            Some(x) => {
+                *dq = std::array::from_fn(|i| x[i]);
+                true
+            }
+            None => false,
+        }
+    }
+
+    fn accept(&mut self) {
+        self.now = self.next;
+        self.fresh = true;
+    }
 }

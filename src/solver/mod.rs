@@ -29,6 +29,7 @@
 
 mod dopri5;
 mod linalg;
+pub mod newton;
 mod rosenbrock;
 
 pub use dopri5::Dopri5;

@@ -23,6 +23,7 @@
 
 use crate::contact::ContactTable;
 use crate::error::{Error, Result};
+use crate::solver::newton::{self, Check};
 
 pub(crate) type V3 = [f64; 3];
 
@@ -187,52 +188,89 @@ impl PositionSolver {
             Some(s) if s[0].is_finite() && s[1].is_finite() => s,
             _ => fallback(),
         };
-        let mut restarted = start.is_none();
-        let mut it = 0usize;
-        loop {
-            let (g, sc) = self.residual(x, a, mw2);
-            let r = g[0].hypot(g[1]);
-            let j = self.jac(x, a, mw2);
-            // Rounding floor of the residual: the contact stiffness times the rounding of
-            // the positions it differences (a few ulp of |x| + |a|), so a nearly unloaded
-            // ball is not asked for a residual below what its forces can resolve.
-            let kmax = j.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
-            let floor = 64.0 * f64::EPSILON * kmax * (x[0].hypot(x[1]) + la);
-            if r <= tol * sc + floor.max(1e-13) {
+        let restarted = start.is_none();
+        let mut sys = BallSystem {
+            s: self,
+            a,
+            mw2,
+            la,
+            tol,
+            g: [0.0; 2],
+            j: [[0.0; 2]; 2],
+        };
+        let opts = newton::Options {
+            max_iterations: 60,
+            max_halvings: 30,
+            ..newton::Options::default()
+        };
+        let Ok(rep) = newton::solve(&mut sys, &mut x, &opts);
+        if rep.converged() {
+            return Ok(x);
+        }
+        let rep = if restarted {
+            rep
+        } else {
+            x = fallback();
+            let Ok(rep) = newton::solve(&mut sys, &mut x, &opts);
+            if rep.converged() {
                 return Ok(x);
             }
-            let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
-            let mut ok = false;
-            if det.is_finite() && det != 0.0 && it < 60 {
-                let dx = [
-                    -(j[1][1] * g[0] - j[0][1] * g[1]) / det,
-                    -(j[0][0] * g[1] - j[1][0] * g[0]) / det,
-                ];
-                let mut t = 1.0;
-                for _ in 0..30 {
-                    let xn = [x[0] + t * dx[0], x[1] + t * dx[1]];
-                    let (gn, _) = self.residual(xn, a, mw2);
-                    if gn[0].hypot(gn[1]) <= (1.0 - 1e-4 * t) * r {
-                        x = xn;
-                        ok = true;
-                        break;
-                    }
-                    t *= 0.5;
-                }
+            rep
+        };
+        Err(Error::NotConverged {
+            what: "full level: quasi-static ball position",
+            iterations: rep.iterations,
+            residual: rep.check.norm,
+        })
+    }
+}
+
+/// The ball's force balance `g(X) = 0` as [`newton::solve`] drives it.
+struct BallSystem<'a> {
+    s: &'a PositionSolver,
+    a: [f64; 2],
+    mw2: f64,
+    la: f64,
+    tol: f64,
+    /// Residual and Jacobian at the current point.
+    g: [f64; 2],
+    j: [[f64; 2]; 2],
+}
+
+impl newton::NewtonSystem<2> for BallSystem<'_> {
+    type Error = std::convert::Infallible;
+
+    fn residual(&mut self, x: &[f64; 2]) -> std::result::Result<Check, Self::Error> {
+        let (g, _) = self.s.residual(*x, self.a, self.mw2);
+        // Converged only where the Jacobian gives the rounding floor.
+        Ok(Check {
+            norm: g[0].hypot(g[1]),
+            tol: f64::NEG_INFINITY,
+        })
+    }
+
+    fn linearise(&mut self, x: &[f64; 2]) -> std::result::Result<Check, Self::Error> {
+        let (g, sc) = self.s.residual(*x, self.a, self.mw2);
+        let j = self.s.jac(*x, self.a, self.mw2);
+        // Rounding floor of the residual: the contact stiffness times the rounding of the
+        // positions it differences (a few ulp of |x| + |a|), so a nearly unloaded ball is
+        // not asked for a residual below what its forces can resolve.
+        let kmax = j.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
+        let floor = 64.0 * f64::EPSILON * kmax * (x[0].hypot(x[1]) + self.la);
+        (self.g, self.j) = (g, j);
+        Ok(Check {
+            norm: g[0].hypot(g[1]),
+            tol: self.tol * sc + floor.max(1e-13),
+        })
+    }
+
+    fn step(&mut self, dx: &mut [f64; 2]) -> bool {
+        match newton::solve2(&self.j, [-self.g[0], -self.g[1]], 0.0) {
+            Some(d) => {
+                *dx = d;
+                true
             }
-            it += 1;
-            if !ok {
-                if restarted {
-                    return Err(Error::NotConverged {
-                        what: "full level: quasi-static ball position",
-                        iterations: it,
-                        residual: r,
-                    });
-                }
-                restarted = true;
-                x = fallback();
-                it = 0;
-            }
+            None => false,
         }
     }
 }

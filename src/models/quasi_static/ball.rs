@@ -74,6 +74,7 @@ use super::dual::Dual;
 use super::kc::KcTable;
 use super::RaceControl;
 use crate::error::{Error, Result};
+use crate::solver::newton::{self, Check};
 
 /// Per-ball unknowns carried from one call to the next (warm start).
 ///
@@ -129,7 +130,9 @@ impl BallState {
 /// `dX/dA = -(dg/dX)^-1 dg/dA` from an `N = 4` evaluation (zero when singular).
 pub(crate) fn sensitivity(e: &Eval<4>) -> [[f64; 2]; 2] {
     let gx = e.jac_x();
-    let col = |c: usize| solve2(&gx, [-e.g[0].d[2 + c], -e.g[1].d[2 + c]]).unwrap_or([0.0; 2]);
+    let col = |c: usize| {
+        newton::solve2(&gx, [-e.g[0].d[2 + c], -e.g[1].d[2 + c]], SINGULAR).unwrap_or([0.0; 2])
+    };
     let (c0, c1) = (col(0), col(1));
     [[c0[0], c1[0]], [c0[1], c1[1]]]
 }
@@ -250,20 +253,6 @@ impl<const N: usize> Eval<N> {
             sr_o: self.sr_o,
         }
     }
-}
-
-/// Solve `[[a, b], [c, d]] x = r`; `None` when singular.
-#[inline]
-pub(crate) fn solve2(j: &[[f64; 2]; 2], r: [f64; 2]) -> Option<[f64; 2]> {
-    let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
-    let scale = (j[0][0].abs() + j[0][1].abs()) * (j[1][0].abs() + j[1][1].abs());
-    if !(det.is_finite() && det.abs() > 1e-13 * scale && scale > 0.0) {
-        return None;
-    }
-    Some([
-        (j[1][1] * r[0] - j[0][1] * r[1]) / det,
-        (j[0][0] * r[1] - j[1][0] * r[0]) / det,
-    ])
 }
 
 impl Geo {
@@ -455,54 +444,96 @@ impl Geo {
         } else {
             fallback(self)
         };
-        let mut restarted = !state.warm;
-        let mut e = self.eval::<4>(omega, x, a);
-        let mut it = 0;
-        loop {
-            let r = e.norm();
-            if r <= self.tol * e.scale() + 1e-12 {
-                state.store(x, a, sensitivity(&e));
-                return Ok(e.values());
-            }
-            let step = if it < self.max_iter {
-                solve2(&e.jac_x(), [-e.g[0].v, -e.g[1].v])
-            } else {
-                None
-            };
-            let mut accepted = false;
-            if let Some(dx) = step {
-                let mut t = 1.0;
-                for _ in 0..40 {
-                    let xn = [x[0] + t * dx[0], x[1] + t * dx[1]];
-                    let en = self.eval::<0>(omega, xn, a);
-                    let rn = en.norm();
-                    if rn <= (1.0 - 1e-4 * t) * r {
-                        x = xn;
-                        if rn <= self.tol * en.scale() + 1e-12 {
-                            state.store(x, a, sensitivity(&e));
-                            return Ok(en);
-                        }
-                        e = self.eval::<4>(omega, x, a);
-                        accepted = true;
-                        break;
-                    }
-                    t *= 0.5;
-                }
-            }
-            it += 1;
-            if !accepted {
-                if restarted {
-                    return Err(Error::NotConverged {
-                        what: "quasi-static ball equilibrium",
-                        iterations: it,
-                        residual: r,
-                    });
-                }
-                restarted = true;
-                x = fallback(self);
-                e = self.eval::<4>(omega, x, a);
-                it = 0;
-            }
+        let restarted = !state.warm;
+        let mut sys = BallSystem {
+            geo: self,
+            omega,
+            a,
+            e: None,
+            trial: None,
+            at_e: true,
+        };
+        let opts = newton::Options {
+            max_iterations: self.max_iter,
+            max_halvings: 40,
+            ..newton::Options::default()
+        };
+        let Ok(mut rep) = newton::solve(&mut sys, &mut x, &opts);
+        if !rep.converged() && !restarted {
+            x = fallback(self);
+            let Ok(again) = newton::solve(&mut sys, &mut x, &opts);
+            rep = again;
         }
+        let (true, Some(e)) = (rep.converged(), sys.e) else {
+            return Err(Error::NotConverged {
+                what: "quasi-static ball equilibrium",
+                iterations: rep.iterations,
+                residual: rep.check.norm,
+            });
+        };
+        state.store(x, a, sensitivity(&e));
+        Ok(match sys.trial {
+            Some(t) if !sys.at_e => t,
+            _ => e.values(),
+        })
+    }
+}
+
+/// Relative determinant below which a ball's 2×2 Jacobian counts as singular (no contact).
+const SINGULAR: f64 = 1e-13;
+
+/// One ball's two equilibrium equations as [`newton::solve`] drives them: the Jacobian
+/// from `N = 4` duals at the current point (kept for the sensitivity `dX/dA`), value-only
+/// evaluations at the trial points.
+struct BallSystem<'a> {
+    geo: &'a Geo,
+    omega: f64,
+    a: [f64; 2],
+    /// The last linearisation.
+    e: Option<Eval<4>>,
+    /// The last trial.
+    trial: Option<Eval<0>>,
+    /// The current point is `e`'s (else the accepted `trial`'s).
+    at_e: bool,
+}
+
+impl BallSystem<'_> {
+    fn check<const N: usize>(&self, e: &Eval<N>) -> Check {
+        Check {
+            norm: e.norm(),
+            tol: self.geo.tol * e.scale() + 1e-12,
+        }
+    }
+}
+
+impl newton::NewtonSystem<2> for BallSystem<'_> {
+    type Error = std::convert::Infallible;
+
+    fn residual(&mut self, x: &[f64; 2]) -> std::result::Result<Check, Self::Error> {
+        let t = self.geo.eval::<0>(self.omega, *x, self.a);
+        self.trial = Some(t);
+        Ok(self.check(&t))
+    }
+
+    fn linearise(&mut self, x: &[f64; 2]) -> std::result::Result<Check, Self::Error> {
+        let e = self.geo.eval::<4>(self.omega, *x, self.a);
+        self.e = Some(e);
+        self.at_e = true;
+        Ok(self.check(&e))
+    }
+
+    fn step(&mut self, dx: &mut [f64; 2]) -> bool {
+        let Some(e) = &self.e else { return false };
+        match newton::solve2(&e.jac_x(), [-e.g[0].v, -e.g[1].v], SINGULAR) {
+            Some(d) => {
+                *dx = d;
+                true
+            }
+            None => false,
+        }
+    }
+
+    fn accept(&mut self) {
+        self.at_e = false;
     }
 }

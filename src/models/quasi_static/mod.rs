@@ -55,9 +55,9 @@ pub use ball::BallState;
 use crate::contact::{Curvature, PointContact, Race};
 use crate::error::{Error, Result};
 use crate::geometry::Bearing;
+use crate::solver::newton;
 use ball::{Eval, Geo};
 use kc::KcTable;
-use nalgebra::{Matrix5, Vector5};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 
@@ -740,81 +740,130 @@ impl QuasiStatic {
         state: &mut [BallState],
         trial: &mut [BallState],
     ) -> Result<usize> {
-        let scale = self.load_scale(load);
-        let tol = self.opts.ring_tolerance * scale;
-        let dstep = 0.25 * self.bearing.a();
-        let mut k = [[0.0; 5]; 5];
-        let f = self.evaluate(q, omega, psi, state, Some(&mut k), None)?;
-        let mut r = self.residual(&f, load);
-        let mut rn = norm(&r);
-        let max_it = self.opts.max_iterations.max(20) * 2;
-        for it in 0..max_it {
-            if rn <= tol {
-                return Ok(it);
-            }
-            let ks = Matrix5::from_fn(|i, j| k[i][j] / (self.t[i] * self.t[j]));
-            let dmax = (0..5).map(|i| ks[(i, i)].abs()).fold(0.0, f64::max);
-            let mut mu = 1e-12 * dmax + f64::MIN_POSITIVE;
-            let rv = Vector5::from_column_slice(&r);
-            let mut dq_s = None;
-            for _ in 0..8 {
-                let a = ks + Matrix5::identity() * mu;
-                if let Some(x) = a.lu().solve(&rv) {
-                    if x.iter().all(|v| v.is_finite()) {
-                        dq_s = Some(x);
-                        break;
-                    }
-                }
-                mu = (mu * 1e3).max(1e-9 * dmax);
-            }
-            let Some(mut dq_s) = dq_s else {
-                return Err(Error::NotConverged {
-                    what: "quasi-static ring equilibrium (singular stiffness)",
-                    iterations: it,
-                    residual: rn,
-                });
-            };
-            let big = dq_s.amax();
-            if big > dstep {
-                dq_s *= dstep / big;
-            }
-            let mut tau = 1.0;
-            let mut accepted = false;
-            for _ in 0..30 {
-                let qn: [f64; 5] = std::array::from_fn(|i| q[i] + tau * dq_s[i] / self.t[i]);
-                trial.copy_from_slice(state);
-                let mut kn = [[0.0; 5]; 5];
-                if let Ok(fnew) = self.evaluate(&qn, omega, psi, trial, Some(&mut kn), None) {
-                    let rnew = self.residual(&fnew, load);
-                    let rnn = norm(&rnew);
-                    if rnn <= (1.0 - 1e-4 * tau) * rn {
-                        *q = qn;
-                        state.copy_from_slice(trial);
-                        k = kn;
-                        r = rnew;
-                        rn = rnn;
-                        accepted = true;
-                        break;
-                    }
-                }
-                tau *= 0.5;
-            }
-            if !accepted {
-                return Err(Error::NotConverged {
-                    what: "quasi-static ring equilibrium (line search)",
-                    iterations: it,
-                    residual: rn,
-                });
-            }
-        }
-        if rn <= tol {
-            return Ok(max_it);
-        }
+        let tol = self.opts.ring_tolerance * self.load_scale(load);
+        let opts = newton::Options {
+            max_iterations: self.opts.max_iterations.max(20) * 2,
+            max_halvings: 30,
+            max_step: 0.25 * self.bearing.a(),
+            scale: self.t,
+            ..newton::Options::default()
+        };
+        let mut sys = RingSystem {
+            eq: RingEquations {
+                model: self,
+                load,
+                omega,
+                psi,
+                tol,
+            },
+            state,
+            trial,
+            now: Point::default(),
+            next: Point::default(),
+            fresh: false,
+        };
+        let rep = newton::solve(&mut sys, q, &opts)?;
+        let what = match rep.outcome {
+            newton::Outcome::Converged => return Ok(rep.iterations),
+            newton::Outcome::Singular => "quasi-static ring equilibrium (singular stiffness)",
+            newton::Outcome::LineSearch => "quasi-static ring equilibrium (line search)",
+            newton::Outcome::MaxIterations => "quasi-static ring equilibrium",
+        };
         Err(Error::NotConverged {
-            what: "quasi-static ring equilibrium",
-            iterations: max_it,
-            residual: rn,
+            what,
+            iterations: rep.iterations,
+            residual: rep.check.norm,
         })
+    }
+}
+
+/// Residual and stiffness at one ring position.
+#[derive(Debug, Clone, Copy, Default)]
+struct Point {
+    /// Scaled residual `T^-1 (F + load)`.
+    r: [f64; 5],
+    /// `K = -dF/dq`.
+    k: [[f64; 5]; 5],
+}
+
+/// The five ring equations `F(q) + load = 0` as [`newton::solve`] drives them: each
+/// evaluation solves every ball (nested, warm-started from `state`) and gives the exact
+/// stiffness with the forces; a trial works on a copy of the ball states, committed when it
+/// is accepted.
+struct RingSystem<'a> {
+    eq: RingEquations<'a>,
+    state: &'a mut [BallState],
+    trial: &'a mut [BallState],
+    /// The current point.
+    now: Point,
+    /// The last trial.
+    next: Point,
+    /// `now` holds the accepted trial's evaluation (no need to evaluate again).
+    fresh: bool,
+}
+
+/// What the ring equations depend on besides `q` and the balls.
+struct RingEquations<'a> {
+    model: &'a QuasiStatic,
+    load: &'a [f64; 5],
+    omega: f64,
+    psi: &'a [f64],
+    tol: f64,
+}
+
+impl RingEquations<'_> {
+    fn eval(&self, q: &[f64; 5], balls: &mut [BallState]) -> Result<(Point, newton::Check)> {
+        let mut p = Point::default();
+        let f = self
+            .model
+            .evaluate(q, self.omega, self.psi, balls, Some(&mut p.k), None)?;
+        p.r = self.model.residual(&f, self.load);
+        let c = newton::Check {
+            norm: norm(&p.r),
+            tol: self.tol,
+        };
+        Ok((p, c))
+    }
+}
+
+impl newton::NewtonSystem<5> for RingSystem<'_> {
+    type Error = Error;
+
+    fn residual(&mut self, q: &[f64; 5]) -> Result<newton::Check> {
+        self.trial.copy_from_slice(self.state);
+        let (p, c) = self.eq.eval(q, self.trial)?;
+        self.next = p;
+        Ok(c)
+    }
+
+    fn linearise(&mut self, q: &[f64; 5]) -> Result<newton::Check> {
+        if !self.fresh {
+            self.now = self.eq.eval(q, self.state)?.0;
+        }
+        self.fresh = false;
+        Ok(newton::Check {
+            norm: norm(&self.now.r),
+            tol: self.eq.tol,
+        })
+    }
+
+    fn step(&mut self, dx: &mut [f64; 5]) -> bool {
+        let t = &self.eq.model.t;
+        let ks: [[f64; 5]; 5] =
+            std::array::from_fn(|i| std::array::from_fn(|j| self.now.k[i][j] / (t[i] * t[j])));
+        match newton::solve_regularised(&ks, &self.now.r, 1e-12, 8) {
+            Some(d) => {
+                *dx = d;
+                true
+            }
+            None => false,
+        }
+    }
+
+    fn accept(&mut self) {
+        self.state.copy_from_slice(self.trial);
+        self.now = self.next;
+        self.fresh = true;
     }
 }
 

@@ -549,20 +549,20 @@ impl SkiddingModel {
         // Bracket [lo, hi] with g(lo) <= 0 <= g(hi): when the outer contact alone carries
         // at least f at the whole approach (the usual case), hi = delta; otherwise the ball
         // may leave the inner race and hi = max(delta, 0) + (f/ko)^(2/3) (one cube root).
-        let mut lo = 0.0;
+        let lo = 0.0;
         let outer_alone = if delta > 0.0 {
             ko * delta * delta.sqrt()
         } else {
             0.0
         };
-        let mut hi = if delta > 0.0 && outer_alone >= f {
+        let hi = if delta > 0.0 && outer_alone >= f {
             delta
         } else {
             let t = f / ko;
             delta.max(0.0) + (t * t).cbrt()
         };
         // Start from the f = 0 split (equal loads).
-        let mut x = if delta > 0.0 {
+        let x = if delta > 0.0 {
             (delta * self.kratio / (1.0 + self.kratio)).min(hi)
         } else {
             hi
@@ -576,26 +576,7 @@ impl SkiddingModel {
         // A Newton step below 1e-8 of the bracket leaves an error of order its square
         // over the approach (quadratic convergence): accept it without another pass.
         let tol_newton = 1e-8 * hi.max(1e-9);
-        for _ in 0..60 {
-            let (r, dr) = g(x);
-            if r > 0.0 {
-                hi = x;
-            } else {
-                lo = x;
-            }
-            let mut newton = dr > 0.0;
-            let mut xn = if newton { x - r / dr } else { 0.5 * (lo + hi) };
-            if !(xn > lo && xn < hi) {
-                xn = 0.5 * (lo + hi);
-                newton = false;
-            }
-            let step = (xn - x).abs();
-            if step <= tol || hi - lo <= tol || (newton && step <= tol_newton) {
-                x = xn;
-                break;
-            }
-            x = xn;
-        }
+        let x = crate::solver::newton::bracketed(g, lo, hi, x, tol, tol_newton, 60);
         let (r_o, r_i) = (x.max(0.0).sqrt(), (delta - x).max(0.0).sqrt());
         Split {
             q_i: ki * r_i * r_i * r_i,

@@ -1,0 +1,472 @@
+//! Damped Newton for the small nonlinear systems of the bearing models (a ball's two
+//! equilibrium equations, a ring's five), and a safeguarded scalar Newton on a bracket.
+//!
+//! [`solve`] is Newton's method with a back-tracking line search on the residual norm
+//! (Dennis & Schnabel, *Numerical Methods for Unconstrained Optimization and Nonlinear
+//! Equations*, SIAM 1996, §6.3, Algorithm A6.3.1 with step halving): from `x`, the step
+//! `dx` solves `J dx = -r`; the trial `x + t dx` (`t = 1, 1/2, 1/4, …`) is accepted when
+//! its residual norm is at most `(1 - armijo t)` times the current one (Armijo's sufficient
+//! decrease; `armijo = 0` accepts any decrease). Options are plain data ([`Options`]):
+//! iteration and halving limits, the sufficient-decrease constant, a cap on the step, the
+//! unknowns' scales, the dead-zone bisection and Jacobian reuse.
+//!
+//! What is left to the system ([`NewtonSystem`]):
+//!
+//! - **The norm and its tolerance, per point.** Each evaluation returns a [`Check`]: the
+//!   residual norm and the tolerance on it at that point. A relative tolerance times a force
+//!   scale, plus a rounding floor (the contact stiffness times the rounding of the positions
+//!   it differences), is how a nearly unloaded ball is not asked for a residual below what
+//!   its forces can resolve (the rounding-aware acceptance of the full level).
+//! - **The linear solve**, from the Jacobian of its last [`NewtonSystem::linearise`]: a
+//!   closed-form 2×2 ([`solve2`]) for a ball, a Levenberg–Marquardt-regularised LU
+//!   ([`solve_regularised`]) for a ring whose directions may carry no stiffness.
+//! - **Transactional state**: a trial evaluation may touch the system's warm-start state
+//!   (the balls' positions inside a ring solve); [`NewtonSystem::accept`] commits it.
+//!
+//! Warm start: `x` on entry is the start (the caller's previous answer or a prediction).
+//! Jacobian reuse ([`Options::reuse_jacobian`], the modified or simplified Newton method,
+//! Dennis & Schnabel §6.5 / Kelley, *Solving Nonlinear Equations with Newton's Method*, SIAM
+//! 2003, §2.3 "the chord method"): after a full step that contracted the residual by at
+//! least [`REUSE_CONTRACTION`] the next step reuses the Jacobian; a step that then fails the
+//! line search is retried with a fresh Jacobian, so reuse changes the cost, never the
+//! answer's tolerance.
+
+/// Contraction `|r_new| / |r_old|` below which a reused Jacobian is kept for the next step
+/// (a chord iteration converging at least linearly with rate 1/4).
+pub const REUSE_CONTRACTION: f64 = 0.25;
+
+/// Settings of one [`solve`], plain data.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Options<const N: usize> {
+    /// Newton steps allowed (a solve that reaches it without convergence reports
+    /// [`Outcome::MaxIterations`]).
+    pub max_iterations: usize,
+    /// Step halvings per line search before it gives up ([`Outcome::LineSearch`]).
+    pub max_halvings: usize,
+    /// Sufficient-decrease constant `c` of the line search: accept `|r(x + t dx)| <= (1 - c
+    /// t) |r(x)|` (`0`: any strict decrease).
+    pub armijo: f64,
+    /// Largest component of a step in scaled units (the whole step is shortened to it);
+    /// `f64::INFINITY`: no cap.
+    pub max_step: f64,
+    /// Scale of each unknown: the linear solve works in `x_i scale_i` (the step `dx_i` it
+    /// returns is applied as `x_i += t dx_i / scale_i`).
+    pub scale: [f64; N],
+    /// Bisections allowed in a dead zone (0: none). When a trial's residual equals the
+    /// current one exactly (nothing engaged along the step, e.g. a ring crossing its
+    /// clearance before the contacts rise), the band where the residual starts to fall lies
+    /// between this step and the last one that overshot, narrower than a halving: it is
+    /// bisected (residual unchanged: further, larger: back) and the line search ends there.
+    pub dead_zone_bisections: usize,
+    /// Reuse the Jacobian after a well-contracting full step (modified Newton).
+    pub reuse_jacobian: bool,
+}
+
+impl<const N: usize> Default for Options<N> {
+    fn default() -> Self {
+        Options {
+            max_iterations: 60,
+            max_halvings: 30,
+            armijo: 1e-4,
+            max_step: f64::INFINITY,
+            scale: [1.0; N],
+            dead_zone_bisections: 0,
+            reuse_jacobian: false,
+        }
+    }
+}
+
+/// The residual norm at a point and the tolerance on it there.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Check {
+    /// Residual norm (`f64::INFINITY` when the residual is not finite).
+    pub norm: f64,
+    /// Converged when `norm <= tol`.
+    pub tol: f64,
+}
+
+impl Check {
+    fn converged(&self) -> bool {
+        self.norm <= self.tol
+    }
+}
+
+/// A nonlinear system `r(x) = 0` in `N` unknowns, as [`solve`] drives it.
+pub trait NewtonSystem<const N: usize> {
+    /// Error of an evaluation.
+    type Error;
+
+    /// Evaluate the residual at a trial point. An error refuses the point (the line search
+    /// halves the step).
+    fn residual(&mut self, x: &[f64; N]) -> Result<Check, Self::Error>;
+
+    /// Evaluate the residual and the Jacobian at the current point `x` (the start or the
+    /// last accepted trial; the system may return what it kept from that trial). An error
+    /// ends the solve with it.
+    fn linearise(&mut self, x: &[f64; N]) -> Result<Check, Self::Error>;
+
+    /// The Newton step `dx` (scaled, [`Options::scale`]) solving `J dx = -r` with the
+    /// Jacobian of the last [`Self::linearise`] and the residual at the current point;
+    /// `false` when singular.
+    fn step(&mut self, dx: &mut [f64; N]) -> bool;
+
+    /// The last trial point became the current point (commit what its evaluation left).
+    fn accept(&mut self) {}
+}
+
+/// How a solve ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Outcome {
+    /// The residual norm is within the tolerance.
+    Converged,
+    /// The linear solve failed (singular Jacobian).
+    Singular,
+    /// No step length decreased the residual enough.
+    LineSearch,
+    /// [`Options::max_iterations`] steps without convergence.
+    MaxIterations,
+}
+
+/// What a solve did: how it ended, where (the residual at the final `x`) and its work.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Report {
+    /// How it ended.
+    pub outcome: Outcome,
+    /// Newton steps taken (accepted).
+    pub iterations: usize,
+    /// Residual norm and tolerance at the final `x`.
+    pub check: Check,
+    /// Residual evaluations at trial points.
+    pub residuals: usize,
+    /// Jacobian evaluations ([`NewtonSystem::linearise`]).
+    pub jacobians: usize,
+}
+
+impl Report {
+    /// Converged?
+    pub fn converged(&self) -> bool {
+        self.outcome == Outcome::Converged
+    }
+}
+
+/// Damped Newton from `x` (the warm start) towards `r(x) = 0`. On return `x` is the last
+/// accepted point (the answer when [`Report::outcome`] is [`Outcome::Converged`]). Only an
+/// error of [`NewtonSystem::linearise`] is an `Err`; a solve that does not converge reports
+/// why in [`Report::outcome`] and leaves the caller to restart or refuse.
+pub fn solve<const N: usize, S: NewtonSystem<N> + ?Sized>(
+    sys: &mut S,
+    x: &mut [f64; N],
+    opts: &Options<N>,
+) -> Result<Report, S::Error> {
+    let mut rep = Report {
+        outcome: Outcome::Converged,
+        iterations: 0,
+        check: sys.linearise(x)?,
+        residuals: 0,
+        jacobians: 1,
+    };
+    // The Jacobian is from an earlier point than `x` (modified Newton).
+    let mut stale = false;
+    let mut dx = [0.0; N];
+    loop {
+        if rep.check.converged() {
+            rep.outcome = Outcome::Converged;
+            return Ok(rep);
+        }
+        if rep.iterations >= opts.max_iterations {
+            rep.outcome = Outcome::MaxIterations;
+            return Ok(rep);
+        }
+        if !sys.step(&mut dx) {
+            if stale {
+                rep.check = sys.linearise(x)?;
+                rep.jacobians += 1;
+                stale = false;
+                continue;
+            }
+            rep.outcome = Outcome::Singular;
+            return Ok(rep);
+        }
+        let big = dx.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        if big > opts.max_step {
+            let f = opts.max_step / big;
+            dx.iter_mut().for_each(|v| *v *= f);
+        }
+        let trial_at =
+            |t: f64| -> [f64; N] { std::array::from_fn(|i| x[i] + t * dx[i] / opts.scale[i]) };
+        let r0 = rep.check.norm;
+        let mut t = 1.0;
+        // The last step length that overshot (residual up), for the dead-zone bisection.
+        let mut over = None;
+        let mut accepted = None;
+        for _ in 0..opts.max_halvings {
+            let trial = trial_at(t);
+            rep.residuals += 1;
+            if let Ok(c) = sys.residual(&trial) {
+                if opts.dead_zone_bisections > 0 && c.norm == r0 {
+                    if let Some(mut hi) = over {
+                        let mut lo = t;
+                        for _ in 0..opts.dead_zone_bisections {
+                            let mid = 0.5 * (lo + hi);
+                            let trial = trial_at(mid);
+                            rep.residuals += 1;
+                            match sys.residual(&trial) {
+                                Ok(c) if c.norm < r0 => {
+                                    accepted = Some((trial, c, mid));
+                                    break;
+                                }
+                                Ok(c) if c.norm == r0 => lo = mid,
+                                _ => hi = mid,
+                            }
+                        }
+                    }
+                    break;
+                }
+                if c.norm <= (1.0 - opts.armijo * t) * r0 {
+                    accepted = Some((trial, c, t));
+                    break;
+                }
+                over = Some(t);
+            }
+            t *= 0.5;
+        }
+        let Some((trial, c, t)) = accepted else {
+            if stale {
+                rep.check = sys.linearise(x)?;
+                rep.jacobians += 1;
+                stale = false;
+                continue;
+            }
+            rep.outcome = Outcome::LineSearch;
+            return Ok(rep);
+        };
+        sys.accept();
+        *x = trial;
+        rep.iterations += 1;
+        if c.converged() {
+            rep.check = c;
+            rep.outcome = Outcome::Converged;
+            return Ok(rep);
+        }
+        if opts.reuse_jacobian && t == 1.0 && c.norm <= REUSE_CONTRACTION * r0 {
+            rep.check = c;
+            stale = true;
+        } else {
+            rep.check = sys.linearise(x)?;
+            rep.jacobians += 1;
+            stale = false;
+        }
+    }
+}
+
+/// Solve the 2×2 system `j x = r` in closed form; `None` when the determinant is not finite
+/// or not above `rel` times the product of the rows' 1-norms (`rel = 0`: any non-zero
+/// determinant).
+#[inline]
+pub fn solve2(j: &[[f64; 2]; 2], r: [f64; 2], rel: f64) -> Option<[f64; 2]> {
+    let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
+    let scale = (j[0][0].abs() + j[0][1].abs()) * (j[1][0].abs() + j[1][1].abs());
+    if !(det.is_finite() && det.abs() > rel * scale && scale > 0.0) {
+        return None;
+    }
+    Some([
+        (j[1][1] * r[0] - j[0][1] * r[1]) / det,
+        (j[0][0] * r[1] - j[1][0] * r[0]) / det,
+    ])
+}
+
+/// Solve `(k + mu I) x = r` for a stiffness-like `k` (symmetric positive semi-definite up
+/// to the gyroscopic and friction terms), regularised Levenberg–Marquardt fashion where a
+/// direction has no stiffness: `mu = rel max|k_ii| + f64::MIN_POSITIVE`, raised (×1e3, at
+/// least `1e-9 max|k_ii|`) up to `tries` times while the LU fails or gives a non-finite
+/// answer. A direction with neither stiffness nor residual stays where it is.
+pub fn solve_regularised<const N: usize>(
+    k: &[[f64; N]; N],
+    r: &[f64; N],
+    rel: f64,
+    tries: usize,
+) -> Option<[f64; N]>
+where
+    nalgebra::Const<N>: nalgebra::DimMin<nalgebra::Const<N>, Output = nalgebra::Const<N>>,
+{
+    let ks = nalgebra::SMatrix::<f64, N, N>::from_fn(|i, j| k[i][j]);
+    let dmax = (0..N).map(|i| ks[(i, i)].abs()).fold(0.0, f64::max);
+    let mut mu = rel * dmax + f64::MIN_POSITIVE;
+    let rv = nalgebra::SVector::<f64, N>::from_column_slice(r);
+    for _ in 0..tries {
+        let a = ks + nalgebra::SMatrix::<f64, N, N>::identity() * mu;
+        if let Some(x) = a.lu().solve(&rv) {
+            if x.iter().all(|v| v.is_finite()) {
+                return Some(std::array::from_fn(|i| x[i]));
+            }
+        }
+        mu = (mu * 1e3).max(1e-9 * dmax);
+    }
+    None
+}
+
+/// Safeguarded Newton for a scalar `g(x) = 0` with `g` increasing on the bracket `[lo, hi]`
+/// (`g(lo) <= 0 <= g(hi)`), from `x` (Press et al., *Numerical Recipes* 3rd ed., §9.4,
+/// `rtsafe`): `g` returns `(g(x), g'(x))`; each evaluation narrows the bracket; a Newton
+/// step that leaves the bracket (or a non-positive slope) is replaced by bisection. Stops
+/// when the step or the bracket is at most `tol`, or a Newton step is at most `tol_newton`
+/// (quadratic convergence: the error left is of order its square over the scale), or after
+/// `max_iterations`; returns the last point.
+#[inline]
+pub fn bracketed(
+    mut g: impl FnMut(f64) -> (f64, f64),
+    mut lo: f64,
+    mut hi: f64,
+    mut x: f64,
+    tol: f64,
+    tol_newton: f64,
+    max_iterations: usize,
+) -> f64 {
+    for _ in 0..max_iterations {
+        let (r, dr) = g(x);
+        if r > 0.0 {
+            hi = x;
+        } else {
+            lo = x;
+        }
+        let mut newton = dr > 0.0;
+        let mut xn = if newton { x - r / dr } else { 0.5 * (lo + hi) };
+        if !(xn > lo && xn < hi) {
+            xn = 0.5 * (lo + hi);
+            newton = false;
+        }
+        let step = (xn - x).abs();
+        if step <= tol || hi - lo <= tol || (newton && step <= tol_newton) {
+            return xn;
+        }
+        x = xn;
+    }
+    x
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Rosenbrock's function's gradient system scaled as in Dennis & Schnabel's test set:
+    /// `r = (10 (x1 - x0²), 1 - x0)`, root (1, 1); the damped method converges from the
+    /// classic start (-1.2, 1) where a full Newton step overshoots.
+    struct Rosen {
+        x: [f64; 2],
+        j: [[f64; 2]; 2],
+        trial: [f64; 2],
+        linearisations: usize,
+    }
+
+    fn r(x: &[f64; 2]) -> [f64; 2] {
+        [10.0 * (x[1] - x[0] * x[0]), 1.0 - x[0]]
+    }
+
+    impl NewtonSystem<2> for Rosen {
+        type Error = ();
+        fn residual(&mut self, x: &[f64; 2]) -> Result<Check, ()> {
+            self.trial = *x;
+            let v = r(x);
+            Ok(Check {
+                norm: v[0].hypot(v[1]),
+                tol: 1e-12,
+            })
+        }
+        fn linearise(&mut self, x: &[f64; 2]) -> Result<Check, ()> {
+            self.linearisations += 1;
+            self.x = *x;
+            self.j = [[-20.0 * x[0], 10.0], [-1.0, 0.0]];
+            let v = r(x);
+            Ok(Check {
+                norm: v[0].hypot(v[1]),
+                tol: 1e-12,
+            })
+        }
+        fn step(&mut self, dx: &mut [f64; 2]) -> bool {
+            let v = r(&self.x);
+            match solve2(&self.j, [-v[0], -v[1]], 0.0) {
+                Some(d) => {
+                    *dx = d;
+                    true
+                }
+                None => false,
+            }
+        }
+        fn accept(&mut self) {
+            self.x = self.trial;
+        }
+    }
+
+    fn rosen() -> Rosen {
+        Rosen {
+            x: [0.0; 2],
+            j: [[0.0; 2]; 2],
+            trial: [0.0; 2],
+            linearisations: 0,
+        }
+    }
+
+    #[test]
+    fn damped_newton_finds_the_root_and_counts_its_work() {
+        let mut s = rosen();
+        let mut x = [-1.2, 1.0];
+        let rep = solve(&mut s, &mut x, &Options::default()).unwrap();
+        assert!(rep.converged(), "{rep:?}");
+        assert!(
+            (x[0] - 1.0).abs() < 1e-12 && (x[1] - 1.0).abs() < 1e-12,
+            "{x:?}"
+        );
+        assert_eq!(rep.jacobians, s.linearisations);
+        assert!(rep.residuals >= rep.iterations);
+    }
+
+    #[test]
+    fn jacobian_reuse_reaches_the_same_root_with_fewer_jacobians() {
+        let opts = Options::default();
+        let mut full = rosen();
+        let mut x_full = [-1.2, 1.0];
+        let a = solve(&mut full, &mut x_full, &opts).unwrap();
+        let mut chord = rosen();
+        let mut x_chord = [-1.2, 1.0];
+        let reuse = Options {
+            reuse_jacobian: true,
+            ..opts
+        };
+        let b = solve(&mut chord, &mut x_chord, &reuse).unwrap();
+        assert!(a.converged() && b.converged());
+        assert!((x_chord[0] - 1.0).abs() < 1e-12 && (x_chord[1] - 1.0).abs() < 1e-12);
+        assert!(b.jacobians < a.jacobians, "{a:?} {b:?}");
+    }
+
+    #[test]
+    fn iteration_limit_and_singular_jacobian_are_reported() {
+        let mut s = rosen();
+        let mut x = [-1.2, 1.0];
+        let few = Options {
+            max_iterations: 1,
+            ..Options::default()
+        };
+        let rep = solve(&mut s, &mut x, &few).unwrap();
+        assert_eq!((rep.outcome, rep.iterations), (Outcome::MaxIterations, 1));
+        // At x0 = 0 the Jacobian [[0, 10], [-1, 0]] is regular; make it singular instead:
+        assert_eq!(solve2(&[[1.0, 2.0], [2.0, 4.0]], [1.0, 1.0], 0.0), None);
+        let k = [[0.0, 0.0], [0.0, 4.0]];
+        // No stiffness and no residual along x0: it stays; x1 = 8 / 4.
+        let d = solve_regularised(&k, &[0.0, 8.0], 1e-12, 8).unwrap();
+        assert!(d[0] == 0.0 && (d[1] - 2.0).abs() < 1e-12, "{d:?}");
+    }
+
+    #[test]
+    fn bracketed_newton_finds_a_cube_root_inside_its_bracket() {
+        let x = bracketed(
+            |x| (x * x * x - 2.0, 3.0 * x * x),
+            0.0,
+            2.0,
+            0.1,
+            1e-15,
+            1e-9,
+            60,
+        );
+        assert!((x - 2f64.cbrt()).abs() < 1e-14, "{x}");
+    }
+}
