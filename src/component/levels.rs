@@ -215,8 +215,8 @@ impl<'de> Deserialize<'de> for Level {
 /// Kinematic cage speed for the nominal contact angle, outer ring fixed:
 /// `omega_c = omega (1 - gamma) / 2` (physics.md §1).
 pub fn cage_speed(b: &Bearing, omega: f64) -> f64 {
-    let gamma = b.d * b.nominal_contact_angle().cos() / b.dm;
-    0.5 * omega * (1.0 - gamma)
+    use crate::geometry::kinematics as kin;
+    kin::cage_speed(kin::gamma(b, b.nominal_contact_angle()), omega, 0.0)
 }
 
 #[cfg(test)]

@@ -25,14 +25,36 @@ pub struct Kinematics {
     pub bsf: f64,
 }
 
+/// `gamma = D cos(alpha) / dm` at contact angle `alpha`.
+#[inline]
+pub fn gamma(b: &Bearing, alpha: f64) -> f64 {
+    b.d * alpha.cos() / b.dm
+}
+
+/// Kinematic (pure-rolling) cage speed, rad/s, with inner-ring speed `omega_i` and
+/// outer-ring speed `omega_o` (rad/s, same sign convention) and `gamma = D cos(alpha) / dm`:
+/// `(omega_i (1 - gamma) + omega_o (1 + gamma)) / 2` (Harris & Kotzalas Vol. 1 §8.2; with
+/// the outer ring fixed, `omega_i (1 - gamma) / 2`). The one place this is written.
+#[inline]
+pub fn cage_speed(gamma: f64, omega_i: f64, omega_o: f64) -> f64 {
+    0.5 * (omega_i * (1.0 - gamma) + omega_o * (1.0 + gamma))
+}
+
+/// Kinematic ball spin speed about its own axis relative to the cage, rad/s (magnitude):
+/// `dm / (2 D) (1 - gamma²) |omega_i - omega_o|` (Harris & Kotzalas Vol. 1 §8.2), for ball
+/// diameter `d` on pitch diameter `dm`.
+#[inline]
+pub fn ball_spin_speed(d: f64, dm: f64, gamma: f64, omega_i: f64, omega_o: f64) -> f64 {
+    dm / (2.0 * d) * (1.0 - gamma * gamma) * (omega_i - omega_o).abs()
+}
+
 /// Kinematics at contact angle `alpha` with inner-ring speed `omega_i` and outer-ring
-/// speed `omega_o` (rad/s, same sign convention). The cage turns at
-/// `(omega_i (1 - gamma) + omega_o (1 + gamma)) / 2`.
+/// speed `omega_o` (rad/s, same sign convention); speeds from [`cage_speed`] and
+/// [`ball_spin_speed`].
 pub fn kinematics_at(b: &Bearing, alpha: f64, omega_i: f64, omega_o: f64) -> Kinematics {
-    let gamma = b.d * alpha.cos() / b.dm;
-    let cage = 0.5 * (omega_i * (1.0 - gamma) + omega_o * (1.0 + gamma));
-    let rel = omega_i - omega_o;
-    let spin = b.dm / (2.0 * b.d) * (1.0 - gamma * gamma) * rel.abs();
+    let gamma = gamma(b, alpha);
+    let cage = cage_speed(gamma, omega_i, omega_o);
+    let spin = ball_spin_speed(b.d, b.dm, gamma, omega_i, omega_o);
     let z = b.z as f64;
     Kinematics {
         gamma,

@@ -233,8 +233,9 @@ impl ThermalModel {
     /// speed `omega` (outer ring fixed, nominal angle).
     #[inline]
     pub fn speeds(&self, omega: f64) -> (f64, f64) {
-        let wc = 0.5 * omega * (1.0 - self.gamma);
-        let wb = self.dm / (2.0 * self.d) * (1.0 - self.gamma * self.gamma) * omega.abs();
+        use crate::geometry::kinematics as kin;
+        let wc = kin::cage_speed(self.gamma, omega, 0.0);
+        let wb = kin::ball_spin_speed(self.d, self.dm, self.gamma, omega, 0.0);
         (wc, wb)
     }
 

@@ -430,7 +430,10 @@ mod tests {
         let mut x = [-1.2, 1.0];
         let rep = solve(&mut s, &mut x, &Options::default()).unwrap();
         assert!(rep.converged(), "{rep:?}");
-        assert!((x[0] - 1.0).abs() < 1e-12 && (x[1] - 1.0).abs() < 1e-12, "{x:?}");
+        assert!(
+            (x[0] - 1.0).abs() < 1e-12 && (x[1] - 1.0).abs() < 1e-12,
+            "{x:?}"
+        );
         assert_eq!(rep.jacobians, s.linearisations);
         assert!(rep.residuals >= rep.iterations);
     }
@@ -451,7 +454,10 @@ mod tests {
         assert!(a.converged() && b.converged(), "{a:?} {b:?}");
         let r2 = 2f64.sqrt();
         for x in [x_full, x_chord] {
-            assert!((x[0] - r2).abs() < 1e-12 && (x[1] - r2).abs() < 1e-12, "{x:?}");
+            assert!(
+                (x[0] - r2).abs() < 1e-12 && (x[1] - r2).abs() < 1e-12,
+                "{x:?}"
+            );
         }
         assert!(b.jacobians < a.jacobians, "{a:?} {b:?}");
     }
@@ -479,7 +485,15 @@ mod tests {
 
     #[test]
     fn bracketed_newton_finds_a_cube_root_inside_its_bracket() {
-        let x = bracketed(|x| (x * x * x - 2.0, 3.0 * x * x), 0.0, 2.0, 0.1, 1e-15, 1e-9, 60);
+        let x = bracketed(
+            |x| (x * x * x - 2.0, 3.0 * x * x),
+            0.0,
+            2.0,
+            0.1,
+            1e-15,
+            1e-9,
+            60,
+        );
         assert!((x - 2f64.cbrt()).abs() < 1e-14, "{x}");
     }
 }

@@ -113,7 +113,12 @@ impl RingModel {
             outer,
             spacing: Vec::new(),
             film: None,
-            shaft_per_cage: 2.0 / (1.0 - b.d * alpha.cos() / b.dm),
+            shaft_per_cage: 1.0
+                / crate::geometry::kinematics::cage_speed(
+                    crate::geometry::kinematics::gamma(b, alpha),
+                    1.0,
+                    0.0,
+                ),
         }
     }
 

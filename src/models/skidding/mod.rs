@@ -480,7 +480,7 @@ impl SkiddingModel {
     /// `omega`, outer ring fixed (physics.md §1).
     pub fn kinematic(&self, omega: f64) -> (f64, f64) {
         let gamma = self.d * self.cos_a / self.dm;
-        let wb = 0.5 * omega * (1.0 - gamma);
+        let wb = crate::geometry::kinematics::cage_speed(gamma, omega, 0.0);
         (wb, wb * self.do_ / self.d)
     }
 
