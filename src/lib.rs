@@ -17,6 +17,7 @@
 pub mod analysis;
 pub mod component;
 pub mod contact;
+pub mod counters;
 pub mod error;
 pub mod fsutil;
 pub mod geometry;

@@ -159,6 +159,7 @@ impl Component {
         let mut c = Component {
             limits: limits::Limits::of(&bearing),
             rating: crate::ratings::RatingOutputs::of(&bearing),
+            stages: super::Stages::default(),
             jwork,
             scene,
             bearing,

@@ -37,20 +37,7 @@ use level::LevelModel;
 use system::{JacWork, RingBody, Work};
 use variables::SCALARS;
 
-/// Cost counters of the internal integration.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
-pub struct Stats {
-    /// Right-hand-side evaluations.
-    pub rhs: u64,
-    /// Jacobian evaluations.
-    pub jacobians: u64,
-    /// LU factorisations.
-    pub factorizations: u64,
-    /// Accepted internal steps.
-    pub accepted: u64,
-    /// Rejected internal steps.
-    pub rejected: u64,
-}
+pub use crate::counters::{Stages, Stats};
 
 /// Number of variables in the table.
 pub fn n_variables() -> usize {
@@ -82,16 +69,7 @@ const I_C: usize = 64;
 /// millisecond is no longer resolved by a double.
 pub const T_MAX: f64 = 1e9;
 
-/// CPU time of the calling thread, s (`CLOCK_THREAD_CPUTIME_ID`).
-pub fn thread_cpu_s() -> f64 {
-    let mut ts = libc::timespec {
-        tv_sec: 0,
-        tv_nsec: 0,
-    };
-    // SAFETY: `ts` is a valid, writable timespec; the clock id is a constant.
-    unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut ts) };
-    ts.tv_sec as f64 + 1e-9 * ts.tv_nsec as f64
-}
+pub use crate::counters::thread_cpu_s;
 
 /// FNV-1a over bytes: a stable fingerprint (not cryptographic).
 pub fn fingerprint(bytes: &[u8]) -> u64 {
@@ -121,6 +99,8 @@ pub struct Component {
     limits: limits::Limits,
     /// ISO 281/76 ratings for the `safety.S0`, `life.L10` and `warnings.active` outputs.
     rating: crate::ratings::RatingOutputs,
+    /// Per-stage CPU timers of `do_step` (off unless [`Component::set_stage_timing`]).
+    stages: Stages,
 }
 
 impl Component {
@@ -158,14 +138,21 @@ impl Component {
     }
     /// Cost counters since creation.
     pub fn stats(&self) -> Stats {
-        let s = self.integrator.stats();
-        Stats {
-            rhs: s.rhs_evals,
-            jacobians: s.jac_evals,
-            factorizations: s.lu_decomps,
-            accepted: s.accepted,
-            rejected: s.rejected,
-        }
+        Stats::from(self.integrator.stats())
+    }
+
+    /// Turn the per-stage CPU timers of `do_step` on or off (off by default: then no clock
+    /// is read). Turning them on resets them.
+    pub fn set_stage_timing(&mut self, on: bool) {
+        self.stages = Stages {
+            enabled: on,
+            ..Stages::default()
+        };
+    }
+
+    /// Per-stage thread CPU time of `do_step` since timing was turned on.
+    pub fn stages(&self) -> &Stages {
+        &self.stages
     }
 
     /// Get an input or output by value reference. Outputs always belong to the current

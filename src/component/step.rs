@@ -71,15 +71,20 @@ impl Component {
                 ),
             });
         }
+        let clock = self.stages.start();
         self.require_inputs("do_step")?;
         self.check_inputs_at(h)?;
         self.scratch.clone_from(&self.state);
         let mut sc = std::mem::take(&mut self.scratch);
         // The host owns time: re-sync to its communication point (within the tolerance).
         sc.t = t;
-        let r = self
-            .integrate(&mut sc, h)
-            .and_then(|_| self.compute_outputs(&mut sc, h));
+        super::Stages::stop(&mut self.stages.inputs, clock);
+        let clock = self.stages.start();
+        let r = self.integrate(&mut sc, h);
+        super::Stages::stop(&mut self.stages.integrate, clock);
+        let clock = self.stages.start();
+        let r = r.and_then(|_| self.compute_outputs(&mut sc, h));
+        super::Stages::stop(&mut self.stages.outputs, clock);
         if r.is_ok() {
             sc.t = t + h;
             sc.started = true;

@@ -189,31 +189,7 @@ pub(crate) fn drive_until(
     Ok((s, thread_cpu_s() - start, None))
 }
 
-/// CPU time consumed by the calling thread, s (`CLOCK_THREAD_CPUTIME_ID`, POSIX): unlike a
-/// wall clock it does not count time the thread waits while other processes hold the
-/// cores, so it is the figure every "CPU" timing in the project reports. Differences
-/// between two calls on the same thread are meaningful; the origin is arbitrary. Returns
-/// NaN where the clock is not available (non-Unix), so a timing is never silently a wall
-/// clock.
-pub fn thread_cpu_s() -> f64 {
-    #[cfg(unix)]
-    {
-        let mut ts = libc::timespec {
-            tv_sec: 0,
-            tv_nsec: 0,
-        };
-        // SAFETY: `ts` is a valid, writable timespec for the duration of the call.
-        let rc = unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut ts) };
-        if rc == 0 {
-            return ts.tv_sec as f64 + 1e-9 * ts.tv_nsec as f64;
-        }
-        f64::NAN
-    }
-    #[cfg(not(unix))]
-    {
-        f64::NAN
-    }
-}
+pub use crate::counters::thread_cpu_s;
 
 /// The 1-, 5- and 15-minute load averages (`/proc/loadavg`), e.g. `"1.52 1.10 0.80"`, or
 /// `"unknown"`: printed beside every timing, since a load above the core count means the

@@ -182,23 +182,8 @@ impl Options {
     }
 }
 
-/// Work counters; they accumulate across calls (reset with `Stats::default()`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub struct Stats {
-    /// Right-hand side evaluations (including those for finite-difference Jacobians).
-    pub rhs_evals: u64,
-    /// Jacobian evaluations (analytic or finite-difference).
-    pub jac_evals: u64,
-    /// LU factorisations.
-    pub lu_decomps: u64,
-    /// Accepted steps.
-    pub accepted: u64,
-    /// Rejected step attempts (error test failed, non-finite value, singular matrix).
-    pub rejected: u64,
-    /// DOPRI5 only: how often Hairer's stiffness test fired (15 tests in a row with
-    /// `h·|λ| > 3.25`, see [`Dopri5`]).
-    pub stiff_alarms: u64,
-}
+/// Work counters of an integrator (kept with every other counter in [`crate::counters`]).
+pub use crate::counters::IntegratorStats as Stats;
 
 /// Why an integration failed. The caller's state and step-size memory are unchanged.
 #[derive(Debug, Clone, PartialEq)]
