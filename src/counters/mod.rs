@@ -161,7 +161,8 @@ mod tests {
     fn timers_off_read_no_clock_and_on_accumulate_cpu_time() {
         let mut s = Stages::default();
         assert_eq!(s.start(), None);
-        Stages::stop(&mut s.integrate, s.start());
+        let off = s.start();
+        Stages::stop(&mut s.integrate, off);
         assert_eq!(s.integrate, Timer::default());
         s.enabled = true;
         let t0 = s.start();
