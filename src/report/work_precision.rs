@@ -628,9 +628,10 @@ impl Report {
             s,
             "References: DOPRI5 at rtol {:.0e} (errors are measured against it) and RODAS4 at \
              rtol {:.0e}; their difference is the floor, and points below it are not plotted \
-             (they are in the CSV). `atol_m = {:.0e} m × rtol`. Time: median of up to the \
-             given repeats after one warm-up run, stepping only (component creation excluded), \
-             one thread. Counters (right-hand sides, Jacobians, LU factorisations, accepted and \
+             (they are in the CSV). `atol_m = {:.0e} m × rtol`. Time: the stepping thread's \
+             CPU time (`CLOCK_THREAD_CPUTIME_ID`, not a wall clock; the load average is in the \
+             machine line), median of up to the given repeats after one warm-up run, stepping \
+             only (component creation excluded), one thread. Counters (right-hand sides, Jacobians, LU factorisations, accepted and \
              rejected steps) are those of one run; they do not depend on the machine.\n\n",
             self.reference_rtol.0, self.reference_rtol.1, ATOL_PER_RTOL
         );
@@ -880,7 +881,7 @@ impl Report {
             &Axes {
                 title: &title,
                 x_label: "relative L2 error of the reaction forces",
-                y_label: "CPU time (s)",
+                y_label: "thread CPU time (s)",
                 log_x: true,
                 log_y: true,
                 equal: false,
