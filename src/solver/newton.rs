@@ -23,7 +23,9 @@
 //! - **Transactional state**: a trial evaluation may touch the system's warm-start state
 //!   (the balls' positions inside a ring solve); [`NewtonSystem::accept`] commits it.
 //!
-//! Warm start: `x` on entry is the start (the caller's previous answer or a prediction).
+//! Warm start: `x` on entry is the start (the caller's previous answer or a prediction);
+//! with [`Options::warm_start`] it is first checked with a residual evaluation alone, and
+//! a start that already passes costs no Jacobian.
 //! Jacobian reuse ([`Options::reuse_jacobian`], the modified or simplified Newton method,
 //! Dennis & Schnabel §6.5 / Kelley, *Solving Nonlinear Equations with Newton's Method*, SIAM
 //! 2003, §2.3 "the chord method"): after a full step that contracted the residual by at
@@ -60,6 +62,10 @@ pub struct Options<const N: usize> {
     pub dead_zone_bisections: usize,
     /// Reuse the Jacobian after a well-contracting full step (modified Newton).
     pub reuse_jacobian: bool,
+    /// The start is likely the answer already (the previous step's solution, or a
+    /// prediction from it): check it with a residual evaluation before paying for a
+    /// Jacobian, and return it when it passes (no [`NewtonSystem::linearise`] at all).
+    pub warm_start: bool,
 }
 
 impl<const N: usize> Default for Options<N> {
@@ -72,6 +78,7 @@ impl<const N: usize> Default for Options<N> {
             scale: [1.0; N],
             dead_zone_bisections: 0,
             reuse_jacobian: false,
+            warm_start: false,
         }
     }
 }
@@ -158,6 +165,20 @@ pub fn solve<const N: usize, S: NewtonSystem<N> + ?Sized>(
     x: &mut [f64; N],
     opts: &Options<N>,
 ) -> Result<Report, S::Error> {
+    if opts.warm_start {
+        if let Ok(c) = sys.residual(x) {
+            if c.converged() {
+                sys.accept();
+                return Ok(Report {
+                    outcome: Outcome::Converged,
+                    iterations: 0,
+                    check: c,
+                    residuals: 1,
+                    jacobians: 0,
+                });
+            }
+        }
+    }
     let mut rep = Report {
         outcome: Outcome::Converged,
         iterations: 0,
@@ -460,6 +481,24 @@ mod tests {
             );
         }
         assert!(b.jacobians < a.jacobians, "{a:?} {b:?}");
+    }
+
+    #[test]
+    fn a_converged_warm_start_costs_one_residual_and_no_jacobian() {
+        let r2 = 2f64.sqrt();
+        let warm = Options {
+            warm_start: true,
+            ..Options::default()
+        };
+        let mut c = circle();
+        let mut x = [r2, r2];
+        let rep = solve(&mut c, &mut x, &warm).unwrap();
+        assert!(rep.converged() && x == [r2, r2], "{rep:?}");
+        assert_eq!((rep.residuals, rep.jacobians, c.linearisations), (1, 0, 0));
+        // A start that does not pass goes on as a plain solve.
+        let mut x = [3.0, 1.0];
+        let rep = solve(&mut c, &mut x, &warm).unwrap();
+        assert!(rep.converged() && rep.jacobians > 0 && (x[0] - r2).abs() < 1e-12);
     }
 
     #[test]

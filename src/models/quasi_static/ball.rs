@@ -453,25 +453,38 @@ impl Geo {
             trial: None,
             at_e: true,
         };
+        // A warm start (the last solution moved to first order in the groove offset) is
+        // checked by value first: within a step's small changes of `A`, or at the
+        // offsets of a central difference, it often passes without a Jacobian.
         let opts = newton::Options {
             max_iterations: self.max_iter,
             max_halvings: 40,
+            warm_start: state.warm,
             ..newton::Options::default()
         };
         let Ok(mut rep) = newton::solve(&mut sys, &mut x, &opts);
         if !rep.converged() && !restarted {
             x = fallback(self);
-            let Ok(again) = newton::solve(&mut sys, &mut x, &opts);
+            let cold = newton::Options {
+                warm_start: false,
+                ..opts
+            };
+            let Ok(again) = newton::solve(&mut sys, &mut x, &cold);
             rep = again;
         }
-        let (true, Some(e)) = (rep.converged(), sys.e) else {
+        if !rep.converged() {
             return Err(Error::NotConverged {
                 what: "quasi-static ball equilibrium",
                 iterations: rep.iterations,
                 residual: rep.check.norm,
             });
+        }
+        // Passed at the warm start: no new Jacobian, the sensitivity stays.
+        let dxda = sys.e.as_ref().map_or(state.dxda, sensitivity);
+        state.store(x, a, dxda);
+        let Some(e) = sys.e else {
+            return Ok(sys.trial.unwrap_or_else(|| self.eval::<0>(omega, x, a)));
         };
-        state.store(x, a, sensitivity(&e));
         Ok(match sys.trial {
             Some(t) if !sys.at_e => t,
             _ => e.values(),
