@@ -453,13 +453,13 @@ impl Geo {
             trial: None,
             at_e: true,
         };
-        // A warm start (the last solution moved to first order in the groove offset) is
-        // checked by value first: within a step's small changes of `A`, or at the
-        // offsets of a central difference, it often passes without a Jacobian.
+        // Not `warm_start`: checking the predicted start by value first made the
+        // quasi-static C ABI row slower (34.8 against 31.1 µs per step, benches/speed.rs
+        // `--quick`, two runs at load ~14): at this tolerance the prediction rarely
+        // passes, and the check is then wasted.
         let opts = newton::Options {
             max_iterations: self.max_iter,
             max_halvings: 40,
-            warm_start: state.warm,
             ..newton::Options::default()
         };
         let Ok(mut rep) = newton::solve(&mut sys, &mut x, &opts);
