@@ -66,14 +66,17 @@ pub struct Lubricant {
 
 impl Lubricant {
     /// Study \[2\]'s oil (Cao et al.; physics.md §10): eta0 = 0.04667 Pa s,
-    /// alpha_p = 2.1e-8 m²/N, 860 kg/m³, 0.04 /K, roughness 0.2 and 0.42 µm.
+    /// alpha_p = 2.1e-8 m²/N, 860 kg/m³, 0.04 /K, and the composite roughness of the
+    /// study's smoother case, 0.2 µm. The study runs two cases of composite roughness,
+    /// 0.2 and 0.42 µm (each already `sqrt(s1² + s2²)`), not one ball of 0.2 on a race of
+    /// 0.42: set `roughness` (`roughness_um` in a scene) to 0.42e-6 for the other.
     pub fn study2() -> Self {
         Lubricant {
             viscosity: 0.04667,
             pressure_viscosity: 2.1e-8,
             density: 860.0,
             viscosity_temperature: 0.04,
-            roughness: (0.2e-6f64).hypot(0.42e-6),
+            roughness: 0.2e-6,
         }
     }
 }
