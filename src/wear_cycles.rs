@@ -14,7 +14,7 @@
 
 use crate::component::{variables, Component, Scene};
 use crate::error::{Error, Result};
-use crate::models::wear_map::OuterRaceWear;
+use crate::models::wear_map::{OuterRaceWear, ShareTally};
 use std::f64::consts::TAU;
 use std::path::Path;
 
@@ -55,6 +55,9 @@ pub struct CycleRecord {
     pub rate: Vec<f64>,
     /// Mean asperity share per cell in the window (NaN where no ball was loaded), %.
     pub la: Vec<f64>,
+    /// Mean outer-contact load of the loaded balls per cell in the window (NaN where no
+    /// ball was loaded), N: what `la` is a share of.
+    pub q: Vec<f64>,
     /// Shaft centre `(x, y)` over the window, m.
     pub orbit: Vec<[f64; 2]>,
     /// Mean cage slip over the window.
@@ -70,17 +73,19 @@ impl CycleRecord {
     }
 
     /// The map as CSV: angle (deg), depth (µm), rate (µm per 1e6 cage revolutions),
-    /// asperity share (%).
+    /// asperity share (%), mean load (N).
     pub fn csv(&self) -> String {
         let n = self.map.len();
-        let mut s = String::from("angle_deg,depth_um,rate_um_per_1e6_cage_revs,la_percent\n");
+        let mut s =
+            String::from("angle_deg,depth_um,rate_um_per_1e6_cage_revs,la_percent,load_n\n");
         for k in 0..n {
             s.push_str(&format!(
-                "{:.3},{:.6e},{:.6e},{:.4}\n",
+                "{:.3},{:.6e},{:.6e},{:.4},{:.4}\n",
                 360.0 * k as f64 / n as f64,
                 self.map[k] * 1e6,
                 self.rate[k] * 1e12,
-                self.la[k]
+                self.la[k],
+                self.q[k]
             ));
         }
         s
@@ -183,14 +188,101 @@ impl WearCycles {
         Ok(done)
     }
 
-    /// Run the dynamics on profile `map` and measure the window.
-    pub fn window(&self, map: &[f64]) -> Result<Window> {
+    /// A fresh component of the scene on outer-race profile `map`.
+    fn start(&self, map: &[f64]) -> Result<Component> {
         let mut c = Component::new(self.scene.clone())?;
         let lvl = c
             .skidding_mut()
             .ok_or_else(|| Error::invalid("model.level", "not skidding", "\"skidding\""))?;
         lvl.set_outer_wear(map)?;
         c.refresh_outputs()?;
+        Ok(c)
+    }
+
+    /// How long the dynamics on the unworn race take to settle, measured rather than
+    /// guessed: run from the scene's start in chunks of `chunk_cage_revs` cage revolutions
+    /// at the kinematic cage speed (a whole number of ball passes, `k / Z`, keeps the ball
+    /// passing out of the chunk means) up to `max_s`, and record each chunk's mean cage
+    /// slip and mean slip speed `|dv_o|` of the loaded balls over the outer race (what the
+    /// wear law integrates). Settled at the end of the first chunk `k` for which chunks
+    /// `k-2, k-1, k` agree, each successive pair, within the relative tolerance `tol` in
+    /// the ball slip and within the absolute tolerance `cage_tol` in the cage slip (a
+    /// fraction of the cage speed that may pass through zero: a relative test would never
+    /// pass there).
+    pub fn settle_check(
+        &self,
+        chunk_cage_revs: f64,
+        max_s: f64,
+        tol: f64,
+        cage_tol: f64,
+    ) -> Result<Settle> {
+        self.validate()?;
+        crate::error::positive("wear.settle_chunk_cage_revs", chunk_cage_revs)?;
+        crate::error::in_range("wear.settle_max_s", max_s, 0.0, 1e3)?;
+        crate::error::in_range("wear.settle_tol", tol, 0.0, 1.0)?;
+        crate::error::in_range("wear.settle_cage_tol", cage_tol, 0.0, 1.0)?;
+        let mut c = self.start(&vec![0.0; self.cells])?;
+        let vs = variables::by_name("cage.slip").map_or(0, |v| v.vr);
+        let omega = c.get_real(variables::by_name("shaft.omega").map_or(0, |v| v.vr))?;
+        let (wk, _) = c
+            .skidding_mut()
+            .expect("skidding level")
+            .model()
+            .kinematic(omega);
+        let h = self.step_s;
+        let steps = if wk.abs() > 0.0 {
+            ((chunk_cage_revs * TAU / wk.abs()) / h).round().max(1.0) as usize
+        } else {
+            1
+        };
+        let agree = |a: f64, b: f64| (a - b).abs() <= tol * a.abs().max(b.abs());
+        let near = |a: f64, b: f64| (a - b).abs() <= cage_tol;
+        let mut t = c.time();
+        let t_start = t;
+        let mut chunks: Vec<SettleChunk> = Vec::new();
+        let mut settled_s = None;
+        while settled_s.is_none() && t - t_start + steps as f64 * h <= max_s + 1e-12 {
+            let (mut cage, mut ball, mut nb) = (0.0, 0.0, 0.0f64);
+            for _ in 0..steps {
+                c.do_step(t, h)?;
+                t += h;
+                c.ensure_outputs()?;
+                cage += c.get_real(vs)?;
+                let m = c.skidding_mut().expect("skidding level").model();
+                for j in 0..m.z() {
+                    let (ct, dv, _) = m.outer_contact(j);
+                    if ct.q > 0.0 {
+                        ball += dv.abs();
+                        nb += 1.0;
+                    }
+                }
+            }
+            chunks.push(SettleChunk {
+                t_end: t - t_start,
+                cage_slip: cage / steps as f64,
+                ball_slip: ball / nb.max(1.0),
+            });
+            if let [a, b, d] = chunks[chunks.len().saturating_sub(3)..] {
+                if near(a.cage_slip, b.cage_slip)
+                    && near(b.cage_slip, d.cage_slip)
+                    && agree(a.ball_slip, b.ball_slip)
+                    && agree(b.ball_slip, d.ball_slip)
+                {
+                    settled_s = Some(d.t_end);
+                }
+            }
+        }
+        Ok(Settle {
+            chunks,
+            tol,
+            cage_tol,
+            settled_s,
+        })
+    }
+
+    /// Run the dynamics on profile `map` and measure the window.
+    pub fn window(&self, map: &[f64]) -> Result<Window> {
+        let mut c = self.start(map)?;
         let vr = |n: &str| variables::by_name(n).map_or(0, |v| v.vr);
         let (vx, vy, vw, vs) = (
             vr("shaft.x"),
@@ -208,7 +300,7 @@ impl WearCycles {
         let n = self.cells;
         let cell_len = TAU * 0.5 * c.bearing().outer_race_diameter() / n as f64;
         let mut dep = vec![0.0; n];
-        let (mut la_sum, mut la_n) = (vec![0.0; n], vec![0.0; n]);
+        let mut tally = ShareTally::new(n);
         let mut orbit = Vec::new();
         let (mut turned, mut slip, mut steps, mut q_max) = (0.0, 0.0, 0.0f64, 0.0f64);
         let target = self.window_cage_revs * TAU;
@@ -237,7 +329,7 @@ impl WearCycles {
             let lvl = c.skidding_mut().expect("skidding level");
             let q = self
                 .wear
-                .deposit(lvl.model(), h, &mut dep, cell_len, &mut la_sum, &mut la_n);
+                .deposit(lvl.model(), h, &mut dep, cell_len, &mut tally);
             q_max = q_max.max(q);
             i += 1;
             if i > max_steps {
@@ -250,11 +342,7 @@ impl WearCycles {
         }
         let revs = turned / TAU;
         let rate: Vec<f64> = dep.iter().map(|d| d / revs).collect();
-        let la = la_sum
-            .iter()
-            .zip(&la_n)
-            .map(|(s, n)| if *n > 0.0 { s / n } else { f64::NAN })
-            .collect();
+        let (la, q) = tally.means();
         let approach = c
             .skidding_mut()
             .expect("skidding level")
@@ -266,6 +354,7 @@ impl WearCycles {
             record: CycleRecord {
                 rate,
                 la,
+                q,
                 orbit,
                 cage_slip: slip / steps.max(1.0),
                 q_max,
@@ -273,6 +362,30 @@ impl WearCycles {
             },
         })
     }
+}
+
+/// One chunk of [`WearCycles::settle_check`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SettleChunk {
+    /// End of the chunk, s from the start of the dynamics.
+    pub t_end: f64,
+    /// Mean cage slip over the chunk.
+    pub cage_slip: f64,
+    /// Mean slip speed `|dv_o|` of the loaded balls over the outer race, m/s.
+    pub ball_slip: f64,
+}
+
+/// What [`WearCycles::settle_check`] found.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Settle {
+    /// Every chunk run.
+    pub chunks: Vec<SettleChunk>,
+    /// Relative tolerance on the ball slip between successive chunks.
+    pub tol: f64,
+    /// Absolute tolerance on the cage slip between successive chunks.
+    pub cage_tol: f64,
+    /// Time after which three successive chunks agree, s (`None`: not within `max_s`).
+    pub settled_s: Option<f64>,
 }
 
 /// One measured window.

@@ -109,3 +109,33 @@ fn bad_input_and_failed_runs() {
     assert!(!dir.join("cycle-03.csv").exists());
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// The settling check: chunks of one ball pass each (5.3 ms at 2000 rpm), contiguous from
+/// the start; with tolerances nothing meets it runs to its limit and says it did not
+/// settle; with tolerances everything meets it settles at the end of the third chunk (the
+/// earliest its three-chunk test allows); a bad tolerance is named.
+#[test]
+fn settle_check_measures_and_stops() {
+    let w = cycles(Some(0.2e-6));
+    let chunk = 1.0 / 14.0;
+    let never = w.settle_check(chunk, 0.03, 0.0, 0.0).unwrap();
+    assert_eq!(never.settled_s, None);
+    let n = never.chunks.len();
+    assert!(n >= 4, "{n} chunks");
+    let dt = never.chunks[0].t_end;
+    for (k, c) in never.chunks.iter().enumerate() {
+        assert!((c.t_end - (k + 1) as f64 * dt).abs() < 1e-9, "{c:?}");
+        assert!(c.ball_slip.is_finite() && c.ball_slip >= 0.0);
+        assert!(c.cage_slip.is_finite() && c.cage_slip.abs() < 1.0);
+    }
+    assert!(never.chunks[n - 1].t_end <= 0.03 + 1e-9);
+    let always = w.settle_check(chunk, 0.03, 1.0, 1.0).unwrap();
+    assert_eq!(always.chunks.len(), 3);
+    assert_eq!(always.settled_s, Some(always.chunks[2].t_end));
+    assert_eq!(always.chunks[..], never.chunks[..3], "the same dynamics");
+    let e = w
+        .settle_check(chunk, 0.03, 0.1, 2.0)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("wear.settle_cage_tol"), "{e}");
+}

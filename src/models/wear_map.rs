@@ -125,16 +125,15 @@ impl OuterRaceWear {
 
     /// Add every ball's wear rate at the skidding model's last evaluation to `rates`
     /// (depth rate per cell, m/s; cells of length `cell_len`), weighted by `dt` (s): the
-    /// map then holds depth. Also adds each loaded ball's `La` and a count to `la_sum`,
-    /// `la_n` at its nearest cell. Returns the largest outer load, N.
+    /// map then holds depth. Also tallies each loaded ball's `La` and outer load at its
+    /// nearest cell in `tally`. Returns the largest outer load, N.
     pub fn deposit(
         &self,
         m: &SkiddingModel,
         dt: f64,
         map: &mut [f64],
         cell_len: f64,
-        la_sum: &mut [f64],
-        la_n: &mut [f64],
+        tally: &mut ShareTally,
     ) -> f64 {
         let n = map.len();
         let mut q_max: f64 = 0.0;
@@ -150,10 +149,49 @@ impl OuterRaceWear {
             let k = ((psi.rem_euclid(std::f64::consts::TAU) / std::f64::consts::TAU * n as f64)
                 .round() as usize)
                 % n;
-            la_sum[k] += w.la;
-            la_n[k] += 1.0;
+            tally.add(k, w.la, c.q);
         }
         q_max
+    }
+}
+
+/// Per-cell sums of the asperity share and the outer load of the balls that passed a cell
+/// loaded (`q > 0`), and their count.
+#[derive(Debug, Clone, Default)]
+pub struct ShareTally {
+    /// Sum of `La`, per cent.
+    pub la: Vec<f64>,
+    /// Sum of the outer load, N.
+    pub q: Vec<f64>,
+    /// Number of samples.
+    pub n: Vec<f64>,
+}
+
+impl ShareTally {
+    /// Empty tally over `cells` cells.
+    pub fn new(cells: usize) -> Self {
+        ShareTally {
+            la: vec![0.0; cells],
+            q: vec![0.0; cells],
+            n: vec![0.0; cells],
+        }
+    }
+
+    fn add(&mut self, k: usize, la: f64, q: f64) {
+        self.la[k] += la;
+        self.q[k] += q;
+        self.n[k] += 1.0;
+    }
+
+    /// Mean `La` (%) and mean load (N) per cell; NaN where no loaded ball passed.
+    pub fn means(&self) -> (Vec<f64>, Vec<f64>) {
+        let mean = |s: &[f64]| -> Vec<f64> {
+            s.iter()
+                .zip(&self.n)
+                .map(|(s, n)| if *n > 0.0 { s / n } else { f64::NAN })
+                .collect()
+        };
+        (mean(&self.la), mean(&self.q))
     }
 }
 
