@@ -110,7 +110,7 @@ fn run(
     let records = w.run(Some(&dir), |r| {
         let (d, a) = r.deepest();
         eprintln!(
-            "{label}: cycle {} ({:.3e} cage rev): deepest {:.4e} um at {:.1} deg, slip {:.4}",
+            "{label}: cycle {} ({:.3e} cage rev): deepest {:.4e} µm at {:.1} deg, slip {:.4}",
             r.cycle,
             r.cage_revs,
             d * 1e6,
