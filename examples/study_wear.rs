@@ -384,8 +384,11 @@ fn write_page(
          - Wear: Archard, `dh/dt = K ψ (La/100) p u_s / Hv`, K = 5e-4, film-defect constants \
          a_x = 3e-12 m, t0 = 3e-12 s, Ea = 49 kJ/mol, Rg = 8.31 J/(mol K), ψ at T0 + ΔT; \
          u_s = |dv_o| the ball's slip over the outer race from the dynamics. Dry: La = 100, ψ = 1.\n\
-         - Cycles: each cycle runs the dynamics from the scene's start for the settling time \
-         below, measures the outer-race wear \
+         - Cycles: cycle k of n runs the dynamics from the scene's start for the settling time \
+         below plus (k−1)/n of a window (each cycle repeats the same trajectory from the same \
+         start; the offset makes the cycles sample different stretches of the irregular \
+         motion instead of piling one stretch's slip bursts onto the same cells), measures \
+         the outer-race wear \
          over {} cage revolution(s) sampled every {} s on 360 cells, extrapolates it over the \
          cycle, adds it to the race profile (the clearance under each ball) and runs again. \
          Lubricated: {} cycles to 1e8 cage revolutions; dry: {} cycles to 1 000.\n",

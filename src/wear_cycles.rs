@@ -5,7 +5,11 @@
 //! again on the worn race, repeat. Wear and vibration evolve together on two time scales.
 //!
 //! Each cycle starts the component afresh from the scene (the dynamics settle for
-//! `settle_s`, then the window is measured), on the profile of the cycles before. A cycle
+//! `settle_s`, then the window is measured), on the profile of the cycles before. The
+//! motion is stationary but irregular, and every cycle repeats the same trajectory from
+//! the same start (the profile changes by nanometres): cycle `k` of `n` therefore starts
+//! its window `(k-1)/n` of a window later, so that the cycles sample different stretches
+//! of the motion instead of piling one stretch's slip bursts onto the same cells. A cycle
 //! must be short enough that the profile changes little within it: the depth it adds may
 //! not exceed `max_step_fraction` of the outer contact's Hertz approach at the heaviest
 //! ball (else the error names `wear.cycle_cage_revs` and its largest allowed value). With
@@ -151,7 +155,7 @@ impl WearCycles {
         let mut revs = 0.0;
         let mut done = Vec::new();
         for k in 1..=self.cycles {
-            let w = self.window(&map)?;
+            let w = self.window_at(&map, (k - 1) as f64 / self.cycles as f64)?;
             let step_max = w.rate.iter().fold(0.0f64, |a, &b| a.max(b)) * self.cycle_cage_revs;
             let limit = self.max_step_fraction * w.approach;
             if step_max > limit {
@@ -282,7 +286,24 @@ impl WearCycles {
 
     /// Run the dynamics on profile `map` and measure the window.
     pub fn window(&self, map: &[f64]) -> Result<Window> {
+        self.window_at(map, 0.0)
+    }
+
+    /// [`Self::window`] starting `phase` (in `[0, 1)`) of a window (at the kinematic cage
+    /// speed) after `settle_s`.
+    pub fn window_at(&self, map: &[f64], phase: f64) -> Result<Window> {
         let mut c = self.start(map)?;
+        let omega0 = c.get_real(variables::by_name("shaft.omega").map_or(0, |v| v.vr))?;
+        let (wk0, _) = c
+            .skidding_mut()
+            .expect("skidding level")
+            .model()
+            .kinematic(omega0);
+        let extra = if wk0.abs() > 0.0 {
+            phase.clamp(0.0, 1.0) * self.window_cage_revs * TAU / wk0.abs()
+        } else {
+            0.0
+        };
         let vr = |n: &str| variables::by_name(n).map_or(0, |v| v.vr);
         let (vx, vy, vw, vs) = (
             vr("shaft.x"),
@@ -292,7 +313,7 @@ impl WearCycles {
         );
         let h = self.step_s;
         let mut t = c.time();
-        let end = t + self.settle_s;
+        let end = t + self.settle_s + extra;
         while t < end - 1e-12 {
             c.do_step(t, h)?;
             t += h;
