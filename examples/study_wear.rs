@@ -416,9 +416,11 @@ fn write_page(
          means over 4 ball passes keep scattering by about ±20 % in ball slip and between \
          0.002 and 0.006 in cage slip up to 1 s (`--settle-probe`). So the test is one of \
          stationarity, on means over one cage revolution at 10 %, and each wear window spans \
-         {} cage revolutions; the spread of the chunk means below is the scatter a window \
-         of that length still carries, and what a short window samples of it shows as \
-         peaks in a map (a wear burst lands where the balls are at that moment).\n",
+         {} cage revolutions. The dry map's peaks outside the load zone, about one ball \
+         spacing (25.7°) apart, stay where they are with this run-in (0.05 s before), with \
+         2-revolution windows (1 before) and with the cycles' window offsets: they are fixed \
+         on the race, not a settling or sampling effect of the window; their cause is not \
+         found yet.\n",
         plan.settle_chunk,
         (plan.settle_chunk * 14.0).round(),
         plan.settle_max_s,
