@@ -335,6 +335,29 @@ fn draw_area(
         24.0 + 8.0 + text_w + 12.0,
         18.0 * labelled.len() as f64 + 8.0,
     );
+    // A legend taller than 45 % of the picture cannot find a free corner without squeezing
+    // the data into a sliver (on a log axis the headroom spans decades): it goes beside the
+    // plot instead, in a column of its own, and the data keep the rest of the width.
+    let (w_px, h_px) = area.dim_in_pixel();
+    if !labelled.is_empty()
+        && legend_size.1 > 0.45 * h_px as f64
+        && legend_size.0 < 0.4 * w_px as f64
+    {
+        let split = w_px as i32 - legend_size.0 as i32 - 16;
+        let (left, right) = area.split_horizontally(split);
+        right.fill(&WHITE).map_err(io)?;
+        let unlabelled: Vec<Series<'_>> =
+            series.iter().map(|s| Series { label: "", ..*s }).collect();
+        draw_area(&left, axes, &unlabelled, markers)?;
+        let top = if axes.title.is_empty() { 12.0 } else { 42.0 };
+        let r = Rect {
+            x0: 4.0,
+            y0: top,
+            x1: 4.0 + legend_size.0,
+            y1: top + legend_size.1,
+        };
+        return draw_legend(&right, r, &labelled, &font);
+    }
     let visible: Vec<&Marker> = markers.iter().filter(|m| m.x >= x0 && m.x <= x1).collect();
     let mut rows_reserved = 0usize;
     let mut headroom = 0.0f64;
