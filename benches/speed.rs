@@ -3,7 +3,7 @@
 //! the cost against ball count (9, 16, 32) and against the communication step, written to
 //! `docs/speed.md`. Run: `cargo bench --bench speed` (about two minutes on one core;
 //! `-- --quick` for a shorter look that still writes the page, `-- --no-peer` without the
-//! SciPy peer, `-- --out DIR` for another folder).
+//! SciPy peer, `-- --ring-only` the two C ABI ring rows alone (printed, nothing written), `-- --out DIR` for another folder).
 //!
 //! Clocks: every time is the measuring thread's CPU time
 //! ([`raceway::report::thread_cpu_s`], `CLOCK_THREAD_CPUTIME_ID`), the load average is
@@ -464,6 +464,10 @@ fn main() {
         note: "6000 rpm, 10 µm axial + 5 µm radial".into(),
     });
     let ring5_allocs = l.allocs;
+    if args.iter().any(|a| a == "--ring-only") {
+        println!("speed: --ring-only, nothing written");
+        return;
+    }
 
     // --- Every shipped ring scene, as shipped and without its sub-step cap.
     let mut scenes_md = String::from(

@@ -7,7 +7,7 @@ use super::static_start::static_start;
 use super::system::{JacWork, RingBody, Work};
 use super::{
     fingerprint, index_of, limits, n_variables, scene, variables, Causality, Component, Method,
-    Scene, State, I_LOAD,
+    Scene, State, AUX_COMPONENT, I_LOAD,
 };
 use crate::error::Result;
 use crate::geometry::Bearing;
@@ -100,7 +100,7 @@ impl Component {
         let mut state = State {
             scene_fingerprint: fp,
             x: vec![0.0; n_level + n_ring],
-            aux: vec![0.0; n_level_aux + 1],
+            aux: vec![0.0; n_level_aux + AUX_COMPONENT],
             inputs: vec![0.0; n],
             input_derivatives: vec![0.0; 3 * n],
             outputs: vec![0.0; n],
@@ -148,7 +148,7 @@ impl Component {
         let work = Work {
             k: std::array::from_fn(|_| vec![0.0; dim]),
             y: vec![0.0; dim],
-            aux_save: vec![0.0; n_level_aux + 1],
+            aux_save: vec![0.0; n_level_aux + AUX_COMPONENT],
         };
         let jwork = JacWork {
             jx: vec![0.0; n_level * n_level],

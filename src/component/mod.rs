@@ -47,7 +47,7 @@ pub fn n_variables() -> usize {
 /// Position of a value reference in [`variables::all`] (the index into the state's
 /// `inputs` and `outputs` vectors).
 pub fn index_of(vr: u32) -> Option<usize> {
-    variables::all().position(|v| v.vr == vr)
+    variables::slot(vr)
 }
 
 // Positions in the table of the variables the component reads and writes on its hot
@@ -64,6 +64,10 @@ const I_CAGE: usize = 30; // cage.x, cage.y, cage.speed, cage.speed_ratio, pocke
 const I_RATING: usize = 36; // safety.S0, life.L10, warnings.active
 const I_K: usize = 39;
 const I_C: usize = 64;
+
+/// Component-owned memory slots after the level's `aux`: the integrator's next step size,
+/// then the inputs' offset (from the step start) the stored outputs belong to.
+const AUX_COMPONENT: usize = 2;
 
 /// Largest communication time and step, s (about 32 years): beyond it a step of a
 /// millisecond is no longer resolved by a double.
@@ -200,7 +204,11 @@ impl Component {
             return Err(Error::invalid("order", order, "1"));
         }
         self.ensure_outputs()?;
-        Ok(self.state.output_derivatives[index_of(vr).expect("in table")])
+        let i = index_of(vr).expect("in table");
+        if self.state.derivatives_pending && (I_FORCE..I_FORCE + 5).contains(&i) {
+            self.compute_force_derivatives()?;
+        }
+        Ok(self.state.output_derivatives[i])
     }
 
     /// A copy of the complete state.

@@ -1,7 +1,8 @@
 //! The component's complete mutable state, and its byte form.
 //!
-//! Byte layout, format 2 (little-endian, no pointers): magic `RWST`, format version `u32`,
-//! scene fingerprint `u64`, time `f64`, started `u64` (0 or 1), inputs-set mask `u64`,
+//! Byte layout, format 3 (little-endian, no pointers): magic `RWST`, format version `u32`,
+//! scene fingerprint `u64`, time `f64`, flags `u64` (bit 0 started, bit 1 outputs stale,
+//! bit 2 force derivatives pending), inputs-set mask `u64`,
 //! then six vectors (`x`, `aux`, `inputs`, `input_derivatives`, `outputs`,
 //! `output_derivatives`), each its length as `u64` followed by the values; last, a
 //! checksum `u64`: FNV-1a (Fowler, Noll and Vo; IETF draft-eastlake-fnv) over every byte
@@ -18,8 +19,9 @@ use crate::error::{Error, Result};
 
 /// Magic bytes at the start of a serialised state.
 pub const MAGIC: &[u8; 4] = b"RWST";
-/// Format version of the serialised state (2: with checksum and value checks).
-pub const FORMAT_VERSION: u32 = 2;
+/// Format version of the serialised state (2: with checksum and value checks; 3: the
+/// force derivatives computed when read, flag bit 2 and the outputs' input offset in `aux`).
+pub const FORMAT_VERSION: u32 = 3;
 
 /// Everything that changes while a component runs: restoring it makes the component
 /// continue bit for bit.
@@ -35,6 +37,11 @@ pub struct State {
     /// component recomputes them on the next read. Stored as bit 1 of the `started` word,
     /// so the byte layout is unchanged.
     pub outputs_stale: bool,
+    /// Are the force and moment time derivatives in `output_derivatives` still to be
+    /// computed? They cost three force evaluations, so a step leaves them pending and the
+    /// first read computes them (at the inputs' offset kept in the last `aux` slot). Stored
+    /// as bit 2 of the `started` word.
+    pub derivatives_pending: bool,
     /// Continuous states of the model.
     pub x: Vec<f64>,
     /// Algebraic and solver memory (warm starts, next step size, ...).
@@ -65,6 +72,7 @@ impl Clone for State {
         self.t = o.t;
         self.started = o.started;
         self.outputs_stale = o.outputs_stale;
+        self.derivatives_pending = o.derivatives_pending;
         self.inputs_set = o.inputs_set;
         self.x.clone_from(&o.x);
         self.aux.clone_from(&o.aux);
@@ -188,7 +196,11 @@ impl State {
         w.put(&FORMAT_VERSION.to_le_bytes());
         w.u64(self.scene_fingerprint);
         w.put(&self.t.to_le_bytes());
-        w.u64(self.started as u64 | (self.outputs_stale as u64) << 1);
+        w.u64(
+            self.started as u64
+                | (self.outputs_stale as u64) << 1
+                | (self.derivatives_pending as u64) << 2,
+        );
         w.u64(self.inputs_set);
         w.vec(&self.x);
         w.vec(&self.aux);
@@ -235,11 +247,11 @@ impl State {
         let mut r = Reader { b: body, at: 8 };
         let scene_fingerprint = r.u64()?;
         let t = r.f64("t")?;
-        let (started, outputs_stale) = match r.u64()? {
-            k @ 0..=3 => (k & 1 != 0, k & 2 != 0),
+        let (started, outputs_stale, derivatives_pending) = match r.u64()? {
+            k @ 0..=7 => (k & 1 != 0, k & 2 != 0, k & 4 != 0),
             k => {
                 return Err(refused(format!(
-                    "`started` = {k}: allowed 0 to 3 (bit 0 started, bit 1 outputs stale)"
+                    "`started` = {k}: allowed 0 to 7 (bit 0 started, bit 1 outputs stale, bit 2 derivatives pending)"
                 )))
             }
         };
@@ -249,6 +261,7 @@ impl State {
             t,
             started,
             outputs_stale,
+            derivatives_pending,
             inputs_set,
             x: r.vec("x")?,
             aux: r.vec("aux")?,
@@ -274,6 +287,7 @@ mod tests {
             t: 0.125,
             started: true,
             outputs_stale: true,
+            derivatives_pending: true,
             x: vec![1.0, -0.0, f64::MIN_POSITIVE],
             aux: vec![3.5],
             inputs: vec![1e-6; 11],
@@ -354,14 +368,14 @@ mod tests {
         let mut other = s.clone();
         other.started = true;
         let mut b = other.to_bytes();
-        b[24] = 7; // started = 7
+        b[24] = 8; // started = 8
         let n = b.len();
         let sum = crate::component::fingerprint(&b[..n - 8]);
         b[n - 8..].copy_from_slice(&sum.to_le_bytes());
         assert!(State::from_bytes(&b)
             .unwrap_err()
             .to_string()
-            .contains("`started` = 7"));
+            .contains("`started` = 8"));
     }
 
     #[test]
@@ -370,7 +384,7 @@ mod tests {
         b[4..8].copy_from_slice(&1u32.to_le_bytes());
         let e = State::from_bytes(&b).unwrap_err().to_string();
         assert!(
-            e.contains("format version 1") && e.contains("version 2"),
+            e.contains("format version 1") && e.contains("version 3"),
             "{e}"
         );
     }

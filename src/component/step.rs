@@ -245,15 +245,39 @@ impl Component {
                 sc.output_derivatives[I_V + d] = (out.wrench[d] + load) / ring.inertia[d];
             }
         }
-        // dF/dt by a central difference in time along the inputs' rule and the states'
-        // rates; the level's memory (warm starts) is restored afterwards.
+        if !all_finite(&sc.outputs) || !all_finite(&sc.output_derivatives[..I_FORCE]) {
+            return Err(Error::StepFailed {
+                t: sc.t,
+                reason: "non-finite output".into(),
+            });
+        }
+        // The force derivatives are left for the first read (three force evaluations):
+        // remember the inputs' offset they belong to.
+        sc.aux[self.n_level_aux + 1] = s;
+        sc.derivatives_pending = true;
+        Ok(())
+    }
+
+    /// Compute the pending force and moment time derivatives of the current state: dF/dt
+    /// by a central difference in time along the inputs' rule and the states' rates, at
+    /// the inputs' offset the outputs were computed at; the level's memory (warm starts)
+    /// is restored afterwards. On error nothing changes.
+    pub(super) fn compute_force_derivatives(&mut self) -> Result<()> {
+        let nl = self.n_level;
+        let naux = self.n_level_aux;
+        let rule = self.scene.inputs.rule;
+        let causality = self.causality();
+        let sc = &mut self.state;
+        let s = sc.aux[naux + 1];
         let n = sc.x.len();
         let w = &mut self.work;
         w.aux_save.copy_from_slice(&sc.aux);
         w.y.copy_from_slice(&sc.x);
         let mut fwd = [0.0; 5];
         let mut bwd = [0.0; 5];
-        let t0 = sc.t;
+        // The outputs were computed at `s` after the step start; the state's time is the
+        // step end.
+        let t0 = sc.t - s;
         let mut sys = Sys {
             jw: None,
             level: self.level.as_mut(),
@@ -262,7 +286,7 @@ impl Component {
             rule,
             causality,
             nl,
-            naux: self.n_level_aux,
+            naux,
             t0,
             last_error: None,
             budget: None,
@@ -280,15 +304,18 @@ impl Component {
         }
         sc.aux.copy_from_slice(&w.aux_save);
         r?;
+        let mut d = [0.0; 5];
         for k in 0..5 {
-            sc.output_derivatives[I_FORCE + k] = (fwd[k] - bwd[k]) / (2.0 * DT_DERIV);
+            d[k] = (fwd[k] - bwd[k]) / (2.0 * DT_DERIV);
         }
-        if !all_finite(&sc.outputs) || !all_finite(&sc.output_derivatives) {
+        if !all_finite(&d) {
             return Err(Error::StepFailed {
                 t: sc.t,
-                reason: "non-finite output".into(),
+                reason: "non-finite force derivative".into(),
             });
         }
+        sc.output_derivatives[I_FORCE..I_FORCE + 5].copy_from_slice(&d);
+        sc.derivatives_pending = false;
         Ok(())
     }
 }

@@ -387,9 +387,60 @@ pub fn all() -> impl Iterator<Item = &'static Variable> {
         .chain(DAMPING.iter().flatten())
 }
 
-/// Look a variable up by value reference.
+/// One past the largest value reference.
+const VR_END: usize = VR_C0 as usize + 25;
+
+/// The position in [`all`] of each value reference (`u16::MAX`: none), built at compile
+/// time: a value reference at or beyond [`VR_END`] or given twice fails the build. The hot
+/// path (every `get_real` and `set_real`) looks a reference up here instead of scanning.
+static SLOTS: [u16; VR_END] = slots();
+
+const fn slots() -> [u16; VR_END] {
+    let mut t = [u16::MAX; VR_END];
+    let mut i = 0;
+    while i < SCALARS.len() {
+        let vr = SCALARS[i].vr as usize;
+        assert!(t[vr] == u16::MAX, "value reference used twice");
+        t[vr] = i as u16;
+        i += 1;
+    }
+    let mut k = 0;
+    while k < 25 {
+        let (r, c) = (k / 5, k % 5);
+        let (vk, vc) = (STIFFNESS[r][c].vr as usize, DAMPING[r][c].vr as usize);
+        assert!(
+            t[vk] == u16::MAX && t[vc] == u16::MAX,
+            "value reference used twice"
+        );
+        t[vk] = (SCALARS.len() + k) as u16;
+        t[vc] = (SCALARS.len() + 25 + k) as u16;
+        k += 1;
+    }
+    t
+}
+
+/// The position of value reference `vr` in [`all`] (the index into a state's `inputs`
+/// and `outputs`), in constant time.
+pub fn slot(vr: u32) -> Option<usize> {
+    match SLOTS.get(vr as usize) {
+        Some(&i) if i != u16::MAX => Some(i as usize),
+        _ => None,
+    }
+}
+
+/// The variable at position `i` of [`all`].
+fn at(i: usize) -> &'static Variable {
+    let n = SCALARS.len();
+    match i {
+        _ if i < n => &SCALARS[i],
+        _ if i < n + 25 => &STIFFNESS[(i - n) / 5][(i - n) % 5],
+        _ => &DAMPING[(i - n - 25) / 5][(i - n - 25) % 5],
+    }
+}
+
+/// Look a variable up by value reference (constant time).
 pub fn by_vr(vr: u32) -> Option<&'static Variable> {
-    all().find(|v| v.vr == vr)
+    slot(vr).map(at)
 }
 
 /// Look a variable up by name.
@@ -400,6 +451,18 @@ pub fn by_name(name: &str) -> Option<&'static Variable> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The constant-time lookup agrees with a scan of the table for every reference up
+    /// to well past the largest.
+    #[test]
+    fn slot_lookup_matches_a_scan() {
+        for vr in 0..2 * VR_END as u32 {
+            let scan = all().position(|v| v.vr == vr);
+            assert_eq!(slot(vr), scan, "vr {vr}");
+            assert_eq!(by_vr(vr).map(|v| v.vr), scan.map(|_| vr));
+        }
+        assert_eq!(slot(u32::MAX), None);
+    }
 
     #[test]
     fn names_and_value_references_are_unique() {
