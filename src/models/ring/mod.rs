@@ -365,7 +365,10 @@ mod tests {
             let (a, d) = (eval(&even, q, theta), eval(&direct, q, theta));
             let scale = d.wrench.iter().fold(0.0f64, |m, w| m.max(w.abs()));
             for k in 0..5 {
-                assert!((a.wrench[k] - d.wrench[k]).abs() <= 1e-12 * scale, "{k} at {theta}");
+                assert!(
+                    (a.wrench[k] - d.wrench[k]).abs() <= 1e-12 * scale,
+                    "{k} at {theta}"
+                );
             }
             let ks = d.k.iter().flatten().fold(0.0f64, |m, w| m.max(w.abs()));
             for (x, y) in a.k.iter().flatten().zip(d.k.iter().flatten()) {
