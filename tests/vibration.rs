@@ -10,7 +10,7 @@ use raceway::analysis::{
     amplitude_spectrum, envelope_spectrum, find_peaks, Mark, Spectrum, Window,
 };
 use raceway::component::variables;
-use raceway::contact::{series_constant, Curvature, PointContact, Race};
+use raceway::contact::{series_constant, PointContact, Race};
 use raceway::geometry::{kinematics, preset, Kinematics};
 use raceway::lubrication::{central_film, minimum_film, FilmModel, Lubricant};
 use raceway::models::defects::{edge_depth, Defect, DefectSite};
@@ -244,14 +244,8 @@ fn inner_race_waviness_of_order_pz_pm_m_gives_bpfi_sidebands() {
 
 fn contacts() -> (PointContact, PointContact, f64, f64, f64) {
     let b = preset("6205").unwrap().build().unwrap();
-    let ci = PointContact::new(
-        Curvature::ball_race(b.d, b.dm, 0.0, b.fi, Race::Inner),
-        b.e_eff_inner(),
-    );
-    let co = PointContact::new(
-        Curvature::ball_race(b.d, b.dm, 0.0, b.fo, Race::Outer),
-        b.e_eff_outer(),
-    );
+    let ci = PointContact::ball_race(&b, 0.0, Race::Inner);
+    let co = PointContact::ball_race(&b, 0.0, Race::Outer);
     let kn = series_constant(ci.kc, co.kc);
     (ci, co, kn, b.dm, b.d / b.dm)
 }
