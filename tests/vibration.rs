@@ -6,6 +6,9 @@
 //! driven under 1000 N downward, 10 µm clearance, 1750 rpm (fs = 29.17 Hz, FTF = 11.62,
 //! BPFO = 104.56, BPFI = 157.94, BSF = 68.74 Hz), sampled at 10 kHz for 0.5 s (2 Hz bins).
 
+#[path = "common/outputs.rs"]
+mod outputs;
+use outputs::outputs;
 use raceway::analysis::{
     amplitude_spectrum, envelope_spectrum, find_peaks, Mark, Spectrum, Window,
 };
@@ -303,12 +306,6 @@ fn film_damping_vanishes_with_viscosity() {
         }
     }
     assert!(last < 1e-4, "{last}");
-}
-
-fn outputs(c: &mut Component) -> Vec<u64> {
-    variables::all()
-        .map(|v| c.get_real(v.vr).unwrap().to_bits())
-        .collect()
 }
 
 /// No effects, an empty `[effects]`, empty lists and a dry film are the plain model: bit
