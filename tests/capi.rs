@@ -8,6 +8,8 @@ use std::ptr::{null, null_mut};
 
 const SCENE: &str = raceway::component::scene::DEFAULT_SCENE;
 
+#[path = "common/cross_process.rs"]
+mod cross_process;
 #[path = "common/motion.rs"]
 mod motion;
 use motion::MOTION;
@@ -681,48 +683,22 @@ fn damaged_state_bytes_are_refused_and_the_instance_is_unchanged() {
 /// parent sets `RACEWAY_STATE_CHILD` to a folder.
 #[test]
 fn state_bytes_child_process() {
-    let Some(dir) = std::env::var_os("RACEWAY_STATE_CHILD") else {
+    let Some(dir) = cross_process::child_dir("RACEWAY_STATE_CHILD") else {
         return;
     };
-    let dir = std::path::PathBuf::from(dir);
     let c = create();
     c.run(0, 3, 0.7, 1e-4);
-    std::fs::write(dir.join("state.bin"), c.state_bytes()).unwrap();
-    let next: Vec<u8> = c
-        .run(3, 5, 0.7, 1e-4)
-        .iter()
-        .flat_map(|x| x.to_le_bytes())
-        .collect();
-    std::fs::write(dir.join("outputs.bin"), next).unwrap();
+    cross_process::write_child(&dir, &c.state_bytes(), &bits(&c.run(3, 5, 0.7, 1e-4)));
 }
 
 /// Bytes written by one process restore in another, and the run continues bit for bit.
 #[test]
 fn state_bytes_restore_in_another_process_bit_for_bit() {
-    let dir = std::env::temp_dir().join(format!("raceway-xproc-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let out = std::process::Command::new(std::env::current_exe().unwrap())
-        .args([
-            "--exact",
-            "state_bytes_child_process",
-            "--nocapture",
-            "--test-threads=1",
-        ])
-        .env("RACEWAY_STATE_CHILD", &dir)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+    let (bytes, theirs) = cross_process::run_child(
+        "state_bytes_child_process",
+        "RACEWAY_STATE_CHILD",
+        "raceway-xproc",
     );
-    let bytes = std::fs::read(dir.join("state.bin")).unwrap();
-    let theirs: Vec<u64> = std::fs::read(dir.join("outputs.bin"))
-        .unwrap()
-        .chunks(8)
-        .map(|b| u64::from_le_bytes(b.try_into().unwrap()))
-        .collect();
-    std::fs::remove_dir_all(&dir).unwrap();
     let c = create();
     assert_eq!(c.restore_bytes(&bytes), RacewayStatus::Ok, "{}", c.msg());
     let ours = bits(&c.run(3, 5, 0.7, 1e-4));

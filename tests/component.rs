@@ -1,6 +1,9 @@
 //! Behaviour of the co-simulation component: transactions, state round trips, bad input,
 //! and the ring level through the component against the physics directly.
 
+#[path = "common/outputs.rs"]
+mod outputs;
+use outputs::outputs;
 use raceway::component::{index_of, variables, Component};
 use raceway::error::Error;
 
@@ -35,12 +38,6 @@ fn steps(c: &mut Component, range: std::ops::Range<usize>, h: f64) {
     for i in range {
         c.do_step(i as f64 * h, h).unwrap();
     }
-}
-
-fn outputs(c: &mut Component) -> Vec<u64> {
-    variables::all()
-        .map(|v| c.get_real(v.vr).unwrap().to_bits())
-        .collect()
 }
 
 #[test]

@@ -16,24 +16,17 @@
 //! The generator is a small xorshift (no new dependency): shrinking is by hand, from the
 //! seed printed.
 
+#[path = "common/capi_observe.rs"]
+mod capi_observe;
+use capi_observe::{message, observe};
 use raceway::capi::*;
-use std::ffi::{c_char, CStr, CString};
+use raceway::report::thread_cpu_s as thread_cpu;
+use std::ffi::{c_char, CString};
 use std::ptr::null_mut;
 use std::time::{Duration, Instant};
 
 /// A case taking more thread CPU time than this counts as a hang.
 const HANG_SECONDS: f64 = 5.0;
-
-/// CPU time of the calling thread, s.
-fn thread_cpu() -> f64 {
-    let mut ts = libc::timespec {
-        tv_sec: 0,
-        tv_nsec: 0,
-    };
-    // SAFETY: a valid out-pointer.
-    unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut ts) };
-    ts.tv_sec as f64 + 1e-9 * ts.tv_nsec as f64
-}
 
 struct Rng(u64);
 
@@ -106,6 +99,13 @@ struct Tally {
 }
 
 impl Tally {
+    /// Records a case's thread CPU time; true when it counts as a hang.
+    fn timed(&mut self, secs: f64) -> bool {
+        self.slowest_s = self.slowest_s.max(secs);
+        let hang = secs > HANG_SECONDS;
+        self.hangs += u64::from(hang);
+        hang
+    }
     fn report(&self, what: &str, seed: u64, secs: f64) {
         println!(
             "fuzz {what}: seed {seed} for {secs:.0} s (wall): {} cases ({} accepted, {} refused), \
@@ -238,9 +238,7 @@ fn fuzz_scenes_through_the_component() {
             Ok(bad)
         });
         let secs = thread_cpu() - t0;
-        tally.slowest_s = tally.slowest_s.max(secs);
-        if secs > HANG_SECONDS {
-            tally.hangs += 1;
+        if tally.timed(secs) {
             eprintln!("hang: seed {seed0} case {case} ({secs:.1} s):\n{text}");
         }
         match r {
@@ -278,37 +276,6 @@ struct Pool {
     live: usize,
     states: Vec<*mut RacewayState>,
     bytes: Vec<Vec<u8>>,
-}
-
-fn msg(c: *mut RacewayComponent) -> String {
-    unsafe { CStr::from_ptr(raceway_last_error(c)) }
-        .to_string_lossy()
-        .into_owned()
-}
-
-/// Observable state of an instance: time and every variable with the status of its read
-/// (None when not live). Outputs are evaluated lazily on the first read after an input or
-/// the state changed, and refused while an input was never set, so each variable is read
-/// on its own and a refused read is part of what is observed (its value reads 0).
-fn observe(c: *mut RacewayComponent) -> Option<Vec<u64>> {
-    let mut t = 0.0;
-    if unsafe { raceway_get_time(c, &mut t) } != RacewayStatus::Ok {
-        return None;
-    }
-    let mut seen = vec![t.to_bits()];
-    for i in 0..raceway_variable_count() {
-        let mut vr = 0;
-        unsafe { raceway_variable_at(i, &mut vr) };
-        let mut v = 0.0;
-        let st = unsafe { raceway_get_real(c, vr, &mut v) };
-        if st == RacewayStatus::Ok {
-            seen.push(v.to_bits());
-        } else {
-            seen.push(0f64.to_bits());
-            seen.push(st as u64);
-        }
-    }
-    Some(seen)
 }
 
 #[test]
@@ -489,20 +456,18 @@ fn fuzz_c_abi_call_sequences() {
             }
         };
         let secs = thread_cpu() - t0;
-        tally.slowest_s = tally.slowest_s.max(secs);
-        if secs > HANG_SECONDS {
-            tally.hangs += 1;
+        if tally.timed(secs) {
             eprintln!("hang: seed {seed0} case {case} op {op} ({secs:.1} s)");
         }
         match status {
             RacewayStatus::Ok => tally.accepted += 1,
             RacewayStatus::Panic => {
                 tally.panics += 1;
-                eprintln!("panic: seed {seed0} case {case} op {op}: {}", msg(c));
+                eprintln!("panic: seed {seed0} case {case} op {op}: {}", message(c));
             }
             other => {
                 tally.refused += 1;
-                let m = msg(c);
+                let m = message(c);
                 let bare = matches!(
                     other,
                     RacewayStatus::NullPointer | RacewayStatus::InvalidHandle

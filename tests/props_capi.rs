@@ -20,6 +20,9 @@ mod props_util;
 use props_util::number;
 use proptest::prelude::*;
 use proptest::sample::Index;
+#[path = "common/capi_observe.rs"]
+mod capi_observe;
+use capi_observe::{message, observe};
 use raceway::capi::*;
 use std::ffi::{c_char, CStr, CString};
 use std::ptr::{null, null_mut};
@@ -244,34 +247,6 @@ fn vr_of(v: &Vr) -> u32 {
         }
         Vr::Unknown(x) => *x,
     }
-}
-
-fn message(c: *mut RacewayComponent) -> String {
-    unsafe { CStr::from_ptr(raceway_last_error(c)) }
-        .to_string_lossy()
-        .into_owned()
-}
-
-/// Time and every variable of a live instance (bits, and the status of a refused read);
-/// None when `c` is not a live instance.
-fn observe(c: *mut RacewayComponent) -> Option<Vec<u64>> {
-    let mut t = 0.0;
-    if unsafe { raceway_get_time(c, &mut t) } != RacewayStatus::Ok {
-        return None;
-    }
-    let mut seen = vec![t.to_bits()];
-    for i in 0..raceway_variable_count() {
-        let mut vr = 0;
-        unsafe { raceway_variable_at(i, &mut vr) };
-        let mut v = 0.0;
-        let st = unsafe { raceway_get_real(c, vr, &mut v) };
-        seen.push(if st == RacewayStatus::Ok {
-            v.to_bits()
-        } else {
-            1 << 63 | st as u64
-        });
-    }
-    Some(seen)
 }
 
 /// Sentinel written into output buffers before a call.

@@ -6,11 +6,14 @@
 //! driven under 1000 N downward, 10 µm clearance, 1750 rpm (fs = 29.17 Hz, FTF = 11.62,
 //! BPFO = 104.56, BPFI = 157.94, BSF = 68.74 Hz), sampled at 10 kHz for 0.5 s (2 Hz bins).
 
+#[path = "common/outputs.rs"]
+mod outputs;
+use outputs::outputs;
 use raceway::analysis::{
     amplitude_spectrum, envelope_spectrum, find_peaks, Mark, Spectrum, Window,
 };
 use raceway::component::variables;
-use raceway::contact::{series_constant, Curvature, PointContact, Race};
+use raceway::contact::{series_constant, PointContact, Race};
 use raceway::geometry::{kinematics, preset, Kinematics};
 use raceway::lubrication::{central_film, minimum_film, FilmModel, Lubricant};
 use raceway::models::defects::{edge_depth, Defect, DefectSite};
@@ -244,14 +247,8 @@ fn inner_race_waviness_of_order_pz_pm_m_gives_bpfi_sidebands() {
 
 fn contacts() -> (PointContact, PointContact, f64, f64, f64) {
     let b = preset("6205").unwrap().build().unwrap();
-    let ci = PointContact::new(
-        Curvature::ball_race(b.d, b.dm, 0.0, b.fi, Race::Inner),
-        b.e_eff_inner(),
-    );
-    let co = PointContact::new(
-        Curvature::ball_race(b.d, b.dm, 0.0, b.fo, Race::Outer),
-        b.e_eff_outer(),
-    );
+    let ci = PointContact::ball_race(&b, 0.0, Race::Inner);
+    let co = PointContact::ball_race(&b, 0.0, Race::Outer);
     let kn = series_constant(ci.kc, co.kc);
     (ci, co, kn, b.dm, b.d / b.dm)
 }
@@ -309,12 +306,6 @@ fn film_damping_vanishes_with_viscosity() {
         }
     }
     assert!(last < 1e-4, "{last}");
-}
-
-fn outputs(c: &mut Component) -> Vec<u64> {
-    variables::all()
-        .map(|v| c.get_real(v.vr).unwrap().to_bits())
-        .collect()
 }
 
 /// No effects, an empty `[effects]`, empty lists and a dry film are the plain model: bit

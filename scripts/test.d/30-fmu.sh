@@ -3,11 +3,7 @@
 # examples, in a venv under target/ that this script creates and fills.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
-target="${CARGO_TARGET_DIR:-target}"
-venv="$target/venv"
-if [ ! -x "$venv/bin/python" ]; then
-  python3 -m venv "$venv"
-fi
+venv=$(scripts/venv)
 "$venv/bin/python" -m pip install --quiet --disable-pip-version-check -r tests/python/requirements.txt
 
 # unit tests of the FMI layer (the `fmi` feature is off in the main test run)

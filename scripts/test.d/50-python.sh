@@ -6,10 +6,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 target="${CARGO_TARGET_DIR:-target}"
-venv="$target/venv"
-if [ ! -x "$venv/bin/python" ]; then
-  python3 -m venv "$venv"
-fi
+venv=$(scripts/venv)
 t0=$SECONDS
 # The package with its test extra (pytest, distributed); maturin builds the release wheel.
 "$venv/bin/python" -m pip install --quiet --disable-pip-version-check "./python[test]"

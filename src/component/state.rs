@@ -112,15 +112,22 @@ fn refused(message: String) -> Error {
     }
 }
 
-struct Reader<'a> {
-    b: &'a [u8],
-    at: usize,
+/// Little-endian reads from bytes, shared by the component's state bytes and the FMU state
+/// bytes: a read past the end is refused with `fail("truncated at byte <at> of <len>")`.
+pub(crate) struct ByteReader<'a, E> {
+    /// The bytes.
+    pub(crate) b: &'a [u8],
+    /// Where the next read starts.
+    pub(crate) at: usize,
+    /// The error of a refusal from its message.
+    pub(crate) fail: fn(String) -> E,
 }
 
-impl Reader<'_> {
-    fn take(&mut self, n: usize) -> Result<&[u8]> {
+impl<'a, E> ByteReader<'a, E> {
+    /// The next `n` bytes.
+    pub(crate) fn take(&mut self, n: usize) -> std::result::Result<&'a [u8], E> {
         if n > self.b.len() - self.at {
-            return Err(refused(format!(
+            return Err((self.fail)(format!(
                 "truncated at byte {} of {}",
                 self.at,
                 self.b.len()
@@ -130,11 +137,17 @@ impl Reader<'_> {
         self.at += n;
         Ok(s)
     }
-    fn u64(&mut self) -> Result<u64> {
+    /// The next `u64`.
+    pub(crate) fn u64(&mut self) -> std::result::Result<u64, E> {
         Ok(u64::from_le_bytes(
             self.take(8)?.try_into().expect("8 bytes"),
         ))
     }
+}
+
+type Reader<'a> = ByteReader<'a, Error>;
+
+impl Reader<'_> {
     /// A finite number called `what`.
     fn f64(&mut self, what: &str) -> Result<f64> {
         self.finite(what, None)
@@ -244,7 +257,11 @@ impl State {
                 "checksum mismatch: the bytes are damaged or truncated".into(),
             ));
         }
-        let mut r = Reader { b: body, at: 8 };
+        let mut r = Reader {
+            b: body,
+            at: 8,
+            fail: refused,
+        };
         let scene_fingerprint = r.u64()?;
         let t = r.f64("t")?;
         let (started, outputs_stale, derivatives_pending) = match r.u64()? {

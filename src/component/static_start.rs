@@ -24,6 +24,20 @@ pub(super) fn static_start(
         .map(|(d, v)| if d < 3 { v.abs() } else { v.abs() / lever })
         .sum::<f64>()
         + 1.0;
+    let mut sys = StaticSystem {
+        level,
+        dofs,
+        loads: [0.0; 5],
+        omega,
+        lever,
+        x,
+        aux,
+        tol: 1e-9 * scale,
+        out: LevelOutputs::default(),
+        now: ([0.0; 5], [[0.0; 5]; 5]),
+        next: ([0.0; 5], [[0.0; 5]; 5]),
+        fresh: false,
+    };
     let mut last = f64::INFINITY;
     for stages in [1usize, 4, 16] {
         let mut q = [0.0; 5];
@@ -31,7 +45,7 @@ pub(super) fn static_start(
         for k in 1..=stages {
             let f = k as f64 / stages as f64;
             let part: [f64; 5] = std::array::from_fn(|d| f * loads[d]);
-            match newton_static(level, dofs, &part, omega, lever, x, aux, &mut q, scale) {
+            match newton_static(&mut sys, part, &mut q) {
                 Ok(r) if r <= 1e-6 * scale => last = r,
                 Ok(r) => {
                     last = r;
@@ -55,44 +69,24 @@ pub(super) fn static_start(
     })
 }
 
-/// Newton iterations from `q` towards `F(q) + loads = 0`; returns the final residual (forces
-/// in N, moments divided by `lever`).
-#[allow(clippy::too_many_arguments)]
-fn newton_static(
-    level: &mut dyn LevelModel,
-    dofs: &[usize],
-    loads: &[f64; 5],
-    omega: f64,
-    lever: f64,
-    x: &[f64],
-    aux: &mut [f64],
-    q: &mut [f64; 5],
-    scale: f64,
-) -> Result<f64> {
-    let mut sys = StaticSystem {
-        level,
-        dofs,
-        loads,
-        omega,
-        lever,
-        x,
-        aux,
-        tol: 1e-9 * scale,
-        out: LevelOutputs::default(),
-        now: ([0.0; 5], [[0.0; 5]; 5]),
-        next: ([0.0; 5], [[0.0; 5]; 5]),
-        fresh: false,
-    };
+/// Newton iterations from `q` towards `F(q) + loads = 0`, `sys` started afresh with these
+/// loads; returns the final residual (forces in N, moments divided by the lever).
+fn newton_static(sys: &mut StaticSystem, loads: [f64; 5], q: &mut [f64; 5]) -> Result<f64> {
+    sys.loads = loads;
+    sys.out = LevelOutputs::default();
+    sys.now = ([0.0; 5], [[0.0; 5]; 5]);
+    sys.next = ([0.0; 5], [[0.0; 5]; 5]);
+    sys.fresh = false;
     // Scaled coordinates: translations in m, tilts times the lever.
     let opts = crate::solver::newton::Options {
         max_iterations: 100,
         max_halvings: 40,
         armijo: 0.0,
-        scale: [1.0, 1.0, 1.0, lever, lever],
+        scale: [1.0, 1.0, 1.0, sys.lever, sys.lever],
         dead_zone_bisections: 60,
         ..Default::default()
     };
-    Ok(crate::solver::newton::solve(&mut sys, q, &opts)?.check.norm)
+    Ok(crate::solver::newton::solve(sys, q, &opts)?.check.norm)
 }
 
 /// `F(q) + loads = 0` over the level's ring coordinates `dofs` as
@@ -101,7 +95,7 @@ fn newton_static(
 struct StaticSystem<'a> {
     level: &'a mut dyn LevelModel,
     dofs: &'a [usize],
-    loads: &'a [f64; 5],
+    loads: [f64; 5],
     omega: f64,
     lever: f64,
     x: &'a [f64],

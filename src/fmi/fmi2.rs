@@ -10,9 +10,10 @@
 #![allow(non_snake_case)]
 
 use super::instance::{
-    deserialize, get_state, guard, no_panic, serialize, slice, slice_mut, str_arg, Fail,
-    Fmi2Logger, Instance, Logger, Snapshot, Status, ANY, ERROR, INIT, INSTANTIATED, STEP,
-    TERMINATED,
+    deserialize, free_state, get_output_derivatives, get_state, get_strings, get_values, guard,
+    no_panic, serialize, serialized_size, set_debug_logging, set_state, set_values, slice,
+    slice_mut, str_arg, Fail, Fmi2Logger, Instance, Logger, Status, ANY, ERROR, INIT, INSTANTIATED,
+    STEP, TERMINATED,
 };
 use std::ffi::{c_char, c_void};
 use std::ptr::null_mut;
@@ -41,6 +42,8 @@ pub struct Fmi2CallbackFunctions {
 const GET: u32 = INIT | STEP | TERMINATED | ERROR;
 const SET: u32 = INSTANTIATED | INIT | STEP;
 const STATUS: u32 = STEP | TERMINATED;
+/// The value-reference and value arguments, as messages name them.
+const NAMES: [&str; 2] = ["vr", "value"];
 
 /// `fmi2GetTypesPlatform`.
 #[no_mangle]
@@ -66,12 +69,7 @@ pub unsafe extern "C" fn fmi2SetDebugLogging(
     categories: *const *const c_char,
 ) -> Status {
     guard(c, "fmi2SetDebugLogging", ANY, |inst| {
-        let cats = slice(categories, n_categories, "categories")?;
-        let cats: Vec<String> = cats
-            .iter()
-            .map(|&p| str_arg(p).unwrap_or_default())
-            .collect();
-        inst.set_debug_logging(logging_on != 0, &cats)
+        set_debug_logging(inst, logging_on != 0, n_categories, categories)
     })
 }
 
@@ -202,90 +200,73 @@ pub unsafe extern "C" fn fmi2Reset(c: Fmi2Component) -> Status {
     })
 }
 
-/// `fmi2GetReal`.
-///
-/// # Safety
-/// FMI 2 calling convention.
-#[no_mangle]
-pub unsafe extern "C" fn fmi2GetReal(
-    c: Fmi2Component,
-    vr: *const u32,
-    nvr: usize,
-    value: *mut f64,
-) -> Status {
-    guard(c, "fmi2GetReal", GET, |inst| {
-        let vr = slice(vr, nvr, "vr")?;
-        let out = slice_mut(value, nvr, "value")?;
-        for (o, &r) in out.iter_mut().zip(vr) {
-            *o = inst.get_real(r)?;
+/// `$get` and `$set` of one type (`$t` in C): `$get` reads each value with `$read`, `$set`
+/// writes each with `$write` (both give a `Result`); `$gdoc`, `$sdoc`: what they cover.
+macro_rules! get_set {
+    ($get:ident, $gdoc:literal, $set:ident, $sdoc:literal, $t:ty,
+     |$i:ident, $r:ident| $read:expr, |$j:ident, $w:ident, $x:ident| $write:expr) => {
+        #[doc = concat!("`", stringify!($get), "`", $gdoc, ".")]
+        ///
+        /// # Safety
+        /// FMI 2 calling convention.
+        #[no_mangle]
+        pub unsafe extern "C" fn $get(
+            c: Fmi2Component,
+            vr: *const u32,
+            nvr: usize,
+            value: *mut $t,
+        ) -> Status {
+            guard(c, stringify!($get), GET, |$i| {
+                get_values(vr, value, nvr, NAMES, |$r| $read)
+            })
         }
-        Ok(Status::Ok)
-    })
+
+        #[doc = concat!("`", stringify!($set), "`", $sdoc, ".")]
+        ///
+        /// # Safety
+        /// FMI 2 calling convention.
+        #[no_mangle]
+        pub unsafe extern "C" fn $set(
+            c: Fmi2Component,
+            vr: *const u32,
+            nvr: usize,
+            value: *const $t,
+        ) -> Status {
+            guard(c, stringify!($set), SET, |$j| {
+                set_values(vr, value, nvr, NAMES, |$w, $x| $write)
+            })
+        }
+    };
 }
 
-/// `fmi2SetReal`.
-///
-/// # Safety
-/// FMI 2 calling convention.
-#[no_mangle]
-pub unsafe extern "C" fn fmi2SetReal(
-    c: Fmi2Component,
-    vr: *const u32,
-    nvr: usize,
-    value: *const f64,
-) -> Status {
-    guard(c, "fmi2SetReal", SET, |inst| {
-        let vr = slice(vr, nvr, "vr")?;
-        let vals = slice(value, nvr, "value")?;
-        for (&r, &x) in vr.iter().zip(vals) {
-            inst.set_real(r, x)?;
-        }
-        Ok(Status::Ok)
-    })
-}
-
-/// `fmi2GetInteger`: the Integer outputs (counts) and the Enumeration parameters.
-///
-/// # Safety
-/// FMI 2 calling convention.
-#[no_mangle]
-pub unsafe extern "C" fn fmi2GetInteger(
-    c: Fmi2Component,
-    vr: *const u32,
-    nvr: usize,
-    value: *mut i32,
-) -> Status {
-    guard(c, "fmi2GetInteger", GET, |inst| {
-        let vr = slice(vr, nvr, "vr")?;
-        let out = slice_mut(value, nvr, "value")?;
-        for (o, &r) in out.iter_mut().zip(vr) {
-            // counts and enumeration items both fit in an i32
-            *o = inst.get_integer(r, "Integer")? as i32;
-        }
-        Ok(Status::Ok)
-    })
-}
-
-/// `fmi2GetBoolean`: the Boolean parameters.
-///
-/// # Safety
-/// FMI 2 calling convention.
-#[no_mangle]
-pub unsafe extern "C" fn fmi2GetBoolean(
-    c: Fmi2Component,
-    vr: *const u32,
-    nvr: usize,
-    value: *mut i32,
-) -> Status {
-    guard(c, "fmi2GetBoolean", GET, |inst| {
-        let vr = slice(vr, nvr, "vr")?;
-        let out = slice_mut(value, nvr, "value")?;
-        for (o, &r) in out.iter_mut().zip(vr) {
-            *o = inst.get_boolean(r)? as i32;
-        }
-        Ok(Status::Ok)
-    })
-}
+get_set!(
+    fmi2GetReal,
+    "",
+    fmi2SetReal,
+    "",
+    f64,
+    |inst, r| inst.get_real(r),
+    |inst, r, x| inst.set_real(r, x)
+);
+// counts and enumeration items both fit in an i32
+get_set!(
+    fmi2GetInteger,
+    ": the Integer outputs (counts) and the Enumeration parameters",
+    fmi2SetInteger,
+    ": the Enumeration parameters",
+    i32,
+    |inst, r| Ok(inst.get_integer(r, "Integer")? as i32),
+    |inst, r, x| inst.set_integer(r, x as i64, "Integer")
+);
+get_set!(
+    fmi2GetBoolean,
+    ": the Boolean parameters",
+    fmi2SetBoolean,
+    ": the Boolean parameters",
+    i32,
+    |inst, r| Ok(inst.get_boolean(r)? as i32),
+    |inst, r, x| inst.set_boolean(r, x != 0)
+);
 
 /// `fmi2GetString`: the returned strings stay valid until the next `fmi2GetString`.
 ///
@@ -299,62 +280,7 @@ pub unsafe extern "C" fn fmi2GetString(
     value: *mut *const c_char,
 ) -> Status {
     guard(c, "fmi2GetString", GET, |inst| {
-        let vr = slice(vr, nvr, "vr")?;
-        let out = slice_mut(value, nvr, "value")?;
-        let strings = vr
-            .iter()
-            .map(|&r| inst.get_string(r))
-            .collect::<Result<Vec<_>, _>>()?;
-        inst.strings = strings
-            .into_iter()
-            .map(|s| std::ffi::CString::new(s.replace('\0', " ")).unwrap_or_default())
-            .collect();
-        for (o, s) in out.iter_mut().zip(&inst.strings) {
-            *o = s.as_ptr();
-        }
-        Ok(Status::Ok)
-    })
-}
-
-/// `fmi2SetInteger`: the Enumeration parameters.
-///
-/// # Safety
-/// FMI 2 calling convention.
-#[no_mangle]
-pub unsafe extern "C" fn fmi2SetInteger(
-    c: Fmi2Component,
-    vr: *const u32,
-    nvr: usize,
-    value: *const i32,
-) -> Status {
-    guard(c, "fmi2SetInteger", SET, |inst| {
-        let vr = slice(vr, nvr, "vr")?;
-        let vals = slice(value, nvr, "value")?;
-        for (&r, &x) in vr.iter().zip(vals) {
-            inst.set_integer(r, x as i64, "Integer")?;
-        }
-        Ok(Status::Ok)
-    })
-}
-
-/// `fmi2SetBoolean`: the Boolean parameters.
-///
-/// # Safety
-/// FMI 2 calling convention.
-#[no_mangle]
-pub unsafe extern "C" fn fmi2SetBoolean(
-    c: Fmi2Component,
-    vr: *const u32,
-    nvr: usize,
-    value: *const i32,
-) -> Status {
-    guard(c, "fmi2SetBoolean", SET, |inst| {
-        let vr = slice(vr, nvr, "vr")?;
-        let vals = slice(value, nvr, "value")?;
-        for (&r, &x) in vr.iter().zip(vals) {
-            inst.set_boolean(r, x != 0)?;
-        }
-        Ok(Status::Ok)
+        get_strings(inst, vr, value, nvr, NAMES)
     })
 }
 
@@ -370,12 +296,7 @@ pub unsafe extern "C" fn fmi2SetString(
     value: *const *const c_char,
 ) -> Status {
     guard(c, "fmi2SetString", SET, |inst| {
-        let vr = slice(vr, nvr, "vr")?;
-        let vals = slice(value, nvr, "value")?;
-        for (&r, &p) in vr.iter().zip(vals) {
-            inst.set_string(r, str_arg(p))?;
-        }
-        Ok(Status::Ok)
+        set_values(vr, value, nvr, NAMES, |r, p| inst.set_string(r, str_arg(p)))
     })
 }
 
@@ -394,10 +315,7 @@ pub unsafe extern "C" fn fmi2GetFMUstate(c: Fmi2Component, state: *mut Fmi2FmuSt
 /// FMI 2 calling convention.
 #[no_mangle]
 pub unsafe extern "C" fn fmi2SetFMUstate(c: Fmi2Component, state: Fmi2FmuState) -> Status {
-    guard(c, "fmi2SetFMUstate", ANY, |inst| {
-        inst.restore(Instance::snapshot_lease(state)?.get())?;
-        Ok(Status::Ok)
-    })
+    guard(c, "fmi2SetFMUstate", ANY, |inst| set_state(inst, state))
 }
 
 /// `fmi2FreeFMUstate` (NULL is ignored).
@@ -406,13 +324,7 @@ pub unsafe extern "C" fn fmi2SetFMUstate(c: Fmi2Component, state: Fmi2FmuState) 
 /// FMI 2 calling convention.
 #[no_mangle]
 pub unsafe extern "C" fn fmi2FreeFMUstate(c: Fmi2Component, state: *mut Fmi2FmuState) -> Status {
-    guard(c, "fmi2FreeFMUstate", ANY, |_| {
-        if !state.is_null() && !(*state).is_null() {
-            Snapshot::free(*state);
-            *state = null_mut();
-        }
-        Ok(Status::Ok)
-    })
+    guard(c, "fmi2FreeFMUstate", ANY, |_| free_state(state))
 }
 
 /// `fmi2SerializedFMUstateSize`.
@@ -426,9 +338,7 @@ pub unsafe extern "C" fn fmi2SerializedFMUstateSize(
     size: *mut usize,
 ) -> Status {
     guard(c, "fmi2SerializedFMUstateSize", ANY, |_| {
-        let n = Instance::snapshot_lease(state)?.get().to_bytes().len();
-        *slice_mut(size, 1, "size")?.first_mut().expect("one") = n;
-        Ok(Status::Ok)
+        serialized_size(state, size)
     })
 }
 
@@ -528,15 +438,7 @@ pub unsafe extern "C" fn fmi2GetRealOutputDerivatives(
         c,
         "fmi2GetRealOutputDerivatives",
         STEP | TERMINATED | ERROR,
-        |inst| {
-            let vr = slice(vr, nvr, "vr")?;
-            let order = slice(order, nvr, "order")?;
-            let out = slice_mut(value, nvr, "value")?;
-            for i in 0..nvr {
-                out[i] = inst.get_output_derivative(vr[i], order[i] as i64)?;
-            }
-            Ok(Status::Ok)
-        },
+        |inst| get_output_derivatives(inst, vr, order, value, nvr, ["vr", "order", "value"]),
     )
 }
 

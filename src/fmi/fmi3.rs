@@ -11,9 +11,10 @@
 #![allow(non_snake_case)]
 
 use super::instance::{
-    deserialize, get_state, guard, no_panic, serialize, slice, slice_mut, str_arg, Fail,
-    Fmi3Logger, Instance, Logger, Snapshot, Status, ANY, EVENT, INIT, INSTANTIATED, STEP,
-    TERMINATED,
+    deserialize, free_state, get_output_derivatives, get_state, get_strings, get_values, guard,
+    no_panic, serialize, serialized_size, set_debug_logging, set_state, set_values, slice,
+    slice_mut, str_arg, Fail, Fmi3Logger, Instance, Logger, Status, ANY, EVENT, INIT, INSTANTIATED,
+    STEP, TERMINATED,
 };
 use std::ffi::{c_char, c_void, CString};
 use std::path::PathBuf;
@@ -34,6 +35,8 @@ pub type Fmi3Preemption = Option<unsafe extern "C" fn()>;
 const GET: u32 = INIT | EVENT | STEP | TERMINATED;
 const SET: u32 = INSTANTIATED | INIT | EVENT | STEP;
 const SETTABLE: u32 = INSTANTIATED | INIT | EVENT | STEP | TERMINATED;
+/// The value-reference and value arguments, as messages name them.
+const NAMES: [&str; 2] = ["valueReferences", "values"];
 
 /// `fmi3GetVersion`.
 #[no_mangle]
@@ -53,12 +56,7 @@ pub unsafe extern "C" fn fmi3SetDebugLogging(
     categories: *const *const c_char,
 ) -> Status {
     guard(instance, "fmi3SetDebugLogging", ANY, |inst| {
-        let cats = slice(categories, n_categories, "categories")?;
-        let cats: Vec<String> = cats
-            .iter()
-            .map(|&p| str_arg(p).unwrap_or_default())
-            .collect();
-        inst.set_debug_logging(logging_on, &cats)
+        set_debug_logging(inst, logging_on, n_categories, categories)
     })
 }
 
@@ -300,12 +298,7 @@ pub unsafe extern "C" fn fmi3GetFloat64(
 ) -> Status {
     guard(instance, "fmi3GetFloat64", GET, |inst| {
         count(nvr, n_values)?;
-        let vr = slice(vrs, nvr, "valueReferences")?;
-        let out = slice_mut(values, nvr, "values")?;
-        for (o, &r) in out.iter_mut().zip(vr) {
-            *o = inst.get_real(r)?;
-        }
-        Ok(Status::Ok)
+        get_values(vrs, values, nvr, NAMES, |r| inst.get_real(r))
     })
 }
 
@@ -323,12 +316,7 @@ pub unsafe extern "C" fn fmi3SetFloat64(
 ) -> Status {
     guard(instance, "fmi3SetFloat64", SET, |inst| {
         count(nvr, n_values)?;
-        let vr = slice(vrs, nvr, "valueReferences")?;
-        let vals = slice(values, nvr, "values")?;
-        for (&r, &x) in vr.iter().zip(vals) {
-            inst.set_real(r, x)?;
-        }
-        Ok(Status::Ok)
+        set_values(vrs, values, nvr, NAMES, |r, x| inst.set_real(r, x))
     })
 }
 
@@ -346,20 +334,7 @@ pub unsafe extern "C" fn fmi3GetString(
 ) -> Status {
     guard(instance, "fmi3GetString", GET, |inst| {
         count(nvr, n_values)?;
-        let vr = slice(vrs, nvr, "valueReferences")?;
-        let out = slice_mut(values, nvr, "values")?;
-        let strings = vr
-            .iter()
-            .map(|&r| inst.get_string(r))
-            .collect::<Result<Vec<_>, _>>()?;
-        inst.strings = strings
-            .into_iter()
-            .map(|s| CString::new(s.replace('\0', " ")).unwrap_or_default())
-            .collect();
-        for (o, s) in out.iter_mut().zip(&inst.strings) {
-            *o = s.as_ptr();
-        }
-        Ok(Status::Ok)
+        get_strings(inst, vrs, values, nvr, NAMES)
     })
 }
 
@@ -377,12 +352,9 @@ pub unsafe extern "C" fn fmi3SetString(
 ) -> Status {
     guard(instance, "fmi3SetString", SET, |inst| {
         count(nvr, n_values)?;
-        let vr = slice(vrs, nvr, "valueReferences")?;
-        let vals = slice(values, nvr, "values")?;
-        for (&r, &p) in vr.iter().zip(vals) {
-            inst.set_string(r, str_arg(p))?;
-        }
-        Ok(Status::Ok)
+        set_values(vrs, values, nvr, NAMES, |r, p| {
+            inst.set_string(r, str_arg(p))
+        })
     })
 }
 
@@ -396,43 +368,38 @@ fn no_such(kind: &str, vr: &[u32]) -> Result<Status, Fail> {
     }
 }
 
-/// Getters and setters of types raceway has no variables of: zero value references is
-/// OK, any value reference is an error.
+/// A getter or setter of variables raceway does not have (`$kind`): zero value references
+/// is OK, any value reference is an error. `$arg`s: the arguments after `nvr` (unused).
+macro_rules! no_such_variables {
+    ($name:ident, $mask:ident, $kind:literal, $doc:expr, ($($arg:ident: $t:ty),*)) => {
+        #[doc = $doc]
+        ///
+        /// # Safety
+        /// FMI 3 calling convention.
+        #[no_mangle]
+        pub unsafe extern "C" fn $name(
+            instance: Fmi3Instance,
+            vrs: *const u32,
+            nvr: usize,
+            $($arg: $t),*
+        ) -> Status {
+            $(let _ = $arg;)*
+            guard(instance, stringify!($name), $mask, |_| {
+                no_such($kind, slice(vrs, nvr, "valueReferences")?)
+            })
+        }
+    };
+}
+
+/// Getters and setters of types raceway has no variables of.
 macro_rules! no_variables {
     ($get:ident, $set:ident, $t:ty, $kind:literal) => {
-        #[doc = concat!("`", stringify!($get), "`: raceway has no ", $kind, " variables.")]
-        ///
-        /// # Safety
-        /// FMI 3 calling convention.
-        #[no_mangle]
-        pub unsafe extern "C" fn $get(
-            instance: Fmi3Instance,
-            vrs: *const u32,
-            nvr: usize,
-            _values: *mut $t,
-            _n_values: usize,
-        ) -> Status {
-            guard(instance, stringify!($get), GET, |_| {
-                no_such($kind, slice(vrs, nvr, "valueReferences")?)
-            })
-        }
-
-        #[doc = concat!("`", stringify!($set), "`: raceway has no ", $kind, " variables.")]
-        ///
-        /// # Safety
-        /// FMI 3 calling convention.
-        #[no_mangle]
-        pub unsafe extern "C" fn $set(
-            instance: Fmi3Instance,
-            vrs: *const u32,
-            nvr: usize,
-            _values: *const $t,
-            _n_values: usize,
-        ) -> Status {
-            guard(instance, stringify!($set), SET, |_| {
-                no_such($kind, slice(vrs, nvr, "valueReferences")?)
-            })
-        }
+        no_such_variables!($get, GET, $kind,
+            concat!("`", stringify!($get), "`: raceway has no ", $kind, " variables."),
+            (values: *mut $t, n_values: usize));
+        no_such_variables!($set, SET, $kind,
+            concat!("`", stringify!($set), "`: raceway has no ", $kind, " variables."),
+            (values: *const $t, n_values: usize));
     };
 }
 
@@ -442,8 +409,8 @@ no_variables!(fmi3GetUInt8, fmi3SetUInt8, u8, "UInt8");
 no_variables!(fmi3GetInt16, fmi3SetInt16, i16, "Int16");
 no_variables!(fmi3GetUInt16, fmi3SetUInt16, u16, "UInt16");
 /// Getters and setters of the types raceway has variables of besides Float64 and String:
-/// `$get` reads each value with `$read` and converts it with `$to`; `$set` converts with
-/// `$from` and writes with `$write`.
+/// `$get` reads each value with `$read`, `$set` writes each with `$write` (both give a
+/// `Result`).
 macro_rules! typed_variables {
     ($get:ident, $set:ident, $t:ty, $kind:literal, $doc:literal,
      |$i:ident, $r:ident| $read:expr, |$j:ident, $w:ident, $x:ident| $write:expr) => {
@@ -461,12 +428,7 @@ macro_rules! typed_variables {
         ) -> Status {
             guard(instance, stringify!($get), GET, |$i| {
                 count(nvr, n_values)?;
-                let vr = slice(vrs, nvr, "valueReferences")?;
-                let out = slice_mut(values, nvr, "values")?;
-                for (o, &$r) in out.iter_mut().zip(vr) {
-                    *o = $read;
-                }
-                Ok(Status::Ok)
+                get_values(vrs, values, nvr, NAMES, |$r| $read)
             })
         }
 
@@ -484,12 +446,7 @@ macro_rules! typed_variables {
         ) -> Status {
             guard(instance, stringify!($set), SET, |$j| {
                 count(nvr, n_values)?;
-                let vr = slice(vrs, nvr, "valueReferences")?;
-                let vals = slice(values, nvr, "values")?;
-                for (&$w, &$x) in vr.iter().zip(vals) {
-                    $write;
-                }
-                Ok(Status::Ok)
+                set_values(vrs, values, nvr, NAMES, |$w, $x| $write)
             })
         }
     };
@@ -501,8 +458,8 @@ typed_variables!(
     i32,
     "Int32",
     "the Int32 outputs (counts)",
-    |inst, r| inst.get_int32(r)?,
-    |inst, r, _x| return Err(inst.wrong_type(r, "Int32"))
+    |inst, r| inst.get_int32(r),
+    |inst, r, _x| Err(inst.wrong_type(r, "Int32"))
 );
 typed_variables!(
     fmi3GetInt64,
@@ -510,8 +467,8 @@ typed_variables!(
     i64,
     "Int64",
     "the Enumeration parameters",
-    |inst, r| inst.get_enumeration(r)?,
-    |inst, r, x| inst.set_integer(r, x, "Int64")?
+    |inst, r| inst.get_enumeration(r),
+    |inst, r, x| inst.set_integer(r, x, "Int64")
 );
 typed_variables!(
     fmi3GetBoolean,
@@ -519,79 +476,22 @@ typed_variables!(
     bool,
     "Boolean",
     "the Boolean parameters",
-    |inst, r| inst.get_boolean(r)?,
-    |inst, r, x| inst.set_boolean(r, x)?
+    |inst, r| inst.get_boolean(r),
+    |inst, r, x| inst.set_boolean(r, x)
 );
 no_variables!(fmi3GetUInt32, fmi3SetUInt32, u32, "UInt32");
 no_variables!(fmi3GetUInt64, fmi3SetUInt64, u64, "UInt64");
 
-/// `fmi3GetBinary`: raceway has no Binary variables.
-///
-/// # Safety
-/// FMI 3 calling convention.
-#[no_mangle]
-pub unsafe extern "C" fn fmi3GetBinary(
-    instance: Fmi3Instance,
-    vrs: *const u32,
-    nvr: usize,
-    _value_sizes: *mut usize,
-    _values: *mut *const u8,
-    _n_values: usize,
-) -> Status {
-    guard(instance, "fmi3GetBinary", GET, |_| {
-        no_such("Binary", slice(vrs, nvr, "valueReferences")?)
-    })
-}
-
-/// `fmi3SetBinary`: raceway has no Binary variables.
-///
-/// # Safety
-/// FMI 3 calling convention.
-#[no_mangle]
-pub unsafe extern "C" fn fmi3SetBinary(
-    instance: Fmi3Instance,
-    vrs: *const u32,
-    nvr: usize,
-    _value_sizes: *const usize,
-    _values: *const *const u8,
-    _n_values: usize,
-) -> Status {
-    guard(instance, "fmi3SetBinary", SET, |_| {
-        no_such("Binary", slice(vrs, nvr, "valueReferences")?)
-    })
-}
-
-/// `fmi3GetClock`: raceway has no clocks.
-///
-/// # Safety
-/// FMI 3 calling convention.
-#[no_mangle]
-pub unsafe extern "C" fn fmi3GetClock(
-    instance: Fmi3Instance,
-    vrs: *const u32,
-    nvr: usize,
-    _values: *mut bool,
-) -> Status {
-    guard(instance, "fmi3GetClock", GET, |_| {
-        no_such("Clock", slice(vrs, nvr, "valueReferences")?)
-    })
-}
-
-/// `fmi3SetClock`: raceway has no clocks.
-///
-/// # Safety
-/// FMI 3 calling convention.
-#[no_mangle]
-pub unsafe extern "C" fn fmi3SetClock(
-    instance: Fmi3Instance,
-    vrs: *const u32,
-    nvr: usize,
-    _values: *const bool,
-) -> Status {
-    guard(instance, "fmi3SetClock", SET, |_| {
-        no_such("Clock", slice(vrs, nvr, "valueReferences")?)
-    })
-}
+no_such_variables!(fmi3GetBinary, GET, "Binary",
+    "`fmi3GetBinary`: raceway has no Binary variables.",
+    (value_sizes: *mut usize, values: *mut *const u8, n_values: usize));
+no_such_variables!(fmi3SetBinary, SET, "Binary",
+    "`fmi3SetBinary`: raceway has no Binary variables.",
+    (value_sizes: *const usize, values: *const *const u8, n_values: usize));
+no_such_variables!(fmi3GetClock, GET, "Clock", "`fmi3GetClock`: raceway has no clocks.",
+    (values: *mut bool));
+no_such_variables!(fmi3SetClock, SET, "Clock", "`fmi3SetClock`: raceway has no clocks.",
+    (values: *const bool));
 
 /// Functions of capabilities raceway does not have: log and return `fmi3Error`.
 macro_rules! unsupported {
@@ -670,8 +570,7 @@ pub unsafe extern "C" fn fmi3GetFMUState(
 #[no_mangle]
 pub unsafe extern "C" fn fmi3SetFMUState(instance: Fmi3Instance, state: Fmi3FmuState) -> Status {
     guard(instance, "fmi3SetFMUState", SETTABLE, |inst| {
-        inst.restore(Instance::snapshot_lease(state)?.get())?;
-        Ok(Status::Ok)
+        set_state(inst, state)
     })
 }
 
@@ -684,13 +583,7 @@ pub unsafe extern "C" fn fmi3FreeFMUState(
     instance: Fmi3Instance,
     state: *mut Fmi3FmuState,
 ) -> Status {
-    guard(instance, "fmi3FreeFMUState", ANY, |_| {
-        if !state.is_null() && !(*state).is_null() {
-            Snapshot::free(*state);
-            *state = null_mut();
-        }
-        Ok(Status::Ok)
-    })
+    guard(instance, "fmi3FreeFMUState", ANY, |_| free_state(state))
 }
 
 /// `fmi3SerializedFMUStateSize`.
@@ -704,9 +597,7 @@ pub unsafe extern "C" fn fmi3SerializedFMUStateSize(
     size: *mut usize,
 ) -> Status {
     guard(instance, "fmi3SerializedFMUStateSize", ANY, |_| {
-        let n = Instance::snapshot_lease(state)?.get().to_bytes().len();
-        slice_mut(size, 1, "size")?[0] = n;
-        Ok(Status::Ok)
+        serialized_size(state, size)
     })
 }
 
@@ -847,13 +738,8 @@ pub unsafe extern "C" fn fmi3GetOutputDerivatives(
         STEP | TERMINATED,
         |inst| {
             count(nvr, n_values)?;
-            let vr = slice(vrs, nvr, "valueReferences")?;
-            let order = slice(orders, nvr, "orders")?;
-            let out = slice_mut(values, nvr, "values")?;
-            for i in 0..nvr {
-                out[i] = inst.get_output_derivative(vr[i], order[i] as i64)?;
-            }
-            Ok(Status::Ok)
+            let names = ["valueReferences", "orders", "values"];
+            get_output_derivatives(inst, vrs, orders, values, nvr, names)
         },
     )
 }

@@ -10,6 +10,7 @@
 
 use super::model_description::{self as md, VR_TIME};
 use super::params::{self, ParamValue, ParamValues};
+use crate::component::state::ByteReader;
 use crate::component::variables::{self, Causality, ParamType, VarType, PARAMETERS};
 use crate::component::{Component, State};
 use crate::ffi::handles::{Lease, Refusal, Registry};
@@ -552,13 +553,14 @@ impl Instance {
                 .map(|(i, v)| (v.name, inputs[i]))
                 .collect(),
         };
-        let (mut c, source) = params::component(
+        let scene = params::scene(
             values,
             tolerance,
             self.resource_scene.as_ref(),
             self.causality,
             &initial,
         )?;
+        let (mut c, source) = params::component(values, scene)?;
         for (i, v) in md::inputs(self.causality).enumerate() {
             if set(i) {
                 c.set_real(v.vr, inputs[i]).map_err(|e| e.to_string())?;
@@ -1145,7 +1147,11 @@ impl Snapshot {
     /// Read the byte form of an FMU state of the variant of causality `causality`.
     pub(crate) fn from_bytes(b: &[u8], causality: Causality) -> Result<Snapshot, String> {
         let own = md::guid(causality);
-        let mut r = Reader { b, at: 0 };
+        let mut r = Reader {
+            b,
+            at: 0,
+            fail: refused,
+        };
         if r.take(4)? != STATE_MAGIC {
             return Err("serialised FMU state: not a raceway FMU state (bad magic)".into());
         }
@@ -1182,7 +1188,11 @@ impl Snapshot {
                     .into(),
             );
         }
-        let mut r = Reader { b, at: r.at };
+        let mut r = Reader {
+            b,
+            at: r.at,
+            fail: refused,
+        };
         let mode = r.u32()?;
         if mode.count_ones() != 1 || mode & ANY == 0 {
             return Err(format!("serialised FMU state: bad mode {mode}"));
@@ -1295,32 +1305,17 @@ impl Snapshot {
     }
 }
 
-struct Reader<'a> {
-    b: &'a [u8],
-    at: usize,
+/// The FMU state's reads: refusals start `serialised FMU state: `.
+type Reader<'a> = ByteReader<'a, String>;
+
+fn refused(msg: String) -> String {
+    format!("serialised FMU state: {msg}")
 }
 
 impl<'a> Reader<'a> {
-    fn take(&mut self, n: usize) -> Result<&'a [u8], String> {
-        if n > self.b.len() - self.at {
-            return Err(format!(
-                "serialised FMU state: truncated at byte {} of {}",
-                self.at,
-                self.b.len()
-            ));
-        }
-        let s = &self.b[self.at..self.at + n];
-        self.at += n;
-        Ok(s)
-    }
     fn u32(&mut self) -> Result<u32, String> {
         Ok(u32::from_le_bytes(
             self.take(4)?.try_into().expect("4 bytes"),
-        ))
-    }
-    fn u64(&mut self) -> Result<u64, String> {
-        Ok(u64::from_le_bytes(
-            self.take(8)?.try_into().expect("8 bytes"),
         ))
     }
     fn f64(&mut self) -> Result<f64, String> {
@@ -1355,12 +1350,52 @@ pub(crate) unsafe fn get_state(
     if state.is_null() {
         return Err(Fail::from("FMUstate pointer is NULL".to_string()));
     }
-    let snap = inst.snapshot();
+    put_state(state, inst.snapshot())
+}
+
+/// `snap` into `*state`: a new FMU state when `*state` is NULL, else the one it names
+/// overwritten.
+///
+/// # Safety
+/// `state` is valid for a read and a write.
+unsafe fn put_state(state: *mut *mut c_void, snap: Snapshot) -> Result<Status, Fail> {
     if (*state).is_null() {
         *state = snap.into_raw();
     } else {
         *Instance::snapshot_lease(*state)?.get() = snap;
     }
+    Ok(Status::Ok)
+}
+
+/// `SetFMUstate`.
+///
+/// # Safety
+/// None beyond the FMI calling convention (`state` is compared with the live FMU states
+/// only).
+pub(crate) unsafe fn set_state(inst: &mut Instance, state: *mut c_void) -> Result<Status, Fail> {
+    inst.restore(Instance::snapshot_lease(state)?.get())?;
+    Ok(Status::Ok)
+}
+
+/// `FreeFMUstate`: frees `*state` and sets it NULL (NULL is ignored).
+///
+/// # Safety
+/// `state` is NULL or valid for a read and a write.
+pub(crate) unsafe fn free_state(state: *mut *mut c_void) -> Result<Status, Fail> {
+    if !state.is_null() && !(*state).is_null() {
+        Snapshot::free(*state);
+        *state = std::ptr::null_mut();
+    }
+    Ok(Status::Ok)
+}
+
+/// `SerializedFMUstateSize`.
+///
+/// # Safety
+/// `size` is NULL or valid for a write.
+pub(crate) unsafe fn serialized_size(state: *mut c_void, size: *mut usize) -> Result<Status, Fail> {
+    let n = Instance::snapshot_lease(state)?.get().to_bytes().len();
+    slice_mut(size, 1, "size")?[0] = n;
     Ok(Status::Ok)
 }
 
@@ -1398,10 +1433,113 @@ pub(crate) unsafe fn deserialize(
         return Err(Fail::from("FMUstate pointer is NULL".to_string()));
     }
     let snap = Snapshot::from_bytes(slice(bytes, size, "serializedState")?, inst.causality)?;
-    if (*state).is_null() {
-        *state = snap.into_raw();
-    } else {
-        *Instance::snapshot_lease(*state)?.get() = snap;
+    put_state(state, snap)
+}
+
+// ---------------------------------------------------------------------------------------
+// Value calls, the same in both versions but for the argument names in messages
+// (`names`: FMI 2's `vr`, `value`; FMI 3's `valueReferences`, `values`).
+
+/// A getter: `value[i] = get(vr[i])` for the `nvr` value references.
+///
+/// # Safety
+/// `vr` and `value` are NULL or valid for `nvr` values.
+pub(crate) unsafe fn get_values<T>(
+    vr: *const u32,
+    value: *mut T,
+    nvr: usize,
+    names: [&str; 2],
+    mut get: impl FnMut(u32) -> Result<T, Fail>,
+) -> Result<Status, Fail> {
+    let vr = slice(vr, nvr, names[0])?;
+    let out = slice_mut(value, nvr, names[1])?;
+    for (o, &r) in out.iter_mut().zip(vr) {
+        *o = get(r)?;
     }
     Ok(Status::Ok)
+}
+
+/// A setter: `set(vr[i], value[i])` for the `nvr` value references.
+///
+/// # Safety
+/// `vr` and `value` are NULL or valid for `nvr` values.
+pub(crate) unsafe fn set_values<T: Copy>(
+    vr: *const u32,
+    value: *const T,
+    nvr: usize,
+    names: [&str; 2],
+    mut set: impl FnMut(u32, T) -> Result<(), Fail>,
+) -> Result<Status, Fail> {
+    let vr = slice(vr, nvr, names[0])?;
+    let vals = slice(value, nvr, names[1])?;
+    for (&r, &x) in vr.iter().zip(vals) {
+        set(r, x)?;
+    }
+    Ok(Status::Ok)
+}
+
+/// `GetString`: the strings stay valid until the next call (they live in the instance).
+///
+/// # Safety
+/// `vr` and `value` are NULL or valid for `nvr` values.
+pub(crate) unsafe fn get_strings(
+    inst: &mut Instance,
+    vr: *const u32,
+    value: *mut *const c_char,
+    nvr: usize,
+    names: [&str; 2],
+) -> Result<Status, Fail> {
+    let vr = slice(vr, nvr, names[0])?;
+    let out = slice_mut(value, nvr, names[1])?;
+    let strings = vr
+        .iter()
+        .map(|&r| inst.get_string(r))
+        .collect::<Result<Vec<_>, _>>()?;
+    inst.strings = strings
+        .into_iter()
+        .map(|s| CString::new(s.replace('\0', " ")).unwrap_or_default())
+        .collect();
+    for (o, s) in out.iter_mut().zip(&inst.strings) {
+        *o = s.as_ptr();
+    }
+    Ok(Status::Ok)
+}
+
+/// `GetRealOutputDerivatives` / `GetOutputDerivatives`: `names` of the value references,
+/// the orders and the values.
+///
+/// # Safety
+/// `vr`, `order` and `value` are NULL or valid for `nvr` values.
+pub(crate) unsafe fn get_output_derivatives(
+    inst: &mut Instance,
+    vr: *const u32,
+    order: *const i32,
+    value: *mut f64,
+    nvr: usize,
+    names: [&str; 3],
+) -> Result<Status, Fail> {
+    let vr = slice(vr, nvr, names[0])?;
+    let order = slice(order, nvr, names[1])?;
+    let out = slice_mut(value, nvr, names[2])?;
+    for i in 0..nvr {
+        out[i] = inst.get_output_derivative(vr[i], order[i] as i64)?;
+    }
+    Ok(Status::Ok)
+}
+
+/// `SetDebugLogging`.
+///
+/// # Safety
+/// `categories` is NULL or valid for `n` C strings (each NULL or NUL-terminated).
+pub(crate) unsafe fn set_debug_logging(
+    inst: &mut Instance,
+    on: bool,
+    n: usize,
+    categories: *const *const c_char,
+) -> Outcome {
+    let cats: Vec<String> = slice(categories, n, "categories")?
+        .iter()
+        .map(|&p| str_arg(p).unwrap_or_default())
+        .collect();
+    inst.set_debug_logging(on, &cats)
 }

@@ -196,15 +196,12 @@ pub(crate) fn scene(
     Ok((scene, source))
 }
 
-/// Build the component the parameters describe. The error names the cause.
+/// Build the component of a [`scene`] and where its text came from (`values`: the
+/// parameters it was made with). The error names the cause.
 pub(crate) fn component(
     values: &ParamValues,
-    tolerance: Option<f64>,
-    resource_scene: Option<&Result<String, String>>,
-    causality: Causality,
-    initial: &[(&str, f64)],
+    (scene, source): (Scene, &'static str),
 ) -> Result<(Component, &'static str), String> {
-    let (scene, source) = scene(values, tolerance, resource_scene, causality, initial)?;
     let c = Component::new(scene).map_err(|e| {
         let set: Vec<&str> = PARAMETERS
             .iter()

@@ -49,50 +49,30 @@ fn every_single_byte_change_of_fmu_state_bytes_is_refused() {
     }
 }
 
+#[path = "../../tests/common/cross_process.rs"]
+mod cross_process;
+
 /// Child half of the cross-process test; runs only when `RACEWAY_FMU_STATE_CHILD` names a
 /// folder.
 #[test]
 fn fmu_state_child_process() {
-    let Some(dir) = std::env::var_os("RACEWAY_FMU_STATE_CHILD") else {
+    let Some(dir) = cross_process::child_dir("RACEWAY_FMU_STATE_CHILD") else {
         return;
     };
-    let dir = std::path::PathBuf::from(dir);
     let mut a = stepped(3);
-    std::fs::write(dir.join("state.bin"), a.snapshot().to_bytes()).unwrap();
-    let out: Vec<u8> = continue_run(&mut a, 3, 4)
-        .iter()
-        .flat_map(|b| b.to_le_bytes())
-        .collect();
-    std::fs::write(dir.join("outputs.bin"), out).unwrap();
+    let state = a.snapshot().to_bytes();
+    cross_process::write_child(&dir, &state, &continue_run(&mut a, 3, 4));
 }
 
 /// FMU state bytes written by one process restore in a fresh instance of another and the
 /// run continues bit for bit.
 #[test]
 fn fmu_state_bytes_restore_in_another_process_bit_for_bit() {
-    let dir = std::env::temp_dir().join(format!("raceway-fmu-xproc-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let out = std::process::Command::new(std::env::current_exe().unwrap())
-        .args([
-            "--exact",
-            "fmi::state_tests::fmu_state_child_process",
-            "--test-threads=1",
-        ])
-        .env("RACEWAY_FMU_STATE_CHILD", &dir)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+    let (bytes, theirs) = cross_process::run_child(
+        "fmi::state_tests::fmu_state_child_process",
+        "RACEWAY_FMU_STATE_CHILD",
+        "raceway-fmu-xproc",
     );
-    let bytes = std::fs::read(dir.join("state.bin")).unwrap();
-    let theirs: Vec<u64> = std::fs::read(dir.join("outputs.bin"))
-        .unwrap()
-        .chunks(8)
-        .map(|b| u64::from_le_bytes(b.try_into().unwrap()))
-        .collect();
-    std::fs::remove_dir_all(&dir).unwrap();
     let mut b = instance();
     b.restore(&Snapshot::from_bytes(&bytes, Causality::Motion).unwrap())
         .unwrap();

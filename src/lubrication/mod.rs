@@ -99,22 +99,18 @@ pub fn minimum_film(l: &Lubricant, c: &PointContact, u: f64, q: f64) -> f64 {
 
 /// `a` in `h_c = a Q^-0.067`.
 fn central_coefficient(l: &Lubricant, c: &PointContact, u: f64) -> f64 {
-    let (rx, e) = (c.curvature.rx, c.e_eff);
-    let uu = l.viscosity * u / (e * rx);
-    if uu <= 0.0 {
-        return 0.0;
-    }
-    let g = l.pressure_viscosity * e;
-    let k = c.ellipse.kappa;
-    2.69 * uu.powf(0.67)
-        * g.powf(0.53)
-        * (e * rx * rx).powf(0.067)
-        * (1.0 - 0.61 * (-0.73 * k).exp())
-        * rx
+    hamrock_dowson(l, c, u, [2.69, 0.67, 0.53, 0.067, 0.61, 0.73])
 }
 
 /// `m` in `h_min = m Q^-0.073`.
 fn minimum_coefficient(l: &Lubricant, c: &PointContact, u: f64) -> f64 {
+    hamrock_dowson(l, c, u, [3.63, 0.68, 0.49, 0.073, 1.0, 0.68])
+}
+
+/// The Hamrock–Dowson fit without its load term, `c0 U^a G^b (E' Rx²)^w (1 - c1
+/// e^(-c2 kappa)) Rx` for `[c0, a, b, w, c1, c2]`; zero without entrainment.
+fn hamrock_dowson(l: &Lubricant, c: &PointContact, u: f64, fit: [f64; 6]) -> f64 {
+    let [c0, a, b, w, c1, c2] = fit;
     let (rx, e) = (c.curvature.rx, c.e_eff);
     let uu = l.viscosity * u / (e * rx);
     if uu <= 0.0 {
@@ -122,7 +118,7 @@ fn minimum_coefficient(l: &Lubricant, c: &PointContact, u: f64) -> f64 {
     }
     let g = l.pressure_viscosity * e;
     let k = c.ellipse.kappa;
-    3.63 * uu.powf(0.68) * g.powf(0.49) * (e * rx * rx).powf(0.073) * (1.0 - (-0.68 * k).exp()) * rx
+    c0 * uu.powf(a) * g.powf(b) * (e * rx * rx).powf(w) * (1.0 - c1 * (-c2 * k).exp()) * rx
 }
 
 /// Reynolds squeeze-film damping of one contact at gap `h` (floored at the roughness):
@@ -306,14 +302,8 @@ mod tests {
 
     fn model(l: Lubricant) -> (FilmModel, f64) {
         let b = preset("6205").unwrap().build().unwrap();
-        let ci = PointContact::new(
-            Curvature::ball_race(b.d, b.dm, 0.0, b.fi, Race::Inner),
-            b.e_eff_inner(),
-        );
-        let co = PointContact::new(
-            Curvature::ball_race(b.d, b.dm, 0.0, b.fo, Race::Outer),
-            b.e_eff_outer(),
-        );
+        let ci = PointContact::ball_race(&b, 0.0, Race::Inner);
+        let co = PointContact::ball_race(&b, 0.0, Race::Outer);
         let kn = series_constant(ci.kc, co.kc);
         (FilmModel::new(l, ci, co, kn, b.dm, b.d / b.dm), kn)
     }

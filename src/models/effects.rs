@@ -335,27 +335,24 @@ impl Effects {
     /// the bearing (width below the ball diameter, ball index below Z) are checked by
     /// [`Effects::validate_for`].
     pub fn validate(&self) -> Result<()> {
+        // `ball` names one ball of a ball defect or ball waviness only.
+        let ball_only = |p: &str, race: Element, ball: Option<u32>| match ball {
+            Some(b) if race != Element::Ball => Err(Error::invalid(
+                format!("{p}.ball"),
+                b,
+                "only with race = \"ball\"",
+            )),
+            _ => Ok(()),
+        };
         for (i, d) in self.defects.iter().enumerate() {
             let p = format!("effects.defects[{i}]");
             check(&p, DefectSpec::FIELDS, d)?;
-            if d.race != Element::Ball && d.ball.is_some() {
-                return Err(Error::invalid(
-                    format!("{p}.ball"),
-                    d.ball.unwrap_or(0),
-                    "only with race = \"ball\"",
-                ));
-            }
+            ball_only(&p, d.race, d.ball)?;
         }
         for (i, w) in self.waviness.iter().enumerate() {
             let p = format!("effects.waviness[{i}]");
             check(&p, WavinessSpec::FIELDS, w)?;
-            if w.race != Element::Ball && w.ball.is_some() {
-                return Err(Error::invalid(
-                    format!("{p}.ball"),
-                    w.ball.unwrap_or(0),
-                    "only with race = \"ball\"",
-                ));
-            }
+            ball_only(&p, w.race, w.ball)?;
         }
         if let Some(s) = &self.ball_spacing {
             check("effects.ball_spacing", SpacingSpec::FIELDS, s)?;
