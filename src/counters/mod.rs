@@ -110,7 +110,7 @@ pub struct Stages {
     pub inputs: Timer,
     /// The integration of the states over the step.
     pub integrate: Timer,
-    /// The outputs at the communication point (forces, K, C, their time derivatives).
+    /// The outputs at the communication point (forces, K, C; their time derivatives are computed when first read).
     pub outputs: Timer,
 }
 

@@ -82,6 +82,9 @@ pub fn palmgren_p1(fr: f64, fa: f64, alpha: f64) -> f64 {
     p.max(fr)
 }
 
+/// Values in a thermal memory block (see [`ThermalModel::advance`]).
+pub const THERMAL_SLOTS: usize = 9;
+
 /// Parameters of the friction and thermal model (SI).
 #[derive(Debug, Clone, PartialEq)]
 pub struct ThermalParams {
@@ -349,6 +352,33 @@ impl ThermalModel {
         let t = solve4(a, rhs);
         *theta = t;
         (0..4).map(|k| amb[k] * t[k]).sum::<f64>() * dt
+    }
+
+    /// Advance the network at a communication point `t` (s of simulated time) with losses
+    /// `l` held since the last update: over the elapsed time times `time_scale`, in
+    /// implicit-Euler steps of at most `dt` (at most 10^4 of them). `mem` is the thermal
+    /// memory block ([`THERMAL_SLOTS`] values): the four node temperature rises (K), the
+    /// time of the last update (s), energy generated and removed (J), the last power loss
+    /// (W) and the clearance change (m); all are updated. Returns the node rises.
+    pub fn advance(&self, omega: f64, l: &Losses, t: f64, mem: &mut [f64]) -> [f64; 4] {
+        let mut theta = [mem[0], mem[1], mem[2], mem[3]];
+        let elapsed = t - mem[4];
+        if elapsed > 0.0 {
+            let total = elapsed * self.p.time_scale;
+            let nsub = (total / self.p.dt).ceil().clamp(1.0, 1e4);
+            let h = total / nsub;
+            let mut removed = 0.0;
+            for _ in 0..nsub as usize {
+                removed += self.step(omega, l, &mut theta, h);
+            }
+            mem[..4].copy_from_slice(&theta);
+            mem[5] += l.total() * total;
+            mem[6] += removed;
+        }
+        mem[4] = t;
+        mem[7] = l.total();
+        mem[8] = self.clearance_change(&theta);
+        theta
     }
 
     /// Diametral growths `(u_i, u_o, u_b) = alpha_T dT d` of the inner race, outer race and

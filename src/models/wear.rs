@@ -226,9 +226,64 @@ pub fn revolutions_to(history: &[(f64, f64)], depth: f64) -> Option<f64> {
     (rate > 0.0).then(|| r1 + (depth - d1) / rate)
 }
 
+/// Close a wear window (physics.md §7's time-scale separation): once the shaft has turned
+/// `window` revolutions since the window began (`revs` is the turn now), the depth
+/// accumulated in the window is scaled to a cycle of `cycle` revolutions and added to the
+/// maps, at most `cycles` times. `acc` holds the depths accumulated since the start (one
+/// value per cell, every race's cells in a row); `mem` the maps (as `acc`), the
+/// accumulators at the window's start (as `acc`), the window's start (revolutions) and the
+/// cycles done. Returns whether a window closed.
+pub fn close_window(
+    acc: &[f64],
+    mem: &mut [f64],
+    revs: f64,
+    window: f64,
+    cycle: f64,
+    cycles: f64,
+) -> bool {
+    let n = acc.len();
+    let (start, done) = (mem[2 * n], mem[2 * n + 1]);
+    if done >= cycles || revs - start < window * (1.0 - 1e-9) {
+        return false;
+    }
+    let scale = cycle / (revs - start);
+    let (maps, rest) = mem.split_at_mut(n);
+    let (snap, tail) = rest.split_at_mut(n);
+    for c in 0..n {
+        maps[c] += (acc[c] - snap[c]) * scale;
+        snap[c] = acc[c];
+    }
+    tail[0] = revs;
+    tail[1] = done + 1.0;
+    true
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A window closes only once complete, adds the window's depth scaled by cycle/window
+    /// exactly (linear in the accumulators), and stops after the cycle count.
+    #[test]
+    fn wear_window_scales_to_the_cycle_and_stops_after_the_cycles() {
+        let acc = [1e-9, 2e-9, 0.0, 4e-9];
+        let mut mem = [0.0; 10];
+        assert!(!close_window(&acc, &mut mem, 0.999, 1.0, 1e6, 2.0));
+        assert_eq!(mem, [0.0; 10]);
+        assert!(close_window(&acc, &mut mem, 2.0, 1.0, 1e6, 2.0));
+        for c in 0..4 {
+            assert!((mem[c] - acc[c] * 0.5e6).abs() <= 1e-12 * acc[c] * 0.5e6);
+            assert_eq!(mem[4 + c], acc[c]);
+        }
+        assert_eq!((mem[8], mem[9]), (2.0, 1.0));
+        let acc2 = acc.map(|a| 3.0 * a);
+        assert!(close_window(&acc2, &mut mem, 3.0, 1.0, 1e6, 2.0));
+        assert!((mem[1] - (2e-9 * 0.5e6 + 4e-9 * 1e6)).abs() < 1e-15);
+        assert!(
+            !close_window(&acc2, &mut mem, 9.0, 1.0, 1e6, 2.0),
+            "two cycles done"
+        );
+    }
 
     #[test]
     fn rolling_line_root_and_mean_factor() {

@@ -18,8 +18,10 @@
 //! Time-scale separation (physics.md §7): at a communication point where the window of
 //! `window_revs` shaft revolutions is complete, the window's accumulated wear is scaled to
 //! `cycle_revs` revolutions and added to the maps, which enter every ball's deflection like
-//! a defect (`- h_outer(psi) - h_inner(psi - theta_s)`). The thermal network advances at
-//! each communication point over the elapsed time times `time_scale`, on its own step.
+//! a defect (`- h_outer(psi) - h_inner(psi - theta_s)`) ([`wear::close_window`]). The
+//! thermal network advances at each communication point over the elapsed time times
+//! `time_scale`, on its own step ([`ThermalModel::advance`]). This file is the glue: the
+//! memory layout and which physics runs when.
 
 use crate::component::level::{LevelModel, LevelOutputs, Motion};
 use crate::component::levels::cage_speed;
@@ -45,8 +47,7 @@ pub struct SlowLayout {
     pub thermal: Option<usize>,
 }
 
-/// Values in the thermal block.
-pub const THERMAL_SLOTS: usize = 9;
+pub use crate::models::thermal::THERMAL_SLOTS;
 
 impl SlowLayout {
     /// The layout a scene's ring level uses.
@@ -487,19 +488,15 @@ impl LevelModel for RingLevel {
         let turned = self.shaft_turned(x);
         // Wear cycle: scale the window's accumulated wear to the cycle, add it to the maps.
         if let Some(w) = self.slow.as_ref().and_then(|s| s.wear.as_ref()) {
-            let (a0, n) = (w.a0, w.n);
             let revs = turned.abs() / std::f64::consts::TAU;
-            let (start, done) = (aux[a0 + 4 * n], aux[a0 + 4 * n + 1]);
-            if done < w.cycles && revs - start >= w.window * (1.0 - 1e-9) {
-                let scale = w.cycle / (revs - start);
-                for c in 0..2 * n {
-                    let acc = x[w.x0 + c];
-                    aux[a0 + c] += (acc - aux[a0 + 2 * n + c]) * scale;
-                    aux[a0 + 2 * n + c] = acc;
-                }
-                aux[a0 + 4 * n] = revs;
-                aux[a0 + 4 * n + 1] = done + 1.0;
-            }
+            wear::close_window(
+                &x[w.x0..w.x0 + 2 * w.n],
+                &mut aux[w.a0..w.a0 + 4 * w.n + 2],
+                revs,
+                w.window,
+                w.cycle,
+                w.cycles,
+            );
         }
         let mut sums = ContactSums::default();
         {
@@ -550,25 +547,9 @@ impl LevelModel for RingLevel {
                 .fold(0.0, |a: f64, &b| a.max(b));
         }
         if let Some(tp) = &slow.thermal {
-            let a = tp.a0;
             let l = tp.model.losses(m.omega, &e.wrench, &sums);
-            let mut theta = [aux[a], aux[a + 1], aux[a + 2], aux[a + 3]];
-            let elapsed = t - aux[a + 4];
-            if elapsed > 0.0 {
-                let total = elapsed * tp.model.p.time_scale;
-                let nsub = (total / tp.model.p.dt).ceil().clamp(1.0, 1e4);
-                let h = total / nsub;
-                let mut removed = 0.0;
-                for _ in 0..nsub as usize {
-                    removed += tp.model.step(m.omega, &l, &mut theta, h);
-                }
-                aux[a..a + 4].copy_from_slice(&theta);
-                aux[a + 5] += l.total() * total;
-                aux[a + 6] += removed;
-            }
-            aux[a + 4] = t;
-            aux[a + 7] = l.total();
-            aux[a + 8] = tp.model.clearance_change(&theta);
+            tp.model
+                .advance(m.omega, &l, t, &mut aux[tp.a0..tp.a0 + THERMAL_SLOTS]);
             out.power_loss = l.total();
             out.torque = if m.omega != 0.0 {
                 -l.total() / m.omega
