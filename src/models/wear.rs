@@ -249,10 +249,10 @@ pub fn close_window(
     let scale = cycle / (revs - start);
     let (maps, rest) = mem.split_at_mut(n);
     let (snap, tail) = rest.split_at_mut(n);
-    for c in 0..n {
-        maps[c] += (acc[c] - snap[c]) * scale;
-        snap[c] = acc[c];
+    for ((m, s), a) in maps.iter_mut().zip(snap.iter()).zip(acc) {
+        *m += (a - s) * scale;
     }
+    snap.copy_from_slice(acc);
     tail[0] = revs;
     tail[1] = done + 1.0;
     true
