@@ -160,6 +160,7 @@ impl Component {
             limits: limits::Limits::of(&bearing),
             rating: crate::ratings::RatingOutputs::of(&bearing),
             stages: super::Stages::default(),
+            budget_gap: 1,
             jwork,
             scene,
             bearing,

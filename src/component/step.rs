@@ -126,7 +126,10 @@ impl Component {
             naux,
             t0,
             last_error: None,
-            budget: Some(Budget::new(self.scene.solver.max_step_cpu_s)),
+            budget: Some(Budget::new(
+                self.scene.solver.max_step_cpu_s,
+                self.budget_gap,
+            )),
         };
         let r = self.integrator.integrate(
             &mut sys,
@@ -136,6 +139,9 @@ impl Component {
             &mut h_trial,
             &self.opts,
         );
+        if let Some(b) = &sys.budget {
+            self.budget_gap = b.gap;
+        }
         if let Err(e) = r {
             if let Some(used) = sys.budget.and_then(|b| b.spent) {
                 return Err(Error::Budget {

@@ -25,23 +25,31 @@ pub(super) struct Budget {
     pub(super) evals: u32,
     /// Evaluation count at which the clock is read next.
     pub(super) next: u32,
+    /// Evaluations between reads as last estimated (the next step's first read comes after
+    /// as many: a step of a few cheap evaluations then reads the clock once, at its start).
+    pub(super) gap: u32,
     /// CPU time used when the budget ran out.
     pub(super) spent: Option<f64>,
 }
 
 impl Budget {
-    pub(super) fn new(limit: f64) -> Self {
+    /// A budget of `limit` s from now, first checked after `first` evaluations (1 when
+    /// nothing is known of their cost; the last step's gap otherwise).
+    pub(super) fn new(limit: f64, first: u32) -> Self {
+        let first = first.clamp(1, BUDGET_EVERY);
         Budget {
             start: thread_cpu_s(),
             limit,
             evals: 0,
-            next: 1,
+            next: first,
+            gap: first,
             spent: None,
         }
     }
     /// Count one evaluation; `true` once the budget is spent. The clock is read about
-    /// every [`BUDGET_READ_S`] of CPU time as estimated from the evaluations so far, and
-    /// at least every [`BUDGET_EVERY`] evaluations.
+    /// every [`BUDGET_READ_S`] of CPU time as estimated from the evaluations so far (and
+    /// from the last step's before the first read), and at least every [`BUDGET_EVERY`]
+    /// evaluations.
     pub(super) fn spent(&mut self) -> bool {
         if self.spent.is_some() {
             return true;
@@ -61,7 +69,8 @@ impl Budget {
                 let per_eval = used / done as f64;
                 (BUDGET_READ_S / per_eval.max(1e-12)).clamp(1.0, BUDGET_EVERY as f64)
             };
-            self.next = self.evals.saturating_add(gap as u32);
+            self.gap = gap as u32;
+            self.next = self.evals.saturating_add(self.gap);
         }
         false
     }
@@ -233,5 +242,31 @@ pub(super) fn e_time(e: &SolverError) -> String {
         | SolverError::NonFinite { t, .. }
         | SolverError::Singular { t, .. } => format!("{t} s"),
         SolverError::Invalid { .. } => "the start".into(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Cheap evaluations stretch the gap between clock reads, and the next step's budget
+    /// starts with that gap (one clock read for a short step); a spent budget still stops
+    /// at the first read after the limit.
+    #[test]
+    fn budget_reads_the_clock_by_the_last_gap_and_still_stops() {
+        let mut b = Budget::new(1e3, 1);
+        assert_eq!(b.next, 1);
+        for _ in 0..BUDGET_EVERY {
+            assert!(!b.spent());
+        }
+        assert!(b.gap > 1, "cheap evaluations widen the gap: {}", b.gap);
+        let next = Budget::new(1e3, b.gap);
+        assert_eq!(next.next, b.gap);
+        assert_eq!(Budget::new(1e3, 0).next, 1);
+        let mut tiny = Budget::new(0.0, BUDGET_EVERY);
+        let spin = thread_cpu_s();
+        while thread_cpu_s() - spin < 1e-4 {}
+        let stopped = (0..BUDGET_EVERY).position(|_| tiny.spent());
+        assert_eq!(stopped, Some(BUDGET_EVERY as usize - 1));
     }
 }
