@@ -311,6 +311,11 @@ impl QuasiStatic {
     /// `psi` at displacement `q` (module docs).
     pub fn groove_offset(&self, q: &[f64; 5], psi: f64) -> [f64; 2] {
         let (s, c) = psi.sin_cos();
+        self.groove_offset_sc(q, s, c)
+    }
+
+    /// [`QuasiStatic::groove_offset`] from `(sin psi, cos psi)`.
+    fn groove_offset_sc(&self, q: &[f64; 5], s: f64, c: f64) -> [f64; 2] {
         [
             self.a_ref[0] + q[2] + self.ri * (q[3] * s - q[4] * c),
             self.a_ref[1] + q[0] * c + q[1] * s,
@@ -386,7 +391,7 @@ impl QuasiStatic {
                 return Err(Error::invalid(format!("psi[{j}]"), p, "a finite number"));
             }
             let (s, c) = p.sin_cos();
-            let a = self.groove_offset(q, p);
+            let a = self.groove_offset_sc(q, s, c);
             let sol = self.geo.solve(omega, a, st, stiffness.is_some())?;
             let e = sol.v;
             let (fa, fr, m) = (e.fa.v, e.fr.v, e.m.v);
@@ -441,7 +446,8 @@ impl QuasiStatic {
         let (a, dmax) = (self.bearing.a(), self.max_approach());
         for (j, &p) in psi.iter().enumerate() {
             let g = self.groove_offset(q, p);
-            let approach = g[0].hypot(g[1]) - a;
+            // The plain root: finite inputs, and an overflow to infinity is refused alike.
+            let approach = (g[0] * g[0] + g[1] * g[1]).sqrt() - a;
             if approach > dmax || g[1] <= 0.0 {
                 let (rad, ax) = self.displacement_limits();
                 return Err(Error::invalid(
