@@ -428,7 +428,7 @@ impl Geo {
     /// With `full` (the caller wants the stiffness), the trials are evaluated with the four
     /// slots `d/d(u_o, u_i)` (`N = 4`) instead: the accepted trial is then the next
     /// linearisation without another evaluation, and the answer's evaluation, returned in
-    /// [`Solved::full`], gives the stiffness and the exact sensitivity `dX/dA` at the
+    /// [`Solved::Full`], gives the stiffness and the exact sensitivity `dX/dA` at the
     /// answer for the next warm start. Without `full` the state keeps its sensitivity (the
     /// warm start's predictor only: a stale one costs iterations, never accuracy), so an
     /// evaluation of the forces alone pays for no `N = 4` slots at all.
@@ -443,9 +443,9 @@ impl Geo {
             let x = self.static_position(a);
             state.store(x, a, [[0.0; 2]; 2]);
             return Ok(if full {
-                Solved::from_full(self.eval::<4>(0.0, x, a))
+                Solved::Full(self.eval::<4>(0.0, x, a))
             } else {
-                Solved::values(self.eval::<0>(0.0, x, a))
+                Solved::Values(self.eval::<0>(0.0, x, a))
             });
         }
         // Millimetre-sized: the plain root (no overflow; `hypot` is several times slower).
@@ -469,8 +469,8 @@ impl Geo {
             omega,
             a,
             full,
-            cur: None,
-            trial: None,
+            slots: [None, None],
+            cur: 0,
         };
         // Not `warm_start`: checking the predicted start by value first made the
         // quasi-static C ABI row slower (34.8 against 31.1 µs per step, benches/speed.rs
@@ -500,51 +500,58 @@ impl Geo {
         }
         // The evaluation at the answer: the current point's (the start, or the accepted
         // trial it became).
-        let at = match sys.cur {
-            Some(c) if c.x == x => Some(c.e),
+        let at = match &sys.slots[sys.cur] {
+            Some(c) if c.x == x => Some(&c.e),
             _ => None,
         };
         if full {
             let e = match at {
-                Some(Lin::Full(e)) => e,
+                Some(Lin::Full(e)) => *e,
                 _ => self.eval::<4>(omega, x, a),
             };
             state.store(x, a, sensitivity(&e));
-            return Ok(Solved::from_full(e));
+            return Ok(Solved::Full(e));
         }
-        let v = match (at, sys.trial) {
-            (Some(Lin::Values(e)), _) => e,
-            (Some(Lin::Two(e)), _) => e.values(),
-            (Some(Lin::Full(e)), _) => e.values(),
-            (None, Some(t)) if t.x == x => match t.e {
-                Lin::Values(e) => e,
-                Lin::Two(e) => e.values(),
-                Lin::Full(e) => e.values(),
-            },
-            _ => self.eval::<0>(omega, x, a),
+        let v = match at {
+            Some(Lin::Values(e)) => *e,
+            Some(Lin::Two(e)) => e.values(),
+            Some(Lin::Full(e)) => e.values(),
+            None => self.eval::<0>(omega, x, a),
         };
         let dxda = state.dxda;
         state.store(x, a, dxda);
-        Ok(Solved::values(v))
+        Ok(Solved::Values(v))
     }
 }
 
-/// A ball's answer: the values, and with [`Geo::solve`]'s `full` its `N = 4` evaluation.
+/// A ball's answer: the values, or with [`Geo::solve`]'s `full` its `N = 4` evaluation.
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct Solved {
-    pub v: Eval<0>,
-    pub full: Option<Eval<4>>,
+pub(crate) enum Solved {
+    Values(Eval<0>),
+    Full(Eval<4>),
 }
 
 impl Solved {
-    fn from_full(e: Eval<4>) -> Self {
-        Solved {
-            v: e.values(),
-            full: Some(e),
+    /// Forces on the shaft: axial, radial and the ball-plane moment.
+    pub fn forces(&self) -> (f64, f64, f64) {
+        match self {
+            Solved::Values(e) => (e.fa.v, e.fr.v, e.m.v),
+            Solved::Full(e) => (e.fa.v, e.fr.v, e.m.v),
         }
     }
-    fn values(v: Eval<0>) -> Self {
-        Solved { v, full: None }
+    /// The values.
+    pub fn values(&self) -> Eval<0> {
+        match self {
+            Solved::Values(e) => *e,
+            Solved::Full(e) => e.values(),
+        }
+    }
+    /// The `N = 4` evaluation, when solved with `full`.
+    pub fn full(&self) -> Option<&Eval<4>> {
+        match self {
+            Solved::Full(e) => Some(e),
+            Solved::Values(_) => None,
+        }
     }
 }
 
@@ -569,16 +576,16 @@ struct At {
 
 /// One ball's two equilibrium equations as [`newton::solve`] drives them: linearisations
 /// with `N = 2` duals, trials by value; with `full`, trials with `N = 4`, so the accepted
-/// trial is the next linearisation and the answer's evaluation is at hand.
+/// trial is the next linearisation and the answer's evaluation is at hand. Two slots, the
+/// current point's and the trial's: accepting a trial swaps their roles (no copy).
 struct BallSystem<'a> {
     geo: &'a Geo,
     omega: f64,
     a: [f64; 2],
     full: bool,
-    /// The current point and its evaluation (the Newton step's linearisation).
-    cur: Option<At>,
-    /// The last trial point and its evaluation.
-    trial: Option<At>,
+    slots: [Option<At>; 2],
+    /// The current point's slot (the other one holds the last trial).
+    cur: usize,
 }
 
 impl BallSystem<'_> {
@@ -601,7 +608,7 @@ impl newton::NewtonSystem<2> for BallSystem<'_> {
             let t = self.geo.eval::<0>(self.omega, *x, self.a);
             (self.check(&t), Lin::Values(t))
         };
-        self.trial = Some(At { x: *x, e });
+        self.slots[1 - self.cur] = Some(At { x: *x, e });
         Ok(c)
     }
 
@@ -609,15 +616,15 @@ impl newton::NewtonSystem<2> for BallSystem<'_> {
         if let Some(At {
             x: p,
             e: Lin::Full(e),
-        }) = self.cur
+        }) = &self.slots[self.cur]
         {
-            if p == *x {
-                return Ok(self.check(&e));
+            if p == x {
+                return Ok(self.check(e));
             }
         }
         let e = self.geo.eval::<2>(self.omega, *x, self.a);
         let c = self.check(&e);
-        self.cur = Some(At {
+        self.slots[self.cur] = Some(At {
             x: *x,
             e: Lin::Two(e),
         });
@@ -625,7 +632,7 @@ impl newton::NewtonSystem<2> for BallSystem<'_> {
     }
 
     fn step(&mut self, dx: &mut [f64; 2]) -> bool {
-        let (j, g) = match &self.cur {
+        let (j, g) = match &self.slots[self.cur] {
             Some(At { e: Lin::Two(e), .. }) => (e.jac_x(), [e.g[0].v, e.g[1].v]),
             Some(At {
                 e: Lin::Full(e), ..
@@ -643,8 +650,8 @@ impl newton::NewtonSystem<2> for BallSystem<'_> {
 
     fn accept(&mut self) {
         // The accepted trial is the new current point (with `full`, its linearisation).
-        if let Some(t) = self.trial.take() {
-            self.cur = Some(t);
+        if self.slots[1 - self.cur].is_some() {
+            self.cur = 1 - self.cur;
         }
     }
 }

@@ -393,8 +393,7 @@ impl QuasiStatic {
             let (s, c) = p.sin_cos();
             let a = self.groove_offset_sc(q, s, c);
             let sol = self.geo.solve(omega, a, st, stiffness.is_some())?;
-            let e = sol.v;
-            let (fa, fr, m) = (e.fa.v, e.fr.v, e.m.v);
+            let (fa, fr, m) = sol.forces();
             f[0] += fr * c;
             f[1] += fr * s;
             f[2] += fa;
@@ -402,12 +401,12 @@ impl QuasiStatic {
             f[4] -= m * c;
             if let Some(k) = stiffness.as_deref_mut() {
                 // The solve's own evaluation at the answer (`N = 4`).
-                if let Some(e4) = &sol.full {
+                if let Some(e4) = sol.full() {
                     self.add_ball_stiffness(e4, s, c, k);
                 }
             }
             if let Some(b) = balls.as_deref_mut() {
-                b[j] = self.ball_result(&e, p, st.x);
+                b[j] = self.ball_result(&sol.values(), p, st.x);
             }
         }
         check_finite("forces", &f).map_err(|_| Error::NotConverged {
