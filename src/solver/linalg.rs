@@ -161,8 +161,12 @@ pub struct BlockArrowhead {
     nb: usize,
     s: usize,
     m: usize,
-    /// LU of the diagonal blocks, `nb` column-major `s × s` matrices.
+    /// Inverses of the diagonal blocks, `nb` column-major `s × s` matrices (from their LU
+    /// with partial pivoting): a block solve is then an `s × s` product, with no pivot
+    /// swaps or loop set-up per block (the blocks are tiny: 3 states per ball).
     d: Vec<f64>,
+    /// Scratch: one block's LU and pivots.
+    lu: Vec<f64>,
     dpiv: Vec<usize>,
     /// `G_i = D_i⁻¹ B_i`, `nb` column-major `s × m` matrices.
     g: Vec<f64>,
@@ -181,7 +185,8 @@ impl BlockArrowhead {
             s,
             m,
             d: vec![0.0; nb * s * s],
-            dpiv: vec![0; nb * s],
+            lu: vec![0.0; s * s],
+            dpiv: vec![0; s],
             g: vec![0.0; nb * s * m],
             c: vec![0.0; nb * m * s],
             schur: vec![0.0; m * m],
@@ -225,25 +230,41 @@ impl LinearSolver for BlockArrowhead {
         }
         for b in 0..nb {
             let o = b * s;
-            let d = &mut self.d[b * s * s..(b + 1) * s * s];
+            let lu = &mut self.lu;
             for j in 0..s {
                 for i in 0..s {
                     let v = -jac[(o + i, o + j)];
-                    d[j * s + i] = if i == j { v + sigma } else { v };
+                    lu[j * s + i] = if i == j { v + sigma } else { v };
                 }
             }
-            let piv = &mut self.dpiv[b * s..(b + 1) * s];
-            if lu_factor(d, s, piv).is_err() {
+            let piv = &mut self.dpiv;
+            if lu_factor(lu, s, piv).is_err() {
+                return false;
+            }
+            // D_b⁻¹, column by column from the identity.
+            let d = &mut self.d[b * s * s..(b + 1) * s * s];
+            for j in 0..s {
+                let col = &mut d[j * s..(j + 1) * s];
+                col.fill(0.0);
+                col[j] = 1.0;
+                lu_solve(lu, s, piv, col);
+            }
+            if !d.iter().all(|v| v.is_finite()) {
                 return false;
             }
             // G_b = D_b⁻¹ B_b, column by column
             let g = &mut self.g[b * s * m..(b + 1) * s * m];
             for j in 0..m {
                 let col = &mut g[j * s..(j + 1) * s];
-                for (i, v) in col.iter_mut().enumerate() {
-                    *v = -jac[(o + i, nb0 + j)];
+                col.fill(0.0);
+                for k in 0..s {
+                    let bkj = -jac[(o + k, nb0 + j)];
+                    if bkj != 0.0 {
+                        for (v, dv) in col.iter_mut().zip(&d[k * s..(k + 1) * s]) {
+                            *v += dv * bkj;
+                        }
+                    }
                 }
-                lu_solve(d, s, piv, col);
             }
             // C_b and S -= C_b G_b
             let c = &mut self.c[b * m * s..(b + 1) * m * s];
@@ -273,12 +294,16 @@ impl LinearSolver for BlockArrowhead {
         let (xb, xr) = x.split_at_mut(nb0);
         for b in 0..nb {
             let z = &mut xb[b * s..(b + 1) * s];
-            lu_solve(
-                &self.d[b * s * s..(b + 1) * s * s],
-                s,
-                &self.dpiv[b * s..(b + 1) * s],
-                z,
-            );
+            let d = &self.d[b * s * s..(b + 1) * s * s];
+            // z = D_b⁻¹ z
+            let r = &mut self.lu[..s];
+            r.copy_from_slice(z);
+            z.fill(0.0);
+            for (k, &rk) in r.iter().enumerate() {
+                for (zi, dv) in z.iter_mut().zip(&d[k * s..(k + 1) * s]) {
+                    *zi += dv * rk;
+                }
+            }
             let c = &self.c[b * m * s..(b + 1) * m * s];
             for (k, zk) in z.iter().enumerate() {
                 for (r, cv) in xr.iter_mut().zip(&c[k * m..(k + 1) * m]) {

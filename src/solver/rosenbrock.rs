@@ -259,7 +259,9 @@ impl Rosenbrock {
                 self.ytmp[j] = yj;
             }
         }
-        if let Some(k) = self.jac.iter().position(|v| !v.is_finite()) {
+        // A branch-free pass first (it vectorises); the index only when something is off.
+        if !all_finite(self.jac.as_slice()) {
+            let k = self.jac.iter().position(|v| !v.is_finite()).unwrap_or(0);
             return Err(SolverError::NonFinite {
                 t,
                 what: "jacobian",
@@ -539,6 +541,13 @@ impl Rosenbrock {
         self.dense_valid = true;
         self.stats.accepted += 1;
     }
+}
+
+/// No NaN or infinity in `v`: an OR over the exponent bits (all ones for NaN and inf).
+fn all_finite(v: &[f64]) -> bool {
+    const EXP: u64 = 0x7ff0_0000_0000_0000;
+    !v.iter()
+        .fold(false, |bad, x| bad | (x.to_bits() & EXP == EXP))
 }
 
 /// Outcome of one step attempt.
