@@ -171,8 +171,6 @@ fn skidding_run(rtol: f64, t_end: f64) -> (f64, Samples) {
         f: Vec::new(),
     };
     let mut out = [0.0; 8];
-    let stats0 = c.stats();
-    c.set_stage_timing(std::env::var("QSSKID_STAGES").is_ok());
     let c0 = thread_cpu_s();
     for i in 0..n {
         c.do_step(t0 + i as f64 * h, h).expect("step");
@@ -182,23 +180,7 @@ fn skidding_run(rtol: f64, t_end: f64) -> (f64, Samples) {
         s.t.push(c.time());
         s.f.push([out[0], out[1], out[2]]);
     }
-    let cpu = (thread_cpu_s() - c0) / n as f64;
-    if std::env::var("QSSKID_STAGES").is_ok() {
-        let (st, s1) = (c.stages(), c.stats());
-        let per = |a: u64, b: u64| (a - b) as f64 / n as f64;
-        println!(
-            "  per step: rhs {:.2} jacobians {:.2} LU {:.2} accepted {:.2} rejected {:.2}; µs: inputs {:.1} integrate {:.1} outputs {:.1}",
-            per(s1.rhs, stats0.rhs),
-            per(s1.jacobians, stats0.jacobians),
-            per(s1.factorizations, stats0.factorizations),
-            per(s1.accepted, stats0.accepted),
-            per(s1.rejected, stats0.rejected),
-            st.inputs.cpu_s / n as f64 * 1e6,
-            st.integrate.cpu_s / n as f64 * 1e6,
-            st.outputs.cpu_s / n as f64 * 1e6,
-        );
-    }
-    (cpu, s)
+    ((thread_cpu_s() - c0) / n as f64, s)
 }
 
 fn skid(reps: usize) {
@@ -230,11 +212,6 @@ fn main() {
     match what {
         "qs" => qs(reps, 500),
         "skid" => skid(reps),
-        // Profiling: the rtol 1e-5 run alone.
-        "skid-run" => {
-            let (cpu, _) = skidding_run(1e-5, 0.02 * reps as f64);
-            println!("{:.1} µs/step, load {}", cpu * 1e6, load_average());
-        }
         _ => eprintln!("qs | skid [reps]"),
     }
 }

@@ -25,14 +25,6 @@ pub struct SkiddingLevel {
     memo_key: Vec<f64>,
     memo_dx: Vec<f64>,
     memo_valid: bool,
-    /// The outputs' point, kept beside the memo: the component's `dF/dt` difference
-    /// evaluates two points after it, and the next step's first stage and `df/dt` come
-    /// back to it.
-    pin_key: Vec<f64>,
-    pin_dx: Vec<f64>,
-    pin_last: SkidTotals,
-    pin_balls: Vec<BallState>,
-    pin_valid: bool,
 }
 
 impl SkiddingLevel {
@@ -46,17 +38,12 @@ impl SkiddingLevel {
         let model = SkiddingModel::new(b, p)?;
         let n = model.n_states();
         Ok(SkiddingLevel {
+            model,
             dofs,
             last: SkidTotals::default(),
             memo_key: vec![0.0; 11 + n],
             memo_dx: vec![0.0; n],
             memo_valid: false,
-            pin_key: vec![0.0; 11 + n],
-            pin_dx: vec![0.0; n],
-            pin_last: SkidTotals::default(),
-            pin_balls: vec![BallState::default(); model.z()],
-            pin_valid: false,
-            model,
         })
     }
 
@@ -78,12 +65,6 @@ impl SkiddingLevel {
     fn memo_hit(&self, m: &Motion, x: &[f64]) -> bool {
         let k = &self.memo_key;
         self.memo_valid && k[..5] == m.q && k[5..10] == m.v && k[10] == m.omega && k[11..] == *x
-    }
-
-    /// Is `(m, x)` the outputs' point (bit for bit)?
-    fn pin_hit(&self, m: &Motion, x: &[f64]) -> bool {
-        let k = &self.pin_key;
-        self.pin_valid && k[..5] == m.q && k[5..10] == m.v && k[10] == m.omega && k[11..] == *x
     }
 
     fn memo_store(&mut self, m: &Motion, x: &[f64], dx: &[f64]) {
@@ -111,7 +92,6 @@ impl SkiddingLevel {
         }
         self.model.p.outer_wear = map.to_vec();
         self.memo_valid = false;
-        self.pin_valid = false;
         Ok(())
     }
 }
@@ -168,33 +148,17 @@ impl LevelModel for SkiddingLevel {
         }
         true
     }
-    fn n_aux(&self) -> usize {
-        jac_aux_len(&self.model)
-    }
     fn jacobian(
         &mut self,
         _t: f64,
         m: &Motion,
         x: &[f64],
-        aux: &mut [f64],
+        _aux: &mut [f64],
         jx: &mut [f64],
         jm: &mut [f64],
         wx: &mut [f64],
         wm: &mut [f64],
     ) -> bool {
-        let (bs, z) = (self.model.ball_states(), self.model.z());
-        let age = aux[0];
-        // Reused while young and the shaft speed (the traction's main parameter) has not
-        // moved by more than 0.1 %.
-        if age >= 1.0
-            && age <= JACOBIAN_REUSE as f64
-            && aux[1] == jm.len() as f64
-            && (m.omega - aux[2]).abs() <= 1e-3 * aux[2].abs()
-        {
-            jac_load(&aux[3..], bs, z, jx, jm, wx, wm);
-            aux[0] = age + 1.0;
-            return true;
-        }
         self.model
             .jacobian(&m.q, &m.v, m.omega, x, jx, jm, wx, wm, self.dofs);
         if self.dofs.len() == 2 && !wm.is_empty() {
@@ -203,20 +167,12 @@ impl LevelModel for SkiddingLevel {
             wx[2 * n..].fill(0.0);
             wm[20..].fill(0.0);
         }
-        if JACOBIAN_REUSE > 0 {
-            jac_store(&mut aux[3..], bs, z, jx, jm, wx, wm);
-            aux[0] = 1.0;
-            aux[1] = jm.len() as f64;
-            aux[2] = m.omega;
-        }
         true
     }
-    fn init(&mut self, m: &Motion, x: &mut [f64], aux: &mut [f64]) -> Result<()> {
+    fn init(&mut self, m: &Motion, x: &mut [f64], _aux: &mut [f64]) -> Result<()> {
         if !m.omega.is_finite() {
             return Err(Error::invalid("shaft.omega", m.omega, "a finite number"));
         }
-        // No Jacobian kept yet.
-        aux.fill(0.0);
         self.model.init_at(&m.q, m.omega, x);
         Ok(())
     }
@@ -232,11 +188,6 @@ impl LevelModel for SkiddingLevel {
         let tot = if self.memo_hit(m, x) {
             dx.copy_from_slice(&self.memo_dx);
             self.last
-        } else if self.pin_hit(m, x) {
-            dx.copy_from_slice(&self.pin_dx);
-            self.model.balls.copy_from_slice(&self.pin_balls);
-            self.memo_store(m, x, dx);
-            self.pin_last
         } else {
             let tot = self.model.eval(&m.q, &m.v, m.omega, x, dx);
             self.memo_store(m, x, dx);
@@ -278,11 +229,6 @@ impl LevelModel for SkiddingLevel {
                 .eval_with_stiffness(&m.q, &m.v, m.omega, x, &mut buf[..n], &mut kf, &mut cf);
         self.memo_store(m, x, &buf[..n]);
         self.last = tot;
-        self.pin_key.copy_from_slice(&self.memo_key);
-        self.pin_dx.copy_from_slice(&buf[..n]);
-        self.pin_last = tot;
-        self.pin_balls.copy_from_slice(&self.model.balls);
-        self.pin_valid = true;
         let mut w = tot.wrench;
         if self.dofs.len() == 2 {
             w[2..].fill(0.0);
@@ -329,182 +275,3 @@ impl LevelModel for SkiddingLevel {
 
 /// Most balls the level's output scratch holds.
 pub const MAX_BALLS: usize = 64;
-
-/// Integration steps after the one that evaluated it that reuse a Jacobian (kept in the
-/// level's `aux`, so part of the component state: a restored state continues bit for bit).
-/// RODAS4 is not a W-method: with a Jacobian from an earlier point its order conditions
-/// hold only to the Jacobian's error, which the step-size control sees through the
-/// embedded error estimate; measured on the 7008CE at 6000 rpm with outputs every 0.1 ms
-/// (examples/qsskid_timing.rs), see the commit message for the force errors.
-const JACOBIAN_REUSE: usize = 4;
-
-/// `aux` length: age, layout tag and the shaft speed it was evaluated at, then the Jacobian's non-zeros (block-arrowhead `jx`:
-/// each ball's block, the border columns and rows; `jm`, `wx`, `wm` whole).
-fn jac_aux_len(model: &SkiddingModel) -> usize {
-    let (bs, z) = (model.ball_states(), model.z());
-    let n = model.n_states();
-    3 + z * bs * bs + 4 * n + 10 * n + 5 * n + 50
-}
-
-/// Pack the Jacobian's non-zeros into `a` (layout of [`jac_aux_len`]).
-fn jac_store(a: &mut [f64], bs: usize, z: usize, jx: &[f64], jm: &[f64], wx: &[f64], wm: &[f64]) {
-    let n = bs * z + 2;
-    let ic = bs * z;
-    let mut k = 0;
-    for j in 0..z {
-        for r in 0..bs {
-            let row = (BALL0 + bs * j + r) * n + BALL0 + bs * j;
-            a[k..k + bs].copy_from_slice(&jx[row..row + bs]);
-            k += bs;
-        }
-    }
-    for r in 0..n {
-        a[k] = jx[r * n + ic];
-        a[k + 1] = jx[r * n + ic + 1];
-        k += 2;
-    }
-    a[k..k + 2 * n].copy_from_slice(&jx[ic * n..(ic + 2) * n]);
-    k += 2 * n;
-    for (src, len) in [(jm, 10 * n), (wx, 5 * n), (wm, 50)] {
-        if !src.is_empty() {
-            a[k..k + len].copy_from_slice(&src[..len]);
-        }
-        k += len;
-    }
-}
-
-/// Unpack what [`jac_store`] packed (everything else zero).
-fn jac_load(
-    a: &[f64],
-    bs: usize,
-    z: usize,
-    jx: &mut [f64],
-    jm: &mut [f64],
-    wx: &mut [f64],
-    wm: &mut [f64],
-) {
-    let n = bs * z + 2;
-    let ic = bs * z;
-    jx.fill(0.0);
-    let mut k = 0;
-    for j in 0..z {
-        for r in 0..bs {
-            let row = (BALL0 + bs * j + r) * n + BALL0 + bs * j;
-            jx[row..row + bs].copy_from_slice(&a[k..k + bs]);
-            k += bs;
-        }
-    }
-    for r in 0..n {
-        jx[r * n + ic] = a[k];
-        jx[r * n + ic + 1] = a[k + 1];
-        k += 2;
-    }
-    jx[ic * n..(ic + 2) * n].copy_from_slice(&a[k..k + 2 * n]);
-    k += 2 * n;
-    for (dst, len) in [(jm, 10 * n), (wx, 5 * n), (wm, 50)] {
-        if !dst.is_empty() {
-            dst[..len].copy_from_slice(&a[k..k + len]);
-        }
-        k += len;
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::component::{variables, Component};
-
-    /// The 7008CE run-up scene at a constant 6000 rpm (the speed benchmark's case).
-    fn scene_text() -> String {
-        let omega = 6000.0 * std::f64::consts::PI / 30.0;
-        include_str!("../../../examples/scenes/7008ce-runup.toml").replace(
-            "\"shaft.omega\" = 0.0",
-            &format!("\"shaft.omega\" = {omega}"),
-        )
-    }
-
-    /// The packed Jacobian (the level's `aux`) unpacks to exactly the model's: nothing the
-    /// model writes lies outside the packed block-arrowhead pattern.
-    #[test]
-    fn packed_jacobian_round_trips() {
-        let scene = Scene::from_text(&scene_text()).unwrap();
-        let b = scene.validate().unwrap();
-        let mut p = scene.model.skidding.params(&b).unwrap();
-        p.contact_damping = scene.model.contact_damping;
-        let level = SkiddingLevel::new(&b, p).unwrap();
-        let model = &level.model;
-        let n = model.n_states();
-        let mut x = vec![0.0; n];
-        let q = [2e-6, -1e-6, 12e-6, 1e-5, -2e-5];
-        let v = [1e-3, -2e-3, 1e-3, 0.1, 0.2];
-        model.init_at(&q, 628.3, &mut x);
-        // Away from the kinematic speeds, so the slips (and the traction columns) are not
-        // at their symmetric start.
-        for (k, xi) in x.iter_mut().enumerate() {
-            *xi *= 1.0 + 1e-3 * (k as f64).sin();
-        }
-        let (mut jx, mut jm, mut wx, mut wm) = (
-            vec![0.0; n * n],
-            vec![0.0; n * 10],
-            vec![0.0; 5 * n],
-            vec![0.0; 50],
-        );
-        model.jacobian(
-            &q, &v, 628.3, &x, &mut jx, &mut jm, &mut wx, &mut wm, level.dofs,
-        );
-        // Every ball row and the cage rows carry entries; the ring columns too.
-        let nz = |v: &[f64]| v.iter().filter(|v| **v != 0.0).count();
-        assert!(
-            nz(&jx) > 2 * n && nz(&jm) > n && nz(&wx) > n,
-            "{} {} {}",
-            nz(&jx),
-            nz(&jm),
-            nz(&wx)
-        );
-        let mut a = vec![f64::NAN; jac_aux_len(model) - 3];
-        let (bs, z) = (model.ball_states(), model.z());
-        jac_store(&mut a, bs, z, &jx, &jm, &wx, &wm);
-        let (mut jx2, mut jm2, mut wx2, mut wm2) = (
-            vec![f64::NAN; n * n],
-            vec![f64::NAN; n * 10],
-            vec![f64::NAN; 5 * n],
-            vec![f64::NAN; 50],
-        );
-        jac_load(&a, bs, z, &mut jx2, &mut jm2, &mut wx2, &mut wm2);
-        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
-        assert_eq!(bits(&jx), bits(&jx2));
-        assert_eq!(bits(&jm), bits(&jm2));
-        assert_eq!(bits(&wx), bits(&wx2));
-        assert_eq!(bits(&wm), bits(&wm2));
-    }
-
-    /// The reused Jacobian lives in the component state: a state saved between two
-    /// Jacobian evaluations and restored in a new instance continues bit for bit.
-    #[test]
-    fn restored_state_continues_bit_for_bit_with_a_reused_jacobian() {
-        let text = scene_text();
-        let fy = variables::by_name("force.z").unwrap().vr;
-        let h = 1e-4;
-        let mut a = Component::from_text(&text).unwrap();
-        let mut saved = None;
-        let mut tail_a = Vec::new();
-        for i in 0..14 {
-            if i == 7 {
-                saved = Some(a.serialize_state());
-            }
-            a.do_step(i as f64 * h, h).unwrap();
-            if i >= 7 {
-                tail_a.push(a.get_real(fy).unwrap().to_bits());
-            }
-        }
-        let mut b = Component::from_text(&text).unwrap();
-        b.deserialize_state(&saved.unwrap()).unwrap();
-        let tail_b: Vec<u64> = (7..14)
-            .map(|i| {
-                b.do_step(i as f64 * h, h).unwrap();
-                b.get_real(fy).unwrap().to_bits()
-            })
-            .collect();
-        assert_eq!(tail_a, tail_b);
-    }
-}
