@@ -3,6 +3,15 @@
 
 use std::fmt;
 
+/// The message of a caught panic (its payload a `&str` or a `String`); `None` for another
+/// payload.
+pub fn panic_message(payload: &(dyn std::any::Any + Send)) -> Option<String> {
+    payload
+        .downcast_ref::<&str>()
+        .map(|s| s.to_string())
+        .or_else(|| payload.downcast_ref::<String>().cloned())
+}
+
 /// Result alias used throughout raceway.
 pub type Result<T, E = Error> = std::result::Result<T, E>;
 

@@ -866,11 +866,7 @@ impl Sweep {
                 Vec::new(),
             ),
             Err(p) => {
-                let what = p
-                    .downcast_ref::<&str>()
-                    .map(|s| s.to_string())
-                    .or_else(|| p.downcast_ref::<String>().cloned())
-                    .unwrap_or_default();
+                let what = crate::error::panic_message(&*p).unwrap_or_default();
                 (Some(format!("panic: {what}")), Vec::new())
             }
         };

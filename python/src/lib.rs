@@ -62,11 +62,7 @@ fn compute<T: Send>(py: Python<'_>, f: impl FnOnce() -> raceway::Result<T> + Sen
         Ok(Ok(v)) => Ok(v),
         Ok(Err(e)) => Err(to_py(py, e)),
         Err(p) => {
-            let what = p
-                .downcast_ref::<&str>()
-                .map(|s| s.to_string())
-                .or_else(|| p.downcast_ref::<String>().cloned())
-                .unwrap_or_default();
+            let what = raceway::error::panic_message(&*p).unwrap_or_default();
             Err(py_error(
                 py,
                 format!("internal error (a bug, please report it): panic: {what}"),

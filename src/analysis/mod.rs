@@ -3,10 +3,7 @@
 //! (physics.md §9; Randall & Antoni, *Mech. Syst. Signal Process.* 25 (2011), "Rolling
 //! element bearing diagnostics—a tutorial").
 //!
-//! The FFT is a small iterative radix-2 Cooley–Tukey transform, with Bluestein's chirp-z
-//! algorithm for other lengths (Bluestein, *IEEE Trans. Audio Electroacoust.* 18 (1970);
-//! Oppenheim & Schafer, *Discrete-Time Signal Processing*, §9.6). Written here rather than
-//! pulling in a crate: these helpers run on short records outside the hot path.
+//! The FFT is `rustfft`'s (any length).
 
 use crate::geometry::Kinematics;
 use nalgebra::Complex;
@@ -15,78 +12,22 @@ use std::f64::consts::PI;
 /// A complex sample.
 pub type C64 = Complex<f64>;
 
-fn fft_pow2(a: &mut [C64], inverse: bool) {
-    let n = a.len();
-    debug_assert!(n.is_power_of_two());
-    let mut j = 0usize;
-    for i in 1..n {
-        let mut bit = n >> 1;
-        while j & bit != 0 {
-            j ^= bit;
-            bit >>= 1;
-        }
-        j |= bit;
-        if i < j {
-            a.swap(i, j);
-        }
-    }
-    let sign = if inverse { 1.0 } else { -1.0 };
-    let mut len = 2;
-    while len <= n {
-        let ang = sign * 2.0 * PI / len as f64;
-        let half = len / 2;
-        for start in (0..n).step_by(len) {
-            for k in 0..half {
-                let w = C64::from_polar(1.0, ang * k as f64);
-                let u = a[start + k];
-                let v = a[start + k + half] * w;
-                a[start + k] = u + v;
-                a[start + k + half] = u - v;
-            }
-        }
-        len <<= 1;
-    }
-}
-
 /// Discrete Fourier transform `X_k = sum_n x_n e^(-2 pi i k n / N)` of any length
-/// (`inverse`: the `+i` kernel, unscaled).
+/// (`inverse`: the `+i` kernel, unscaled), by `rustfft` (mixed radix, Rader and Bluestein
+/// for the other lengths).
 pub fn fft(x: &[C64], inverse: bool) -> Vec<C64> {
-    let n = x.len();
-    if n <= 1 {
-        return x.to_vec();
-    }
-    if n.is_power_of_two() {
-        let mut a = x.to_vec();
-        fft_pow2(&mut a, inverse);
+    let mut a = x.to_vec();
+    if a.len() <= 1 {
         return a;
     }
-    // Bluestein: nk = (n² + k² - (k - n)²)/2 turns the DFT into a convolution.
-    let sign = if inverse { 1.0 } else { -1.0 };
-    let m = (2 * n - 1).next_power_of_two();
-    let chirp: Vec<C64> = (0..n)
-        .map(|k| {
-            let kk = (k as u128 * k as u128 % (2 * n as u128)) as f64;
-            C64::from_polar(1.0, sign * PI * kk / n as f64)
-        })
-        .collect();
-    let mut a = vec![C64::new(0.0, 0.0); m];
-    for k in 0..n {
-        a[k] = x[k] * chirp[k];
-    }
-    let mut b = vec![C64::new(0.0, 0.0); m];
-    b[0] = chirp[0].conj();
-    for k in 1..n {
-        b[k] = chirp[k].conj();
-        b[m - k] = chirp[k].conj();
-    }
-    fft_pow2(&mut a, false);
-    fft_pow2(&mut b, false);
-    for (ai, bi) in a.iter_mut().zip(&b) {
-        *ai *= bi;
-    }
-    fft_pow2(&mut a, true);
-    let scale = 1.0 / m as f64;
-    (0..n).map(|k| a[k] * scale * chirp[k]).collect()
+    let mut planner = rustfft::FftPlanner::<f64>::new();
+    let plan = if inverse {
+        planner.plan_fft_inverse(a.len())
+    } else {
+        planner.plan_fft_forward(a.len())
+    };
+    plan.process(&mut a);
+    a
 }
 
 /// Window applied before the transform.
@@ -459,6 +400,87 @@ pub fn whirl_index(speed: &[f64]) -> Option<f64> {
 mod tests {
     use super::*;
 
+    /// The transform this module wrote by hand before it used `rustfft` (iterative radix-2
+    /// Cooley–Tukey, Bluestein's chirp-z for other lengths), kept as a reference.
+    mod hand_written {
+        use super::super::C64;
+        use std::f64::consts::PI;
+
+        fn fft_pow2(a: &mut [C64], inverse: bool) {
+            let n = a.len();
+            debug_assert!(n.is_power_of_two());
+            let mut j = 0usize;
+            for i in 1..n {
+                let mut bit = n >> 1;
+                while j & bit != 0 {
+                    j ^= bit;
+                    bit >>= 1;
+                }
+                j |= bit;
+                if i < j {
+                    a.swap(i, j);
+                }
+            }
+            let sign = if inverse { 1.0 } else { -1.0 };
+            let mut len = 2;
+            while len <= n {
+                let ang = sign * 2.0 * PI / len as f64;
+                let half = len / 2;
+                for start in (0..n).step_by(len) {
+                    for k in 0..half {
+                        let w = C64::from_polar(1.0, ang * k as f64);
+                        let u = a[start + k];
+                        let v = a[start + k + half] * w;
+                        a[start + k] = u + v;
+                        a[start + k + half] = u - v;
+                    }
+                }
+                len <<= 1;
+            }
+        }
+
+        /// Discrete Fourier transform `X_k = sum_n x_n e^(-2 pi i k n / N)` of any length
+        /// (`inverse`: the `+i` kernel, unscaled).
+        pub fn fft(x: &[C64], inverse: bool) -> Vec<C64> {
+            let n = x.len();
+            if n <= 1 {
+                return x.to_vec();
+            }
+            if n.is_power_of_two() {
+                let mut a = x.to_vec();
+                fft_pow2(&mut a, inverse);
+                return a;
+            }
+            // Bluestein: nk = (n² + k² - (k - n)²)/2 turns the DFT into a convolution.
+            let sign = if inverse { 1.0 } else { -1.0 };
+            let m = (2 * n - 1).next_power_of_two();
+            let chirp: Vec<C64> = (0..n)
+                .map(|k| {
+                    let kk = (k as u128 * k as u128 % (2 * n as u128)) as f64;
+                    C64::from_polar(1.0, sign * PI * kk / n as f64)
+                })
+                .collect();
+            let mut a = vec![C64::new(0.0, 0.0); m];
+            for k in 0..n {
+                a[k] = x[k] * chirp[k];
+            }
+            let mut b = vec![C64::new(0.0, 0.0); m];
+            b[0] = chirp[0].conj();
+            for k in 1..n {
+                b[k] = chirp[k].conj();
+                b[m - k] = chirp[k].conj();
+            }
+            fft_pow2(&mut a, false);
+            fft_pow2(&mut b, false);
+            for (ai, bi) in a.iter_mut().zip(&b) {
+                *ai *= bi;
+            }
+            fft_pow2(&mut a, true);
+            let scale = 1.0 / m as f64;
+            (0..n).map(|k| a[k] * scale * chirp[k]).collect()
+        }
+    }
+
     fn naive_dft(x: &[C64]) -> Vec<C64> {
         let n = x.len();
         (0..n)
@@ -486,6 +508,70 @@ mod tests {
             for (u, v) in back.iter().zip(&x) {
                 assert!((u / n as f64 - v).norm() < 1e-12, "n = {n}");
             }
+        }
+    }
+
+    fn signal(n: usize) -> Vec<C64> {
+        (0..n)
+            .map(|i| {
+                let t = i as f64;
+                C64::new((t * 0.37).sin() + 0.3 * (t * 0.011).cos(), (t * 1.3).cos())
+            })
+            .collect()
+    }
+
+    /// Largest difference relative to the largest magnitude of `b`.
+    fn rel_diff(a: &[C64], b: &[C64]) -> f64 {
+        assert_eq!(a.len(), b.len());
+        let scale = b.iter().map(|v| v.norm()).fold(0.0, f64::max).max(1e-300);
+        a.iter()
+            .zip(b)
+            .map(|(u, v)| (u - v).norm())
+            .fold(0.0, f64::max)
+            / scale
+    }
+
+    /// `rustfft` gives what the hand-written transform gave, forward and inverse, for powers
+    /// of two, primes, odd and even composites and a long record.
+    #[test]
+    fn fft_matches_the_hand_written_transform() {
+        for n in [
+            1usize, 2, 3, 8, 12, 17, 64, 100, 997, 1000, 4096, 10_007, 50_001,
+        ] {
+            let x = signal(n);
+            for inverse in [false, true] {
+                let d = rel_diff(&fft(&x, inverse), &hand_written::fft(&x, inverse));
+                assert!(d < 1e-12, "n = {n}, inverse {inverse}: {d:e}");
+            }
+        }
+    }
+
+    /// Thread CPU time of the transform of a long run's record (the second half of a 100 s
+    /// run at the default 1e-4 s step: 500 001 samples; and 2^19), `rustfft` against the
+    /// hand-written transform:
+    /// `cargo test --release --lib analysis::tests::time_fft -- --ignored --nocapture`.
+    #[test]
+    #[ignore]
+    fn time_fft() {
+        for n in [500_001usize, 1 << 19] {
+            let x = signal(n);
+            let time = |f: &dyn Fn() -> Vec<C64>| {
+                let mut best = f64::INFINITY;
+                for _ in 0..5 {
+                    let t0 = crate::counters::thread_cpu_s();
+                    std::hint::black_box(f());
+                    best = best.min(crate::counters::thread_cpu_s() - t0);
+                }
+                best
+            };
+            let old = time(&|| hand_written::fft(&x, false));
+            let new = time(&|| fft(&x, false));
+            let d = rel_diff(&fft(&x, false), &hand_written::fft(&x, false));
+            println!(
+                "n = {n}: hand-written {:.2} ms, rustfft {:.2} ms (best of 5, thread CPU); max rel. diff {d:.1e}",
+                old * 1e3,
+                new * 1e3
+            );
         }
     }
 

@@ -125,13 +125,7 @@ pub(crate) fn c_string(s: &str) -> CString {
 
 /// The text of a panic payload.
 pub(crate) fn panic_text(payload: &(dyn std::any::Any + Send)) -> String {
-    if let Some(s) = payload.downcast_ref::<&str>() {
-        (*s).to_string()
-    } else if let Some(s) = payload.downcast_ref::<String>() {
-        s.clone()
-    } else {
-        "unknown panic".into()
-    }
+    crate::error::panic_message(payload).unwrap_or_else(|| "unknown panic".into())
 }
 
 /// Run `f`; `on_panic` if it panics (for calls with no object to poison).

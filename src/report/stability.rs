@@ -723,10 +723,7 @@ fn with_initial(scene: &str, v: &[(&str, f64)]) -> String {
 
 /// The message of a caught panic.
 fn panic_text(p: &(dyn std::any::Any + Send)) -> String {
-    p.downcast_ref::<String>()
-        .cloned()
-        .or_else(|| p.downcast_ref::<&str>().map(|s| s.to_string()))
-        .unwrap_or_default()
+    crate::error::panic_message(p).unwrap_or_default()
 }
 
 /// The shared driver's loop ([`super::drive_until`]: events when their time comes, the

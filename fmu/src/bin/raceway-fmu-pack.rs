@@ -1,6 +1,5 @@
-//! Stages the four FMUs (motion- and load-driven, FMI 2 and FMI 3; the archives are zipped
-//! by `scripts/build-fmu`) and regenerates the variable table of `docs/fmi.md`, all from
-//! `raceway::component::variables`. The four carry the same binary: the GUID a host
+//! Stages and zips the four FMUs (motion- and load-driven, FMI 2 and FMI 3) and regenerates
+//! the variable table of `docs/fmi.md`, all from `raceway::component::variables`. The four carry the same binary: the GUID a host
 //! instantiates with tells it which variant it is.
 //!
 //! ```text
@@ -12,9 +11,10 @@
 //! `raceway-load-fmi2`, `raceway-load-fmi3`: modelDescription.xml, binaries/<platform>/
 //! raceway.so, documentation/index.html, documentation/licenses/license.txt,
 //! resources/scene.toml when `--scene` is given, in the two archives of the scene's
-//! causality) and `<dir>/variables.md`.
+//! causality), zips each into `<dir>/<name>.fmu` and writes `<dir>/variables.md`.
 
 use raceway_core::fmi::model_description as md;
+use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -35,6 +35,54 @@ fn write(path: &Path, bytes: &[u8]) -> Result<(), String> {
         std::fs::create_dir_all(d).map_err(|e| format!("{}: {e}", d.display()))?;
     }
     std::fs::write(path, bytes).map_err(|e| format!("{}: {e}", path.display()))
+}
+
+/// The files below `dir`, depth first as `os.walk` with sorted names gives them: a folder's
+/// files before its subfolders.
+fn files_below(dir: &Path) -> Result<Vec<PathBuf>, String> {
+    let mut entries: Vec<_> = std::fs::read_dir(dir)
+        .and_then(|rd| rd.collect::<Result<Vec<_>, _>>())
+        .map_err(|e| format!("{}: {e}", dir.display()))?;
+    entries.sort_by_key(|e| e.file_name());
+    let (mut files, mut dirs) = (Vec::new(), Vec::new());
+    for e in entries {
+        let path = e.path();
+        if path.is_dir() {
+            dirs.push(path);
+        } else {
+            files.push(path);
+        }
+    }
+    for d in dirs {
+        files.extend(files_below(&d)?);
+    }
+    Ok(files)
+}
+
+/// Zips the staged folder `root` into `fmu` (through `fmu.tmp`, renamed when complete):
+/// deflate, names relative to `root` with forward slashes, a fixed timestamp (1980-01-01)
+/// and mode 0644, so no path or time of this machine is in the archive (spec2 2_3).
+fn zip_folder(root: &Path, fmu: &Path) -> Result<(), String> {
+    let tmp = fmu.with_extension("fmu.tmp");
+    let err = |e: &dyn std::fmt::Display| format!("{}: {e}", tmp.display());
+    let file = std::fs::File::create(&tmp).map_err(|e| err(&e))?;
+    let mut z = zip::ZipWriter::new(std::io::BufWriter::new(file));
+    let options = zip::write::SimpleFileOptions::default()
+        .compression_method(zip::CompressionMethod::Deflated)
+        .last_modified_time(zip::DateTime::default())
+        .unix_permissions(0o644);
+    for path in files_below(root)? {
+        let rel = path.strip_prefix(root).map_err(|e| err(&e))?;
+        let name: Vec<_> = rel.iter().map(|c| c.to_string_lossy()).collect();
+        let bytes = std::fs::read(&path).map_err(|e| format!("{}: {e}", path.display()))?;
+        z.start_file(name.join("/"), options).map_err(|e| err(&e))?;
+        z.write_all(&bytes).map_err(|e| err(&e))?;
+    }
+    z.finish()
+        .map_err(|e| err(&e))?
+        .flush()
+        .map_err(|e| err(&e))?;
+    std::fs::rename(&tmp, fmu).map_err(|e| format!("{}: {e}", fmu.display()))
 }
 
 fn run() -> Result<(), String> {
@@ -95,6 +143,9 @@ fn run() -> Result<(), String> {
                 if let Some((t, _)) = scene_text.as_ref().filter(|(_, sc)| *sc == c) {
                     write(&root.join("resources").join("scene.toml"), t.as_bytes())?;
                 }
+                let fmu = out.join(&name);
+                zip_folder(&root, &fmu)?;
+                println!("{}", fmu.display());
             }
         }
     }
