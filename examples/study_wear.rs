@@ -623,7 +623,7 @@ struct PatternRow {
 /// Cells out of the load zone: mean ball load below `LOADED` of the heaviest (or none).
 fn out_of_zone(r: &CycleRecord) -> Vec<usize> {
     (0..r.q.len())
-        .filter(|&k| !(r.q[k] >= LOADED * r.q_max))
+        .filter(|&k| r.q[k].is_nan() || r.q[k] < LOADED * r.q_max)
         .collect()
 }
 
@@ -682,6 +682,10 @@ struct Trace {
     step_share: f64,
 }
 
+/// One traced step: the unloaded balls' `(angle deg, slip mm/s)`, their wear area rate
+/// (m²/s) and the angle of the ball leaving the zone (deg).
+type Sample = (Vec<(f64, f64)>, f64, f64);
+
 /// Run the dry dynamics from the scene's start for `settle_s`, then trace `revs` cage
 /// revolutions at step `h`. A burst: a run of steps in which the median slip over the
 /// unloaded balls (outer load below `LOADED` of the heaviest ball at that instant) is more
@@ -708,7 +712,7 @@ fn trace_dry(settle_s: f64, revs: f64, h: f64) -> Res<Trace> {
     };
     // Per step: unloaded balls' (angle, slip) and their wear, and the angle of the loaded
     // ball furthest along (the one leaving the zone).
-    let mut steps: Vec<(Vec<(f64, f64)>, f64, f64)> = Vec::new();
+    let mut steps: Vec<Sample> = Vec::new();
     let mut turned = 0.0;
     while turned < revs * std::f64::consts::TAU {
         c.do_step(t, h)?;
