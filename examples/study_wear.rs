@@ -937,6 +937,14 @@ fn write_pattern(s: &mut String, pat: &Pattern) -> Res<()> {
         tr.step_share * 100.0,
         tr.wear_share * 100.0
     )?;
+    if !lock.is_finite() {
+        writeln!(
+            s,
+            "Fewer than two bursts in this window: no interval to measure (the quick \
+             version's window is short; the full page has several).\n"
+        )?;
+        return Ok(());
+    }
     writeln!(
         s,
         "A burst comes only when a ball leaves the load zone, and (median interval) every \
