@@ -475,8 +475,8 @@ fn write_page(
          0.002 and 0.006 in cage slip up to 1 s (`--settle-probe`). So the test is one of \
          stationarity, on means over one cage revolution at 10 %, and each wear window spans \
          {} cage revolutions. Part of that scatter is the cage's burst cycle described below \
-         (a burst every 5 ball passes in the dry case): a chunk of 14 ball passes holds 2 or \
-         3 bursts, 4 passes 0 or 1.\n",
+         (a burst every few ball passes): a chunk of a whole number of ball passes but not \
+         of burst cycles holds one burst more or less, depending on where it starts.\n",
         plan.settle_chunk,
         (plan.settle_chunk * 14.0).round(),
         plan.settle_max_s,
@@ -881,7 +881,9 @@ fn write_pattern(s: &mut String, pat: &Pattern) -> Res<()> {
              (no binning effect), a window longer by a fraction of a ball pass (the window \
              is counted in the cage's actual turning, so every ball passes every cell the \
              same number of times; no partial-pass sawtooth) or the run-in. It is in the \
-             dynamics.\n"
+             dynamics. (The peak rate grows with 720 cells: the deepest peak, at the load \
+             zone's exit, is narrower than a 1° cell, so finer cells resolve more of its \
+             height; the study keeps 360.)\n"
         )?;
     }
     let gaps: Vec<f64> = tr.bursts.windows(2).map(|w| (w[1] - w[0]) / pass).collect();
@@ -894,9 +896,10 @@ fn write_pattern(s: &mut String, pat: &Pattern) -> Res<()> {
         "**The dynamics.** The dry window traced step by step (cycle 1, {} cage \
          revolutions after the run-in; unloaded = outer load below {} % of the heaviest \
          ball's at that instant; a burst = the steps in which the median slip over the \
-         unloaded balls exceeds 20 × its median over the window, {:.2} mm/s). The cage speed is a sawtooth about its \
-         mean {:.3} rad/s (kinematic {:.3} rad/s): the cage drags slowly down, then a jump \
-         of a few rad/s within a fraction of a millisecond, as a ball leaves the load zone. \
+         unloaded balls exceeds 20 × its median over the window, {:.2} mm/s). The cage speed (mean {:.3} rad/s, kinematic {:.3} rad/s) \
+         repeats one cycle: it stays near the kinematic speed, then drags down by a few \
+         rad/s, then jumps back within a fraction of a millisecond as a ball leaves the \
+         load zone (plot at the end of the page). \
          The unloaded balls, held on the race by their centrifugal force only, sit in their \
          pockets: the cage jerks their orbit along and their spin cannot follow, so all of \
          them slip together, at tens of mm/s for about a millisecond.\n",
