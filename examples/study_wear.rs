@@ -5,13 +5,14 @@
 //! ```text
 //! cargo run --release --example study_wear -- --write-docs   # docs/study-wear.md + PNGs
 //! cargo run --example study_wear -- --quick                   # the short CI version, into out/study-wear/
+//! cargo run --release --example study_wear -- --pattern       # only the dry map pattern's trace, printed
 //! ```
 
 use raceway::component::Scene;
 use raceway::contact::traction::{MixedEhl, TractionLaw};
 use raceway::lubrication::asperity::AsperityReading;
 use raceway::models::wear_map::OuterRaceWear;
-use raceway::plot::{plot, Axes, Series};
+use raceway::plot::{plot, plot_stack, Axes, Series};
 use raceway::wear_cycles::{CycleRecord, Settle, WearCycles};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -185,6 +186,14 @@ fn main() -> Res<()> {
         }
         return Ok(());
     }
+    // Only the dry map's pattern section (its trace, not the variants), printed.
+    if args.iter().any(|a| a == "--pattern") {
+        let pat = pattern(plan.settle_max_s, &plan, false)?;
+        let mut s = String::new();
+        write_pattern(&mut s, &pat)?;
+        println!("{s}");
+        return Ok(());
+    }
     // Lubricated: cycles of 1e7 cage revolutions to 1e8; dry: cycles of 100 to 1 000.
     let lub_cycle = 1e8 / plan.cycles as f64;
     let dry_cycle = 1e3 / plan.cycles as f64;
@@ -230,8 +239,11 @@ fn main() -> Res<()> {
         &plan,
         &maps,
     )?);
+    // The dry map's peaks: the numerics varied (not in the quick version) and the trace.
+    let dry_settle = runs[2].settle.settled_s.unwrap_or(plan.settle_max_s);
+    let pat = pattern(dry_settle, &plan, !quick)?;
     let load = raceway::report::load_average();
-    write_page(&runs, &out, docs, quick, &plan, load)?;
+    write_page(&runs, &pat, &out, docs, quick, &plan, load)?;
     Ok(())
 }
 
@@ -241,6 +253,7 @@ fn rate_max(r: &CycleRecord) -> f64 {
 
 fn write_page(
     runs: &[Run],
+    pat: &Pattern,
     out: &Path,
     docs: bool,
     quick: bool,
@@ -355,6 +368,51 @@ fn write_page(
             &[],
         )?;
     }
+    let tr = &pat.trace;
+    let ms: Vec<f64> = tr.t.iter().map(|t| t * 1e3).collect();
+    let kin = vec![tr.kinematic; ms.len()];
+    plot_stack(
+        &png("dry-bursts"),
+        "6012 dry: cage speed and slip of the unloaded balls (cycle 1 window)",
+        &[
+            (
+                Axes {
+                    title: "",
+                    x_label: "time from the scene's start (ms)",
+                    y_label: "cage speed (rad/s)",
+                    ..Axes::default()
+                },
+                vec![
+                    Series {
+                        label: "cage",
+                        x: &ms,
+                        y: &tr.cage,
+                        points: false,
+                    },
+                    Series {
+                        label: "kinematic",
+                        x: &ms,
+                        y: &kin,
+                        points: false,
+                    },
+                ],
+            ),
+            (
+                Axes {
+                    title: "",
+                    x_label: "time from the scene's start (ms)",
+                    y_label: "median |dv_o|, unloaded balls (mm/s)",
+                    ..Axes::default()
+                },
+                vec![Series {
+                    label: "unloaded balls",
+                    x: &ms,
+                    y: &tr.slip,
+                    points: false,
+                }],
+            ),
+        ],
+    )?;
     let mut s = String::new();
     writeln!(
         s,
@@ -416,11 +474,9 @@ fn write_page(
          means over 4 ball passes keep scattering by about ±20 % in ball slip and between \
          0.002 and 0.006 in cage slip up to 1 s (`--settle-probe`). So the test is one of \
          stationarity, on means over one cage revolution at 10 %, and each wear window spans \
-         {} cage revolutions. The dry map's peaks outside the load zone, about one ball \
-         spacing (25.7°) apart, stay where they are with this run-in (0.05 s before), with \
-         2-revolution windows (1 before) and with the cycles' window offsets: they are fixed \
-         on the race, not a settling or sampling effect of the window; their cause is not \
-         found yet.\n",
+         {} cage revolutions. Part of that scatter is the cage's burst cycle described below \
+         (a burst every few ball passes): a chunk of a whole number of ball passes but not \
+         of burst cycles holds one burst more or less, depending on where it starts.\n",
         plan.settle_chunk,
         (plan.settle_chunk * 14.0).round(),
         plan.settle_max_s,
@@ -519,6 +575,7 @@ fn write_page(
          exponent alone moves La at the heaviest ball by a factor of several, so the \
          lubricated rates and their ratio depend on a term the study's print lost.\n"
     )?;
+    write_pattern(&mut s, pat)?;
     for (title, name) in [
         (
             "Asperity load share around the race (cycle 1)",
@@ -530,6 +587,10 @@ fn write_page(
         ("Shaft-centre orbit, σ 0.20 µm", "orbit-sigma-0.20"),
         ("Shaft-centre orbit, σ 0.42 µm", "orbit-sigma-0.42"),
         ("Shaft-centre orbit, dry", "orbit-dry"),
+        (
+            "Dry: cage speed and slip of the unloaded balls",
+            "dry-bursts",
+        ),
     ] {
         writeln!(s, "### {title}\n\n![{title}](study-wear-{name}.png)\n")?;
     }
@@ -538,5 +599,376 @@ fn write_page(
     if !docs {
         println!("{}", page.display());
     }
+    Ok(())
+}
+
+/// The dry map's out-of-zone peaks: how they respond to the numerics (output step, cells,
+/// window length, run-in) and the dynamics behind them (a trace of the cage speed and the
+/// slip of the unloaded balls).
+struct Pattern {
+    rows: Vec<PatternRow>,
+    trace: Trace,
+}
+
+struct PatternRow {
+    label: String,
+    /// Peak rate anywhere, µm per 1e6 cage revolutions.
+    peak: f64,
+    /// Out of the load zone: amplitude of the Z-th harmonic over the mean.
+    hz: f64,
+    /// Out of the load zone: the six highest local maxima, deg, sorted.
+    maxima: Vec<f64>,
+}
+
+/// Cells out of the load zone: mean ball load below `LOADED` of the heaviest (or none).
+fn out_of_zone(r: &CycleRecord) -> Vec<usize> {
+    (0..r.q.len())
+        .filter(|&k| r.q[k].is_nan() || r.q[k] < LOADED * r.q_max)
+        .collect()
+}
+
+fn pattern_row(label: String, r: &CycleRecord, z: f64) -> PatternRow {
+    let n = r.rate.len();
+    let cells = out_of_zone(r);
+    let mean = cells.iter().map(|&k| r.rate[k]).sum::<f64>() / cells.len().max(1) as f64;
+    let (mut re, mut im) = (0.0, 0.0);
+    for &k in &cells {
+        let a = std::f64::consts::TAU * z * k as f64 / n as f64;
+        re += r.rate[k] * a.cos();
+        im += r.rate[k] * a.sin();
+    }
+    let hz = 2.0 * re.hypot(im) / cells.len().max(1) as f64 / mean;
+    let mut pk: Vec<(f64, f64)> = cells
+        .iter()
+        .filter(|&&k| r.rate[k] > r.rate[(k + n - 1) % n] && r.rate[k] >= r.rate[(k + 1) % n])
+        .map(|&k| (r.rate[k], 360.0 * k as f64 / n as f64))
+        .collect();
+    pk.sort_by(|a, b| b.0.total_cmp(&a.0));
+    let mut maxima: Vec<f64> = pk.iter().take(6).map(|p| p.1).collect();
+    maxima.sort_by(f64::total_cmp);
+    PatternRow {
+        label,
+        peak: rate_max(r) * 1e12,
+        hz,
+        maxima,
+    }
+}
+
+/// What the dry dynamics do between the bursts and in them.
+#[derive(Default)]
+struct Trace {
+    t: Vec<f64>,
+    /// Cage speed, rad/s.
+    cage: Vec<f64>,
+    /// Median slip speed |dv_o| over the unloaded balls, mm/s.
+    slip: Vec<f64>,
+    /// Kinematic cage speed, rad/s.
+    kinematic: f64,
+    /// Cage revolutions traced.
+    revs: f64,
+    /// Mean cage speed over the trace, rad/s.
+    mean_cage: f64,
+    /// Start of each burst, s.
+    bursts: Vec<f64>,
+    /// Angles of the unloaded balls at the first burst's highest slip, deg.
+    burst_angles: Vec<f64>,
+    /// Angle of the ball leaving the load zone at each burst's start, deg (the ball
+    /// furthest past the load line with more than 2 % of the heaviest ball's load).
+    exit_angle: Vec<f64>,
+    /// Median slip of the unloaded balls, mm/s.
+    median_slip: f64,
+    /// Share of the unloaded balls' wear deposited in burst steps, and their share of steps.
+    wear_share: f64,
+    step_share: f64,
+}
+
+/// One traced step: the unloaded balls' `(angle deg, slip mm/s)`, their wear area rate
+/// (m²/s) and the angle of the ball leaving the zone (deg).
+type Sample = (Vec<(f64, f64)>, f64, f64);
+
+/// Run the dry dynamics from the scene's start for `settle_s`, then trace `revs` cage
+/// revolutions at step `h`. A burst: a run of steps in which the median slip over the
+/// unloaded balls (outer load below `LOADED` of the heaviest ball at that instant) is more
+/// than 20 times its median over the trace (the big bursts reach about 50 times it; smaller
+/// events half-way between them stay below 20).
+fn trace_dry(settle_s: f64, revs: f64, h: f64) -> Res<Trace> {
+    use raceway::component::{variables, Component};
+    let reading = AsperityReading::FilmParameter;
+    let wear = OuterRaceWear::study2(None, reading);
+    let mut c = Component::new(scene(TractionLaw::MixedEhl(friction(1e-4, reading)))?)?;
+    let vr = |s: &str| variables::by_name(s).map_or(0, |v| v.vr);
+    let omega = c.get_real(vr("shaft.omega"))?;
+    let (wk, _) = c.skidding_mut().expect("skidding").model().kinematic(omega);
+    let mut t = c.time();
+    let t0 = t;
+    while t < t0 + settle_s - 1e-12 {
+        c.do_step(t, h)?;
+        t += h;
+    }
+    let mut tr = Trace {
+        kinematic: wk,
+        revs,
+        ..Trace::default()
+    };
+    // Per step: unloaded balls' (angle, slip) and their wear, and the angle of the loaded
+    // ball furthest along (the one leaving the zone).
+    let mut steps: Vec<Sample> = Vec::new();
+    let mut turned = 0.0;
+    while turned < revs * std::f64::consts::TAU {
+        c.do_step(t, h)?;
+        t += h;
+        c.ensure_outputs()?;
+        let wc = c.get_real(vr("cage.omega"))?;
+        turned += wc.abs() * h;
+        let m = c.skidding_mut().expect("skidding").model();
+        let q_max = (0..m.z())
+            .map(|j| m.outer_contact(j).0.q)
+            .fold(0.0, f64::max);
+        let (mut free, mut w, mut exit) = (Vec::new(), 0.0, (f64::NAN, f64::INFINITY));
+        for j in 0..m.z() {
+            let (ct, dv, u) = m.outer_contact(j);
+            let psi = m.balls[j]
+                .psi
+                .rem_euclid(std::f64::consts::TAU)
+                .to_degrees();
+            if ct.q < LOADED * q_max {
+                free.push((psi, dv.abs() * 1e3));
+                w += wear.contact(&ct, dv, u).area_rate;
+            }
+            // The ball leaving the zone: loaded above its centrifugal force (a few % of
+            // the heaviest ball's load).
+            if ct.q >= 0.02 * q_max {
+                // Degrees past the load line (270) in the direction of travel.
+                let past = (psi - 270.0).rem_euclid(360.0);
+                if past < 180.0 && (exit.1.is_infinite() || past > exit.1) {
+                    exit = (psi, past);
+                }
+            }
+        }
+        tr.t.push(t - t0);
+        tr.cage.push(wc);
+        // The median over the unloaded balls: a cage jerk moves them all, a ball just
+        // leaving the zone with its own slip spike moves the median little.
+        let mut v: Vec<f64> = free.iter().map(|f| f.1).collect();
+        v.sort_by(f64::total_cmp);
+        tr.slip.push(v.get(v.len() / 2).copied().unwrap_or(0.0));
+        steps.push((free, w, exit.0));
+    }
+    tr.mean_cage = tr.cage.iter().sum::<f64>() / tr.cage.len().max(1) as f64;
+    let mut sorted = tr.slip.clone();
+    sorted.sort_by(f64::total_cmp);
+    tr.median_slip = sorted.get(sorted.len() / 2).copied().unwrap_or(0.0);
+    let hot: Vec<bool> = tr.slip.iter().map(|s| *s > 20.0 * tr.median_slip).collect();
+    let (mut w_all, mut w_hot, mut n_hot) = (0.0, 0.0, 0.0);
+    let mut best = (0.0, 0usize);
+    for (i, (_, w, exit)) in steps.iter().enumerate() {
+        w_all += w;
+        if hot[i] {
+            w_hot += w;
+            n_hot += 1.0;
+            if i == 0 || !hot[i - 1] {
+                tr.bursts.push(tr.t[i]);
+                tr.exit_angle.push(*exit);
+            }
+            if tr.bursts.len() == 1 && tr.slip[i] > best.0 {
+                best = (tr.slip[i], i);
+            }
+        }
+    }
+    if !tr.bursts.is_empty() {
+        tr.burst_angles = steps[best.1].0.iter().map(|f| f.0).collect();
+        tr.burst_angles.sort_by(f64::total_cmp);
+    }
+    tr.wear_share = w_hot / w_all.max(1e-300);
+    tr.step_share = n_hot / steps.len().max(1) as f64;
+    Ok(tr)
+}
+
+/// The dry map's pattern: one cycle-1 window per variant of the numerics (docs only) and
+/// the trace.
+fn pattern(settle_s: f64, plan: &Plan, variants: bool) -> Res<Pattern> {
+    let reading = AsperityReading::FilmParameter;
+    let base = WearCycles {
+        scene: scene(TractionLaw::MixedEhl(friction(1e-4, reading)))?,
+        wear: OuterRaceWear::study2(None, reading),
+        cells: 360,
+        settle_s,
+        window_cage_revs: plan.window,
+        cycle_cage_revs: 100.0,
+        cycles: 1,
+        step_s: plan.step_s,
+        max_step_fraction: 0.1,
+    };
+    let z = 14.0;
+    let mut rows = Vec::new();
+    if variants {
+        let pass = 1.0 / z;
+        let mut list: Vec<(String, WearCycles)> = vec![(
+            format!(
+                "as in the study (step {} s, 360 cells, {} cage rev)",
+                plan.step_s, plan.window
+            ),
+            base.clone(),
+        )];
+        let mut v = base.clone();
+        v.step_s = plan.step_s / 2.0;
+        list.push((format!("output step halved ({} s)", v.step_s), v));
+        let mut v = base.clone();
+        v.cells = 720;
+        list.push(("720 cells".into(), v));
+        let mut v = base.clone();
+        v.window_cage_revs += 0.5 * pass;
+        list.push(("window + 1/2 ball pass".into(), v));
+        let mut v = base.clone();
+        v.window_cage_revs += 0.25 * pass;
+        list.push(("window + 1/4 ball pass".into(), v));
+        let mut v = base.clone();
+        v.settle_s += 0.07;
+        list.push(("run-in + 0.07 s (about 1 cage rev)".into(), v));
+        for (label, w) in list {
+            eprintln!("pattern: {label}");
+            let rec = w.window(&[])?.record;
+            rows.push(pattern_row(label, &rec, z));
+        }
+    }
+    let trace = trace_dry(settle_s, plan.window, plan.step_s)?;
+    Ok(Pattern { rows, trace })
+}
+
+/// The page's section on the dry map's peaks.
+fn write_pattern(s: &mut String, pat: &Pattern) -> Res<()> {
+    let tr = &pat.trace;
+    let z = 14.0;
+    let pass = std::f64::consts::TAU / (z * tr.mean_cage.abs().max(1e-300));
+    writeln!(s, "## The dry map's peaks one ball spacing apart\n")?;
+    writeln!(
+        s,
+        "Outside the load zone the dry map has peaks about one ball spacing (360°/14 = \
+         25.7°) apart that stay at the same places on the race. Two questions: are they \
+         made by the numerics of the wear window, or by the dynamics?\n"
+    )?;
+    if !pat.rows.is_empty() {
+        writeln!(
+            s,
+            "**The numerics.** The first cycle's dry window again, each time with one thing \
+             changed (out of the load zone = cells whose mean ball load is below {} % of the \
+             heaviest; |H14|/mean = amplitude of the 14th circumferential harmonic of the rate \
+             over those cells, divided by their mean rate; a flat map gives 0):\n",
+            LOADED * 100.0
+        )?;
+        writeln!(
+            s,
+            "| window | peak rate (µm per 1e6 cage rev) | out of zone: \\|H14\\|/mean | out of zone: six highest maxima (deg) |\n|---|---|---|---|"
+        )?;
+        for r in &pat.rows {
+            writeln!(
+                s,
+                "| {} | {:.4e} | {:.3} | {} |",
+                r.label,
+                r.peak,
+                r.hz,
+                r.maxima
+                    .iter()
+                    .map(|a| format!("{a:.1}"))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )?;
+        }
+        writeln!(
+            s,
+            "\nThe pattern does not follow the output step (the wear is sampled at each \
+             communication point: no aliasing with the ball-pass period), the cell count \
+             (no binning effect), a window longer by a fraction of a ball pass (the window \
+             is counted in the cage's actual turning, so every ball passes every cell the \
+             same number of times; no partial-pass sawtooth) or the run-in. It is in the \
+             dynamics. (The peak rate grows with 720 cells: the deepest peak, at the load \
+             zone's exit, is narrower than a 1° cell, so finer cells resolve more of its \
+             height; the study keeps 360.)\n"
+        )?;
+    }
+    let gaps: Vec<f64> = tr.bursts.windows(2).map(|w| (w[1] - w[0]) / pass).collect();
+    let mut g = gaps.clone();
+    g.sort_by(f64::total_cmp);
+    let lock = g.get(g.len() / 2).map_or(f64::NAN, |g| g.round());
+    let passes = tr.revs * z;
+    writeln!(
+        s,
+        "**The dynamics.** The dry window traced step by step (cycle 1, {} cage \
+         revolutions after the run-in; unloaded = outer load below {} % of the heaviest \
+         ball's at that instant; a burst = the steps in which the median slip over the \
+         unloaded balls exceeds 20 × its median over the window, {:.2} mm/s). The cage speed (mean {:.3} rad/s, kinematic {:.3} rad/s) \
+         repeats one cycle: it stays near the kinematic speed, then drags down by a few \
+         rad/s, then jumps back within a fraction of a millisecond as a ball leaves the \
+         load zone (plot at the end of the page). \
+         The unloaded balls, held on the race by their centrifugal force only, sit in their \
+         pockets: the cage jerks their orbit along and their spin cannot follow, so all of \
+         them slip together, at tens of mm/s for about a millisecond.\n",
+        tr.revs,
+        LOADED * 100.0,
+        tr.median_slip,
+        tr.mean_cage,
+        tr.kinematic
+    )?;
+    writeln!(
+        s,
+        "- bursts found: {}, at (ms from the scene's start) {}\n\
+         - intervals between bursts, in ball passes at the mean cage speed ({:.3} ms per pass): {}\n\
+         - ball leaving the load zone at each burst's start (the ball furthest past the load line with more than 2 % of the heaviest ball's load, deg): {}\n\
+         - the unloaded balls at the first burst's highest slip (deg): {}\n\
+         - burst steps are {:.1} % of the steps and carry {:.1} % of the unloaded balls' wear\n",
+        tr.bursts.len(),
+        tr.bursts
+            .iter()
+            .map(|t| format!("{:.1}", t * 1e3))
+            .collect::<Vec<_>>()
+            .join(", "),
+        pass * 1e3,
+        gaps.iter()
+            .map(|g| format!("{g:.2}"))
+            .collect::<Vec<_>>()
+            .join(", "),
+        tr.exit_angle
+            .iter()
+            .map(|a| format!("{a:.1}"))
+            .collect::<Vec<_>>()
+            .join(", "),
+        tr.burst_angles
+            .iter()
+            .map(|a| format!("{a:.1}"))
+            .collect::<Vec<_>>()
+            .join(", "),
+        tr.step_share * 100.0,
+        tr.wear_share * 100.0
+    )?;
+    if !lock.is_finite() {
+        writeln!(
+            s,
+            "Fewer than two bursts in this window: no interval to measure (the quick \
+             version's window is short; the full page has several).\n"
+        )?;
+        return Ok(());
+    }
+    writeln!(
+        s,
+        "A burst comes only when a ball leaves the load zone, and (median interval) every \
+         {lock}th time: the cage's relaxation cycle is locked to a whole number of ball \
+         passes. After a whole number of passes the balls stand where they stood, so every \
+         burst finds the unloaded balls at the same places on the race, one ball spacing \
+         apart, and wears them there: the peaks are fixed on the race because the burst \
+         cycle is locked to the ball passing, and one ball spacing apart because all the \
+         unloaded balls slip at once. The same burst gives the balls leaving the zone a \
+         slip spike under a load of tens of newtons, at the load zone's exit side, where \
+         the dry map is deepest. This is what the skidding level gives for the study's data \
+         (its cage drag, pocket and traction laws), not a numerical effect. \
+         `examples/wear_map_probe.rs` repeats the window with other numerics, speeds and \
+         drag (`--step`, `--sub`, `--cells`, `--window`, `--settle`, `--rtol`, `--rpm`, \
+         `--drag`) and dumps every contact (`--dump FILE`). A window spans a whole number \
+         of ball passes ({passes:.0}) but not of burst cycles ({passes:.0}/{lock} = {:.1}), \
+         so the burst peaks' heights in one window's extrapolation depend on where it \
+         starts by up to one burst in {:.0}; the cycles' window offsets spread that over \
+         the run.\n",
+        passes / lock,
+        (passes / lock).ceil()
+    )?;
     Ok(())
 }

@@ -5,6 +5,6 @@ set -euo pipefail
 cd "$(dirname "$0")/../.."
 cargo run -q --example study_wear -- --quick > /dev/null
 test -s out/study-wear/study-wear.md
-for p in asperity-share map-sigma-0.20 map-sigma-0.42 map-dry orbit-dry; do
+for p in asperity-share map-sigma-0.20 map-sigma-0.42 map-dry orbit-dry dry-bursts; do
   test -s "out/study-wear/study-wear-$p.png"
 done

@@ -6,9 +6,13 @@
 //! regression of Masjedi & Khonsari (Tribol. Int. 82 (2015) 228–244; line-contact
 //! companion J. Tribol. 134 (2012) 011503), a function `f(kappa, W, U, G, sigma_bar, V)` of
 //! `W = Q/(E' Rx²)`, `U = eta0 u/(E' Rx)`, `G = alpha_p E'`, `sigma_bar = sigma/Rx`,
-//! `V = H/E'`. The paper's text was not reachable here (two searches of the stored pages,
-//! docs and code found only its abstract), so the form is the one study \[2\] prints as
-//! its eq. (8):
+//! `V = H/E'`. The paper's text was not reachable here: four sessions searched the stored
+//! pages, docs, code and issues; the last found that a copy of the point-contact paper is
+//! among the stored pages (c.coek.info, "pdf-on-the-effect-of-surface-roughness-in-point-
+//! contact-ehl-formulas-for-film-thickn…") but only its opening (title, abstract) comes
+//! back from the search, and the LSU repository and ASME pages give only the abstracts of
+//! both papers; no code implementing the formula was found. So the form is the one study
+//! \[2\] prints as its eq. (8):
 //!
 //! `La = 10 W^-0.083 U^0.143 G^0.314 ln(1 + 0.689^(1/4) V^0.509 W^-0.501 U^-2.9 G^-2.87)`.
 //!

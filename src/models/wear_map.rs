@@ -214,6 +214,37 @@ mod tests {
         }
     }
 
+    /// A uniform load sampled as the window samples it (balls at a constant orbital speed,
+    /// one deposit per output step, hat weights on the cells, normalised per cage
+    /// revolution turned) gives a flat map: the binning and the sampling add no pattern of
+    /// their own, at the study's step and cell count and at others.
+    #[test]
+    fn uniform_load_gives_a_flat_map() {
+        use std::f64::consts::TAU;
+        for (h, n) in [(1e-4, 360), (5e-5, 360), (1e-4, 720), (1e-4, 257)] {
+            let (z, w_c, rate) = (14, 90.15, 1e-12);
+            let cell_len = TAU * 0.04 / n as f64;
+            let mut map = vec![0.0; n];
+            let (mut turned, mut t) = (0.0, 0.0);
+            while turned < 2.0 * TAU {
+                t += h;
+                turned += w_c * h;
+                for j in 0..z {
+                    let psi = w_c * t + TAU * j as f64 / z as f64;
+                    wear::deposit(&mut map, psi, rate * h, cell_len);
+                }
+            }
+            let per_rev: Vec<f64> = map.iter().map(|d| d / (turned / TAU)).collect();
+            let want = z as f64 * rate * TAU / (n as f64 * w_c * cell_len);
+            for (k, d) in per_rev.iter().enumerate() {
+                assert!(
+                    (d / want - 1.0).abs() < 0.01,
+                    "h {h}, {n} cells: cell {k} has {d:e}, uniform {want:e}"
+                );
+            }
+        }
+    }
+
     /// Dry is Archard's law with `La = 100`, `psi = 1`; no slip, no wear; a lubricated
     /// contact wears less, and a rougher one more than a smoother one; the flash
     /// temperature raises the film-defect fraction.
