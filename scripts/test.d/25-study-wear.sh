@@ -8,3 +8,5 @@ test -s out/study-wear/study-wear.md
 for p in asperity-share map-sigma-0.20 map-sigma-0.42 map-dry orbit-dry dry-bursts; do
   test -s "out/study-wear/study-wear-$p.png"
 done
+# The dry-map probe (issue #15's ball-spacing pattern), a short window.
+cargo run -q --example wear_map_probe -- --settle 0.02 --window 0.2 --cells 90 > /dev/null
