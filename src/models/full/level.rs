@@ -29,6 +29,7 @@ pub struct FullLevel {
     /// Scratch (allocated once): rates and aux for the output differences.
     dx: Vec<f64>,
     aux: Vec<f64>,
+    aux_k: Vec<f64>,
     /// Jacobian scratch (`3 n + n_aux`).
     jscratch: Vec<f64>,
 }
@@ -45,6 +46,7 @@ impl FullLevel {
             last: Totals::default(),
             dx: vec![0.0; n],
             aux: vec![0.0; na],
+            aux_k: vec![0.0; na],
             jscratch: vec![0.0; 3 * n + na],
         })
     }
@@ -151,29 +153,31 @@ impl LevelModel for FullLevel {
         aux: &mut [f64],
         out: &mut LevelOutputs,
     ) -> Result<()> {
-        // K and C by forward differences of the wrench, states held. The perturbed
-        // evaluations come first and the unperturbed one last, so the per-ball results the
-        // model keeps are those of the current motion (each evaluation starts from the same
-        // warm starts, so the order changes no number).
+        // K and C by forward differences of the wrench, states held. The unperturbed
+        // evaluation gives the outputs and the per-ball results the model keeps; the
+        // perturbed ones compute the wrench alone ([`FullModel::wrench_at`]), each from the
+        // same warm starts, so the order changes no number: a displacement column re-solves
+        // the ball positions from them, a velocity column keeps the positions of the
+        // unperturbed evaluation (a velocity does not move them).
         const STEPS: [f64; 10] = [1e-9, 1e-9, 1e-9, 1e-7, 1e-7, 1e-6, 1e-6, 1e-6, 1e-5, 1e-5];
-        let mut perturbed = [[0.0; 5]; 10];
-        for (col, (h, w)) in STEPS.iter().zip(perturbed.iter_mut()).enumerate() {
-            let (mut q, mut v) = (m.q, m.v);
-            if col < 5 {
-                q[col] += h;
-            } else {
-                v[col - 5] += h;
-            }
-            self.aux.copy_from_slice(aux);
-            *w = self
-                .model
-                .eval(&q, &v, m.omega, x, &mut self.aux, &mut self.dx)?
-                .wrench;
-        }
         self.aux.copy_from_slice(aux);
         let tot = self
             .model
             .eval(&m.q, &m.v, m.omega, x, &mut self.aux, &mut self.dx)?;
+        let mut perturbed = [[0.0; 5]; 10];
+        for (col, (h, w)) in STEPS.iter().zip(perturbed.iter_mut()).enumerate() {
+            let (mut q, mut v) = (m.q, m.v);
+            *w = if col < 5 {
+                q[col] += h;
+                self.aux_k.copy_from_slice(aux);
+                self.model
+                    .wrench_at(&q, &v, m.omega, x, &mut self.aux_k, true)?
+            } else {
+                v[col - 5] += h;
+                self.model
+                    .wrench_at(&q, &v, m.omega, x, &mut self.aux, false)?
+            };
+        }
         let mut k = [[0.0; 5]; 5];
         let mut c = [[0.0; 5]; 5];
         for (col, (h, w)) in STEPS.iter().zip(&perturbed).enumerate() {
