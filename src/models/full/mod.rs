@@ -687,14 +687,9 @@ impl FullModel {
 
     /// Contact state at the actual contact angle (semi-axes from the table); the film
     /// laws' effective radius and modulus are taken at the nominal contact angle.
-    fn contact_state(
-        t: &ContactTable,
-        n: [f64; 2],
-        q: f64,
-        nominal: &PointContact,
-    ) -> ContactState {
-        let co = t.eval_cos_sin(n[1], n[0]);
-        let (a, b) = co.semi_axes(q);
+    fn contact_state(c: &ball::Contact, nominal: &PointContact) -> ContactState {
+        let q = c.q;
+        let (a, b) = c.co.semi_axes(q);
         ContactState {
             q,
             a,
@@ -738,19 +733,23 @@ impl FullModel {
         bk: &BallKin,
         fr: &BallFrame,
         xrel: [f64; 2],
+        known: Option<ball::Contact>,
     ) -> InnerContact {
         let hd = 0.5 * self.d;
         let (s, c) = (fr.s, fr.c);
         let (er, et, ez) = (fr.er(), fr.et(), EZ);
-        let a = self.groove_offset_sc(q, s, c);
-        let (qi, ni2, _, _) = ball::contact(
-            &self.pos.inner,
-            self.pos.ri_free,
-            [a[0] - xrel[0], a[1] - xrel[1]],
-        );
+        let ci = known.unwrap_or_else(|| {
+            let a = self.groove_offset_sc(q, s, c);
+            ball::contact_full(
+                &self.pos.inner,
+                self.pos.ri_free,
+                [a[0] - xrel[0], a[1] - xrel[1]],
+            )
+        });
+        let (qi, ni2) = (ci.q, ci.n);
         let ni = add(scale(ez, ni2[0]), scale(er, ni2[1]));
         let w = bk.w;
-        let csi = Self::contact_state(&self.pos.inner, ni2, qi, &self.nominal.inner);
+        let csi = Self::contact_state(&ci, &self.nominal.inner);
         let wo = [0.0, 0.0, bk.w_orb];
         let ri_ = scale(ni, -hd);
         let rci = add(fr.rb, ri_);
@@ -807,17 +806,22 @@ impl FullModel {
         omega: f64,
         bk: &BallKin,
         xrel: [f64; 2],
+        known: Option<[ball::Contact; 2]>,
     ) -> BallRace {
         let hd = 0.5 * self.d;
         let fr = BallFrame::new(bk);
         let (er, et, ez) = (fr.er(), fr.et(), EZ);
-        let inn = self.inner_contact(q, v, omega, bk, &fr, xrel);
+        let inn = self.inner_contact(q, v, omega, bk, &fr, xrel, known.map(|k| k[0]));
         let (qi, ni2, ni) = (inn.qi, inn.ni2, inn.ni);
-        let (qo, no2, _, _) = ball::contact(&self.pos.outer, self.pos.ro_free, xrel);
+        let co = known.map_or_else(
+            || ball::contact_full(&self.pos.outer, self.pos.ro_free, xrel),
+            |k| k[1],
+        );
+        let (qo, no2) = (co.q, co.n);
         let no = add(scale(ez, no2[0]), scale(er, no2[1]));
         let (rb, vb) = (fr.rb, fr.vb);
         let w = bk.w;
-        let cso = Self::contact_state(&self.pos.outer, no2, qo, &self.nominal.outer);
+        let cso = Self::contact_state(&co, &self.nominal.outer);
         let wo = [0.0, 0.0, bk.w_orb];
         // Outer contact.
         let ro_ = scale(no, hd);
@@ -975,15 +979,27 @@ impl FullModel {
     /// Quasi-static ball position for ball states `xb` (warm start in `aux[0..3]`:
     /// `X1, X2, warm flag`); updates the warm start.
     fn ball_position(&self, q: &[f64; 5], xb: &[f64], aux: &mut [f64]) -> Result<[f64; 2]> {
+        Ok(self.ball_position_contacts(q, xb, aux)?.0)
+    }
+
+    /// [`Self::ball_position`] with the contacts there when the solve has them.
+    fn ball_position_contacts(
+        &self,
+        q: &[f64; 5],
+        xb: &[f64],
+        aux: &mut [f64],
+    ) -> Result<([f64; 2], Option<[ball::Contact; 2]>)> {
         let psi = xb[0];
         let w_orb = xb[1] / self.t0;
         let a = self.groove_offset(q, psi);
         let start = (aux[2] != 0.0).then_some([aux[0], aux[1]]);
-        let x = self.pos.solve(a, self.m * w_orb * w_orb, start, POS_TOL)?;
+        let (x, c) = self
+            .pos
+            .solve_contacts(a, self.m * w_orb * w_orb, start, POS_TOL)?;
         aux[0] = x[0];
         aux[1] = x[1];
         aux[2] = 1.0;
-        Ok(x)
+        Ok((x, c))
     }
 
     /// Ball kinematics and position `xrel` at its states `xb`: quasi-static, the position
@@ -996,20 +1012,20 @@ impl FullModel {
         xb: &[f64],
         aux: &mut [f64],
         solve: bool,
-    ) -> Result<(BallKin, [f64; 2])> {
+    ) -> Result<(BallKin, [f64; 2], Option<[ball::Contact; 2]>)> {
         Ok(match self.p.ball_contacts {
             BallContacts::QuasiStatic => {
                 let a = &mut aux[3 * j..3 * j + 3];
-                let xr = if solve {
-                    self.ball_position(q, xb, a)?
+                let (xr, c) = if solve {
+                    self.ball_position_contacts(q, xb, a)?
                 } else {
-                    [a[0], a[1]]
+                    ([a[0], a[1]], None)
                 };
-                (self.ball_kin(xb, xr), xr)
+                (self.ball_kin(xb, xr), xr, c)
             }
             BallContacts::Dynamic => {
                 let bk = self.ball_kin(xb, [0.0; 2]);
-                (bk, [bk.z - self.z_og, bk.rho - self.pos.r_og])
+                (bk, [bk.z - self.z_og, bk.rho - self.pos.r_og], None)
             }
         })
     }
@@ -1026,8 +1042,8 @@ impl FullModel {
         aux: &mut [f64],
         solve: bool,
     ) -> Result<BallRace> {
-        let (bk, xrel) = self.ball_kin_at(j, q, xb, aux, solve)?;
-        Ok(self.ball_race(q, v, omega, &bk, xrel))
+        let (bk, xrel, c) = self.ball_kin_at(j, q, xb, aux, solve)?;
+        Ok(self.ball_race(q, v, omega, &bk, xrel, c))
     }
 
     /// Ball rates (stored-state derivatives) from its terms.
@@ -1214,9 +1230,9 @@ impl FullModel {
         let mut w = [0.0; 5];
         for j in 0..self.z {
             let k = self.nc + self.nb * j;
-            let (bk, xrel) = self.ball_kin_at(j, q, &x[k..k + self.nb], aux, solve)?;
+            let (bk, xrel, c) = self.ball_kin_at(j, q, &x[k..k + self.nb], aux, solve)?;
             let fr = BallFrame::new(&bk);
-            let inn = self.inner_contact(q, v, omega, &bk, &fr, xrel);
+            let inn = self.inner_contact(q, v, omega, &bk, &fr, xrel, c.map(|c| c[0]));
             for (a, b) in w.iter_mut().zip(inn.wrench) {
                 *a += b;
             }
