@@ -119,7 +119,7 @@ use crate::error::{Error, Result};
 use crate::geometry::{Bearing, Guidance};
 use crate::lubrication::drag::{disk_moment, sphere_drag_force, sphere_spin_moment, Fluid};
 use crate::lubrication::guide_land::GuideLand;
-use crate::lubrication::pocket::PocketLaw;
+use crate::lubrication::pocket::{PocketLaw, PreparedPocket};
 use crate::models::quasi_static::{BallResult, BallState, Options, QuasiStatic, RaceControl};
 use ball::{add, cross, dot, norm, scale, sub, tangential, PositionSolver, V3};
 use serde::{Deserialize, Serialize};
@@ -301,8 +301,13 @@ impl CageKin {
     }
     /// The cage's material point at angle `th` (fixed frame) on the radius `r`: the pocket
     /// centre for `r = dm/2`.
+    #[cfg(test)]
     fn point(&self, th: f64, r: f64) -> V3 {
         let (s, c) = th.sin_cos();
+        self.point_sc(s, c, r)
+    }
+    /// [`Self::point`] from `sin th`, `cos th`.
+    fn point_sc(&self, s: f64, c: f64, r: f64) -> V3 {
         let lift = r * (self.b[0] * s - self.b[1] * c);
         add(self.c, [r * c, r * s, lift])
     }
@@ -452,7 +457,7 @@ pub struct FullModel {
     z_og: f64,
     pos: PositionSolver,
     qs: QuasiStatic,
-    pocket: PocketLaw,
+    pocket: PreparedPocket,
     guide: Option<GuideLand>,
     nominal: BallRaceContacts,
     fluid: Fluid,
@@ -517,6 +522,16 @@ impl FullModel {
                 BallContacts::Dynamic => 9,
             },
         );
+        let pocket = PocketLaw {
+            ball_radius: 0.5 * b.d,
+            pocket_radius: 0.5 * (b.d + p.pocket_clearance),
+            width: cro - cri,
+            roughness: p.pocket_roughness,
+            viscosity: p.viscosity,
+            e_eff: crate::geometry::material::effective_modulus(&b.ball_material, &b.cage_material),
+            friction: p.pocket_friction,
+            v_s: p.pocket_v_s,
+        };
         Ok(FullModel {
             z: b.z,
             d: b.d,
@@ -538,19 +553,7 @@ impl FullModel {
                 outer: ContactTable::new(b, Race::Outer),
             },
             qs,
-            pocket: PocketLaw {
-                ball_radius: 0.5 * b.d,
-                pocket_radius: 0.5 * (b.d + p.pocket_clearance),
-                width: cro - cri,
-                roughness: p.pocket_roughness,
-                viscosity: p.viscosity,
-                e_eff: crate::geometry::material::effective_modulus(
-                    &b.ball_material,
-                    &b.cage_material,
-                ),
-                friction: p.pocket_friction,
-                v_s: p.pocket_v_s,
-            },
+            pocket: pocket.prepare(),
             nominal: BallRaceContacts::new(b, alpha0),
             guide: (!matches!(p.guidance, Guidance::Ball)).then_some(GuideLand {
                 radius: if guided_inner { cri } else { cro },
@@ -903,7 +906,7 @@ impl FullModel {
         let (sp, cp) = th.sin_cos();
         let rp = 0.5 * self.dm;
         let etp = [-sp, cp, 0.0];
-        let pc = ck.point(th, rp);
+        let pc = ck.point_sc(sp, cp, rp);
         let d = sub(rb, pc);
         // Rate of the offset seen from the cage (the walls turn with it): the ball's
         // velocity minus the cage material's at the ball centre.
