@@ -90,7 +90,9 @@ pub(crate) struct Contact {
 /// ball centre to groove centre), `n = u/|u|` in (axial, radial).
 #[inline]
 pub(crate) fn contact_full(t: &ContactTable, free: f64, u: [f64; 2]) -> Contact {
-    let l = u[0].hypot(u[1]).max(1e-300);
+    // sqrt(u0² + u1²), not hypot: lengths of millimetres neither overflow nor underflow,
+    // and libm's hypot costs several times more.
+    let l = (u[0] * u[0] + u[1] * u[1]).sqrt().max(1e-300);
     let n = [u[0] / l, u[1] / l];
     let delta = l - free;
     let co = t.eval_cos_sin(n[1], n[0]);
@@ -301,7 +303,7 @@ impl newton::NewtonSystem<2> for BallSystem<'_> {
         self.trial = Some((*x, c));
         // Converged only where the Jacobian gives the rounding floor.
         Ok(Check {
-            norm: g[0].hypot(g[1]),
+            norm: (g[0] * g[0] + g[1] * g[1]).sqrt(),
             tol: f64::NEG_INFINITY,
         })
     }
@@ -318,10 +320,10 @@ impl newton::NewtonSystem<2> for BallSystem<'_> {
         // positions it differences (a few ulp of |x| + |a|), so a nearly unloaded ball is
         // not asked for a residual below what its forces can resolve.
         let kmax = j.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
-        let floor = 64.0 * f64::EPSILON * kmax * (x[0].hypot(x[1]) + self.la);
+        let floor = 64.0 * f64::EPSILON * kmax * ((x[0] * x[0] + x[1] * x[1]).sqrt() + self.la);
         (self.g, self.j) = (g, j);
         Ok(Check {
-            norm: g[0].hypot(g[1]),
+            norm: (g[0] * g[0] + g[1] * g[1]).sqrt(),
             tol: self.tol * sc + floor.max(1e-13),
         })
     }
