@@ -338,3 +338,61 @@ impl newton::NewtonSystem<2> for BallSystem<'_> {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::contact::Race;
+
+    fn solver_7004() -> (PositionSolver, [f64; 2], f64) {
+        let b = crate::geometry::preset("7004").unwrap().build().unwrap();
+        let s = PositionSolver {
+            ri_free: (b.fi - 0.5) * b.d,
+            ro_free: (b.fo - 0.5) * b.d,
+            r_og: b.outer_groove_centre_radius(),
+            inner: ContactTable::new(&b, Race::Inner),
+            outer: ContactTable::new(&b, Race::Outer),
+        };
+        let (a1, a2) = b.reference_groove_offset();
+        (s, [a1, a2], b.ball_mass())
+    }
+
+    /// The full level's Jacobian and outputs take a ball position from a solve at the same
+    /// groove offset and speed instead of solving again (and its contacts from the solve):
+    /// that holds because a solve started at its own answer returns it unchanged, bit for
+    /// bit, and the contacts it hands back are those at the answer. Loaded, lightly
+    /// loaded, loose and fast balls; cold and warm starts.
+    #[test]
+    fn a_solve_from_its_answer_returns_it_and_its_contacts() {
+        let (s, a0, m) = solver_7004();
+        for (da, w_orb) in [
+            ([4.4e-5, -3.0e-6], 1300.0),
+            ([4.4e-5, 3.0e-6], 5200.0),
+            ([1e-6, 1e-6], 5200.0),
+            ([-2e-5, 0.0], 1300.0),
+            ([2e-5, 1e-5], 0.0),
+        ] {
+            let a = [a0[0] + da[0], a0[1] + da[1]];
+            let mw2 = m * w_orb * w_orb;
+            let (x, c) = s.solve_contacts(a, mw2, None, 1e-12).unwrap();
+            let (x2, c2) = s.solve_contacts(a, mw2, Some(x), 1e-12).unwrap();
+            assert_eq!(x, x2, "{da:?} {w_orb}");
+            for c in [c, c2].into_iter().flatten() {
+                let want = s.contacts(x, a);
+                for k in 0..2 {
+                    assert_eq!(
+                        (c[k].q, c[k].n, c[k].delta),
+                        (want[k].q, want[k].n, want[k].delta)
+                    );
+                    assert_eq!(c[k].co.kc, want[k].co.kc);
+                }
+            }
+            // The answer balances the ball (to the solve's tolerance and rounding floor).
+            let (g, sc) = s.residual_of(&s.contacts(x, a), x, mw2);
+            assert!(
+                (g[0] * g[0] + g[1] * g[1]).sqrt() <= 1e-10 * sc,
+                "{g:?} {sc}"
+            );
+        }
+    }
+}
