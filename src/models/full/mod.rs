@@ -1095,8 +1095,11 @@ impl FullModel {
     /// (`n × n`), and when load-driven (non-empty slices) `jm = d(rates)/d(q, v)`
     /// (`n × 10`), `wx = d(wrench)/d(states)` (`5 × n`), `wm = d(wrench)/d(q, v)`
     /// (`5 × 10`). A ball's column costs one ball evaluation (its rates, its share of the
-    /// cage's and of the wrench), a cage or ring column one right-hand side. `scratch`
-    /// holds `3 n + n_aux` values. Allocation-free.
+    /// cage's and of the wrench; a spin column keeps the ball's position), a cage column
+    /// the pockets of every ball on the race parts kept from the evaluation at `x` (the
+    /// cage reaches a ball only through its pocket), a ring column one right-hand side.
+    /// The same numbers as whole-evaluation differences with these steps. `scratch` holds
+    /// `3 n + n_aux` values. Allocation-free.
     #[allow(clippy::too_many_arguments)]
     pub fn jacobian(
         &mut self,
