@@ -1098,7 +1098,7 @@ impl FullModel {
     /// cage's and of the wrench; a spin column keeps the ball's position), a cage column
     /// the pockets of every ball on the race parts kept from the evaluation at `x` (the
     /// cage reaches a ball only through its pocket), a ring column one right-hand side.
-    /// The same numbers as whole-evaluation differences with these steps. `scratch` holds
+    /// The cage columns equal whole-evaluation differences bit for bit. `scratch` holds
     /// `3 n + n_aux` values. Allocation-free.
     #[allow(clippy::too_many_arguments)]
     pub fn jacobian(
