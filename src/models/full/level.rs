@@ -32,6 +32,14 @@ pub struct FullLevel {
     aux_k: Vec<f64>,
     /// Jacobian scratch (`3 n + n_aux`).
     jscratch: Vec<f64>,
+    /// The last right-hand side: its motion, states, `aux` as it left it, rates and
+    /// totals (its race parts are kept in the model). The integrator asks for the Jacobian
+    /// right after the right-hand side at the same point, which then needs no evaluation
+    /// at `x` of its own.
+    last_rhs: Option<(Motion, Totals)>,
+    last_x: Vec<f64>,
+    last_aux: Vec<f64>,
+    last_dx: Vec<f64>,
 }
 
 impl FullLevel {
@@ -48,6 +56,10 @@ impl FullLevel {
             aux: vec![0.0; na],
             aux_k: vec![0.0; na],
             jscratch: vec![0.0; 3 * n + na],
+            last_rhs: None,
+            last_x: vec![0.0; n],
+            last_aux: vec![0.0; na],
+            last_dx: vec![0.0; n],
         })
     }
 
@@ -108,8 +120,14 @@ impl LevelModel for FullLevel {
         wx: &mut [f64],
         wm: &mut [f64],
     ) -> bool {
+        let kept = match &self.last_rhs {
+            Some((lm, tot)) if lm == m && self.last_x == x && self.last_aux == aux => {
+                Some((&self.last_dx[..], tot))
+            }
+            _ => None,
+        };
         self.model
-            .jacobian(
+            .jacobian_from(
                 &m.q,
                 &m.v,
                 m.omega,
@@ -120,6 +138,7 @@ impl LevelModel for FullLevel {
                 wx,
                 wm,
                 &mut self.jscratch,
+                kept,
             )
             .is_ok()
     }
@@ -138,7 +157,12 @@ impl LevelModel for FullLevel {
         dx: &mut [f64],
         wrench: Option<&mut [f64; 5]>,
     ) -> Result<()> {
-        let tot = self.model.eval(&m.q, &m.v, m.omega, x, aux, dx)?;
+        self.last_rhs = None;
+        let tot = self.model.eval_keep(&m.q, &m.v, m.omega, x, aux, dx)?;
+        self.last_x.copy_from_slice(x);
+        self.last_aux.copy_from_slice(aux);
+        self.last_dx.copy_from_slice(dx);
+        self.last_rhs = Some((*m, tot));
         if let Some(w) = wrench {
             *w = tot.wrench;
         }

@@ -1114,6 +1114,28 @@ impl FullModel {
         wm: &mut [f64],
         scratch: &mut [f64],
     ) -> Result<()> {
+        self.jacobian_from(q, v, omega, x, aux, jx, jm, wx, wm, scratch, None)
+    }
+
+    /// [`Self::jacobian`]; `kept`: the rates and totals of an evaluation with
+    /// [`Races::Keep`] at this motion, these states and with `aux` as it left it (its
+    /// positions are then those a solve from `aux` returns, bit for bit), which stands in
+    /// for the evaluation at `x`.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn jacobian_from(
+        &mut self,
+        q: &[f64; 5],
+        v: &[f64; 5],
+        omega: f64,
+        x: &[f64],
+        aux: &[f64],
+        jx: &mut [f64],
+        jm: &mut [f64],
+        wx: &mut [f64],
+        wm: &mut [f64],
+        scratch: &mut [f64],
+        kept: Option<(&[f64], &Totals)>,
+    ) -> Result<()> {
         let n = self.n_states();
         let na = self.n_aux();
         let (xs, rest) = scratch.split_at_mut(n);
@@ -1127,7 +1149,13 @@ impl FullModel {
         wm.fill(0.0);
         auxs.copy_from_slice(aux);
         // The balls' race parts at `x` are kept for the cage and ball columns.
-        let tot0 = self.eval_with(q, v, omega, x, auxs, d0, Races::Keep)?;
+        let tot0 = match kept {
+            Some((dk, tk)) => {
+                d0.copy_from_slice(dk);
+                *tk
+            }
+            None => self.eval_with(q, v, omega, x, auxs, d0, Races::Keep)?,
+        };
         let step = |xv: f64| 1.5e-8 * xv.abs().max(1.0);
         if load {
             // Ring columns: displacements and velocities (steps as the outputs' K and C).
@@ -1267,6 +1295,20 @@ impl FullModel {
         dx: &mut [f64],
     ) -> Result<Totals> {
         self.eval_with(q, v, omega, x, aux, dx, Races::Compute)
+    }
+
+    /// [`Self::eval`], the balls' race parts kept for [`Self::jacobian_from`].
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn eval_keep(
+        &mut self,
+        q: &[f64; 5],
+        v: &[f64; 5],
+        omega: f64,
+        x: &[f64],
+        aux: &mut [f64],
+        dx: &mut [f64],
+    ) -> Result<Totals> {
+        self.eval_with(q, v, omega, x, aux, dx, Races::Keep)
     }
 
     /// [`Self::eval`], the balls' race parts computed, kept or taken from the kept ones.
