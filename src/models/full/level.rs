@@ -29,8 +29,17 @@ pub struct FullLevel {
     /// Scratch (allocated once): rates and aux for the output differences.
     dx: Vec<f64>,
     aux: Vec<f64>,
+    aux_k: Vec<f64>,
     /// Jacobian scratch (`3 n + n_aux`).
     jscratch: Vec<f64>,
+    /// The last right-hand side: its motion, states, `aux` as it left it, rates and
+    /// totals (its race parts are kept in the model). The integrator asks for the Jacobian
+    /// right after the right-hand side at the same point, which then needs no evaluation
+    /// at `x` of its own.
+    last_rhs: Option<(Motion, Totals)>,
+    last_x: Vec<f64>,
+    last_aux: Vec<f64>,
+    last_dx: Vec<f64>,
 }
 
 impl FullLevel {
@@ -45,7 +54,12 @@ impl FullLevel {
             last: Totals::default(),
             dx: vec![0.0; n],
             aux: vec![0.0; na],
+            aux_k: vec![0.0; na],
             jscratch: vec![0.0; 3 * n + na],
+            last_rhs: None,
+            last_x: vec![0.0; n],
+            last_aux: vec![0.0; na],
+            last_dx: vec![0.0; n],
         })
     }
 
@@ -106,8 +120,14 @@ impl LevelModel for FullLevel {
         wx: &mut [f64],
         wm: &mut [f64],
     ) -> bool {
+        let kept = match &self.last_rhs {
+            Some((lm, tot)) if lm == m && self.last_x == x && self.last_aux == aux => {
+                Some((&self.last_dx[..], tot))
+            }
+            _ => None,
+        };
         self.model
-            .jacobian(
+            .jacobian_from(
                 &m.q,
                 &m.v,
                 m.omega,
@@ -118,6 +138,7 @@ impl LevelModel for FullLevel {
                 wx,
                 wm,
                 &mut self.jscratch,
+                kept,
             )
             .is_ok()
     }
@@ -136,7 +157,12 @@ impl LevelModel for FullLevel {
         dx: &mut [f64],
         wrench: Option<&mut [f64; 5]>,
     ) -> Result<()> {
-        let tot = self.model.eval(&m.q, &m.v, m.omega, x, aux, dx)?;
+        self.last_rhs = None;
+        let tot = self.model.eval_keep(&m.q, &m.v, m.omega, x, aux, dx)?;
+        self.last_x.copy_from_slice(x);
+        self.last_aux.copy_from_slice(aux);
+        self.last_dx.copy_from_slice(dx);
+        self.last_rhs = Some((*m, tot));
         if let Some(w) = wrench {
             *w = tot.wrench;
         }
@@ -151,29 +177,31 @@ impl LevelModel for FullLevel {
         aux: &mut [f64],
         out: &mut LevelOutputs,
     ) -> Result<()> {
-        // K and C by forward differences of the wrench, states held. The perturbed
-        // evaluations come first and the unperturbed one last, so the per-ball results the
-        // model keeps are those of the current motion (each evaluation starts from the same
-        // warm starts, so the order changes no number).
+        // K and C by forward differences of the wrench, states held. The unperturbed
+        // evaluation gives the outputs and the per-ball results the model keeps; the
+        // perturbed ones compute the wrench alone ([`FullModel::wrench_at`]), each from the
+        // same warm starts, so the order changes no number: a displacement column re-solves
+        // the ball positions from them, a velocity column keeps the positions of the
+        // unperturbed evaluation (a velocity does not move them).
         const STEPS: [f64; 10] = [1e-9, 1e-9, 1e-9, 1e-7, 1e-7, 1e-6, 1e-6, 1e-6, 1e-5, 1e-5];
-        let mut perturbed = [[0.0; 5]; 10];
-        for (col, (h, w)) in STEPS.iter().zip(perturbed.iter_mut()).enumerate() {
-            let (mut q, mut v) = (m.q, m.v);
-            if col < 5 {
-                q[col] += h;
-            } else {
-                v[col - 5] += h;
-            }
-            self.aux.copy_from_slice(aux);
-            *w = self
-                .model
-                .eval(&q, &v, m.omega, x, &mut self.aux, &mut self.dx)?
-                .wrench;
-        }
         self.aux.copy_from_slice(aux);
         let tot = self
             .model
             .eval(&m.q, &m.v, m.omega, x, &mut self.aux, &mut self.dx)?;
+        let mut perturbed = [[0.0; 5]; 10];
+        for (col, (h, w)) in STEPS.iter().zip(perturbed.iter_mut()).enumerate() {
+            let (mut q, mut v) = (m.q, m.v);
+            *w = if col < 5 {
+                q[col] += h;
+                self.aux_k.copy_from_slice(aux);
+                self.model
+                    .wrench_at(&q, &v, m.omega, x, &mut self.aux_k, true)?
+            } else {
+                v[col - 5] += h;
+                self.model
+                    .wrench_at(&q, &v, m.omega, x, &mut self.aux, false)?
+            };
+        }
         let mut k = [[0.0; 5]; 5];
         let mut c = [[0.0; 5]; 5];
         for (col, (h, w)) in STEPS.iter().zip(&perturbed).enumerate() {

@@ -119,7 +119,7 @@ use crate::error::{Error, Result};
 use crate::geometry::{Bearing, Guidance};
 use crate::lubrication::drag::{disk_moment, sphere_drag_force, sphere_spin_moment, Fluid};
 use crate::lubrication::guide_land::GuideLand;
-use crate::lubrication::pocket::PocketLaw;
+use crate::lubrication::pocket::{PocketLaw, PreparedPocket};
 use crate::models::quasi_static::{BallResult, BallState, Options, QuasiStatic, RaceControl};
 use ball::{add, cross, dot, norm, scale, sub, tangential, PositionSolver, V3};
 use serde::{Deserialize, Serialize};
@@ -301,8 +301,13 @@ impl CageKin {
     }
     /// The cage's material point at angle `th` (fixed frame) on the radius `r`: the pocket
     /// centre for `r = dm/2`.
+    #[cfg(test)]
     fn point(&self, th: f64, r: f64) -> V3 {
         let (s, c) = th.sin_cos();
+        self.point_sc(s, c, r)
+    }
+    /// [`Self::point`] from `sin th`, `cos th`.
+    fn point_sc(&self, s: f64, c: f64, r: f64) -> V3 {
         let lift = r * (self.b[0] * s - self.b[1] * c);
         add(self.c, [r * c, r * s, lift])
     }
@@ -348,6 +353,91 @@ struct BallTerms {
     info: BallInfo,
 }
 
+/// The axial unit vector.
+const EZ: V3 = [0.0, 0.0, 1.0];
+
+/// A ball's frame at its orbital angle and its centre's position and velocity.
+#[derive(Debug, Clone, Copy, Default)]
+struct BallFrame {
+    /// `sin psi`, `cos psi`.
+    s: f64,
+    c: f64,
+    rb: V3,
+    vb: V3,
+}
+
+impl BallFrame {
+    fn new(bk: &BallKin) -> Self {
+        let (s, c) = bk.psi.sin_cos();
+        let er = [c, s, 0.0];
+        let et = [-s, c, 0.0];
+        BallFrame {
+            s,
+            c,
+            rb: [bk.rho * c, bk.rho * s, bk.z],
+            vb: add(
+                add(scale(er, bk.rho_d), scale(et, bk.rho * bk.w_orb)),
+                scale(EZ, bk.z_d),
+            ),
+        }
+    }
+    /// Radial unit vector.
+    fn er(&self) -> V3 {
+        [self.c, self.s, 0.0]
+    }
+    /// Tangential unit vector.
+    fn et(&self) -> V3 {
+        [-self.s, self.c, 0.0]
+    }
+}
+
+/// The inner race contact of a ball ([`FullModel::inner_contact`]).
+#[derive(Debug, Clone, Copy)]
+struct InnerContact {
+    qi: f64,
+    ni2: [f64; 2],
+    ni: V3,
+    ri_: V3,
+    rci: V3,
+    wr: V3,
+    csi: ContactState,
+    dv_i: V3,
+    ft_i: V3,
+    ms_i: V3,
+    wrench: [f64; 5],
+    torque: f64,
+}
+
+/// The part of a ball's terms that does not depend on the cage ([`FullModel::ball_race`]):
+/// kept per ball by an evaluation so that the Jacobian's cage columns re-evaluate only the
+/// pockets.
+#[derive(Debug, Clone, Copy, Default)]
+struct BallRace {
+    bk: BallKin,
+    fr: BallFrame,
+    /// Ball position `(X1, X2)`.
+    xrel: [f64; 2],
+    /// Force and moment on the ball from races and drag.
+    f: V3,
+    mom: V3,
+    ext_mz: f64,
+    wrench: [f64; 5],
+    torque: f64,
+    power: f64,
+    info: BallInfo,
+}
+
+/// Where an evaluation takes the balls' race parts from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Races {
+    /// Computed (positions solved).
+    Compute,
+    /// Computed and kept in [`FullModel::races`].
+    Keep,
+    /// The kept ones (the ball states, `q`, `v` and `omega` are those they were kept at).
+    Kept,
+}
+
 /// The full model of one bearing.
 #[derive(Debug, Clone)]
 pub struct FullModel {
@@ -367,7 +457,7 @@ pub struct FullModel {
     z_og: f64,
     pos: PositionSolver,
     qs: QuasiStatic,
-    pocket: PocketLaw,
+    pocket: PreparedPocket,
     guide: Option<GuideLand>,
     nominal: BallRaceContacts,
     fluid: Fluid,
@@ -381,6 +471,8 @@ pub struct FullModel {
     nb: usize,
     /// Per-ball results of the last evaluation.
     pub balls: Vec<BallInfo>,
+    /// Per-ball race parts kept by an evaluation with [`Races::Keep`].
+    races: Vec<BallRace>,
 }
 
 /// Relative tolerance of the quasi-static ball position solve.
@@ -430,6 +522,16 @@ impl FullModel {
                 BallContacts::Dynamic => 9,
             },
         );
+        let pocket = PocketLaw {
+            ball_radius: 0.5 * b.d,
+            pocket_radius: 0.5 * (b.d + p.pocket_clearance),
+            width: cro - cri,
+            roughness: p.pocket_roughness,
+            viscosity: p.viscosity,
+            e_eff: crate::geometry::material::effective_modulus(&b.ball_material, &b.cage_material),
+            friction: p.pocket_friction,
+            v_s: p.pocket_v_s,
+        };
         Ok(FullModel {
             z: b.z,
             d: b.d,
@@ -451,19 +553,7 @@ impl FullModel {
                 outer: ContactTable::new(b, Race::Outer),
             },
             qs,
-            pocket: PocketLaw {
-                ball_radius: 0.5 * b.d,
-                pocket_radius: 0.5 * (b.d + p.pocket_clearance),
-                width: cro - cri,
-                roughness: p.pocket_roughness,
-                viscosity: p.viscosity,
-                e_eff: crate::geometry::material::effective_modulus(
-                    &b.ball_material,
-                    &b.cage_material,
-                ),
-                friction: p.pocket_friction,
-                v_s: p.pocket_v_s,
-            },
+            pocket: pocket.prepare(),
             nominal: BallRaceContacts::new(b, alpha0),
             guide: (!matches!(p.guidance, Guidance::Ball)).then_some(GuideLand {
                 radius: if guided_inner { cri } else { cro },
@@ -486,6 +576,7 @@ impl FullModel {
             nc,
             nb,
             balls: vec![BallInfo::default(); b.z],
+            races: vec![BallRace::default(); b.z],
             p,
         })
     }
@@ -586,6 +677,11 @@ impl FullModel {
     /// Groove offset `(A1, A2)` at azimuth `psi` (Jones geometry, as `models::quasi_static`).
     fn groove_offset(&self, q: &[f64; 5], psi: f64) -> [f64; 2] {
         let (s, c) = psi.sin_cos();
+        self.groove_offset_sc(q, s, c)
+    }
+
+    /// [`Self::groove_offset`] from `sin psi`, `cos psi`.
+    fn groove_offset_sc(&self, q: &[f64; 5], s: f64, c: f64) -> [f64; 2] {
         [
             self.a10 + q[2] + self.ri * (q[3] * s - q[4] * c),
             self.a20 + q[0] * c + q[1] * s,
@@ -594,14 +690,9 @@ impl FullModel {
 
     /// Contact state at the actual contact angle (semi-axes from the table); the film
     /// laws' effective radius and modulus are taken at the nominal contact angle.
-    fn contact_state(
-        t: &ContactTable,
-        n: [f64; 2],
-        q: f64,
-        nominal: &PointContact,
-    ) -> ContactState {
-        let co = t.eval_cos_sin(n[1], n[0]);
-        let (a, b) = co.semi_axes(q);
+    fn contact_state(c: &ball::Contact, nominal: &PointContact) -> ContactState {
+        let q = c.q;
+        let (a, b) = c.co.semi_axes(q);
         ContactState {
             q,
             a,
@@ -633,41 +724,107 @@ impl FullModel {
         scale(n, -m)
     }
 
-    /// Everything about ball `j`. `xrel` is the ball centre relative to the outer groove
-    /// centre `(X1, X2)`.
+    /// The inner race contact of a ball: its load and traction, and what they do to the
+    /// shaft (the part of [`Self::ball_race`] the wrench needs, shared with
+    /// [`Self::wrench_at`] so that both compute the same numbers).
     #[allow(clippy::too_many_arguments)]
-    fn ball(
+    fn inner_contact(
         &self,
-        j: usize,
         q: &[f64; 5],
         v: &[f64; 5],
         omega: f64,
-        ck: &CageKin,
+        bk: &BallKin,
+        fr: &BallFrame,
+        xrel: [f64; 2],
+        known: Option<ball::Contact>,
+    ) -> InnerContact {
+        let hd = 0.5 * self.d;
+        let (s, c) = (fr.s, fr.c);
+        let (er, et, ez) = (fr.er(), fr.et(), EZ);
+        let ci = known.unwrap_or_else(|| {
+            let a = self.groove_offset_sc(q, s, c);
+            ball::contact_full(
+                &self.pos.inner,
+                self.pos.ri_free,
+                [a[0] - xrel[0], a[1] - xrel[1]],
+            )
+        });
+        let (qi, ni2) = (ci.q, ci.n);
+        let ni = add(scale(ez, ni2[0]), scale(er, ni2[1]));
+        let w = bk.w;
+        let csi = Self::contact_state(&ci, &self.nominal.inner);
+        let wo = [0.0, 0.0, bk.w_orb];
+        let ri_ = scale(ni, -hd);
+        let rci = add(fr.rb, ri_);
+        let vbs_i = add(fr.vb, cross(w, ri_));
+        // Inner ring angular velocity: spin plus tilt rates.
+        let wr = ring_omega(q, v, omega);
+        let vq = [v[0], v[1], v[2]];
+        let vr_i = add(vq, cross(wr, sub(rci, [q[0], q[1], q[2]])));
+        let vcp_i = cross(wo, rci);
+        let u_i = (0.5 * dot(add(sub(vbs_i, vcp_i), sub(vr_i, vcp_i)), et)).abs();
+        let dv_i = tangential(sub(vbs_i, vr_i), ni);
+        let ft_i = self.traction(dv_i, u_i, &csi);
+        let ms_i = self.spin_moment(dot(sub(w, wr), ni), u_i, &csi, ni);
+        // On the shaft: the inner normal load through the groove centre (the quasi-static
+        // level's convention), the traction and spin reactions at the contact point.
+        let mut wrench = [0.0; 5];
+        let (fa, frr) = (-qi * ni2[0], -qi * ni2[1]);
+        let mb = self.ri * fa;
+        wrench[0] = frr * c;
+        wrench[1] = frr * s;
+        wrench[2] = fa;
+        wrench[3] = mb * s;
+        wrench[4] = -mb * c;
+        let fs = scale(ft_i, -1.0);
+        let ms = sub(cross(rci, fs), ms_i);
+        wrench[0] += fs[0];
+        wrench[1] += fs[1];
+        wrench[2] += fs[2];
+        wrench[3] += ms[0];
+        wrench[4] += ms[1];
+        InnerContact {
+            qi,
+            ni2,
+            ni,
+            ri_,
+            rci,
+            wr,
+            csi,
+            dv_i,
+            ft_i,
+            ms_i,
+            wrench,
+            torque: ms[2],
+        }
+    }
+
+    /// The part of ball `j`'s terms that does not depend on the cage: race contacts,
+    /// tractions, spin moments and drag at the ball position `xrel` (the ball centre
+    /// relative to the outer groove centre `(X1, X2)`), with the shaft's wrench.
+    fn ball_race(
+        &self,
+        q: &[f64; 5],
+        v: &[f64; 5],
+        omega: f64,
         bk: &BallKin,
         xrel: [f64; 2],
-    ) -> BallTerms {
+        known: Option<[ball::Contact; 2]>,
+    ) -> BallRace {
         let hd = 0.5 * self.d;
-        let (s, c) = bk.psi.sin_cos();
-        let er = [c, s, 0.0];
-        let et = [-s, c, 0.0];
-        let ez = [0.0, 0.0, 1.0];
-        let a = self.groove_offset(q, bk.psi);
-        let (qi, ni2, _, _) = ball::contact(
-            &self.pos.inner,
-            self.pos.ri_free,
-            [a[0] - xrel[0], a[1] - xrel[1]],
+        let fr = BallFrame::new(bk);
+        let (er, et, ez) = (fr.er(), fr.et(), EZ);
+        let inn = self.inner_contact(q, v, omega, bk, &fr, xrel, known.map(|k| k[0]));
+        let (qi, ni2, ni) = (inn.qi, inn.ni2, inn.ni);
+        let co = known.map_or_else(
+            || ball::contact_full(&self.pos.outer, self.pos.ro_free, xrel),
+            |k| k[1],
         );
-        let (qo, no2, _, _) = ball::contact(&self.pos.outer, self.pos.ro_free, xrel);
-        let ni = add(scale(ez, ni2[0]), scale(er, ni2[1]));
+        let (qo, no2) = (co.q, co.n);
         let no = add(scale(ez, no2[0]), scale(er, no2[1]));
-        let rb = [bk.rho * c, bk.rho * s, bk.z];
-        let vb = add(
-            add(scale(er, bk.rho_d), scale(et, bk.rho * bk.w_orb)),
-            scale(ez, bk.z_d),
-        );
+        let (rb, vb) = (fr.rb, fr.vb);
         let w = bk.w;
-        let csi = Self::contact_state(&self.pos.inner, ni2, qi, &self.nominal.inner);
-        let cso = Self::contact_state(&self.pos.outer, no2, qo, &self.nominal.outer);
+        let cso = Self::contact_state(&co, &self.nominal.outer);
         let wo = [0.0, 0.0, bk.w_orb];
         // Outer contact.
         let ro_ = scale(no, hd);
@@ -679,18 +836,8 @@ impl FullModel {
         let ft_o = self.traction(dv_o, u_o, &cso);
         let ms_o = self.spin_moment(dot(w, no), u_o, &cso, no);
         // Inner contact.
-        let ri_ = scale(ni, -hd);
-        let rci = add(rb, ri_);
-        let vbs_i = add(vb, cross(w, ri_));
-        // Inner ring angular velocity: spin plus tilt rates.
-        let wr = ring_omega(q, v, omega);
-        let vq = [v[0], v[1], v[2]];
-        let vr_i = add(vq, cross(wr, sub(rci, [q[0], q[1], q[2]])));
-        let vcp_i = cross(wo, rci);
-        let u_i = (0.5 * dot(add(sub(vbs_i, vcp_i), sub(vr_i, vcp_i)), et)).abs();
-        let dv_i = tangential(sub(vbs_i, vr_i), ni);
-        let ft_i = self.traction(dv_i, u_i, &csi);
-        let ms_i = self.spin_moment(dot(sub(w, wr), ni), u_i, &csi, ni);
+        let (ri_, rci, ft_i, ms_i, dv_i, wr) =
+            (inn.ri_, inn.rci, inn.ft_i, inn.ms_i, inn.dv_i, inn.wr);
         // Forces and moments on the ball.
         let mut f = add(add(scale(ni, qi), scale(no, -qo)), add(ft_i, ft_o));
         let mut mom = add(add(cross(ri_, ft_i), cross(ro_, ft_o)), add(ms_i, ms_o));
@@ -717,12 +864,49 @@ impl FullModel {
                 ext_mz += md[2];
             }
         }
+        let power = -dot(ft_i, dv_i) - dot(ft_o, dv_o) - dot(ms_i, sub(w, wr)) - dot(ms_o, w);
+        let p_max = csi_peak(&inn.csi).max(csi_peak(&cso));
+        BallRace {
+            bk: *bk,
+            fr,
+            xrel,
+            f,
+            mom,
+            ext_mz,
+            wrench: inn.wrench,
+            torque: inn.torque,
+            power,
+            info: BallInfo {
+                psi: bk.psi,
+                w_orb: bk.w_orb,
+                rho: bk.rho,
+                z: bk.z,
+                q_i: qi,
+                q_o: qo,
+                alpha_i: ni2[0].atan2(ni2[1]),
+                alpha_o: no2[0].atan2(no2[1]),
+                slide_i: norm(dv_i),
+                slide_o: norm(dv_o),
+                pocket: 0.0,
+                p_max,
+            },
+        }
+    }
+
+    /// Ball `j`'s terms from its race part `r` and the cage: pocket forces (equal and
+    /// opposite on the cage) and the ball's accelerations.
+    fn ball_cage(&self, j: usize, ck: &CageKin, r: &BallRace) -> BallTerms {
+        let hd = 0.5 * self.d;
+        let ez = EZ;
+        let (er, et) = (r.fr.er(), r.fr.et());
+        let (bk, rb, vb, w) = (&r.bk, r.fr.rb, r.fr.vb, r.bk.w);
+        let (mut f, mut mom) = (r.f, r.mom);
         // Pocket.
         let th = ck.theta + 2.0 * PI * j as f64 / self.z as f64;
         let (sp, cp) = th.sin_cos();
         let rp = 0.5 * self.dm;
         let etp = [-sp, cp, 0.0];
-        let pc = ck.point(th, rp);
+        let pc = ck.point_sc(sp, cp, rp);
         let d = sub(rb, pc);
         // Rate of the offset seen from the cage (the walls turn with it): the ball's
         // velocity minus the cage material's at the ball centre.
@@ -779,47 +963,18 @@ impl FullModel {
                 fz / self.m,
             ],
         };
-        // On the shaft: the inner normal load through the groove centre (the quasi-static
-        // level's convention), the traction and spin reactions at the contact point.
-        let mut wrench = [0.0; 5];
-        let (fa, frr) = (-qi * ni2[0], -qi * ni2[1]);
-        let mb = self.ri * fa;
-        wrench[0] = frr * c;
-        wrench[1] = frr * s;
-        wrench[2] = fa;
-        wrench[3] = mb * s;
-        wrench[4] = -mb * c;
-        let fs = scale(ft_i, -1.0);
-        let ms = sub(cross(rci, fs), ms_i);
-        wrench[0] += fs[0];
-        wrench[1] += fs[1];
-        wrench[2] += fs[2];
-        wrench[3] += ms[0];
-        wrench[4] += ms[1];
-        let power = -dot(ft_i, dv_i) - dot(ft_o, dv_o) - dot(ms_i, sub(w, wr)) - dot(ms_o, w);
-        let p_max = csi_peak(&csi).max(csi_peak(&cso));
         BallTerms {
             acc,
             w_dot: scale(mom, 1.0 / self.j),
             cage_f,
             cage_m,
-            wrench,
-            torque: ms[2],
-            ext_mz,
-            power,
+            wrench: r.wrench,
+            torque: r.torque,
+            ext_mz: r.ext_mz,
+            power: r.power,
             info: BallInfo {
-                psi: bk.psi,
-                w_orb: bk.w_orb,
-                rho: bk.rho,
-                z: bk.z,
-                q_i: qi,
-                q_o: qo,
-                alpha_i: ni2[0].atan2(ni2[1]),
-                alpha_o: no2[0].atan2(no2[1]),
-                slide_i: norm(dv_i),
-                slide_o: norm(dv_o),
                 pocket: pocket_max,
-                p_max,
+                ..r.info
             },
         }
     }
@@ -827,41 +982,71 @@ impl FullModel {
     /// Quasi-static ball position for ball states `xb` (warm start in `aux[0..3]`:
     /// `X1, X2, warm flag`); updates the warm start.
     fn ball_position(&self, q: &[f64; 5], xb: &[f64], aux: &mut [f64]) -> Result<[f64; 2]> {
+        Ok(self.ball_position_contacts(q, xb, aux)?.0)
+    }
+
+    /// [`Self::ball_position`] with the contacts there when the solve has them.
+    fn ball_position_contacts(
+        &self,
+        q: &[f64; 5],
+        xb: &[f64],
+        aux: &mut [f64],
+    ) -> Result<([f64; 2], Option<[ball::Contact; 2]>)> {
         let psi = xb[0];
         let w_orb = xb[1] / self.t0;
         let a = self.groove_offset(q, psi);
         let start = (aux[2] != 0.0).then_some([aux[0], aux[1]]);
-        let x = self.pos.solve(a, self.m * w_orb * w_orb, start, POS_TOL)?;
+        let (x, c) = self
+            .pos
+            .solve_contacts(a, self.m * w_orb * w_orb, start, POS_TOL)?;
         aux[0] = x[0];
         aux[1] = x[1];
         aux[2] = 1.0;
-        Ok(x)
+        Ok((x, c))
     }
 
-    /// Ball `j`'s terms at its states `xb` (the quasi-static position re-solved, its warm
-    /// start in `aux` updated).
+    /// Ball kinematics and position `xrel` at its states `xb`: quasi-static, the position
+    /// re-solved (warm start in `aux` updated) when `solve`, else the one `aux` holds (the
+    /// solution for these `q`, `psi` and `w_orb`, which a solve from it returns unchanged).
+    fn ball_kin_at(
+        &self,
+        j: usize,
+        q: &[f64; 5],
+        xb: &[f64],
+        aux: &mut [f64],
+        solve: bool,
+    ) -> Result<(BallKin, [f64; 2], Option<[ball::Contact; 2]>)> {
+        Ok(match self.p.ball_contacts {
+            BallContacts::QuasiStatic => {
+                let a = &mut aux[3 * j..3 * j + 3];
+                let (xr, c) = if solve {
+                    self.ball_position_contacts(q, xb, a)?
+                } else {
+                    ([a[0], a[1]], None)
+                };
+                (self.ball_kin(xb, xr), xr, c)
+            }
+            BallContacts::Dynamic => {
+                let bk = self.ball_kin(xb, [0.0; 2]);
+                (bk, [bk.z - self.z_og, bk.rho - self.pos.r_og], None)
+            }
+        })
+    }
+
+    /// The race part of ball `j`'s terms at its states `xb` ([`Self::ball_kin_at`]).
     #[allow(clippy::too_many_arguments)]
-    fn ball_terms(
+    fn ball_race_at(
         &self,
         j: usize,
         q: &[f64; 5],
         v: &[f64; 5],
         omega: f64,
-        ck: &CageKin,
         xb: &[f64],
         aux: &mut [f64],
-    ) -> Result<BallTerms> {
-        let (bk, xrel) = match self.p.ball_contacts {
-            BallContacts::QuasiStatic => {
-                let xr = self.ball_position(q, xb, &mut aux[3 * j..3 * j + 3])?;
-                (self.ball_kin(xb, xr), xr)
-            }
-            BallContacts::Dynamic => {
-                let bk = self.ball_kin(xb, [0.0; 2]);
-                (bk, [bk.z - self.z_og, bk.rho - self.pos.r_og])
-            }
-        };
-        Ok(self.ball(j, q, v, omega, ck, &bk, xrel))
+        solve: bool,
+    ) -> Result<BallRace> {
+        let (bk, xrel, c) = self.ball_kin_at(j, q, xb, aux, solve)?;
+        Ok(self.ball_race(q, v, omega, &bk, xrel, c))
     }
 
     /// Ball rates (stored-state derivatives) from its terms.
@@ -910,8 +1095,11 @@ impl FullModel {
     /// (`n × n`), and when load-driven (non-empty slices) `jm = d(rates)/d(q, v)`
     /// (`n × 10`), `wx = d(wrench)/d(states)` (`5 × n`), `wm = d(wrench)/d(q, v)`
     /// (`5 × 10`). A ball's column costs one ball evaluation (its rates, its share of the
-    /// cage's and of the wrench), a cage or ring column one right-hand side. `scratch`
-    /// holds `3 n + n_aux` values. Allocation-free.
+    /// cage's and of the wrench; a spin column keeps the ball's position), a cage column
+    /// the pockets of every ball on the race parts kept from the evaluation at `x` (the
+    /// cage reaches a ball only through its pocket), a ring column one right-hand side.
+    /// The cage columns equal whole-evaluation differences bit for bit. `scratch` holds
+    /// `3 n + n_aux` values. Allocation-free.
     #[allow(clippy::too_many_arguments)]
     pub fn jacobian(
         &mut self,
@@ -926,6 +1114,28 @@ impl FullModel {
         wm: &mut [f64],
         scratch: &mut [f64],
     ) -> Result<()> {
+        self.jacobian_from(q, v, omega, x, aux, jx, jm, wx, wm, scratch, None)
+    }
+
+    /// [`Self::jacobian`]; `kept`: the rates and totals of an evaluation with
+    /// [`Races::Keep`] at this motion, these states and with `aux` as it left it (its
+    /// positions are then those a solve from `aux` returns, bit for bit), which stands in
+    /// for the evaluation at `x`.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn jacobian_from(
+        &mut self,
+        q: &[f64; 5],
+        v: &[f64; 5],
+        omega: f64,
+        x: &[f64],
+        aux: &[f64],
+        jx: &mut [f64],
+        jm: &mut [f64],
+        wx: &mut [f64],
+        wm: &mut [f64],
+        scratch: &mut [f64],
+        kept: Option<(&[f64], &Totals)>,
+    ) -> Result<()> {
         let n = self.n_states();
         let na = self.n_aux();
         let (xs, rest) = scratch.split_at_mut(n);
@@ -938,7 +1148,14 @@ impl FullModel {
         wx.fill(0.0);
         wm.fill(0.0);
         auxs.copy_from_slice(aux);
-        let tot0 = self.eval(q, v, omega, x, auxs, d0)?;
+        // The balls' race parts at `x` are kept for the cage and ball columns.
+        let tot0 = match kept {
+            Some((dk, tk)) => {
+                d0.copy_from_slice(dk);
+                *tk
+            }
+            None => self.eval_with(q, v, omega, x, auxs, d0, Races::Keep)?,
+        };
         let step = |xv: f64| 1.5e-8 * xv.abs().max(1.0);
         if load {
             // Ring columns: displacements and velocities (steps as the outputs' K and C).
@@ -965,13 +1182,13 @@ impl FullModel {
                 }
             }
         }
-        // Cage columns: everything depends on the cage.
+        // Cage columns: the cage reaches the balls only through the pockets (the race
+        // parts, with the positions solved, are the kept ones).
         xs.copy_from_slice(x);
         for c in 0..self.nc {
             let h = step(x[c]);
             xs[c] = x[c] + h;
-            auxs.copy_from_slice(aux);
-            let t = self.eval(q, v, omega, xs, auxs, col)?;
+            let t = self.eval_with(q, v, omega, xs, auxs, col, Races::Kept)?;
             for r in 0..n {
                 jx[r * n + c] = (col[r] - d0[r]) / h;
             }
@@ -984,24 +1201,28 @@ impl FullModel {
         }
         // Ball columns: ball j's rates and the cage's.
         let ck = self.cage_kin(x);
-        auxs.copy_from_slice(aux);
         let nb = self.nb;
+        let qs = self.p.ball_contacts == BallContacts::QuasiStatic;
         for j in 0..self.z {
             let k = self.nc + nb * j;
-            let base = self.ball_terms(j, q, v, omega, &ck, &x[k..k + nb], auxs)?;
+            let kept = self.races[j];
+            let base = self.ball_cage(j, &ck, &kept);
             let mut r0 = [0.0; 9];
             self.ball_rates(&base, &x[k..k + nb], &mut r0[..nb]);
-            let warm = [auxs.get(3 * j).copied(), auxs.get(3 * j + 1).copied()];
             for c in 0..nb {
                 let h = step(x[k + c]);
                 let mut xb = [0.0; 9];
                 xb[..nb].copy_from_slice(&x[k..k + nb]);
                 xb[c] += h;
-                if let (Some(a0), Some(a1)) = (warm[0], warm[1]) {
-                    auxs[3 * j] = a0;
-                    auxs[3 * j + 1] = a1;
+                if qs {
+                    // Warm start: the position at `x`.
+                    auxs[3 * j..3 * j + 3].copy_from_slice(&[kept.xrel[0], kept.xrel[1], 1.0]);
                 }
-                let bt = self.ball_terms(j, q, v, omega, &ck, &xb[..nb], auxs)?;
+                // The quasi-static position depends on the orbital angle and speed
+                // (states 0 and 1), not on the spin: the spin columns keep it.
+                let solve = !(qs && c >= 2);
+                let race = self.ball_race_at(j, q, v, omega, &xb[..nb], auxs, solve)?;
+                let bt = self.ball_cage(j, &ck, &race);
                 let mut r1 = [0.0; 9];
                 self.ball_rates(&bt, &xb[..nb], &mut r1[..nb]);
                 for r in 0..nb {
@@ -1026,6 +1247,42 @@ impl FullModel {
         Ok(())
     }
 
+    /// The wrench on the shaft alone at motion `(q, v, omega)` and states `x`, as
+    /// [`Self::eval`] gives it (the same numbers), without the pockets, the outer contacts
+    /// and the rates: what the outputs' stiffness and damping difference. Quasi-static
+    /// positions are solved from `aux` (updated) when `solve`, else taken from `aux` (the
+    /// solution at this `q`: a velocity `v` does not move them).
+    pub fn wrench_at(
+        &self,
+        q: &[f64; 5],
+        v: &[f64; 5],
+        omega: f64,
+        x: &[f64],
+        aux: &mut [f64],
+        solve: bool,
+    ) -> Result<[f64; 5]> {
+        let mut w = [0.0; 5];
+        for j in 0..self.z {
+            let k = self.nc + self.nb * j;
+            let (bk, xrel, c) = self.ball_kin_at(j, q, &x[k..k + self.nb], aux, solve)?;
+            let fr = BallFrame::new(&bk);
+            let inn = self.inner_contact(q, v, omega, &bk, &fr, xrel, c.map(|c| c[0]));
+            for (a, b) in w.iter_mut().zip(inn.wrench) {
+                *a += b;
+            }
+        }
+        if let (CageModel::Free, Some(guide), true) = (self.p.cage, &self.guide, self.guided_inner)
+        {
+            let ck = self.cage_kin(x);
+            let e = [ck.c[0] - q[0], ck.c[1] - q[1]];
+            let e_dot = [ck.v[0] - v[0], ck.v[1] - v[1]];
+            let g = guide.force(e, e_dot, ck.w, omega);
+            w[0] -= g.f[0];
+            w[1] -= g.f[1];
+        }
+        Ok(w)
+    }
+
     /// Right-hand side: fills `dx` (derivatives of the stored states in physical time),
     /// `self.balls` and the totals. Allocation-free.
     pub fn eval(
@@ -1037,6 +1294,35 @@ impl FullModel {
         aux: &mut [f64],
         dx: &mut [f64],
     ) -> Result<Totals> {
+        self.eval_with(q, v, omega, x, aux, dx, Races::Compute)
+    }
+
+    /// [`Self::eval`], the balls' race parts kept for [`Self::jacobian_from`].
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn eval_keep(
+        &mut self,
+        q: &[f64; 5],
+        v: &[f64; 5],
+        omega: f64,
+        x: &[f64],
+        aux: &mut [f64],
+        dx: &mut [f64],
+    ) -> Result<Totals> {
+        self.eval_with(q, v, omega, x, aux, dx, Races::Keep)
+    }
+
+    /// [`Self::eval`], the balls' race parts computed, kept or taken from the kept ones.
+    #[allow(clippy::too_many_arguments)]
+    fn eval_with(
+        &mut self,
+        q: &[f64; 5],
+        v: &[f64; 5],
+        omega: f64,
+        x: &[f64],
+        aux: &mut [f64],
+        dx: &mut [f64],
+        races: Races,
+    ) -> Result<Totals> {
         let (l, t0) = (self.l, self.t0);
         let ck = self.cage_kin(x);
         let mut tot = Totals::default();
@@ -1045,7 +1331,14 @@ impl FullModel {
         for j in 0..self.z {
             let k = self.nc + self.nb * j;
             let xb = &x[k..k + self.nb];
-            let bt = self.ball_terms(j, q, v, omega, &ck, xb, aux)?;
+            let r = match races {
+                Races::Kept => self.races[j],
+                _ => self.ball_race_at(j, q, v, omega, xb, aux, true)?,
+            };
+            if races == Races::Keep {
+                self.races[j] = r;
+            }
+            let bt = self.ball_cage(j, &ck, &r);
             self.ball_rates(&bt, xb, &mut dx[k..k + self.nb]);
             cf = add(cf, bt.cage_f);
             cm = add(cm, bt.cage_m);
@@ -1237,6 +1530,84 @@ fn csi_peak(cs: &ContactState) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The 7004 at 30 000 rpm at the scene's displacement (examples/scenes/7004-30000.toml),
+    /// started, with the cage off centre and slower so the pockets act.
+    fn started_7004() -> (FullModel, [f64; 5], f64, Vec<f64>, Vec<f64>) {
+        let b = crate::geometry::preset("7004").unwrap().build().unwrap();
+        let mut m = FullModel::new(&b, FullParams::for_bearing(&b)).unwrap();
+        let q = [0.0, -2.96568e-6, 4.364864e-5, 0.0, 0.0];
+        let omega = 3141.592654;
+        let mut x = vec![0.0; m.n_states()];
+        let mut aux = vec![0.0; m.n_aux()];
+        m.init(&q, omega, &mut x, &mut aux).unwrap();
+        x[0] = 0.05;
+        x[11] *= 0.99;
+        (m, q, omega, x, aux)
+    }
+
+    /// The wrench alone ([`FullModel::wrench_at`], what the outputs' K and C difference) is
+    /// the evaluation's, bit for bit: positions solved from the warm starts, or kept from
+    /// the evaluation at the same displacement for a velocity change.
+    #[test]
+    fn wrench_alone_is_the_evaluations_wrench() {
+        let (mut m, q, omega, x, aux) = started_7004();
+        let mut dx = vec![0.0; x.len()];
+        for (dq, dv) in [(0.0, 0.0), (1e-9, 0.0), (0.0, 1e-6)] {
+            let qp = [q[0], q[1] + dq, q[2], q[3], q[4]];
+            let v = [dv, 0.0, 0.0, 0.0, 0.0];
+            let mut a = aux.clone();
+            let tot = m.eval(&qp, &v, omega, &x, &mut a, &mut dx).unwrap();
+            let mut b = aux.clone();
+            assert_eq!(
+                m.wrench_at(&qp, &v, omega, &x, &mut b, true).unwrap(),
+                tot.wrench
+            );
+            assert_eq!(a, b);
+            // `a` now holds the solved positions.
+            let vb = [0.0, dv + 1e-5, 0.0, 0.0, 0.0];
+            let mut c = aux.clone();
+            let w = m.eval(&qp, &vb, omega, &x, &mut c, &mut dx).unwrap().wrench;
+            assert_eq!(m.wrench_at(&qp, &vb, omega, &x, &mut a, false).unwrap(), w);
+        }
+    }
+
+    /// The Jacobian's cage columns, which re-evaluate only the pockets on the balls' kept
+    /// race parts, equal whole evaluations' forward differences bit for bit.
+    #[test]
+    fn cage_columns_equal_whole_differences_exactly() {
+        let (mut m, q, omega, x, aux) = started_7004();
+        let n = x.len();
+        let mut jx = vec![0.0; n * n];
+        let mut scratch = vec![0.0; 3 * n + aux.len()];
+        let v = [0.0; 5];
+        m.jacobian(
+            &q,
+            &v,
+            omega,
+            &x,
+            &aux,
+            &mut jx,
+            &mut [],
+            &mut [],
+            &mut [],
+            &mut scratch,
+        )
+        .unwrap();
+        let (mut d0, mut d1) = (vec![0.0; n], vec![0.0; n]);
+        m.eval(&q, &v, omega, &x, &mut aux.clone(), &mut d0)
+            .unwrap();
+        for c in 0..12 {
+            let mut xp = x.clone();
+            let h = 1.5e-8 * x[c].abs().max(1.0);
+            xp[c] += h;
+            m.eval(&q, &v, omega, &xp, &mut aux.clone(), &mut d1)
+                .unwrap();
+            for r in 0..n {
+                assert_eq!(jx[r * n + c], (d1[r] - d0[r]) / h, "row {r} col {c}");
+            }
+        }
+    }
 
     /// The velocities the contacts use are the time derivatives of the material points'
     /// positions: cage pocket walls of a tilted, eccentric, spinning cage, and the inner
