@@ -24,6 +24,20 @@ const OUTPUTS: [&str; 8] = [
     "balls.loaded",
 ];
 
+/// The two scenes: name, scene text, shaft speed (rpm).
+const SCENES: [(&str, &str, f64); 2] = [
+    (
+        "30 000 rpm",
+        include_str!("../examples/scenes/7004-30000.toml"),
+        30_000.0,
+    ),
+    (
+        "120 000 rpm",
+        include_str!("../examples/scenes/7004-120000.toml"),
+        120_000.0,
+    ),
+];
+
 /// `text` with the solver's rtol and atol_m replaced (and no work budget in the way).
 fn with_tolerance(text: &str, rtol: f64, atol_m: f64) -> String {
     let mut out = String::new();
@@ -87,18 +101,7 @@ fn run_20us(text: &str, rpm: f64, revs: usize) -> (f64, Samples, String) {
 fn main() {
     let full = std::env::args().any(|a| a == "--bench");
     let vr = |n: &str| variables::by_name(n).unwrap().vr;
-    for (name, text, rpm) in [
-        (
-            "30 000 rpm",
-            include_str!("../examples/scenes/7004-30000.toml"),
-            30_000.0,
-        ),
-        (
-            "120 000 rpm",
-            include_str!("../examples/scenes/7004-120000.toml"),
-            120_000.0,
-        ),
-    ] {
+    for (name, text, rpm) in SCENES {
         let mut c = Component::from_text(text).expect("scene");
         let rev = 60.0 / rpm;
         // Communication step: a tenth of a revolution.
@@ -146,18 +149,7 @@ fn main() {
     }
     // Issue #17's rows: outputs every 20 µs, the force error against rtol 1e-9.
     let revs = 3;
-    for (name, text, rpm) in [
-        (
-            "30 000 rpm",
-            include_str!("../examples/scenes/7004-30000.toml"),
-            30_000.0,
-        ),
-        (
-            "120 000 rpm",
-            include_str!("../examples/scenes/7004-120000.toml"),
-            120_000.0,
-        ),
-    ] {
+    for (name, text, rpm) in SCENES {
         let (_, reference, _) = run_20us(&with_tolerance(text, 1e-9, 1e-13), rpm, revs);
         let mut best = f64::INFINITY;
         let mut last = None;
