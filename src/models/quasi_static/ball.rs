@@ -424,32 +424,13 @@ impl Geo {
     /// 2x2 Jacobian (`N = 2` duals), back-tracking on the residual norm with value-only
     /// evaluations; one restart from the static (or free-ball) position if a step fails or
     /// the Jacobian is singular (no contact at all); then [`Error::NotConverged`].
-    ///
-    /// With `full` (the caller wants the stiffness), the trials are evaluated with the four
-    /// slots `d/d(u_o, u_i)` (`N = 4`) instead: the accepted trial is then the next
-    /// linearisation without another evaluation, and the answer's evaluation, returned in
-    /// [`Solved::Full`], gives the stiffness and the exact sensitivity `dX/dA` at the
-    /// answer for the next warm start. Without `full` the state keeps its sensitivity (the
-    /// warm start's predictor only: a stale one costs iterations, never accuracy), so an
-    /// evaluation of the forces alone pays for no `N = 4` slots at all.
-    pub fn solve(
-        &self,
-        omega: f64,
-        a: [f64; 2],
-        state: &mut BallState,
-        full: bool,
-    ) -> Result<Solved> {
+    pub fn solve(&self, omega: f64, a: [f64; 2], state: &mut BallState) -> Result<Eval<0>> {
         if omega == 0.0 {
             let x = self.static_position(a);
             state.store(x, a, [[0.0; 2]; 2]);
-            return Ok(if full {
-                Solved::Full(self.eval::<4>(0.0, x, a))
-            } else {
-                Solved::Values(self.eval::<0>(0.0, x, a))
-            });
+            return Ok(self.eval::<0>(0.0, x, a));
         }
-        // Millimetre-sized: the plain root (no overflow; `hypot` is several times slower).
-        let la = (a[0] * a[0] + a[1] * a[1]).sqrt();
+        let la = a[0].hypot(a[1]);
         let loaded_static = la > self.ri_free + self.ro_free;
         let fallback = |geo: &Geo| {
             if loaded_static {
@@ -468,9 +449,9 @@ impl Geo {
             geo: self,
             omega,
             a,
-            full,
-            slots: [None, None],
-            cur: 0,
+            e: None,
+            trial: None,
+            at_e: true,
         };
         // Not `warm_start`: checking the predicted start by value first made the
         // quasi-static C ABI row slower (34.8 against 31.1 µs per step, benches/speed.rs
@@ -498,94 +479,35 @@ impl Geo {
                 residual: rep.check.norm,
             });
         }
-        // The evaluation at the answer: the current point's (the start, or the accepted
-        // trial it became).
-        let at = match &sys.slots[sys.cur] {
-            Some(c) if c.x == x => Some(&c.e),
-            _ => None,
-        };
-        if full {
-            let e = match at {
-                Some(Lin::Full(e)) => *e,
-                _ => self.eval::<4>(omega, x, a),
-            };
-            state.store(x, a, sensitivity(&e));
-            return Ok(Solved::Full(e));
-        }
-        let v = match at {
-            Some(Lin::Values(e)) => *e,
-            Some(Lin::Two(e)) => e.values(),
-            Some(Lin::Full(e)) => e.values(),
-            None => self.eval::<0>(omega, x, a),
-        };
-        let dxda = state.dxda;
+        // Passed at the warm start: no new Jacobian, the sensitivity stays.
+        let dxda = sys.e.as_ref().map_or(state.dxda, sensitivity);
         state.store(x, a, dxda);
-        Ok(Solved::Values(v))
-    }
-}
-
-/// A ball's answer: the values, or with [`Geo::solve`]'s `full` its `N = 4` evaluation.
-#[derive(Debug, Clone, Copy)]
-pub(crate) enum Solved {
-    Values(Eval<0>),
-    Full(Eval<4>),
-}
-
-impl Solved {
-    /// Forces on the shaft: axial, radial and the ball-plane moment.
-    pub fn forces(&self) -> (f64, f64, f64) {
-        match self {
-            Solved::Values(e) => (e.fa.v, e.fr.v, e.m.v),
-            Solved::Full(e) => (e.fa.v, e.fr.v, e.m.v),
-        }
-    }
-    /// The values.
-    pub fn values(&self) -> Eval<0> {
-        match self {
-            Solved::Values(e) => *e,
-            Solved::Full(e) => e.values(),
-        }
-    }
-    /// The `N = 4` evaluation, when solved with `full`.
-    pub fn full(&self) -> Option<&Eval<4>> {
-        match self {
-            Solved::Full(e) => Some(e),
-            Solved::Values(_) => None,
-        }
+        let Some(e) = sys.e else {
+            return Ok(sys.trial.unwrap_or_else(|| self.eval::<0>(omega, x, a)));
+        };
+        Ok(match sys.trial {
+            Some(t) if !sys.at_e => t,
+            _ => e.values(),
+        })
     }
 }
 
 /// Relative determinant below which a ball's 2×2 Jacobian counts as singular (no contact).
 const SINGULAR: f64 = 1e-13;
 
-/// An evaluation kept by [`BallSystem`]: values only (a trial), `d/dX` (a linearisation)
-/// or the four slots (with `full`).
-#[derive(Debug, Clone, Copy)]
-enum Lin {
-    Values(Eval<0>),
-    Two(Eval<2>),
-    Full(Eval<4>),
-}
-
-/// A point and its evaluation.
-#[derive(Debug, Clone, Copy)]
-struct At {
-    x: [f64; 2],
-    e: Lin,
-}
-
-/// One ball's two equilibrium equations as [`newton::solve`] drives them: linearisations
-/// with `N = 2` duals, trials by value; with `full`, trials with `N = 4`, so the accepted
-/// trial is the next linearisation and the answer's evaluation is at hand. Two slots, the
-/// current point's and the trial's: accepting a trial swaps their roles (no copy).
+/// One ball's two equilibrium equations as [`newton::solve`] drives them: the Jacobian
+/// from `N = 4` duals at the current point (kept for the sensitivity `dX/dA`), value-only
+/// evaluations at the trial points.
 struct BallSystem<'a> {
     geo: &'a Geo,
     omega: f64,
     a: [f64; 2],
-    full: bool,
-    slots: [Option<At>; 2],
-    /// The current point's slot (the other one holds the last trial).
-    cur: usize,
+    /// The last linearisation.
+    e: Option<Eval<4>>,
+    /// The last trial.
+    trial: Option<Eval<0>>,
+    /// The current point is `e`'s (else the accepted `trial`'s).
+    at_e: bool,
 }
 
 impl BallSystem<'_> {
@@ -601,45 +523,21 @@ impl newton::NewtonSystem<2> for BallSystem<'_> {
     type Error = std::convert::Infallible;
 
     fn residual(&mut self, x: &[f64; 2]) -> std::result::Result<Check, Self::Error> {
-        let (c, e) = if self.full {
-            let t = self.geo.eval::<4>(self.omega, *x, self.a);
-            (self.check(&t), Lin::Full(t))
-        } else {
-            let t = self.geo.eval::<0>(self.omega, *x, self.a);
-            (self.check(&t), Lin::Values(t))
-        };
-        self.slots[1 - self.cur] = Some(At { x: *x, e });
-        Ok(c)
+        let t = self.geo.eval::<0>(self.omega, *x, self.a);
+        self.trial = Some(t);
+        Ok(self.check(&t))
     }
 
     fn linearise(&mut self, x: &[f64; 2]) -> std::result::Result<Check, Self::Error> {
-        if let Some(At {
-            x: p,
-            e: Lin::Full(e),
-        }) = &self.slots[self.cur]
-        {
-            if p == x {
-                return Ok(self.check(e));
-            }
-        }
-        let e = self.geo.eval::<2>(self.omega, *x, self.a);
-        let c = self.check(&e);
-        self.slots[self.cur] = Some(At {
-            x: *x,
-            e: Lin::Two(e),
-        });
-        Ok(c)
+        let e = self.geo.eval::<4>(self.omega, *x, self.a);
+        self.e = Some(e);
+        self.at_e = true;
+        Ok(self.check(&e))
     }
 
     fn step(&mut self, dx: &mut [f64; 2]) -> bool {
-        let (j, g) = match &self.slots[self.cur] {
-            Some(At { e: Lin::Two(e), .. }) => (e.jac_x(), [e.g[0].v, e.g[1].v]),
-            Some(At {
-                e: Lin::Full(e), ..
-            }) => (e.jac_x(), [e.g[0].v, e.g[1].v]),
-            _ => return false,
-        };
-        match newton::solve2(&j, [-g[0], -g[1]], SINGULAR) {
+        let Some(e) = &self.e else { return false };
+        match newton::solve2(&e.jac_x(), [-e.g[0].v, -e.g[1].v], SINGULAR) {
             Some(d) => {
                 *dx = d;
                 true
@@ -649,9 +547,6 @@ impl newton::NewtonSystem<2> for BallSystem<'_> {
     }
 
     fn accept(&mut self) {
-        // The accepted trial is the new current point (with `full`, its linearisation).
-        if self.slots[1 - self.cur].is_some() {
-            self.cur = 1 - self.cur;
-        }
+        self.at_e = false;
     }
 }

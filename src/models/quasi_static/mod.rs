@@ -52,7 +52,7 @@ pub mod level;
 
 pub use ball::BallState;
 
-use crate::contact::{ContactTable, Race};
+use crate::contact::{Curvature, PointContact, Race};
 use crate::error::{Error, Result};
 use crate::geometry::Bearing;
 use crate::solver::newton;
@@ -192,10 +192,6 @@ pub struct QuasiStatic {
     ri: f64,
     /// Scale for rotations (m): `q_s = (x, y, z, Ri rx, Ri ry)`.
     t: [f64; 5],
-    /// The contact module's fast tables `(inner, outer)`: the semi-axes and peak pressures
-    /// of the ball reports (within 1e-10 of the exact ellipse solve, which cost two
-    /// elliptic-integral Newton solves per ball at every communication point).
-    tables: (ContactTable, ContactTable),
 }
 
 /// Equally spaced azimuths `psi_j = phase + 2 pi j / Z` (ball 0 at `phase`).
@@ -287,7 +283,6 @@ impl QuasiStatic {
             a_ref: [a1, a2],
             ri,
             t: [1.0, 1.0, 1.0, ri, ri],
-            tables: ContactTable::for_bearing(bearing),
         })
     }
 
@@ -311,11 +306,6 @@ impl QuasiStatic {
     /// `psi` at displacement `q` (module docs).
     pub fn groove_offset(&self, q: &[f64; 5], psi: f64) -> [f64; 2] {
         let (s, c) = psi.sin_cos();
-        self.groove_offset_sc(q, s, c)
-    }
-
-    /// [`QuasiStatic::groove_offset`] from `(sin psi, cos psi)`.
-    fn groove_offset_sc(&self, q: &[f64; 5], s: f64, c: f64) -> [f64; 2] {
         [
             self.a_ref[0] + q[2] + self.ri * (q[3] * s - q[4] * c),
             self.a_ref[1] + q[0] * c + q[1] * s,
@@ -391,22 +381,20 @@ impl QuasiStatic {
                 return Err(Error::invalid(format!("psi[{j}]"), p, "a finite number"));
             }
             let (s, c) = p.sin_cos();
-            let a = self.groove_offset_sc(q, s, c);
-            let sol = self.geo.solve(omega, a, st, stiffness.is_some())?;
-            let (fa, fr, m) = sol.forces();
+            let a = self.groove_offset(q, p);
+            let e = self.geo.solve(omega, a, st)?;
+            let (fa, fr, m) = (e.fa.v, e.fr.v, e.m.v);
             f[0] += fr * c;
             f[1] += fr * s;
             f[2] += fa;
             f[3] += m * s;
             f[4] -= m * c;
             if let Some(k) = stiffness.as_deref_mut() {
-                // The solve's own evaluation at the answer (`N = 4`).
-                if let Some(e4) = sol.full() {
-                    self.add_ball_stiffness(e4, s, c, k);
-                }
+                let e4 = self.geo.eval::<4>(omega, st.x, a);
+                self.add_ball_stiffness(&e4, s, c, k);
             }
             if let Some(b) = balls.as_deref_mut() {
-                b[j] = self.ball_result(&sol.values(), p, st.x);
+                b[j] = self.ball_result(&e, p, st.x);
             }
         }
         check_finite("forces", &f).map_err(|_| Error::NotConverged {
@@ -445,8 +433,7 @@ impl QuasiStatic {
         let (a, dmax) = (self.bearing.a(), self.max_approach());
         for (j, &p) in psi.iter().enumerate() {
             let g = self.groove_offset(q, p);
-            // The plain root: finite inputs, and an overflow to infinity is refused alike.
-            let approach = (g[0] * g[0] + g[1] * g[1]).sqrt() - a;
+            let approach = g[0].hypot(g[1]) - a;
             if approach > dmax || g[1] <= 0.0 {
                 let (rad, ax) = self.displacement_limits();
                 return Err(Error::invalid(
@@ -512,18 +499,23 @@ impl QuasiStatic {
     }
 
     fn ball_result(&self, e: &Eval<0>, psi: f64, x: [f64; 2]) -> BallResult {
-        let contact = |sc: [f64; 2], q: f64, table: &ContactTable| {
+        let b = &self.bearing;
+        let contact = |alpha: f64, q: f64, race: Race| {
             if q > 0.0 {
-                let cc = table.eval_cos_sin(sc[1], sc[0]);
-                let (a, bb) = cc.semi_axes(q);
-                (a, bb, cc.peak_pressure(q))
+                let (f, ee) = match race {
+                    Race::Inner => (b.fi, b.e_eff_inner()),
+                    Race::Outer => (b.fo, b.e_eff_outer()),
+                };
+                let pc = PointContact::new(Curvature::ball_race(b.d, b.dm, alpha, f, race), ee);
+                let (a, bb) = pc.semi_axes(q);
+                (a, bb, pc.peak_pressure(q))
             } else {
                 (0.0, 0.0, 0.0)
             }
         };
         let (alpha_i, alpha_o) = (e.alpha_i(), e.alpha_o());
-        let (a_i, b_i, p_i) = contact(e.sc_i, e.qi, &self.tables.0);
-        let (a_o, b_o, p_o) = contact(e.sc_o, e.qo, &self.tables.1);
+        let (a_i, b_i, p_i) = contact(alpha_i, e.qi, Race::Inner);
+        let (a_o, b_o, p_o) = contact(alpha_o, e.qo, Race::Outer);
         BallResult {
             psi,
             q_i: e.qi,
@@ -981,65 +973,5 @@ mod tests {
             let spin = b.dm / (2.0 * b.d) * (1.0 - g * g) * w / c;
             assert!((e.wr + spin).abs() < 1e-9 * spin, "{} {}", e.wr, spin);
         }
-    }
-    /// A run as the motion-driven level makes it (the balls' warm starts carried from call
-    /// to call, forces alone and forces with the stiffness alternating, the stiffness
-    /// evaluations storing the exact sensitivity at the answer) gives what cold solves
-    /// give, to the ball tolerance: forces to 1e-10 relative, stiffness to 1e-8; and the
-    /// reports' semi-axes and pressures from the fast table are the exact solve's.
-    #[test]
-    fn warm_started_run_matches_cold_solves() {
-        let m = model("7008ce");
-        let z = m.bearing.z;
-        let w = 1256.6;
-        let mut warm = vec![BallState::default(); z];
-        let mut balls = vec![BallResult::default(); z];
-        let (mut worst_f, mut worst_k) = (0.0f64, 0.0f64);
-        for step in 0..60 {
-            let t = step as f64 * 1e-4;
-            let q = [
-                1e-6 * (w * t).cos(),
-                -5e-6 + 1e-6 * (w * t).sin(),
-                10e-6,
-                0.0,
-                0.0,
-            ];
-            let psi = azimuths(z, 0.4 * w * t);
-            let mut cold = vec![BallState::default(); z];
-            let (mut kw, mut kc) = ([[0.0; 5]; 5], [[0.0; 5]; 5]);
-            let fc = m
-                .evaluate(&q, w, &psi, &mut cold, Some(&mut kc), None)
-                .unwrap();
-            let fw = if step % 3 == 0 {
-                m.forces(&q, w, &psi, &mut warm).unwrap()
-            } else {
-                m.evaluate(&q, w, &psi, &mut warm, Some(&mut kw), Some(&mut balls))
-                    .unwrap()
-            };
-            let fs = fc.iter().map(|v| v.abs()).fold(0.0, f64::max);
-            for (a, b) in fw.iter().zip(&fc) {
-                worst_f = worst_f.max((a - b).abs() / fs);
-            }
-            if step % 3 != 0 {
-                let ks = kc.iter().flatten().map(|v| v.abs()).fold(0.0, f64::max);
-                for (a, b) in kw.iter().flatten().zip(kc.iter().flatten()) {
-                    worst_k = worst_k.max((a - b).abs() / ks);
-                }
-                for r in &balls {
-                    for (alpha, q, a, p, race) in [
-                        (r.alpha_i, r.q_i, r.a_i, r.p_i, Race::Inner),
-                        (r.alpha_o, r.q_o, r.a_o, r.p_o, Race::Outer),
-                    ] {
-                        let pc = crate::contact::PointContact::ball_race(&m.bearing, alpha, race);
-                        if q > 0.0 {
-                            assert!((a / pc.semi_axes(q).0 - 1.0).abs() < 1e-9, "{a}");
-                            assert!((p / pc.peak_pressure(q) - 1.0).abs() < 1e-9, "{p}");
-                        }
-                    }
-                }
-            }
-        }
-        assert!(worst_f < 1e-10, "forces: warm against cold {worst_f:e}");
-        assert!(worst_k < 1e-8, "stiffness: warm against cold {worst_k:e}");
     }
 }
