@@ -89,43 +89,93 @@ pub fn entrainment_speed(dm: f64, gamma: f64, omega: f64) -> f64 {
 
 /// Hamrock–Dowson central film thickness, m (see the module notes).
 pub fn central_film(l: &Lubricant, c: &PointContact, u: f64, q: f64) -> f64 {
-    central_coefficient(l, c, u) * q.max(Q_MIN).powf(-0.067)
+    Fit::new(l, c, CENTRAL).at(u) * q.max(Q_MIN).powf(-0.067)
 }
 
 /// Hamrock–Dowson minimum film thickness, m.
 pub fn minimum_film(l: &Lubricant, c: &PointContact, u: f64, q: f64) -> f64 {
-    minimum_coefficient(l, c, u) * q.max(Q_MIN).powf(-0.073)
+    Fit::new(l, c, MINIMUM).at(u) * q.max(Q_MIN).powf(-0.073)
 }
 
-/// `a` in `h_c = a Q^-0.067`.
-fn central_coefficient(l: &Lubricant, c: &PointContact, u: f64) -> f64 {
-    hamrock_dowson(l, c, u, [2.69, 0.67, 0.53, 0.067, 0.61, 0.73])
+/// `[c0, a, b, w, c1, c2]` of the central film, `a` in `h_c = a Q^-0.067`.
+const CENTRAL: [f64; 6] = [2.69, 0.67, 0.53, 0.067, 0.61, 0.73];
+/// The same for the minimum film, `m` in `h_min = m Q^-0.073`.
+const MINIMUM: [f64; 6] = [3.63, 0.68, 0.49, 0.073, 1.0, 0.68];
+
+/// One Hamrock–Dowson fit without its load term at one contact, `c0 U^a G^b (E' Rx²)^w
+/// (1 - c1 e^(-c2 kappa)) Rx` for `[c0, a, b, w, c1, c2]`, with every factor that does not
+/// depend on the entrainment speed computed once (same operations in the same order as
+/// the formula, so the same bits).
+#[derive(Debug, Clone, Copy)]
+struct Fit {
+    c0: f64,
+    a: f64,
+    viscosity: f64,
+    e_rx: f64,
+    g_b: f64,
+    erx2_w: f64,
+    kappa_term: f64,
+    rx: f64,
 }
 
-/// `m` in `h_min = m Q^-0.073`.
-fn minimum_coefficient(l: &Lubricant, c: &PointContact, u: f64) -> f64 {
-    hamrock_dowson(l, c, u, [3.63, 0.68, 0.49, 0.073, 1.0, 0.68])
-}
-
-/// The Hamrock–Dowson fit without its load term, `c0 U^a G^b (E' Rx²)^w (1 - c1
-/// e^(-c2 kappa)) Rx` for `[c0, a, b, w, c1, c2]`; zero without entrainment.
-fn hamrock_dowson(l: &Lubricant, c: &PointContact, u: f64, fit: [f64; 6]) -> f64 {
-    let [c0, a, b, w, c1, c2] = fit;
-    let (rx, e) = (c.curvature.rx, c.e_eff);
-    let uu = l.viscosity * u / (e * rx);
-    if uu <= 0.0 {
-        return 0.0;
+impl Fit {
+    fn new(l: &Lubricant, c: &PointContact, fit: [f64; 6]) -> Self {
+        let [c0, a, b, w, c1, c2] = fit;
+        let (rx, e) = (c.curvature.rx, c.e_eff);
+        let g = l.pressure_viscosity * e;
+        let k = c.ellipse.kappa;
+        Fit {
+            c0,
+            a,
+            viscosity: l.viscosity,
+            e_rx: e * rx,
+            g_b: g.powf(b),
+            erx2_w: (e * rx * rx).powf(w),
+            kappa_term: 1.0 - c1 * (-c2 * k).exp(),
+            rx,
+        }
     }
-    let g = l.pressure_viscosity * e;
-    let k = c.ellipse.kappa;
-    c0 * uu.powf(a) * g.powf(b) * (e * rx * rx).powf(w) * (1.0 - c1 * (-c2 * k).exp()) * rx
+
+    /// The coefficient at entrainment speed `u`, m/s; zero without entrainment.
+    fn at(&self, u: f64) -> f64 {
+        let uu = self.viscosity * u / self.e_rx;
+        if uu <= 0.0 {
+            return 0.0;
+        }
+        self.c0 * uu.powf(self.a) * self.g_b * self.erx2_w * self.kappa_term * self.rx
+    }
 }
 
 /// Reynolds squeeze-film damping of one contact at gap `h` (floored at the roughness):
 /// `12 pi eta0 (Rx Ry)^1.5 / ((Rx + Ry) h)`, N s/m (module notes).
 pub fn squeeze_damping(l: &Lubricant, c: &PointContact, h: f64) -> f64 {
-    let (rx, ry) = (c.curvature.rx, c.curvature.ry);
-    12.0 * PI * l.viscosity * (rx * ry).powf(1.5) / ((rx + ry) * h.max(l.roughness).max(H_FLOOR))
+    Squeeze::new(l, c).at(h)
+}
+
+/// [`squeeze_damping`] of one contact with its gap-independent factors computed once.
+#[derive(Debug, Clone, Copy)]
+struct Squeeze {
+    /// `12 pi eta0 (Rx Ry)^1.5`.
+    num: f64,
+    /// `Rx + Ry`.
+    sum: f64,
+    /// Smallest gap: the roughness, at least `H_FLOOR`.
+    floor_roughness: f64,
+}
+
+impl Squeeze {
+    fn new(l: &Lubricant, c: &PointContact) -> Self {
+        let (rx, ry) = (c.curvature.rx, c.curvature.ry);
+        Squeeze {
+            num: 12.0 * PI * l.viscosity * (rx * ry).powf(1.5),
+            sum: rx + ry,
+            floor_roughness: l.roughness,
+        }
+    }
+
+    fn at(&self, h: f64) -> f64 {
+        self.num / (self.sum * h.max(self.floor_roughness).max(H_FLOOR))
+    }
 }
 
 /// The film law of one ball between two races.
@@ -133,8 +183,6 @@ pub fn squeeze_damping(l: &Lubricant, c: &PointContact, h: f64) -> f64 {
 pub struct FilmModel {
     /// Lubricant.
     pub lubricant: Lubricant,
-    inner: PointContact,
-    outer: PointContact,
     kn: f64,
     dm: f64,
     gamma: f64,
@@ -144,6 +192,10 @@ pub struct FilmModel {
     s_min: f64,
     ki23: f64,
     ko23: f64,
+    /// The film fits (central inner, central outer, minimum inner, minimum outer) and the
+    /// squeeze damping (inner, outer) with their constant factors computed once.
+    fits: [Fit; 4],
+    squeeze: [Squeeze; 2],
 }
 
 /// Film coefficients at one entrainment speed (computed once per evaluation).
@@ -190,8 +242,16 @@ impl FilmModel {
             s_min: (Q_MIN / kn).powf(2.0 / 3.0),
             ki23: inner.kc.powf(2.0 / 3.0),
             ko23: outer.kc.powf(2.0 / 3.0),
-            inner,
-            outer,
+            fits: [
+                Fit::new(&lubricant, &inner, CENTRAL),
+                Fit::new(&lubricant, &outer, CENTRAL),
+                Fit::new(&lubricant, &inner, MINIMUM),
+                Fit::new(&lubricant, &outer, MINIMUM),
+            ],
+            squeeze: [
+                Squeeze::new(&lubricant, &inner),
+                Squeeze::new(&lubricant, &outer),
+            ],
             kn,
             dm,
             gamma,
@@ -201,13 +261,13 @@ impl FilmModel {
     /// Coefficients at shaft speed `omega` (rad/s, outer ring fixed).
     pub fn at_speed(&self, omega: f64) -> FilmAtSpeed {
         let u = entrainment_speed(self.dm, self.gamma, omega);
-        let l = &self.lubricant;
+        let [a_i, a_o, m_i, m_o] = self.fits.map(|f| f.at(u));
         FilmAtSpeed {
             u,
-            a_i: central_coefficient(l, &self.inner, u),
-            a_o: central_coefficient(l, &self.outer, u),
-            m_i: minimum_coefficient(l, &self.inner, u),
-            m_o: minimum_coefficient(l, &self.outer, u),
+            a_i,
+            a_o,
+            m_i,
+            m_o,
         }
     }
 
@@ -273,11 +333,7 @@ impl FilmModel {
             }
         };
         let (k_i, k_o) = (contact_k(self.ki23, h_i), contact_k(self.ko23, h_o));
-        let l = &self.lubricant;
-        let (c_i, c_o) = (
-            squeeze_damping(l, &self.inner, h_i),
-            squeeze_damping(l, &self.outer, h_o),
-        );
+        let (c_i, c_o) = (self.squeeze[0].at(h_i), self.squeeze[1].at(h_o));
         let ks = k_i + k_o;
         let damping = if ks > 0.0 {
             (c_i * k_o * k_o + c_o * k_i * k_i) / (ks * ks)
