@@ -185,8 +185,14 @@ fn capi_loop(scene: &str, h: f64, warm: usize, n: usize, reps: usize) -> Loop {
 
 /// A load-driven host loop through the Rust API (the shipped scenes' own use: loads held,
 /// a rotating load if the scene's `[run]` asks for one), reading the 8 outputs every step.
-/// Returns the thread CPU per step and the forces at every communication point.
-fn rust_loop(scene: &Scene, h: f64, t_end: f64) -> (f64, Samples) {
+/// Returns the thread CPU per step, the forces at every communication point and the
+/// right-hand sides per step.
+/// The documented accuracy of every shipped ring scene: relative L2 force error over the
+/// communication points against the rtol 1e-9 reference (the bar of #17's skidding and
+/// full rows).
+const SCENE_FORCE_ERROR: f64 = 1e-4;
+
+fn rust_loop(scene: &Scene, h: f64, t_end: f64) -> (f64, Samples, f64) {
     let mut c = Component::new(scene.clone()).expect("scene");
     let init = |n: &str| scene.inputs.initial.get(n).copied().unwrap_or(0.0);
     let omega = init("shaft.omega");
@@ -224,7 +230,8 @@ fn rust_loop(scene: &Scene, h: f64, t_end: f64) -> (f64, Samples) {
         s.t.push(t + h);
         s.f.push([out[0], out[1], out[2]]);
     }
-    ((thread_cpu_s() - c0) / n as f64, s)
+    let cpu = (thread_cpu_s() - c0) / n as f64;
+    (cpu, s, c.stats().rhs as f64 / n as f64)
 }
 
 /// One row of the goals table.
@@ -491,14 +498,16 @@ fn main() {
         ring5_allocs = l.allocs;
     }
 
-    // --- Every shipped ring scene, as shipped and without its sub-step cap.
+    // --- Every shipped ring scene: as shipped, and uncapped at 1, 1/10 and 1/100 of its
+    // tolerances, each against a tight reference; the scenes' documented accuracy is
+    // SCENE_FORCE_ERROR (docs/speed.md says why).
     let mut scenes_md = String::new();
     scenes_md.push_str(
-        "| scene | step (s) | cap (s) | as shipped: real-time factor | as shipped: force error | uncapped: real-time factor | uncapped: force error | uncapped, rtol/100: real-time factor | uncapped, rtol/100: force error |\n|---|---|---|---|---|---|---|---|---|\n",
+        "| scene | step (s) | cap (s) | rtol | as shipped: real-time factor | RHS per step | force error | uncapped: real-time factor / force error | uncapped, rtol/10 | uncapped, rtol/100 | cheapest setting within 1e-4 |\n|---|---|---|---|---|---|---|---|---|---|---|\n",
     );
     if want("scenes") {
         let mut worst_scene = f64::INFINITY;
-        let mut worst_uncapped = f64::INFINITY;
+        let mut all_accurate = true;
         let dir = Path::new("examples/scenes");
         let mut names: Vec<PathBuf> = std::fs::read_dir(dir)
             .expect("examples/scenes")
@@ -520,55 +529,78 @@ fn main() {
             } else {
                 (200.0 * h).min(0.02)
             };
-            let (cpu, shipped) = rust_loop(&scene, h, t_end);
-            let mut open = scene.clone();
-            open.solver.max_substep_s = 0.0;
-            let (cpu_open, uncapped) = rust_loop(&open, h, t_end);
-            // Uncapped with a 100× tighter tolerance: the other way to buy the accuracy.
-            let mut open_tight = open.clone();
-            open_tight.solver.rtol = scene.solver.rtol / 100.0;
-            open_tight.solver.atol_m = scene.solver.atol_m / 100.0;
-            let (cpu_ot, uncapped_tight) = rust_loop(&open_tight, h, t_end);
             // A tight reference: rtol 1e-9 and a 1 µs cap.
             let mut tight = scene.clone();
             tight.solver.rtol = 1e-9;
             tight.solver.atol_m = 1e-13;
             tight.solver.max_substep_s = 1e-6;
             tight.solver.max_substeps = 10_000_000;
-            let (_, reference) = rust_loop(&tight, h, t_end);
+            let (_, reference, _) = rust_loop(&tight, h, t_end);
             let err = |s: &Samples| force_error(s, &reference).map_or(f64::NAN, |e| e.0);
-            let (e_shipped, e_open, e_ot) = (err(&shipped), err(&uncapped), err(&uncapped_tight));
+            // (label, real-time factor, force error, RHS per step) per setting.
+            let mut runs: Vec<(String, f64, f64, f64)> = Vec::new();
+            let (cpu, shipped, rhs) = rust_loop(&scene, h, t_end);
+            runs.push(("as shipped".into(), h / cpu, err(&shipped), rhs));
+            for div in [1.0, 10.0, 100.0] {
+                let mut open = scene.clone();
+                open.solver.max_substep_s = 0.0;
+                open.solver.rtol = scene.solver.rtol / div;
+                open.solver.atol_m = scene.solver.atol_m / div;
+                let (cpu, s, rhs) = rust_loop(&open, h, t_end);
+                runs.push((
+                    format!("no cap, rtol {:.0e}", open.solver.rtol),
+                    h / cpu,
+                    err(&s),
+                    rhs,
+                ));
+            }
+            // Cheapest by right-hand sides per step (deterministic, unlike the timings).
+            let cheapest = runs
+                .iter()
+                .filter(|r| r.2 <= SCENE_FORCE_ERROR)
+                .min_by(|a, b| a.3.total_cmp(&b.3));
             let name = p.file_stem().unwrap().to_string_lossy().to_string();
             println!(
-                "scene {name}: {:.1}x as shipped (error {e_shipped:.1e}), {:.1}x uncapped (error {e_open:.1e}), {:.1}x uncapped at rtol/100 (error {e_ot:.1e})",
-                h / cpu,
-                h / cpu_open,
-                h / cpu_ot
+                "scene {name}: {}; cheapest within {SCENE_FORCE_ERROR:.0e}: {}",
+                runs.iter()
+                    .map(|r| format!(
+                        "{} {:.1}x (error {:.1e}, {:.1} RHS/step)",
+                        r.0, r.1, r.2, r.3
+                    ))
+                    .collect::<Vec<_>>()
+                    .join(", "),
+                cheapest.map_or("none".into(), |r| r.0.clone())
             );
-            worst_scene = worst_scene.min(h / cpu);
-            worst_uncapped = worst_uncapped.min(h / cpu_open);
+            worst_scene = worst_scene.min(runs[0].1);
+            all_accurate &= runs[0].2 <= SCENE_FORCE_ERROR;
+            let cell = |r: &(String, f64, f64, f64)| format!("{:.1}× / {:.1e}", r.1, r.2);
             let _ = writeln!(
                 scenes_md,
-                "| {name} | {h:.0e} | {} | {:.1}× | {e_shipped:.1e} | {:.1}× | {e_open:.1e} | {:.1}× | {e_ot:.1e} |",
+                "| {name} | {h:.0e} | {} | {:.0e} | {:.1}× | {:.1} | {:.1e} | {} | {} | {} | {} |",
                 if scene.solver.max_substep_s > 0.0 {
                     format!("{:.0e}", scene.solver.max_substep_s)
                 } else {
                     "none".into()
                 },
-                h / cpu,
-                h / cpu_open,
-                h / cpu_ot
+                scene.solver.rtol,
+                runs[0].1,
+                runs[0].3,
+                runs[0].2,
+                cell(&runs[1]),
+                cell(&runs[2]),
+                cell(&runs[3]),
+                cheapest.map_or("none".into(), |r| r.0.clone()),
             );
         }
         goals.push(Goal {
             case: "every shipped ring scene (load-driven, spall, EHL film)".into(),
             goal: "≥ 10×".into(),
             measured: format!(
-                "slowest {:.1}× as shipped, {:.1}× without the sub-step cap",
-                worst_scene, worst_uncapped
+                "slowest {worst_scene:.1}× as shipped; every scene within its force error {SCENE_FORCE_ERROR:.0e}: {}",
+                if all_accurate { "yes" } else { "no" }
             ),
-            met: Some(worst_scene >= 10.0),
-            note: "per scene, with force errors, below".into(),
+            met: Some(worst_scene >= 10.0 && all_accurate),
+            note: "per scene, with force errors and the settings around it, below".into(),
         });
     }
 
@@ -757,11 +789,15 @@ fn main() {
              off-centre with a 1 µm synchronous orbit), called from Rust. Real-time factor: \
              simulated time over CPU time.\n\n## Shipped ring scenes\n\nEach scene with its own \
              communication step and tolerances, load-driven through the Rust API (loads held, \
-             8 outputs read per step), as shipped and with its `max_substep_s` removed, from the scene's \
+             8 outputs read per step), as shipped and without its sub-step cap, from the scene's \
              start (the ring released under load: contact onsets and impacts are in the \
              window). Force error: relative L2 of (Fx, Fy, Fz) over the communication points \
              against the same scene at rtol 1e-9, atol 1e-13 m and a 1 µs sub-step cap. \
-             The last two columns: no cap but rtol and atol 100× tighter than the scene's.\n\n";
+             Each scene's documented accuracy is a force error of at most 1e-4 (the bar the \
+             skidding and full rows of #17 set; it is also stated in the scene files). The \
+             uncapped columns: no sub-step cap, rtol and atol 1, 10 and 100× tighter than \
+             the scene's; the last column names the cheapest of the four settings within \
+             the documented accuracy.\n\n";
     page += &scenes_md;
     page +=
         "\n## Cost against ball count and step\n\nRing level, 2 DOF, motion-driven, C ABI loop \
