@@ -427,6 +427,30 @@ pub struct RingEffects {
     pub spin_ratio: f64,
     /// Whether some effect turns with the shaft or the balls (needs the shaft angle).
     pub needs_shaft_angle: bool,
+    /// `(sin, cos)` of `k a_j` for every race harmonic (row) and ball `j` (column), with
+    /// `a_j = 2 pi j / Z + spacing_j` the ball's place relative to the cage angle: with
+    /// them a race harmonic at ball `j` costs two products, not a `sin` (see
+    /// [`RingEffects::at`]). Empty when there are more than [`FAST_HARMONICS`] harmonics.
+    ball_phase: Vec<(f64, f64)>,
+    /// Balls.
+    z: usize,
+}
+
+/// Most waviness harmonics [`RingEffects::at`] prepares on the stack; a scene with more
+/// evaluates each harmonic's `sin` per ball.
+pub const FAST_HARMONICS: usize = 8;
+
+/// The profile of [`RingEffects`] at one cage and shaft angle: each harmonic's phase at
+/// the cage angle, computed once per evaluation instead of once per ball.
+#[derive(Debug, Clone, Copy)]
+pub struct ProfileAt<'a> {
+    fx: &'a RingEffects,
+    theta_s: f64,
+    phi: f64,
+    /// Race harmonic `i`: `(sin, cos)` of `k theta_ref + beta` (`theta_ref` the cage angle
+    /// for the outer race, the cage angle less the shaft angle for the inner); ball
+    /// harmonic `i`: `(w(phi) + w(phi + pi), 0)`, the same for every ball it is on.
+    phase: [(f64, f64); FAST_HARMONICS],
 }
 
 impl RingEffects {
@@ -483,6 +507,21 @@ impl RingEffects {
         };
         let needs_shaft_angle = defects.iter().any(|d| d.site != DefectSite::Outer)
             || waviness.iter().any(|w| w.site != WavySite::Outer);
+        let ball_phase = if waviness.len() <= FAST_HARMONICS {
+            let pitch = 2.0 * std::f64::consts::PI / b.z as f64;
+            waviness
+                .iter()
+                .flat_map(|w| {
+                    let spacing = &spacing;
+                    (0..b.z).map(move |j| {
+                        let a = pitch * j as f64 + spacing.get(j).copied().unwrap_or(0.0);
+                        (w.order as f64 * a).sin_cos()
+                    })
+                })
+                .collect()
+        } else {
+            Vec::new()
+        };
         Ok(RingEffects {
             defects,
             waviness,
@@ -490,7 +529,36 @@ impl RingEffects {
             lubricant,
             spin_ratio: kinematics(b, 1.0).ball_spin_speed,
             needs_shaft_angle,
+            ball_phase,
+            z: b.z,
         })
+    }
+
+    /// The profile at cage angle `theta_c` and shaft angle `theta_s` (rad), for the balls
+    /// at `psi_j = theta_c + 2 pi j / Z + spacing_j` (the ring model's azimuths). Race
+    /// harmonic `A sin(k psi_j + beta) = A (sin(k theta_c + beta) cos(k a_j) + cos(k theta_c
+    /// + beta) sin(k a_j))`: one `sin_cos` per harmonic and evaluation; the same value as
+    /// [`RingEffects::offset`] to rounding (test `prepared_profile_matches_offset`).
+    pub fn at(&self, theta_c: f64, theta_s: f64) -> ProfileAt<'_> {
+        let phi = self.spin_ratio * theta_s;
+        let mut phase = [(0.0, 0.0); FAST_HARMONICS];
+        if !self.ball_phase.is_empty() {
+            for (p, w) in phase.iter_mut().zip(&self.waviness) {
+                let k = w.order as f64;
+                *p = match w.site {
+                    WavySite::Outer => (k * theta_c + w.phase).sin_cos(),
+                    WavySite::Inner => (k * (theta_c - theta_s) + w.phase).sin_cos(),
+                    // The ball it is on (every ball: any index) sees the same value.
+                    WavySite::Ball(b) => (w.interference(b.unwrap_or(0), 0.0, 0.0, phi), 0.0),
+                };
+            }
+        }
+        ProfileAt {
+            fx: self,
+            theta_s,
+            phi,
+            phase,
+        }
     }
 
     /// Whether a deflection profile is needed (defects or waviness).
@@ -500,6 +568,7 @@ impl RingEffects {
 
     /// Deflection offset of ball `j` at azimuth `psi` with the shaft turned by `theta_s`:
     /// waviness interference minus defect depth loss (physics.md §5.1: `- H_j + w_j`), m.
+    /// Each harmonic's `sin` evaluated afresh: the reference for [`RingEffects::at`].
     #[inline]
     pub fn offset(&self, j: usize, psi: f64, theta_s: f64) -> f64 {
         let phi = self.spin_ratio * theta_s;
@@ -511,5 +580,79 @@ impl RingEffects {
             o -= d.loss(j, psi, theta_s, phi);
         }
         o
+    }
+}
+
+impl ProfileAt<'_> {
+    /// [`RingEffects::offset`] of ball `j` at its azimuth `psi` (that of
+    /// [`RingEffects::at`]'s cage angle), m.
+    #[inline]
+    pub fn offset(&self, j: usize, psi: f64) -> f64 {
+        let fx = self.fx;
+        if fx.ball_phase.is_empty() {
+            return fx.offset(j, psi, self.theta_s);
+        }
+        let mut o = 0.0;
+        for (i, (w, &(s, c))) in fx.waviness.iter().zip(&self.phase).enumerate() {
+            o += match w.site {
+                WavySite::Outer | WavySite::Inner => {
+                    let (sj, cj) = fx.ball_phase[i * fx.z + j];
+                    w.amplitude * (s * cj + c * sj)
+                }
+                WavySite::Ball(b) => {
+                    if b.is_some_and(|b| b != j) {
+                        0.0
+                    } else {
+                        s
+                    }
+                }
+            };
+        }
+        for d in &fx.defects {
+            o -= d.loss(j, psi, self.theta_s, self.phi);
+        }
+        o
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::component::Scene;
+
+    /// The prepared profile (one `sin_cos` per harmonic) gives the per-ball reference
+    /// `offset` to rounding, for race and ball harmonics, scattered balls and a defect, at
+    /// small and large cage angles.
+    #[test]
+    fn prepared_profile_matches_offset() {
+        let text = r#"
+bearing = "7008ce"
+[model]
+level = "ring"
+[effects]
+waviness = [
+  { race = "outer", order = 16, amplitude_um = 0.3, phase_deg = 10.0 },
+  { race = "inner", order = 15, amplitude_um = 0.2, phase_deg = 30.0 },
+  { race = "ball", order = 4, amplitude_um = 0.1, phase_deg = 60.0, ball = 3 },
+  { race = "ball", order = 6, amplitude_um = 0.05 },
+]
+defects = [{ race = "outer", angle_deg = 200.0, width_mm = 1.0, depth_um = 5.0 }]
+ball_spacing = { scatter = 0.5, seed = 7 }
+"#;
+        let scene = Scene::from_text(text).unwrap();
+        let b = scene.build_bearing().unwrap();
+        let fx = super::RingEffects::new(&scene.effects, &b).unwrap();
+        assert_eq!(fx.spacing.len(), b.z);
+        let a_sum = 0.65e-6;
+        let pitch = 2.0 * std::f64::consts::PI / b.z as f64;
+        for (theta_c, theta_s) in [(0.0, 0.0), (0.3, 1.1), (3.9, -2.0), (1.2e4, 2.9e4)] {
+            let at = fx.at(theta_c, theta_s);
+            for j in 0..b.z {
+                let psi = theta_c + pitch * j as f64 + fx.spacing[j];
+                let want = fx.offset(j, psi, theta_s);
+                let got = at.offset(j, psi);
+                let tol = 1e-14 * a_sum * (1.0 + theta_c.abs() + theta_s.abs());
+                assert!((got - want).abs() <= tol, "{theta_c} {j}: {got} vs {want}");
+            }
+        }
     }
 }

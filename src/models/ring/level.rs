@@ -399,12 +399,14 @@ fn eval_ring<F: FnMut(usize, f64, f64)>(
     match (profile, slow) {
         (None, None) => model.eval_with(x[0], wc, &m.q, &m.v, t, None, jac, eval, per_ball),
         (Some(fx), None) => {
-            let p = |j: usize, psi: f64, _t: f64| fx.offset(j, psi, theta_s);
+            let at = fx.at(x[0], theta_s);
+            let p = |j: usize, psi: f64, _t: f64| at.offset(j, psi);
             model.eval_with(x[0], wc, &m.q, &m.v, t, Some(&p), jac, eval, per_ball)
         }
         (fx, Some(slow)) => {
+            let at = fx.map(|fx| fx.at(x[0], theta_s));
             let p = |j: usize, psi: f64, _t: f64| {
-                fx.map_or(0.0, |fx| fx.offset(j, psi, theta_s)) + slow.offset(aux, psi, turned)
+                at.as_ref().map_or(0.0, |at| at.offset(j, psi)) + slow.offset(aux, psi, turned)
             };
             model.eval_with(x[0], wc, &m.q, &m.v, t, Some(&p), jac, eval, per_ball)
         }
