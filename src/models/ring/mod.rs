@@ -86,6 +86,11 @@ pub struct RingModel {
     outer: PointContact,
     /// Ball azimuth offsets (empty: evenly spaced).
     spacing: Vec<f64>,
+    /// `(sin, cos)` of each ball's place relative to the cage, `2 pi j / Z + spacing_j`
+    /// (with offsets): ball `j`'s azimuth is the cage angle rotated by it.
+    spacing_sc: Vec<(f64, f64)>,
+    /// Each ball's own `sin_cos` of its azimuth instead (the tests' reference).
+    direct_angles: bool,
     /// EHL film law (None: dry contact).
     film: Option<FilmModel>,
     /// `omega / omega_c` (kinematic), to get the shaft speed back from the cage speed.
@@ -115,6 +120,8 @@ impl RingModel {
             inner,
             outer,
             spacing: Vec::new(),
+            spacing_sc: Vec::new(),
+            direct_angles: false,
             film: None,
             pitch_sc: (2.0 * PI / b.z as f64).sin_cos(),
             shaft_per_cage: 1.0
@@ -129,7 +136,21 @@ impl RingModel {
     /// Move ball `j` by `offsets[j]` rad from its even spacing (one per ball; empty: none).
     pub fn with_spacing(mut self, offsets: Vec<f64>) -> Self {
         assert!(offsets.is_empty() || offsets.len() == self.z);
+        let dpsi = 2.0 * PI / self.z as f64;
+        self.spacing_sc = offsets
+            .iter()
+            .enumerate()
+            .map(|(j, o)| (dpsi * j as f64 + o).sin_cos())
+            .collect();
         self.spacing = offsets;
+        self
+    }
+
+    /// Every ball's azimuth by its own `sin_cos` (the reference the rotations are tested
+    /// against).
+    #[cfg(test)]
+    fn with_direct_angles(mut self) -> Self {
+        self.direct_angles = true;
         self
     }
 
@@ -201,17 +222,22 @@ impl RingModel {
         let even = self.spacing.is_empty();
         // Evenly spaced: ball j+1 is ball j rotated by the pitch (the rounding this adds
         // over Z rotations, ~Z ulp, is below that of `theta_c + dpsi j` at large angles).
+        // With offsets: the cage angle rotated by the ball's precomputed place.
         let (sp, cp) = self.pitch_sc;
-        let mut next = if even { theta_c.sin_cos() } else { (0.0, 1.0) };
+        let mut next = theta_c.sin_cos();
+        let cage = next;
         for j in 0..self.z {
             let psi = theta_c + dpsi * j as f64;
-            let (psi, (s, c)) = if even {
+            let psi = if even { psi } else { psi + self.spacing[j] };
+            let (s, c) = if self.direct_angles {
+                psi.sin_cos()
+            } else if even {
                 let (s, c) = next;
                 next = (s * cp + c * sp, c * cp - s * sp);
-                (psi, (s, c))
+                (s, c)
             } else {
-                let psi = psi + self.spacing[j];
-                (psi, psi.sin_cos())
+                let ((st, ct), (sj, cj)) = (cage, self.spacing_sc[j]);
+                (st * cj + ct * sj, ct * cj - st * sj)
             };
             // g: gradient of delta w.r.t. q; rate: d(delta)/dt; plus what the Hessian needs.
             let (delta, g, rate, n, l, jm) = match self.dof {
@@ -352,17 +378,32 @@ mod tests {
         assert_eq!(out.loaded, 5); // balls at 0, ±40°, ±80°
     }
 
-    /// Evenly spaced balls reached by rotating the first (one `sin_cos` an evaluation)
-    /// give the forces and stiffness of each ball's own `sin_cos` (zero spacing offsets
-    /// take that path) to 1e-12 relative, also at a cage angle of 10^4 rad.
+    /// Evenly spaced balls reached by rotating the first (one `sin_cos` an evaluation),
+    /// and scattered balls reached by rotating the cage angle by their precomputed places,
+    /// give the forces and stiffness of each ball's own `sin_cos` to 1e-12 relative, also
+    /// at a cage angle of 10^4 rad.
     #[test]
     fn rotated_ball_positions_match_direct_angles() {
         let b = preset("7008ce").unwrap().build().unwrap();
-        let even = RingModel::new(&b, RingDof::Five, 0.0);
-        let direct = RingModel::new(&b, RingDof::Five, 0.0).with_spacing(vec![0.0; b.z]);
+        let offsets: Vec<f64> = (0..b.z).map(|j| 1e-3 * (j as f64 - 7.3)).collect();
+        let pairs = [
+            (
+                RingModel::new(&b, RingDof::Five, 0.0),
+                RingModel::new(&b, RingDof::Five, 0.0).with_direct_angles(),
+            ),
+            (
+                RingModel::new(&b, RingDof::Five, 0.0).with_spacing(offsets.clone()),
+                RingModel::new(&b, RingDof::Five, 0.0)
+                    .with_spacing(offsets)
+                    .with_direct_angles(),
+            ),
+        ];
         let q = [3e-6, -12e-6, 15e-6, 1e-4, -2e-4];
-        for theta in [0.0, 0.37, 1e4 + 0.1] {
-            let (a, d) = (eval(&even, q, theta), eval(&direct, q, theta));
+        for ((even, direct), theta) in pairs
+            .iter()
+            .flat_map(|p| [0.0, 0.37, 1e4 + 0.1].map(|t| (p, t)))
+        {
+            let (a, d) = (eval(even, q, theta), eval(direct, q, theta));
             let scale = d.wrench.iter().fold(0.0f64, |m, w| m.max(w.abs()));
             for k in 0..5 {
                 assert!(
