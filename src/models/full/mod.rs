@@ -473,6 +473,45 @@ pub struct FullModel {
     pub balls: Vec<BallInfo>,
     /// Per-ball race parts kept by an evaluation with [`Races::Keep`].
     races: Vec<BallRace>,
+    /// The last evaluation through [`Self::eval`] or [`Self::eval_keep`].
+    memo: Memo,
+}
+
+/// What the last evaluation through [`FullModel::eval`] or [`FullModel::eval_keep`]
+/// started from and gave. Another one at the same motion and states, with `aux` as that
+/// one found it or as it left it, gives the same numbers bit for bit (it computes from the
+/// same inputs, or its position solves start at their own answers, which they return
+/// with the contacts there: the property the Jacobian's kept evaluation relies on), so it
+/// takes them instead. The integrator asks for such repeats twice per step: its
+/// forward-difference time derivative re-evaluates the first stage at a time the motion
+/// does not depend on, and the outputs evaluate the end of a step, where the next step's
+/// first stage starts from the same warm starts.
+#[derive(Debug, Clone, Default)]
+struct Memo {
+    valid: bool,
+    /// Motion `(q, v, omega)`.
+    motion: [f64; 11],
+    x: Vec<f64>,
+    aux_in: Vec<f64>,
+    aux_out: Vec<f64>,
+    dx: Vec<f64>,
+    tot: Totals,
+    races: Vec<BallRace>,
+    balls: Vec<BallInfo>,
+}
+
+/// `a` and `b` hold the same numbers bit for bit.
+fn same_bits(a: &[f64], b: &[f64]) -> bool {
+    a.len() == b.len() && a.iter().zip(b).all(|(a, b)| a.to_bits() == b.to_bits())
+}
+
+/// The motion `(q, v, omega)` as one array.
+fn motion_of(q: &[f64; 5], v: &[f64; 5], omega: f64) -> [f64; 11] {
+    let mut m = [0.0; 11];
+    m[..5].copy_from_slice(q);
+    m[5..10].copy_from_slice(v);
+    m[10] = omega;
+    m
 }
 
 /// Relative tolerance of the quasi-static ball position solve.
@@ -522,6 +561,10 @@ impl FullModel {
                 BallContacts::Dynamic => 9,
             },
         );
+        let n_aux = match p.ball_contacts {
+            BallContacts::QuasiStatic => 3 * b.z,
+            BallContacts::Dynamic => 0,
+        };
         let pocket = PocketLaw {
             ball_radius: 0.5 * b.d,
             pocket_radius: 0.5 * (b.d + p.pocket_clearance),
@@ -577,6 +620,15 @@ impl FullModel {
             nb,
             balls: vec![BallInfo::default(); b.z],
             races: vec![BallRace::default(); b.z],
+            memo: Memo {
+                x: vec![0.0; nc + nb * b.z],
+                aux_in: vec![0.0; n_aux],
+                aux_out: vec![0.0; n_aux],
+                dx: vec![0.0; nc + nb * b.z],
+                races: vec![BallRace::default(); b.z],
+                balls: vec![BallInfo::default(); b.z],
+                ..Memo::default()
+            },
             p,
         })
     }
@@ -1173,7 +1225,7 @@ impl FullModel {
                     vp[c - 5] += h;
                 }
                 auxs.copy_from_slice(aux);
-                let t = self.eval(&qp, &vp, omega, x, auxs, col)?;
+                let t = self.eval_with(&qp, &vp, omega, x, auxs, col, Races::Compute)?;
                 for r in 0..n {
                     jm[r * 10 + c] = (col[r] - d0[r]) / h;
                 }
@@ -1294,7 +1346,7 @@ impl FullModel {
         aux: &mut [f64],
         dx: &mut [f64],
     ) -> Result<Totals> {
-        self.eval_with(q, v, omega, x, aux, dx, Races::Compute)
+        self.eval_memo(q, v, omega, x, aux, dx, false)
     }
 
     /// [`Self::eval`], the balls' race parts kept for [`Self::jacobian_from`].
@@ -1308,7 +1360,59 @@ impl FullModel {
         aux: &mut [f64],
         dx: &mut [f64],
     ) -> Result<Totals> {
-        self.eval_with(q, v, omega, x, aux, dx, Races::Keep)
+        self.eval_memo(q, v, omega, x, aux, dx, true)
+    }
+
+    /// [`Self::eval`] (`keep`: [`Self::eval_keep`]), the numbers of the last one taken
+    /// when it was at the same point ([`Memo`]).
+    #[allow(clippy::too_many_arguments)]
+    fn eval_memo(
+        &mut self,
+        q: &[f64; 5],
+        v: &[f64; 5],
+        omega: f64,
+        x: &[f64],
+        aux: &mut [f64],
+        dx: &mut [f64],
+        keep: bool,
+    ) -> Result<Totals> {
+        let motion = motion_of(q, v, omega);
+        let m = &self.memo;
+        if m.valid
+            && same_bits(&m.motion, &motion)
+            && same_bits(&m.x, x)
+            && (same_bits(&m.aux_in, aux) || same_bits(&m.aux_out, aux))
+        {
+            aux.copy_from_slice(&m.aux_out);
+            dx.copy_from_slice(&m.dx);
+            self.balls.copy_from_slice(&m.balls);
+            if keep {
+                self.races.copy_from_slice(&m.races);
+            }
+            return Ok(m.tot);
+        }
+        self.memo.valid = false;
+        self.memo.aux_in.copy_from_slice(aux);
+        let tot = if keep {
+            let tot = self.eval_with(q, v, omega, x, aux, dx, Races::Keep)?;
+            self.memo.races.copy_from_slice(&self.races);
+            tot
+        } else {
+            // The race parts into the memo's, the kept ones left as they are.
+            std::mem::swap(&mut self.races, &mut self.memo.races);
+            let tot = self.eval_with(q, v, omega, x, aux, dx, Races::Keep);
+            std::mem::swap(&mut self.races, &mut self.memo.races);
+            tot?
+        };
+        let m = &mut self.memo;
+        m.motion = motion;
+        m.x.copy_from_slice(x);
+        m.aux_out.copy_from_slice(aux);
+        m.dx.copy_from_slice(dx);
+        m.tot = tot;
+        m.balls.copy_from_slice(&self.balls);
+        m.valid = true;
+        Ok(tot)
     }
 
     /// [`Self::eval`], the balls' race parts computed, kept or taken from the kept ones.
@@ -1569,6 +1673,71 @@ mod tests {
             let mut c = aux.clone();
             let w = m.eval(&qp, &vb, omega, &x, &mut c, &mut dx).unwrap().wrench;
             assert_eq!(m.wrench_at(&qp, &vb, omega, &x, &mut a, false).unwrap(), w);
+        }
+    }
+
+    /// An evaluation repeated at the same motion and states, from the warm starts the
+    /// last one found or left ([`Memo`]), gives what a model without that memo computes:
+    /// rates, totals, warm starts, per-ball results and the race parts the Jacobian keeps,
+    /// bit for bit; a changed state, motion or warm start is evaluated anew.
+    #[test]
+    fn a_repeated_evaluation_is_a_fresh_one() {
+        let (m0, q, omega, x, aux) = started_7004();
+        let n = x.len();
+        let v = [0.0; 5];
+        let bits = |a: &[f64]| a.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+        // A first evaluation (the memo's), then repeats from the warm starts it found and
+        // from those it left, against a fresh model's.
+        let mut m = m0.clone();
+        let mut a1 = aux.clone();
+        let mut d1 = vec![0.0; n];
+        m.eval(&q, &v, omega, &x, &mut a1, &mut d1).unwrap();
+        for start in [aux.clone(), a1.clone()] {
+            for keep in [false, true] {
+                let mut fresh = m0.clone();
+                let (mut af, mut df) = (start.clone(), vec![0.0; n]);
+                let tf = fresh
+                    .eval_memo(&q, &v, omega, &x, &mut af, &mut df, keep)
+                    .unwrap();
+                let (mut am, mut dm) = (start.clone(), vec![0.0; n]);
+                let tm = m
+                    .eval_memo(&q, &v, omega, &x, &mut am, &mut dm, keep)
+                    .unwrap();
+                assert_eq!(format!("{tf:?}"), format!("{tm:?}"));
+                assert_eq!(bits(&df), bits(&dm));
+                assert_eq!(bits(&af), bits(&am));
+                assert_eq!(fresh.balls, m.balls);
+                if keep {
+                    assert_eq!(format!("{:?}", fresh.races), format!("{:?}", m.races));
+                }
+            }
+        }
+        assert!(m.memo.valid);
+        // Anything else moved: a new evaluation, not the memo's numbers.
+        let mut xp = x.clone();
+        xp[11] *= 1.001;
+        let mut q2 = q;
+        q2[1] += 1e-7;
+        let mut a2 = a1.clone();
+        a2[0] += 1e-9;
+        for (qq, xx, aa, moved) in [
+            (q, &xp, &a1, true),
+            (q2, &x, &a1, true),
+            (q, &x, &a2, false),
+        ] {
+            let (mut af, mut df) = (aa.clone(), vec![0.0; n]);
+            let tf = m0
+                .clone()
+                .eval(&qq, &v, omega, xx, &mut af, &mut df)
+                .unwrap();
+            let mut mm = m.clone();
+            let (mut am, mut dm) = (aa.clone(), vec![0.0; n]);
+            let tm = mm.eval(&qq, &v, omega, xx, &mut am, &mut dm).unwrap();
+            assert_eq!(format!("{tf:?}"), format!("{tm:?}"));
+            assert_eq!(bits(&df), bits(&dm));
+            if moved {
+                assert_ne!(bits(&dm), bits(&d1));
+            }
         }
     }
 
