@@ -471,8 +471,14 @@ pub struct FullModel {
     nb: usize,
     /// Per-ball results of the last evaluation.
     pub balls: Vec<BallInfo>,
-    /// Per-ball race parts kept by an evaluation with [`Races::Keep`].
+    /// Per-ball race parts kept by an evaluation with [`Races::Keep`], and the ball
+    /// terms it computed from them (the Jacobian's ball columns difference against them).
     races: Vec<BallRace>,
+    terms: Vec<BallTerms>,
+    /// `sin`, `cos` of each pocket's angle at the cage angle `pocket_theta` (bits; the
+    /// Jacobian's columns but one keep the cage angle).
+    pocket_sc: Vec<[f64; 2]>,
+    pocket_theta: Option<u64>,
     /// The last evaluation through [`Self::eval`] or [`Self::eval_keep`].
     memo: Memo,
 }
@@ -497,6 +503,7 @@ struct Memo {
     dx: Vec<f64>,
     tot: Totals,
     races: Vec<BallRace>,
+    terms: Vec<BallTerms>,
     balls: Vec<BallInfo>,
 }
 
@@ -620,12 +627,16 @@ impl FullModel {
             nb,
             balls: vec![BallInfo::default(); b.z],
             races: vec![BallRace::default(); b.z],
+            terms: vec![BallTerms::default(); b.z],
+            pocket_sc: vec![[0.0; 2]; b.z],
+            pocket_theta: None,
             memo: Memo {
                 x: vec![0.0; nc + nb * b.z],
                 aux_in: vec![0.0; n_aux],
                 aux_out: vec![0.0; n_aux],
                 dx: vec![0.0; nc + nb * b.z],
                 races: vec![BallRace::default(); b.z],
+                terms: vec![BallTerms::default(); b.z],
                 balls: vec![BallInfo::default(); b.z],
                 ..Memo::default()
             },
@@ -945,17 +956,31 @@ impl FullModel {
         }
     }
 
+    /// `sin`, `cos` of each pocket's angle at the cage angle `theta` into `pocket_sc`
+    /// (computed again only when the angle changed).
+    fn pocket_trig(&mut self, theta: f64) {
+        if self.pocket_theta == Some(theta.to_bits()) {
+            return;
+        }
+        for (j, sc) in self.pocket_sc.iter_mut().enumerate() {
+            let th = theta + 2.0 * PI * j as f64 / self.z as f64;
+            let (s, c) = th.sin_cos();
+            *sc = [s, c];
+        }
+        self.pocket_theta = Some(theta.to_bits());
+    }
+
     /// Ball `j`'s terms from its race part `r` and the cage: pocket forces (equal and
-    /// opposite on the cage) and the ball's accelerations.
-    fn ball_cage(&self, j: usize, ck: &CageKin, r: &BallRace) -> BallTerms {
+    /// opposite on the cage) and the ball's accelerations. `sc`: `sin`, `cos` of the
+    /// pocket's angle ([`Self::pocket_trig`]).
+    fn ball_cage(&self, ck: &CageKin, sc: [f64; 2], r: &BallRace) -> BallTerms {
         let hd = 0.5 * self.d;
         let ez = EZ;
         let (er, et) = (r.fr.er(), r.fr.et());
         let (bk, rb, vb, w) = (&r.bk, r.fr.rb, r.fr.vb, r.bk.w);
         let (mut f, mut mom) = (r.f, r.mom);
         // Pocket.
-        let th = ck.theta + 2.0 * PI * j as f64 / self.z as f64;
-        let (sp, cp) = th.sin_cos();
+        let [sp, cp] = sc;
         let rp = 0.5 * self.dm;
         let etp = [-sp, cp, 0.0];
         let pc = ck.point_sc(sp, cp, rp);
@@ -1147,7 +1172,8 @@ impl FullModel {
     /// (`n × n`), and when load-driven (non-empty slices) `jm = d(rates)/d(q, v)`
     /// (`n × 10`), `wx = d(wrench)/d(states)` (`5 × n`), `wm = d(wrench)/d(q, v)`
     /// (`5 × 10`). A ball's column costs one ball evaluation (its rates, its share of the
-    /// cage's and of the wrench; a spin column keeps the ball's position), a cage column
+    /// cage's and of the wrench, differenced against the ball's terms kept from the
+    /// evaluation at `x`; a spin column keeps the ball's position), a cage column
     /// the pockets of every ball on the race parts kept from the evaluation at `x` (the
     /// cage reaches a ball only through its pocket), a ring column one right-hand side.
     /// The cage columns equal whole-evaluation differences bit for bit. `scratch` holds
@@ -1252,13 +1278,15 @@ impl FullModel {
             xs[c] = x[c];
         }
         // Ball columns: ball j's rates and the cage's.
+        // The base: the terms of the evaluation at `x`, kept with its race parts.
         let ck = self.cage_kin(x);
+        self.pocket_trig(ck.theta);
         let nb = self.nb;
         let qs = self.p.ball_contacts == BallContacts::QuasiStatic;
         for j in 0..self.z {
             let k = self.nc + nb * j;
-            let kept = self.races[j];
-            let base = self.ball_cage(j, &ck, &kept);
+            let xrel = self.races[j].xrel;
+            let base = self.terms[j];
             let mut r0 = [0.0; 9];
             self.ball_rates(&base, &x[k..k + nb], &mut r0[..nb]);
             for c in 0..nb {
@@ -1268,13 +1296,13 @@ impl FullModel {
                 xb[c] += h;
                 if qs {
                     // Warm start: the position at `x`.
-                    auxs[3 * j..3 * j + 3].copy_from_slice(&[kept.xrel[0], kept.xrel[1], 1.0]);
+                    auxs[3 * j..3 * j + 3].copy_from_slice(&[xrel[0], xrel[1], 1.0]);
                 }
                 // The quasi-static position depends on the orbital angle and speed
                 // (states 0 and 1), not on the spin: the spin columns keep it.
                 let solve = !(qs && c >= 2);
                 let race = self.ball_race_at(j, q, v, omega, &xb[..nb], auxs, solve)?;
-                let bt = self.ball_cage(j, &ck, &race);
+                let bt = self.ball_cage(&ck, self.pocket_sc[j], &race);
                 let mut r1 = [0.0; 9];
                 self.ball_rates(&bt, &xb[..nb], &mut r1[..nb]);
                 for r in 0..nb {
@@ -1388,6 +1416,7 @@ impl FullModel {
             self.balls.copy_from_slice(&m.balls);
             if keep {
                 self.races.copy_from_slice(&m.races);
+                self.terms.copy_from_slice(&m.terms);
             }
             return Ok(m.tot);
         }
@@ -1396,12 +1425,15 @@ impl FullModel {
         let tot = if keep {
             let tot = self.eval_with(q, v, omega, x, aux, dx, Races::Keep)?;
             self.memo.races.copy_from_slice(&self.races);
+            self.memo.terms.copy_from_slice(&self.terms);
             tot
         } else {
-            // The race parts into the memo's, the kept ones left as they are.
+            // The race parts and terms into the memo's, the kept ones left as they are.
             std::mem::swap(&mut self.races, &mut self.memo.races);
+            std::mem::swap(&mut self.terms, &mut self.memo.terms);
             let tot = self.eval_with(q, v, omega, x, aux, dx, Races::Keep);
             std::mem::swap(&mut self.races, &mut self.memo.races);
+            std::mem::swap(&mut self.terms, &mut self.memo.terms);
             tot?
         };
         let m = &mut self.memo;
@@ -1429,20 +1461,27 @@ impl FullModel {
     ) -> Result<Totals> {
         let (l, t0) = (self.l, self.t0);
         let ck = self.cage_kin(x);
+        self.pocket_trig(ck.theta);
         let mut tot = Totals::default();
         let mut cf = [0.0; 3];
         let mut cm = [0.0; 3];
         for j in 0..self.z {
             let k = self.nc + self.nb * j;
             let xb = &x[k..k + self.nb];
-            let r = match races {
-                Races::Kept => self.races[j],
-                _ => self.ball_race_at(j, q, v, omega, xb, aux, true)?,
+            let sc = self.pocket_sc[j];
+            let bt = match races {
+                Races::Kept => self.ball_cage(&ck, sc, &self.races[j]),
+                Races::Compute => {
+                    let r = self.ball_race_at(j, q, v, omega, xb, aux, true)?;
+                    self.ball_cage(&ck, sc, &r)
+                }
+                Races::Keep => {
+                    self.races[j] = self.ball_race_at(j, q, v, omega, xb, aux, true)?;
+                    let bt = self.ball_cage(&ck, sc, &self.races[j]);
+                    self.terms[j] = bt;
+                    bt
+                }
             };
-            if races == Races::Keep {
-                self.races[j] = r;
-            }
-            let bt = self.ball_cage(j, &ck, &r);
             self.ball_rates(&bt, xb, &mut dx[k..k + self.nb]);
             cf = add(cf, bt.cage_f);
             cm = add(cm, bt.cage_m);
@@ -1709,6 +1748,7 @@ mod tests {
                 assert_eq!(fresh.balls, m.balls);
                 if keep {
                     assert_eq!(format!("{:?}", fresh.races), format!("{:?}", m.races));
+                    assert_eq!(format!("{:?}", fresh.terms), format!("{:?}", m.terms));
                 }
             }
         }
