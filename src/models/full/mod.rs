@@ -391,9 +391,22 @@ impl BallFrame {
     }
 }
 
+/// What is known of a ball's race contacts where its race part is evaluated.
+#[derive(Debug, Clone, Copy)]
+enum Known<'a> {
+    /// Nothing: evaluated at the position.
+    Nothing,
+    /// The contacts from the position solve.
+    Solved([ball::Contact; 2]),
+    /// A race part kept at the same position, orbital angle and speed and groove offset:
+    /// its frame, contacts and contact states (all the same numbers, bit for bit).
+    Kept(&'a BallRace),
+}
+
 /// The inner race contact of a ball ([`FullModel::inner_contact`]).
 #[derive(Debug, Clone, Copy)]
 struct InnerContact {
+    ci: ball::Contact,
     qi: f64,
     ni2: [f64; 2],
     ni: V3,
@@ -425,6 +438,9 @@ struct BallRace {
     torque: f64,
     power: f64,
     info: BallInfo,
+    /// The inner and outer contacts and their contact states.
+    contacts: [ball::Contact; 2],
+    cs: [ContactState; 2],
 }
 
 /// Where an evaluation takes the balls' race parts from.
@@ -799,23 +815,31 @@ impl FullModel {
         bk: &BallKin,
         fr: &BallFrame,
         xrel: [f64; 2],
-        known: Option<ball::Contact>,
+        known: Known,
     ) -> InnerContact {
         let hd = 0.5 * self.d;
         let (s, c) = (fr.s, fr.c);
         let (er, et, ez) = (fr.er(), fr.et(), EZ);
-        let ci = known.unwrap_or_else(|| {
-            let a = self.groove_offset_sc(q, s, c);
-            ball::contact_full(
-                &self.pos.inner,
-                self.pos.ri_free,
-                [a[0] - xrel[0], a[1] - xrel[1]],
-            )
-        });
+        let (ci, csi) = match known {
+            Known::Kept(k) => (k.contacts[0], k.cs[0]),
+            _ => {
+                let ci = match known {
+                    Known::Solved(c) => c[0],
+                    _ => {
+                        let a = self.groove_offset_sc(q, s, c);
+                        ball::contact_full(
+                            &self.pos.inner,
+                            self.pos.ri_free,
+                            [a[0] - xrel[0], a[1] - xrel[1]],
+                        )
+                    }
+                };
+                (ci, Self::contact_state(&ci, &self.nominal.inner))
+            }
+        };
         let (qi, ni2) = (ci.q, ci.n);
         let ni = add(scale(ez, ni2[0]), scale(er, ni2[1]));
         let w = bk.w;
-        let csi = Self::contact_state(&ci, &self.nominal.inner);
         let wo = [0.0, 0.0, bk.w_orb];
         let ri_ = scale(ni, -hd);
         let rci = add(fr.rb, ri_);
@@ -847,6 +871,7 @@ impl FullModel {
         wrench[3] += ms[0];
         wrench[4] += ms[1];
         InnerContact {
+            ci,
             qi,
             ni2,
             ni,
@@ -872,22 +897,30 @@ impl FullModel {
         omega: f64,
         bk: &BallKin,
         xrel: [f64; 2],
-        known: Option<[ball::Contact; 2]>,
+        known: Known,
     ) -> BallRace {
         let hd = 0.5 * self.d;
-        let fr = BallFrame::new(bk);
+        let fr = match known {
+            Known::Kept(k) => k.fr,
+            _ => BallFrame::new(bk),
+        };
         let (er, et, ez) = (fr.er(), fr.et(), EZ);
-        let inn = self.inner_contact(q, v, omega, bk, &fr, xrel, known.map(|k| k[0]));
+        let inn = self.inner_contact(q, v, omega, bk, &fr, xrel, known);
         let (qi, ni2, ni) = (inn.qi, inn.ni2, inn.ni);
-        let co = known.map_or_else(
-            || ball::contact_full(&self.pos.outer, self.pos.ro_free, xrel),
-            |k| k[1],
-        );
+        let (co, cso) = match known {
+            Known::Kept(k) => (k.contacts[1], k.cs[1]),
+            _ => {
+                let co = match known {
+                    Known::Solved(c) => c[1],
+                    _ => ball::contact_full(&self.pos.outer, self.pos.ro_free, xrel),
+                };
+                (co, Self::contact_state(&co, &self.nominal.outer))
+            }
+        };
         let (qo, no2) = (co.q, co.n);
         let no = add(scale(ez, no2[0]), scale(er, no2[1]));
         let (rb, vb) = (fr.rb, fr.vb);
         let w = bk.w;
-        let cso = Self::contact_state(&co, &self.nominal.outer);
         let wo = [0.0, 0.0, bk.w_orb];
         // Outer contact.
         let ro_ = scale(no, hd);
@@ -953,6 +986,8 @@ impl FullModel {
                 pocket: 0.0,
                 p_max,
             },
+            contacts: [inn.ci, co],
+            cs: [inn.csi, cso],
         }
     }
 
@@ -1123,7 +1158,8 @@ impl FullModel {
         solve: bool,
     ) -> Result<BallRace> {
         let (bk, xrel, c) = self.ball_kin_at(j, q, xb, aux, solve)?;
-        Ok(self.ball_race(q, v, omega, &bk, xrel, c))
+        let known = c.map_or(Known::Nothing, Known::Solved);
+        Ok(self.ball_race(q, v, omega, &bk, xrel, known))
     }
 
     /// Ball rates (stored-state derivatives) from its terms.
@@ -1300,8 +1336,13 @@ impl FullModel {
                 }
                 // The quasi-static position depends on the orbital angle and speed
                 // (states 0 and 1), not on the spin: the spin columns keep it.
-                let solve = !(qs && c >= 2);
-                let race = self.ball_race_at(j, q, v, omega, &xb[..nb], auxs, solve)?;
+                // They keep its frame, contacts and contact states too.
+                let race = if qs && c >= 2 {
+                    let (bk, xrel, _) = self.ball_kin_at(j, q, &xb[..nb], auxs, false)?;
+                    self.ball_race(q, v, omega, &bk, xrel, Known::Kept(&self.races[j]))
+                } else {
+                    self.ball_race_at(j, q, v, omega, &xb[..nb], auxs, true)?
+                };
                 let bt = self.ball_cage(&ck, self.pocket_sc[j], &race);
                 let mut r1 = [0.0; 9];
                 self.ball_rates(&bt, &xb[..nb], &mut r1[..nb]);
@@ -1342,11 +1383,23 @@ impl FullModel {
         solve: bool,
     ) -> Result<[f64; 5]> {
         let mut w = [0.0; 5];
+        // Positions kept at the displacement and states of the last evaluation, from the
+        // warm starts it left: its frames, contacts and contact states are these.
+        let m = &self.memo;
+        let kept = (!solve || self.n_aux() == 0)
+            && m.valid
+            && same_bits(&m.motion[..5], q)
+            && same_bits(&m.x, x)
+            && same_bits(&m.aux_out, aux);
         for j in 0..self.z {
             let k = self.nc + self.nb * j;
             let (bk, xrel, c) = self.ball_kin_at(j, q, &x[k..k + self.nb], aux, solve)?;
-            let fr = BallFrame::new(&bk);
-            let inn = self.inner_contact(q, v, omega, &bk, &fr, xrel, c.map(|c| c[0]));
+            let (fr, known) = if kept {
+                (m.races[j].fr, Known::Kept(&m.races[j]))
+            } else {
+                (BallFrame::new(&bk), c.map_or(Known::Nothing, Known::Solved))
+            };
+            let inn = self.inner_contact(q, v, omega, &bk, &fr, xrel, known);
             for (a, b) in w.iter_mut().zip(inn.wrench) {
                 *a += b;
             }
@@ -1816,6 +1869,50 @@ mod tests {
                 assert_eq!(jx[r * n + c], (d1[r] - d0[r]) / h, "row {r} col {c}");
             }
         }
+    }
+
+    /// The Jacobian's ball columns (spin columns on the kept frame, contacts and contact
+    /// states) equal whole evaluations' forward differences bit for bit in the ball's own
+    /// rows, the positions solved from the warm starts the evaluation at `x` left.
+    #[test]
+    fn ball_columns_equal_whole_differences_in_their_rows() {
+        let (mut m, q, omega, x, aux) = started_7004();
+        let n = x.len();
+        let v = [0.0; 5];
+        let (mut a1, mut d0, mut d1) = (aux.clone(), vec![0.0; n], vec![0.0; n]);
+        m.eval(&q, &v, omega, &x, &mut a1, &mut d0).unwrap();
+        let mut jx = vec![0.0; n * n];
+        let mut scratch = vec![0.0; 3 * n + aux.len()];
+        m.jacobian(
+            &q,
+            &v,
+            omega,
+            &x,
+            &a1,
+            &mut jx,
+            &mut [],
+            &mut [],
+            &mut [],
+            &mut scratch,
+        )
+        .unwrap();
+        let (nc, nb) = (m.ball0(), m.per_ball());
+        let mut nonzero = 0;
+        for j in 0..m.z() {
+            for c in 0..nb {
+                let col = nc + nb * j + c;
+                let mut xp = x.clone();
+                let h = 1.5e-8 * x[col].abs().max(1.0);
+                xp[col] += h;
+                m.eval(&q, &v, omega, &xp, &mut a1.clone(), &mut d1)
+                    .unwrap();
+                for r in nc + nb * j..nc + nb * (j + 1) {
+                    assert_eq!(jx[r * n + col], (d1[r] - d0[r]) / h, "row {r} col {col}");
+                    nonzero += usize::from(jx[r * n + col] != 0.0);
+                }
+            }
+        }
+        assert!(nonzero > m.z() * m.per_ball(), "{nonzero}");
     }
 
     /// The velocities the contacts use are the time derivatives of the material points'
