@@ -119,7 +119,7 @@ use crate::error::{Error, Result};
 use crate::geometry::{Bearing, Guidance};
 use crate::lubrication::drag::{disk_moment, sphere_drag_force, sphere_spin_moment, Fluid};
 use crate::lubrication::guide_land::GuideLand;
-use crate::lubrication::pocket::{PocketLaw, PreparedPocket};
+use crate::lubrication::pocket::{PocketForce, PocketLaw, PreparedPocket};
 use crate::models::quasi_static::{BallResult, BallState, Options, QuasiStatic, RaceControl};
 use ball::{add, cross, dot, norm, scale, sub, tangential, PositionSolver, V3};
 use serde::{Deserialize, Serialize};
@@ -401,6 +401,18 @@ enum Known<'a> {
     /// A race part kept at the same position, orbital angle and speed and groove offset:
     /// its frame, contacts and contact states (all the same numbers, bit for bit).
     Kept(&'a BallRace),
+}
+
+/// One pocket wall of a ball ([`FullModel::ball_cage`]): its normal, the ball's contact
+/// arm and point, the sliding velocity and its speed, and the wall's law there.
+#[derive(Debug, Clone, Copy, Default)]
+struct Wall {
+    nw: V3,
+    arm: V3,
+    rc: V3,
+    slide: V3,
+    vs: f64,
+    pf: PocketForce,
 }
 
 /// The inner race contact of a ball ([`FullModel::inner_contact`]).
@@ -1029,14 +1041,15 @@ impl FullModel {
         let mut pocket_max: f64 = 0.0;
         let dirs: &[V3] = match self.p.cage {
             CageModel::Free => &[etp, ez],
-            CageModel::Ideal => &[etp, [0.0; 3]],
+            CageModel::Ideal => &[etp],
         };
+        // Both walls of each direction (films on both sides; contact on one at most):
+        // their laws first, then their forces in the same order (the walls' divisions and
+        // roots overlap).
+        let mut walls = [Wall::default(); 4];
+        let mut nwall = 0;
         for &nvec in dirs {
-            if nvec == [0.0; 3] {
-                continue;
-            }
             let dn = dot(d, nvec);
-            // Both walls of the pocket (films on both sides; contact on one at most).
             for sgn in [1.0, -1.0] {
                 let nw = scale(nvec, sgn);
                 let h = side - sgn * dn;
@@ -1053,17 +1066,28 @@ impl FullModel {
                     scale(add(sub(vbs, vb), sub(vwall, vb)), 0.5),
                     nw,
                 ));
-                let pf = self.pocket.force(h, h_dot, u, vs);
-                let mut fb = scale(nw, -pf.normal);
-                if vs > 0.0 {
-                    fb = add(fb, scale(slide, -pf.friction.abs() / vs));
-                }
-                f = add(f, fb);
-                mom = add(mom, cross(arm, fb));
-                cage_f = sub(cage_f, fb);
-                cage_m = sub(cage_m, cross(sub(rc, ck.c), fb));
-                pocket_max = pocket_max.max(pf.normal.abs());
+                walls[nwall] = Wall {
+                    nw,
+                    arm,
+                    rc,
+                    slide,
+                    vs,
+                    pf: self.pocket.force(h, h_dot, u, vs),
+                };
+                nwall += 1;
             }
+        }
+        for wl in &walls[..nwall] {
+            let (nw, pf, vs) = (wl.nw, wl.pf, wl.vs);
+            let mut fb = scale(nw, -pf.normal);
+            if vs > 0.0 {
+                fb = add(fb, scale(wl.slide, -pf.friction.abs() / vs));
+            }
+            f = add(f, fb);
+            mom = add(mom, cross(wl.arm, fb));
+            cage_f = sub(cage_f, fb);
+            cage_m = sub(cage_m, cross(sub(wl.rc, ck.c), fb));
+            pocket_max = pocket_max.max(pf.normal.abs());
         }
         // Accelerations.
         let (fr, ft, fz) = (dot(f, er), dot(f, et), dot(f, ez));
