@@ -1766,6 +1766,34 @@ mod tests {
         (m, q, omega, x, aux)
     }
 
+    /// The motion-driven Jacobian `jx` (row-major) at `q`, `omega`, no velocity.
+    fn motion_jacobian(
+        m: &mut FullModel,
+        q: &[f64; 5],
+        omega: f64,
+        x: &[f64],
+        aux: &[f64],
+    ) -> Vec<f64> {
+        let n = x.len();
+        let mut jx = vec![0.0; n * n];
+        let mut scratch = vec![0.0; 3 * n + aux.len()];
+        let (jm, wx, wm) = (&mut [], &mut [], &mut []);
+        m.jacobian(
+            q,
+            &[0.0; 5],
+            omega,
+            x,
+            aux,
+            &mut jx,
+            jm,
+            wx,
+            wm,
+            &mut scratch,
+        )
+        .unwrap();
+        jx
+    }
+
     /// The wrench alone ([`FullModel::wrench_at`], what the outputs' K and C difference) is
     /// the evaluation's, bit for bit: positions solved from the warm starts, or kept from
     /// the evaluation at the same displacement for a velocity change.
@@ -1864,22 +1892,8 @@ mod tests {
     fn cage_columns_equal_whole_differences_exactly() {
         let (mut m, q, omega, x, aux) = started_7004();
         let n = x.len();
-        let mut jx = vec![0.0; n * n];
-        let mut scratch = vec![0.0; 3 * n + aux.len()];
         let v = [0.0; 5];
-        m.jacobian(
-            &q,
-            &v,
-            omega,
-            &x,
-            &aux,
-            &mut jx,
-            &mut [],
-            &mut [],
-            &mut [],
-            &mut scratch,
-        )
-        .unwrap();
+        let jx = motion_jacobian(&mut m, &q, omega, &x, &aux);
         let (mut d0, mut d1) = (vec![0.0; n], vec![0.0; n]);
         m.eval(&q, &v, omega, &x, &mut aux.clone(), &mut d0)
             .unwrap();
@@ -1905,21 +1919,7 @@ mod tests {
         let v = [0.0; 5];
         let (mut a1, mut d0, mut d1) = (aux.clone(), vec![0.0; n], vec![0.0; n]);
         m.eval(&q, &v, omega, &x, &mut a1, &mut d0).unwrap();
-        let mut jx = vec![0.0; n * n];
-        let mut scratch = vec![0.0; 3 * n + aux.len()];
-        m.jacobian(
-            &q,
-            &v,
-            omega,
-            &x,
-            &a1,
-            &mut jx,
-            &mut [],
-            &mut [],
-            &mut [],
-            &mut scratch,
-        )
-        .unwrap();
+        let jx = motion_jacobian(&mut m, &q, omega, &x, &a1);
         let (nc, nb) = (m.ball0(), m.per_ball());
         let mut nonzero = 0;
         for j in 0..m.z() {
