@@ -522,7 +522,8 @@ pub struct FullModel {
 /// first stage starts from the same warm starts.
 #[derive(Debug, Clone, Default)]
 struct Memo {
-    valid: bool,
+    /// The options it was computed with (none: nothing computed).
+    p: Option<FullParams>,
     /// Motion `(q, v, omega)`.
     motion: [f64; 11],
     x: Vec<f64>,
@@ -1411,7 +1412,7 @@ impl FullModel {
         // warm starts it left: its frames, contacts and contact states are these.
         let m = &self.memo;
         let kept = (!solve || self.n_aux() == 0)
-            && m.valid
+            && m.p.as_ref() == Some(&self.p)
             && same_bits(&m.motion[..5], q)
             && same_bits(&m.x, x)
             && same_bits(&m.aux_out, aux);
@@ -1483,7 +1484,7 @@ impl FullModel {
     ) -> Result<Totals> {
         let motion = motion_of(q, v, omega);
         let m = &self.memo;
-        if m.valid
+        if m.p.as_ref() == Some(&self.p)
             && same_bits(&m.motion, &motion)
             && same_bits(&m.x, x)
             && (same_bits(&m.aux_in, aux) || same_bits(&m.aux_out, aux))
@@ -1497,7 +1498,7 @@ impl FullModel {
             }
             return Ok(m.tot);
         }
-        self.memo.valid = false;
+        self.memo.p = None;
         self.memo.aux_in.copy_from_slice(aux);
         let tot = if keep {
             let tot = self.eval_with(q, v, omega, x, aux, dx, Races::Keep)?;
@@ -1520,7 +1521,7 @@ impl FullModel {
         m.dx.copy_from_slice(dx);
         m.tot = tot;
         m.balls.copy_from_slice(&self.balls);
-        m.valid = true;
+        m.p = Some(self.p.clone());
         Ok(tot)
     }
 
@@ -1857,7 +1858,7 @@ mod tests {
                 }
             }
         }
-        assert!(m.memo.valid);
+        assert!(m.memo.p.is_some());
         // Anything else moved: a new evaluation, not the memo's numbers.
         let mut xp = x.clone();
         xp[11] *= 1.001;
@@ -1884,6 +1885,16 @@ mod tests {
                 assert_ne!(bits(&dm), bits(&d1));
             }
         }
+        // Changed options: a new evaluation too.
+        let (mut fresh, mut mm) = (m0.clone(), m.clone());
+        fresh.p.drag *= 2.0;
+        mm.p.drag *= 2.0;
+        let (mut af, mut df) = (a1.clone(), vec![0.0; n]);
+        fresh.eval(&q, &v, omega, &x, &mut af, &mut df).unwrap();
+        let (mut am, mut dm) = (a1.clone(), vec![0.0; n]);
+        mm.eval(&q, &v, omega, &x, &mut am, &mut dm).unwrap();
+        assert_eq!(bits(&df), bits(&dm));
+        assert_ne!(bits(&dm), bits(&d1));
     }
 
     /// The Jacobian's cage columns, which re-evaluate only the pockets on the balls' kept
