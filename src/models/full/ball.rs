@@ -86,6 +86,22 @@ pub(crate) struct Contact {
     pub co: ContactCoefficients,
 }
 
+impl Default for Contact {
+    fn default() -> Self {
+        Contact {
+            q: 0.0,
+            n: [0.0; 2],
+            delta: 0.0,
+            co: ContactCoefficients {
+                kc: 0.0,
+                dkc_dalpha: 0.0,
+                a_coef: 0.0,
+                b_coef: 0.0,
+            },
+        }
+    }
+}
+
 /// One race contact evaluated at a relative vector `u` (groove centre to ball centre, or
 /// ball centre to groove centre), `n = u/|u|` in (axial, radial).
 #[inline]

@@ -119,7 +119,7 @@ use crate::error::{Error, Result};
 use crate::geometry::{Bearing, Guidance};
 use crate::lubrication::drag::{disk_moment, sphere_drag_force, sphere_spin_moment, Fluid};
 use crate::lubrication::guide_land::GuideLand;
-use crate::lubrication::pocket::{PocketLaw, PreparedPocket};
+use crate::lubrication::pocket::{PocketForce, PocketLaw, PreparedPocket};
 use crate::models::quasi_static::{BallResult, BallState, Options, QuasiStatic, RaceControl};
 use ball::{add, cross, dot, norm, scale, sub, tangential, PositionSolver, V3};
 use serde::{Deserialize, Serialize};
@@ -391,9 +391,34 @@ impl BallFrame {
     }
 }
 
+/// What is known of a ball's race contacts where its race part is evaluated.
+#[derive(Debug, Clone, Copy)]
+enum Known<'a> {
+    /// Nothing: evaluated at the position.
+    Nothing,
+    /// The contacts from the position solve.
+    Solved([ball::Contact; 2]),
+    /// A race part kept at the same position, orbital angle and speed and groove offset:
+    /// its frame, contacts and contact states (all the same numbers, bit for bit).
+    Kept(&'a BallRace),
+}
+
+/// One pocket wall of a ball ([`FullModel::ball_cage`]): its normal, the ball's contact
+/// arm and point, the sliding velocity and its speed, and the wall's law there.
+#[derive(Debug, Clone, Copy, Default)]
+struct Wall {
+    nw: V3,
+    arm: V3,
+    rc: V3,
+    slide: V3,
+    vs: f64,
+    pf: PocketForce,
+}
+
 /// The inner race contact of a ball ([`FullModel::inner_contact`]).
 #[derive(Debug, Clone, Copy)]
 struct InnerContact {
+    ci: ball::Contact,
     qi: f64,
     ni2: [f64; 2],
     ni: V3,
@@ -425,6 +450,9 @@ struct BallRace {
     torque: f64,
     power: f64,
     info: BallInfo,
+    /// The inner and outer contacts and their contact states.
+    contacts: [ball::Contact; 2],
+    cs: [ContactState; 2],
 }
 
 /// Where an evaluation takes the balls' race parts from.
@@ -471,8 +499,55 @@ pub struct FullModel {
     nb: usize,
     /// Per-ball results of the last evaluation.
     pub balls: Vec<BallInfo>,
-    /// Per-ball race parts kept by an evaluation with [`Races::Keep`].
+    /// Per-ball race parts kept by an evaluation with [`Races::Keep`], and the ball
+    /// terms it computed from them (the Jacobian's ball columns difference against them).
     races: Vec<BallRace>,
+    terms: Vec<BallTerms>,
+    /// `sin`, `cos` of each pocket's angle at the cage angle `pocket_theta` (bits; the
+    /// Jacobian's columns but one keep the cage angle).
+    pocket_sc: Vec<[f64; 2]>,
+    pocket_theta: Option<u64>,
+    /// The last evaluation through [`Self::eval`] or [`Self::eval_keep`].
+    memo: Memo,
+}
+
+/// What the last evaluation through [`FullModel::eval`] or [`FullModel::eval_keep`]
+/// started from and gave. Another one at the same motion and states, with `aux` as that
+/// one found it or as it left it, gives the same numbers bit for bit (it computes from the
+/// same inputs, or its position solves start at their own answers, which they return
+/// with the contacts there: the property the Jacobian's kept evaluation relies on), so it
+/// takes them instead. The integrator asks for such repeats twice per step: its
+/// forward-difference time derivative re-evaluates the first stage at a time the motion
+/// does not depend on, and the outputs evaluate the end of a step, where the next step's
+/// first stage starts from the same warm starts.
+#[derive(Debug, Clone, Default)]
+struct Memo {
+    /// The options it was computed with (none: nothing computed).
+    p: Option<FullParams>,
+    /// Motion `(q, v, omega)`.
+    motion: [f64; 11],
+    x: Vec<f64>,
+    aux_in: Vec<f64>,
+    aux_out: Vec<f64>,
+    dx: Vec<f64>,
+    tot: Totals,
+    races: Vec<BallRace>,
+    terms: Vec<BallTerms>,
+    balls: Vec<BallInfo>,
+}
+
+/// `a` and `b` hold the same numbers bit for bit.
+fn same_bits(a: &[f64], b: &[f64]) -> bool {
+    a.len() == b.len() && a.iter().zip(b).all(|(a, b)| a.to_bits() == b.to_bits())
+}
+
+/// The motion `(q, v, omega)` as one array.
+fn motion_of(q: &[f64; 5], v: &[f64; 5], omega: f64) -> [f64; 11] {
+    let mut m = [0.0; 11];
+    m[..5].copy_from_slice(q);
+    m[5..10].copy_from_slice(v);
+    m[10] = omega;
+    m
 }
 
 /// Relative tolerance of the quasi-static ball position solve.
@@ -522,6 +597,10 @@ impl FullModel {
                 BallContacts::Dynamic => 9,
             },
         );
+        let n_aux = match p.ball_contacts {
+            BallContacts::QuasiStatic => 3 * b.z,
+            BallContacts::Dynamic => 0,
+        };
         let pocket = PocketLaw {
             ball_radius: 0.5 * b.d,
             pocket_radius: 0.5 * (b.d + p.pocket_clearance),
@@ -577,6 +656,19 @@ impl FullModel {
             nb,
             balls: vec![BallInfo::default(); b.z],
             races: vec![BallRace::default(); b.z],
+            terms: vec![BallTerms::default(); b.z],
+            pocket_sc: vec![[0.0; 2]; b.z],
+            pocket_theta: None,
+            memo: Memo {
+                x: vec![0.0; nc + nb * b.z],
+                aux_in: vec![0.0; n_aux],
+                aux_out: vec![0.0; n_aux],
+                dx: vec![0.0; nc + nb * b.z],
+                races: vec![BallRace::default(); b.z],
+                terms: vec![BallTerms::default(); b.z],
+                balls: vec![BallInfo::default(); b.z],
+                ..Memo::default()
+            },
             p,
         })
     }
@@ -736,23 +828,31 @@ impl FullModel {
         bk: &BallKin,
         fr: &BallFrame,
         xrel: [f64; 2],
-        known: Option<ball::Contact>,
+        known: Known,
     ) -> InnerContact {
         let hd = 0.5 * self.d;
         let (s, c) = (fr.s, fr.c);
         let (er, et, ez) = (fr.er(), fr.et(), EZ);
-        let ci = known.unwrap_or_else(|| {
-            let a = self.groove_offset_sc(q, s, c);
-            ball::contact_full(
-                &self.pos.inner,
-                self.pos.ri_free,
-                [a[0] - xrel[0], a[1] - xrel[1]],
-            )
-        });
+        let (ci, csi) = match known {
+            Known::Kept(k) => (k.contacts[0], k.cs[0]),
+            _ => {
+                let ci = match known {
+                    Known::Solved(c) => c[0],
+                    _ => {
+                        let a = self.groove_offset_sc(q, s, c);
+                        ball::contact_full(
+                            &self.pos.inner,
+                            self.pos.ri_free,
+                            [a[0] - xrel[0], a[1] - xrel[1]],
+                        )
+                    }
+                };
+                (ci, Self::contact_state(&ci, &self.nominal.inner))
+            }
+        };
         let (qi, ni2) = (ci.q, ci.n);
         let ni = add(scale(ez, ni2[0]), scale(er, ni2[1]));
         let w = bk.w;
-        let csi = Self::contact_state(&ci, &self.nominal.inner);
         let wo = [0.0, 0.0, bk.w_orb];
         let ri_ = scale(ni, -hd);
         let rci = add(fr.rb, ri_);
@@ -784,6 +884,7 @@ impl FullModel {
         wrench[3] += ms[0];
         wrench[4] += ms[1];
         InnerContact {
+            ci,
             qi,
             ni2,
             ni,
@@ -809,22 +910,30 @@ impl FullModel {
         omega: f64,
         bk: &BallKin,
         xrel: [f64; 2],
-        known: Option<[ball::Contact; 2]>,
+        known: Known,
     ) -> BallRace {
         let hd = 0.5 * self.d;
-        let fr = BallFrame::new(bk);
+        let fr = match known {
+            Known::Kept(k) => k.fr,
+            _ => BallFrame::new(bk),
+        };
         let (er, et, ez) = (fr.er(), fr.et(), EZ);
-        let inn = self.inner_contact(q, v, omega, bk, &fr, xrel, known.map(|k| k[0]));
+        let inn = self.inner_contact(q, v, omega, bk, &fr, xrel, known);
         let (qi, ni2, ni) = (inn.qi, inn.ni2, inn.ni);
-        let co = known.map_or_else(
-            || ball::contact_full(&self.pos.outer, self.pos.ro_free, xrel),
-            |k| k[1],
-        );
+        let (co, cso) = match known {
+            Known::Kept(k) => (k.contacts[1], k.cs[1]),
+            _ => {
+                let co = match known {
+                    Known::Solved(c) => c[1],
+                    _ => ball::contact_full(&self.pos.outer, self.pos.ro_free, xrel),
+                };
+                (co, Self::contact_state(&co, &self.nominal.outer))
+            }
+        };
         let (qo, no2) = (co.q, co.n);
         let no = add(scale(ez, no2[0]), scale(er, no2[1]));
         let (rb, vb) = (fr.rb, fr.vb);
         let w = bk.w;
-        let cso = Self::contact_state(&co, &self.nominal.outer);
         let wo = [0.0, 0.0, bk.w_orb];
         // Outer contact.
         let ro_ = scale(no, hd);
@@ -890,20 +999,36 @@ impl FullModel {
                 pocket: 0.0,
                 p_max,
             },
+            contacts: [inn.ci, co],
+            cs: [inn.csi, cso],
         }
     }
 
+    /// `sin`, `cos` of each pocket's angle at the cage angle `theta` into `pocket_sc`
+    /// (computed again only when the angle changed).
+    fn pocket_trig(&mut self, theta: f64) {
+        if self.pocket_theta == Some(theta.to_bits()) {
+            return;
+        }
+        for (j, sc) in self.pocket_sc.iter_mut().enumerate() {
+            let th = theta + 2.0 * PI * j as f64 / self.z as f64;
+            let (s, c) = th.sin_cos();
+            *sc = [s, c];
+        }
+        self.pocket_theta = Some(theta.to_bits());
+    }
+
     /// Ball `j`'s terms from its race part `r` and the cage: pocket forces (equal and
-    /// opposite on the cage) and the ball's accelerations.
-    fn ball_cage(&self, j: usize, ck: &CageKin, r: &BallRace) -> BallTerms {
+    /// opposite on the cage) and the ball's accelerations. `sc`: `sin`, `cos` of the
+    /// pocket's angle ([`Self::pocket_trig`]).
+    fn ball_cage(&self, ck: &CageKin, sc: [f64; 2], r: &BallRace) -> BallTerms {
         let hd = 0.5 * self.d;
         let ez = EZ;
         let (er, et) = (r.fr.er(), r.fr.et());
         let (bk, rb, vb, w) = (&r.bk, r.fr.rb, r.fr.vb, r.bk.w);
         let (mut f, mut mom) = (r.f, r.mom);
         // Pocket.
-        let th = ck.theta + 2.0 * PI * j as f64 / self.z as f64;
-        let (sp, cp) = th.sin_cos();
+        let [sp, cp] = sc;
         let rp = 0.5 * self.dm;
         let etp = [-sp, cp, 0.0];
         let pc = ck.point_sc(sp, cp, rp);
@@ -917,14 +1042,15 @@ impl FullModel {
         let mut pocket_max: f64 = 0.0;
         let dirs: &[V3] = match self.p.cage {
             CageModel::Free => &[etp, ez],
-            CageModel::Ideal => &[etp, [0.0; 3]],
+            CageModel::Ideal => &[etp],
         };
+        // Both walls of each direction (films on both sides; contact on one at most):
+        // their laws first, then their forces in the same order (the walls' divisions and
+        // roots overlap).
+        let mut walls = [Wall::default(); 4];
+        let mut nwall = 0;
         for &nvec in dirs {
-            if nvec == [0.0; 3] {
-                continue;
-            }
             let dn = dot(d, nvec);
-            // Both walls of the pocket (films on both sides; contact on one at most).
             for sgn in [1.0, -1.0] {
                 let nw = scale(nvec, sgn);
                 let h = side - sgn * dn;
@@ -941,17 +1067,28 @@ impl FullModel {
                     scale(add(sub(vbs, vb), sub(vwall, vb)), 0.5),
                     nw,
                 ));
-                let pf = self.pocket.force(h, h_dot, u, vs);
-                let mut fb = scale(nw, -pf.normal);
-                if vs > 0.0 {
-                    fb = add(fb, scale(slide, -pf.friction.abs() / vs));
-                }
-                f = add(f, fb);
-                mom = add(mom, cross(arm, fb));
-                cage_f = sub(cage_f, fb);
-                cage_m = sub(cage_m, cross(sub(rc, ck.c), fb));
-                pocket_max = pocket_max.max(pf.normal.abs());
+                walls[nwall] = Wall {
+                    nw,
+                    arm,
+                    rc,
+                    slide,
+                    vs,
+                    pf: self.pocket.force(h, h_dot, u, vs),
+                };
+                nwall += 1;
             }
+        }
+        for wl in &walls[..nwall] {
+            let (nw, pf, vs) = (wl.nw, wl.pf, wl.vs);
+            let mut fb = scale(nw, -pf.normal);
+            if vs > 0.0 {
+                fb = add(fb, scale(wl.slide, -pf.friction.abs() / vs));
+            }
+            f = add(f, fb);
+            mom = add(mom, cross(wl.arm, fb));
+            cage_f = sub(cage_f, fb);
+            cage_m = sub(cage_m, cross(sub(wl.rc, ck.c), fb));
+            pocket_max = pocket_max.max(pf.normal.abs());
         }
         // Accelerations.
         let (fr, ft, fz) = (dot(f, er), dot(f, et), dot(f, ez));
@@ -1046,7 +1183,8 @@ impl FullModel {
         solve: bool,
     ) -> Result<BallRace> {
         let (bk, xrel, c) = self.ball_kin_at(j, q, xb, aux, solve)?;
-        Ok(self.ball_race(q, v, omega, &bk, xrel, c))
+        let known = c.map_or(Known::Nothing, Known::Solved);
+        Ok(self.ball_race(q, v, omega, &bk, xrel, known))
     }
 
     /// Ball rates (stored-state derivatives) from its terms.
@@ -1095,7 +1233,8 @@ impl FullModel {
     /// (`n × n`), and when load-driven (non-empty slices) `jm = d(rates)/d(q, v)`
     /// (`n × 10`), `wx = d(wrench)/d(states)` (`5 × n`), `wm = d(wrench)/d(q, v)`
     /// (`5 × 10`). A ball's column costs one ball evaluation (its rates, its share of the
-    /// cage's and of the wrench; a spin column keeps the ball's position), a cage column
+    /// cage's and of the wrench, differenced against the ball's terms kept from the
+    /// evaluation at `x`; a spin column keeps the ball's position), a cage column
     /// the pockets of every ball on the race parts kept from the evaluation at `x` (the
     /// cage reaches a ball only through its pocket), a ring column one right-hand side.
     /// The cage columns equal whole-evaluation differences bit for bit. `scratch` holds
@@ -1173,7 +1312,7 @@ impl FullModel {
                     vp[c - 5] += h;
                 }
                 auxs.copy_from_slice(aux);
-                let t = self.eval(&qp, &vp, omega, x, auxs, col)?;
+                let t = self.eval_with(&qp, &vp, omega, x, auxs, col, Races::Compute)?;
                 for r in 0..n {
                     jm[r * 10 + c] = (col[r] - d0[r]) / h;
                 }
@@ -1200,13 +1339,15 @@ impl FullModel {
             xs[c] = x[c];
         }
         // Ball columns: ball j's rates and the cage's.
+        // The base: the terms of the evaluation at `x`, kept with its race parts.
         let ck = self.cage_kin(x);
+        self.pocket_trig(ck.theta);
         let nb = self.nb;
         let qs = self.p.ball_contacts == BallContacts::QuasiStatic;
         for j in 0..self.z {
             let k = self.nc + nb * j;
-            let kept = self.races[j];
-            let base = self.ball_cage(j, &ck, &kept);
+            let xrel = self.races[j].xrel;
+            let base = self.terms[j];
             let mut r0 = [0.0; 9];
             self.ball_rates(&base, &x[k..k + nb], &mut r0[..nb]);
             for c in 0..nb {
@@ -1216,13 +1357,18 @@ impl FullModel {
                 xb[c] += h;
                 if qs {
                     // Warm start: the position at `x`.
-                    auxs[3 * j..3 * j + 3].copy_from_slice(&[kept.xrel[0], kept.xrel[1], 1.0]);
+                    auxs[3 * j..3 * j + 3].copy_from_slice(&[xrel[0], xrel[1], 1.0]);
                 }
                 // The quasi-static position depends on the orbital angle and speed
                 // (states 0 and 1), not on the spin: the spin columns keep it.
-                let solve = !(qs && c >= 2);
-                let race = self.ball_race_at(j, q, v, omega, &xb[..nb], auxs, solve)?;
-                let bt = self.ball_cage(j, &ck, &race);
+                // They keep its frame, contacts and contact states too.
+                let race = if qs && c >= 2 {
+                    let (bk, xrel, _) = self.ball_kin_at(j, q, &xb[..nb], auxs, false)?;
+                    self.ball_race(q, v, omega, &bk, xrel, Known::Kept(&self.races[j]))
+                } else {
+                    self.ball_race_at(j, q, v, omega, &xb[..nb], auxs, true)?
+                };
+                let bt = self.ball_cage(&ck, self.pocket_sc[j], &race);
                 let mut r1 = [0.0; 9];
                 self.ball_rates(&bt, &xb[..nb], &mut r1[..nb]);
                 for r in 0..nb {
@@ -1262,11 +1408,23 @@ impl FullModel {
         solve: bool,
     ) -> Result<[f64; 5]> {
         let mut w = [0.0; 5];
+        // Positions kept at the displacement and states of the last evaluation, from the
+        // warm starts it left: its frames, contacts and contact states are these.
+        let m = &self.memo;
+        let kept = (!solve || self.n_aux() == 0)
+            && m.p.as_ref() == Some(&self.p)
+            && same_bits(&m.motion[..5], q)
+            && same_bits(&m.x, x)
+            && same_bits(&m.aux_out, aux);
         for j in 0..self.z {
             let k = self.nc + self.nb * j;
             let (bk, xrel, c) = self.ball_kin_at(j, q, &x[k..k + self.nb], aux, solve)?;
-            let fr = BallFrame::new(&bk);
-            let inn = self.inner_contact(q, v, omega, &bk, &fr, xrel, c.map(|c| c[0]));
+            let (fr, known) = if kept {
+                (m.races[j].fr, Known::Kept(&m.races[j]))
+            } else {
+                (BallFrame::new(&bk), c.map_or(Known::Nothing, Known::Solved))
+            };
+            let inn = self.inner_contact(q, v, omega, &bk, &fr, xrel, known);
             for (a, b) in w.iter_mut().zip(inn.wrench) {
                 *a += b;
             }
@@ -1294,7 +1452,7 @@ impl FullModel {
         aux: &mut [f64],
         dx: &mut [f64],
     ) -> Result<Totals> {
-        self.eval_with(q, v, omega, x, aux, dx, Races::Compute)
+        self.eval_memo(q, v, omega, x, aux, dx, false)
     }
 
     /// [`Self::eval`], the balls' race parts kept for [`Self::jacobian_from`].
@@ -1308,7 +1466,63 @@ impl FullModel {
         aux: &mut [f64],
         dx: &mut [f64],
     ) -> Result<Totals> {
-        self.eval_with(q, v, omega, x, aux, dx, Races::Keep)
+        self.eval_memo(q, v, omega, x, aux, dx, true)
+    }
+
+    /// [`Self::eval`] (`keep`: [`Self::eval_keep`]), the numbers of the last one taken
+    /// when it was at the same point ([`Memo`]).
+    #[allow(clippy::too_many_arguments)]
+    fn eval_memo(
+        &mut self,
+        q: &[f64; 5],
+        v: &[f64; 5],
+        omega: f64,
+        x: &[f64],
+        aux: &mut [f64],
+        dx: &mut [f64],
+        keep: bool,
+    ) -> Result<Totals> {
+        let motion = motion_of(q, v, omega);
+        let m = &self.memo;
+        if m.p.as_ref() == Some(&self.p)
+            && same_bits(&m.motion, &motion)
+            && same_bits(&m.x, x)
+            && (same_bits(&m.aux_in, aux) || same_bits(&m.aux_out, aux))
+        {
+            aux.copy_from_slice(&m.aux_out);
+            dx.copy_from_slice(&m.dx);
+            self.balls.copy_from_slice(&m.balls);
+            if keep {
+                self.races.copy_from_slice(&m.races);
+                self.terms.copy_from_slice(&m.terms);
+            }
+            return Ok(m.tot);
+        }
+        self.memo.p = None;
+        self.memo.aux_in.copy_from_slice(aux);
+        let tot = if keep {
+            let tot = self.eval_with(q, v, omega, x, aux, dx, Races::Keep)?;
+            self.memo.races.copy_from_slice(&self.races);
+            self.memo.terms.copy_from_slice(&self.terms);
+            tot
+        } else {
+            // The race parts and terms into the memo's, the kept ones left as they are.
+            std::mem::swap(&mut self.races, &mut self.memo.races);
+            std::mem::swap(&mut self.terms, &mut self.memo.terms);
+            let tot = self.eval_with(q, v, omega, x, aux, dx, Races::Keep);
+            std::mem::swap(&mut self.races, &mut self.memo.races);
+            std::mem::swap(&mut self.terms, &mut self.memo.terms);
+            tot?
+        };
+        let m = &mut self.memo;
+        m.motion = motion;
+        m.x.copy_from_slice(x);
+        m.aux_out.copy_from_slice(aux);
+        m.dx.copy_from_slice(dx);
+        m.tot = tot;
+        m.balls.copy_from_slice(&self.balls);
+        m.p = Some(self.p.clone());
+        Ok(tot)
     }
 
     /// [`Self::eval`], the balls' race parts computed, kept or taken from the kept ones.
@@ -1325,20 +1539,27 @@ impl FullModel {
     ) -> Result<Totals> {
         let (l, t0) = (self.l, self.t0);
         let ck = self.cage_kin(x);
+        self.pocket_trig(ck.theta);
         let mut tot = Totals::default();
         let mut cf = [0.0; 3];
         let mut cm = [0.0; 3];
         for j in 0..self.z {
             let k = self.nc + self.nb * j;
             let xb = &x[k..k + self.nb];
-            let r = match races {
-                Races::Kept => self.races[j],
-                _ => self.ball_race_at(j, q, v, omega, xb, aux, true)?,
+            let sc = self.pocket_sc[j];
+            let bt = match races {
+                Races::Kept => self.ball_cage(&ck, sc, &self.races[j]),
+                Races::Compute => {
+                    let r = self.ball_race_at(j, q, v, omega, xb, aux, true)?;
+                    self.ball_cage(&ck, sc, &r)
+                }
+                Races::Keep => {
+                    self.races[j] = self.ball_race_at(j, q, v, omega, xb, aux, true)?;
+                    let bt = self.ball_cage(&ck, sc, &self.races[j]);
+                    self.terms[j] = bt;
+                    bt
+                }
             };
-            if races == Races::Keep {
-                self.races[j] = r;
-            }
-            let bt = self.ball_cage(j, &ck, &r);
             self.ball_rates(&bt, xb, &mut dx[k..k + self.nb]);
             cf = add(cf, bt.cage_f);
             cm = add(cm, bt.cage_m);
@@ -1546,6 +1767,34 @@ mod tests {
         (m, q, omega, x, aux)
     }
 
+    /// The motion-driven Jacobian `jx` (row-major) at `q`, `omega`, no velocity.
+    fn motion_jacobian(
+        m: &mut FullModel,
+        q: &[f64; 5],
+        omega: f64,
+        x: &[f64],
+        aux: &[f64],
+    ) -> Vec<f64> {
+        let n = x.len();
+        let mut jx = vec![0.0; n * n];
+        let mut scratch = vec![0.0; 3 * n + aux.len()];
+        let (jm, wx, wm) = (&mut [], &mut [], &mut []);
+        m.jacobian(
+            q,
+            &[0.0; 5],
+            omega,
+            x,
+            aux,
+            &mut jx,
+            jm,
+            wx,
+            wm,
+            &mut scratch,
+        )
+        .unwrap();
+        jx
+    }
+
     /// The wrench alone ([`FullModel::wrench_at`], what the outputs' K and C difference) is
     /// the evaluation's, bit for bit: positions solved from the warm starts, or kept from
     /// the evaluation at the same displacement for a velocity change.
@@ -1572,28 +1821,90 @@ mod tests {
         }
     }
 
+    /// An evaluation repeated at the same motion and states, from the warm starts the
+    /// last one found or left ([`Memo`]), gives what a model without that memo computes:
+    /// rates, totals, warm starts, per-ball results and the race parts the Jacobian keeps,
+    /// bit for bit; a changed state, motion or warm start is evaluated anew.
+    #[test]
+    fn a_repeated_evaluation_is_a_fresh_one() {
+        let (m0, q, omega, x, aux) = started_7004();
+        let n = x.len();
+        let v = [0.0; 5];
+        let bits = |a: &[f64]| a.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+        // A first evaluation (the memo's), then repeats from the warm starts it found and
+        // from those it left, against a fresh model's.
+        let mut m = m0.clone();
+        let mut a1 = aux.clone();
+        let mut d1 = vec![0.0; n];
+        m.eval(&q, &v, omega, &x, &mut a1, &mut d1).unwrap();
+        for start in [aux.clone(), a1.clone()] {
+            for keep in [false, true] {
+                let mut fresh = m0.clone();
+                let (mut af, mut df) = (start.clone(), vec![0.0; n]);
+                let tf = fresh
+                    .eval_memo(&q, &v, omega, &x, &mut af, &mut df, keep)
+                    .unwrap();
+                let (mut am, mut dm) = (start.clone(), vec![0.0; n]);
+                let tm = m
+                    .eval_memo(&q, &v, omega, &x, &mut am, &mut dm, keep)
+                    .unwrap();
+                assert_eq!(format!("{tf:?}"), format!("{tm:?}"));
+                assert_eq!(bits(&df), bits(&dm));
+                assert_eq!(bits(&af), bits(&am));
+                assert_eq!(fresh.balls, m.balls);
+                if keep {
+                    assert_eq!(format!("{:?}", fresh.races), format!("{:?}", m.races));
+                    assert_eq!(format!("{:?}", fresh.terms), format!("{:?}", m.terms));
+                }
+            }
+        }
+        assert!(m.memo.p.is_some());
+        // Anything else moved: a new evaluation, not the memo's numbers.
+        let mut xp = x.clone();
+        xp[11] *= 1.001;
+        let mut q2 = q;
+        q2[1] += 1e-7;
+        let mut a2 = a1.clone();
+        a2[0] += 1e-9;
+        for (qq, xx, aa, moved) in [
+            (q, &xp, &a1, true),
+            (q2, &x, &a1, true),
+            (q, &x, &a2, false),
+        ] {
+            let (mut af, mut df) = (aa.clone(), vec![0.0; n]);
+            let tf = m0
+                .clone()
+                .eval(&qq, &v, omega, xx, &mut af, &mut df)
+                .unwrap();
+            let mut mm = m.clone();
+            let (mut am, mut dm) = (aa.clone(), vec![0.0; n]);
+            let tm = mm.eval(&qq, &v, omega, xx, &mut am, &mut dm).unwrap();
+            assert_eq!(format!("{tf:?}"), format!("{tm:?}"));
+            assert_eq!(bits(&df), bits(&dm));
+            if moved {
+                assert_ne!(bits(&dm), bits(&d1));
+            }
+        }
+        // Changed options: a new evaluation too.
+        let (mut fresh, mut mm) = (m0.clone(), m.clone());
+        fresh.p.drag *= 2.0;
+        mm.p.drag *= 2.0;
+        let (mut af, mut df) = (a1.clone(), vec![0.0; n]);
+        fresh.eval(&q, &v, omega, &x, &mut af, &mut df).unwrap();
+        let (mut am, mut dm) = (a1.clone(), vec![0.0; n]);
+        mm.eval(&q, &v, omega, &x, &mut am, &mut dm).unwrap();
+        assert_eq!(bits(&df), bits(&dm));
+        assert_ne!(bits(&dm), bits(&d1));
+    }
+
     /// The Jacobian's cage columns, which re-evaluate only the pockets on the balls' kept
     /// race parts, equal whole evaluations' forward differences bit for bit.
     #[test]
     fn cage_columns_equal_whole_differences_exactly() {
         let (mut m, q, omega, x, aux) = started_7004();
         let n = x.len();
-        let mut jx = vec![0.0; n * n];
-        let mut scratch = vec![0.0; 3 * n + aux.len()];
         let v = [0.0; 5];
-        m.jacobian(
-            &q,
-            &v,
-            omega,
-            &x,
-            &aux,
-            &mut jx,
-            &mut [],
-            &mut [],
-            &mut [],
-            &mut scratch,
-        )
-        .unwrap();
+        let jx = motion_jacobian(&mut m, &q, omega, &x, &aux);
         let (mut d0, mut d1) = (vec![0.0; n], vec![0.0; n]);
         m.eval(&q, &v, omega, &x, &mut aux.clone(), &mut d0)
             .unwrap();
@@ -1607,6 +1918,36 @@ mod tests {
                 assert_eq!(jx[r * n + c], (d1[r] - d0[r]) / h, "row {r} col {c}");
             }
         }
+    }
+
+    /// The Jacobian's ball columns (spin columns on the kept frame, contacts and contact
+    /// states) equal whole evaluations' forward differences bit for bit in the ball's own
+    /// rows, the positions solved from the warm starts the evaluation at `x` left.
+    #[test]
+    fn ball_columns_equal_whole_differences_in_their_rows() {
+        let (mut m, q, omega, x, aux) = started_7004();
+        let n = x.len();
+        let v = [0.0; 5];
+        let (mut a1, mut d0, mut d1) = (aux.clone(), vec![0.0; n], vec![0.0; n]);
+        m.eval(&q, &v, omega, &x, &mut a1, &mut d0).unwrap();
+        let jx = motion_jacobian(&mut m, &q, omega, &x, &a1);
+        let (nc, nb) = (m.ball0(), m.per_ball());
+        let mut nonzero = 0;
+        for j in 0..m.z() {
+            for c in 0..nb {
+                let col = nc + nb * j + c;
+                let mut xp = x.clone();
+                let h = 1.5e-8 * x[col].abs().max(1.0);
+                xp[col] += h;
+                m.eval(&q, &v, omega, &xp, &mut a1.clone(), &mut d1)
+                    .unwrap();
+                for r in nc + nb * j..nc + nb * (j + 1) {
+                    assert_eq!(jx[r * n + col], (d1[r] - d0[r]) / h, "row {r} col {col}");
+                    nonzero += usize::from(jx[r * n + col] != 0.0);
+                }
+            }
+        }
+        assert!(nonzero > m.z() * m.per_ball(), "{nonzero}");
     }
 
     /// The velocities the contacts use are the time derivatives of the material points'
