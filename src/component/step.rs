@@ -2,7 +2,7 @@
 //! integration or quadrature of the states, and the outputs with their time derivatives.
 
 use super::inputs::{input_at, motion_at, motion_at_y};
-use super::level::LevelOutputs;
+use super::level::{LevelOutputs, Point};
 use super::system::{all_finite, e_time, Budget, Sys};
 use super::{
     Component, State, I_C, I_CAGE, I_CAGE_OMEGA, I_DIAG, I_FORCE, I_K, I_LOAD, I_Q, I_RATING,
@@ -188,8 +188,11 @@ impl Component {
         for (s, k) in [(0.0, &mut *k0), (0.5 * h, &mut *k1), (h, &mut *k2)] {
             let m = motion_at(sc, rule, s, causality, None, nl);
             let (aux, _) = sc.aux.split_at_mut(naux);
-            self.level
-                .rhs(sc.t + s, &m, &sc.x[..nl], aux, &mut k[..nl], None)?;
+            self.level.rhs(
+                Point::new(sc.t + s, &m, &sc.x[..nl], aux),
+                &mut k[..nl],
+                None,
+            )?;
         }
         for j in 0..nl {
             sc.x[j] += h / 6.0 * (k0[j] + 4.0 * k1[j] + k2[j]);
@@ -207,7 +210,7 @@ impl Component {
         {
             let (aux, _) = sc.aux.split_at_mut(self.n_level_aux);
             self.level
-                .outputs(sc.t + s, &m, &sc.x[..nl], aux, &mut out)?;
+                .outputs(Point::new(sc.t + s, &m, &sc.x[..nl], aux), &mut out)?;
         }
         let o = &mut sc.outputs;
         o[I_FORCE..I_FORCE + 5].copy_from_slice(&out.wrench);

@@ -3,7 +3,7 @@
 //! preallocated work space.
 
 use super::inputs::{input_at, motion_at_y};
-use super::level::LevelModel;
+use super::level::{Jacobians, LevelModel, Point};
 use super::{thread_cpu_s, Causality, InputRule, State, I_LOAD};
 use crate::error::{Error, Result};
 use crate::solver::{OdeSystem, SolverError};
@@ -133,16 +133,13 @@ impl Sys<'_> {
     ) -> Result<()> {
         let nl = self.nl;
         let m = motion_at_y(self.st, self.rule, s, self.causality, self.ring, nl, y);
-        let t = self.t0 + s;
         let (aux, _) = self.st.aux.split_at_mut(self.naux);
+        let p = Point::new(self.t0 + s, &m, &y[..nl], aux);
         match self.ring {
-            None => self
-                .level
-                .rhs(t, &m, &y[..nl], aux, &mut dy[..nl], wrench)?,
+            None => self.level.rhs(p, &mut dy[..nl], wrench)?,
             Some(ring) => {
                 let mut w = [0.0; 5];
-                self.level
-                    .rhs(t, &m, &y[..nl], aux, &mut dy[..nl], Some(&mut w))?;
+                self.level.rhs(p, &mut dy[..nl], Some(&mut w))?;
                 let nd = ring.dofs.len();
                 for (k, &d) in ring.dofs.iter().enumerate() {
                     let load = input_at(self.st, I_LOAD + d, s, self.rule);
@@ -190,10 +187,15 @@ impl OdeSystem for Sys<'_> {
         } else {
             (&mut [][..], &mut [][..], &mut [][..])
         };
-        if !self
-            .level
-            .jacobian(t, &m, &y[..nl], aux, &mut jw.jx, jm, wx, wm)
-        {
+        if !self.level.jacobian(
+            Point::new(t, &m, &y[..nl], aux),
+            Jacobians {
+                jx: &mut jw.jx,
+                jm,
+                wx,
+                wm,
+            },
+        ) {
             return false;
         }
         jac.fill(0.0);

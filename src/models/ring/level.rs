@@ -23,7 +23,7 @@
 //! `time_scale`, on its own step ([`ThermalModel::advance`]). This file is the glue: the
 //! memory layout and which physics runs when.
 
-use crate::component::level::{LevelModel, LevelOutputs, Motion};
+use crate::component::level::{LevelModel, LevelOutputs, Motion, Point};
 use crate::component::levels::cage_speed;
 use crate::component::{Scene, State};
 use crate::contact::{Curvature, PointContact, Race};
@@ -451,15 +451,8 @@ impl LevelModel for RingLevel {
         aux.fill(0.0);
         Ok(())
     }
-    fn rhs(
-        &mut self,
-        t: f64,
-        m: &Motion,
-        x: &[f64],
-        aux: &mut [f64],
-        dx: &mut [f64],
-        wrench: Option<&mut [f64; 5]>,
-    ) -> Result<()> {
+    fn rhs(&mut self, p: Point<'_>, dx: &mut [f64], wrench: Option<&mut [f64; 5]>) -> Result<()> {
+        let Point { t, m, x, aux } = p;
         let wc = self.cage_ratio * m.omega;
         dx[0] = wc;
         if self.shaft_angle {
@@ -476,14 +469,8 @@ impl LevelModel for RingLevel {
         }
         Ok(())
     }
-    fn outputs(
-        &mut self,
-        t: f64,
-        m: &Motion,
-        x: &[f64],
-        aux: &mut [f64],
-        out: &mut LevelOutputs,
-    ) -> Result<()> {
+    fn outputs(&mut self, p: Point<'_>, out: &mut LevelOutputs) -> Result<()> {
+        let Point { t, m, x, aux } = p;
         let wc = self.cage_ratio * m.omega;
         let turned = self.shaft_turned(x);
         // Wear cycle: scale the window's accumulated wear to the cycle, add it to the maps.
