@@ -2,7 +2,7 @@
 //! states and, load-driven, the inner ring's, with the step's CPU budget and the
 //! preallocated work space.
 
-use super::inputs::{input_at, motion_at_y};
+use super::inputs::{input_at, motion_at};
 use super::level::{Jacobians, LevelModel, Point};
 use super::{thread_cpu_s, Causality, InputRule, State, I_LOAD};
 use crate::error::{Error, Result};
@@ -132,7 +132,7 @@ impl Sys<'_> {
         wrench: Option<&mut [f64; 5]>,
     ) -> Result<()> {
         let nl = self.nl;
-        let m = motion_at_y(self.st, self.rule, s, self.causality, self.ring, nl, y);
+        let m = motion_at(self.st, self.rule, s, self.causality, self.ring, nl, y);
         let (aux, _) = self.st.aux.split_at_mut(self.naux);
         let p = Point::new(self.t0 + s, &m, &y[..nl], aux);
         match self.ring {
@@ -180,7 +180,7 @@ impl OdeSystem for Sys<'_> {
         };
         let nl = self.nl;
         let s = t - self.t0;
-        let m = motion_at_y(self.st, self.rule, s, self.causality, self.ring, nl, y);
+        let m = motion_at(self.st, self.rule, s, self.causality, self.ring, nl, y);
         let (aux, _) = self.st.aux.split_at_mut(self.naux);
         let (jm, wx, wm) = if self.ring.is_some() {
             (&mut jw.jm[..], &mut jw.wx[..], &mut jw.wm[..])
