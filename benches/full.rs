@@ -12,6 +12,9 @@
 use raceway::component::{variables, Component};
 use raceway::report::{force_error, load_average, thread_cpu_s, Samples};
 
+#[path = "common/counters.rs"]
+mod counters;
+
 /// The outputs read at every communication point (as `benches/speed.rs`).
 const OUTPUTS: [&str; 8] = [
     "force.x",
@@ -128,14 +131,7 @@ fn main() {
             cpu / revs as f64 * 1e3,
             load_average()
         );
-        println!(
-            "  per revolution: rhs {:.0}, jacobians {:.0}, LU {:.0}, accepted {:.0}, rejected {:.0}",
-            (s1.rhs - s0.rhs) as f64 / revs as f64,
-            (s1.jacobians - s0.jacobians) as f64 / revs as f64,
-            (s1.factorizations - s0.factorizations) as f64 / revs as f64,
-            (s1.accepted - s0.accepted) as f64 / revs as f64,
-            (s1.rejected - s0.rejected) as f64 / revs as f64
-        );
+        println!("{}", counters::per("revolution", &s0, &s1, revs as f64));
         println!(
             "  cage speed ratio {:.4}, cage centre ({:.3}, {:.3}) clearances, cage speed {:.3} m/s",
             c.get_real(vr("cage.speed_ratio")).unwrap(),

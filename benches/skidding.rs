@@ -7,6 +7,11 @@
 use raceway::component::{variables, Component};
 use raceway::report::{load_average, thread_cpu_s as cpu_now};
 
+#[path = "common/counters.rs"]
+mod counters;
+#[path = "common/runup_6000.rs"]
+mod runup_6000;
+
 fn vr(n: &str) -> u32 {
     variables::by_name(n).unwrap().vr
 }
@@ -14,14 +19,7 @@ fn vr(n: &str) -> u32 {
 /// A fresh component at 6000 rpm, settled 50 ms (not timed); then `sim` simulated seconds
 /// in host steps of `h`. Returns the CPU seconds per simulated second.
 fn case(label: &str, h: f64, sim: f64) -> f64 {
-    let text = include_str!("../examples/scenes/7008ce-runup.toml");
-    let omega = 6000.0 * std::f64::consts::PI / 30.0;
-    // Start at speed: a fresh component at 6000 rpm starts at the kinematic speeds.
-    let text = text.replace(
-        "\"shaft.omega\" = 0.0",
-        &format!("\"shaft.omega\" = {omega}"),
-    );
-    let mut c = Component::from_text(&text).expect("scene");
+    let mut c = Component::from_text(&runup_6000::scene()).expect("scene");
     let settle = 1e-3;
     for i in 0..50 {
         c.do_step(i as f64 * settle, settle).expect("step");
@@ -41,14 +39,7 @@ fn case(label: &str, h: f64, sim: f64) -> f64 {
         ((sim / cpu) * 100.0).round() / 100.0,
         load_average()
     );
-    println!(
-        "  per simulated s: rhs {:.0}, jacobians {:.0}, LU {:.0}, accepted {:.0}, rejected {:.0}",
-        (s1.rhs - s0.rhs) as f64 / sim,
-        (s1.jacobians - s0.jacobians) as f64 / sim,
-        (s1.factorizations - s0.factorizations) as f64 / sim,
-        (s1.accepted - s0.accepted) as f64 / sim,
-        (s1.rejected - s0.rejected) as f64 / sim
-    );
+    println!("{}", counters::per("simulated s", &s0, &s1, sim));
     println!(
         "  cage slip {:.4}, cage speed {:.2} rad/s, Fz {:.1} N, torque {:.3e} N m, power {:.2} W",
         c.get_real(vr("cage.slip")).unwrap(),

@@ -31,6 +31,9 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicU64, Ordering};
 
+#[path = "common/runup_6000.rs"]
+mod runup_6000;
+
 /// The system allocator, counting allocations (`alloc`, `alloc_zeroed`, `realloc`).
 struct Counting;
 
@@ -254,13 +257,7 @@ fn yes_no(met: Option<bool>) -> &'static str {
 /// Skidding 7008CE at 6000 rpm, 300 N axial (benches/skidding.rs's case), settled 20 ms in
 /// 1 ms steps, then `t_end` in host steps of 0.1 ms; returns (CPU per step, samples).
 fn skidding_run(rtol: f64, t_end: f64) -> (f64, Samples) {
-    let text = include_str!("../examples/scenes/7008ce-runup.toml");
-    let omega = 6000.0 * std::f64::consts::PI / 30.0;
-    let text = text.replace(
-        "\"shaft.omega\" = 0.0",
-        &format!("\"shaft.omega\" = {omega}"),
-    );
-    let mut scene = Scene::from_text(&text).expect("scene");
+    let mut scene = Scene::from_text(&runup_6000::scene()).expect("scene");
     scene.solver.rtol = rtol;
     scene.solver.atol_m = rtol * 1e-4;
     let mut c = Component::new(scene).expect("scene");

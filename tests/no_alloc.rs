@@ -5,41 +5,25 @@
 
 use raceway::capi::*;
 use raceway::component::Component;
-use std::alloc::{GlobalAlloc, Layout, System};
 use std::ffi::{CStr, CString};
 use std::ptr::null_mut;
-use std::sync::atomic::{AtomicUsize, Ordering};
 
-struct Counting;
-static ALLOCS: AtomicUsize = AtomicUsize::new(0);
-
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, l: Layout) -> *mut u8 {
-        ALLOCS.fetch_add(1, Ordering::SeqCst);
-        unsafe { System.alloc(l) }
-    }
-    unsafe fn dealloc(&self, p: *mut u8, l: Layout) {
-        unsafe { System.dealloc(p, l) }
-    }
-    unsafe fn realloc(&self, p: *mut u8, l: Layout, n: usize) -> *mut u8 {
-        ALLOCS.fetch_add(1, Ordering::SeqCst);
-        unsafe { System.realloc(p, l, n) }
-    }
-}
+#[path = "common/thread_alloc.rs"]
+mod thread_alloc;
 
 #[global_allocator]
-static A: Counting = Counting;
+static A: thread_alloc::Counting = thread_alloc::Counting;
 
 fn allocations_in_steps(scene: &str, h: f64) -> usize {
     let mut c = Component::from_text(scene).unwrap();
     for i in 0..3 {
         c.do_step(i as f64 * h, h).unwrap();
     }
-    let before = ALLOCS.load(Ordering::SeqCst);
+    let before = thread_alloc::allocations();
     for i in 3..50 {
         c.do_step(i as f64 * h, h).unwrap();
     }
-    ALLOCS.load(Ordering::SeqCst) - before
+    thread_alloc::allocations() - before
 }
 
 #[path = "common/motion.rs"]
@@ -114,22 +98,22 @@ fn allocations_in_the_c_loop() -> usize {
     // A state handle reused in place does not allocate either.
     let mut st: *mut RacewayState = null_mut();
     assert_eq!(unsafe { raceway_state_get(c, &mut st) }, RacewayStatus::Ok);
-    let before = ALLOCS.load(Ordering::SeqCst);
+    let before = thread_alloc::allocations();
     for k in 5..200 {
         sum += host_step(c, k, h);
     }
     assert_eq!(unsafe { raceway_state_get(c, &mut st) }, RacewayStatus::Ok);
     assert_eq!(unsafe { raceway_state_set(c, st) }, RacewayStatus::Ok);
-    let allocations = ALLOCS.load(Ordering::SeqCst) - before;
+    let allocations = thread_alloc::allocations() - before;
     assert!(sum.is_finite() && sum != 0.0);
     // The counter sees allocations (a zero above is not vacuous): a refused call formats
     // its message.
-    let before = ALLOCS.load(Ordering::SeqCst);
+    let before = thread_alloc::allocations();
     assert_eq!(
         unsafe { raceway_do_step(c, 0.0, -1.0) },
         RacewayStatus::InvalidArgument
     );
-    assert!(ALLOCS.load(Ordering::SeqCst) > before);
+    assert!(thread_alloc::allocations() > before);
     unsafe {
         raceway_state_free(st);
         raceway_free(c);
@@ -137,7 +121,7 @@ fn allocations_in_the_c_loop() -> usize {
     allocations
 }
 
-// One test function: the counter is process-wide and tests run on threads.
+// One test function: the counter counts this thread's allocations, all in one place.
 #[test]
 fn do_step_and_the_c_loop_do_not_allocate() {
     assert_eq!(

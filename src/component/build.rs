@@ -121,6 +121,7 @@ impl Component {
             causality,
             ring.as_ref(),
             n_level,
+            &state.x,
         );
         level.init(
             &motion,

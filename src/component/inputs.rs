@@ -165,20 +165,9 @@ pub(super) fn input_at(st: &State, i: usize, s: f64, rule: InputRule) -> f64 {
     }
 }
 
-pub(super) fn motion_at(
-    st: &State,
-    rule: InputRule,
-    s: f64,
-    c: Causality,
-    ring: Option<&RingBody>,
-    nl: usize,
-) -> Motion {
-    motion_at_y(st, rule, s, c, ring, nl, &st.x)
-}
-
 /// The ring's motion at `s` after the step start: from the inputs (motion-driven) or from
 /// the states `y` (load-driven).
-pub(super) fn motion_at_y(
+pub(super) fn motion_at(
     st: &State,
     rule: InputRule,
     s: f64,

@@ -18,6 +18,43 @@ pub struct Motion {
     pub omega: f64,
 }
 
+/// Where a level is evaluated: time `t`, the ring's motion `m`, the level's states `x` and
+/// its memory `aux` (warm starts, which the evaluation may update).
+#[derive(Debug)]
+pub struct Point<'a> {
+    /// Time, s.
+    pub t: f64,
+    /// The ring's motion.
+    pub m: &'a Motion,
+    /// The level's states (length `n_states`).
+    pub x: &'a [f64],
+    /// The level's memory (length `n_aux`).
+    pub aux: &'a mut [f64],
+}
+
+impl<'a> Point<'a> {
+    /// The point `(t, m, x, aux)`.
+    pub fn new(t: f64, m: &'a Motion, x: &'a [f64], aux: &'a mut [f64]) -> Self {
+        Point { t, m, x, aux }
+    }
+}
+
+/// The Jacobians a level fills ([`LevelModel::jacobian`]). With `n = n_states`, all
+/// row-major: `jx = d(rates)/d(states)` (`n × n`), `jm = d(rates)/d(q, v)` (`n × 10`),
+/// `wx = d(wrench)/d(states)` (`5 × n`), `wm = d(wrench)/d(q, v)` (`5 × 10`).
+/// Motion-driven, `jm`, `wx` and `wm` are empty (not needed).
+#[derive(Debug)]
+pub struct Jacobians<'a> {
+    /// `d(rates)/d(states)`.
+    pub jx: &'a mut [f64],
+    /// `d(rates)/d(q, v)`.
+    pub jm: &'a mut [f64],
+    /// `d(wrench)/d(states)`.
+    pub wx: &'a mut [f64],
+    /// `d(wrench)/d(q, v)`.
+    pub wm: &'a mut [f64],
+}
+
 /// What a level reports at a communication point. Fields a level does not model stay 0.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct LevelOutputs {
@@ -90,23 +127,9 @@ pub trait LevelModel: Send + std::fmt::Debug {
     fn state_atol(&self, _atol_m: f64, _atol: &mut [f64]) -> bool {
         false
     }
-    /// Jacobians of the level at `t` (optional; `false`, the default, lets the integrator
-    /// difference the whole right-hand side). With `n = n_states`, all row-major:
-    /// `jx = d(rates)/d(states)` (`n × n`), `jm = d(rates)/d(q, v)` (`n × 10`),
-    /// `wx = d(wrench)/d(states)` (`5 × n`), `wm = d(wrench)/d(q, v)` (`5 × 10`).
-    /// Motion-driven, `jm`, `wx` and `wm` are empty (not needed). Must not allocate.
-    #[allow(clippy::too_many_arguments)]
-    fn jacobian(
-        &mut self,
-        _t: f64,
-        _m: &Motion,
-        _x: &[f64],
-        _aux: &mut [f64],
-        _jx: &mut [f64],
-        _jm: &mut [f64],
-        _wx: &mut [f64],
-        _wm: &mut [f64],
-    ) -> bool {
+    /// Jacobians of the level at `p` into `j` (optional; `false`, the default, lets the
+    /// integrator difference the whole right-hand side). Must not allocate.
+    fn jacobian(&mut self, _p: Point<'_>, _j: Jacobians<'_>) -> bool {
         false
     }
     /// Whether the states' rates depend on the motion inputs (and time) only, never on the
@@ -118,24 +141,9 @@ pub trait LevelModel: Send + std::fmt::Debug {
     }
     /// Initial states at the start motion.
     fn init(&mut self, m: &Motion, x: &mut [f64], aux: &mut [f64]) -> Result<()>;
-    /// Time derivatives of the level's states at `t`; when `wrench` is given, also the
+    /// Time derivatives of the level's states at `p`; when `wrench` is given, also the
     /// force and moment on the shaft. Must not allocate.
-    fn rhs(
-        &mut self,
-        t: f64,
-        m: &Motion,
-        x: &[f64],
-        aux: &mut [f64],
-        dx: &mut [f64],
-        wrench: Option<&mut [f64; 5]>,
-    ) -> Result<()>;
-    /// Everything the level reports at `t`. Must not allocate.
-    fn outputs(
-        &mut self,
-        t: f64,
-        m: &Motion,
-        x: &[f64],
-        aux: &mut [f64],
-        out: &mut LevelOutputs,
-    ) -> Result<()>;
+    fn rhs(&mut self, p: Point<'_>, dx: &mut [f64], wrench: Option<&mut [f64; 5]>) -> Result<()>;
+    /// Everything the level reports at `p`. Must not allocate.
+    fn outputs(&mut self, p: Point<'_>, out: &mut LevelOutputs) -> Result<()>;
 }

@@ -1021,11 +1021,7 @@ impl Checker<'_> {
                 if table_ok {
                     self.table(entries, path, norm, at);
                 } else {
-                    self.report(
-                        path,
-                        at,
-                        format!("expected {}, found a table", expect(entry)),
-                    );
+                    self.mismatch(path, at, entry, node);
                 }
                 return;
             }
@@ -1042,42 +1038,19 @@ impl Checker<'_> {
                             Node::Table(entries) => {
                                 self.table(entries, &ipath, &format!("{norm}[]"), ofs.or(at))
                             }
-                            other => self.report(
-                                &ipath,
-                                ofs.or(at),
-                                format!("expected a table, found {}", other.type_name()),
-                            ),
+                            other => self.mismatch(&ipath, ofs.or(at), None, other),
                         }
                     }
                 } else {
-                    self.report(
-                        path,
-                        at,
-                        format!("expected {}, found an array", expect(entry)),
-                    );
+                    self.mismatch(path, at, entry, node);
                 }
                 return;
             }
             _ => {}
         }
         let Some(entry) = entry else {
-            self.report(
-                path,
-                at,
-                format!("expected a table, found {}", node.type_name()),
-            );
+            self.mismatch(path, at, None, node);
             return;
-        };
-        let wrong = |c: &mut Self| {
-            c.report(
-                path,
-                at,
-                format!(
-                    "expected {}, found {}",
-                    expect(Some(entry)),
-                    node.type_name()
-                ),
-            )
         };
         match (entry.kind, node) {
             (Float, Node::Int(i)) => self.bounds(entry, path, at, *i as f64),
@@ -1124,8 +1097,17 @@ impl Checker<'_> {
                     );
                 }
             }
-            _ => wrong(self),
+            _ => self.mismatch(path, at, Some(entry), node),
         }
+    }
+
+    /// `expected <what the field takes (a table where there is none)>, found <the node>`.
+    fn mismatch(&mut self, path: &str, at: Option<usize>, entry: Option<&Field>, node: &Node) {
+        self.report(
+            path,
+            at,
+            format!("expected {}, found {}", expect(entry), node.type_name()),
+        );
     }
 
     fn bounds(&mut self, entry: &Field, path: &str, at: Option<usize>, v: f64) {

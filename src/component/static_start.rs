@@ -1,6 +1,6 @@
 //! The static start of a load-driven inner ring: its equilibrium under the initial loads.
 
-use super::level::{LevelModel, LevelOutputs, Motion};
+use super::level::{LevelModel, LevelOutputs, Motion, Point};
 use crate::error::{Error, Result};
 
 /// The inner ring's static equilibrium under `loads` (external, on the ring) at speed
@@ -125,7 +125,7 @@ impl StaticSystem<'_> {
             omega: self.omega,
         };
         self.level
-            .outputs(0.0, &m, self.x, self.aux, &mut self.out)?;
+            .outputs(Point::new(0.0, &m, self.x, self.aux), &mut self.out)?;
         Ok((self.out.wrench, self.out.k))
     }
 

@@ -1,8 +1,8 @@
 //! A step: the transaction around the integration (scratch state, swap on success), the
 //! integration or quadrature of the states, and the outputs with their time derivatives.
 
-use super::inputs::{input_at, motion_at, motion_at_y};
-use super::level::LevelOutputs;
+use super::inputs::{input_at, motion_at};
+use super::level::{LevelOutputs, Point};
 use super::system::{all_finite, e_time, Budget, Sys};
 use super::{
     Component, State, I_C, I_CAGE, I_CAGE_OMEGA, I_DIAG, I_FORCE, I_K, I_LOAD, I_Q, I_RATING,
@@ -186,10 +186,13 @@ impl Component {
         let causality = self.causality();
         let [k0, k1, k2] = &mut self.work.k;
         for (s, k) in [(0.0, &mut *k0), (0.5 * h, &mut *k1), (h, &mut *k2)] {
-            let m = motion_at(sc, rule, s, causality, None, nl);
+            let m = motion_at(sc, rule, s, causality, None, nl, &sc.x);
             let (aux, _) = sc.aux.split_at_mut(naux);
-            self.level
-                .rhs(sc.t + s, &m, &sc.x[..nl], aux, &mut k[..nl], None)?;
+            self.level.rhs(
+                Point::new(sc.t + s, &m, &sc.x[..nl], aux),
+                &mut k[..nl],
+                None,
+            )?;
         }
         for j in 0..nl {
             sc.x[j] += h / 6.0 * (k0[j] + 4.0 * k1[j] + k2[j]);
@@ -202,12 +205,12 @@ impl Component {
         let nl = self.n_level;
         let rule = self.scene.inputs.rule;
         let causality = self.causality();
-        let m = motion_at_y(sc, rule, s, causality, self.ring.as_ref(), nl, &sc.x);
+        let m = motion_at(sc, rule, s, causality, self.ring.as_ref(), nl, &sc.x);
         let mut out = LevelOutputs::default();
         {
             let (aux, _) = sc.aux.split_at_mut(self.n_level_aux);
             self.level
-                .outputs(sc.t + s, &m, &sc.x[..nl], aux, &mut out)?;
+                .outputs(Point::new(sc.t + s, &m, &sc.x[..nl], aux), &mut out)?;
         }
         let o = &mut sc.outputs;
         o[I_FORCE..I_FORCE + 5].copy_from_slice(&out.wrench);

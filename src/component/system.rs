@@ -2,8 +2,8 @@
 //! states and, load-driven, the inner ring's, with the step's CPU budget and the
 //! preallocated work space.
 
-use super::inputs::{input_at, motion_at_y};
-use super::level::LevelModel;
+use super::inputs::{input_at, motion_at};
+use super::level::{Jacobians, LevelModel, Point};
 use super::{thread_cpu_s, Causality, InputRule, State, I_LOAD};
 use crate::error::{Error, Result};
 use crate::solver::{OdeSystem, SolverError};
@@ -132,17 +132,14 @@ impl Sys<'_> {
         wrench: Option<&mut [f64; 5]>,
     ) -> Result<()> {
         let nl = self.nl;
-        let m = motion_at_y(self.st, self.rule, s, self.causality, self.ring, nl, y);
-        let t = self.t0 + s;
+        let m = motion_at(self.st, self.rule, s, self.causality, self.ring, nl, y);
         let (aux, _) = self.st.aux.split_at_mut(self.naux);
+        let p = Point::new(self.t0 + s, &m, &y[..nl], aux);
         match self.ring {
-            None => self
-                .level
-                .rhs(t, &m, &y[..nl], aux, &mut dy[..nl], wrench)?,
+            None => self.level.rhs(p, &mut dy[..nl], wrench)?,
             Some(ring) => {
                 let mut w = [0.0; 5];
-                self.level
-                    .rhs(t, &m, &y[..nl], aux, &mut dy[..nl], Some(&mut w))?;
+                self.level.rhs(p, &mut dy[..nl], Some(&mut w))?;
                 let nd = ring.dofs.len();
                 for (k, &d) in ring.dofs.iter().enumerate() {
                     let load = input_at(self.st, I_LOAD + d, s, self.rule);
@@ -183,17 +180,22 @@ impl OdeSystem for Sys<'_> {
         };
         let nl = self.nl;
         let s = t - self.t0;
-        let m = motion_at_y(self.st, self.rule, s, self.causality, self.ring, nl, y);
+        let m = motion_at(self.st, self.rule, s, self.causality, self.ring, nl, y);
         let (aux, _) = self.st.aux.split_at_mut(self.naux);
         let (jm, wx, wm) = if self.ring.is_some() {
             (&mut jw.jm[..], &mut jw.wx[..], &mut jw.wm[..])
         } else {
             (&mut [][..], &mut [][..], &mut [][..])
         };
-        if !self
-            .level
-            .jacobian(t, &m, &y[..nl], aux, &mut jw.jx, jm, wx, wm)
-        {
+        if !self.level.jacobian(
+            Point::new(t, &m, &y[..nl], aux),
+            Jacobians {
+                jx: &mut jw.jx,
+                jm,
+                wx,
+                wm,
+            },
+        ) {
             return false;
         }
         jac.fill(0.0);

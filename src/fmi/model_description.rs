@@ -334,6 +334,18 @@ fn param_start(p: &Parameter) -> String {
     esc(p.start)
 }
 
+/// `unit="…"`, the display unit, the range and the start of a real parameter (both
+/// versions).
+fn real_param_attrs(p: &Parameter) -> String {
+    format!(
+        "unit=\"{}\"{}{} start=\"{}\"",
+        esc(p.unit),
+        display_attr(p.unit),
+        range_attr(p.name),
+        param_start(p)
+    )
+}
+
 /// A number as people write it: plain between 1e-4 and 1e6, else in exponent form
 /// (`1e-14`, not `0.00000000000001`); both are valid `xs:double` and round-trip exactly.
 pub(crate) fn num(x: f64) -> String {
@@ -399,31 +411,52 @@ fn type_definitions(x: &mut String, fmi3: bool) {
     x.push_str("  </TypeDefinitions>\n");
 }
 
-/// FMI 2.0 co-simulation `modelDescription.xml` of the variant of causality `c`.
-pub fn fmi2(c: Causality) -> String {
+/// What both versions write before the variables: the version's `<fmiModelDescription>`
+/// with its `<CoSimulation>`, then the units, the types, the log categories, the default
+/// experiment and the opening `<ModelVariables>`.
+fn preamble(c: Causality, fmi3: bool) -> String {
+    let (name, guid, desc) = (model_name(c), guid(c), esc(description(c)));
+    let ver = env!("CARGO_PKG_VERSION");
     let mut x = String::new();
-    let _ = write!(
-        x,
-        "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n\
-         <fmiModelDescription fmiVersion=\"2.0\" modelName=\"{name}\" guid=\"{guid}\"\n  \
-         description=\"{desc}\"\n  version=\"{ver}\" generationTool=\"raceway {ver}\" \
-         variableNamingConvention=\"structured\" numberOfEventIndicators=\"0\">\n  \
-         <CoSimulation modelIdentifier=\"{MODEL_IDENTIFIER}\" \
-         canHandleVariableCommunicationStepSize=\"true\" canInterpolateInputs=\"true\"\n    \
-         maxOutputDerivativeOrder=\"1\" canRunAsynchronuously=\"false\" \
-         canBeInstantiatedOnlyOncePerProcess=\"false\"\n    \
-         canNotUseMemoryManagementFunctions=\"true\" canGetAndSetFMUstate=\"true\" \
-         canSerializeFMUstate=\"true\"\n    providesDirectionalDerivative=\"true\"/>\n",
-        name = model_name(c),
-        guid = guid(c),
-        desc = esc(description(c)),
-        ver = env!("CARGO_PKG_VERSION")
-    );
+    let _ = if fmi3 {
+        write!(
+            x,
+            "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n\
+             <fmiModelDescription fmiVersion=\"3.0\" modelName=\"{name}\" \
+             instantiationToken=\"{guid}\"\n  description=\"{desc}\"\n  \
+             version=\"{ver}\" generationTool=\"raceway {ver}\" variableNamingConvention=\"structured\">\n  \
+             <CoSimulation modelIdentifier=\"{MODEL_IDENTIFIER}\" \
+             canHandleVariableCommunicationStepSize=\"true\"\n    maxOutputDerivativeOrder=\"1\" \
+             canGetAndSetFMUState=\"true\" canSerializeFMUState=\"true\"\n    \
+             providesDirectionalDerivatives=\"true\" providesAdjointDerivatives=\"false\" \
+             hasEventMode=\"false\"\n    canBeInstantiatedOnlyOncePerProcess=\"false\"/>\n",
+        )
+    } else {
+        write!(
+            x,
+            "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n\
+             <fmiModelDescription fmiVersion=\"2.0\" modelName=\"{name}\" guid=\"{guid}\"\n  \
+             description=\"{desc}\"\n  version=\"{ver}\" generationTool=\"raceway {ver}\" \
+             variableNamingConvention=\"structured\" numberOfEventIndicators=\"0\">\n  \
+             <CoSimulation modelIdentifier=\"{MODEL_IDENTIFIER}\" \
+             canHandleVariableCommunicationStepSize=\"true\" canInterpolateInputs=\"true\"\n    \
+             maxOutputDerivativeOrder=\"1\" canRunAsynchronuously=\"false\" \
+             canBeInstantiatedOnlyOncePerProcess=\"false\"\n    \
+             canNotUseMemoryManagementFunctions=\"true\" canGetAndSetFMUstate=\"true\" \
+             canSerializeFMUstate=\"true\"\n    providesDirectionalDerivative=\"true\"/>\n",
+        )
+    };
     unit_definitions(&mut x, c);
-    type_definitions(&mut x, false);
+    type_definitions(&mut x, fmi3);
     log_categories(&mut x);
     x.push_str(DEFAULT_EXPERIMENT);
     x.push_str("  <ModelVariables>\n");
+    x
+}
+
+/// FMI 2.0 co-simulation `modelDescription.xml` of the variant of causality `c`.
+pub fn fmi2(c: Causality) -> String {
+    let mut x = preamble(c, false);
     // 1-based indices, needed by <ModelStructure>
     let mut index = 0usize;
     let mut input_idx = Vec::new();
@@ -466,13 +499,7 @@ pub fn fmi2(c: Causality) -> String {
         index += 1;
         param_idx.push(index);
         let ty = match p.ty {
-            ParamType::Real => format!(
-                "<Real unit=\"{}\"{}{} start=\"{}\"/>",
-                esc(p.unit),
-                display_attr(p.unit),
-                range_attr(p.name),
-                param_start(p)
-            ),
+            ParamType::Real => format!("<Real {}/>", real_param_attrs(p)),
             ParamType::String => format!("<String start=\"{}\"/>", param_start(p)),
             ParamType::Boolean => format!("<Boolean start=\"{}\"/>", param_start(p)),
             ParamType::Enumeration { type_name, .. } => format!(
@@ -523,28 +550,7 @@ pub fn fmi2(c: Causality) -> String {
 
 /// FMI 3.0 co-simulation `modelDescription.xml` of the variant of causality `c`.
 pub fn fmi3(c: Causality) -> String {
-    let mut x = String::new();
-    let _ = write!(
-        x,
-        "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n\
-         <fmiModelDescription fmiVersion=\"3.0\" modelName=\"{name}\" \
-         instantiationToken=\"{guid}\"\n  description=\"{desc}\"\n  \
-         version=\"{ver}\" generationTool=\"raceway {ver}\" variableNamingConvention=\"structured\">\n  \
-         <CoSimulation modelIdentifier=\"{MODEL_IDENTIFIER}\" \
-         canHandleVariableCommunicationStepSize=\"true\"\n    maxOutputDerivativeOrder=\"1\" \
-         canGetAndSetFMUState=\"true\" canSerializeFMUState=\"true\"\n    \
-         providesDirectionalDerivatives=\"true\" providesAdjointDerivatives=\"false\" \
-         hasEventMode=\"false\"\n    canBeInstantiatedOnlyOncePerProcess=\"false\"/>\n",
-        name = model_name(c),
-        guid = guid(c),
-        desc = esc(description(c)),
-        ver = env!("CARGO_PKG_VERSION")
-    );
-    unit_definitions(&mut x, c);
-    type_definitions(&mut x, true);
-    log_categories(&mut x);
-    x.push_str(DEFAULT_EXPERIMENT);
-    x.push_str("  <ModelVariables>\n");
+    let mut x = preamble(c, true);
     let _ = writeln!(
         x,
         "    <Float64 name=\"time\" valueReference=\"{VR_TIME}\" causality=\"independent\" \
@@ -557,26 +563,22 @@ pub fn fmi3(c: Causality) -> String {
         } else {
             ("output", " initial=\"calculated\"".to_string())
         };
-        let _ = match v.ty {
-            VarType::Real => writeln!(
-                x,
-                "    <Float64 name=\"{}\" valueReference=\"{}\" causality=\"{caus}\" \
-                 variability=\"continuous\" description=\"{}\" unit=\"{}\"{}{extra}/>",
-                esc(v.name),
-                v.vr,
-                esc(v.description),
-                esc(v.unit),
-                display_attr(v.unit)
+        let (elem, variability, unit) = match v.ty {
+            VarType::Real => (
+                "Float64",
+                "continuous",
+                format!(" unit=\"{}\"{}", esc(v.unit), display_attr(v.unit)),
             ),
-            VarType::Integer => writeln!(
-                x,
-                "    <Int32 name=\"{}\" valueReference=\"{}\" causality=\"{caus}\" \
-                 variability=\"discrete\" description=\"{}\"{extra}/>",
-                esc(v.name),
-                v.vr,
-                esc(v.description),
-            ),
+            VarType::Integer => ("Int32", "discrete", String::new()),
         };
+        let _ = writeln!(
+            x,
+            "    <{elem} name=\"{}\" valueReference=\"{}\" causality=\"{caus}\" \
+             variability=\"{variability}\" description=\"{}\"{unit}{extra}/>",
+            esc(v.name),
+            v.vr,
+            esc(v.description),
+        );
     }
     for p in PARAMETERS {
         let head = format!(
@@ -587,14 +589,7 @@ pub fn fmi3(c: Causality) -> String {
             esc(p.description)
         );
         let _ = match p.ty {
-            ParamType::Real => writeln!(
-                x,
-                "    <Float64 {head} unit=\"{}\"{}{} start=\"{}\"/>",
-                esc(p.unit),
-                display_attr(p.unit),
-                range_attr(p.name),
-                param_start(p)
-            ),
+            ParamType::Real => writeln!(x, "    <Float64 {head} {}/>", real_param_attrs(p)),
             ParamType::String => writeln!(
                 x,
                 "    <String {head}><Start value=\"{}\"/></String>",

@@ -49,114 +49,114 @@ pub struct Base {
     pub initial_inputs: bool,
 }
 
+/// `[model]` lines of a load-driven base of the cheap levels: the level's own lines, then
+/// the causality, contact damping and attached mass they share.
+macro_rules! load_driven {
+    ($level:literal) => {
+        concat!(
+            $level,
+            "causality = \"load\"\ncontact_damping = 3000.0\nattached_mass_kg = 1.0\n"
+        )
+    };
+}
+
+/// What the bases of the cheap levels (ring, quasi-static, linear) share: the 6205, load
+/// driven, radial, the clearance axis, the campaign's window, the full product, inputs
+/// set after the build. A row states its name, its `[model]` lines and how it differs.
+const CHEAP: Base = Base {
+    name: "",
+    preset: "6205",
+    model: "",
+    load_driven: true,
+    axial_share: 0.0,
+    clearance_axis: true,
+    max_window: f64::INFINITY,
+    full_product: true,
+    initial_inputs: false,
+};
+
+/// What the bases of the dynamic levels (skidding, full) share beyond [`CHEAP`]: a
+/// window of 10 ms at the most, and the inputs in the scene's `[inputs] initial`.
+const DYNAMIC: Base = Base {
+    max_window: 0.01,
+    initial_inputs: true,
+    ..CHEAP
+};
+
+/// `[model]` lines of a load-driven skidding base: the studies' contact damping, Coulomb
+/// traction, pocket and drag, with the attached mass (kg), `mu_max` and further lines.
+macro_rules! skidding_load {
+    ($mass:literal, $mu_max:literal, $more:literal) => {
+        concat!(
+            "level = \"skidding\"\ncausality = \"load\"\ncontact_damping = 100.0\nattached_mass_kg = ",
+            $mass,
+            "\n[model.skidding]\ntraction = { law = \"coulomb\", mu_max = ",
+            $mu_max,
+            ", v_s = 0.05 }\npocket_stiffness = 1e7\npocket_damping = 200.0\npocket_friction = 0.05\n\
+             drag_coefficient = 15.0\ndrag_density = 10.0\n",
+            $more
+        )
+    };
+}
+
 /// The level bases. Add a row for a new level.
 pub const BASES: &[Base] = &[
     Base {
         name: "ring-2dof/load",
-        preset: "6205",
-        model: "level = \"ring\"\nring_dof = 2\ncausality = \"load\"\ncontact_damping = 3000.0\nattached_mass_kg = 1.0\n",
-        load_driven: true,
-        axial_share: 0.0,
-        clearance_axis: true,
-        max_window: f64::INFINITY,
-        full_product: true,
-        initial_inputs: false,
+        model: load_driven!("level = \"ring\"\nring_dof = 2\n"),
+        ..CHEAP
     },
     Base {
         name: "ring-5dof/load",
-        preset: "6205",
-        model: "level = \"ring\"\nring_dof = 5\ncausality = \"load\"\ncontact_damping = 3000.0\nattached_mass_kg = 1.0\n",
-        load_driven: true,
+        model: load_driven!("level = \"ring\"\nring_dof = 5\n"),
         axial_share: 0.5,
-        clearance_axis: true,
-        max_window: f64::INFINITY,
-        full_product: true,
-        initial_inputs: false,
+        ..CHEAP
     },
     Base {
         name: "ring-5dof/load 7008CE",
         preset: "7008ce",
-        model: "level = \"ring\"\nring_dof = 5\ncausality = \"load\"\ncontact_damping = 3000.0\nattached_mass_kg = 1.0\n",
-        load_driven: true,
+        model: load_driven!("level = \"ring\"\nring_dof = 5\n"),
         axial_share: 0.5,
         clearance_axis: false,
-        max_window: f64::INFINITY,
-        full_product: true,
-        initial_inputs: false,
+        ..CHEAP
     },
     Base {
         name: "ring-2dof/motion",
-        preset: "6205",
         model: "level = \"ring\"\nring_dof = 2\ncausality = \"motion\"\ncontact_damping = 3000.0\n",
         load_driven: false,
-        axial_share: 0.0,
-        clearance_axis: true,
-        max_window: f64::INFINITY,
-        full_product: true,
-        initial_inputs: false,
+        ..CHEAP
     },
     Base {
         name: "quasi_static/load",
-        preset: "6205",
-        model: "level = \"quasi_static\"\ncausality = \"load\"\ncontact_damping = 3000.0\nattached_mass_kg = 1.0\n",
-        load_driven: true,
-        axial_share: 0.0,
-        clearance_axis: true,
-        max_window: f64::INFINITY,
-        full_product: true,
-        initial_inputs: false,
+        model: load_driven!("level = \"quasi_static\"\n"),
+        ..CHEAP
     },
     Base {
         name: "quasi_static/motion",
-        preset: "6205",
         model: "level = \"quasi_static\"\ncausality = \"motion\"\n",
         load_driven: false,
-        axial_share: 0.0,
-        clearance_axis: true,
-        max_window: f64::INFINITY,
-        full_product: true,
-        initial_inputs: false,
+        ..CHEAP
     },
     Base {
         name: "linear/load",
-        preset: "6205",
-        model: "level = \"linear\"\ncausality = \"load\"\ncontact_damping = 3000.0\nattached_mass_kg = 1.0\n",
-        load_driven: true,
-        axial_share: 0.0,
-        clearance_axis: true,
-        max_window: f64::INFINITY,
-        full_product: true,
-        initial_inputs: false,
+        model: load_driven!("level = \"linear\"\n"),
+        ..CHEAP
     },
     Base {
         name: "skidding/load 7008CE",
         preset: "7008ce",
         // The settings of examples/scenes/7008ce-skidding-24000.toml (study [3]).
-        model: "level = \"skidding\"\ncausality = \"load\"\ncontact_damping = 100.0\nattached_mass_kg = 0.5\n\
-                [model.skidding]\ntraction = { law = \"coulomb\", mu_max = 0.02, v_s = 0.05 }\n\
-                pocket_stiffness = 1e7\npocket_damping = 200.0\npocket_friction = 0.05\n\
-                drag_coefficient = 15.0\ndrag_density = 10.0\nspacing_scatter = 0.5\nseed = 7\n",
-        load_driven: true,
+        model: skidding_load!("0.5", "0.02", "spacing_scatter = 0.5\nseed = 7\n"),
         axial_share: 0.5,
         clearance_axis: false,
-        max_window: 0.01,
-        full_product: true,
-        initial_inputs: true,
+        ..DYNAMIC
     },
     Base {
         name: "skidding/load 6012",
         preset: "6012",
         // The settings of examples/scenes/6012-skidding.toml (study [2]).
-        model: "level = \"skidding\"\ncausality = \"load\"\ncontact_damping = 100.0\nattached_mass_kg = 1.0\n\
-                [model.skidding]\ntraction = { law = \"coulomb\", mu_max = 0.05, v_s = 0.05 }\n\
-                pocket_stiffness = 1e7\npocket_damping = 200.0\npocket_friction = 0.05\n\
-                drag_coefficient = 15.0\ndrag_density = 10.0\n",
-        load_driven: true,
-        axial_share: 0.0,
-        clearance_axis: true,
-        max_window: 0.01,
-        full_product: true,
-        initial_inputs: true,
+        model: skidding_load!("1.0", "0.05", ""),
+        ..DYNAMIC
     },
     Base {
         name: "full/motion 7004",
@@ -171,7 +171,7 @@ pub const BASES: &[Base] = &[
         clearance_axis: false,
         max_window: 0.005,
         full_product: false,
-        initial_inputs: true,
+        ..DYNAMIC
     },
 ];
 

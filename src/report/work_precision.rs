@@ -68,33 +68,46 @@ impl Case {
     }
 }
 
-const RING2_6205: &str = r#"
+/// A case's scene: `head` (title, bearing, level, ring DOFs), then what every case shares
+/// (a load-driven inner ring of 1 kg released from rest, contact damping 3000 N s/m), then
+/// the initial inputs.
+macro_rules! released {
+    ($head:literal, $initial:literal) => {
+        concat!(
+            $head,
+            r#"causality = "load"
+start = "rest"
+contact_damping = 3000.0
+attached_mass_kg = 1.0
+[inputs]
+initial = "#,
+            $initial,
+            "\n"
+        )
+    };
+}
+
+const RING2_6205: &str = released!(
+    r#"
 title = "6205, 10 um clearance, 1 kg on the inner ring, 1 kN radial load, 1750 rpm"
 bearing = { preset = "6205", clearance_um = 10.0 }
 [model]
 level = "LEVEL"
 ring_dof = 2
-causality = "load"
-start = "rest"
-contact_damping = 3000.0
-attached_mass_kg = 1.0
-[inputs]
-initial = { "load.x" = 0.0, "load.y" = -1000.0, "load.z" = 0.0, "load.mx" = 0.0, "load.my" = 0.0, "shaft.omega" = 183.259571 }
-"#;
+"#,
+    r#"{ "load.x" = 0.0, "load.y" = -1000.0, "load.z" = 0.0, "load.mx" = 0.0, "load.my" = 0.0, "shaft.omega" = 183.259571 }"#
+);
 
-const RING5_7008: &str = r#"
+const RING5_7008: &str = released!(
+    r#"
 title = "7008CE (ZrO2), 1 kg on the inner ring, 1 kN radial + 500 N axial, 6000 rpm"
 bearing = "7008ce"
 [model]
 level = "LEVEL"
 ring_dof = 5
-causality = "load"
-start = "rest"
-contact_damping = 3000.0
-attached_mass_kg = 1.0
-[inputs]
-initial = { "load.x" = 0.0, "load.y" = -1000.0, "load.z" = 500.0, "load.mx" = 0.0, "load.my" = 0.0, "shaft.omega" = 628.318531 }
-"#;
+"#,
+    r#"{ "load.x" = 0.0, "load.y" = -1000.0, "load.z" = 500.0, "load.mx" = 0.0, "load.my" = 0.0, "shaft.omega" = 628.318531 }"#
+);
 
 /// The cases: load-driven inner rings released from the centre under load (they fall
 /// through the clearance, hit the balls and ring down), one row per level and geometry.

@@ -12,7 +12,7 @@
 //! wrench with the level's states held (the quasi-static ball positions re-solved: they
 //! are not states), on a scratch copy of `aux` so that the outputs never change the run.
 
-use crate::component::level::{LevelModel, LevelOutputs, Motion};
+use crate::component::level::{Jacobians, LevelModel, LevelOutputs, Motion, Point};
 use crate::component::levels::cage_speed;
 use crate::component::Scene;
 use crate::error::{Error, Result};
@@ -109,17 +109,8 @@ impl LevelModel for FullLevel {
         atol.fill(atol_m / l);
         true
     }
-    fn jacobian(
-        &mut self,
-        _t: f64,
-        m: &Motion,
-        x: &[f64],
-        aux: &mut [f64],
-        jx: &mut [f64],
-        jm: &mut [f64],
-        wx: &mut [f64],
-        wm: &mut [f64],
-    ) -> bool {
+    fn jacobian(&mut self, p: Point<'_>, j: Jacobians<'_>) -> bool {
+        let (Point { m, x, aux, .. }, Jacobians { jx, jm, wx, wm }) = (p, j);
         let kept = match &self.last_rhs {
             Some((lm, tot)) if lm == m && self.last_x == x && self.last_aux == aux => {
                 Some((&self.last_dx[..], tot))
@@ -148,15 +139,8 @@ impl LevelModel for FullLevel {
         }
         self.model.init(&m.q, m.omega, x, aux)
     }
-    fn rhs(
-        &mut self,
-        _t: f64,
-        m: &Motion,
-        x: &[f64],
-        aux: &mut [f64],
-        dx: &mut [f64],
-        wrench: Option<&mut [f64; 5]>,
-    ) -> Result<()> {
+    fn rhs(&mut self, p: Point<'_>, dx: &mut [f64], wrench: Option<&mut [f64; 5]>) -> Result<()> {
+        let Point { m, x, aux, .. } = p;
         self.last_rhs = None;
         let tot = self.model.eval_keep(&m.q, &m.v, m.omega, x, aux, dx)?;
         self.last_x.copy_from_slice(x);
@@ -169,14 +153,8 @@ impl LevelModel for FullLevel {
         self.last = tot;
         Ok(())
     }
-    fn outputs(
-        &mut self,
-        _t: f64,
-        m: &Motion,
-        x: &[f64],
-        aux: &mut [f64],
-        out: &mut LevelOutputs,
-    ) -> Result<()> {
+    fn outputs(&mut self, p: Point<'_>, out: &mut LevelOutputs) -> Result<()> {
+        let Point { m, x, aux, .. } = p;
         // K and C by forward differences of the wrench, states held. The unperturbed
         // evaluation gives the outputs and the per-ball results the model keeps; the
         // perturbed ones compute the wrench alone ([`FullModel::wrench_at`]), each from the

@@ -4,7 +4,7 @@
 //! `K` is the exact Jones–Harris stiffness at the operating point; `C` is the contact
 //! damping of the ring level (`model.contact_damping` per loaded ball) at `q0`.
 
-use crate::component::level::{LevelModel, LevelOutputs, Motion};
+use crate::component::level::{LevelModel, LevelOutputs, Motion, Point};
 use crate::component::levels::cage_speed;
 use crate::component::scene::Scene;
 use crate::error::Result;
@@ -88,33 +88,18 @@ impl LevelModel for LinearLevel {
     fn init(&mut self, _m: &Motion, _x: &mut [f64], _aux: &mut [f64]) -> Result<()> {
         Ok(())
     }
-    fn rhs(
-        &mut self,
-        _t: f64,
-        m: &Motion,
-        _x: &[f64],
-        _aux: &mut [f64],
-        _dx: &mut [f64],
-        wrench: Option<&mut [f64; 5]>,
-    ) -> Result<()> {
+    fn rhs(&mut self, p: Point<'_>, _dx: &mut [f64], wrench: Option<&mut [f64; 5]>) -> Result<()> {
         if let Some(w) = wrench {
-            *w = self.wrench(m);
+            *w = self.wrench(p.m);
         }
         Ok(())
     }
-    fn outputs(
-        &mut self,
-        _t: f64,
-        m: &Motion,
-        _x: &[f64],
-        _aux: &mut [f64],
-        out: &mut LevelOutputs,
-    ) -> Result<()> {
+    fn outputs(&mut self, p: Point<'_>, out: &mut LevelOutputs) -> Result<()> {
         *out = LevelOutputs {
-            wrench: self.wrench(m),
+            wrench: self.wrench(p.m),
             k: self.k,
             c: self.c,
-            cage_omega: self.cage_ratio * m.omega,
+            cage_omega: self.cage_ratio * p.m.omega,
             balls_loaded: self.loaded,
             max_load: self.max_load,
             max_pressure: self.max_pressure,

@@ -7,7 +7,7 @@
 //! level: `c d(delta)/dt` along each loaded ball's contact line (the ring level's massless
 //! ball geometry), blended in over the first 0.1 µm of approach; off (no cost) at 0.
 
-use crate::component::level::{LevelModel, LevelOutputs, Motion};
+use crate::component::level::{LevelModel, LevelOutputs, Motion, Point};
 use crate::component::levels::cage_speed;
 use crate::component::scene::Scene;
 use crate::error::Result;
@@ -132,15 +132,8 @@ impl LevelModel for QuasiStaticLevel {
         aux.fill(0.0);
         Ok(())
     }
-    fn rhs(
-        &mut self,
-        _t: f64,
-        m: &Motion,
-        x: &[f64],
-        aux: &mut [f64],
-        dx: &mut [f64],
-        wrench: Option<&mut [f64; 5]>,
-    ) -> Result<()> {
+    fn rhs(&mut self, p: Point<'_>, dx: &mut [f64], wrench: Option<&mut [f64; 5]>) -> Result<()> {
+        let Point { m, x, aux, .. } = p;
         dx[0] = self.cage_ratio * m.omega;
         if let Some(w) = wrench {
             self.load_aux(x[0], aux);
@@ -152,14 +145,8 @@ impl LevelModel for QuasiStaticLevel {
         }
         Ok(())
     }
-    fn outputs(
-        &mut self,
-        _t: f64,
-        m: &Motion,
-        x: &[f64],
-        aux: &mut [f64],
-        out: &mut LevelOutputs,
-    ) -> Result<()> {
+    fn outputs(&mut self, p: Point<'_>, out: &mut LevelOutputs) -> Result<()> {
+        let Point { m, x, aux, .. } = p;
         self.load_aux(x[0], aux);
         let mut k = [[0.0; 5]; 5];
         let mut wrench = self.qs.evaluate(

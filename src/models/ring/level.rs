@@ -23,7 +23,7 @@
 //! `time_scale`, on its own step ([`ThermalModel::advance`]). This file is the glue: the
 //! memory layout and which physics runs when.
 
-use crate::component::level::{LevelModel, LevelOutputs, Motion};
+use crate::component::level::{LevelModel, LevelOutputs, Motion, Point};
 use crate::component::levels::cage_speed;
 use crate::component::{Scene, State};
 use crate::contact::{Curvature, PointContact, Race};
@@ -315,8 +315,19 @@ impl RingLevel {
         }
     }
 
+    /// `[shaft angle for the fast effects, shaft angle turned]` ([`eval_ring`]).
+    #[inline]
+    fn angles(&self, x: &[f64]) -> [f64; 2] {
+        [
+            if self.shaft_angle { x[1] } else { 0.0 },
+            self.shaft_turned(x),
+        ]
+    }
+
+    /// Evaluate the ring model with the level's effects into `self.eval` (cage speed `wc`);
+    /// `per_ball(slow, j, psi, q)` sees each ball's load with the slow effects.
     #[allow(clippy::too_many_arguments)]
-    fn evaluate<F: FnMut(usize, f64, f64)>(
+    fn evaluate<F: FnMut(Option<&Slow>, usize, f64, f64)>(
         &mut self,
         t: f64,
         m: &Motion,
@@ -324,26 +335,27 @@ impl RingLevel {
         aux: &[f64],
         wc: f64,
         jac: bool,
-        per_ball: F,
+        mut per_ball: F,
     ) {
-        let turned = self.shaft_turned(x);
+        let angles = self.angles(x);
+        let slow = self.slow.as_ref();
         eval_ring(
             &self.model,
             &mut self.eval,
             self.profile.as_ref(),
-            self.slow.as_ref(),
-            [if self.shaft_angle { x[1] } else { 0.0 }, turned],
+            slow,
+            angles,
             (t, m, x, aux, wc),
             jac,
-            per_ball,
+            |j, psi, q| per_ball(slow, j, psi, q),
         );
     }
 
     /// Wear-depth rates of the accumulators (`dx` of the wear block) at this instant; also
     /// leaves the forces in `self.eval`.
     fn wear_rates(&mut self, t: f64, m: &Motion, x: &[f64], aux: &[f64], wc: f64, dx: &mut [f64]) {
-        let turned = self.shaft_turned(x);
-        let angles = [if self.shaft_angle { x[1] } else { 0.0 }, turned];
+        let angles = self.angles(x);
+        let turned = angles[1];
         let slow = self.slow.as_ref().expect("wear on");
         let w = slow.wear.as_ref().expect("wear on");
         let rel = slow.relative_rolling(m.omega);
@@ -453,15 +465,8 @@ impl LevelModel for RingLevel {
         aux.fill(0.0);
         Ok(())
     }
-    fn rhs(
-        &mut self,
-        t: f64,
-        m: &Motion,
-        x: &[f64],
-        aux: &mut [f64],
-        dx: &mut [f64],
-        wrench: Option<&mut [f64; 5]>,
-    ) -> Result<()> {
+    fn rhs(&mut self, p: Point<'_>, dx: &mut [f64], wrench: Option<&mut [f64; 5]>) -> Result<()> {
+        let Point { t, m, x, aux } = p;
         let wc = self.cage_ratio * m.omega;
         dx[0] = wc;
         if self.shaft_angle {
@@ -473,19 +478,13 @@ impl LevelModel for RingLevel {
                 *w = self.eval.wrench;
             }
         } else if let Some(w) = wrench {
-            self.evaluate(t, m, x, aux, wc, false, |_, _, _| {});
+            self.evaluate(t, m, x, aux, wc, false, |_, _, _, _| {});
             *w = self.eval.wrench;
         }
         Ok(())
     }
-    fn outputs(
-        &mut self,
-        t: f64,
-        m: &Motion,
-        x: &[f64],
-        aux: &mut [f64],
-        out: &mut LevelOutputs,
-    ) -> Result<()> {
+    fn outputs(&mut self, p: Point<'_>, out: &mut LevelOutputs) -> Result<()> {
+        let Point { t, m, x, aux } = p;
         let wc = self.cage_ratio * m.omega;
         let turned = self.shaft_turned(x);
         // Wear cycle: scale the window's accumulated wear to the cycle, add it to the maps.
@@ -501,29 +500,12 @@ impl LevelModel for RingLevel {
             );
         }
         let mut sums = ContactSums::default();
-        {
-            let th = self
-                .slow
-                .as_ref()
-                .and_then(|s| s.thermal.as_ref())
-                .map(|t| &t.model);
-            let omega = m.omega;
-            let per_ball = |_j: usize, _psi: f64, q: f64| {
-                if let Some(th) = th {
-                    th.add_ball(omega, q, &mut sums);
-                }
-            };
-            eval_ring(
-                &self.model,
-                &mut self.eval,
-                self.profile.as_ref(),
-                self.slow.as_ref(),
-                [if self.shaft_angle { x[1] } else { 0.0 }, turned],
-                (t, m, x, aux, wc),
-                true,
-                per_ball,
-            );
-        }
+        let omega = m.omega;
+        self.evaluate(t, m, x, aux, wc, true, |slow, _j, _psi, q| {
+            if let Some(th) = slow.and_then(|s| s.thermal.as_ref()) {
+                th.model.add_ball(omega, q, &mut sums);
+            }
+        });
         let e = &self.eval;
         *out = LevelOutputs {
             wrench: e.wrench,

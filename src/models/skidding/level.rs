@@ -7,7 +7,7 @@
 //! component's repeated evaluations of the same point (outputs, the base of its `dF/dt`
 //! difference, the next step's first stage and `df/dt`) cost nothing.
 
-use crate::component::level::{LevelModel, LevelOutputs, Motion};
+use crate::component::level::{Jacobians, LevelModel, LevelOutputs, Motion, Point};
 use crate::component::Scene;
 use crate::error::{Error, Result};
 use crate::geometry::Bearing;
@@ -148,17 +148,8 @@ impl LevelModel for SkiddingLevel {
         }
         true
     }
-    fn jacobian(
-        &mut self,
-        _t: f64,
-        m: &Motion,
-        x: &[f64],
-        _aux: &mut [f64],
-        jx: &mut [f64],
-        jm: &mut [f64],
-        wx: &mut [f64],
-        wm: &mut [f64],
-    ) -> bool {
+    fn jacobian(&mut self, p: Point<'_>, j: Jacobians<'_>) -> bool {
+        let (Point { m, x, .. }, Jacobians { jx, jm, wx, wm }) = (p, j);
         self.model
             .jacobian(&m.q, &m.v, m.omega, x, jx, jm, wx, wm, self.dofs);
         if self.dofs.len() == 2 && !wm.is_empty() {
@@ -176,15 +167,8 @@ impl LevelModel for SkiddingLevel {
         self.model.init_at(&m.q, m.omega, x);
         Ok(())
     }
-    fn rhs(
-        &mut self,
-        _t: f64,
-        m: &Motion,
-        x: &[f64],
-        _aux: &mut [f64],
-        dx: &mut [f64],
-        wrench: Option<&mut [f64; 5]>,
-    ) -> Result<()> {
+    fn rhs(&mut self, p: Point<'_>, dx: &mut [f64], wrench: Option<&mut [f64; 5]>) -> Result<()> {
+        let Point { m, x, .. } = p;
         let tot = if self.memo_hit(m, x) {
             dx.copy_from_slice(&self.memo_dx);
             self.last
@@ -202,14 +186,8 @@ impl LevelModel for SkiddingLevel {
         self.last = tot;
         Ok(())
     }
-    fn outputs(
-        &mut self,
-        _t: f64,
-        m: &Motion,
-        x: &[f64],
-        _aux: &mut [f64],
-        out: &mut LevelOutputs,
-    ) -> Result<()> {
+    fn outputs(&mut self, p: Point<'_>, out: &mut LevelOutputs) -> Result<()> {
+        let Point { m, x, .. } = p;
         let n = self.model.n_states();
         // Fixed-size scratch (no allocation) for the rates.
         let mut buf = [0.0; 2 + 5 * MAX_BALLS];
