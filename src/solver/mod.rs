@@ -8,7 +8,9 @@
 //! - [`Rosenbrock`]: RODAS4, the L-stable, stiffly accurate 6-stage Rosenbrock method of
 //!   order 4(3) (Hairer & Wanner, *Solving ODEs II*, 2nd ed., §VI.4, Table 4.1 / the code
 //!   RODAS), one LU per step attempt, with a pluggable linear solver ([`LinearSolver`]:
-//!   [`DenseLu`] by default, [`BlockArrowhead`] for ball-structured systems).
+//!   [`DenseLu`] by default, [`BlockArrowhead`] for ball-structured systems). The same
+//!   integrator runs the W-method ROS34PW2 ([`RosMethod::Ros34pw2`], order 3(2)), which
+//!   keeps `J` and its LU across the steps of a call and needs no `∂f/∂t`.
 //!
 //! Conventions the co-simulation component relies on:
 //!
@@ -34,7 +36,10 @@ mod rosenbrock;
 
 pub use dopri5::Dopri5;
 pub use linalg::{lu_factor, lu_solve, BlockArrowhead, DenseLu, LinearSolver};
-pub use rosenbrock::Rosenbrock;
+pub use rosenbrock::{
+    RosMethod, Rosenbrock, WCoeffs, ROS34PW2_ALPHA, ROS34PW2_B, ROS34PW2_BHAT, ROS34PW2_GAMMA,
+    ROS34PW2_GAMMA_MATRIX, W_JAC_MAX_AGE,
+};
 
 use nalgebra::DMatrix;
 use std::fmt;
