@@ -15,8 +15,9 @@ fn vr(n: &str) -> u32 {
 }
 
 /// A fresh component at 6000 rpm, settled 50 ms (not timed); then `sim` simulated seconds
-/// in host steps of `h`. Returns the CPU seconds per simulated second.
-fn case(label: &str, h: f64, sim: f64) -> f64 {
+/// in host steps of `h`, with the scene's integrator or `method`. Returns the CPU seconds
+/// per simulated second.
+fn case(label: &str, h: f64, sim: f64, method: Option<Method>) -> f64 {
     let text = include_str!("../examples/scenes/7008ce-runup.toml");
     let omega = 6000.0 * std::f64::consts::PI / 30.0;
     // Start at speed: a fresh component at 6000 rpm starts at the kinematic speeds.
@@ -24,7 +25,11 @@ fn case(label: &str, h: f64, sim: f64) -> f64 {
         "\"shaft.omega\" = 0.0",
         &format!("\"shaft.omega\" = {omega}"),
     );
-    let mut c = Component::from_text(&text).expect("scene");
+    let mut scene = Scene::from_text(&text).expect("scene");
+    if let Some(m) = method {
+        scene.solver.method = m;
+    }
+    let mut c = Component::new(scene).expect("scene");
     let settle = 1e-3;
     for i in 0..50 {
         c.do_step(i as f64 * settle, settle).expect("step");
@@ -119,14 +124,18 @@ fn main() {
 
 /// The three host step sizes with the scene as shipped.
 fn host_steps() {
-    let straight = case("one 0.2 s step (straight through)", 0.2, 0.2);
-    let ms = case("host step 1 ms", 1e-3, 0.2);
-    let comp = case("host step 0.1 ms (component mode)", 1e-4, 0.5);
+    let straight = case("one 0.2 s step (straight through)", 0.2, 0.2, None);
+    let ms = case("host step 1 ms", 1e-3, 0.2, None);
+    let comp = case("host step 0.1 ms (component mode)", 1e-4, 0.5, None);
     println!(
         "component mode (0.1 ms) / straight through: {:.2}; / 1 ms steps: {:.2}",
         comp / straight,
         comp / ms
     );
+    let w = Some(Method::Ros34pw2);
+    case("ROS34PW2, one 0.2 s step (straight through)", 0.2, 0.2, w);
+    case("ROS34PW2, host step 1 ms", 1e-3, 0.2, w);
+    case("ROS34PW2, host step 0.1 ms (component mode)", 1e-4, 0.5, w);
 }
 
 /// The speed goal's case with each method, against RODAS4 at rtol 1e-9.
