@@ -14,26 +14,36 @@ fn vr(n: &str) -> u32 {
     variables::by_name(n).unwrap().vr
 }
 
-/// A fresh component at 6000 rpm, settled 50 ms (not timed); then `sim` simulated seconds
-/// in host steps of `h`, with the scene's integrator or `method`. Returns the CPU seconds
-/// per simulated second.
-fn case(label: &str, h: f64, sim: f64, method: Option<Method>) -> f64 {
+/// The shipped run-up scene at a constant 6000 rpm (a fresh component at speed starts at
+/// the kinematic speeds).
+fn scene_at_speed() -> Scene {
     let text = include_str!("../examples/scenes/7008ce-runup.toml");
     let omega = 6000.0 * std::f64::consts::PI / 30.0;
-    // Start at speed: a fresh component at 6000 rpm starts at the kinematic speeds.
     let text = text.replace(
         "\"shaft.omega\" = 0.0",
         &format!("\"shaft.omega\" = {omega}"),
     );
-    let mut scene = Scene::from_text(&text).expect("scene");
+    Scene::from_text(&text).expect("scene")
+}
+
+/// A component of `scene` after `ms` untimed steps of 1 ms.
+fn settled(scene: Scene, ms: usize) -> Component {
+    let mut c = Component::new(scene).expect("scene");
+    for i in 0..ms {
+        c.do_step(i as f64 * 1e-3, 1e-3).expect("settle");
+    }
+    c
+}
+
+/// A fresh component at 6000 rpm, settled 50 ms (not timed); then `sim` simulated seconds
+/// in host steps of `h`, with the scene's integrator or `method`. Returns the CPU seconds
+/// per simulated second.
+fn case(label: &str, h: f64, sim: f64, method: Option<Method>) -> f64 {
+    let mut scene = scene_at_speed();
     if let Some(m) = method {
         scene.solver.method = m;
     }
-    let mut c = Component::new(scene).expect("scene");
-    let settle = 1e-3;
-    for i in 0..50 {
-        c.do_step(i as f64 * settle, settle).expect("step");
-    }
+    let mut c = settled(scene, 50);
     let s0 = c.stats();
     let n = (sim / h).round() as usize;
     let t_start = c.time();
@@ -71,20 +81,11 @@ fn case(label: &str, h: f64, sim: f64, method: Option<Method>) -> f64 {
 /// The speed goal's run (as `benches/speed.rs`'s `skidding_run`) with `method` at `rtol`
 /// (`atol_m = 1e-4 rtol`): CPU per 0.1 ms step, the force samples and the counters.
 fn goal_run(method: Method, rtol: f64, t_end: f64) -> (f64, Samples, raceway::component::Stats) {
-    let text = include_str!("../examples/scenes/7008ce-runup.toml");
-    let omega = 6000.0 * std::f64::consts::PI / 30.0;
-    let text = text.replace(
-        "\"shaft.omega\" = 0.0",
-        &format!("\"shaft.omega\" = {omega}"),
-    );
-    let mut scene = Scene::from_text(&text).expect("scene");
+    let mut scene = scene_at_speed();
     scene.solver.method = method;
     scene.solver.rtol = rtol;
     scene.solver.atol_m = rtol * 1e-4;
-    let mut c = Component::new(scene).expect("scene");
-    for i in 0..20 {
-        c.do_step(i as f64 * 1e-3, 1e-3).expect("settle");
-    }
+    let mut c = settled(scene, 20);
     let h = 1e-4;
     let t0 = c.time();
     let n = (t_end / h).round() as usize;
