@@ -33,8 +33,8 @@
 //! transformed ones (`A = αΓ⁻¹`, `C = diag(Γ)⁻¹ − Γ⁻¹`, `m = bΓ⁻¹`) are computed from them.
 
 use super::{
-    carry_step, check_call, error_norm, eval, fixed_steps, initial_step, underflow, DenseLu,
-    LinearSolver, OdeSystem, Options, SolverError, Stats, MAX_NONFINITE_RETRIES, UROUND,
+    check_call, error_norm, eval, fixed_steps, initial_step, DenseLu, LinearSolver, OdeSystem,
+    Options, SolverError, Stats, StepLoop, UROUND,
 };
 use nalgebra::DMatrix;
 
@@ -605,33 +605,20 @@ impl Rosenbrock {
         opts: &Options,
         mut have_f0: bool,
     ) -> Result<f64, SolverError> {
-        let mut t = t0;
-        let mut h = h0;
-        let mut reject = false;
+        let mut lp = StepLoop::new(t0, h0);
         let mut need_linearise = true;
         // W-method: J wanted at the next preparation; accepted steps since the last J.
         let w_method = self.method != RosMethod::Rodas4;
         let mut need_jac = true;
         let mut jac_age: u32 = 0;
         let expo = self.method.error_exponent();
-        let mut attempts: u64 = 0;
         let mut accepted_here: u64 = 0;
         let (mut hacc, mut erracc) = (0.0f64, 0.0f64);
         let mut singular_streak = 0u32;
-        let mut nonfinite_streak = 0u32;
-        let mut last_nonfinite: Option<(f64, usize)> = None;
         loop {
-            if attempts >= opts.max_steps {
-                return Err(SolverError::TooManySteps {
-                    t,
-                    max_steps: opts.max_steps,
-                });
-            }
-            if 0.1 * h <= t.abs() * UROUND || h < f64::MIN_POSITIVE {
-                return Err(underflow(t, h, last_nonfinite));
-            }
+            lp.check(opts)?;
             if need_linearise {
-                self.prepare(sys, t, opts, have_f0, need_jac)?;
+                self.prepare(sys, lp.t, opts, have_f0, need_jac)?;
                 if need_jac {
                     need_jac = false;
                     jac_age = 0;
@@ -639,101 +626,71 @@ impl Rosenbrock {
                 need_linearise = false;
                 have_f0 = false;
             }
-            attempts += 1;
-            let h_prop = h;
-            let last = t + 1.01 * h >= t1;
-            if last {
-                h = t1 - t;
-            }
-            match self.attempt(sys, t, h)? {
-                Attempt::Done => {}
+            let (h_prop, last) = lp.begin(t1);
+            let (t, h) = (lp.t, lp.h);
+            let err = match self.attempt(sys, t, h)? {
+                Attempt::Done => {
+                    singular_streak = 0;
+                    let err = error_norm(&self.u[5], &self.y, &self.ynew, opts);
+                    if !err.is_finite() {
+                        lp.nonfinite_error(&mut self.stats);
+                    }
+                    err
+                }
                 Attempt::Singular => {
                     self.stats.rejected += 1;
                     singular_streak += 1;
                     if singular_streak > MAX_SINGULAR {
                         return Err(SolverError::Singular { t, h });
                     }
-                    h *= 0.5;
-                    reject = true;
-                    if w_method && jac_age > 0 {
-                        // A kept J: refresh it here (f0 still holds f(t, y)).
-                        (need_jac, need_linearise, have_f0) = (true, true, true);
-                    }
-                    continue;
+                    lp.h *= 0.5;
+                    lp.reject = true;
+                    f64::NAN
                 }
                 Attempt::NonFinite(tb, idx) => {
-                    self.stats.rejected += 1;
-                    nonfinite_streak += 1;
-                    last_nonfinite = Some((tb, idx));
-                    if nonfinite_streak > MAX_NONFINITE_RETRIES {
-                        return Err(SolverError::NonFinite {
-                            t: tb,
-                            what: "right-hand side",
-                            index: idx,
-                        });
+                    lp.nonfinite(&mut self.stats, tb, idx)?;
+                    f64::NAN
+                }
+            };
+            if err.is_finite() {
+                lp.nonfinite_streak = 0;
+                let mut fac = (err.powf(expo) / SAFE).clamp(FAC2, FAC1);
+                let mut h_new = h / fac;
+                if err <= 1.0 {
+                    if accepted_here >= 1 {
+                        // Gustafsson's predictive controller (Hairer & Wanner II, Eq. IV.8.21)
+                        let facgus =
+                            ((hacc / h) * (err * err / erracc).powf(expo) / SAFE).clamp(FAC2, FAC1);
+                        fac = fac.max(facgus);
+                        h_new = h / fac;
                     }
-                    h *= 0.2;
-                    reject = true;
-                    if w_method && jac_age > 0 {
-                        (need_jac, need_linearise, have_f0) = (true, true, true);
+                    hacc = h;
+                    erracc = err.max(1e-2);
+                    accepted_here += 1;
+                    let t_new = if last { t1 } else { t + h };
+                    self.accept(t, t_new);
+                    need_linearise = true;
+                    if w_method {
+                        jac_age += 1;
+                        need_jac = jac_age >= W_JAC_MAX_AGE;
+                        // Keep the step (and with it the LU) when the controller would grow
+                        // it only a little (RADAU5's rule, Hairer & Wanner II §IV.8).
+                        if h_new >= h && h_new <= W_HOLD * h {
+                            h_new = h;
+                        }
+                    }
+                    if let Some(h_next) = lp.accepted(t_new, h_new, h_prop, last, opts) {
+                        return Ok(h_next);
                     }
                     continue;
                 }
-            }
-            singular_streak = 0;
-            let err = error_norm(&self.u[5], &self.y, &self.ynew, opts);
-            if !err.is_finite() {
                 self.stats.rejected += 1;
-                h *= 0.2;
-                reject = true;
-                if w_method && jac_age > 0 {
-                    (need_jac, need_linearise, have_f0) = (true, true, true);
-                }
-                continue;
+                lp.reject = true;
+                lp.h = h_new;
             }
-            nonfinite_streak = 0;
-            let mut fac = (err.powf(expo) / SAFE).clamp(FAC2, FAC1);
-            let mut h_new = h / fac;
-            if err <= 1.0 {
-                if accepted_here >= 1 {
-                    // Gustafsson's predictive controller (Hairer & Wanner II, Eq. IV.8.21)
-                    let facgus =
-                        ((hacc / h) * (err * err / erracc).powf(expo) / SAFE).clamp(FAC2, FAC1);
-                    fac = fac.max(facgus);
-                    h_new = h / fac;
-                }
-                hacc = h;
-                erracc = err.max(1e-2);
-                accepted_here += 1;
-                let t_new = if last { t1 } else { t + h };
-                self.accept(t, t_new);
-                t = t_new;
-                need_linearise = true;
-                if w_method {
-                    jac_age += 1;
-                    need_jac = jac_age >= W_JAC_MAX_AGE;
-                    // Keep the step (and with it the LU) when the controller would grow
-                    // it only a little (RADAU5's rule, Hairer & Wanner II §IV.8).
-                    if h_new >= h && h_new <= W_HOLD * h {
-                        h_new = h;
-                    }
-                }
-                h_new = h_new.min(opts.h_max);
-                if reject {
-                    h_new = h_new.min(h);
-                }
-                if last {
-                    return Ok(carry_step(h, h_prop, h_new, opts.h_max));
-                }
-                reject = false;
-                h = h_new;
-            } else {
-                self.stats.rejected += 1;
-                reject = true;
-                h = h_new;
-                if w_method && jac_age > 0 {
-                    (need_jac, need_linearise, have_f0) = (true, true, true);
-                }
+            // Rejected. A kept J (W-method) is refreshed here; f0 still holds f(t, y).
+            if w_method && jac_age > 0 {
+                (need_jac, need_linearise, have_f0) = (true, true, true);
             }
         }
     }
