@@ -266,6 +266,11 @@ impl WCoeffs {
 ///   predictive controller after the second accepted step of a call (Hairer & Wanner II,
 ///   §IV.8, Eq. 8.21).
 /// - Dense output [`Rosenbrock::dense`]: RODAS's 3rd-order continuous extension.
+///
+/// ROS34PW2 differs in: `J` (from the system or by the same differences) at the first
+/// step of a call, after a rejected step and every [`W_JAC_MAX_AGE`] accepted steps; the
+/// LU only when `h` changes; `∂f/∂t` only from the system; step control with `err^(1/3)`
+/// (embedded order 2); no dense output.
 pub struct Rosenbrock {
     n: usize,
     method: RosMethod,
