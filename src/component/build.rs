@@ -11,7 +11,7 @@ use super::{
 };
 use crate::error::Result;
 use crate::geometry::Bearing;
-use crate::solver::{Dopri5, Integrator, Options, Rosenbrock};
+use crate::solver::{Dopri5, Integrator, Options, RosMethod, Rosenbrock};
 
 /// The scene's integrator and its options. `Auto` picks RODAS4 for a level its registry
 /// entry marks stiff (traction slopes), DOPRI5 for the others (a massless-ball ring is a
@@ -27,16 +27,20 @@ fn make_integrator(
     // A stiff level (its registry entry) gets RODAS4 by default.
     let stiff = scene.model.level.entry().stiff;
     // A level with independent blocks of states gets the block-arrowhead solver.
-    let rodas = || match level.blocks() {
-        Some((nb, s)) if nb * s <= nl => Rosenbrock::with_solver(Box::new(
-            crate::solver::BlockArrowhead::new(nb, s, n - nb * s),
-        )),
-        _ => Rosenbrock::new(n),
+    let rodas = |m: RosMethod| -> Rosenbrock {
+        let solver: Box<dyn crate::solver::LinearSolver> = match level.blocks() {
+            Some((nb, s)) if nb * s <= nl => {
+                Box::new(crate::solver::BlockArrowhead::new(nb, s, n - nb * s))
+            }
+            _ => Box::new(crate::solver::DenseLu::new(n)),
+        };
+        Rosenbrock::with_method(m, solver)
     };
     let integrator = match scene.solver.method {
-        Method::Auto if stiff => Integrator::Rosenbrock(rodas()),
+        Method::Auto if stiff => Integrator::Rosenbrock(rodas(RosMethod::Rodas4)),
         Method::Auto | Method::Dopri5 => Integrator::Dopri5(Dopri5::new(n)),
-        Method::Rosenbrock => Integrator::Rosenbrock(rodas()),
+        Method::Rosenbrock => Integrator::Rosenbrock(rodas(RosMethod::Rodas4)),
+        Method::Ros34pw2 => Integrator::Rosenbrock(rodas(RosMethod::Ros34pw2)),
     };
     let s = &scene.solver;
     let mut opts = Options::new(n, s.rtol, s.atol_m);

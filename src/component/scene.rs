@@ -103,6 +103,8 @@ pub enum Method {
     Dopri5,
     /// Linearly implicit, L-stable Rosenbrock method.
     Rosenbrock,
+    /// ROS34PW2, a Rosenbrock W-method of order 3 (Jacobian kept across sub-steps).
+    Ros34pw2,
 }
 
 /// Solver section.
@@ -131,7 +133,7 @@ pub struct SolverSpec {
 pub const MAX_STEP_CPU_S: f64 = 20.0;
 
 crate::declare_fields!(SolverSpec {
-    method: Method::Auto => choice(&["auto", "dopri5", "rosenbrock"], "integrator (auto: the level's default)"),
+    method: Method::Auto => choice(&["auto", "dopri5", "rosenbrock", "ros34pw2"], "integrator (auto: the level's default)"),
     rtol: 1e-6 => number("-", closed(1e-14, 0.1), "relative tolerance"),
     atol_m: 1e-10 => number("m", closed(1e-20, 1e-3), "absolute tolerance on displacements")
         .why("below 1e-20 m the tolerance is under the rounding of any displacement; the work-precision references use 1e-16 m"),

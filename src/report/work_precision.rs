@@ -250,6 +250,7 @@ pub fn method_name(m: Method) -> &'static str {
     match m {
         Method::Dopri5 => "dopri5",
         Method::Rosenbrock => "rodas4",
+        Method::Ros34pw2 => "ros34pw2",
         Method::Auto => "auto",
     }
 }

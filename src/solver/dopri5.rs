@@ -4,8 +4,8 @@
 //! dense output, §IV.2 for the stiffness detection).
 
 use super::{
-    carry_step, check_call, error_norm, eval, fixed_steps, initial_step, underflow, OdeSystem,
-    Options, SolverError, Stats, MAX_NONFINITE_RETRIES, UROUND,
+    check_call, error_norm, eval, fixed_steps, initial_step, OdeSystem, Options, SolverError,
+    Stats, StepLoop,
 };
 
 // Dormand–Prince coefficients (Hairer, Nørsett & Wanner I, Table II.5.2).
@@ -231,43 +231,15 @@ impl Dopri5 {
         h0: f64,
         opts: &Options,
     ) -> Result<f64, SolverError> {
-        let mut t = t0;
-        let mut h = h0;
+        let mut lp = StepLoop::new(t0, h0);
         let mut facold: f64 = 1e-4;
-        let mut reject = false;
-        let mut attempts: u64 = 0;
-        let mut nonfinite_streak = 0u32;
-        let mut last_nonfinite: Option<(f64, usize)> = None;
         loop {
-            if attempts >= opts.max_steps {
-                return Err(SolverError::TooManySteps {
-                    t,
-                    max_steps: opts.max_steps,
-                });
-            }
-            if 0.1 * h <= t.abs() * UROUND || h < f64::MIN_POSITIVE {
-                return Err(underflow(t, h, last_nonfinite));
-            }
-            attempts += 1;
-            let h_prop = h;
-            let last = t + 1.01 * h >= t1;
-            if last {
-                h = t1 - t;
-            }
+            lp.check(opts)?;
+            let (h_prop, last) = lp.begin(t1);
+            let (t, h) = (lp.t, lp.h);
             if let Some((tb, idx)) = self.attempt(sys, t, h)? {
                 // a stage left the domain where f is finite: retry with a much smaller step
-                self.stats.rejected += 1;
-                nonfinite_streak += 1;
-                last_nonfinite = Some((tb, idx));
-                if nonfinite_streak > MAX_NONFINITE_RETRIES {
-                    return Err(SolverError::NonFinite {
-                        t: tb,
-                        what: "right-hand side",
-                        index: idx,
-                    });
-                }
-                h *= 0.2;
-                reject = true;
+                lp.nonfinite(&mut self.stats, tb, idx)?;
                 continue;
             }
             // error estimate
@@ -282,34 +254,25 @@ impl Dopri5 {
             }
             let err = error_norm(&self.e, &self.y, &self.y1, opts);
             if !err.is_finite() {
-                self.stats.rejected += 1;
-                h *= 0.2;
-                reject = true;
+                lp.nonfinite_error(&mut self.stats);
                 continue;
             }
-            nonfinite_streak = 0;
+            lp.nonfinite_streak = 0;
             let fac11 = err.powf(EXPO1);
             // Lund-stabilisation (PI control): divide by err_old^β
             let fac = (fac11 / facold.powf(BETA) / SAFE).clamp(1.0 / FAC_MAX, 1.0 / FAC_MIN);
-            let mut h_new = h / fac;
+            let h_new = h / fac;
             if err <= 1.0 {
                 facold = err.max(1e-4);
                 self.stiffness_test(h);
                 let t_new = if last { t1 } else { t + h };
                 self.accept(t, h, t_new);
-                t = t_new;
-                h_new = h_new.min(opts.h_max);
-                if reject {
-                    h_new = h_new.min(h);
+                if let Some(h_next) = lp.accepted(t_new, h_new, h_prop, last, opts) {
+                    return Ok(h_next);
                 }
-                if last {
-                    return Ok(carry_step(h, h_prop, h_new, opts.h_max));
-                }
-                reject = false;
-                h = h_new;
             } else {
-                h /= (1.0 / FAC_MIN).min(fac11 / SAFE);
-                reject = true;
+                lp.h /= (1.0 / FAC_MIN).min(fac11 / SAFE);
+                lp.reject = true;
                 self.stats.rejected += 1;
             }
         }

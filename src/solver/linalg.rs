@@ -23,6 +23,7 @@ pub trait LinearSolver: Send {
 /// (leading dimension `n`): on return `a` holds the unit lower factor `L` below the diagonal
 /// and `U` on and above it; `piv[k]` is the row swapped with row `k` at step `k`.
 /// `Err(k)`: the pivot in column `k` is zero or not finite (singular).
+#[inline]
 pub fn lu_factor(a: &mut [f64], n: usize, piv: &mut [usize]) -> Result<(), usize> {
     debug_assert!(a.len() >= n * n && piv.len() >= n);
     for k in 0..n {
@@ -66,6 +67,7 @@ pub fn lu_factor(a: &mut [f64], n: usize, piv: &mut [usize]) -> Result<(), usize
 }
 
 /// Solve with the factors of [`lu_factor`]: `b` is overwritten by `x`.
+#[inline]
 pub fn lu_solve(a: &[f64], n: usize, piv: &[usize], b: &mut [f64]) {
     for (k, &p) in piv.iter().enumerate().take(n) {
         if p != k {
@@ -212,32 +214,78 @@ impl BlockArrowhead {
     }
 }
 
+/// A block size: a compile-time constant ([`Fixed`], so that the loops over a block unroll)
+/// or a run-time one ([`Dynamic`]); the arithmetic is the same either way.
+trait BlockSize: Copy {
+    fn get(self) -> usize;
+}
+
+#[derive(Clone, Copy)]
+struct Fixed<const S: usize>;
+impl<const S: usize> BlockSize for Fixed<S> {
+    #[inline(always)]
+    fn get(self) -> usize {
+        S
+    }
+}
+
+#[derive(Clone, Copy)]
+struct Dynamic(usize);
+impl BlockSize for Dynamic {
+    #[inline(always)]
+    fn get(self) -> usize {
+        self.0
+    }
+}
+
 impl LinearSolver for BlockArrowhead {
     fn dim(&self) -> usize {
         self.nb * self.s + self.m
     }
 
     fn factor(&mut self, sigma: f64, jac: &DMatrix<f64>) -> bool {
-        let (nb, s, m) = (self.nb, self.s, self.m);
+        // One ball's states: 3 (5 with radial mass).
+        match self.s {
+            3 => self.factor_blocks(Fixed::<3>, sigma, jac),
+            5 => self.factor_blocks(Fixed::<5>, sigma, jac),
+            s => self.factor_blocks(Dynamic(s), sigma, jac),
+        }
+    }
+
+    fn solve(&mut self, x: &mut [f64]) {
+        match self.s {
+            3 => self.solve_blocks(Fixed::<3>, x),
+            5 => self.solve_blocks(Fixed::<5>, x),
+            s => self.solve_blocks(Dynamic(s), x),
+        }
+    }
+}
+
+impl BlockArrowhead {
+    #[inline(always)]
+    fn factor_blocks<B: BlockSize>(&mut self, bs: B, sigma: f64, jac: &DMatrix<f64>) -> bool {
+        let (nb, s, m) = (self.nb, bs.get(), self.m);
         let nb0 = nb * s; // first border index
         debug_assert_eq!(jac.shape(), (nb0 + m, nb0 + m));
+        // column-major storage: entry (i, j) at j * nn + i
+        let (ja, nn) = (jac.as_slice(), nb0 + m);
         // E into the Schur storage
         for j in 0..m {
             for i in 0..m {
-                let v = -jac[(nb0 + i, nb0 + j)];
+                let v = -ja[(nb0 + j) * nn + nb0 + i];
                 self.schur[j * m + i] = if i == j { v + sigma } else { v };
             }
         }
         for b in 0..nb {
             let o = b * s;
-            let lu = &mut self.lu;
+            let lu = &mut self.lu[..s * s];
             for j in 0..s {
                 for i in 0..s {
-                    let v = -jac[(o + i, o + j)];
+                    let v = -ja[(o + j) * nn + o + i];
                     lu[j * s + i] = if i == j { v + sigma } else { v };
                 }
             }
-            let piv = &mut self.dpiv;
+            let piv = &mut self.dpiv[..s];
             if lu_factor(lu, s, piv).is_err() {
                 return false;
             }
@@ -258,7 +306,7 @@ impl LinearSolver for BlockArrowhead {
                 let col = &mut g[j * s..(j + 1) * s];
                 col.fill(0.0);
                 for k in 0..s {
-                    let bkj = -jac[(o + k, nb0 + j)];
+                    let bkj = -ja[(nb0 + j) * nn + o + k];
                     if bkj != 0.0 {
                         for (v, dv) in col.iter_mut().zip(&d[k * s..(k + 1) * s]) {
                             *v += dv * bkj;
@@ -270,7 +318,7 @@ impl LinearSolver for BlockArrowhead {
             let c = &mut self.c[b * m * s..(b + 1) * m * s];
             for j in 0..s {
                 for i in 0..m {
-                    c[j * m + i] = -jac[(nb0 + i, o + j)];
+                    c[j * m + i] = -ja[(o + j) * nn + nb0 + i];
                 }
             }
             for j in 0..m {
@@ -288,8 +336,9 @@ impl LinearSolver for BlockArrowhead {
         lu_factor(&mut self.schur, m, &mut self.spiv).is_ok()
     }
 
-    fn solve(&mut self, x: &mut [f64]) {
-        let (nb, s, m) = (self.nb, self.s, self.m);
+    #[inline(always)]
+    fn solve_blocks<B: BlockSize>(&mut self, bs: B, x: &mut [f64]) {
+        let (nb, s, m) = (self.nb, bs.get(), self.m);
         let nb0 = nb * s;
         let (xb, xr) = x.split_at_mut(nb0);
         for b in 0..nb {
@@ -399,5 +448,37 @@ mod tests {
         // a coupling between two blocks breaks the pattern
         j[(0, s)] = 1.0;
         assert!(!blk.fits(&j));
+    }
+
+    /// The unrolled fixed-size block path (3 and 5 states per ball) gives the same bits as
+    /// the run-time-size path it replaces.
+    #[test]
+    fn fixed_block_size_is_bit_identical_to_dynamic() {
+        for s in [3usize, 5] {
+            let (nb, m) = (7, 4);
+            let n = nb * s + m;
+            let mut seed = 0x2545_F491_4F6C_DD1Du64 ^ s as u64;
+            let mut j = DMatrix::zeros(n, n);
+            for c in 0..n {
+                for r in 0..n {
+                    let same_block = r < nb * s && c < nb * s && r / s == c / s;
+                    if same_block || r >= nb * s || c >= nb * s {
+                        j[(r, c)] = 3.0 * rng(&mut seed);
+                    }
+                }
+            }
+            let b: Vec<f64> = (0..n).map(|_| rng(&mut seed)).collect();
+            let (mut fixed, mut dynamic) =
+                (BlockArrowhead::new(nb, s, m), BlockArrowhead::new(nb, s, m));
+            assert!(fixed.factor(1.7, &j));
+            assert!(dynamic.factor_blocks(Dynamic(s), 1.7, &j));
+            let (mut xf, mut xd) = (b.clone(), b);
+            fixed.solve(&mut xf);
+            dynamic.solve_blocks(Dynamic(s), &mut xd);
+            let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            assert_eq!(bits(&fixed.d), bits(&dynamic.d));
+            assert_eq!(bits(&fixed.schur), bits(&dynamic.schur));
+            assert_eq!(bits(&xf), bits(&xd), "s = {s}");
+        }
     }
 }

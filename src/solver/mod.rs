@@ -8,7 +8,9 @@
 //! - [`Rosenbrock`]: RODAS4, the L-stable, stiffly accurate 6-stage Rosenbrock method of
 //!   order 4(3) (Hairer & Wanner, *Solving ODEs II*, 2nd ed., §VI.4, Table 4.1 / the code
 //!   RODAS), one LU per step attempt, with a pluggable linear solver ([`LinearSolver`]:
-//!   [`DenseLu`] by default, [`BlockArrowhead`] for ball-structured systems).
+//!   [`DenseLu`] by default, [`BlockArrowhead`] for ball-structured systems). The same
+//!   integrator runs the W-method ROS34PW2 ([`RosMethod::Ros34pw2`], order 3(2)), which
+//!   keeps `J` and its LU across the steps of a call and needs no `∂f/∂t`.
 //!
 //! Conventions the co-simulation component relies on:
 //!
@@ -34,7 +36,10 @@ mod rosenbrock;
 
 pub use dopri5::Dopri5;
 pub use linalg::{lu_factor, lu_solve, BlockArrowhead, DenseLu, LinearSolver};
-pub use rosenbrock::Rosenbrock;
+pub use rosenbrock::{
+    RosMethod, Rosenbrock, WCoeffs, ROS34PW2_ALPHA, ROS34PW2_B, ROS34PW2_BHAT, ROS34PW2_GAMMA,
+    ROS34PW2_GAMMA_MATRIX, W_JAC_MAX_AGE,
+};
 
 use nalgebra::DMatrix;
 use std::fmt;
@@ -528,6 +533,109 @@ fn underflow(t: f64, h: f64, last_nonfinite: Option<(f64, usize)>) -> SolverErro
             index,
         },
         None => SolverError::StepSizeUnderflow { t, h },
+    }
+}
+
+/// The bookkeeping both adaptive loops share (DOPRI5 and the Rosenbrock methods): the
+/// attempt budget, the step-size underflow, the retry after non-finite values, and the
+/// last step of a call landing on `t1` with the step-size memory it leaves.
+#[derive(Debug, Clone)]
+struct StepLoop {
+    /// Time reached.
+    t: f64,
+    /// The step to try next (after [`StepLoop::begin`]: the one being tried).
+    h: f64,
+    /// The last attempt was rejected.
+    reject: bool,
+    attempts: u64,
+    nonfinite_streak: u32,
+    last_nonfinite: Option<(f64, usize)>,
+}
+
+impl StepLoop {
+    fn new(t0: f64, h0: f64) -> Self {
+        StepLoop {
+            t: t0,
+            h: h0,
+            reject: false,
+            attempts: 0,
+            nonfinite_streak: 0,
+            last_nonfinite: None,
+        }
+    }
+
+    /// The budget and the underflow checks before an attempt.
+    fn check(&self, opts: &Options) -> Result<(), SolverError> {
+        if self.attempts >= opts.max_steps {
+            return Err(SolverError::TooManySteps {
+                t: self.t,
+                max_steps: opts.max_steps,
+            });
+        }
+        if 0.1 * self.h <= self.t.abs() * UROUND || self.h < f64::MIN_POSITIVE {
+            return Err(underflow(self.t, self.h, self.last_nonfinite));
+        }
+        Ok(())
+    }
+
+    /// Count an attempt and shorten its step to land on `t1` when it (nearly) reaches it:
+    /// `(the step proposed before shortening, whether this is the call's last step)`.
+    fn begin(&mut self, t1: f64) -> (f64, bool) {
+        self.attempts += 1;
+        let h_prop = self.h;
+        let last = self.t + 1.01 * self.h >= t1;
+        if last {
+            self.h = t1 - self.t;
+        }
+        (h_prop, last)
+    }
+
+    /// A stage was not finite (component `index` at `t`): reject and retry with a fifth of
+    /// the step, at most [`MAX_NONFINITE_RETRIES`] times in a row.
+    fn nonfinite(&mut self, stats: &mut Stats, t: f64, index: usize) -> Result<(), SolverError> {
+        stats.rejected += 1;
+        self.nonfinite_streak += 1;
+        self.last_nonfinite = Some((t, index));
+        if self.nonfinite_streak > MAX_NONFINITE_RETRIES {
+            return Err(SolverError::NonFinite {
+                t,
+                what: "right-hand side",
+                index,
+            });
+        }
+        self.h *= 0.2;
+        self.reject = true;
+        Ok(())
+    }
+
+    /// The error estimate is not finite: reject and retry with a fifth of the step.
+    fn nonfinite_error(&mut self, stats: &mut Stats) {
+        stats.rejected += 1;
+        self.h *= 0.2;
+        self.reject = true;
+    }
+
+    /// The step was accepted to `t_new` and the controller proposes `h_new`: the step to
+    /// try next, or, after the call's last step, `Some` step-size memory to return.
+    fn accepted(
+        &mut self,
+        t_new: f64,
+        h_new: f64,
+        h_prop: f64,
+        last: bool,
+        opts: &Options,
+    ) -> Option<f64> {
+        self.t = t_new;
+        let mut h_new = h_new.min(opts.h_max);
+        if self.reject {
+            h_new = h_new.min(self.h);
+        }
+        if last {
+            return Some(carry_step(self.h, h_prop, h_new, opts.h_max));
+        }
+        self.reject = false;
+        self.h = h_new;
+        None
     }
 }
 

@@ -11,10 +11,30 @@
 //! y_new = y + Σ_{j<=5} a_5j u_j + u_5 + u_6         (a_6j = a_5j + δ_j5: stiffly accurate)
 //! error = u_6                                       (embedded 3rd-order: y_new − u_6)
 //! ```
+//!
+//! The same integrator also runs ROS34PW2 ([`RosMethod::Ros34pw2`]; Rang & Angermann,
+//! *BIT* 45 (2005) 761–787), a 4-stage, stiffly accurate, L-stable **W-method** of order 3
+//! with an embedded method of order 2: its order holds for any matrix in place of `J`
+//! (Hairer & Wanner II, §IV.7, "W-methods"), so `J` and the LU of `I/(hγ) − J` are kept
+//! across the steps of one call (refreshed after a rejection and every
+//! [`W_JAC_MAX_AGE`] accepted steps; the LU whenever `h` changes), and `∂f/∂t` is taken
+//! from the system when it gives it and left out otherwise (the autonomous form's
+//! Jacobian approximated without its time column: still a W-method). The published
+//! coefficients `α, Γ, b, b̂` are the data; the transformed ones (`A = αΓ⁻¹`,
+//! `C = diag(Γ)⁻¹ − Γ⁻¹`, `m = bΓ⁻¹`) are computed from them.
+//!
+//! The same integrator also runs ROS34PW2 ([`RosMethod::Ros34pw2`]; Rang & Angermann,
+//! *BIT* 45 (2005) 761–787), a 4-stage, stiffly accurate, L-stable **W-method** of order 3
+//! with an embedded method of order 2: its order holds for any matrix in place of `J`
+//! (Hairer & Wanner II, §IV.7, "W-methods"), so `J` and the LU of `I/(hγ) − J` are kept
+//! across the steps of one call, and `∂f/∂t` is taken from the system when it gives it
+//! and left out otherwise (the autonomous form's Jacobian approximated without its time
+//! column: still a W-method). The published coefficients `α, Γ, b, b̂` are the data; the
+//! transformed ones (`A = αΓ⁻¹`, `C = diag(Γ)⁻¹ − Γ⁻¹`, `m = bΓ⁻¹`) are computed from them.
 
 use super::{
-    carry_step, check_call, error_norm, eval, fixed_steps, initial_step, underflow, DenseLu,
-    LinearSolver, OdeSystem, Options, SolverError, Stats, MAX_NONFINITE_RETRIES, UROUND,
+    check_call, error_norm, eval, fixed_steps, initial_step, DenseLu, LinearSolver, OdeSystem,
+    Options, SolverError, Stats, StepLoop, UROUND,
 };
 use nalgebra::DMatrix;
 
@@ -70,7 +90,171 @@ const FAC2: f64 = 1.0 / 6.0;
 /// Consecutive singular matrices (each halving the step) tolerated before failing.
 const MAX_SINGULAR: u32 = 5;
 
-/// RODAS4 integrator (linearly implicit, L-stable, order 4(3)) with one LU per step attempt.
+/// The Rosenbrock method an integrator runs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum RosMethod {
+    /// RODAS4, order 4(3), exact Jacobian and `∂f/∂t` at every step (the default).
+    #[default]
+    Rodas4,
+    /// ROS34PW2, W-method of order 3(2): `J` and its LU kept across steps.
+    Ros34pw2,
+}
+
+impl RosMethod {
+    /// Order of the propagated solution (for the initial step size).
+    fn order(self) -> i32 {
+        match self {
+            RosMethod::Rodas4 => 4,
+            RosMethod::Ros34pw2 => 3,
+        }
+    }
+    /// Step-size exponent `1/(q+1)`, `q` the embedded method's order.
+    fn error_exponent(self) -> f64 {
+        match self {
+            RosMethod::Rodas4 => 0.25,
+            RosMethod::Ros34pw2 => 1.0 / 3.0,
+        }
+    }
+}
+
+/// Stages of ROS34PW2.
+const W_STAGES: usize = 4;
+/// W-method: most accepted steps on one Jacobian (a rejection refreshes it sooner).
+pub const W_JAC_MAX_AGE: u32 = 10;
+/// W-method: a proposed step growth up to this factor keeps the step and its LU.
+const W_HOLD: f64 = 1.2;
+
+/// ROS34PW2 as published (Rang & Angermann 2005, the W-method "ROS34PW2" of their
+/// Table 3.2): `γ`, the strictly lower `α`, the full lower `Γ` (diagonal `γ`), weights `b`
+/// and embedded weights `b̂`. Stiffly accurate: `b_j = α_4j + Γ_4j`. (The digits as
+/// published, some beyond `f64`.)
+#[allow(clippy::excessive_precision)]
+pub const ROS34PW2_GAMMA: f64 = 4.358_665_215_084_590e-1;
+/// `α_ij`, `j < i`.
+#[allow(clippy::excessive_precision)]
+pub const ROS34PW2_ALPHA: [[f64; 4]; 4] = [
+    [0.0; 4],
+    [8.717_330_430_169_180_1e-1, 0.0, 0.0, 0.0],
+    [
+        8.445_706_001_536_942_3e-1,
+        -1.129_906_423_648_418_5e-1,
+        0.0,
+        0.0,
+    ],
+    [0.0, 0.0, 1.0, 0.0],
+];
+/// `Γ_ij`, `j <= i`.
+#[allow(clippy::excessive_precision)]
+pub const ROS34PW2_GAMMA_MATRIX: [[f64; 4]; 4] = [
+    [ROS34PW2_GAMMA, 0.0, 0.0, 0.0],
+    [-8.717_330_430_169_180_1e-1, ROS34PW2_GAMMA, 0.0, 0.0],
+    [
+        -9.033_805_701_304_408_2e-1,
+        5.418_067_238_809_532_6e-2,
+        ROS34PW2_GAMMA,
+        0.0,
+    ],
+    [
+        2.421_238_070_609_534_6e-1,
+        -1.223_250_583_904_514_7,
+        5.452_602_553_351_021_4e-1,
+        ROS34PW2_GAMMA,
+    ],
+];
+/// Weights `b` (order 3).
+#[allow(clippy::excessive_precision)]
+pub const ROS34PW2_B: [f64; 4] = [
+    2.421_238_070_609_534_6e-1,
+    -1.223_250_583_904_514_7,
+    1.545_260_255_335_102_0,
+    ROS34PW2_GAMMA,
+];
+/// Embedded weights `b̂` (order 2).
+#[allow(clippy::excessive_precision)]
+pub const ROS34PW2_BHAT: [f64; 4] = [
+    3.781_090_314_581_936_9e-1,
+    -9.604_229_221_242_317_8e-2,
+    0.5,
+    2.179_332_607_542_295e-1,
+];
+
+/// A 4-stage W-method in the transformed variables `u_i = Σ_j Γ_ij k_j` (Hairer &
+/// Wanner II, §IV.7, Eq. 7.16–7.19, as for RODAS4 above).
+#[derive(Debug, Clone, PartialEq)]
+pub struct WCoeffs {
+    /// `γ`.
+    pub gamma: f64,
+    /// `A = α Γ⁻¹` (strictly lower).
+    pub a: [[f64; 4]; 4],
+    /// `C = diag(1/γ) − Γ⁻¹` (strictly lower).
+    pub cc: [[f64; 4]; 4],
+    /// Stage times `c_i = Σ_j α_ij`.
+    pub c: [f64; 4],
+    /// `d_i = Σ_j Γ_ij` (the `∂f/∂t` weights).
+    pub d: [f64; 4],
+    /// `m = b Γ⁻¹`.
+    pub m: [f64; 4],
+    /// Error weights `m − m̂`, `m̂ = b̂ Γ⁻¹`.
+    pub e: [f64; 4],
+}
+
+impl WCoeffs {
+    /// Transformed coefficients of a method given as published (`α`, `Γ`, `b`, `b̂`).
+    #[allow(clippy::needless_range_loop)] // the index formulas of the definitions
+    pub fn from_published(
+        alpha: &[[f64; 4]; 4],
+        gam: &[[f64; 4]; 4],
+        b: &[f64; 4],
+        bhat: &[f64; 4],
+    ) -> Self {
+        // Γ⁻¹ by forward substitution (lower triangular).
+        let mut gi = [[0.0; 4]; 4];
+        for col in 0..4 {
+            for i in 0..4 {
+                let mut v = if i == col { 1.0 } else { 0.0 };
+                for k in 0..i {
+                    v -= gam[i][k] * gi[k][col];
+                }
+                gi[i][col] = v / gam[i][i];
+            }
+        }
+        let mut r = WCoeffs {
+            gamma: gam[0][0],
+            a: [[0.0; 4]; 4],
+            cc: [[0.0; 4]; 4],
+            c: [0.0; 4],
+            d: [0.0; 4],
+            m: [0.0; 4],
+            e: [0.0; 4],
+        };
+        for i in 0..4 {
+            for j in 0..i {
+                r.a[i][j] = (0..4).map(|k| alpha[i][k] * gi[k][j]).sum();
+                r.cc[i][j] = -gi[i][j];
+            }
+            r.c[i] = alpha[i].iter().sum();
+            r.d[i] = gam[i].iter().sum();
+            let m: f64 = (0..4).map(|k| b[k] * gi[k][i]).sum();
+            let mh: f64 = (0..4).map(|k| bhat[k] * gi[k][i]).sum();
+            r.m[i] = m;
+            r.e[i] = m - mh;
+        }
+        r
+    }
+
+    /// ROS34PW2.
+    pub fn ros34pw2() -> Self {
+        Self::from_published(
+            &ROS34PW2_ALPHA,
+            &ROS34PW2_GAMMA_MATRIX,
+            &ROS34PW2_B,
+            &ROS34PW2_BHAT,
+        )
+    }
+}
+
+/// RODAS4 integrator (linearly implicit, L-stable, order 4(3)) with one LU per step attempt;
+/// or, built [`Rosenbrock::with_method`] `Ros34pw2`, the W-method ROS34PW2 (module docs).
 ///
 /// - Jacobian `∂f/∂y` from [`OdeSystem::jacobian`] or by forward differences with
 ///   increments `sqrt(ε)·max(|y_j|, 1000·atol_j)`; `∂f/∂t` from
@@ -82,8 +266,21 @@ const MAX_SINGULAR: u32 = 5;
 ///   predictive controller after the second accepted step of a call (Hairer & Wanner II,
 ///   §IV.8, Eq. 8.21).
 /// - Dense output [`Rosenbrock::dense`]: RODAS's 3rd-order continuous extension.
+///
+/// ROS34PW2 differs in: `J` (from the system or by the same differences) at the first
+/// step of a call, after a rejected step and every [`W_JAC_MAX_AGE`] accepted steps; the
+/// LU only when `h` changes; `∂f/∂t` only from the system; step control with `err^(1/3)`
+/// (embedded order 2); no dense output.
 pub struct Rosenbrock {
     n: usize,
+    method: RosMethod,
+    /// ROS34PW2's coefficients in the transformed variables (unused by RODAS4).
+    w: Box<WCoeffs>,
+    /// The step size the LU in `solver` holds for the current `J` (W-method reuse; NaN:
+    /// none).
+    lu_h: f64,
+    /// W-method: whether `dfdt` holds the system's `∂f/∂t` (else the term is left out).
+    dfdt_on: bool,
     y: Vec<f64>,
     ynew: Vec<f64>,
     f0: Vec<f64>,
@@ -125,6 +322,10 @@ impl Rosenbrock {
         let v = || vec![0.0; n];
         Rosenbrock {
             n,
+            method: RosMethod::Rodas4,
+            w: Box::new(WCoeffs::ros34pw2()),
+            lu_h: f64::NAN,
+            dfdt_on: false,
             y: v(),
             ynew: v(),
             f0: v(),
@@ -144,6 +345,18 @@ impl Rosenbrock {
         }
     }
 
+    /// Method `method` with a given linear solver (its `dim()` sets `n`).
+    pub fn with_method(method: RosMethod, solver: Box<dyn LinearSolver>) -> Self {
+        let mut r = Self::with_solver(solver);
+        r.method = method;
+        r
+    }
+
+    /// The method this integrator runs.
+    pub fn method(&self) -> RosMethod {
+        self.method
+    }
+
     /// The state dimension.
     pub fn dim(&self) -> usize {
         self.n
@@ -157,7 +370,15 @@ impl Rosenbrock {
 
     /// 3rd-order dense output at `t` in the last accepted step:
     /// `y(t_old + θh) = (1−θ) y_old + θ (y_new + (1−θ)(kd1 + θ kd2))`.
+    /// ROS34PW2 has no published continuous extension: refused.
     pub fn dense(&self, t: f64, out: &mut [f64]) -> Result<(), SolverError> {
+        if self.method != RosMethod::Rodas4 {
+            return Err(SolverError::invalid(
+                "t",
+                t,
+                "no dense output for ROS34PW2 (a RODAS4 or DOPRI5 integrator gives one)",
+            ));
+        }
         super::check_dense(self.last_step(), t, out.len(), self.n)?;
         let th = (t - self.t_old) / self.h_old;
         let th1 = 1.0 - th;
@@ -198,7 +419,7 @@ impl Rosenbrock {
                     &self.f0,
                     &mut self.ytmp,
                     &mut self.ftmp,
-                    4,
+                    self.method.order(),
                     opts,
                 )?
             };
@@ -237,6 +458,17 @@ impl Rosenbrock {
         if !have_f0 {
             self.f_at_start(sys, t)?;
         }
+        self.jacobian_at(sys, t, opts)?;
+        self.time_derivative_at(sys, t, true)
+    }
+
+    /// `J` at the accepted point `(t, y)` (`f0` must hold `f(t, y)`).
+    fn jacobian_at<S: OdeSystem + ?Sized>(
+        &mut self,
+        sys: &mut S,
+        t: f64,
+        opts: &Options,
+    ) -> Result<(), SolverError> {
         let n = self.n;
         self.stats.jac_evals += 1;
         if !sys.jacobian(t, &self.y, &mut self.jac) {
@@ -268,7 +500,24 @@ impl Rosenbrock {
                 index: k % n,
             });
         }
+        Ok(())
+    }
+
+    /// `∂f/∂t` at the accepted point `(t, y)` from the system, else by a forward
+    /// difference (`fd`, RODAS4) or not at all (`!fd`, the W-method: `dfdt_on` false).
+    fn time_derivative_at<S: OdeSystem + ?Sized>(
+        &mut self,
+        sys: &mut S,
+        t: f64,
+        fd: bool,
+    ) -> Result<(), SolverError> {
+        let n = self.n;
+        self.dfdt_on = true;
         if !sys.time_derivative(t, &self.y, &mut self.dfdt) {
+            if !fd {
+                self.dfdt_on = false;
+                return Ok(());
+            }
             let delta = UROUND.sqrt() * t.abs().max(1e-5);
             let td = t + delta;
             let delta = td - t;
@@ -293,6 +542,32 @@ impl Rosenbrock {
         Ok(())
     }
 
+    /// At an accepted point `(t, y)`: RODAS4 linearises afresh (`f0`, `J`, `∂f/∂t`); the
+    /// W-method evaluates `f0` (unless `have_f0`) and the system's `∂f/∂t` if it gives
+    /// one, and `J` only when `need_jac` (which also drops the LU).
+    fn prepare<S: OdeSystem + ?Sized>(
+        &mut self,
+        sys: &mut S,
+        t: f64,
+        opts: &Options,
+        have_f0: bool,
+        need_jac: bool,
+    ) -> Result<(), SolverError> {
+        match self.method {
+            RosMethod::Rodas4 => self.linearise(sys, t, opts, have_f0),
+            RosMethod::Ros34pw2 => {
+                if !have_f0 {
+                    self.f_at_start(sys, t)?;
+                }
+                if need_jac {
+                    self.jacobian_at(sys, t, opts)?;
+                    self.lu_h = f64::NAN;
+                }
+                self.time_derivative_at(sys, t, false)
+            }
+        }
+    }
+
     fn run_fixed<S: OdeSystem + ?Sized>(
         &mut self,
         sys: &mut S,
@@ -301,9 +576,14 @@ impl Rosenbrock {
         opts: &Options,
     ) -> Result<f64, SolverError> {
         let (steps, h) = fixed_steps(t0, t1, opts.h_max);
+        let mut jac_age = W_JAC_MAX_AGE;
         for i in 0..steps {
             let t = t0 + i as f64 * h;
-            self.linearise(sys, t, opts, false)?;
+            let need_jac = jac_age >= W_JAC_MAX_AGE;
+            self.prepare(sys, t, opts, false, need_jac)?;
+            if need_jac {
+                jac_age = 0;
+            }
             match self.attempt(sys, t, h)? {
                 Attempt::Done => {}
                 Attempt::Singular => return Err(SolverError::Singular { t, h }),
@@ -316,6 +596,7 @@ impl Rosenbrock {
                 }
             }
             self.accept(t, if i + 1 == steps { t1 } else { t + h });
+            jac_age += 1;
         }
         Ok(h)
     }
@@ -329,111 +610,185 @@ impl Rosenbrock {
         opts: &Options,
         mut have_f0: bool,
     ) -> Result<f64, SolverError> {
-        let mut t = t0;
-        let mut h = h0;
-        let mut reject = false;
+        let mut lp = StepLoop::new(t0, h0);
         let mut need_linearise = true;
-        let mut attempts: u64 = 0;
+        // W-method: J wanted at the next preparation; accepted steps since the last J.
+        let w_method = self.method != RosMethod::Rodas4;
+        let mut need_jac = true;
+        let mut jac_age: u32 = 0;
+        let expo = self.method.error_exponent();
         let mut accepted_here: u64 = 0;
         let (mut hacc, mut erracc) = (0.0f64, 0.0f64);
         let mut singular_streak = 0u32;
-        let mut nonfinite_streak = 0u32;
-        let mut last_nonfinite: Option<(f64, usize)> = None;
         loop {
-            if attempts >= opts.max_steps {
-                return Err(SolverError::TooManySteps {
-                    t,
-                    max_steps: opts.max_steps,
-                });
-            }
-            if 0.1 * h <= t.abs() * UROUND || h < f64::MIN_POSITIVE {
-                return Err(underflow(t, h, last_nonfinite));
-            }
+            lp.check(opts)?;
             if need_linearise {
-                self.linearise(sys, t, opts, have_f0)?;
+                self.prepare(sys, lp.t, opts, have_f0, need_jac)?;
+                if need_jac {
+                    need_jac = false;
+                    jac_age = 0;
+                }
                 need_linearise = false;
                 have_f0 = false;
             }
-            attempts += 1;
-            let h_prop = h;
-            let last = t + 1.01 * h >= t1;
-            if last {
-                h = t1 - t;
-            }
-            match self.attempt(sys, t, h)? {
-                Attempt::Done => {}
+            let (h_prop, last) = lp.begin(t1);
+            let (t, h) = (lp.t, lp.h);
+            let err = match self.attempt(sys, t, h)? {
+                Attempt::Done => {
+                    singular_streak = 0;
+                    let err = error_norm(&self.u[5], &self.y, &self.ynew, opts);
+                    if !err.is_finite() {
+                        lp.nonfinite_error(&mut self.stats);
+                    }
+                    err
+                }
                 Attempt::Singular => {
                     self.stats.rejected += 1;
                     singular_streak += 1;
                     if singular_streak > MAX_SINGULAR {
                         return Err(SolverError::Singular { t, h });
                     }
-                    h *= 0.5;
-                    reject = true;
-                    continue;
+                    lp.h *= 0.5;
+                    lp.reject = true;
+                    f64::NAN
                 }
                 Attempt::NonFinite(tb, idx) => {
-                    self.stats.rejected += 1;
-                    nonfinite_streak += 1;
-                    last_nonfinite = Some((tb, idx));
-                    if nonfinite_streak > MAX_NONFINITE_RETRIES {
-                        return Err(SolverError::NonFinite {
-                            t: tb,
-                            what: "right-hand side",
-                            index: idx,
-                        });
+                    lp.nonfinite(&mut self.stats, tb, idx)?;
+                    f64::NAN
+                }
+            };
+            if err.is_finite() {
+                lp.nonfinite_streak = 0;
+                let mut fac = (err.powf(expo) / SAFE).clamp(FAC2, FAC1);
+                let mut h_new = h / fac;
+                if err <= 1.0 {
+                    if accepted_here >= 1 {
+                        // Gustafsson's predictive controller (Hairer & Wanner II, Eq. IV.8.21)
+                        let facgus =
+                            ((hacc / h) * (err * err / erracc).powf(expo) / SAFE).clamp(FAC2, FAC1);
+                        fac = fac.max(facgus);
+                        h_new = h / fac;
                     }
-                    h *= 0.2;
-                    reject = true;
+                    hacc = h;
+                    erracc = err.max(1e-2);
+                    accepted_here += 1;
+                    let t_new = if last { t1 } else { t + h };
+                    self.accept(t, t_new);
+                    need_linearise = true;
+                    if w_method {
+                        jac_age += 1;
+                        need_jac = jac_age >= W_JAC_MAX_AGE;
+                        // Keep the step (and with it the LU) when the controller would grow
+                        // it only a little (RADAU5's rule, Hairer & Wanner II §IV.8).
+                        if h_new >= h && h_new <= W_HOLD * h {
+                            h_new = h;
+                        }
+                    }
+                    if let Some(h_next) = lp.accepted(t_new, h_new, h_prop, last, opts) {
+                        return Ok(h_next);
+                    }
                     continue;
                 }
-            }
-            singular_streak = 0;
-            let err = error_norm(&self.u[5], &self.y, &self.ynew, opts);
-            if !err.is_finite() {
                 self.stats.rejected += 1;
-                h *= 0.2;
-                reject = true;
-                continue;
+                lp.reject = true;
+                lp.h = h_new;
             }
-            nonfinite_streak = 0;
-            let mut fac = (err.powf(0.25) / SAFE).clamp(FAC2, FAC1);
-            let mut h_new = h / fac;
-            if err <= 1.0 {
-                if accepted_here >= 1 {
-                    // Gustafsson's predictive controller (Hairer & Wanner II, Eq. IV.8.21)
-                    let facgus =
-                        ((hacc / h) * (err * err / erracc).powf(0.25) / SAFE).clamp(FAC2, FAC1);
-                    fac = fac.max(facgus);
-                    h_new = h / fac;
-                }
-                hacc = h;
-                erracc = err.max(1e-2);
-                accepted_here += 1;
-                let t_new = if last { t1 } else { t + h };
-                self.accept(t, t_new);
-                t = t_new;
-                need_linearise = true;
-                h_new = h_new.min(opts.h_max);
-                if reject {
-                    h_new = h_new.min(h);
-                }
-                if last {
-                    return Ok(carry_step(h, h_prop, h_new, opts.h_max));
-                }
-                reject = false;
-                h = h_new;
-            } else {
-                self.stats.rejected += 1;
-                reject = true;
-                h = h_new;
+            // Rejected. A kept J (W-method) is refreshed here; f0 still holds f(t, y).
+            if w_method && jac_age > 0 {
+                (need_jac, need_linearise, have_f0) = (true, true, true);
             }
         }
     }
 
+    /// One step attempt from `(t, self.y)`: fills `ynew` and the error vector `u[5]`.
+    fn attempt<S: OdeSystem + ?Sized>(
+        &mut self,
+        sys: &mut S,
+        t: f64,
+        h: f64,
+    ) -> Result<Attempt, SolverError> {
+        match self.method {
+            RosMethod::Rodas4 => self.attempt_rodas4(sys, t, h),
+            RosMethod::Ros34pw2 => self.attempt_w(sys, t, h),
+        }
+    }
+
+    /// One W-method step attempt from `(t, self.y)` with the current `f0`, `J` (any
+    /// approximation) and, if on, `∂f/∂t`; the LU is reused when it is for this `h`:
+    ///
+    /// ```text
+    /// (I/(hγ) − J) u_i = f(t + c_i h, y + Σ_{j<i} a_ij u_j) + Σ_{j<i} (c_ij/h) u_j [+ h d_i ∂f/∂t]
+    /// y_new = y + Σ m_i u_i,   error = Σ (m_i − m̂_i) u_i
+    /// ```
+    fn attempt_w<S: OdeSystem + ?Sized>(
+        &mut self,
+        sys: &mut S,
+        t: f64,
+        h: f64,
+    ) -> Result<Attempt, SolverError> {
+        let n = self.n;
+        let w = &self.w;
+        // `!=` is also true for the NaN of "no LU".
+        if self.lu_h != h {
+            self.stats.lu_decomps += 1;
+            if !self.solver.factor(1.0 / (h * w.gamma), &self.jac) {
+                self.lu_h = f64::NAN;
+                return Ok(Attempt::Singular);
+            }
+            self.lu_h = h;
+        }
+        let ih = 1.0 / h;
+        let (y, ytmp, f0, dfdt) = (&self.y, &mut self.ytmp, &self.f0, &self.dfdt);
+        let (stages, rest) = self.u.split_at_mut(W_STAGES);
+        for i in 0..W_STAGES {
+            let (done, cur) = stages.split_at_mut(i);
+            let ui = &mut cur[0];
+            if i == 0 {
+                ui.copy_from_slice(f0);
+            } else {
+                for k in 0..n {
+                    let mut v = y[k];
+                    for (j, uj) in done.iter().enumerate() {
+                        v += w.a[i][j] * uj[k];
+                    }
+                    ytmp[k] = v;
+                }
+                let ti = t + w.c[i] * h;
+                if let Some(idx) = eval(sys, &mut self.stats, ti, ytmp, ui)? {
+                    return Ok(Attempt::NonFinite(ti, idx));
+                }
+            }
+            for k in 0..n {
+                let mut v = ui[k];
+                for (j, uj) in done.iter().enumerate() {
+                    v += ih * w.cc[i][j] * uj[k];
+                }
+                if self.dfdt_on {
+                    v += h * w.d[i] * dfdt[k];
+                }
+                ui[k] = v;
+            }
+            self.solver.solve(ui);
+        }
+        let err = &mut rest[rest.len() - 1];
+        for k in 0..n {
+            let (mut yn, mut e) = (y[k], 0.0);
+            for (j, uj) in stages.iter().enumerate() {
+                yn += w.m[j] * uj[k];
+                e += w.e[j] * uj[k];
+            }
+            self.ynew[k] = yn;
+            err[k] = e;
+        }
+        if let Some(i) = self.ynew.iter().position(|v| !v.is_finite()) {
+            return Ok(Attempt::NonFinite(t + h, i));
+        }
+        Ok(Attempt::Done)
+    }
+
     /// One RODAS4 step attempt from `(t, self.y)` with the current `f0`, `J`, `∂f/∂t`:
     /// fills `u[0..6]` and `ynew`.
-    fn attempt<S: OdeSystem + ?Sized>(
+    fn attempt_rodas4<S: OdeSystem + ?Sized>(
         &mut self,
         sys: &mut S,
         t: f64,
@@ -529,10 +884,12 @@ impl Rosenbrock {
 
     /// Accept the attempted step `[t, t_new]`: dense output, new state.
     fn accept(&mut self, t: f64, t_new: f64) {
-        let [u1, u2, u3, u4, u5, _] = &self.u;
-        for i in 0..self.n {
-            self.kd1[i] = H21 * u1[i] + H22 * u2[i] + H23 * u3[i] + H24 * u4[i] + H25 * u5[i];
-            self.kd2[i] = H31 * u1[i] + H32 * u2[i] + H33 * u3[i] + H34 * u4[i] + H35 * u5[i];
+        if self.method == RosMethod::Rodas4 {
+            let [u1, u2, u3, u4, u5, _] = &self.u;
+            for i in 0..self.n {
+                self.kd1[i] = H21 * u1[i] + H22 * u2[i] + H23 * u3[i] + H24 * u4[i] + H25 * u5[i];
+                self.kd2[i] = H31 * u1[i] + H32 * u2[i] + H33 * u3[i] + H34 * u4[i] + H35 * u5[i];
+            }
         }
         std::mem::swap(&mut self.y_old, &mut self.y);
         self.y.copy_from_slice(&self.ynew);
