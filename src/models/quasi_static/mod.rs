@@ -52,7 +52,7 @@ pub mod level;
 
 pub use ball::BallState;
 
-use crate::contact::{Curvature, PointContact, Race};
+use crate::contact::{ContactTable, Race};
 use crate::error::{Error, Result};
 use crate::geometry::Bearing;
 use crate::solver::newton;
@@ -192,6 +192,10 @@ pub struct QuasiStatic {
     ri: f64,
     /// Scale for rotations (m): `q_s = (x, y, z, Ri rx, Ri ry)`.
     t: [f64; 5],
+    /// The ball reports' semi-axis and pressure coefficients against the contact angle,
+    /// `(inner, outer)`: [`ContactTable::fine`], the exact ellipse solve's values to
+    /// rounding (it cost two elliptic-integral Newton solves per ball per report).
+    report_tables: (ContactTable, ContactTable),
 }
 
 /// Equally spaced azimuths `psi_j = phase + 2 pi j / Z` (ball 0 at `phase`).
@@ -283,6 +287,10 @@ impl QuasiStatic {
             a_ref: [a1, a2],
             ri,
             t: [1.0, 1.0, 1.0, ri, ri],
+            report_tables: (
+                ContactTable::fine(bearing, Race::Inner),
+                ContactTable::fine(bearing, Race::Outer),
+            ),
         })
     }
 
@@ -376,25 +384,29 @@ impl QuasiStatic {
             *k = [[0.0; 5]; 5];
         }
         let mut f = [0.0; 5];
+        // The `N = 4` evaluation at each ball's root when the stiffness or the reports
+        // are wanted (else the forces alone, `ball.rs`).
+        let full = stiffness.is_some() || balls.is_some();
         for (j, (&p, st)) in psi.iter().zip(state.iter_mut()).enumerate() {
             if !p.is_finite() {
                 return Err(Error::invalid(format!("psi[{j}]"), p, "a finite number"));
             }
             let (s, c) = p.sin_cos();
             let a = self.groove_offset(q, p);
-            let e = self.geo.solve(omega, a, st)?;
-            let (fa, fr, m) = (e.fa.v, e.fr.v, e.m.v);
+            let sol = self.geo.solve(omega, a, st, full)?;
+            let [fa, fr, m] = sol.f;
             f[0] += fr * c;
             f[1] += fr * s;
             f[2] += fa;
             f[3] += m * s;
             f[4] -= m * c;
-            if let Some(k) = stiffness.as_deref_mut() {
-                let e4 = self.geo.eval::<4>(omega, st.x, a);
-                self.add_ball_stiffness(&e4, s, c, k);
-            }
-            if let Some(b) = balls.as_deref_mut() {
-                b[j] = self.ball_result(&e, p, st.x);
+            if let Some(e4) = &sol.full {
+                if let Some(k) = stiffness.as_deref_mut() {
+                    self.add_ball_stiffness(e4, s, c, k);
+                }
+                if let Some(b) = balls.as_deref_mut() {
+                    b[j] = self.ball_result(e4, p, st.x);
+                }
             }
         }
         check_finite("forces", &f).map_err(|_| Error::NotConverged {
@@ -498,24 +510,19 @@ impl QuasiStatic {
         }
     }
 
-    fn ball_result(&self, e: &Eval<0>, psi: f64, x: [f64; 2]) -> BallResult {
-        let b = &self.bearing;
-        let contact = |alpha: f64, q: f64, race: Race| {
+    fn ball_result<const N: usize>(&self, e: &Eval<N>, psi: f64, x: [f64; 2]) -> BallResult {
+        let contact = |sc: [f64; 2], q: f64, table: &ContactTable| {
             if q > 0.0 {
-                let (f, ee) = match race {
-                    Race::Inner => (b.fi, b.e_eff_inner()),
-                    Race::Outer => (b.fo, b.e_eff_outer()),
-                };
-                let pc = PointContact::new(Curvature::ball_race(b.d, b.dm, alpha, f, race), ee);
-                let (a, bb) = pc.semi_axes(q);
-                (a, bb, pc.peak_pressure(q))
+                let cc = table.eval_cos_sin(sc[1], sc[0]);
+                let (a, bb) = cc.semi_axes(q);
+                (a, bb, cc.peak_pressure(q))
             } else {
                 (0.0, 0.0, 0.0)
             }
         };
         let (alpha_i, alpha_o) = (e.alpha_i(), e.alpha_o());
-        let (a_i, b_i, p_i) = contact(alpha_i, e.qi, Race::Inner);
-        let (a_o, b_o, p_o) = contact(alpha_o, e.qo, Race::Outer);
+        let (a_i, b_i, p_i) = contact(e.sc_i, e.qi, &self.report_tables.0);
+        let (a_o, b_o, p_o) = contact(e.sc_o, e.qo, &self.report_tables.1);
         BallResult {
             psi,
             q_i: e.qi,
@@ -972,6 +979,33 @@ mod tests {
             let c = (alpha - e.beta()).cos();
             let spin = b.dm / (2.0 * b.d) * (1.0 - g * g) * w / c;
             assert!((e.wr + spin).abs() < 1e-9 * spin, "{} {}", e.wr, spin);
+        }
+    }
+
+    /// A ball on the plane of symmetry of a radially loaded bearing (axial groove offset
+    /// ~1e-31 m from rounding, its Newton root at a subnormal axial position) with the
+    /// inner contact open: the gyroscopic couple is subnormal, and `1/|F_base|` overflowed
+    /// to inf (`0 * inf = NaN` in the forces: the 6205-qs work-precision case failed).
+    #[test]
+    fn subnormal_couple_gives_finite_forces() {
+        let m = model("6205");
+        let g = &m.geo;
+        let w = 183.259571;
+        let a = [-3.0201277401483466e-31, g.ro_free + g.ri_free - 5e-6];
+        let x = [4.836626e-317, g.ro_free + 1e-7];
+        let e = g.eval::<4>(w, x, a);
+        for d in [e.g[0], e.g[1], e.fa, e.fr, e.m] {
+            assert!(
+                d.v.is_finite() && d.d.iter().all(|v| v.is_finite()),
+                "{e:?}"
+            );
+        }
+        for full in [false, true] {
+            let mut st = BallState::default();
+            let s = g.solve(w, a, &mut st, full).unwrap();
+            assert!(s.f.iter().all(|v| v.is_finite()), "{s:?}");
+            // The inner contact is open: nothing reaches the shaft.
+            assert!(s.f.iter().all(|v| v.abs() < 1e-9), "{s:?}");
         }
     }
 }
