@@ -437,7 +437,8 @@ impl Geo {
                 }
             });
         }
-        let la = a[0].hypot(a[1]);
+        // Millimetre-sized: the plain root (no overflow; `hypot` is several times slower).
+        let la = (a[0] * a[0] + a[1] * a[1]).sqrt();
         let loaded_static = la > self.ri_free + self.ro_free;
         let fallback = |geo: &Geo| {
             if loaded_static {

@@ -314,6 +314,11 @@ impl QuasiStatic {
     /// `psi` at displacement `q` (module docs).
     pub fn groove_offset(&self, q: &[f64; 5], psi: f64) -> [f64; 2] {
         let (s, c) = psi.sin_cos();
+        self.groove_offset_sc(q, s, c)
+    }
+
+    /// [`QuasiStatic::groove_offset`] from `(sin psi, cos psi)`.
+    fn groove_offset_sc(&self, q: &[f64; 5], s: f64, c: f64) -> [f64; 2] {
         [
             self.a_ref[0] + q[2] + self.ri * (q[3] * s - q[4] * c),
             self.a_ref[1] + q[0] * c + q[1] * s,
@@ -379,7 +384,6 @@ impl QuasiStatic {
                 ));
             }
         }
-        self.check_geometry(q, psi)?;
         if let Some(k) = stiffness.as_deref_mut() {
             *k = [[0.0; 5]; 5];
         }
@@ -392,7 +396,8 @@ impl QuasiStatic {
                 return Err(Error::invalid(format!("psi[{j}]"), p, "a finite number"));
             }
             let (s, c) = p.sin_cos();
-            let a = self.groove_offset(q, p);
+            let a = self.groove_offset_sc(q, s, c);
+            self.check_geometry(q, j, p, a)?;
             let sol = self.geo.solve(omega, a, st, full)?;
             let [fa, fr, m] = sol.f;
             f[0] += fr * c;
@@ -440,15 +445,15 @@ impl QuasiStatic {
 
     /// Refuse a displacement no bearing could take (a ball crushed beyond Hertz theory, or
     /// the inner groove centre pushed through the outer one) with the allowed ranges,
-    /// instead of letting the ball equations return NaN.
-    fn check_geometry(&self, q: &[f64; 5], psi: &[f64]) -> Result<()> {
+    /// instead of letting the ball equations return NaN: ball `j` at azimuth `p` with
+    /// groove offset `g` (checked before the ball is solved).
+    fn check_geometry(&self, q: &[f64; 5], j: usize, p: f64, g: [f64; 2]) -> Result<()> {
         let (a, dmax) = (self.bearing.a(), self.max_approach());
-        for (j, &p) in psi.iter().enumerate() {
-            let g = self.groove_offset(q, p);
-            let approach = g[0].hypot(g[1]) - a;
-            if approach > dmax || g[1] <= 0.0 {
-                let (rad, ax) = self.displacement_limits();
-                return Err(Error::invalid(
+        // Millimetre-sized: the plain root (no overflow; `hypot` is several times slower).
+        let approach = (g[0] * g[0] + g[1] * g[1]).sqrt() - a;
+        if approach > dmax || g[1] <= 0.0 {
+            let (rad, ax) = self.displacement_limits();
+            return Err(Error::invalid(
                     "ring displacement q",
                     format!(
                         "(x {:.3} µm, y {:.3} µm, z {:.3} µm, rx {:.4} mrad, ry {:.4} mrad)",
@@ -474,7 +479,6 @@ impl QuasiStatic {
                         ax * 1e6
                     ),
                 ));
-            }
         }
         Ok(())
     }
@@ -513,9 +517,14 @@ impl QuasiStatic {
     fn ball_result<const N: usize>(&self, e: &Eval<N>, psi: f64, x: [f64; 2]) -> BallResult {
         let contact = |sc: [f64; 2], q: f64, table: &ContactTable| {
             if q > 0.0 {
+                // `semi_axes` and `peak_pressure` of the coefficients with one cube root.
                 let cc = table.eval_cos_sin(sc[1], sc[0]);
-                let (a, bb) = cc.semi_axes(q);
-                (a, bb, cc.peak_pressure(q))
+                let q3 = q.cbrt();
+                (
+                    cc.a_coef * q3,
+                    cc.b_coef * q3,
+                    1.5 * q3 / (PI * cc.a_coef * cc.b_coef),
+                )
             } else {
                 (0.0, 0.0, 0.0)
             }
