@@ -45,6 +45,11 @@ fn check(name: &str, control: RaceControl, rpm: f64, q: [f64; 5], far: &[[f64; 5
         .forces_and_stiffness(&q, w, &psi, &mut cold_k, &mut k)
         .unwrap();
     let mut e = worst(&f0, &f0k, ri);
+    // The stiffness comes from the last Newton iterate (within sqrt(eps)/8 of the
+    // approach from the root; 1.3e-12 of the largest entry at most here, measured).
+    let k0 = k;
+    let kmax = k0.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
+    let mut ek = 0.0f64;
     // Warm: at y, then at a far point (other motion and azimuths), then at y again; with
     // the forces alone and with the stiffness (the two paths of the ball solve).
     let mut st = cold.clone();
@@ -66,7 +71,12 @@ fn check(name: &str, control: RaceControl, rpm: f64, q: [f64; 5], far: &[[f64; 5
             .forces_and_stiffness(&q, w, &psi, &mut st, &mut k)
             .unwrap();
         e = e.max(worst(&f0, &f3, ri));
+        for (x, y) in k.iter().flatten().zip(k0.iter().flatten()) {
+            ek = ek.max((x - y).abs() / kmax);
+        }
     }
+    println!("{name} {control:?} {rpm} rpm: stiffness difference {ek:.2e} of its largest entry");
+    assert!(ek < 1e-10, "stiffness depends on the warm start: {ek:e}");
     println!("{name} {control:?} {rpm} rpm: worst difference {e:.2e} of the force scale");
     e
 }

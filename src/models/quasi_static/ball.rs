@@ -410,11 +410,14 @@ impl Geo {
     /// residual tolerance: once the update `dx` at `x` is below [`Geo::rounding_step`]
     /// (`sqrt(eps)/8` of the smallest loaded approach, or rounding of `x`), the root is
     /// `x + dx` to `O(|dx|²/delta)`, i.e. to rounding. The forces are then taken there:
-    /// with `full` (the caller wants the stiffness or the reports) by an `N = 4`
-    /// evaluation at `x + dx` (values, `K` and the exact `dX/dA` for the next warm start);
-    /// without, by the first-order update `F(x) + dF/dX dx` from the last linearisation
-    /// (its error `O(|dx|²)` relative to the force is below `eps`), and the state keeps its
-    /// sensitivity (a stale predictor costs iterations, not accuracy). A solve whose update
+    /// by the first-order update `F(x) + dF/dX dx` from the last linearisation (its error
+    /// `O(|dx|²)` relative to the force is below `eps`). With `full` (the caller wants the
+    /// stiffness or the reports) the last linearisation carries the four slots (`N = 4`,
+    /// [`Geo::newton`]) and gives `K`, the reports and `dX/dA` for the next warm start at
+    /// `x`, within `|dx|` of the root (relative `|dx|/delta`: at most `sqrt(eps)/8`; `K`
+    /// agrees to 1.3e-12 from any start in tests/qs_path_independence.rs); when Newton ended on an `N = 2` linearisation, an
+    /// `N = 4` evaluation at `x + dx` gives them at the root. Without `full` the state
+    /// keeps its sensitivity (a stale predictor costs iterations, not accuracy). A solve whose update
     /// stops contracting at the rounding floor (or whose line search fails there) is
     /// accepted when its residual is within `ball_tolerance` of the force scale.
     pub fn solve(
@@ -453,8 +456,8 @@ impl Geo {
         } else {
             fallback(self)
         };
-        let (x, dx, e) = match self.newton(omega, a, start) {
-            Err(_) if warm => self.newton(omega, a, fallback(self)),
+        let (x, dx, last) = match self.newton(omega, a, start, full) {
+            Err(_) if warm => self.newton(omega, a, fallback(self), full),
             r => r,
         }
         .map_err(|(iterations, residual)| Error::NotConverged {
@@ -463,32 +466,53 @@ impl Geo {
             residual,
         })?;
         let root = [x[0] + dx[0], x[1] + dx[1]];
-        if full {
-            let e4 = self.eval::<4>(omega, root, a);
-            state.store(root, a, sensitivity(&e4));
-            return Ok(Solved::from_full(e4));
+        match last {
+            Last::Four(e4) => {
+                // Forces at the root to first order; `K`, `dX/dA` and the reports at `x`.
+                let lin = |d: &Dual<4>| d.v + (d.d[0] - d.d[2]) * dx[0] + (d.d[1] - d.d[3]) * dx[1];
+                state.store(root, a, sensitivity(&e4));
+                Ok(Solved {
+                    f: [lin(&e4.fa), lin(&e4.fr), lin(&e4.m)],
+                    full: Some(e4),
+                })
+            }
+            Last::Two(_) if full => {
+                let e4 = self.eval::<4>(omega, root, a);
+                state.store(root, a, sensitivity(&e4));
+                Ok(Solved::from_full(e4))
+            }
+            Last::Two(e) => {
+                let lin = |d: &Dual<2>| d.v + d.d[0] * dx[0] + d.d[1] * dx[1];
+                let dxda = state.dxda;
+                state.store(root, a, dxda);
+                Ok(Solved {
+                    f: [lin(&e.fa), lin(&e.fr), lin(&e.m)],
+                    full: None,
+                })
+            }
         }
-        let lin = |d: &Dual<2>| d.v + d.d[0] * dx[0] + d.d[1] * dx[1];
-        let f = [lin(&e.fa), lin(&e.fr), lin(&e.m)];
-        let dxda = state.dxda;
-        state.store(root, a, dxda);
-        Ok(Solved { f, full: None })
     }
 
-    /// Newton update below which the answer is final: `sqrt(eps)/8` of the smallest
-    /// loaded approach (the root is then `x + dx` to `O(|dx|²/delta)`, relative error
-    /// `< eps/64` in the forces; the scale of the Hertz law's curvature is the approach),
-    /// or 8 ulp of `x` (the update cannot be resolved below that).
-    fn rounding_step(x: [f64; 2], e: &Eval<2>) -> f64 {
+    /// The smallest loaded approach of an evaluation, m (infinite when neither contact
+    /// is loaded).
+    fn approach_min<const N: usize>(e: &Eval<N>) -> f64 {
         let mut d = f64::INFINITY;
         for v in [e.di, e.do_] {
             if v > 0.0 {
                 d = d.min(v);
             }
         }
+        d
+    }
+
+    /// Newton update below which the answer is final: `sqrt(eps)/8` of the smallest
+    /// loaded approach `dmin` (the root is then `x + dx` to `O(|dx|²/delta)`, relative
+    /// error `< eps/64` in the forces; the scale of the Hertz law's curvature is the
+    /// approach), or 8 ulp of `x` (the update cannot be resolved below that).
+    fn rounding_step(x: [f64; 2], dmin: f64) -> f64 {
         let ulp = 8.0 * f64::EPSILON * x[0].abs().max(x[1].abs());
-        let quad = if d.is_finite() {
-            0.125 * f64::EPSILON.sqrt() * d
+        let quad = if dmin.is_finite() {
+            0.125 * f64::EPSILON.sqrt() * dmin
         } else {
             0.0
         };
@@ -497,11 +521,16 @@ impl Geo {
 
     /// The damped Newton iteration from `x` (see [`Geo::solve`]): the last point, the
     /// update there and its evaluation; or `(iterations, residual norm)` on failure.
+    /// With `full`, a full step predicted to land within [`Geo::rounding_step`] of the
+    /// root (`|dx|²/dmin` below it: Newton's quadratic contraction with the Hertz law's
+    /// curvature scale) is evaluated with the four slots (`N = 4`), which then serve the
+    /// stiffness and the reports without another evaluation at the root.
     fn newton(
         &self,
         omega: f64,
         a: [f64; 2],
         mut x: [f64; 2],
+        full: bool,
     ) -> std::result::Result<Root, (usize, f64)> {
         let mut e = self.eval::<2>(omega, x, a);
         // The last accepted update's size (for the rounding-floor stagnation test).
@@ -512,7 +541,7 @@ impl Geo {
             let ok = norm <= self.tol * e.scale() + 1e-12;
             let Some(dx) = newton::solve2(&e.jac_x(), [-e.g[0].v, -e.g[1].v], SINGULAR) else {
                 return if ok {
-                    Ok((x, [0.0; 2], e))
+                    Ok((x, [0.0; 2], Last::Two(e)))
                 } else {
                     Err((it, norm))
                 };
@@ -521,11 +550,36 @@ impl Geo {
             if !step.is_finite() {
                 return Err((it, norm));
             }
-            if step <= Self::rounding_step(x, &e) || (ok && step > 0.5 * last) {
-                return Ok((x, dx, e));
+            let dmin = Self::approach_min(&e);
+            let tiny = Self::rounding_step(x, dmin);
+            if step <= tiny || (ok && step > 0.5 * last) {
+                return Ok((x, dx, Last::Two(e)));
             }
             if it >= self.max_iter {
-                return if ok { Ok((x, dx, e)) } else { Err((it, norm)) };
+                return if ok {
+                    Ok((x, dx, Last::Two(e)))
+                } else {
+                    Err((it, norm))
+                };
+            }
+            if full && dmin.is_finite() && step * step <= tiny * dmin {
+                let xt = [x[0] + dx[0], x[1] + dx[1]];
+                let e4 = self.eval::<4>(omega, xt, a);
+                if e4.norm() <= (1.0 - ARMIJO) * norm {
+                    let g = [-e4.g[0].v, -e4.g[1].v];
+                    if let Some(d4) = newton::solve2(&e4.jac_x(), g, SINGULAR) {
+                        let s4 = d4[0].abs().max(d4[1].abs());
+                        if s4 <= Self::rounding_step(xt, Self::approach_min(&e4)) {
+                            return Ok((xt, d4, Last::Four(e4)));
+                        }
+                    }
+                    // Not there yet after all: go on from the accepted step.
+                    x = xt;
+                    e = self.eval::<2>(omega, x, a);
+                    last = step;
+                    it += 1;
+                    continue;
+                }
             }
             let mut t = 1.0;
             let mut accepted = false;
@@ -541,7 +595,11 @@ impl Geo {
                 t *= 0.5;
             }
             if !accepted {
-                return if ok { Ok((x, dx, e)) } else { Err((it, norm)) };
+                return if ok {
+                    Ok((x, dx, Last::Two(e)))
+                } else {
+                    Err((it, norm))
+                };
             }
             last = t * step;
             it += 1;
@@ -549,8 +607,16 @@ impl Geo {
     }
 }
 
+/// The evaluation at the Newton iteration's last point: `d/dX` duals, or the four slots
+/// when the last step was predicted final with `full`.
+#[derive(Debug, Clone, Copy)]
+enum Last {
+    Two(Eval<2>),
+    Four(Eval<4>),
+}
+
 /// The Newton iteration's last point, its update and its evaluation.
-type Root = ([f64; 2], [f64; 2], Eval<2>);
+type Root = ([f64; 2], [f64; 2], Last);
 
 /// A ball's answer: the forces on the shaft `(F_a, F_r, m)` at the root, and with
 /// [`Geo::solve`]'s `full` its `N = 4` evaluation there (stiffness, reports).
