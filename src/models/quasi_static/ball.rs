@@ -296,8 +296,9 @@ impl Geo {
             };
             let c_o = co * cb + so * sb;
             let c_i = ci * cb + si * sb;
-            let s_o = so * cb - co * sb;
-            let s_i = si * cb - ci * sb;
+            // Reports only: values.
+            let s_o = so.v * cb.v - co.v * sb.v;
+            let s_i = si.v * cb.v - ci.v * sb.v;
             let po = 1.0 + co * g;
             let pi = 1.0 - ci * g;
             let rm = pi * c_o / (pi * c_o + po * c_i);
@@ -327,20 +328,38 @@ impl Geo {
                 let s2 = s * s;
                 Dual::cst(1.0) / (1.0 + s2 * s2).sqrt().sqrt()
             };
-            fi = fbase * phi * self.lam_i;
+            if self.lam_i != 0.0 {
+                fi = fbase * phi * self.lam_i;
+            }
             fo = fbase * phi * self.lam_o;
             mgv = mg.v;
             wm = rm.v * omega;
             wr = rr.v * omega;
             sc_b = [sb.v, cb.v];
-            sr_o = po.v * s_o.v / c_o.v - so.v * g;
-            sr_i = pi.v * s_i.v / c_i.v + si.v * g;
+            sr_o = po.v * s_o / c_o.v - so.v * g;
+            sr_i = pi.v * s_i / c_i.v + si.v * g;
         }
-        let g1 = qi * si + fi * ci - qo * so - fo * co;
-        let g2 = qi * ci - fi * si - qo * co + fo * so + fc;
-        let fa = -(qi * si) - fi * ci;
-        let fr = -(qi * ci) + fi * si;
-        let m = fa * self.ri + fi * self.fid;
+        let (g1, g2, fa, fr, m) = if self.lam_i != 0.0 && omega != 0.0 {
+            let fa = -(qi * si) - fi * ci;
+            (
+                qi * si + fi * ci - qo * so - fo * co,
+                qi * ci - fi * si - qo * co + fo * so + fc,
+                fa,
+                -(qi * ci) + fi * si,
+                fa * self.ri + fi * self.fid,
+            )
+        } else {
+            // No inner friction (outer-race control, or at rest): the same sums without
+            // the terms in `fi = 0` (adding an exact zero changes no bit).
+            let fa = -(qi * si);
+            (
+                qi * si - qo * so - fo * co,
+                qi * ci - qo * co + fo * so + fc,
+                fa,
+                -(qi * ci),
+                fa * self.ri,
+            )
+        };
         Eval {
             g: [g1, g2],
             fa,
@@ -538,6 +557,11 @@ impl Geo {
         let mut it = 0;
         loop {
             let norm = e.norm();
+            if !norm.is_finite() {
+                // A point where the forces overflow (the ball driven far through a race):
+                // no answer from here (the caller restarts from the static position).
+                return Err((it, norm));
+            }
             let ok = norm <= self.tol * e.scale() + 1e-12;
             let Some(dx) = newton::solve2(&e.jac_x(), [-e.g[0].v, -e.g[1].v], SINGULAR) else {
                 return if ok {
@@ -552,12 +576,17 @@ impl Geo {
             }
             let dmin = Self::approach_min(&e);
             let tiny = Self::rounding_step(x, dmin);
-            if step <= tiny || (ok && step > 0.5 * last) {
+            if step <= tiny {
                 return Ok((x, dx, Last::Two(e)));
+            }
+            // The exits below accept `x` on the residual tolerance alone: the update there
+            // is not applied (it may be the step the line search refused).
+            if ok && step > 0.5 * last {
+                return Ok((x, [0.0; 2], Last::Two(e)));
             }
             if it >= self.max_iter {
                 return if ok {
-                    Ok((x, dx, Last::Two(e)))
+                    Ok((x, [0.0; 2], Last::Two(e)))
                 } else {
                     Err((it, norm))
                 };
@@ -596,7 +625,7 @@ impl Geo {
             }
             if !accepted {
                 return if ok {
-                    Ok((x, dx, Last::Two(e)))
+                    Ok((x, [0.0; 2], Last::Two(e)))
                 } else {
                     Err((it, norm))
                 };

@@ -1017,4 +1017,29 @@ mod tests {
             assert!(s.f.iter().all(|v| v.abs() < 1e-9), "{s:?}");
         }
     }
+
+    /// A warm start far through the races (a ball state left 1e14 m out by a ring Newton
+    /// wandering off) where the forces overflow: the residual norm is infinite, and with
+    /// it the force scale of the tolerance, so `inf <= inf` passed as converged and the
+    /// state stayed there (tests/no_alloc.rs's load-driven 6205 scene failed its static
+    /// start). Here the inner groove centre is pushed past the ball (degenerate
+    /// kinematics, infinite again from the static start): an error, never that answer.
+    #[test]
+    fn overflowing_warm_start_is_not_an_answer() {
+        let m = model("6205");
+        let g = &m.geo;
+        let a = [0.0, 7.71684196747542e-5];
+        for full in [false, true] {
+            let mut st = BallState {
+                x: [0.0, 128813060134693.25],
+                a,
+                dxda: [[0.0; 2]; 2],
+                warm: true,
+            };
+            match g.solve(183.26, a, &mut st, full) {
+                Ok(s) => panic!("{s:?} {st:?}"),
+                Err(e) => assert!(e.to_string().contains("ball equilibrium"), "{e}"),
+            }
+        }
+    }
 }
