@@ -667,6 +667,12 @@ pub const TABLE_INTERVALS: usize = 32;
 /// Largest contact angle [`ContactTable::new`] tabulates, rad (80 deg).
 pub const TABLE_MAX_ANGLE: f64 = 80.0 * PI / 180.0;
 
+/// Number of table intervals [`ContactTable::fine`] uses: the interpolation error falls
+/// like `h^4`, so four times [`TABLE_INTERVALS`] takes the semi-axis coefficients from
+/// ~1e-11 to the exact solve's own rounding (test `report_table_matches_exact_solve_to_rounding`
+/// in tests/qs_contact_table.rs; 12 KiB per race).
+pub const FINE_TABLE_INTERVALS: usize = 128;
+
 /// Fast path for one bearing race: `Kc`, `dKc/d alpha` and the semi-axis coefficients
 /// against the contact angle, by piecewise cubic Hermite interpolation in `x = cos alpha`
 /// on a uniform grid over `[cos alpha_max, 1]` (node values and `x`-derivatives from the
@@ -707,6 +713,22 @@ impl ContactTable {
             race,
             TABLE_MAX_ANGLE,
             TABLE_INTERVALS,
+        )
+    }
+
+    /// Table for `race` of `bearing` on the fine grid ([`FINE_TABLE_INTERVALS`] over
+    /// `[0, TABLE_MAX_ANGLE]`): the exact solve's values to rounding, for reports that
+    /// must not differ from it (the quasi-static ball reports).
+    pub fn fine(bearing: &Bearing, race: Race) -> Self {
+        let (f, e_eff) = race_data(bearing, race);
+        Self::build(
+            bearing.d,
+            bearing.dm,
+            f,
+            e_eff,
+            race,
+            TABLE_MAX_ANGLE,
+            FINE_TABLE_INTERVALS,
         )
     }
 

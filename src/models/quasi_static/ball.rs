@@ -74,7 +74,7 @@ use super::dual::Dual;
 use super::kc::KcTable;
 use super::RaceControl;
 use crate::error::{Error, Result};
-use crate::solver::newton::{self, Check};
+use crate::solver::newton;
 
 /// Per-ball unknowns carried from one call to the next (warm start).
 ///
@@ -229,30 +229,6 @@ impl<const N: usize> Eval<N> {
         };
         [r(0), r(1)]
     }
-
-    /// The values only.
-    pub fn values(&self) -> Eval<0> {
-        let c = |x: &Dual<N>| Dual::<0>::cst(x.v);
-        Eval {
-            g: [c(&self.g[0]), c(&self.g[1])],
-            fa: c(&self.fa),
-            fr: c(&self.fr),
-            m: c(&self.m),
-            qi: self.qi,
-            qo: self.qo,
-            di: self.di,
-            do_: self.do_,
-            sc_i: self.sc_i,
-            sc_o: self.sc_o,
-            sc_b: self.sc_b,
-            fc: self.fc,
-            mg: self.mg,
-            wm: self.wm,
-            wr: self.wr,
-            sr_i: self.sr_i,
-            sr_o: self.sr_o,
-        }
-    }
 }
 
 impl Geo {
@@ -320,8 +296,9 @@ impl Geo {
             };
             let c_o = co * cb + so * sb;
             let c_i = ci * cb + si * sb;
-            let s_o = so * cb - co * sb;
-            let s_i = si * cb - ci * sb;
+            // Reports only: values.
+            let s_o = so.v * cb.v - co.v * sb.v;
+            let s_i = si.v * cb.v - ci.v * sb.v;
             let po = 1.0 + co * g;
             let pi = 1.0 - ci * g;
             let rm = pi * c_o / (pi * c_o + po * c_i);
@@ -334,11 +311,13 @@ impl Geo {
             // phi = t / (1 + t^4)^(1/4) with t = mu Q_h / |F_base|, evaluated as
             // 1 / (1 + s^4)^(1/4) with s = 1/t when t > 1: the same function, but a tiny
             // couple (a groove offset of 1e-200 m gives |F_base| ~ 1e-200 N) no longer
-            // overflows t^4 and its derivatives to inf and NaN.
+            // overflows t^4 and its derivatives to inf and NaN. A subnormal couple (a ball
+            // on the plane of symmetry, its axial offset ~1e-317 m) counts as none: `1/den`
+            // would overflow to inf and `0 * inf` give NaN (the couple is ~0 either way).
             let sum = qi + qo;
             let qh = if sum.v > 0.0 { qi * qo / sum } else { zero };
             let (num, den) = (qh * self.mu, fbase.abs());
-            let phi = if fbase.v == 0.0 || !self.mu.is_finite() {
+            let phi = if fbase.v.abs() < f64::MIN_POSITIVE || !self.mu.is_finite() {
                 Dual::cst(1.0)
             } else if num.v <= den.v {
                 let t = num / den;
@@ -349,20 +328,38 @@ impl Geo {
                 let s2 = s * s;
                 Dual::cst(1.0) / (1.0 + s2 * s2).sqrt().sqrt()
             };
-            fi = fbase * phi * self.lam_i;
+            if self.lam_i != 0.0 {
+                fi = fbase * phi * self.lam_i;
+            }
             fo = fbase * phi * self.lam_o;
             mgv = mg.v;
             wm = rm.v * omega;
             wr = rr.v * omega;
             sc_b = [sb.v, cb.v];
-            sr_o = po.v * s_o.v / c_o.v - so.v * g;
-            sr_i = pi.v * s_i.v / c_i.v + si.v * g;
+            sr_o = po.v * s_o / c_o.v - so.v * g;
+            sr_i = pi.v * s_i / c_i.v + si.v * g;
         }
-        let g1 = qi * si + fi * ci - qo * so - fo * co;
-        let g2 = qi * ci - fi * si - qo * co + fo * so + fc;
-        let fa = -(qi * si) - fi * ci;
-        let fr = -(qi * ci) + fi * si;
-        let m = fa * self.ri + fi * self.fid;
+        let (g1, g2, fa, fr, m) = if self.lam_i != 0.0 && omega != 0.0 {
+            let fa = -(qi * si) - fi * ci;
+            (
+                qi * si + fi * ci - qo * so - fo * co,
+                qi * ci - fi * si - qo * co + fo * so + fc,
+                fa,
+                -(qi * ci) + fi * si,
+                fa * self.ri + fi * self.fid,
+            )
+        } else {
+            // No inner friction (outer-race control, or at rest): the same sums without
+            // the terms in `fi = 0` (adding an exact zero changes no bit).
+            let fa = -(qi * si);
+            (
+                qi * si - qo * so - fo * co,
+                qi * ci - qo * co + fo * so + fc,
+                fa,
+                -(qi * ci),
+                fa * self.ri,
+            )
+        };
         Eval {
             g: [g1, g2],
             fa,
@@ -420,17 +417,50 @@ impl Geo {
     }
 
     /// Solve the ball's two equilibrium equations for groove offset `a` at shaft speed
-    /// `omega`, starting from (and updating) `state`. Damped Newton: the step from the exact
-    /// 2x2 Jacobian (`N = 2` duals), back-tracking on the residual norm with value-only
-    /// evaluations; one restart from the static (or free-ball) position if a step fails or
-    /// the Jacobian is singular (no contact at all); then [`Error::NotConverged`].
-    pub fn solve(&self, omega: f64, a: [f64; 2], state: &mut BallState) -> Result<Eval<0>> {
+    /// `omega`, starting from (and updating) `state`: damped Newton from the warm start
+    /// (the first-order prediction of [`BallState`]), the step from the exact 2x2 Jacobian
+    /// (`N = 2` duals), back-tracking on the residual norm; one restart from the static
+    /// (or free-ball) position if the warm solve fails; then [`Error::NotConverged`].
+    ///
+    /// **The answer is a function of `(omega, a)` to rounding, whatever the start** (the
+    /// warm start changes the cost, never the answer; the right-hand side of a time
+    /// integration must not depend on the path, or the finite-difference Jacobian and the
+    /// error estimate see noise). Newton stops on the size of its update, not on a
+    /// residual tolerance: once the update `dx` at `x` is below [`Geo::rounding_step`]
+    /// (`sqrt(eps)/8` of the smallest loaded approach, or rounding of `x`), the root is
+    /// `x + dx` to `O(|dx|²/delta)`, i.e. to rounding. The forces are then taken there:
+    /// by the first-order update `F(x) + dF/dX dx` from the last linearisation (its error
+    /// `O(|dx|²)` relative to the force is below `eps`). With `full` (the caller wants the
+    /// stiffness or the reports) the last linearisation carries the four slots (`N = 4`,
+    /// [`Geo::newton`]) and gives `K`, the reports and `dX/dA` for the next warm start at
+    /// `x`, within `|dx|` of the root (relative `|dx|/delta`: at most `sqrt(eps)/8`; `K`
+    /// agrees to 1.3e-12 from any start in tests/qs_path_independence.rs); when Newton ended on an `N = 2` linearisation, an
+    /// `N = 4` evaluation at `x + dx` gives them at the root. Without `full` the state
+    /// keeps its sensitivity (a stale predictor costs iterations, not accuracy). A solve whose update
+    /// stops contracting at the rounding floor (or whose line search fails there) is
+    /// accepted when its residual is within `ball_tolerance` of the force scale.
+    pub fn solve(
+        &self,
+        omega: f64,
+        a: [f64; 2],
+        state: &mut BallState,
+        full: bool,
+    ) -> Result<Solved> {
         if omega == 0.0 {
             let x = self.static_position(a);
             state.store(x, a, [[0.0; 2]; 2]);
-            return Ok(self.eval::<0>(0.0, x, a));
+            return Ok(if full {
+                Solved::from_full(self.eval::<4>(0.0, x, a))
+            } else {
+                let e = self.eval::<0>(0.0, x, a);
+                Solved {
+                    f: [e.fa.v, e.fr.v, e.m.v],
+                    full: None,
+                }
+            });
         }
-        let la = a[0].hypot(a[1]);
+        // Millimetre-sized: the plain root (no overflow; `hypot` is several times slower).
+        let la = (a[0] * a[0] + a[1] * a[1]).sqrt();
         let loaded_static = la > self.ri_free + self.ro_free;
         let fallback = |geo: &Geo| {
             if loaded_static {
@@ -439,114 +469,206 @@ impl Geo {
                 geo.free_position(omega, a)
             }
         };
-        let mut x = if state.warm && state.x[0].is_finite() && state.x[1].is_finite() {
+        let warm = state.warm && state.x[0].is_finite() && state.x[1].is_finite();
+        let start = if warm {
             state.predict(a)
         } else {
             fallback(self)
         };
-        let restarted = !state.warm;
-        let mut sys = BallSystem {
-            geo: self,
-            omega,
-            a,
-            e: None,
-            trial: None,
-            at_e: true,
+        let (x, dx, last) = match self.newton(omega, a, start, full) {
+            Err(_) if warm => self.newton(omega, a, fallback(self), full),
+            r => r,
+        }
+        .map_err(|(iterations, residual)| Error::NotConverged {
+            what: "quasi-static ball equilibrium",
+            iterations,
+            residual,
+        })?;
+        let root = [x[0] + dx[0], x[1] + dx[1]];
+        match last {
+            Last::Four(e4) => {
+                // Forces at the root to first order; `K`, `dX/dA` and the reports at `x`.
+                let lin = |d: &Dual<4>| d.v + (d.d[0] - d.d[2]) * dx[0] + (d.d[1] - d.d[3]) * dx[1];
+                state.store(root, a, sensitivity(&e4));
+                Ok(Solved {
+                    f: [lin(&e4.fa), lin(&e4.fr), lin(&e4.m)],
+                    full: Some(e4),
+                })
+            }
+            Last::Two(_) if full => {
+                let e4 = self.eval::<4>(omega, root, a);
+                state.store(root, a, sensitivity(&e4));
+                Ok(Solved::from_full(e4))
+            }
+            Last::Two(e) => {
+                let lin = |d: &Dual<2>| d.v + d.d[0] * dx[0] + d.d[1] * dx[1];
+                let dxda = state.dxda;
+                state.store(root, a, dxda);
+                Ok(Solved {
+                    f: [lin(&e.fa), lin(&e.fr), lin(&e.m)],
+                    full: None,
+                })
+            }
+        }
+    }
+
+    /// The smallest loaded approach of an evaluation, m (infinite when neither contact
+    /// is loaded).
+    fn approach_min<const N: usize>(e: &Eval<N>) -> f64 {
+        let mut d = f64::INFINITY;
+        for v in [e.di, e.do_] {
+            if v > 0.0 {
+                d = d.min(v);
+            }
+        }
+        d
+    }
+
+    /// Newton update below which the answer is final: `sqrt(eps)/8` of the smallest
+    /// loaded approach `dmin` (the root is then `x + dx` to `O(|dx|²/delta)`, relative
+    /// error `< eps/64` in the forces; the scale of the Hertz law's curvature is the
+    /// approach), or 8 ulp of `x` (the update cannot be resolved below that).
+    fn rounding_step(x: [f64; 2], dmin: f64) -> f64 {
+        let ulp = 8.0 * f64::EPSILON * x[0].abs().max(x[1].abs());
+        let quad = if dmin.is_finite() {
+            0.125 * f64::EPSILON.sqrt() * dmin
+        } else {
+            0.0
         };
-        // Not `warm_start`: checking the predicted start by value first made the
-        // quasi-static C ABI row slower (34.8 against 31.1 µs per step, benches/speed.rs
-        // `--quick`, two runs at load ~14): at this tolerance the prediction rarely
-        // passes, and the check is then wasted.
-        let opts = newton::Options {
-            max_iterations: self.max_iter,
-            max_halvings: 40,
-            ..newton::Options::default()
-        };
-        let Ok(mut rep) = newton::solve(&mut sys, &mut x, &opts);
-        if !rep.converged() && !restarted {
-            x = fallback(self);
-            let cold = newton::Options {
-                warm_start: false,
-                ..opts
+        ulp.max(quad)
+    }
+
+    /// The damped Newton iteration from `x` (see [`Geo::solve`]): the last point, the
+    /// update there and its evaluation; or `(iterations, residual norm)` on failure.
+    /// With `full`, a full step predicted to land within [`Geo::rounding_step`] of the
+    /// root (`|dx|²/dmin` below it: Newton's quadratic contraction with the Hertz law's
+    /// curvature scale) is evaluated with the four slots (`N = 4`), which then serve the
+    /// stiffness and the reports without another evaluation at the root.
+    fn newton(
+        &self,
+        omega: f64,
+        a: [f64; 2],
+        mut x: [f64; 2],
+        full: bool,
+    ) -> std::result::Result<Root, (usize, f64)> {
+        let mut e = self.eval::<2>(omega, x, a);
+        // The last accepted update's size (for the rounding-floor stagnation test).
+        let mut last = f64::INFINITY;
+        let mut it = 0;
+        loop {
+            let norm = e.norm();
+            if !norm.is_finite() {
+                // A point where the forces overflow (the ball driven far through a race):
+                // no answer from here (the caller restarts from the static position).
+                return Err((it, norm));
+            }
+            let ok = norm <= self.tol * e.scale() + 1e-12;
+            let Some(dx) = newton::solve2(&e.jac_x(), [-e.g[0].v, -e.g[1].v], SINGULAR) else {
+                return if ok {
+                    Ok((x, [0.0; 2], Last::Two(e)))
+                } else {
+                    Err((it, norm))
+                };
             };
-            let Ok(again) = newton::solve(&mut sys, &mut x, &cold);
-            rep = again;
+            let step = dx[0].abs().max(dx[1].abs());
+            if !step.is_finite() {
+                return Err((it, norm));
+            }
+            let dmin = Self::approach_min(&e);
+            let tiny = Self::rounding_step(x, dmin);
+            if step <= tiny {
+                return Ok((x, dx, Last::Two(e)));
+            }
+            // The exits below accept `x` on the residual tolerance alone: the update there
+            // is not applied (it may be the step the line search refused).
+            if ok && step > 0.5 * last {
+                return Ok((x, [0.0; 2], Last::Two(e)));
+            }
+            if it >= self.max_iter {
+                return if ok {
+                    Ok((x, [0.0; 2], Last::Two(e)))
+                } else {
+                    Err((it, norm))
+                };
+            }
+            if full && dmin.is_finite() && step * step <= tiny * dmin {
+                let xt = [x[0] + dx[0], x[1] + dx[1]];
+                let e4 = self.eval::<4>(omega, xt, a);
+                if e4.norm() <= (1.0 - ARMIJO) * norm {
+                    let g = [-e4.g[0].v, -e4.g[1].v];
+                    if let Some(d4) = newton::solve2(&e4.jac_x(), g, SINGULAR) {
+                        let s4 = d4[0].abs().max(d4[1].abs());
+                        if s4 <= Self::rounding_step(xt, Self::approach_min(&e4)) {
+                            return Ok((xt, d4, Last::Four(e4)));
+                        }
+                    }
+                    // Not there yet after all: go on from the accepted step.
+                    x = xt;
+                    e = self.eval::<2>(omega, x, a);
+                    last = step;
+                    it += 1;
+                    continue;
+                }
+            }
+            let mut t = 1.0;
+            let mut accepted = false;
+            for _ in 0..MAX_HALVINGS {
+                let xt = [x[0] + t * dx[0], x[1] + t * dx[1]];
+                let et = self.eval::<2>(omega, xt, a);
+                if et.norm() <= (1.0 - ARMIJO * t) * norm {
+                    x = xt;
+                    e = et;
+                    accepted = true;
+                    break;
+                }
+                t *= 0.5;
+            }
+            if !accepted {
+                return if ok {
+                    Ok((x, [0.0; 2], Last::Two(e)))
+                } else {
+                    Err((it, norm))
+                };
+            }
+            last = t * step;
+            it += 1;
         }
-        if !rep.converged() {
-            return Err(Error::NotConverged {
-                what: "quasi-static ball equilibrium",
-                iterations: rep.iterations,
-                residual: rep.check.norm,
-            });
-        }
-        // Passed at the warm start: no new Jacobian, the sensitivity stays.
-        let dxda = sys.e.as_ref().map_or(state.dxda, sensitivity);
-        state.store(x, a, dxda);
-        let Some(e) = sys.e else {
-            return Ok(sys.trial.unwrap_or_else(|| self.eval::<0>(omega, x, a)));
-        };
-        Ok(match sys.trial {
-            Some(t) if !sys.at_e => t,
-            _ => e.values(),
-        })
     }
 }
+
+/// The evaluation at the Newton iteration's last point: `d/dX` duals, or the four slots
+/// when the last step was predicted final with `full`.
+#[derive(Debug, Clone, Copy)]
+enum Last {
+    Two(Eval<2>),
+    Four(Eval<4>),
+}
+
+/// The Newton iteration's last point, its update and its evaluation.
+type Root = ([f64; 2], [f64; 2], Last);
+
+/// A ball's answer: the forces on the shaft `(F_a, F_r, m)` at the root, and with
+/// [`Geo::solve`]'s `full` its `N = 4` evaluation there (stiffness, reports).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Solved {
+    pub f: [f64; 3],
+    pub full: Option<Eval<4>>,
+}
+
+impl Solved {
+    fn from_full(e: Eval<4>) -> Self {
+        Solved {
+            f: [e.fa.v, e.fr.v, e.m.v],
+            full: Some(e),
+        }
+    }
+}
+
+/// Step halvings per line search of the ball Newton.
+const MAX_HALVINGS: usize = 40;
+
+/// Sufficient-decrease constant of the ball Newton's line search.
+const ARMIJO: f64 = 1e-4;
 
 /// Relative determinant below which a ball's 2×2 Jacobian counts as singular (no contact).
 const SINGULAR: f64 = 1e-13;
-
-/// One ball's two equilibrium equations as [`newton::solve`] drives them: the Jacobian
-/// from `N = 4` duals at the current point (kept for the sensitivity `dX/dA`), value-only
-/// evaluations at the trial points.
-struct BallSystem<'a> {
-    geo: &'a Geo,
-    omega: f64,
-    a: [f64; 2],
-    /// The last linearisation.
-    e: Option<Eval<4>>,
-    /// The last trial.
-    trial: Option<Eval<0>>,
-    /// The current point is `e`'s (else the accepted `trial`'s).
-    at_e: bool,
-}
-
-impl BallSystem<'_> {
-    fn check<const N: usize>(&self, e: &Eval<N>) -> Check {
-        Check {
-            norm: e.norm(),
-            tol: self.geo.tol * e.scale() + 1e-12,
-        }
-    }
-}
-
-impl newton::NewtonSystem<2> for BallSystem<'_> {
-    type Error = std::convert::Infallible;
-
-    fn residual(&mut self, x: &[f64; 2]) -> std::result::Result<Check, Self::Error> {
-        let t = self.geo.eval::<0>(self.omega, *x, self.a);
-        self.trial = Some(t);
-        Ok(self.check(&t))
-    }
-
-    fn linearise(&mut self, x: &[f64; 2]) -> std::result::Result<Check, Self::Error> {
-        let e = self.geo.eval::<4>(self.omega, *x, self.a);
-        self.e = Some(e);
-        self.at_e = true;
-        Ok(self.check(&e))
-    }
-
-    fn step(&mut self, dx: &mut [f64; 2]) -> bool {
-        let Some(e) = &self.e else { return false };
-        match newton::solve2(&e.jac_x(), [-e.g[0].v, -e.g[1].v], SINGULAR) {
-            Some(d) => {
-                *dx = d;
-                true
-            }
-            None => false,
-        }
-    }
-
-    fn accept(&mut self) {
-        self.at_e = false;
-    }
-}

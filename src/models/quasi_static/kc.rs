@@ -17,8 +17,10 @@ const N: usize = 128;
 /// `Kc(cos alpha)` for one race of one bearing.
 #[derive(Debug, Clone)]
 pub(crate) struct KcTable {
-    v: Vec<f64>,
-    dv: Vec<f64>,
+    /// Per interval, the cubic `Kc = c0 + t (c1 + t (c2 + t c3))` in `t in [0, 1]` (the
+    /// Hermite interpolant of the node values and slopes in power form: one contiguous
+    /// 32-byte read and Horner's rule per lookup).
+    coef: Vec<[f64; 4]>,
 }
 
 /// The exact constant at `cos(alpha) = c` (through the contact module).
@@ -45,32 +47,32 @@ impl KcTable {
             let (lo, hi) = ((c - eps).max(0.0), (c + eps).min(1.0));
             dv.push((kc_exact(b, race, hi) - kc_exact(b, race, lo)) / (hi - lo));
         }
-        KcTable { v, dv }
+        let coef = (0..N)
+            .map(|k| {
+                let (y0, y1) = (v[k], v[k + 1]);
+                let (m0, m1) = (dv[k] * h, dv[k + 1] * h);
+                [
+                    y0,
+                    m0,
+                    3.0 * (y1 - y0) - 2.0 * m0 - m1,
+                    2.0 * (y0 - y1) + m0 + m1,
+                ]
+            })
+            .collect();
+        KcTable { coef }
     }
 
     /// `(Kc, dKc/dc)` at `c = cos(alpha)`; `Kc` depends on `|c|` (clamped to 1).
     #[inline]
     pub fn eval(&self, c: f64) -> (f64, f64) {
-        let sign = if c < 0.0 { -1.0 } else { 1.0 };
         let ca = c.abs().min(1.0);
-        let h = 1.0 / N as f64;
         let s = ca * N as f64;
         let k = (s as usize).min(N - 1); // s >= 0: truncation is floor
         let t = s - k as f64;
-        let (y0, y1) = (self.v[k], self.v[k + 1]);
-        let (m0, m1) = (self.dv[k] * h, self.dv[k + 1] * h);
-        let t2 = t * t;
-        let t3 = t2 * t;
-        let val = (2.0 * t3 - 3.0 * t2 + 1.0) * y0
-            + (t3 - 2.0 * t2 + t) * m0
-            + (-2.0 * t3 + 3.0 * t2) * y1
-            + (t3 - t2) * m1;
-        let dval = ((6.0 * t2 - 6.0 * t) * y0
-            + (3.0 * t2 - 4.0 * t + 1.0) * m0
-            + (-6.0 * t2 + 6.0 * t) * y1
-            + (3.0 * t2 - 2.0 * t) * m1)
-            / h;
-        (val, sign * dval)
+        let p = &self.coef[k];
+        let val = p[0] + t * (p[1] + t * (p[2] + t * p[3]));
+        let dval = (p[1] + t * (2.0 * p[2] + t * 3.0 * p[3])) * N as f64;
+        (val, if c < 0.0 { -dval } else { dval })
     }
 }
 

@@ -52,7 +52,7 @@ pub mod level;
 
 pub use ball::BallState;
 
-use crate::contact::{Curvature, PointContact, Race};
+use crate::contact::{ContactTable, Race};
 use crate::error::{Error, Result};
 use crate::geometry::Bearing;
 use crate::solver::newton;
@@ -192,6 +192,10 @@ pub struct QuasiStatic {
     ri: f64,
     /// Scale for rotations (m): `q_s = (x, y, z, Ri rx, Ri ry)`.
     t: [f64; 5],
+    /// The ball reports' semi-axis and pressure coefficients against the contact angle,
+    /// `(inner, outer)`: [`ContactTable::fine`], the exact ellipse solve's values to
+    /// rounding (it cost two elliptic-integral Newton solves per ball per report).
+    report_tables: (ContactTable, ContactTable),
 }
 
 /// Equally spaced azimuths `psi_j = phase + 2 pi j / Z` (ball 0 at `phase`).
@@ -283,6 +287,10 @@ impl QuasiStatic {
             a_ref: [a1, a2],
             ri,
             t: [1.0, 1.0, 1.0, ri, ri],
+            report_tables: (
+                ContactTable::fine(bearing, Race::Inner),
+                ContactTable::fine(bearing, Race::Outer),
+            ),
         })
     }
 
@@ -306,6 +314,11 @@ impl QuasiStatic {
     /// `psi` at displacement `q` (module docs).
     pub fn groove_offset(&self, q: &[f64; 5], psi: f64) -> [f64; 2] {
         let (s, c) = psi.sin_cos();
+        self.groove_offset_sc(q, s, c)
+    }
+
+    /// [`QuasiStatic::groove_offset`] from `(sin psi, cos psi)`.
+    fn groove_offset_sc(&self, q: &[f64; 5], s: f64, c: f64) -> [f64; 2] {
         [
             self.a_ref[0] + q[2] + self.ri * (q[3] * s - q[4] * c),
             self.a_ref[1] + q[0] * c + q[1] * s,
@@ -371,30 +384,34 @@ impl QuasiStatic {
                 ));
             }
         }
-        self.check_geometry(q, psi)?;
         if let Some(k) = stiffness.as_deref_mut() {
             *k = [[0.0; 5]; 5];
         }
         let mut f = [0.0; 5];
+        // The `N = 4` evaluation at each ball's root when the stiffness or the reports
+        // are wanted (else the forces alone, `ball.rs`).
+        let full = stiffness.is_some() || balls.is_some();
         for (j, (&p, st)) in psi.iter().zip(state.iter_mut()).enumerate() {
             if !p.is_finite() {
                 return Err(Error::invalid(format!("psi[{j}]"), p, "a finite number"));
             }
             let (s, c) = p.sin_cos();
-            let a = self.groove_offset(q, p);
-            let e = self.geo.solve(omega, a, st)?;
-            let (fa, fr, m) = (e.fa.v, e.fr.v, e.m.v);
+            let a = self.groove_offset_sc(q, s, c);
+            self.check_geometry(q, j, p, a)?;
+            let sol = self.geo.solve(omega, a, st, full)?;
+            let [fa, fr, m] = sol.f;
             f[0] += fr * c;
             f[1] += fr * s;
             f[2] += fa;
             f[3] += m * s;
             f[4] -= m * c;
-            if let Some(k) = stiffness.as_deref_mut() {
-                let e4 = self.geo.eval::<4>(omega, st.x, a);
-                self.add_ball_stiffness(&e4, s, c, k);
-            }
-            if let Some(b) = balls.as_deref_mut() {
-                b[j] = self.ball_result(&e, p, st.x);
+            if let Some(e4) = &sol.full {
+                if let Some(k) = stiffness.as_deref_mut() {
+                    self.add_ball_stiffness(e4, s, c, k);
+                }
+                if let Some(b) = balls.as_deref_mut() {
+                    b[j] = self.ball_result(e4, p, st.x);
+                }
             }
         }
         check_finite("forces", &f).map_err(|_| Error::NotConverged {
@@ -428,15 +445,15 @@ impl QuasiStatic {
 
     /// Refuse a displacement no bearing could take (a ball crushed beyond Hertz theory, or
     /// the inner groove centre pushed through the outer one) with the allowed ranges,
-    /// instead of letting the ball equations return NaN.
-    fn check_geometry(&self, q: &[f64; 5], psi: &[f64]) -> Result<()> {
+    /// instead of letting the ball equations return NaN: ball `j` at azimuth `p` with
+    /// groove offset `g` (checked before the ball is solved).
+    fn check_geometry(&self, q: &[f64; 5], j: usize, p: f64, g: [f64; 2]) -> Result<()> {
         let (a, dmax) = (self.bearing.a(), self.max_approach());
-        for (j, &p) in psi.iter().enumerate() {
-            let g = self.groove_offset(q, p);
-            let approach = g[0].hypot(g[1]) - a;
-            if approach > dmax || g[1] <= 0.0 {
-                let (rad, ax) = self.displacement_limits();
-                return Err(Error::invalid(
+        // Millimetre-sized: the plain root (no overflow; `hypot` is several times slower).
+        let approach = (g[0] * g[0] + g[1] * g[1]).sqrt() - a;
+        if approach > dmax || g[1] <= 0.0 {
+            let (rad, ax) = self.displacement_limits();
+            return Err(Error::invalid(
                     "ring displacement q",
                     format!(
                         "(x {:.3} µm, y {:.3} µm, z {:.3} µm, rx {:.4} mrad, ry {:.4} mrad)",
@@ -462,7 +479,6 @@ impl QuasiStatic {
                         ax * 1e6
                     ),
                 ));
-            }
         }
         Ok(())
     }
@@ -498,24 +514,24 @@ impl QuasiStatic {
         }
     }
 
-    fn ball_result(&self, e: &Eval<0>, psi: f64, x: [f64; 2]) -> BallResult {
-        let b = &self.bearing;
-        let contact = |alpha: f64, q: f64, race: Race| {
+    fn ball_result<const N: usize>(&self, e: &Eval<N>, psi: f64, x: [f64; 2]) -> BallResult {
+        let contact = |sc: [f64; 2], q: f64, table: &ContactTable| {
             if q > 0.0 {
-                let (f, ee) = match race {
-                    Race::Inner => (b.fi, b.e_eff_inner()),
-                    Race::Outer => (b.fo, b.e_eff_outer()),
-                };
-                let pc = PointContact::new(Curvature::ball_race(b.d, b.dm, alpha, f, race), ee);
-                let (a, bb) = pc.semi_axes(q);
-                (a, bb, pc.peak_pressure(q))
+                // `semi_axes` and `peak_pressure` of the coefficients with one cube root.
+                let cc = table.eval_cos_sin(sc[1], sc[0]);
+                let q3 = q.cbrt();
+                (
+                    cc.a_coef * q3,
+                    cc.b_coef * q3,
+                    1.5 * q3 / (PI * cc.a_coef * cc.b_coef),
+                )
             } else {
                 (0.0, 0.0, 0.0)
             }
         };
         let (alpha_i, alpha_o) = (e.alpha_i(), e.alpha_o());
-        let (a_i, b_i, p_i) = contact(alpha_i, e.qi, Race::Inner);
-        let (a_o, b_o, p_o) = contact(alpha_o, e.qo, Race::Outer);
+        let (a_i, b_i, p_i) = contact(e.sc_i, e.qi, &self.report_tables.0);
+        let (a_o, b_o, p_o) = contact(e.sc_o, e.qo, &self.report_tables.1);
         BallResult {
             psi,
             q_i: e.qi,
@@ -972,6 +988,58 @@ mod tests {
             let c = (alpha - e.beta()).cos();
             let spin = b.dm / (2.0 * b.d) * (1.0 - g * g) * w / c;
             assert!((e.wr + spin).abs() < 1e-9 * spin, "{} {}", e.wr, spin);
+        }
+    }
+
+    /// A ball on the plane of symmetry of a radially loaded bearing (axial groove offset
+    /// ~1e-31 m from rounding, its Newton root at a subnormal axial position) with the
+    /// inner contact open: the gyroscopic couple is subnormal, and `1/|F_base|` overflowed
+    /// to inf (`0 * inf = NaN` in the forces: the 6205-qs work-precision case failed).
+    #[test]
+    fn subnormal_couple_gives_finite_forces() {
+        let m = model("6205");
+        let g = &m.geo;
+        let w = 183.259571;
+        let a = [-3.0201277401483466e-31, g.ro_free + g.ri_free - 5e-6];
+        let x = [4.836626e-317, g.ro_free + 1e-7];
+        let e = g.eval::<4>(w, x, a);
+        for d in [e.g[0], e.g[1], e.fa, e.fr, e.m] {
+            assert!(
+                d.v.is_finite() && d.d.iter().all(|v| v.is_finite()),
+                "{e:?}"
+            );
+        }
+        for full in [false, true] {
+            let mut st = BallState::default();
+            let s = g.solve(w, a, &mut st, full).unwrap();
+            assert!(s.f.iter().all(|v| v.is_finite()), "{s:?}");
+            // The inner contact is open: nothing reaches the shaft.
+            assert!(s.f.iter().all(|v| v.abs() < 1e-9), "{s:?}");
+        }
+    }
+
+    /// A warm start far through the races (a ball state left 1e14 m out by a ring Newton
+    /// wandering off) where the forces overflow: the residual norm is infinite, and with
+    /// it the force scale of the tolerance, so `inf <= inf` passed as converged and the
+    /// state stayed there (tests/no_alloc.rs's load-driven 6205 scene failed its static
+    /// start). Here the inner groove centre is pushed past the ball (degenerate
+    /// kinematics, infinite again from the static start): an error, never that answer.
+    #[test]
+    fn overflowing_warm_start_is_not_an_answer() {
+        let m = model("6205");
+        let g = &m.geo;
+        let a = [0.0, 7.71684196747542e-5];
+        for full in [false, true] {
+            let mut st = BallState {
+                x: [0.0, 128813060134693.25],
+                a,
+                dxda: [[0.0; 2]; 2],
+                warm: true,
+            };
+            match g.solve(183.26, a, &mut st, full) {
+                Ok(s) => panic!("{s:?} {st:?}"),
+                Err(e) => assert!(e.to_string().contains("ball equilibrium"), "{e}"),
+            }
         }
     }
 }
