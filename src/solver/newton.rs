@@ -93,8 +93,10 @@ pub struct Check {
 }
 
 impl Check {
+    /// A non-finite residual never converges, even against a tolerance that overflowed
+    /// with it (`inf <= inf`).
     fn converged(&self) -> bool {
-        self.norm <= self.tol
+        self.norm.is_finite() && self.norm <= self.tol
     }
 }
 
@@ -224,7 +226,9 @@ pub fn solve<const N: usize, S: NewtonSystem<N> + ?Sized>(
             let trial = trial_at(t);
             rep.residuals += 1;
             if let Ok(c) = sys.residual(&trial) {
-                if opts.dead_zone_bisections > 0 && c.norm == r0 {
+                // From a non-finite start (`r0 = inf`) a non-finite trial is no decrease
+                // (`inf <= inf`); from a finite one nothing below changes.
+                if opts.dead_zone_bisections > 0 && c.norm == r0 && r0.is_finite() {
                     if let Some(mut hi) = over {
                         let mut lo = t;
                         for _ in 0..opts.dead_zone_bisections {
@@ -243,7 +247,7 @@ pub fn solve<const N: usize, S: NewtonSystem<N> + ?Sized>(
                     }
                     break;
                 }
-                if c.norm <= (1.0 - opts.armijo * t) * r0 {
+                if c.norm.is_finite() && c.norm <= (1.0 - opts.armijo * t) * r0 {
                     accepted = Some((trial, c, t));
                     break;
                 }
@@ -443,6 +447,78 @@ mod tests {
             |x| [x[0] * x[0] + x[1] * x[1] - 4.0, x[0] - x[1]],
             |x| [[2.0 * x[0], 2.0 * x[1]], [1.0, -1.0]],
         )
+    }
+
+    /// `x = (1, 1)` whose residual and tolerance both overflow for `|x0| > 1e3` (a
+    /// tolerance scaled by a force that overflowed with the residual).
+    struct Overflowing {
+        x: [f64; 2],
+    }
+
+    impl Overflowing {
+        fn check(x: &[f64; 2]) -> Check {
+            if x[0].abs() > 1e3 {
+                Check {
+                    norm: f64::INFINITY,
+                    tol: f64::INFINITY,
+                }
+            } else {
+                Check {
+                    norm: (x[0] - 1.0).hypot(x[1] - 1.0),
+                    tol: 1e-12,
+                }
+            }
+        }
+    }
+
+    impl NewtonSystem<2> for Overflowing {
+        type Error = ();
+        fn residual(&mut self, x: &[f64; 2]) -> Result<Check, ()> {
+            Ok(Self::check(x))
+        }
+        fn linearise(&mut self, x: &[f64; 2]) -> Result<Check, ()> {
+            self.x = *x;
+            Ok(Self::check(x))
+        }
+        fn step(&mut self, dx: &mut [f64; 2]) -> bool {
+            *dx = [1.0 - self.x[0], 1.0 - self.x[1]];
+            true
+        }
+        fn accept(&mut self) {}
+    }
+
+    /// An overflowing start is not an answer (`inf <= inf` is no convergence), and an
+    /// overflowing trial is no decrease from it: the solve leaves the start for the root.
+    #[test]
+    fn an_overflowing_point_is_neither_converged_nor_accepted() {
+        let opts = Options {
+            max_step: f64::INFINITY,
+            ..Options::default()
+        };
+        let mut x = [1e6, 0.0];
+        let rep = solve(&mut Overflowing { x }, &mut x, &opts).unwrap();
+        assert!(rep.converged(), "{rep:?}");
+        assert_eq!(x, [1.0, 1.0]);
+        // From the same start, a step that lands on another overflowing point is refused.
+        struct Stuck(Overflowing);
+        impl NewtonSystem<2> for Stuck {
+            type Error = ();
+            fn residual(&mut self, x: &[f64; 2]) -> Result<Check, ()> {
+                self.0.residual(x)
+            }
+            fn linearise(&mut self, x: &[f64; 2]) -> Result<Check, ()> {
+                self.0.linearise(x)
+            }
+            fn step(&mut self, dx: &mut [f64; 2]) -> bool {
+                *dx = [1e6, 0.0];
+                true
+            }
+            fn accept(&mut self) {}
+        }
+        let mut x = [1e6, 0.0];
+        let rep = solve(&mut Stuck(Overflowing { x }), &mut x, &opts).unwrap();
+        assert!(!rep.converged(), "{rep:?}");
+        assert_eq!(x, [1e6, 0.0]);
     }
 
     #[test]
