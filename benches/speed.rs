@@ -575,7 +575,7 @@ fn main() {
                 scenes_md,
                 "| {name} | {h:.0e} | {} | {:.0e} | {:.1}× | {:.1} | {:.1e} | {} | {} | {} | {} |",
                 if scene.solver.max_substep_s > 0.0 {
-                    format!("{:.0e}", scene.solver.max_substep_s)
+                    format!("{:e}", scene.solver.max_substep_s)
                 } else {
                     "none".into()
                 },
