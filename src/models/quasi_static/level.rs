@@ -12,7 +12,7 @@ use crate::component::levels::cage_speed;
 use crate::component::scene::Scene;
 use crate::error::Result;
 use crate::geometry::Bearing;
-use crate::models::quasi_static::{BallResult, BallState, Options, QuasiStatic};
+use crate::models::quasi_static::{BallState, Options, QuasiStatic};
 use crate::models::ring::{RingDof, RingEval, RingModel};
 use std::f64::consts::PI;
 
@@ -27,7 +27,6 @@ pub struct QuasiStaticLevel {
     cage_ratio: f64,
     psi: Vec<f64>,
     balls: Vec<BallState>,
-    results: Vec<BallResult>,
     /// Contact damping: the ring model with and without damping (their difference is the
     /// damping force); `None` when the scene has none.
     damping: Option<(RingModel, RingModel, RingEval, RingEval)>,
@@ -46,7 +45,6 @@ impl QuasiStaticLevel {
             cage_ratio: cage_speed(b, 1.0),
             psi: vec![0.0; b.z],
             balls: vec![BallState::default(); b.z],
-            results: vec![BallResult::default(); b.z],
             damping: (scene.model.contact_damping > 0.0).then(|| {
                 (
                     RingModel::new(b, RingDof::Five, scene.model.contact_damping),
@@ -149,25 +147,29 @@ impl LevelModel for QuasiStaticLevel {
         let Point { m, x, aux, .. } = p;
         self.load_aux(x[0], aux);
         let mut k = [[0.0; 5]; 5];
-        let mut wrench = self.qs.evaluate(
+        // Loaded balls, largest load and pressure: all the outputs read of the balls
+        // (their contact angles and semi-axes are not formed).
+        let (mut loaded, mut max_load, mut max_p) = (0usize, 0.0f64, 0.0f64);
+        let qs = &self.qs;
+        let mut wrench = qs.evaluate_with(
             &m.q,
             m.omega,
             &self.psi,
             &mut self.balls,
             Some(&mut k),
-            Some(&mut self.results),
+            true,
+            |_, e, _, _| {
+                if e.qi > 0.0 {
+                    loaded += 1;
+                }
+                max_load = max_load.max(e.qi).max(e.qo);
+                let (p_i, p_o) = qs.peak_pressures(e);
+                max_p = max_p.max(p_i).max(p_o);
+            },
         )?;
         self.store_aux(aux);
         let mut c = [[0.0; 5]; 5];
         self.add_damping(x[0], m, &mut wrench, Some(&mut c));
-        let (mut loaded, mut max_load, mut max_p) = (0usize, 0.0f64, 0.0f64);
-        for r in &self.results {
-            if r.q_i > 0.0 {
-                loaded += 1;
-            }
-            max_load = max_load.max(r.q_i).max(r.q_o);
-            max_p = max_p.max(r.p_i).max(r.p_o);
-        }
         *out = LevelOutputs {
             wrench,
             k,

@@ -361,8 +361,39 @@ impl QuasiStatic {
         omega: f64,
         psi: &[f64],
         state: &mut [BallState],
-        mut stiffness: Option<&mut [[f64; 5]; 5]>,
+        stiffness: Option<&mut [[f64; 5]; 5]>,
         mut balls: Option<&mut [BallResult]>,
+    ) -> Result<[f64; 5]> {
+        if let Some(b) = balls.as_deref() {
+            if b.len() != psi.len() {
+                return Err(Error::invalid(
+                    "balls.len()",
+                    b.len(),
+                    format!("= psi.len() = {}", psi.len()),
+                ));
+            }
+        }
+        let want = balls.is_some();
+        self.evaluate_with(q, omega, psi, state, stiffness, want, |j, e4, p, x| {
+            if let Some(b) = balls.as_deref_mut() {
+                b[j] = self.ball_result(e4, p, x);
+            }
+        })
+    }
+
+    /// [`QuasiStatic::evaluate`] handing each ball's `N = 4` evaluation at its root to
+    /// `per_ball(j, e, psi_j, x_j)` when `want_balls` (what a caller that needs less than
+    /// the whole [`BallResult`] reads; the slice lengths are the caller's to check).
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn evaluate_with<F: FnMut(usize, &Eval<4>, f64, [f64; 2])>(
+        &self,
+        q: &[f64; 5],
+        omega: f64,
+        psi: &[f64],
+        state: &mut [BallState],
+        mut stiffness: Option<&mut [[f64; 5]; 5]>,
+        want_balls: bool,
+        mut per_ball: F,
     ) -> Result<[f64; 5]> {
         check_finite("q", q)?;
         if !omega.is_finite() {
@@ -375,22 +406,13 @@ impl QuasiStatic {
                 format!("= psi.len() = {}", psi.len()),
             ));
         }
-        if let Some(b) = balls.as_deref() {
-            if b.len() != psi.len() {
-                return Err(Error::invalid(
-                    "balls.len()",
-                    b.len(),
-                    format!("= psi.len() = {}", psi.len()),
-                ));
-            }
-        }
         if let Some(k) = stiffness.as_deref_mut() {
             *k = [[0.0; 5]; 5];
         }
         let mut f = [0.0; 5];
         // The `N = 4` evaluation at each ball's root when the stiffness or the reports
         // are wanted (else the forces alone, `ball.rs`).
-        let full = stiffness.is_some() || balls.is_some();
+        let full = stiffness.is_some() || want_balls;
         for (j, (&p, st)) in psi.iter().zip(state.iter_mut()).enumerate() {
             if !p.is_finite() {
                 return Err(Error::invalid(format!("psi[{j}]"), p, "a finite number"));
@@ -409,8 +431,8 @@ impl QuasiStatic {
                 if let Some(k) = stiffness.as_deref_mut() {
                     self.add_ball_stiffness(e4, s, c, k);
                 }
-                if let Some(b) = balls.as_deref_mut() {
-                    b[j] = self.ball_result(e4, p, st.x);
+                if want_balls {
+                    per_ball(j, e4, p, st.x);
                 }
             }
         }
@@ -514,24 +536,35 @@ impl QuasiStatic {
         }
     }
 
+    /// Semi-axes and peak pressure `(a, b, p)` of a contact at angle `(sin, cos)` = `sc`
+    /// carrying `q` (zeros unloaded): `semi_axes` and `peak_pressure` of the report
+    /// table's coefficients with one cube root.
+    fn contact_report(sc: [f64; 2], q: f64, table: &ContactTable) -> (f64, f64, f64) {
+        if q > 0.0 {
+            let cc = table.eval_cos_sin(sc[1], sc[0]);
+            let q3 = q.cbrt();
+            (
+                cc.a_coef * q3,
+                cc.b_coef * q3,
+                1.5 * q3 / (PI * cc.a_coef * cc.b_coef),
+            )
+        } else {
+            (0.0, 0.0, 0.0)
+        }
+    }
+
+    /// Peak pressures `(p_i, p_o)` of a ball's evaluation (those of its [`BallResult`]).
+    pub(crate) fn peak_pressures<const N: usize>(&self, e: &Eval<N>) -> (f64, f64) {
+        (
+            Self::contact_report(e.sc_i, e.qi, &self.report_tables.0).2,
+            Self::contact_report(e.sc_o, e.qo, &self.report_tables.1).2,
+        )
+    }
+
     fn ball_result<const N: usize>(&self, e: &Eval<N>, psi: f64, x: [f64; 2]) -> BallResult {
-        let contact = |sc: [f64; 2], q: f64, table: &ContactTable| {
-            if q > 0.0 {
-                // `semi_axes` and `peak_pressure` of the coefficients with one cube root.
-                let cc = table.eval_cos_sin(sc[1], sc[0]);
-                let q3 = q.cbrt();
-                (
-                    cc.a_coef * q3,
-                    cc.b_coef * q3,
-                    1.5 * q3 / (PI * cc.a_coef * cc.b_coef),
-                )
-            } else {
-                (0.0, 0.0, 0.0)
-            }
-        };
         let (alpha_i, alpha_o) = (e.alpha_i(), e.alpha_o());
-        let (a_i, b_i, p_i) = contact(e.sc_i, e.qi, &self.report_tables.0);
-        let (a_o, b_o, p_o) = contact(e.sc_o, e.qo, &self.report_tables.1);
+        let (a_i, b_i, p_i) = Self::contact_report(e.sc_i, e.qi, &self.report_tables.0);
+        let (a_o, b_o, p_o) = Self::contact_report(e.sc_o, e.qo, &self.report_tables.1);
         BallResult {
             psi,
             q_i: e.qi,
