@@ -704,22 +704,18 @@ impl ContactTable {
     /// Table for `race` of `bearing`, default grid ([`TABLE_INTERVALS`] over
     /// `[0, TABLE_MAX_ANGLE]`).
     pub fn new(bearing: &Bearing, race: Race) -> Self {
-        let (f, e_eff) = race_data(bearing, race);
-        Self::build(
-            bearing.d,
-            bearing.dm,
-            f,
-            e_eff,
-            race,
-            TABLE_MAX_ANGLE,
-            TABLE_INTERVALS,
-        )
+        Self::for_race(bearing, race, TABLE_INTERVALS)
     }
 
     /// Table for `race` of `bearing` on the fine grid ([`FINE_TABLE_INTERVALS`] over
     /// `[0, TABLE_MAX_ANGLE]`): the exact solve's values to rounding, for reports that
     /// must not differ from it (the quasi-static ball reports).
     pub fn fine(bearing: &Bearing, race: Race) -> Self {
+        Self::for_race(bearing, race, FINE_TABLE_INTERVALS)
+    }
+
+    /// Table for `race` of `bearing`, `intervals` over `[0, TABLE_MAX_ANGLE]`.
+    fn for_race(bearing: &Bearing, race: Race, intervals: usize) -> Self {
         let (f, e_eff) = race_data(bearing, race);
         Self::build(
             bearing.d,
@@ -728,7 +724,7 @@ impl ContactTable {
             e_eff,
             race,
             TABLE_MAX_ANGLE,
-            FINE_TABLE_INTERVALS,
+            intervals,
         )
     }
 
