@@ -32,6 +32,15 @@
 //! least [`REUSE_CONTRACTION`] the next step reuses the Jacobian; a step that then fails the
 //! line search is retried with a fresh Jacobian, so reuse changes the cost, never the
 //! answer's tolerance.
+//!
+//! [`solve_to_rounding`] is the same damped Newton with the other stopping rule: it ends
+//! when the *update* is below what the system can resolve ([`Linearised::resolution`]),
+//! not on a residual tolerance (Kelley 2003, §1.5: the step is the error estimate of a
+//! quadratically converging iteration; Dennis & Schnabel §7.2, the step-size test). The
+//! answer then depends on the start only through rounding, which is what a right-hand
+//! side needs (the quasi-static ball: the integrator's error estimate and its
+//! finite-difference Jacobian must not see the warm start). A residual tolerance remains
+//! only as the fallback acceptance when the update stagnates at the rounding floor.
 
 /// Contraction `|r_new| / |r_old|` below which a reused Jacobian is kept for the next step
 /// (a chord iteration converging at least linearly with rate 1/4).
@@ -281,6 +290,174 @@ pub fn solve<const N: usize, S: NewtonSystem<N> + ?Sized>(
             rep.jacobians += 1;
             stale = false;
         }
+    }
+}
+
+/// An evaluation of a system at a point, as [`solve_to_rounding`] reads it: the residual
+/// norm, the Newton step from its Jacobian and the update size it can resolve.
+pub trait Linearised<const N: usize> {
+    /// Residual norm (`f64::INFINITY` when not finite: the solve fails there).
+    fn norm(&self) -> f64;
+    /// The scale the fallback tolerance is relative to ([`RoundingOptions::rtol`]).
+    fn scale(&self) -> f64;
+    /// The Newton step `dx` solving `J dx = -r` here; `None` when singular.
+    fn step(&self) -> Option<[f64; N]>;
+    /// Update below which `x + dx` is the root to rounding (`x`: this evaluation's point).
+    fn resolution(&self, x: &[f64; N]) -> f64;
+}
+
+/// A system `r(x) = 0` solved to rounding by [`solve_to_rounding`]: the evaluations are
+/// values (no state), and an optional richer evaluation (`Final`) serves a step predicted
+/// to land on the root, so the caller gets what it wants at the answer (e.g. more
+/// derivatives) without evaluating there again.
+pub trait RoundingSystem<const N: usize> {
+    /// The evaluation the iteration runs on.
+    type Eval: Linearised<N>;
+    /// The richer evaluation of a step predicted final.
+    type Final: Linearised<N>;
+    /// Evaluate at `x`.
+    fn eval(&self, x: &[f64; N]) -> Self::Eval;
+    /// Evaluate at `x` with everything the caller wants at the answer.
+    fn eval_final(&self, x: &[f64; N]) -> Self::Final;
+    /// Is the full step of size `step` from `e` predicted to land within `resolution` of
+    /// the root (then it is evaluated with [`Self::eval_final`])? `false`: never.
+    fn predicts_root(&self, e: &Self::Eval, step: f64, resolution: f64) -> bool;
+}
+
+/// Settings of one [`solve_to_rounding`], plain data.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RoundingOptions {
+    /// Newton steps allowed.
+    pub max_iterations: usize,
+    /// Step halvings per line search.
+    pub max_halvings: usize,
+    /// Sufficient-decrease constant of the line search (as [`Options::armijo`]).
+    pub armijo: f64,
+    /// Fallback acceptance: a point whose residual is at most `rtol` times its
+    /// [`Linearised::scale`] plus `atol` is accepted when the update stagnates (it no
+    /// longer halves), the line search fails, the Jacobian is singular or the iterations
+    /// run out.
+    pub rtol: f64,
+    /// Absolute part of the fallback tolerance.
+    pub atol: f64,
+}
+
+/// The evaluation a [`solve_to_rounding`] ended on.
+#[derive(Debug, Clone, Copy)]
+pub enum Last<E, F> {
+    /// The iteration's own evaluation.
+    Plain(E),
+    /// The richer evaluation of a step predicted final (and confirmed).
+    Final(F),
+}
+
+/// What a [`solve_to_rounding`] found: the last point, the update there (the root is their
+/// sum to rounding) and the evaluation at the last point.
+pub type Answer<const N: usize, S> = (
+    [f64; N],
+    [f64; N],
+    Last<<S as RoundingSystem<N>>::Eval, <S as RoundingSystem<N>>::Final>,
+);
+
+/// A [`solve_to_rounding`] that found no answer: Newton steps taken and the residual norm.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Failure {
+    /// Newton steps taken.
+    pub iterations: usize,
+    /// Residual norm where it stopped.
+    pub residual: f64,
+}
+
+/// Damped Newton from `x` that stops on the size of its update (see the module notes):
+/// returns the last point `x`, the update `dx` there (the root is `x + dx` to rounding;
+/// zero when the fallback tolerance accepted `x` itself) and the evaluation at `x`.
+///
+/// Each iteration: the step from the evaluation at `x`; if it is at most the evaluation's
+/// [`Linearised::resolution`], the answer is `x + dx`. Otherwise, when the system
+/// [predicts](RoundingSystem::predicts_root) the full step lands on the root, that point is
+/// evaluated with [`RoundingSystem::eval_final`]: if it decreases the residual and its own
+/// update is within its resolution, the solve ends there; if it only decreases the
+/// residual, the iteration goes on from it. Otherwise a back-tracking line search (`t = 1,
+/// 1/2, …`, Armijo) on the residual norm.
+#[inline]
+pub fn solve_to_rounding<const N: usize, S: RoundingSystem<N>>(
+    sys: &S,
+    mut x: [f64; N],
+    opts: &RoundingOptions,
+) -> Result<Answer<N, S>, Failure> {
+    let mut e = sys.eval(&x);
+    // The last accepted update's size (for the stagnation test).
+    let mut last = f64::INFINITY;
+    let mut it = 0;
+    let fail = |iterations, residual| Failure {
+        iterations,
+        residual,
+    };
+    let big = |d: &[f64; N]| d.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    loop {
+        let norm = e.norm();
+        if !norm.is_finite() {
+            return Err(fail(it, norm));
+        }
+        let ok = norm <= opts.rtol * e.scale() + opts.atol;
+        // Accept `x` itself on the fallback tolerance (the update is not applied: it may
+        // be the step the line search refused), or fail.
+        let fallback = move |e| {
+            if ok {
+                Ok((x, [0.0; N], Last::Plain(e)))
+            } else {
+                Err(fail(it, norm))
+            }
+        };
+        let Some(dx) = e.step() else {
+            return fallback(e);
+        };
+        let step = big(&dx);
+        if !step.is_finite() {
+            return Err(fail(it, norm));
+        }
+        let tiny = e.resolution(&x);
+        if step <= tiny {
+            return Ok((x, dx, Last::Plain(e)));
+        }
+        if (ok && step > 0.5 * last) || it >= opts.max_iterations {
+            return fallback(e);
+        }
+        let full: [f64; N] = std::array::from_fn(|i| x[i] + dx[i]);
+        if sys.predicts_root(&e, step, tiny) {
+            let ef = sys.eval_final(&full);
+            if ef.norm() <= (1.0 - opts.armijo) * norm {
+                if let Some(df) = ef.step() {
+                    if big(&df) <= ef.resolution(&full) {
+                        return Ok((full, df, Last::Final(ef)));
+                    }
+                }
+                // Not there yet after all: go on from the accepted step.
+                x = full;
+                e = sys.eval(&x);
+                last = step;
+                it += 1;
+                continue;
+            }
+        }
+        let mut t = 1.0;
+        let mut accepted = false;
+        for _ in 0..opts.max_halvings {
+            let xt: [f64; N] = std::array::from_fn(|i| x[i] + t * dx[i]);
+            let et = sys.eval(&xt);
+            if et.norm() <= (1.0 - opts.armijo * t) * norm {
+                x = xt;
+                e = et;
+                accepted = true;
+                break;
+            }
+            t *= 0.5;
+        }
+        if !accepted {
+            return fallback(e);
+        }
+        last = t * step;
+        it += 1;
     }
 }
 
@@ -610,5 +787,104 @@ mod tests {
             60,
         );
         assert!((x - 2f64.cbrt()).abs() < 1e-14, "{x}");
+    }
+
+    /// `r(x) = (x0² - 2, x1 - x0)`, root `(√2, √2)`, evaluated as a value; `rich` marks
+    /// the final evaluation, `wide` counts how many were made.
+    #[derive(Debug, Clone, Copy)]
+    struct Sq {
+        x: [f64; 2],
+        rich: bool,
+    }
+
+    impl Linearised<2> for Sq {
+        fn norm(&self) -> f64 {
+            let r = [self.x[0] * self.x[0] - 2.0, self.x[1] - self.x[0]];
+            r[0].hypot(r[1])
+        }
+        fn scale(&self) -> f64 {
+            2.0
+        }
+        fn step(&self) -> Option<[f64; 2]> {
+            let [a, b] = self.x;
+            let j = [[2.0 * a, 0.0], [-1.0, 1.0]];
+            solve2(&j, [-(a * a - 2.0), -(b - a)], 0.0)
+        }
+        fn resolution(&self, x: &[f64; 2]) -> f64 {
+            f64::EPSILON.sqrt() * 0.125 * x[0].abs().max(x[1].abs())
+        }
+    }
+
+    struct SqSystem {
+        predict: bool,
+        wide: std::cell::Cell<usize>,
+    }
+
+    impl RoundingSystem<2> for SqSystem {
+        type Eval = Sq;
+        type Final = Sq;
+        fn eval(&self, x: &[f64; 2]) -> Sq {
+            Sq { x: *x, rich: false }
+        }
+        fn eval_final(&self, x: &[f64; 2]) -> Sq {
+            self.wide.set(self.wide.get() + 1);
+            Sq { x: *x, rich: true }
+        }
+        fn predicts_root(&self, _: &Sq, step: f64, resolution: f64) -> bool {
+            self.predict && step * step <= resolution
+        }
+    }
+
+    #[test]
+    fn newton_to_rounding_gives_the_root_to_rounding_from_any_start() {
+        let opts = RoundingOptions {
+            max_iterations: 60,
+            max_halvings: 40,
+            armijo: 1e-4,
+            rtol: 1e-12,
+            atol: 0.0,
+        };
+        let root = 2f64.sqrt();
+        for predict in [false, true] {
+            let mut answers = Vec::new();
+            for start in [[1.0, 0.0], [3.0, 5.0], [40.0, -7.0], [root, root]] {
+                let sys = SqSystem {
+                    predict,
+                    wide: std::cell::Cell::new(0),
+                };
+                let (x, dx, last) = solve_to_rounding(&sys, start, &opts).unwrap();
+                let ans = [x[0] + dx[0], x[1] + dx[1]];
+                // The root to rounding (1 ulp of √2 is 2.2e-16), whatever the start.
+                for v in ans {
+                    assert!(
+                        (v - root).abs() <= 2.0 * f64::EPSILON * root,
+                        "{start:?} {ans:?}"
+                    );
+                }
+                answers.push(ans);
+                // The update it stopped on is within the resolution.
+                assert!(dx[0].abs().max(dx[1].abs()) <= 1.5e-9 * root, "{dx:?}");
+                // A step predicted final ends on the rich evaluation, and one rich
+                // evaluation served it; without prediction none is made.
+                match last {
+                    Last::Final(e) => assert!(predict && e.rich && sys.wide.get() == 1),
+                    Last::Plain(e) => assert!(!e.rich && (!predict || start == [root, root])),
+                }
+                if !predict {
+                    assert_eq!(sys.wide.get(), 0);
+                }
+            }
+            assert!(answers
+                .windows(2)
+                .all(|w| (w[0][0] - w[1][0]).abs() <= 4.5e-16));
+        }
+        // A residual that overflows fails with its iteration count, never an answer.
+        let sys = SqSystem {
+            predict: false,
+            wide: std::cell::Cell::new(0),
+        };
+        let f = solve_to_rounding(&sys, [1e200, 0.0], &opts).unwrap_err();
+        assert_eq!(f.iterations, 0);
+        assert!(f.residual.is_infinite());
     }
 }

@@ -479,14 +479,14 @@ impl Geo {
             Err(_) if warm => self.newton(omega, a, fallback(self), full),
             r => r,
         }
-        .map_err(|(iterations, residual)| Error::NotConverged {
+        .map_err(|f| Error::NotConverged {
             what: "quasi-static ball equilibrium",
-            iterations,
-            residual,
+            iterations: f.iterations,
+            residual: f.residual,
         })?;
         let root = [x[0] + dx[0], x[1] + dx[1]];
         match last {
-            Last::Four(e4) => {
+            Last::Final(e4) => {
                 // Forces at the root to first order; `K`, `dX/dA` and the reports at `x`.
                 let lin = |d: &Dual<4>| d.v + (d.d[0] - d.d[2]) * dx[0] + (d.d[1] - d.d[3]) * dx[1];
                 state.store(root, a, sensitivity(&e4));
@@ -495,12 +495,12 @@ impl Geo {
                     full: Some(e4),
                 })
             }
-            Last::Two(_) if full => {
+            Last::Plain(_) if full => {
                 let e4 = self.eval::<4>(omega, root, a);
                 state.store(root, a, sensitivity(&e4));
                 Ok(Solved::from_full(e4))
             }
-            Last::Two(e) => {
+            Last::Plain(e) => {
                 let lin = |d: &Dual<2>| d.v + d.d[0] * dx[0] + d.d[1] * dx[1];
                 let dxda = state.dxda;
                 state.store(root, a, dxda);
@@ -538,8 +538,8 @@ impl Geo {
         ulp.max(quad)
     }
 
-    /// The damped Newton iteration from `x` (see [`Geo::solve`]): the last point, the
-    /// update there and its evaluation; or `(iterations, residual norm)` on failure.
+    /// The damped Newton iteration from `x` (see [`Geo::solve`]) on the shared
+    /// [`newton::solve_to_rounding`]: the last point, the update there and its evaluation.
     /// With `full`, a full step predicted to land within [`Geo::rounding_step`] of the
     /// root (`|dx|²/dmin` below it: Newton's quadratic contraction with the Hertz law's
     /// curvature scale) is evaluated with the four slots (`N = 4`), which then serve the
@@ -548,101 +548,76 @@ impl Geo {
         &self,
         omega: f64,
         a: [f64; 2],
-        mut x: [f64; 2],
+        x: [f64; 2],
         full: bool,
-    ) -> std::result::Result<Root, (usize, f64)> {
-        let mut e = self.eval::<2>(omega, x, a);
-        // The last accepted update's size (for the rounding-floor stagnation test).
-        let mut last = f64::INFINITY;
-        let mut it = 0;
-        loop {
-            let norm = e.norm();
-            if !norm.is_finite() {
-                // A point where the forces overflow (the ball driven far through a race):
-                // no answer from here (the caller restarts from the static position).
-                return Err((it, norm));
-            }
-            let ok = norm <= self.tol * e.scale() + 1e-12;
-            let Some(dx) = newton::solve2(&e.jac_x(), [-e.g[0].v, -e.g[1].v], SINGULAR) else {
-                return if ok {
-                    Ok((x, [0.0; 2], Last::Two(e)))
-                } else {
-                    Err((it, norm))
-                };
-            };
-            let step = dx[0].abs().max(dx[1].abs());
-            if !step.is_finite() {
-                return Err((it, norm));
-            }
-            let dmin = Self::approach_min(&e);
-            let tiny = Self::rounding_step(x, dmin);
-            if step <= tiny {
-                return Ok((x, dx, Last::Two(e)));
-            }
-            // The exits below accept `x` on the residual tolerance alone: the update there
-            // is not applied (it may be the step the line search refused).
-            if ok && step > 0.5 * last {
-                return Ok((x, [0.0; 2], Last::Two(e)));
-            }
-            if it >= self.max_iter {
-                return if ok {
-                    Ok((x, [0.0; 2], Last::Two(e)))
-                } else {
-                    Err((it, norm))
-                };
-            }
-            if full && dmin.is_finite() && step * step <= tiny * dmin {
-                let xt = [x[0] + dx[0], x[1] + dx[1]];
-                let e4 = self.eval::<4>(omega, xt, a);
-                if e4.norm() <= (1.0 - ARMIJO) * norm {
-                    let g = [-e4.g[0].v, -e4.g[1].v];
-                    if let Some(d4) = newton::solve2(&e4.jac_x(), g, SINGULAR) {
-                        let s4 = d4[0].abs().max(d4[1].abs());
-                        if s4 <= Self::rounding_step(xt, Self::approach_min(&e4)) {
-                            return Ok((xt, d4, Last::Four(e4)));
-                        }
-                    }
-                    // Not there yet after all: go on from the accepted step.
-                    x = xt;
-                    e = self.eval::<2>(omega, x, a);
-                    last = step;
-                    it += 1;
-                    continue;
-                }
-            }
-            let mut t = 1.0;
-            let mut accepted = false;
-            for _ in 0..MAX_HALVINGS {
-                let xt = [x[0] + t * dx[0], x[1] + t * dx[1]];
-                let et = self.eval::<2>(omega, xt, a);
-                if et.norm() <= (1.0 - ARMIJO * t) * norm {
-                    x = xt;
-                    e = et;
-                    accepted = true;
-                    break;
-                }
-                t *= 0.5;
-            }
-            if !accepted {
-                return if ok {
-                    Ok((x, [0.0; 2], Last::Two(e)))
-                } else {
-                    Err((it, norm))
-                };
-            }
-            last = t * step;
-            it += 1;
-        }
+    ) -> std::result::Result<Root, newton::Failure> {
+        let sys = BallSystem {
+            geo: self,
+            omega,
+            a,
+            full,
+        };
+        let opts = newton::RoundingOptions {
+            max_iterations: self.max_iter,
+            max_halvings: MAX_HALVINGS,
+            armijo: ARMIJO,
+            rtol: self.tol,
+            atol: 1e-12,
+        };
+        newton::solve_to_rounding(&sys, x, &opts)
+    }
+}
+
+/// A ball's two equilibrium equations at shaft speed `omega` and groove offset `a`, as
+/// [`newton::solve_to_rounding`] drives them: `N = 2` duals (`d/dX`) for the iteration,
+/// four slots for a step predicted final when `full`.
+struct BallSystem<'a> {
+    geo: &'a Geo,
+    omega: f64,
+    a: [f64; 2],
+    full: bool,
+}
+
+impl newton::RoundingSystem<2> for BallSystem<'_> {
+    type Eval = Eval<2>;
+    type Final = Eval<4>;
+    #[inline]
+    fn eval(&self, x: &[f64; 2]) -> Eval<2> {
+        self.geo.eval::<2>(self.omega, *x, self.a)
+    }
+    #[inline]
+    fn eval_final(&self, x: &[f64; 2]) -> Eval<4> {
+        self.geo.eval::<4>(self.omega, *x, self.a)
+    }
+    #[inline]
+    fn predicts_root(&self, e: &Eval<2>, step: f64, resolution: f64) -> bool {
+        let dmin = Geo::approach_min(e);
+        self.full && dmin.is_finite() && step * step <= resolution * dmin
+    }
+}
+
+impl<const N: usize> newton::Linearised<2> for Eval<N> {
+    #[inline]
+    fn norm(&self) -> f64 {
+        Eval::<N>::norm(self)
+    }
+    #[inline]
+    fn scale(&self) -> f64 {
+        Eval::<N>::scale(self)
+    }
+    #[inline]
+    fn step(&self) -> Option<[f64; 2]> {
+        newton::solve2(&self.jac_x(), [-self.g[0].v, -self.g[1].v], SINGULAR)
+    }
+    #[inline]
+    fn resolution(&self, x: &[f64; 2]) -> f64 {
+        Geo::rounding_step(*x, Geo::approach_min(self))
     }
 }
 
 /// The evaluation at the Newton iteration's last point: `d/dX` duals, or the four slots
 /// when the last step was predicted final with `full`.
-#[derive(Debug, Clone, Copy)]
-enum Last {
-    Two(Eval<2>),
-    Four(Eval<4>),
-}
+type Last = newton::Last<Eval<2>, Eval<4>>;
 
 /// The Newton iteration's last point, its update and its evaluation.
 type Root = ([f64; 2], [f64; 2], Last);
