@@ -7,6 +7,7 @@ use super::level::{Jacobians, LevelModel, Point};
 use super::{thread_cpu_s, Causality, InputRule, State, I_LOAD};
 use crate::error::{Error, Result};
 use crate::solver::{OdeSystem, SolverError};
+use std::time::Instant;
 
 /// Most evaluations between two reads of the CPU clock (a read costs 0.2 µs, one
 /// right-hand side of the cheapest level 0.3 µs: at most 0.3 % of a step).
@@ -18,15 +19,27 @@ pub(super) const BUDGET_EVERY: u32 = 256;
 pub(super) const BUDGET_READ_S: f64 = 1e-3;
 
 /// The CPU-time budget of one communication step.
+///
+/// The thread's CPU clock is a system call (0.2–0.5 µs, as much as a whole cheap step), so
+/// a step does not read it when it starts: it reads the wall clock (`Instant`, no system
+/// call), and the CPU clock first at its first check. The CPU time counted is the wall
+/// time up to that first read (an upper bound: a thread cannot run longer than the time
+/// that passed) plus the thread's CPU time after it. A step that ends before its first
+/// check reads no CPU clock at all.
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Budget {
-    pub(super) start: f64,
+    /// Wall clock at the step start.
+    pub(super) wall0: Instant,
+    /// At the first check: the thread's CPU time then, and the wall time from the step
+    /// start to then, s.
+    pub(super) first: Option<(f64, f64)>,
     pub(super) limit: f64,
     pub(super) evals: u32,
     /// Evaluation count at which the clock is read next.
     pub(super) next: u32,
     /// Evaluations between reads as last estimated (the next step's first read comes after
-    /// as many: a step of a few cheap evaluations then reads the clock once, at its start).
+    /// as many: a step of a few cheap evaluations then reads no clock but the wall clock
+    /// at its start).
     pub(super) gap: u32,
     /// CPU time used when the budget ran out.
     pub(super) spent: Option<f64>,
@@ -38,7 +51,8 @@ impl Budget {
     pub(super) fn new(limit: f64, first: u32) -> Self {
         let first = first.clamp(1, BUDGET_EVERY);
         Budget {
-            start: thread_cpu_s(),
+            wall0: Instant::now(),
+            first: None,
             limit,
             evals: 0,
             next: first,
@@ -46,6 +60,19 @@ impl Budget {
             spent: None,
         }
     }
+
+    /// CPU time used since the start, s (see the type's notes).
+    fn used(&mut self) -> f64 {
+        match self.first {
+            Some((cpu1, wall1)) => wall1 + (thread_cpu_s() - cpu1),
+            None => {
+                let wall1 = self.wall0.elapsed().as_secs_f64();
+                self.first = Some((thread_cpu_s(), wall1));
+                wall1
+            }
+        }
+    }
+
     /// Count one evaluation; `true` once the budget is spent. The clock is read about
     /// every [`BUDGET_READ_S`] of CPU time as estimated from the evaluations so far (and
     /// from the last step's before the first read), and at least every [`BUDGET_EVERY`]
@@ -56,7 +83,7 @@ impl Budget {
         }
         self.evals = self.evals.saturating_add(1);
         if self.evals >= self.next {
-            let used = thread_cpu_s() - self.start;
+            let used = self.used();
             if used > self.limit {
                 self.spent = Some(used);
                 return true;
@@ -265,6 +292,18 @@ mod tests {
         let next = Budget::new(1e3, b.gap);
         assert_eq!(next.next, b.gap);
         assert_eq!(Budget::new(1e3, 0).next, 1);
+        // A step of fewer evaluations than its gap reads no CPU clock (a system call of
+        // 0.2-0.5 us, as much as a cheap step).
+        let mut short = Budget::new(1e3, 8);
+        for _ in 0..7 {
+            assert!(!short.spent());
+        }
+        assert!(
+            short.first.is_none(),
+            "no CPU clock read before the first check"
+        );
+        assert!(!short.spent());
+        assert!(short.first.is_some(), "the first check reads it");
         let mut tiny = Budget::new(0.0, BUDGET_EVERY);
         let spin = thread_cpu_s();
         while thread_cpu_s() - spin < 1e-4 {}
