@@ -154,6 +154,8 @@ impl Component {
             k: std::array::from_fn(|_| vec![0.0; dim]),
             y: vec![0.0; dim],
             aux_save: vec![0.0; n_level_aux + AUX_COMPONENT],
+            fsal_key: vec![0.0; n + n_level_aux],
+            fsal: false,
         };
         let jwork = JacWork {
             jx: vec![0.0; n_level * n_level],

@@ -139,6 +139,15 @@ pub trait LevelModel: Send + std::fmt::Debug {
     fn states_are_quadrature(&self) -> bool {
         false
     }
+    /// Whether the rates and the wrench at a point are a function of the motion, the
+    /// states and the memory alone: not of the time `p.t`, no memory outside `aux`, and
+    /// `rhs` writes nothing in `aux`. Then the component lets DOPRI5 start a step with the
+    /// last stage of the step before (first same as last across steps) when nothing that
+    /// stage read changed since, which gives the same bits one evaluation cheaper.
+    /// Default `false`.
+    fn rhs_time_invariant(&self) -> bool {
+        false
+    }
     /// Initial states at the start motion.
     fn init(&mut self, m: &Motion, x: &mut [f64], aux: &mut [f64]) -> Result<()>;
     /// Time derivatives of the level's states at `p`; when `wrench` is given, also the

@@ -4,7 +4,7 @@
 
 use super::inputs::{input_at, motion_at};
 use super::level::{Jacobians, LevelModel, Point};
-use super::{thread_cpu_s, Causality, InputRule, State, I_LOAD};
+use super::{thread_cpu_s, Causality, InputRule, State, I_LOAD, I_V};
 use crate::error::{Error, Result};
 use crate::solver::{OdeSystem, SolverError};
 use std::time::Instant;
@@ -120,6 +120,68 @@ pub(super) struct Work {
     pub(super) k: [Vec<f64>; 3],
     pub(super) y: Vec<f64>,
     pub(super) aux_save: Vec<f64>,
+    /// What the last stage of the last step's integration read besides the states: the
+    /// inputs and the level's memory (`inputs | aux[..n_level_aux]`), when `fsal` is set
+    /// (the inputs' derivatives were zero then, or unused by the input rule).
+    pub(super) fsal_key: Vec<f64>,
+    /// The last step's last stage may be the next step's first (see
+    /// [`Work::fsal_matches`]).
+    pub(super) fsal: bool,
+}
+
+impl Work {
+    /// Whether the right-hand side the next integration of `st` starts with is the one the
+    /// last integration ended with: `fsal` set (a time-invariant level, inputs constant
+    /// inside that step), the inputs constant inside the next step too, and the inputs and
+    /// the level's memory bit for bit as that last stage read them (the integrator itself
+    /// checks the states). Then the inputs also pass [`Component::check_inputs_at`] as they
+    /// did for the last step (constant inputs: the same values at every offset).
+    ///
+    /// [`Component::check_inputs_at`]: super::Component::check_inputs_at
+    pub(super) fn fsal_matches(&self, st: &State, naux: usize, rule: InputRule) -> bool {
+        if !self.fsal {
+            return false;
+        }
+        let ni = st.inputs.len();
+        let k = &self.fsal_key;
+        same_bits(&k[..ni], &st.inputs)
+            && same_bits(&k[ni..], &st.aux[..naux])
+            && inputs_constant(st, rule)
+    }
+
+    /// After a successful integration of `st`: remember what its last stage read, if the
+    /// next step may start from it (`reusable`: the level's rates do not depend on time,
+    /// [`super::level::LevelModel::rhs_time_invariant`]; and the inputs did not move
+    /// inside the step, so the last stage saw them as the next step's first will).
+    pub(super) fn fsal_store(&mut self, st: &State, naux: usize, rule: InputRule, reusable: bool) {
+        self.fsal = reusable && inputs_constant(st, rule);
+        if self.fsal {
+            let ni = st.inputs.len();
+            let k = &mut self.fsal_key;
+            k[..ni].copy_from_slice(&st.inputs);
+            k[ni..].copy_from_slice(&st.aux[..naux]);
+        }
+    }
+}
+
+/// `a` and `b` bit for bit (a branch-free OR of the XORs, which the compiler vectorises).
+fn same_bits(a: &[f64], b: &[f64]) -> bool {
+    a.len() == b.len()
+        && a.iter()
+            .zip(b)
+            .fold(0u64, |d, (x, y)| d | (x.to_bits() ^ y.to_bits()))
+            == 0
+}
+
+/// Whether every input keeps its value through a step under `rule` ([`input_at`] gives
+/// the same bits at every offset): always when held; with velocities, when the velocity
+/// inputs are zero; with derivatives, when every derivative is zero.
+pub(super) fn inputs_constant(st: &State, rule: InputRule) -> bool {
+    match rule {
+        InputRule::Hold => true,
+        InputRule::Velocity => st.inputs[I_V..I_V + 5].iter().all(|v| *v == 0.0),
+        InputRule::Derivatives => st.input_derivatives.iter().all(|d| *d == 0.0),
+    }
 }
 
 /// Work space of the level Jacobians (see [`LevelModel::jacobian`]).

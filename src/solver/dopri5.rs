@@ -91,6 +91,10 @@ pub struct Dopri5 {
     t_old: f64,
     h_old: f64,
     dense_valid: bool,
+    /// `k1 = f(t, y)` holds for `y` as the last call left it (that call succeeded): the last
+    /// stage of its last step, which [`Dopri5::integrate_continuing`] may reuse (FSAL across
+    /// calls).
+    fsal_ready: bool,
     /// Stiffness detector counters (consecutive stiff / non-stiff tests).
     iasti: u32,
     nonsti: u32,
@@ -119,6 +123,7 @@ impl Dopri5 {
             t_old: 0.0,
             h_old: 0.0,
             dense_valid: false,
+            fsal_ready: false,
             iasti: 0,
             nonsti: 0,
             stats: Stats::default(),
@@ -164,17 +169,59 @@ impl Dopri5 {
         h_trial: &mut f64,
         opts: &Options,
     ) -> Result<(), SolverError> {
+        self.run(sys, t0, t1, y, h_trial, opts, false)
+    }
+
+    /// [`Dopri5::integrate`] continuing the last call: when that call succeeded and left
+    /// exactly (bit for bit) this `y`, its last stage `f(t_end, y)` is this call's first
+    /// stage `f(t0, y)` and is not evaluated again (first same as last across calls). The
+    /// caller vouches that `f` is the same function at both points: it does not depend on
+    /// time, and nothing it reads (inputs, memory) changed in between. The result is then
+    /// bit for bit that of [`Dopri5::integrate`], one evaluation cheaper.
+    pub fn integrate_continuing<S: OdeSystem + ?Sized>(
+        &mut self,
+        sys: &mut S,
+        t0: f64,
+        t1: f64,
+        y: &mut [f64],
+        h_trial: &mut f64,
+        opts: &Options,
+    ) -> Result<(), SolverError> {
+        self.run(sys, t0, t1, y, h_trial, opts, true)
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn run<S: OdeSystem + ?Sized>(
+        &mut self,
+        sys: &mut S,
+        t0: f64,
+        t1: f64,
+        y: &mut [f64],
+        h_trial: &mut f64,
+        opts: &Options,
+        continuing: bool,
+    ) -> Result<(), SolverError> {
         check_call(self.n, sys.dim(), t0, t1, y, opts)?;
         if t1 == t0 {
             return Ok(());
         }
-        self.y.copy_from_slice(y);
-        if let Some(i) = eval(sys, &mut self.stats, t0, &self.y, &mut self.k1)? {
-            return Err(SolverError::NonFinite {
-                t: t0,
-                what: "right-hand side",
-                index: i,
-            });
+        let reuse = continuing
+            && self.fsal_ready
+            && self
+                .y
+                .iter()
+                .zip(y.iter())
+                .all(|(a, b)| a.to_bits() == b.to_bits());
+        self.fsal_ready = false;
+        if !reuse {
+            self.y.copy_from_slice(y);
+            if let Some(i) = eval(sys, &mut self.stats, t0, &self.y, &mut self.k1)? {
+                return Err(SolverError::NonFinite {
+                    t: t0,
+                    what: "right-hand side",
+                    index: i,
+                });
+            }
         }
         let h_next = if opts.fixed_step {
             self.run_fixed(sys, t0, t1, opts)?
@@ -198,6 +245,7 @@ impl Dopri5 {
         };
         y.copy_from_slice(&self.y);
         *h_trial = h_next;
+        self.fsal_ready = true;
         Ok(())
     }
 

@@ -338,6 +338,26 @@ impl Integrator {
         }
     }
 
+    /// [`Integrator::integrate`] continuing the last call: DOPRI5 reuses that call's last
+    /// stage as its first when `y` is bit for bit where the last call left it
+    /// ([`Dopri5::integrate_continuing`]: the caller vouches that `f` does not depend on
+    /// time and nothing it reads changed); RODAS4 integrates as usual. Same result as
+    /// [`Integrator::integrate`], bit for bit.
+    pub fn integrate_continuing<S: OdeSystem + ?Sized>(
+        &mut self,
+        sys: &mut S,
+        t0: f64,
+        t1: f64,
+        y: &mut [f64],
+        h_trial: &mut f64,
+        opts: &Options,
+    ) -> Result<(), SolverError> {
+        match self {
+            Integrator::Dopri5(m) => m.integrate_continuing(sys, t0, t1, y, h_trial, opts),
+            Integrator::Rosenbrock(m) => m.integrate(sys, t0, t1, y, h_trial, opts),
+        }
+    }
+
     /// Work counters (accumulated over all calls).
     pub fn stats(&self) -> &Stats {
         match self {

@@ -460,6 +460,12 @@ impl LevelModel for RingLevel {
         // states have rates that depend on the contact state.
         self.slow.is_none()
     }
+    fn rhs_time_invariant(&self) -> bool {
+        // `rhs` reads the motion, the states and `aux` (wear maps, thermal clearance) and
+        // writes only `self.eval`, which every evaluation overwrites; the time reaches only
+        // the profile, whose offsets depend on the angles, not on `t`.
+        true
+    }
     fn init(&mut self, _m: &Motion, x: &mut [f64], aux: &mut [f64]) -> Result<()> {
         x.fill(0.0);
         aux.fill(0.0);
