@@ -55,6 +55,8 @@ const FAC_MIN: f64 = 0.2; // h_new / h >= 0.2
 const FAC_MAX: f64 = 10.0; // h_new / h <= 10
 const BETA: f64 = 0.04;
 const EXPO1: f64 = 0.2 - BETA * 0.75;
+/// The PI controller's `err_old` at the start of a call, and its floor.
+const FACOLD0: f64 = 1e-4;
 
 /// Stiffness test threshold: `h·|λ|` beyond the border of the DOPRI5 stability region on
 /// the negative real axis (≈ 3.3), Hairer, Nørsett & Wanner I, §IV.2 (Eq. 2.6).
@@ -95,6 +97,10 @@ pub struct Dopri5 {
     /// stage of its last step, which [`Dopri5::integrate_continuing`] may reuse (FSAL across
     /// calls).
     fsal_ready: bool,
+    /// `(x, x^β)` of the last `err_old^β` of the PI controller: every call starts from
+    /// `err_old = 1e-4`, and small errors keep it there (a `powf` saved per step; the same
+    /// bits, `powf` being a function).
+    pow_memo: (f64, f64),
     /// Stiffness detector counters (consecutive stiff / non-stiff tests).
     iasti: u32,
     nonsti: u32,
@@ -124,6 +130,7 @@ impl Dopri5 {
             h_old: 0.0,
             dense_valid: false,
             fsal_ready: false,
+            pow_memo: (FACOLD0, FACOLD0.powf(BETA)),
             iasti: 0,
             nonsti: 0,
             stats: Stats::default(),
@@ -280,7 +287,7 @@ impl Dopri5 {
         opts: &Options,
     ) -> Result<f64, SolverError> {
         let mut lp = StepLoop::new(t0, h0);
-        let mut facold: f64 = 1e-4;
+        let mut facold: f64 = FACOLD0;
         loop {
             lp.check(opts)?;
             let (h_prop, last) = lp.begin(t1);
@@ -308,10 +315,13 @@ impl Dopri5 {
             lp.nonfinite_streak = 0;
             let fac11 = err.powf(EXPO1);
             // Lund-stabilisation (PI control): divide by err_old^β
-            let fac = (fac11 / facold.powf(BETA) / SAFE).clamp(1.0 / FAC_MAX, 1.0 / FAC_MIN);
+            if facold.to_bits() != self.pow_memo.0.to_bits() {
+                self.pow_memo = (facold, facold.powf(BETA));
+            }
+            let fac = (fac11 / self.pow_memo.1 / SAFE).clamp(1.0 / FAC_MAX, 1.0 / FAC_MIN);
             let h_new = h / fac;
             if err <= 1.0 {
-                facold = err.max(1e-4);
+                facold = err.max(FACOLD0);
                 self.stiffness_test(h);
                 let t_new = if last { t1 } else { t + h };
                 self.accept(t, h, t_new);
