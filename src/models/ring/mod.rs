@@ -84,6 +84,10 @@ pub struct RingModel {
     dm: f64,
     inner: PointContact,
     outer: PointContact,
+    /// Semi-axis coefficients `(ca, cb)` of the inner and outer contact
+    /// ([`PointContact::semi_axis_coefficients`], four cube roots), kept for the peak
+    /// pressure every communication point reports.
+    axes: [(f64, f64); 2],
     /// Ball azimuth offsets (empty: evenly spaced).
     spacing: Vec<f64>,
     /// `(sin, cos)` of each ball's place relative to the cage, `2 pi j / Z + spacing_j`
@@ -119,6 +123,10 @@ impl RingModel {
             dm: b.dm,
             inner,
             outer,
+            axes: [
+                inner.semi_axis_coefficients(),
+                outer.semi_axis_coefficients(),
+            ],
             spacing: Vec::new(),
             spacing_sc: Vec::new(),
             direct_angles: false,
@@ -174,8 +182,19 @@ impl RingModel {
     }
 
     /// Peak Hertz pressure of a ball carrying `q` (the larger of its two contacts), Pa.
+    /// The arithmetic of [`PointContact::peak_pressure`] for both contacts, with their
+    /// semi-axis coefficients kept and one cube root of `q` for both: the same bits.
     pub fn peak_pressure(&self, q: f64) -> f64 {
-        self.inner.peak_pressure(q).max(self.outer.peak_pressure(q))
+        let q3 = q.max(0.0).cbrt();
+        let p0 = |(ca, cb): (f64, f64)| {
+            let (a, b) = (ca * q3, cb * q3);
+            if a > 0.0 && b > 0.0 {
+                1.5 * q / (PI * a * b)
+            } else {
+                0.0
+            }
+        };
+        p0(self.axes[0]).max(p0(self.axes[1]))
     }
 
     /// Forces at cage angle `theta_c` (rad), cage speed `omega_c` (rad/s), ring
@@ -341,6 +360,23 @@ impl RingModel {
 mod tests {
     use super::*;
     use crate::geometry::preset;
+
+    /// The kept semi-axis coefficients give each contact's peak pressure bit for bit.
+    #[test]
+    fn peak_pressure_is_the_contacts_own_bit_for_bit() {
+        for name in ["6205", "7008ce"] {
+            let b = preset(name).unwrap().build().unwrap();
+            let m = RingModel::new(&b, RingDof::Five, 0.0);
+            for q in [-1.0, 0.0, 1e-300, 1e-3, 0.37, 1.0, 123.456, 1e4, 3.3e6] {
+                let own = m.inner.peak_pressure(q).max(m.outer.peak_pressure(q));
+                assert_eq!(
+                    m.peak_pressure(q).to_bits(),
+                    own.to_bits(),
+                    "{name} q = {q}"
+                );
+            }
+        }
+    }
 
     fn eval(m: &RingModel, q: [f64; 5], theta: f64) -> RingEval {
         let mut out = RingEval::default();
