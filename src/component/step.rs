@@ -5,8 +5,8 @@ use super::inputs::{input_at, motion_at};
 use super::level::{LevelOutputs, Point};
 use super::system::{all_finite, e_time, Budget, Sys};
 use super::{
-    Component, State, I_C, I_CAGE, I_CAGE_OMEGA, I_DIAG, I_FORCE, I_K, I_LOAD, I_Q, I_RATING,
-    I_TORQUE, I_V, T_MAX,
+    Component, InputRule, State, I_C, I_CAGE, I_CAGE_OMEGA, I_DIAG, I_FORCE, I_K, I_LOAD, I_Q,
+    I_RATING, I_TORQUE, I_V, T_MAX,
 };
 use crate::error::{Error, Result};
 use crate::solver::SolverError;
@@ -80,7 +80,10 @@ impl Component {
         if !continuing {
             self.check_inputs_at(h)?;
         }
-        self.scratch.clone_from(&self.state);
+        // The inputs' derivatives are read (and copied) only under the rule that moves
+        // inputs along them.
+        self.scratch
+            .begin_step_from(&self.state, rule == InputRule::Derivatives);
         let mut sc = std::mem::take(&mut self.scratch);
         // The host owns time: re-sync to its communication point (within the tolerance).
         sc.t = t;
@@ -95,7 +98,7 @@ impl Component {
             sc.t = t + h;
             sc.started = true;
             sc.outputs_stale = false;
-            std::mem::swap(&mut self.state, &mut sc);
+            self.state.commit_step(&mut sc);
         }
         self.scratch = sc;
         r.map_err(|e| match e {
@@ -356,7 +359,7 @@ impl Component {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::component::{variables, InputRule, Method};
+    use crate::component::{variables, Method};
     use crate::report::work_precision::cases;
 
     /// The load-driven 2-DOF 6205 of the work-precision study (DOPRI5 at `rtol`).
