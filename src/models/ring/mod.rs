@@ -243,6 +243,13 @@ impl RingModel {
         // over Z rotations, ~Z ulp, is below that of `theta_c + dpsi j` at large angles).
         // With offsets: the cage angle rotated by the ball's precomputed place.
         let (sp, cp) = self.pitch_sc;
+        // Coordinates a ball's normal moves: 2-DOF, x and y only (the gradient's other
+        // entries are zeros, whose products add nothing to the +0 sums of the stiffness and
+        // damping, and the wrench's other components are set to zero below).
+        let nq = match self.dof {
+            RingDof::Two => 2,
+            RingDof::Five => 5,
+        };
         let mut next = theta_c.sin_cos();
         let cage = next;
         for j in 0..self.z {
@@ -312,14 +319,14 @@ impl RingModel {
             };
             per_ball(j, psi, load);
             let fn_ = load + cd * rate;
-            for (w, gk) in out.wrench.iter_mut().zip(g) {
+            for (w, gk) in out.wrench[..nq].iter_mut().zip(g) {
                 *w -= fn_ * gk;
             }
             out.loaded += 1;
             out.max_load = out.max_load.max(load);
             if jac {
-                for r in 0..5 {
-                    for col in 0..5 {
+                for r in 0..nq {
+                    for col in 0..nq {
                         out.k[r][col] += dload * g[r] * g[col];
                         out.c[r][col] += cd * g[r] * g[col];
                     }
