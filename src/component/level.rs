@@ -153,6 +153,18 @@ pub trait LevelModel: Send + std::fmt::Debug {
     /// Time derivatives of the level's states at `p`; when `wrench` is given, also the
     /// force and moment on the shaft. Must not allocate.
     fn rhs(&mut self, p: Point<'_>, dx: &mut [f64], wrench: Option<&mut [f64; 5]>) -> Result<()>;
+    /// [`LevelModel::rhs`] at the end of an integration's last step, where the component
+    /// evaluates the outputs next: a level may keep what it evaluates there for
+    /// [`LevelModel::outputs`] at the same point. The rates and the wrench must be those of
+    /// `rhs`. Default: `rhs`.
+    fn rhs_at_end(
+        &mut self,
+        p: Point<'_>,
+        dx: &mut [f64],
+        wrench: Option<&mut [f64; 5]>,
+    ) -> Result<()> {
+        self.rhs(p, dx, wrench)
+    }
     /// Everything the level reports at `p`. Must not allocate.
     fn outputs(&mut self, p: Point<'_>, out: &mut LevelOutputs) -> Result<()>;
 }

@@ -220,15 +220,33 @@ impl Sys<'_> {
         dy: &mut [f64],
         wrench: Option<&mut [f64; 5]>,
     ) -> Result<()> {
+        self.eval_level(s, y, dy, wrench, false)
+    }
+
+    /// [`Sys::eval`]; `at_end`: through [`LevelModel::rhs_at_end`] (the last stage of a
+    /// step landing on the end of the integration, where the outputs are evaluated next).
+    fn eval_level(
+        &mut self,
+        s: f64,
+        y: &[f64],
+        dy: &mut [f64],
+        wrench: Option<&mut [f64; 5]>,
+        at_end: bool,
+    ) -> Result<()> {
         let nl = self.nl;
         let m = motion_at(self.st, self.rule, s, self.causality, self.ring, nl, y);
         let (aux, _) = self.st.aux.split_at_mut(self.naux);
         let p = Point::new(self.t0 + s, &m, &y[..nl], aux);
         match self.ring {
+            None if at_end => self.level.rhs_at_end(p, &mut dy[..nl], wrench)?,
             None => self.level.rhs(p, &mut dy[..nl], wrench)?,
             Some(ring) => {
                 let mut w = [0.0; 5];
-                self.level.rhs(p, &mut dy[..nl], Some(&mut w))?;
+                if at_end {
+                    self.level.rhs_at_end(p, &mut dy[..nl], Some(&mut w))?;
+                } else {
+                    self.level.rhs(p, &mut dy[..nl], Some(&mut w))?;
+                }
                 let nd = ring.dofs.len();
                 for (k, &d) in ring.dofs.iter().enumerate() {
                     let load = input_at(self.st, I_LOAD + d, s, self.rule);
@@ -249,16 +267,10 @@ impl OdeSystem for Sys<'_> {
         self.st.x.len()
     }
     fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) -> std::result::Result<(), String> {
-        if self.budget.as_mut().is_some_and(Budget::spent) {
-            return Err("CPU budget spent".into());
-        }
-        // A trial state can be far off (a too-large trial step through a stiff contact):
-        // a level that cannot evaluate there makes the step fail and shrink, not the run.
-        if let Err(e) = self.eval(t - self.t0, y, dy, None) {
-            dy.fill(f64::NAN);
-            self.last_error = Some(e);
-        }
-        Ok(())
+        self.rates(t, y, dy, false)
+    }
+    fn rhs_at_end(&mut self, t: f64, y: &[f64], dy: &mut [f64]) -> std::result::Result<(), String> {
+        self.rates(t, y, dy, true)
     }
     fn jacobian(&mut self, t: f64, y: &[f64], jac: &mut nalgebra::DMatrix<f64>) -> bool {
         if self.budget.as_mut().is_some_and(Budget::spent) {
@@ -313,6 +325,28 @@ impl OdeSystem for Sys<'_> {
             }
         }
         true
+    }
+}
+
+impl Sys<'_> {
+    /// The integrator's right-hand side (`at_end`: [`OdeSystem::rhs_at_end`]).
+    fn rates(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        dy: &mut [f64],
+        at_end: bool,
+    ) -> std::result::Result<(), String> {
+        if self.budget.as_mut().is_some_and(Budget::spent) {
+            return Err("CPU budget spent".into());
+        }
+        // A trial state can be far off (a too-large trial step through a stiff contact):
+        // a level that cannot evaluate there makes the step fail and shrink, not the run.
+        if let Err(e) = self.eval_level(t - self.t0, y, dy, None, at_end) {
+            dy.fill(f64::NAN);
+            self.last_error = Some(e);
+        }
+        Ok(())
     }
 }
 

@@ -4,8 +4,8 @@
 //! dense output, §IV.2 for the stiffness detection).
 
 use super::{
-    check_call, error_norm, eval, fixed_steps, initial_step, OdeSystem, Options, SolverError,
-    Stats, StepLoop,
+    check_call, error_norm, eval, eval_at_end, fixed_steps, initial_step, OdeSystem, Options,
+    SolverError, Stats, StepLoop,
 };
 
 // Dormand–Prince coefficients (Hairer, Nørsett & Wanner I, Table II.5.2).
@@ -266,7 +266,7 @@ impl Dopri5 {
         let (steps, h) = fixed_steps(t0, t1, opts.h_max);
         for i in 0..steps {
             let t = t0 + i as f64 * h;
-            if let Some((tb, idx)) = self.attempt(sys, t, h)? {
+            if let Some((tb, idx)) = self.attempt(sys, t, h, i + 1 == steps)? {
                 return Err(SolverError::NonFinite {
                     t: tb,
                     what: "right-hand side",
@@ -292,7 +292,7 @@ impl Dopri5 {
             lp.check(opts)?;
             let (h_prop, last) = lp.begin(t1);
             let (t, h) = (lp.t, lp.h);
-            if let Some((tb, idx)) = self.attempt(sys, t, h)? {
+            if let Some((tb, idx)) = self.attempt(sys, t, h, last)? {
                 // a stage left the domain where f is finite: retry with a much smaller step
                 lp.nonfinite(&mut self.stats, tb, idx)?;
                 continue;
@@ -338,12 +338,14 @@ impl Dopri5 {
 
     /// One step attempt from `(t, self.y)` with `self.k1 = f(t, y)`: fills `k2..k7`, `ysti`
     /// (the stage-6 argument) and `y1`. `Some((t, i))`: component `i` of an evaluation at `t`
-    /// was not finite.
+    /// was not finite. `last`: the step lands on the end of the call (its last stage, at the
+    /// step's end, through [`OdeSystem::rhs_at_end`]).
     fn attempt<S: OdeSystem + ?Sized>(
         &mut self,
         sys: &mut S,
         t: f64,
         h: f64,
+        last: bool,
     ) -> Result<Option<(f64, usize)>, SolverError> {
         let n = self.n;
         let st = &mut self.stats;
@@ -394,7 +396,12 @@ impl Dopri5 {
             y1[i] =
                 y[i] + h * (A71 * k1[i] + A73 * k3[i] + A74 * k4[i] + A75 * k5[i] + A76 * k6[i]);
         }
-        if let Some(i) = eval(sys, st, tph, y1, k7)? {
+        let bad = if last {
+            eval_at_end(sys, st, tph, y1, k7)?
+        } else {
+            eval(sys, st, tph, y1, k7)?
+        };
+        if let Some(i) = bad {
             return Ok(Some((tph, i)));
         }
         Ok(None)
