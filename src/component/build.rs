@@ -5,6 +5,7 @@ use super::inputs::motion_at;
 use super::level::LevelModel;
 use super::static_start::static_start;
 use super::system::{JacWork, RingBody, Work};
+use super::variables::SCALARS;
 use super::{
     fingerprint, index_of, limits, n_variables, scene, variables, Causality, Component, Method,
     Scene, State, AUX_COMPONENT, I_LOAD,
@@ -154,6 +155,8 @@ impl Component {
             k: std::array::from_fn(|_| vec![0.0; dim]),
             y: vec![0.0; dim],
             aux_save: vec![0.0; n_level_aux + AUX_COMPONENT],
+            fsal_key: vec![0.0; n + n_level_aux],
+            fsal: false,
         };
         let jwork = JacWork {
             jx: vec![0.0; n_level * n_level],
@@ -166,6 +169,11 @@ impl Component {
             rating: crate::ratings::RatingOutputs::of(&bearing),
             stages: super::Stages::default(),
             budget_gap: 1,
+            required_inputs: SCALARS
+                .iter()
+                .enumerate()
+                .filter(|(_, v)| v.is_input(causality))
+                .fold(0, |m, (i, _)| m | 1 << i),
             jwork,
             scene,
             bearing,

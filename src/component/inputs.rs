@@ -108,6 +108,9 @@ impl Component {
 
     /// Refuse `call` while some input of this causality was never set (names them).
     pub(super) fn require_inputs(&self, call: &'static str) -> Result<()> {
+        if self.state.inputs_set & self.required_inputs == self.required_inputs {
+            return Ok(());
+        }
         let missing = self.missing_inputs();
         if missing.is_empty() {
             return Ok(());

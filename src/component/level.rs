@@ -139,11 +139,32 @@ pub trait LevelModel: Send + std::fmt::Debug {
     fn states_are_quadrature(&self) -> bool {
         false
     }
+    /// Whether the rates and the wrench at a point are a function of the motion, the
+    /// states and the memory alone: not of the time `p.t`, no memory outside `aux`, and
+    /// `rhs` writes nothing in `aux`. Then the component lets DOPRI5 start a step with the
+    /// last stage of the step before (first same as last across steps) when nothing that
+    /// stage read changed since, which gives the same bits one evaluation cheaper.
+    /// Default `false`.
+    fn rhs_time_invariant(&self) -> bool {
+        false
+    }
     /// Initial states at the start motion.
     fn init(&mut self, m: &Motion, x: &mut [f64], aux: &mut [f64]) -> Result<()>;
     /// Time derivatives of the level's states at `p`; when `wrench` is given, also the
     /// force and moment on the shaft. Must not allocate.
     fn rhs(&mut self, p: Point<'_>, dx: &mut [f64], wrench: Option<&mut [f64; 5]>) -> Result<()>;
+    /// [`LevelModel::rhs`] at the end of an integration's last step, where the component
+    /// evaluates the outputs next: a level may keep what it evaluates there for
+    /// [`LevelModel::outputs`] at the same point. The rates and the wrench must be those of
+    /// `rhs`. Default: `rhs`.
+    fn rhs_at_end(
+        &mut self,
+        p: Point<'_>,
+        dx: &mut [f64],
+        wrench: Option<&mut [f64; 5]>,
+    ) -> Result<()> {
+        self.rhs(p, dx, wrench)
+    }
     /// Everything the level reports at `p`. Must not allocate.
     fn outputs(&mut self, p: Point<'_>, out: &mut LevelOutputs) -> Result<()>;
 }

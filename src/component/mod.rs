@@ -108,6 +108,9 @@ pub struct Component {
     /// Evaluations before a step's CPU budget first reads the clock: the last step's
     /// estimate (a clock read is a system call, 0.2–0.4 µs).
     budget_gap: u32,
+    /// Bits (as in `State::inputs_set`) of the inputs of this causality: every step checks
+    /// that they were all set.
+    required_inputs: u64,
 }
 
 impl Component {

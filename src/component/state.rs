@@ -83,6 +83,43 @@ impl Clone for State {
     }
 }
 
+impl State {
+    /// A step's scratch copy of `o`: everything a step reads or writes, without the
+    /// inputs' derivatives unless the input rule reads them (`derivatives`; a step never
+    /// writes them, and [`State::commit_step`] leaves them where they are). No allocation
+    /// once the sizes match.
+    pub(super) fn begin_step_from(&mut self, o: &Self, derivatives: bool) {
+        self.scene_fingerprint = o.scene_fingerprint;
+        self.t = o.t;
+        self.started = o.started;
+        self.outputs_stale = o.outputs_stale;
+        self.derivatives_pending = o.derivatives_pending;
+        self.inputs_set = o.inputs_set;
+        self.x.clone_from(&o.x);
+        self.aux.clone_from(&o.aux);
+        self.inputs.clone_from(&o.inputs);
+        if derivatives {
+            self.input_derivatives.clone_from(&o.input_derivatives);
+        }
+        self.outputs.clone_from(&o.outputs);
+        self.output_derivatives.clone_from(&o.output_derivatives);
+    }
+
+    /// Take what a step wrote from its scratch copy `sc` ([`State::begin_step_from`]):
+    /// time, flags, states, memory, outputs and their derivatives (buffers swapped). The
+    /// inputs, their derivatives and the mask stay (a step does not change them).
+    pub(super) fn commit_step(&mut self, sc: &mut Self) {
+        self.t = sc.t;
+        self.started = sc.started;
+        self.outputs_stale = sc.outputs_stale;
+        self.derivatives_pending = sc.derivatives_pending;
+        std::mem::swap(&mut self.x, &mut sc.x);
+        std::mem::swap(&mut self.aux, &mut sc.aux);
+        std::mem::swap(&mut self.outputs, &mut sc.outputs);
+        std::mem::swap(&mut self.output_derivatives, &mut sc.output_derivatives);
+    }
+}
+
 /// Writes bytes into a slice of exactly the right length.
 struct Writer<'a> {
     b: &'a mut [u8],

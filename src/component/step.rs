@@ -5,8 +5,8 @@ use super::inputs::{input_at, motion_at};
 use super::level::{LevelOutputs, Point};
 use super::system::{all_finite, e_time, Budget, Sys};
 use super::{
-    Component, State, I_C, I_CAGE, I_CAGE_OMEGA, I_DIAG, I_FORCE, I_K, I_LOAD, I_Q, I_RATING,
-    I_TORQUE, I_V, T_MAX,
+    Component, InputRule, State, I_C, I_CAGE, I_CAGE_OMEGA, I_DIAG, I_FORCE, I_K, I_LOAD, I_Q,
+    I_RATING, I_TORQUE, I_V, T_MAX,
 };
 use crate::error::{Error, Result};
 use crate::solver::SolverError;
@@ -73,14 +73,23 @@ impl Component {
         }
         let clock = self.stages.start();
         self.require_inputs("do_step")?;
-        self.check_inputs_at(h)?;
-        self.scratch.clone_from(&self.state);
+        // The last step's last stage is this step's first when nothing it read changed
+        // (then the inputs, constant and as the last step checked them, pass again).
+        let rule = self.scene.inputs.rule;
+        let continuing = self.work.fsal_matches(&self.state, self.n_level_aux, rule);
+        if !continuing {
+            self.check_inputs_at(h)?;
+        }
+        // The inputs' derivatives are read (and copied) only under the rule that moves
+        // inputs along them.
+        self.scratch
+            .begin_step_from(&self.state, rule == InputRule::Derivatives);
         let mut sc = std::mem::take(&mut self.scratch);
         // The host owns time: re-sync to its communication point (within the tolerance).
         sc.t = t;
         super::Stages::stop(&mut self.stages.inputs, clock);
         let clock = self.stages.start();
-        let r = self.integrate(&mut sc, h);
+        let r = self.integrate(&mut sc, h, continuing);
         super::Stages::stop(&mut self.stages.integrate, clock);
         let clock = self.stages.start();
         let r = r.and_then(|_| self.compute_outputs(&mut sc, h));
@@ -89,7 +98,7 @@ impl Component {
             sc.t = t + h;
             sc.started = true;
             sc.outputs_stale = false;
-            std::mem::swap(&mut self.state, &mut sc);
+            self.state.commit_step(&mut sc);
         }
         self.scratch = sc;
         r.map_err(|e| match e {
@@ -102,8 +111,12 @@ impl Component {
     }
 
     /// Integrate the states of `sc` over `h` with the scene's integrator; `sc.t` is the
-    /// step start. The step-size memory lives in the last `aux` slot.
-    pub(super) fn integrate(&mut self, sc: &mut State, h: f64) -> Result<()> {
+    /// step start. The step-size memory lives in the last `aux` slot. `continuing`: the
+    /// right-hand side is the one the last integration ended with ([`Work::fsal_matches`]).
+    ///
+    /// [`Work::fsal_matches`]: super::system::Work::fsal_matches
+    pub(super) fn integrate(&mut self, sc: &mut State, h: f64, continuing: bool) -> Result<()> {
+        self.work.fsal = false;
         let n = sc.x.len();
         if n == 0 {
             return Ok(());
@@ -131,14 +144,25 @@ impl Component {
                 self.budget_gap,
             )),
         };
-        let r = self.integrator.integrate(
-            &mut sys,
-            t0,
-            t0 + h,
-            &mut self.work.y,
-            &mut h_trial,
-            &self.opts,
-        );
+        let r = if continuing {
+            self.integrator.integrate_continuing(
+                &mut sys,
+                t0,
+                t0 + h,
+                &mut self.work.y,
+                &mut h_trial,
+                &self.opts,
+            )
+        } else {
+            self.integrator.integrate(
+                &mut sys,
+                t0,
+                t0 + h,
+                &mut self.work.y,
+                &mut h_trial,
+                &self.opts,
+            )
+        };
         if let Some(b) = &sys.budget {
             self.budget_gap = b.gap;
         }
@@ -172,6 +196,9 @@ impl Component {
         }
         sc.x.copy_from_slice(&self.work.y);
         sc.aux[naux] = h_trial;
+        let reusable = self.level.rhs_time_invariant();
+        self.work
+            .fsal_store(sc, naux, self.scene.inputs.rule, reusable);
         Ok(())
     }
 
@@ -326,5 +353,116 @@ impl Component {
         sc.output_derivatives[I_FORCE..I_FORCE + 5].copy_from_slice(&d);
         sc.derivatives_pending = false;
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::component::{variables, Method};
+    use crate::report::work_precision::cases;
+
+    /// The load-driven 2-DOF 6205 of the work-precision study (DOPRI5 at `rtol`).
+    fn ring(rtol: f64, rule: InputRule) -> Component {
+        let case = cases().into_iter().find(|c| c.name == "6205-2dof").unwrap();
+        let mut s = case.scene_with(Method::Dopri5, rtol).unwrap();
+        s.inputs.rule = rule;
+        Component::new(s).unwrap()
+    }
+
+    fn vr(name: &str) -> u32 {
+        variables::by_name(name).unwrap().vr
+    }
+
+    /// What a step leaves (states, memory, outputs) as bits, and its right-hand sides.
+    type Trace = Vec<(Vec<u64>, u64)>;
+
+    /// `n` steps of 0.1 ms, `between(c, i)` before step `i`; `fresh`: forget the last stage
+    /// before every step (each step evaluates its first stage).
+    fn run(
+        mut c: Component,
+        n: usize,
+        fresh: bool,
+        between: &dyn Fn(&mut Component, usize),
+    ) -> Trace {
+        let h = 1e-4;
+        let mut out = Vec::new();
+        for i in 0..n {
+            between(&mut c, i);
+            if fresh {
+                c.work.fsal = false;
+            }
+            let rhs = c.stats().rhs;
+            c.do_step(c.time(), h).unwrap();
+            let st = c.state();
+            let bits =
+                st.x.iter()
+                    .chain(&st.aux)
+                    .chain(&st.outputs)
+                    .chain(&st.output_derivatives)
+                    .map(|v| v.to_bits())
+                    .collect();
+            out.push((bits, c.stats().rhs - rhs));
+        }
+        out
+    }
+
+    /// The steps whose first stage was the last step's last (one evaluation fewer than
+    /// the same step started afresh), after checking both runs agree bit for bit.
+    fn reused(with: &Trace, without: &Trace) -> Vec<usize> {
+        assert_eq!(with.len(), without.len());
+        let mut v = Vec::new();
+        for (i, (a, b)) in with.iter().zip(without).enumerate() {
+            assert!(a.0 == b.0, "step {i}: not the same bits");
+            match b.1 - a.1 {
+                0 => {}
+                1 => v.push(i),
+                d => panic!("step {i}: {d} evaluations saved"),
+            }
+        }
+        v
+    }
+
+    /// Reusing the last stage (first same as last across steps) gives the trajectory and
+    /// the outputs bit for bit, one right-hand side cheaper per step: at a loose tolerance
+    /// (one sub-step per step) and a tight one (several, with rejections).
+    #[test]
+    fn the_last_stage_reused_gives_the_same_bits() {
+        for rtol in [1e-3, 1e-7] {
+            let n = 200;
+            let none = &|_: &mut Component, _| {};
+            let with = run(ring(rtol, InputRule::Hold), n, false, none);
+            let without = run(ring(rtol, InputRule::Hold), n, true, none);
+            assert_eq!(
+                reused(&with, &without),
+                (1..n).collect::<Vec<_>>(),
+                "{rtol}"
+            );
+        }
+    }
+
+    /// What the last stage read changing in between starts the next step afresh: a new
+    /// load, an input derivative (the load moves inside the step) while it is not zero,
+    /// a restored state; the same load set again does not.
+    #[test]
+    fn a_change_between_steps_starts_afresh() {
+        let load = vr("load.y");
+        let saved = std::cell::RefCell::new(None);
+        let between = |c: &mut Component, i: usize| match i {
+            3 => c.set_real(load, -1200.0).unwrap(),
+            5 => c.set_real(load, -1200.0).unwrap(),
+            8 => *saved.borrow_mut() = Some(c.get_state()),
+            10 => c.set_state(saved.borrow().as_ref().unwrap()).unwrap(),
+            13 => c.set_input_derivative(load, 1, -1e5).unwrap(),
+            16 => c.set_input_derivative(load, 1, 0.0).unwrap(),
+            _ => {}
+        };
+        let with = run(ring(1e-3, InputRule::Derivatives), 20, false, &between);
+        *saved.borrow_mut() = None;
+        let without = run(ring(1e-3, InputRule::Derivatives), 20, true, &between);
+        let expect: Vec<usize> = (1..20)
+            .filter(|i| ![3, 10, 13, 14, 15, 16].contains(i))
+            .collect();
+        assert_eq!(reused(&with, &without), expect);
     }
 }

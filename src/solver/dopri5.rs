@@ -4,8 +4,8 @@
 //! dense output, §IV.2 for the stiffness detection).
 
 use super::{
-    check_call, error_norm, eval, fixed_steps, initial_step, OdeSystem, Options, SolverError,
-    Stats, StepLoop,
+    check_call, error_norm, eval, eval_at_end, fixed_steps, initial_step, OdeSystem, Options,
+    SolverError, Stats, StepLoop,
 };
 
 // Dormand–Prince coefficients (Hairer, Nørsett & Wanner I, Table II.5.2).
@@ -55,6 +55,8 @@ const FAC_MIN: f64 = 0.2; // h_new / h >= 0.2
 const FAC_MAX: f64 = 10.0; // h_new / h <= 10
 const BETA: f64 = 0.04;
 const EXPO1: f64 = 0.2 - BETA * 0.75;
+/// The PI controller's `err_old` at the start of a call, and its floor.
+const FACOLD0: f64 = 1e-4;
 
 /// Stiffness test threshold: `h·|λ|` beyond the border of the DOPRI5 stability region on
 /// the negative real axis (≈ 3.3), Hairer, Nørsett & Wanner I, §IV.2 (Eq. 2.6).
@@ -91,6 +93,14 @@ pub struct Dopri5 {
     t_old: f64,
     h_old: f64,
     dense_valid: bool,
+    /// `k1 = f(t, y)` holds for `y` as the last call left it (that call succeeded): the last
+    /// stage of its last step, which [`Dopri5::integrate_continuing`] may reuse (FSAL across
+    /// calls).
+    fsal_ready: bool,
+    /// `(x, x^β)` of the last `err_old^β` of the PI controller: every call starts from
+    /// `err_old = 1e-4`, and small errors keep it there (a `powf` saved per step; the same
+    /// bits, `powf` being a function).
+    pow_memo: (f64, f64),
     /// Stiffness detector counters (consecutive stiff / non-stiff tests).
     iasti: u32,
     nonsti: u32,
@@ -119,6 +129,8 @@ impl Dopri5 {
             t_old: 0.0,
             h_old: 0.0,
             dense_valid: false,
+            fsal_ready: false,
+            pow_memo: (FACOLD0, FACOLD0.powf(BETA)),
             iasti: 0,
             nonsti: 0,
             stats: Stats::default(),
@@ -164,17 +176,59 @@ impl Dopri5 {
         h_trial: &mut f64,
         opts: &Options,
     ) -> Result<(), SolverError> {
+        self.run(sys, t0, t1, y, h_trial, opts, false)
+    }
+
+    /// [`Dopri5::integrate`] continuing the last call: when that call succeeded and left
+    /// exactly (bit for bit) this `y`, its last stage `f(t_end, y)` is this call's first
+    /// stage `f(t0, y)` and is not evaluated again (first same as last across calls). The
+    /// caller vouches that `f` is the same function at both points: it does not depend on
+    /// time, and nothing it reads (inputs, memory) changed in between. The result is then
+    /// bit for bit that of [`Dopri5::integrate`], one evaluation cheaper.
+    pub fn integrate_continuing<S: OdeSystem + ?Sized>(
+        &mut self,
+        sys: &mut S,
+        t0: f64,
+        t1: f64,
+        y: &mut [f64],
+        h_trial: &mut f64,
+        opts: &Options,
+    ) -> Result<(), SolverError> {
+        self.run(sys, t0, t1, y, h_trial, opts, true)
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn run<S: OdeSystem + ?Sized>(
+        &mut self,
+        sys: &mut S,
+        t0: f64,
+        t1: f64,
+        y: &mut [f64],
+        h_trial: &mut f64,
+        opts: &Options,
+        continuing: bool,
+    ) -> Result<(), SolverError> {
         check_call(self.n, sys.dim(), t0, t1, y, opts)?;
         if t1 == t0 {
             return Ok(());
         }
-        self.y.copy_from_slice(y);
-        if let Some(i) = eval(sys, &mut self.stats, t0, &self.y, &mut self.k1)? {
-            return Err(SolverError::NonFinite {
-                t: t0,
-                what: "right-hand side",
-                index: i,
-            });
+        let reuse = continuing
+            && self.fsal_ready
+            && self
+                .y
+                .iter()
+                .zip(y.iter())
+                .all(|(a, b)| a.to_bits() == b.to_bits());
+        self.fsal_ready = false;
+        if !reuse {
+            self.y.copy_from_slice(y);
+            if let Some(i) = eval(sys, &mut self.stats, t0, &self.y, &mut self.k1)? {
+                return Err(SolverError::NonFinite {
+                    t: t0,
+                    what: "right-hand side",
+                    index: i,
+                });
+            }
         }
         let h_next = if opts.fixed_step {
             self.run_fixed(sys, t0, t1, opts)?
@@ -198,6 +252,7 @@ impl Dopri5 {
         };
         y.copy_from_slice(&self.y);
         *h_trial = h_next;
+        self.fsal_ready = true;
         Ok(())
     }
 
@@ -211,7 +266,7 @@ impl Dopri5 {
         let (steps, h) = fixed_steps(t0, t1, opts.h_max);
         for i in 0..steps {
             let t = t0 + i as f64 * h;
-            if let Some((tb, idx)) = self.attempt(sys, t, h)? {
+            if let Some((tb, idx)) = self.attempt(sys, t, h, i + 1 == steps)? {
                 return Err(SolverError::NonFinite {
                     t: tb,
                     what: "right-hand side",
@@ -232,12 +287,12 @@ impl Dopri5 {
         opts: &Options,
     ) -> Result<f64, SolverError> {
         let mut lp = StepLoop::new(t0, h0);
-        let mut facold: f64 = 1e-4;
+        let mut facold: f64 = FACOLD0;
         loop {
             lp.check(opts)?;
             let (h_prop, last) = lp.begin(t1);
             let (t, h) = (lp.t, lp.h);
-            if let Some((tb, idx)) = self.attempt(sys, t, h)? {
+            if let Some((tb, idx)) = self.attempt(sys, t, h, last)? {
                 // a stage left the domain where f is finite: retry with a much smaller step
                 lp.nonfinite(&mut self.stats, tb, idx)?;
                 continue;
@@ -260,10 +315,13 @@ impl Dopri5 {
             lp.nonfinite_streak = 0;
             let fac11 = err.powf(EXPO1);
             // Lund-stabilisation (PI control): divide by err_old^β
-            let fac = (fac11 / facold.powf(BETA) / SAFE).clamp(1.0 / FAC_MAX, 1.0 / FAC_MIN);
+            if facold.to_bits() != self.pow_memo.0.to_bits() {
+                self.pow_memo = (facold, facold.powf(BETA));
+            }
+            let fac = (fac11 / self.pow_memo.1 / SAFE).clamp(1.0 / FAC_MAX, 1.0 / FAC_MIN);
             let h_new = h / fac;
             if err <= 1.0 {
-                facold = err.max(1e-4);
+                facold = err.max(FACOLD0);
                 self.stiffness_test(h);
                 let t_new = if last { t1 } else { t + h };
                 self.accept(t, h, t_new);
@@ -280,12 +338,14 @@ impl Dopri5 {
 
     /// One step attempt from `(t, self.y)` with `self.k1 = f(t, y)`: fills `k2..k7`, `ysti`
     /// (the stage-6 argument) and `y1`. `Some((t, i))`: component `i` of an evaluation at `t`
-    /// was not finite.
+    /// was not finite. `last`: the step lands on the end of the call (its last stage, at the
+    /// step's end, through [`OdeSystem::rhs_at_end`]).
     fn attempt<S: OdeSystem + ?Sized>(
         &mut self,
         sys: &mut S,
         t: f64,
         h: f64,
+        last: bool,
     ) -> Result<Option<(f64, usize)>, SolverError> {
         let n = self.n;
         let st = &mut self.stats;
@@ -336,7 +396,12 @@ impl Dopri5 {
             y1[i] =
                 y[i] + h * (A71 * k1[i] + A73 * k3[i] + A74 * k4[i] + A75 * k5[i] + A76 * k6[i]);
         }
-        if let Some(i) = eval(sys, st, tph, y1, k7)? {
+        let bad = if last {
+            eval_at_end(sys, st, tph, y1, k7)?
+        } else {
+            eval(sys, st, tph, y1, k7)?
+        };
+        if let Some(i) = bad {
             return Ok(Some((tph, i)));
         }
         Ok(None)

@@ -88,6 +88,13 @@ pub trait OdeSystem {
     /// message is passed on in [`SolverError::Rhs`].
     fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), String>;
 
+    /// [`OdeSystem::rhs`] at the end of a step that lands on the end of the call (DOPRI5's
+    /// last stage there): where the caller looks next, e.g. for outputs, so a system may
+    /// keep more of this evaluation. The rates must be those of `rhs`. Default: `rhs`.
+    fn rhs_at_end(&mut self, t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), String> {
+        self.rhs(t, y, dy)
+    }
+
     /// Fill the Jacobian `∂f/∂y` at `(t, y)` into `jac` (n × n) and return `true`, or return
     /// `false` (the default) to let the integrator build it by forward differences.
     fn jacobian(&mut self, _t: f64, _y: &[f64], _jac: &mut DMatrix<f64>) -> bool {
@@ -338,6 +345,26 @@ impl Integrator {
         }
     }
 
+    /// [`Integrator::integrate`] continuing the last call: DOPRI5 reuses that call's last
+    /// stage as its first when `y` is bit for bit where the last call left it
+    /// ([`Dopri5::integrate_continuing`]: the caller vouches that `f` does not depend on
+    /// time and nothing it reads changed); RODAS4 integrates as usual. Same result as
+    /// [`Integrator::integrate`], bit for bit.
+    pub fn integrate_continuing<S: OdeSystem + ?Sized>(
+        &mut self,
+        sys: &mut S,
+        t0: f64,
+        t1: f64,
+        y: &mut [f64],
+        h_trial: &mut f64,
+        opts: &Options,
+    ) -> Result<(), SolverError> {
+        match self {
+            Integrator::Dopri5(m) => m.integrate_continuing(sys, t0, t1, y, h_trial, opts),
+            Integrator::Rosenbrock(m) => m.integrate(sys, t0, t1, y, h_trial, opts),
+        }
+    }
+
     /// Work counters (accumulated over all calls).
     pub fn stats(&self) -> &Stats {
         match self {
@@ -439,6 +466,21 @@ fn eval<S: OdeSystem + ?Sized>(
 ) -> Result<Option<usize>, SolverError> {
     stats.rhs_evals += 1;
     sys.rhs(t, y, dy)
+        .map_err(|message| SolverError::Rhs { t, message })?;
+    Ok(dy.iter().position(|v| !v.is_finite()))
+}
+
+/// [`eval`] through [`OdeSystem::rhs_at_end`] (the last stage of a step landing on the
+/// end of the call).
+fn eval_at_end<S: OdeSystem + ?Sized>(
+    sys: &mut S,
+    stats: &mut Stats,
+    t: f64,
+    y: &[f64],
+    dy: &mut [f64],
+) -> Result<Option<usize>, SolverError> {
+    stats.rhs_evals += 1;
+    sys.rhs_at_end(t, y, dy)
         .map_err(|message| SolverError::Rhs { t, message })?;
     Ok(dy.iter().position(|v| !v.is_finite()))
 }

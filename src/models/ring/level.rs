@@ -264,6 +264,9 @@ pub struct RingLevel {
     shaft_angle: bool,
     /// Wear and thermal (None: off, nothing evaluated).
     slow: Option<Slow>,
+    /// `eval` holds the matrices too ([`LevelModel::rhs_at_end`]), evaluated at the point
+    /// of this key ([`RingLevel::point_key`]); `None` once another evaluation overwrote it.
+    kept: Option<[u64; 13]>,
 }
 
 impl RingLevel {
@@ -277,6 +280,7 @@ impl RingLevel {
             profile: None,
             shaft_angle: false,
             slow: None,
+            kept: None,
         }
     }
 
@@ -313,6 +317,21 @@ impl RingLevel {
         } else {
             x[0] / self.cage_ratio
         }
+    }
+
+    /// What an evaluation without slow effects reads besides the level's fixed parts, as
+    /// bits: the cage (and shaft) angle, the shaft speed and the ring's motion (not the
+    /// time: the level is time-invariant, [`LevelModel::rhs_time_invariant`]).
+    fn point_key(&self, m: &Motion, x: &[f64]) -> [u64; 13] {
+        let mut k = [0; 13];
+        k[0] = x[0].to_bits();
+        k[1] = if self.shaft_angle { x[1].to_bits() } else { 0 };
+        k[2] = m.omega.to_bits();
+        for i in 0..5 {
+            k[3 + i] = m.q[i].to_bits();
+            k[8 + i] = m.v[i].to_bits();
+        }
+        k
     }
 
     /// `[shaft angle for the fast effects, shaft angle turned]` ([`eval_ring`]).
@@ -460,12 +479,19 @@ impl LevelModel for RingLevel {
         // states have rates that depend on the contact state.
         self.slow.is_none()
     }
+    fn rhs_time_invariant(&self) -> bool {
+        // `rhs` reads the motion, the states and `aux` (wear maps, thermal clearance) and
+        // writes only `self.eval`, which every evaluation overwrites; the time reaches only
+        // the profile, whose offsets depend on the angles, not on `t`.
+        true
+    }
     fn init(&mut self, _m: &Motion, x: &mut [f64], aux: &mut [f64]) -> Result<()> {
         x.fill(0.0);
         aux.fill(0.0);
         Ok(())
     }
     fn rhs(&mut self, p: Point<'_>, dx: &mut [f64], wrench: Option<&mut [f64; 5]>) -> Result<()> {
+        self.kept = None;
         let Point { t, m, x, aux } = p;
         let wc = self.cage_ratio * m.omega;
         dx[0] = wc;
@@ -481,6 +507,29 @@ impl LevelModel for RingLevel {
             self.evaluate(t, m, x, aux, wc, false, |_, _, _, _| {});
             *w = self.eval.wrench;
         }
+        Ok(())
+    }
+    fn rhs_at_end(
+        &mut self,
+        p: Point<'_>,
+        dx: &mut [f64],
+        wrench: Option<&mut [f64; 5]>,
+    ) -> Result<()> {
+        // Without slow effects, the outputs at this point are this evaluation with the
+        // matrices (the wrench is the same arithmetic with or without them): keep it.
+        let w = match wrench {
+            Some(w) if self.slow.is_none() => w,
+            wrench => return self.rhs(p, dx, wrench),
+        };
+        let Point { t, m, x, aux } = p;
+        let wc = self.cage_ratio * m.omega;
+        dx[0] = wc;
+        if self.shaft_angle {
+            dx[1] = m.omega;
+        }
+        self.evaluate(t, m, x, aux, wc, true, |_, _, _, _| {});
+        *w = self.eval.wrench;
+        self.kept = Some(self.point_key(m, x));
         Ok(())
     }
     fn outputs(&mut self, p: Point<'_>, out: &mut LevelOutputs) -> Result<()> {
@@ -501,11 +550,17 @@ impl LevelModel for RingLevel {
         }
         let mut sums = ContactSums::default();
         let omega = m.omega;
-        self.evaluate(t, m, x, aux, wc, true, |slow, _j, _psi, q| {
-            if let Some(th) = slow.and_then(|s| s.thermal.as_ref()) {
-                th.model.add_ball(omega, q, &mut sums);
-            }
-        });
+        // Kept from the integration's last stage at this very point (no slow effects: no
+        // per-ball sums wanted): the same bits without evaluating again.
+        let kept = self.slow.is_none() && self.kept == Some(self.point_key(m, x));
+        if !kept {
+            self.kept = None;
+            self.evaluate(t, m, x, aux, wc, true, |slow, _j, _psi, q| {
+                if let Some(th) = slow.and_then(|s| s.thermal.as_ref()) {
+                    th.model.add_ball(omega, q, &mut sums);
+                }
+            });
+        }
         let e = &self.eval;
         *out = LevelOutputs {
             wrench: e.wrench,
@@ -542,5 +597,66 @@ impl LevelModel for RingLevel {
             };
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::presets::preset;
+
+    fn outputs(l: &mut RingLevel, m: &Motion, x: &[f64]) -> Vec<u64> {
+        let mut out = LevelOutputs::default();
+        l.outputs(Point::new(0.1, m, x, &mut []), &mut out).unwrap();
+        let mut v = vec![
+            out.torque,
+            out.cage_omega,
+            out.balls_loaded,
+            out.max_load,
+            out.max_pressure,
+            out.film_min,
+        ];
+        v.extend(out.wrench);
+        v.extend(out.k.iter().flatten());
+        v.extend(out.c.iter().flatten());
+        v.iter().map(|x| x.to_bits()).collect()
+    }
+
+    /// The last stage's evaluation kept for the outputs at the same point gives them bit
+    /// for bit; any other evaluation in between, or another point, evaluates again.
+    #[test]
+    fn outputs_kept_from_the_last_stage_are_the_same_bits() {
+        let b = preset("6205").unwrap().build().unwrap();
+        for dof in [RingDof::Two, RingDof::Five] {
+            let mut l = RingLevel::new(&b, dof, 3000.0);
+            let m = Motion {
+                q: [3e-6, -2.1e-5, 1e-7, 2e-5, -1e-5],
+                v: [1e-3, -2e-3, 1e-4, 0.01, 0.02],
+                omega: 183.259571,
+            };
+            let x = [0.37];
+            let fresh = outputs(&mut RingLevel::new(&b, dof, 3000.0), &m, &x);
+            let (mut dx, mut w, mut w_rhs) = ([0.0], [0.0; 5], [0.0; 5]);
+            l.rhs(Point::new(0.2, &m, &x, &mut []), &mut dx, Some(&mut w_rhs))
+                .unwrap();
+            l.rhs_at_end(Point::new(0.3, &m, &x, &mut []), &mut dx, Some(&mut w))
+                .unwrap();
+            assert_eq!(w.map(f64::to_bits), w_rhs.map(f64::to_bits), "same wrench");
+            assert!(l.kept.is_some());
+            assert_eq!(outputs(&mut l, &m, &x), fresh, "kept");
+            // Another point: evaluated again.
+            let x2 = [0.38];
+            l.rhs_at_end(Point::new(0.3, &m, &x, &mut []), &mut dx, Some(&mut w))
+                .unwrap();
+            let fresh2 = outputs(&mut RingLevel::new(&b, dof, 3000.0), &m, &x2);
+            assert_eq!(outputs(&mut l, &m, &x2), fresh2);
+            // An evaluation in between forgets it.
+            l.rhs_at_end(Point::new(0.3, &m, &x, &mut []), &mut dx, Some(&mut w))
+                .unwrap();
+            l.rhs(Point::new(0.3, &m, &x2, &mut []), &mut dx, Some(&mut w))
+                .unwrap();
+            assert!(l.kept.is_none());
+            assert_eq!(outputs(&mut l, &m, &x), fresh);
+        }
     }
 }

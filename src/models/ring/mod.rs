@@ -84,6 +84,10 @@ pub struct RingModel {
     dm: f64,
     inner: PointContact,
     outer: PointContact,
+    /// Semi-axis coefficients `(ca, cb)` of the inner and outer contact
+    /// ([`PointContact::semi_axis_coefficients`], four cube roots), kept for the peak
+    /// pressure every communication point reports.
+    axes: [(f64, f64); 2],
     /// Ball azimuth offsets (empty: evenly spaced).
     spacing: Vec<f64>,
     /// `(sin, cos)` of each ball's place relative to the cage, `2 pi j / Z + spacing_j`
@@ -119,6 +123,10 @@ impl RingModel {
             dm: b.dm,
             inner,
             outer,
+            axes: [
+                inner.semi_axis_coefficients(),
+                outer.semi_axis_coefficients(),
+            ],
             spacing: Vec::new(),
             spacing_sc: Vec::new(),
             direct_angles: false,
@@ -174,8 +182,19 @@ impl RingModel {
     }
 
     /// Peak Hertz pressure of a ball carrying `q` (the larger of its two contacts), Pa.
+    /// The arithmetic of [`PointContact::peak_pressure`] for both contacts, with their
+    /// semi-axis coefficients kept and one cube root of `q` for both: the same bits.
     pub fn peak_pressure(&self, q: f64) -> f64 {
-        self.inner.peak_pressure(q).max(self.outer.peak_pressure(q))
+        let q3 = q.max(0.0).cbrt();
+        let p0 = |(ca, cb): (f64, f64)| {
+            let (a, b) = (ca * q3, cb * q3);
+            if a > 0.0 && b > 0.0 {
+                1.5 * q / (PI * a * b)
+            } else {
+                0.0
+            }
+        };
+        p0(self.axes[0]).max(p0(self.axes[1]))
     }
 
     /// Forces at cage angle `theta_c` (rad), cage speed `omega_c` (rad/s), ring
@@ -224,6 +243,13 @@ impl RingModel {
         // over Z rotations, ~Z ulp, is below that of `theta_c + dpsi j` at large angles).
         // With offsets: the cage angle rotated by the ball's precomputed place.
         let (sp, cp) = self.pitch_sc;
+        // Coordinates a ball's normal moves: 2-DOF, x and y only (the gradient's other
+        // entries are zeros, whose products add nothing to the +0 sums of the stiffness and
+        // damping, and the wrench's other components are set to zero below).
+        let nq = match self.dof {
+            RingDof::Two => 2,
+            RingDof::Five => 5,
+        };
         let mut next = theta_c.sin_cos();
         let cage = next;
         for j in 0..self.z {
@@ -293,14 +319,14 @@ impl RingModel {
             };
             per_ball(j, psi, load);
             let fn_ = load + cd * rate;
-            for (w, gk) in out.wrench.iter_mut().zip(g) {
+            for (w, gk) in out.wrench[..nq].iter_mut().zip(g) {
                 *w -= fn_ * gk;
             }
             out.loaded += 1;
             out.max_load = out.max_load.max(load);
             if jac {
-                for r in 0..5 {
-                    for col in 0..5 {
+                for r in 0..nq {
+                    for col in 0..nq {
                         out.k[r][col] += dload * g[r] * g[col];
                         out.c[r][col] += cd * g[r] * g[col];
                     }
@@ -341,6 +367,23 @@ impl RingModel {
 mod tests {
     use super::*;
     use crate::geometry::preset;
+
+    /// The kept semi-axis coefficients give each contact's peak pressure bit for bit.
+    #[test]
+    fn peak_pressure_is_the_contacts_own_bit_for_bit() {
+        for name in ["6205", "7008ce"] {
+            let b = preset(name).unwrap().build().unwrap();
+            let m = RingModel::new(&b, RingDof::Five, 0.0);
+            for q in [-1.0, 0.0, 1e-300, 1e-3, 0.37, 1.0, 123.456, 1e4, 3.3e6] {
+                let own = m.inner.peak_pressure(q).max(m.outer.peak_pressure(q));
+                assert_eq!(
+                    m.peak_pressure(q).to_bits(),
+                    own.to_bits(),
+                    "{name} q = {q}"
+                );
+            }
+        }
+    }
 
     fn eval(m: &RingModel, q: [f64; 5], theta: f64) -> RingEval {
         let mut out = RingEval::default();
