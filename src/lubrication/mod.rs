@@ -303,8 +303,9 @@ impl FilmModel {
     /// e(5e+1)(5e+2)(5e+3)/24 c^5 - ...`; five terms are within 3e-6 of the root for
     /// `c <= 0.2` (the loaded balls of the shipped scenes), so one Newton step lands at
     /// rounding and the stop test (the quadratic error bound of the next step) ends it.
-    /// The result is the root to rounding, as [`FilmModel::solve_direct`]'s (test
-    /// `fast_solve_matches_direct`).
+    /// The start takes `delta^-e` from [`approx_pow_neg_e`] (1e-7 is plenty for it), so a
+    /// loaded ball costs one `powf`. The result is the root to rounding, as
+    /// [`FilmModel::solve_direct`]'s (test `fast_solve_matches_direct`).
     pub fn solve(&self, f: &FilmAtSpeed, delta: f64) -> Option<BallFilm> {
         let a = f.a_i + f.a_o;
         let kn = self.kn;
@@ -320,7 +321,9 @@ impl FilmModel {
             (delta + h_max, 0.0, self.qmin_pow)
         } else {
             let (mut s, mut sp) = if delta > s_min {
-                let h0 = b * delta.powf(-e);
+                // The start needs the film at the rigid approach only roughly (the Newton
+                // makes the root exact): `delta^-e` to 1e-7 from tables, not a `powf`.
+                let h0 = b * approx_pow_neg_e(delta);
                 let c = h0 / delta;
                 let s = if c <= START_SERIES_MAX {
                     let [k1, k2, k3, k4] = START_SERIES;
@@ -452,6 +455,43 @@ impl FilmModel {
     }
 }
 
+/// `x^-e` (`e = FILM_E`) to about 1e-7 relative, for the film Newton's start: `x = 2^k m`
+/// with `m` in [1, 2) in one of 16 intervals of centre `m0`, `x^-e = (2^k)^-e m0^-e (1 +
+/// z)^-e` with `z = m/m0 - 1`, `|z| <= 1/33`, the last factor by its binomial series to
+/// `z^3` (the next term is below `0.032 z^4 < 3e-8`). `powf` outside `2^-64..2^64`.
+fn approx_pow_neg_e(x: f64) -> f64 {
+    struct Tables {
+        /// `(2^k)^-e` for `k = -64..64`.
+        pow2: [f64; 128],
+        /// `m0^-e` and `1/m0` for `m0 = 1 + (i + 1/2)/16`.
+        m0_pow: [f64; 16],
+        m0_inv: [f64; 16],
+    }
+    static TABLES: std::sync::OnceLock<Tables> = std::sync::OnceLock::new();
+    let e = FILM_E;
+    let t = TABLES.get_or_init(|| {
+        let m0 = |i: usize| 1.0 + (i as f64 + 0.5) / 16.0;
+        Tables {
+            pow2: std::array::from_fn(|j| 2f64.powi(j as i32 - 64).powf(-e)),
+            m0_pow: std::array::from_fn(|i| m0(i).powf(-e)),
+            m0_inv: std::array::from_fn(|i| 1.0 / m0(i)),
+        }
+    });
+    let bits = x.to_bits();
+    // Biased exponent of a positive normal x; anything else (0, subnormal, negative, huge,
+    // NaN) takes `powf`.
+    let k = (bits >> 52) as i64 - 1023;
+    if !(-64..64).contains(&k) {
+        return x.powf(-e);
+    }
+    let i = ((bits >> 48) & 0xf) as usize;
+    let m = f64::from_bits((bits & 0x000f_ffff_ffff_ffff) | 0x3ff0_0000_0000_0000);
+    let z = m * t.m0_inv[i] - 1.0;
+    let (c1, c2) = (-e, e * (e + 1.0) / 2.0);
+    let c3 = -c2 * (e + 2.0) / 3.0;
+    t.pow2[(k + 64) as usize] * t.m0_pow[i] * (1.0 + z * (c1 + z * (c2 + z * c3)))
+}
+
 /// `e = 1.5 x 0.067`: `h_c ~ Q^-0.067 = (Kn s^1.5)^-0.067 ~ s^-e`.
 const FILM_E: f64 = 1.5 * 0.067;
 /// Largest `c` the film Newton starts from the Lagrange series at; above it (balls at the
@@ -574,6 +614,22 @@ mod tests {
             used_series[0] > 10 && used_series[1] > 1000,
             "{used_series:?}"
         );
+    }
+
+    /// The film Newton's rough start `x^-e` is within 1e-7 of `powf` over the range of
+    /// approaches and beyond, and falls back to `powf` (no NaN) outside its tables.
+    #[test]
+    fn approx_pow_is_within_1e_7() {
+        let e = FILM_E;
+        let mut x = 1e-19;
+        while x < 1e19 {
+            let (got, want) = (approx_pow_neg_e(x), x.powf(-e));
+            assert!((got - want).abs() <= 1e-7 * want, "{x}: {got} vs {want}");
+            x *= 1.0137;
+        }
+        for x in [1e-300, 1e300, 5e-324, f64::MAX] {
+            assert_eq!(approx_pow_neg_e(x), x.powf(-e));
+        }
     }
 
     /// The series step of the film Newton agrees with `powf` to rounding on both sides of its
