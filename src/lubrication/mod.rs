@@ -42,6 +42,7 @@ pub use guide_land::{GuideForce, GuideLand};
 pub use pocket::{PocketForce, PocketLaw};
 
 use crate::contact::PointContact;
+use std::cell::Cell;
 use std::f64::consts::PI;
 
 /// Load below which the film thickness is frozen, N.
@@ -161,20 +162,30 @@ struct Squeeze {
     sum: f64,
     /// Smallest gap: the roughness, at least `H_FLOOR`.
     floor_roughness: f64,
+    /// `num / sum`: the damping times the gap.
+    per_gap: f64,
 }
 
 impl Squeeze {
     fn new(l: &Lubricant, c: &PointContact) -> Self {
         let (rx, ry) = (c.curvature.rx, c.curvature.ry);
+        let (num, sum) = (12.0 * PI * l.viscosity * (rx * ry).powf(1.5), rx + ry);
         Squeeze {
-            num: 12.0 * PI * l.viscosity * (rx * ry).powf(1.5),
-            sum: rx + ry,
+            num,
+            sum,
             floor_roughness: l.roughness,
+            per_gap: num / sum,
         }
     }
 
     fn at(&self, h: f64) -> f64 {
-        self.num / (self.sum * h.max(self.floor_roughness).max(H_FLOOR))
+        self.num / (self.sum * self.gap(h))
+    }
+
+    /// The gap the damping is evaluated at: `h` floored at the roughness and `H_FLOOR`.
+    #[inline]
+    fn gap(&self, h: f64) -> f64 {
+        h.max(self.floor_roughness).max(H_FLOOR)
     }
 }
 
@@ -200,6 +211,8 @@ pub struct FilmModel {
     /// squeeze damping (inner, outer) with their constant factors computed once.
     fits: [Fit; 4],
     squeeze: [Squeeze; 2],
+    /// [`FilmModel::at_speed`]'s last shaft speed (its bits) and result.
+    last_speed: Cell<Option<(u64, FilmAtSpeed)>>,
     /// The contacts and their `K` (for [`FilmModel::solve_direct`]).
     #[cfg(test)]
     contacts: [PointContact; 2],
@@ -260,6 +273,7 @@ impl FilmModel {
                 Squeeze::new(&lubricant, &inner),
                 Squeeze::new(&lubricant, &outer),
             ],
+            last_speed: Cell::new(None),
             #[cfg(test)]
             contacts: [inner, outer],
             #[cfg(test)]
@@ -274,13 +288,24 @@ impl FilmModel {
     /// Coefficients at shaft speed `omega` (rad/s, outer ring fixed): the central films'
     /// (what [`FilmModel::solve`] needs); the minimum films' are computed by
     /// [`FilmModel::min_film`] when asked (same values).
+    ///
+    /// The last speed's coefficients are kept (a load-driven ring turns at a held speed,
+    /// so every right-hand side of a step asks for the same one): a pure function of
+    /// `omega`, the same bits with or without the memo.
     pub fn at_speed(&self, omega: f64) -> FilmAtSpeed {
+        if let Some((bits, f)) = self.last_speed.get() {
+            if bits == omega.to_bits() {
+                return f;
+            }
+        }
         let u = entrainment_speed(self.dm, self.gamma, omega);
-        FilmAtSpeed {
+        let f = FilmAtSpeed {
             u,
             a_i: self.fits[0].at(u),
             a_o: self.fits[1].at(u),
-        }
+        };
+        self.last_speed.set(Some((omega.to_bits(), f)));
+        f
     }
 
     /// Thinnest film of a ball carrying `q`, m. It falls with the load, so over a set of
@@ -361,25 +386,37 @@ impl FilmModel {
         // dQ/d(delta) = (dQ/ds) / g'(s) = 1.5 Kn s^0.5 s / (s + e t) (t = 0 when frozen).
         let stiffness = 1.5 * kn * sq * s / (s + e * t);
         let (h_i, h_o) = (f.a_i * q_pow, f.a_o * q_pow);
-        // Contact stiffnesses (Hertz in series with the film) for the damper combination.
-        // Q^(1/3) = Kn^(1/3) s^(1/2); film k_f = Q / (0.067 h), so kh kf / (kh + kf) =
-        // kh Q / (0.067 h kh + Q).
+        // Contact stiffnesses (Hertz in series with the film) for the damper combination:
+        // Hertz kh = 1.5 K^(2/3) Q^(1/3) with Q^(1/3) = Kn^(1/3) s^(1/2), film k_f = Q /
+        // (0.067 h), in series kh k_f / (kh + k_f) = kh Q / (0.067 h kh + Q).
+        // The damper combination (c_i k_o^2 + c_o k_i^2) / (k_i + k_o)^2 is homogeneous of
+        // degree 0 in (k_i, k_o): with k = kh Q / D (D = 0.067 h kh + Q, or Q without a
+        // film) it takes (kh_i D_o, kh_o D_i), and with c = N / (S H) (`Squeeze`) it is
+        // (N_i/S_i H_o k_o^2 + N_o/S_o H_i k_i^2) / (H_i H_o (k_i + k_o)^2): one division
+        // for the five of the formula (same value to rounding: fast_solve_matches_direct).
         let q13 = self.kn13 * sq;
-        let contact_k = |k23: f64, h: f64| {
+        let hertz_and_den = |k23: f64, h: f64| {
             let kh = 1.5 * k23 * q13;
-            if frozen || h <= 0.0 {
-                kh
-            } else {
-                kh * load / (0.067 * h * kh + load)
-            }
+            (
+                kh,
+                if frozen || h <= 0.0 {
+                    load
+                } else {
+                    0.067 * h * kh + load
+                },
+            )
         };
-        let (k_i, k_o) = (contact_k(self.ki23, h_i), contact_k(self.ko23, h_o));
-        let (c_i, c_o) = (self.squeeze[0].at(h_i), self.squeeze[1].at(h_o));
+        let ((kh_i, d_i), (kh_o, d_o)) =
+            (hertz_and_den(self.ki23, h_i), hertz_and_den(self.ko23, h_o));
+        let (k_i, k_o) = (kh_i * d_o, kh_o * d_i);
+        let [sq_i, sq_o] = &self.squeeze;
+        let (g_i, g_o) = (sq_i.gap(h_i), sq_o.gap(h_o));
         let ks = k_i + k_o;
         let damping = if ks > 0.0 {
-            (c_i * k_o * k_o + c_o * k_i * k_i) / (ks * ks)
+            (sq_i.per_gap * g_o * k_o * k_o + sq_o.per_gap * g_i * k_i * k_i)
+                / (g_i * g_o * ks * ks)
         } else {
-            0.5 * (c_i + c_o)
+            0.5 * (sq_i.at(h_i) + sq_o.at(h_o))
         };
         Some(BallFilm {
             hertz_approach: s,
@@ -613,6 +650,30 @@ mod tests {
         assert!(
             used_series[0] > 10 && used_series[1] > 1000,
             "{used_series:?}"
+        );
+    }
+
+    /// `at_speed` keeps its last speed's result but answers every speed with the bits of a
+    /// fresh model, whatever was asked before (no history).
+    #[test]
+    fn at_speed_memo_is_history_free() {
+        let (m, _) = model(Lubricant::study2());
+        let speeds = [
+            183.26,
+            0.0,
+            -50.0,
+            1500.0,
+            183.26,
+            183.26 * (1.0 + f64::EPSILON),
+        ];
+        for (i, &w) in speeds.iter().enumerate() {
+            let fresh = model(Lubricant::study2()).0.at_speed(w);
+            assert_eq!(m.at_speed(w), fresh, "{i}");
+            assert!(fresh.a_i > 0.0 || w == 0.0);
+        }
+        assert_ne!(
+            m.at_speed(183.26),
+            m.at_speed(183.26 * (1.0 + f64::EPSILON))
         );
     }
 
