@@ -328,8 +328,8 @@ impl FilmModel {
     /// e(5e+1)(5e+2)(5e+3)/24 c^5 - ...`; five terms are within 3e-6 of the root for
     /// `c <= 0.2` (the loaded balls of the shipped scenes), so one Newton step lands at
     /// rounding and the stop test (the quadratic error bound of the next step) ends it.
-    /// The start takes `delta^-e` from [`approx_pow_neg_e`] (1e-7 is plenty for it), so a
-    /// loaded ball costs one `powf`. The result is the root to rounding, as
+    /// The powers `s^-e` come from [`pow_neg_e`] (a few ulp, no `powf`) and the binomial
+    /// series of [`scale_power`]. The result is the root to rounding, as
     /// [`FilmModel::solve_direct`]'s (test `fast_solve_matches_direct`).
     pub fn solve(&self, f: &FilmAtSpeed, delta: f64) -> Option<BallFilm> {
         let a = f.a_i + f.a_o;
@@ -346,9 +346,7 @@ impl FilmModel {
             (delta + h_max, 0.0, self.qmin_pow)
         } else {
             let (mut s, mut sp) = if delta > s_min {
-                // The start needs the film at the rigid approach only roughly (the Newton
-                // makes the root exact): `delta^-e` to 1e-7 from tables, not a `powf`.
-                let h0 = b * approx_pow_neg_e(delta);
+                let h0 = b * pow_neg_e(delta);
                 let c = h0 / delta;
                 let s = if c <= START_SERIES_MAX {
                     let [k1, k2, k3, k4] = START_SERIES;
@@ -356,7 +354,7 @@ impl FilmModel {
                 } else {
                     delta + h0
                 };
-                (s, s.powf(-e))
+                (s, pow_neg_e(s))
             } else {
                 (s_min, self.s_min_pow)
             };
@@ -492,22 +490,34 @@ impl FilmModel {
     }
 }
 
-/// `x^-e` (`e = FILM_E`) to about 1e-7 relative, for the film Newton's start: `x = 2^k m`
-/// with `m` in [1, 2) in one of 16 intervals of centre `m0`, `x^-e = (2^k)^-e m0^-e (1 +
-/// z)^-e` with `z = m/m0 - 1`, `|z| <= 1/33`, the last factor by its binomial series to
-/// `z^3` (the next term is below `0.032 z^4 < 3e-8`). `powf` outside `2^-64..2^64`.
-fn approx_pow_neg_e(x: f64) -> f64 {
+/// `x^-e` for `e = FILM_E` to a few ulp (the film Newton's `powf`, at a third of its
+/// cost): `x = 2^k m` with `m` in [1, 2) in one of 256 intervals of centre `m0`, `x^-e =
+/// (2^k)^-e m0^-e (1 + z)^-e` with `z = (m - m0)/m0`, `|z| <= 1/512`, the two powers from
+/// tables (each `powf`, correctly rounded) and the last factor by its binomial series to
+/// `z^5` (the next term is below `0.02 z^6 < 1e-18`). Three roundings of half an ulp and
+/// the tables' give at most 3 ulp (test `pow_neg_e_is_within_3_ulp`). `powf` outside
+/// `2^-64..2^64` (and for 0, subnormals, negatives, NaN).
+fn pow_neg_e(x: f64) -> f64 {
     struct Tables {
         /// `(2^k)^-e` for `k = -64..64`.
         pow2: [f64; 128],
-        /// `m0^-e` and `1/m0` for `m0 = 1 + (i + 1/2)/16`.
-        m0_pow: [f64; 16],
-        m0_inv: [f64; 16],
+        /// `m0^-e` for `m0 = 1 + (i + 1/2)/256` (exact in binary).
+        m0_pow: [f64; 256],
+        /// `1/m0`.
+        m0_inv: [f64; 256],
     }
     static TABLES: std::sync::OnceLock<Tables> = std::sync::OnceLock::new();
+    const C: [f64; 5] = {
+        let e = FILM_E;
+        let c1 = -e;
+        let c2 = c1 * (-e - 1.0) / 2.0;
+        let c3 = c2 * (-e - 2.0) / 3.0;
+        let c4 = c3 * (-e - 3.0) / 4.0;
+        [c1, c2, c3, c4, c4 * (-e - 4.0) / 5.0]
+    };
     let e = FILM_E;
     let t = TABLES.get_or_init(|| {
-        let m0 = |i: usize| 1.0 + (i as f64 + 0.5) / 16.0;
+        let m0 = |i: usize| 1.0 + (i as f64 + 0.5) / 256.0;
         Tables {
             pow2: std::array::from_fn(|j| 2f64.powi(j as i32 - 64).powf(-e)),
             m0_pow: std::array::from_fn(|i| m0(i).powf(-e)),
@@ -521,12 +531,13 @@ fn approx_pow_neg_e(x: f64) -> f64 {
     if !(-64..64).contains(&k) {
         return x.powf(-e);
     }
-    let i = ((bits >> 48) & 0xf) as usize;
+    let i = ((bits >> 44) & 0xff) as usize;
     let m = f64::from_bits((bits & 0x000f_ffff_ffff_ffff) | 0x3ff0_0000_0000_0000);
-    let z = m * t.m0_inv[i] - 1.0;
-    let (c1, c2) = (-e, e * (e + 1.0) / 2.0);
-    let c3 = -c2 * (e + 2.0) / 3.0;
-    t.pow2[(k + 64) as usize] * t.m0_pow[i] * (1.0 + z * (c1 + z * (c2 + z * c3)))
+    // m - m0 is exact (same binade, 8 leading bits shared).
+    let z = (m - (1.0 + (i as f64 + 0.5) / 256.0)) * t.m0_inv[i];
+    let [c1, c2, c3, c4, c5] = C;
+    let series = 1.0 + z * (c1 + z * (c2 + z * (c3 + z * (c4 + z * c5))));
+    t.pow2[(k + 64) as usize] * t.m0_pow[i] * series
 }
 
 /// `e = 1.5 x 0.067`: `h_c ~ Q^-0.067 = (Kn s^1.5)^-0.067 ~ s^-e`.
@@ -556,6 +567,8 @@ fn scale_power(p: f64, r: f64, s_new: f64, e: f64) -> f64 {
         let c2 = c1 * (-e - 1.0) / 2.0;
         let c3 = c2 * (-e - 2.0) / 3.0;
         p * (1.0 + r * (c1 + r * (c2 + r * c3)))
+    } else if e == FILM_E {
+        pow_neg_e(s_new)
     } else {
         s_new.powf(-e)
     }
@@ -677,20 +690,26 @@ mod tests {
         );
     }
 
-    /// The film Newton's rough start `x^-e` is within 1e-7 of `powf` over the range of
-    /// approaches and beyond, and falls back to `powf` (no NaN) outside its tables.
+    /// The film's `x^-e` is within 3 ulp of `powf` (about 5e-16 relative, most within
+    /// one) over and far beyond the range of approaches, and is `powf` itself (no NaN)
+    /// outside its tables.
     #[test]
-    fn approx_pow_is_within_1e_7() {
+    fn pow_neg_e_is_within_3_ulp() {
         let e = FILM_E;
-        let mut x = 1e-19;
+        let (mut x, mut worst, mut n) = (1e-19, 0.0f64, 0);
         while x < 1e19 {
-            let (got, want) = (approx_pow_neg_e(x), x.powf(-e));
-            assert!((got - want).abs() <= 1e-7 * want, "{x}: {got} vs {want}");
-            x *= 1.0137;
+            let (got, want) = (pow_neg_e(x), x.powf(-e));
+            let ulps = (got - want).abs() / (want * f64::EPSILON);
+            worst = worst.max(ulps);
+            assert!(ulps <= 3.0, "{x}: {got} vs {want}");
+            x *= 1.000_731;
+            n += 1;
         }
-        for x in [1e-300, 1e300, 5e-324, f64::MAX] {
-            assert_eq!(approx_pow_neg_e(x), x.powf(-e));
+        assert!(n > 100_000 && worst > 0.0, "{n} {worst}");
+        for x in [1e-300, 1e300, 5e-324, f64::MAX, 0.0, -1.0] {
+            assert_eq!(pow_neg_e(x).to_bits(), x.powf(-e).to_bits());
         }
+        assert!(pow_neg_e(f64::NAN).is_nan());
     }
 
     /// The series step of the film Newton agrees with `powf` to rounding on both sides of its
