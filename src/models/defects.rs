@@ -77,7 +77,7 @@ fn smin(a: f64, b: f64, k: f64) -> f64 {
 #[inline]
 pub fn wrap(a: f64) -> f64 {
     const TAU: f64 = 2.0 * PI;
-    if !(a.abs() < 1.0995e12) {
+    if a.is_nan() || a.abs() >= 1.0995e12 {
         return wrap_exact(a);
     }
     let t = a - TAU * (a * (1.0 / TAU)).round();
