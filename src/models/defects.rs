@@ -80,7 +80,11 @@ pub fn wrap(a: f64) -> f64 {
     if a.is_nan() || a.abs() >= 1.0995e12 {
         return wrap_exact(a);
     }
-    let t = a - TAU * (a * (1.0 / TAU)).round();
+    // The nearest whole turn by the 1.5 x 2^52 shift (exact for |x| < 2^51; `round` is a
+    // libm call on the baseline x86-64 target, which has no `roundsd`).
+    const SHIFT: f64 = 6_755_399_441_055_744.0;
+    let n = (a * (1.0 / TAU) + SHIFT) - SHIFT;
+    let t = a - TAU * n;
     if t > PI {
         t - TAU
     } else if t < -PI {

@@ -173,7 +173,21 @@ impl WearLaw {
 #[inline]
 fn cell_coordinate(theta: f64, n: usize) -> f64 {
     let turns = theta * (1.0 / std::f64::consts::TAU);
-    (turns - turns.floor()) * n as f64
+    // The floor by the 1.5 x 2^52 shift (nearest whole number, exact for |x| < 2^51, less
+    // one if above): `floor` is a libm call on the baseline x86-64 target. `floor` itself
+    // beyond 2^51 turns and for NaN.
+    const SHIFT: f64 = 6_755_399_441_055_744.0;
+    let whole = if turns.abs() < 2_251_799_813_685_248.0 {
+        let r = (turns + SHIFT) - SHIFT;
+        if r > turns {
+            r - 1.0
+        } else {
+            r
+        }
+    } else {
+        turns.floor()
+    };
+    (turns - whole) * n as f64
 }
 
 /// Add `area_rate` (m²/s) at angle `theta` (rad) to a periodic map of `n = map.len()` cells
@@ -367,6 +381,15 @@ mod tests {
                 assert!(d <= tol, "{theta}: {fast} vs {exact}");
             }
         }
+        // Beyond 2^51 turns `floor` itself; NaN stays NaN.
+        for theta in [1e17, -3e16] {
+            let turns = theta * (1.0 / TAU);
+            assert_eq!(
+                cell_coordinate(theta, n),
+                (turns - turns.floor()) * n as f64
+            );
+        }
+        assert!(cell_coordinate(f64::NAN, n).is_nan());
     }
 
     #[test]
