@@ -490,10 +490,10 @@ impl FilmModel {
     }
 }
 
-/// `x^-e` for `e = FILM_E` to a few ulp (the film Newton's `powf`, at a third of its
-/// cost): `x = 2^k m` with `m` in [1, 2) in one of 256 intervals of centre `m0`, `x^-e =
+/// `x^-e` for `e = FILM_E` to a few ulp (the film Newton's `powf` without the libm call):
+/// `x = 2^k m` with `m` in [1, 2) in one of 256 intervals of centre `m0`, `x^-e =
 /// (2^k)^-e m0^-e (1 + z)^-e` with `z = (m - m0)/m0`, `|z| <= 1/512`, the two powers from
-/// tables (each `powf`, correctly rounded) and the last factor by its binomial series to
+/// tables (each a `powf`, within about half an ulp) and the last factor by its binomial series to
 /// `z^5` (the next term is below `0.02 z^6 < 1e-18`). Three roundings of half an ulp and
 /// the tables' give at most 3 ulp (test `pow_neg_e_is_within_3_ulp`). `powf` outside
 /// `2^-64..2^64` (and for 0, subnormals, negatives, NaN).
