@@ -140,7 +140,9 @@ pub fn asperity_share(g: &Groups, reading: AsperityReading) -> f64 {
         - 0.501 * g.w.ln()
         - 2.87 * g.g.ln();
     let ln_x = ln_x1 - B_U * g.u.ln();
-    let ln_xt = x_turn().ln();
+    // ln X*: a constant (eight `exp`, an `exp_m1` and a `ln`), computed once.
+    static LN_XT: std::sync::OnceLock<f64> = std::sync::OnceLock::new();
+    let ln_xt = *LN_XT.get_or_init(|| x_turn().ln());
     // Past the turning point, the share at the turning speed, then blended to 100 %.
     let (ln_x, ln_u, beyond) = if ln_x > ln_xt {
         let ln_ut = (ln_x1 - ln_xt) / B_U;

@@ -166,6 +166,30 @@ impl WearLaw {
     }
 }
 
+/// `theta` (rad) in cells of a periodic map of `n` cells, in [0, n]: the fraction of a
+/// turn (`theta / 2 pi` less its floor) times `n`. Within a few ulp of `theta / 2 pi` times
+/// `n` of the exact remainder's `rem_euclid(2 pi) / 2 pi n` (test
+/// `cell_coordinate_matches_rem_euclid`), at a fraction of `fmod`'s cost; NaN stays NaN.
+#[inline]
+fn cell_coordinate(theta: f64, n: usize) -> f64 {
+    let turns = theta * (1.0 / std::f64::consts::TAU);
+    // The floor by the 1.5 x 2^52 shift (nearest whole number, exact for |x| < 2^51, less
+    // one if above): `floor` is a libm call on the baseline x86-64 target. `floor` itself
+    // beyond 2^51 turns and for NaN.
+    const SHIFT: f64 = 6_755_399_441_055_744.0;
+    let whole = if turns.abs() < 2_251_799_813_685_248.0 {
+        let r = (turns + SHIFT) - SHIFT;
+        if r > turns {
+            r - 1.0
+        } else {
+            r
+        }
+    } else {
+        turns.floor()
+    };
+    (turns - whole) * n as f64
+}
+
 /// Add `area_rate` (m²/s) at angle `theta` (rad) to a periodic map of `n = map.len()` cells
 /// of length `cell_len` (m), hat-weighted on the two nearest cell centres (cell `k` centred
 /// at `2 pi k / n`): the sum of `map * cell_len` grows by exactly `area_rate`.
@@ -175,7 +199,7 @@ pub fn deposit(map: &mut [f64], theta: f64, area_rate: f64, cell_len: f64) {
     if n == 0 || area_rate == 0.0 {
         return;
     }
-    let u = theta.rem_euclid(std::f64::consts::TAU) / std::f64::consts::TAU * n as f64;
+    let u = cell_coordinate(theta, n);
     let k = (u.floor() as usize).min(n - 1);
     let w = (u - k as f64).clamp(0.0, 1.0);
     let r = area_rate / cell_len;
@@ -190,7 +214,7 @@ pub fn sample(map: &[f64], theta: f64) -> f64 {
     if n == 0 {
         return 0.0;
     }
-    let u = theta.rem_euclid(std::f64::consts::TAU) / std::f64::consts::TAU * n as f64;
+    let u = cell_coordinate(theta, n);
     let k = (u.floor() as usize).min(n - 1);
     let w = (u - k as f64).clamp(0.0, 1.0);
     (1.0 - w) * map[k] + w * map[(k + 1) % n]
@@ -337,6 +361,35 @@ mod tests {
         let (l1, _) = law(0.2e-6).factors(&c, 180.0, 4.0, 0.01, 293.15);
         let (l2, _) = law(0.42e-6).factors(&c, 180.0, 4.0, 0.01, 293.15);
         assert!(0.0 < l1 && l1 < l2 && l2 < 100.0, "{l1} {l2}");
+    }
+
+    /// The cell coordinate is the exact remainder's to a few ulp of the turn count (times
+    /// the cells), modulo a whole map at the seam, for angles of either sign up to 1e7 rad.
+    #[test]
+    fn cell_coordinate_matches_rem_euclid() {
+        use std::f64::consts::TAU;
+        let n = 180usize;
+        for i in 0..100_000 {
+            let x = i as f64 / 100_000.0;
+            for theta in [(x - 0.5) * 50.0, x * x * 1e7, -x * 1e5] {
+                let exact = theta.rem_euclid(TAU) / TAU * n as f64;
+                let fast = cell_coordinate(theta, n);
+                assert!((0.0..=n as f64).contains(&fast), "{theta}: {fast}");
+                let d = (fast - exact).abs();
+                let d = d.min((d - n as f64).abs());
+                let tol = 4.0 * f64::EPSILON * (theta.abs() / TAU + 1.0) * n as f64;
+                assert!(d <= tol, "{theta}: {fast} vs {exact}");
+            }
+        }
+        // Beyond 2^51 turns `floor` itself; NaN stays NaN.
+        for theta in [1e17, -3e16] {
+            let turns = theta * (1.0 / TAU);
+            assert_eq!(
+                cell_coordinate(theta, n),
+                (turns - turns.floor()) * n as f64
+            );
+        }
+        assert!(cell_coordinate(f64::NAN, n).is_nan());
     }
 
     #[test]

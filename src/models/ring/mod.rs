@@ -236,7 +236,6 @@ impl RingModel {
             .film
             .as_ref()
             .map(|f| f.at_speed(omega_c * self.shaft_per_cage));
-        let mut film_min = f64::INFINITY;
         let dpsi = 2.0 * PI / self.z as f64;
         let even = self.spacing.is_empty();
         // Evenly spaced: ball j+1 is ball j rotated by the pitch (the rounding this adds
@@ -298,9 +297,6 @@ impl RingModel {
                     let Some(b) = film.solve(fs, delta) else {
                         continue;
                     };
-                    if jac {
-                        film_min = film_min.min(film.min_film(fs, b.load));
-                    }
                     let blend = (b.hertz_approach / DAMPING_RAMP).min(1.0);
                     (b.load, b.stiffness, (self.damping + b.damping) * blend)
                 }
@@ -351,8 +347,9 @@ impl RingModel {
                 }
             }
         }
-        if film_min.is_finite() {
-            out.film_min = film_min;
+        // The thinnest film is the most loaded ball's (it thins with the load).
+        if let (true, Some(film), Some(fs)) = (jac && out.loaded > 0, &self.film, &film_speed) {
+            out.film_min = film.min_film(fs, out.max_load);
         }
         if self.dof == RingDof::Two {
             // Moments and axial force are not modelled by the radial geometry.
