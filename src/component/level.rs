@@ -139,6 +139,12 @@ pub trait LevelModel: Send + std::fmt::Debug {
     fn states_are_quadrature(&self) -> bool {
         false
     }
+    /// Whether the rates depend on time only through the motion inputs (never through
+    /// `Point::t`): then, with the inputs held over a step, the system is autonomous and
+    /// `∂f/∂t` is exactly zero (no difference taken). Default `false`.
+    fn autonomous(&self) -> bool {
+        false
+    }
     /// Initial states at the start motion.
     fn init(&mut self, m: &Motion, x: &mut [f64], aux: &mut [f64]) -> Result<()>;
     /// Time derivatives of the level's states at `p`; when `wrench` is given, also the

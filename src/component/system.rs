@@ -4,7 +4,7 @@
 
 use super::inputs::{input_at, motion_at};
 use super::level::{Jacobians, LevelModel, Point};
-use super::{thread_cpu_s, Causality, InputRule, State, I_LOAD};
+use super::{thread_cpu_s, Causality, InputRule, State, I_LOAD, I_V};
 use crate::error::{Error, Result};
 use crate::solver::{OdeSystem, SolverError};
 
@@ -171,6 +171,22 @@ impl OdeSystem for Sys<'_> {
         }
         Ok(())
     }
+    /// `∂f/∂t = 0` exactly when the level is [`LevelModel::autonomous`] and its inputs
+    /// do not move within the step ([`inputs_held`]): `f(t + δ, y)` is then `f(t, y)` bit
+    /// for bit, so the integrator's forward difference would give these zeros too (the
+    /// trajectory is the same; one right-hand side fewer per step).
+    fn time_derivative(&mut self, _t: f64, _y: &[f64], dfdt: &mut [f64]) -> bool {
+        #[cfg(test)]
+        if tests::FD_DFDT.with(std::cell::Cell::get) {
+            return false;
+        }
+        let ring_state = self.causality == Causality::Load && self.ring.is_some();
+        if !(self.level.autonomous() && inputs_held(self.st, self.rule, ring_state)) {
+            return false;
+        }
+        dfdt.fill(0.0);
+        true
+    }
     fn jacobian(&mut self, t: f64, y: &[f64], jac: &mut nalgebra::DMatrix<f64>) -> bool {
         if self.budget.as_mut().is_some_and(Budget::spent) {
             return false;
@@ -268,6 +284,17 @@ impl OdeSystem for Sys<'_> {
     }
 }
 
+/// Whether every input stays at its value within a step under `rule` (`input_at` is
+/// then `u + 0`, the same at every `s >= 0`): held, or no velocity moving a motion input
+/// (none is read when the ring's motion is a state, `ring_state`), or no derivative set.
+pub(super) fn inputs_held(st: &State, rule: InputRule, ring_state: bool) -> bool {
+    match rule {
+        InputRule::Hold => true,
+        InputRule::Velocity => ring_state || st.inputs[I_V..I_V + 5] == [0.0; 5],
+        InputRule::Derivatives => st.input_derivatives.iter().all(|&d| d == 0.0),
+    }
+}
+
 /// No NaN or infinity in `v`: a branch-free OR over the exponent bits (all ones for NaN
 /// and inf), which the compiler vectorises; the outputs are checked after every step.
 pub(super) fn all_finite(v: &[f64]) -> bool {
@@ -291,14 +318,82 @@ pub(super) fn e_time(e: &SolverError) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::component::{Component, Scene};
+    use crate::component::{variables, Component, Scene};
 
     /// The shipped run-up scene (skidding, load-driven, RODAS4) at 6000 rpm.
     fn runup_scene() -> Scene {
         let omega = 6000.0 * std::f64::consts::PI / 30.0;
-        let text = include_str!("../../examples/scenes/7008ce-runup.toml")
-            .replace("\"shaft.omega\" = 0.0", &format!("\"shaft.omega\" = {omega}"));
+        let text = include_str!("../../examples/scenes/7008ce-runup.toml").replace(
+            "\"shaft.omega\" = 0.0",
+            &format!("\"shaft.omega\" = {omega}"),
+        );
         Scene::from_text(&text).unwrap()
+    }
+
+    thread_local! {
+        /// Test switch: let the integrator difference `∂f/∂t` even when it is zero.
+        pub(super) static FD_DFDT: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+    }
+
+    /// The shipped run-up scene (skidding, load-driven, RODAS4) at 6000 rpm: settled in 1 ms
+    /// steps, then component-mode steps of 0.1 ms, with the shaft speed held or ramped
+    /// (`ramp` rad/s² as its first derivative). Returns the states, the outputs and the
+    /// counters, with the integrator's forward-difference `∂f/∂t` forced on (`fd`) or not.
+    fn runup(
+        fd: bool,
+        ramp: f64,
+        method: crate::component::Method,
+    ) -> (Vec<f64>, Vec<f64>, crate::component::Stats) {
+        FD_DFDT.with(|c| c.set(fd));
+        let mut scene = runup_scene();
+        scene.solver.method = method;
+        let mut c = Component::new(scene).unwrap();
+        if ramp != 0.0 {
+            let vr = variables::by_name("shaft.omega").unwrap().vr;
+            c.set_input_derivative(vr, 1, ramp).unwrap();
+        }
+        let mut t = 0.0;
+        for h in [1e-3; 3].into_iter().chain([1e-4; 30]) {
+            c.do_step(t, h).unwrap();
+            t += h;
+        }
+        FD_DFDT.with(|c| c.set(false));
+        let st = c.state();
+        (st.x.clone(), st.outputs.clone(), c.stats())
+    }
+
+    /// The skidding level with its inputs held is autonomous: the integrator's forward
+    /// difference `∂f/∂t` is exactly zero, so skipping it leaves every state and output
+    /// bit for bit the same and saves one right-hand side per linearisation (per step of
+    /// RODAS4). With the speed ramped the difference is taken (the same counts with and
+    /// without the switch). ROS34PW2 (no difference) runs the same either way.
+    #[test]
+    fn held_inputs_skip_the_time_difference_bit_for_bit() {
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        use crate::component::Method;
+        let (x_fd, o_fd, s_fd) = runup(true, 0.0, Method::Rosenbrock);
+        let (x, o, s) = runup(false, 0.0, Method::Rosenbrock);
+        assert_eq!(bits(&x), bits(&x_fd), "states");
+        assert_eq!(bits(&o), bits(&o_fd), "outputs");
+        assert!(s.jacobians > 0 && s.accepted == s_fd.accepted && s.jacobians == s_fd.jacobians);
+        assert_eq!(
+            s_fd.rhs - s.rhs,
+            s.jacobians,
+            "one difference per linearisation"
+        );
+        // Ramped: no skip (the same counts with and without the switch), and a trajectory
+        // that sees the time term.
+        let (x_fd, _, s_fd) = runup(true, 500.0, Method::Rosenbrock);
+        let (xr, _, sr) = runup(false, 500.0, Method::Rosenbrock);
+        assert_eq!(bits(&xr), bits(&x_fd));
+        assert_eq!(sr.rhs, s_fd.rhs);
+        assert_ne!(bits(&xr), bits(&x));
+        // The W-method takes no difference: the zeros change nothing there either.
+        let (x_fd, o_fd, s_fd) = runup(true, 0.0, Method::Ros34pw2);
+        let (x, o, s) = runup(false, 0.0, Method::Ros34pw2);
+        assert_eq!(bits(&x), bits(&x_fd));
+        assert_eq!(bits(&o), bits(&o_fd));
+        assert_eq!(s.rhs, s_fd.rhs);
     }
 
     /// With a block-structured level the Jacobian writes only the diagonal blocks and the

@@ -120,6 +120,10 @@ impl LevelModel for SkiddingLevel {
     fn n_states(&self) -> usize {
         self.model.n_states()
     }
+    fn autonomous(&self) -> bool {
+        // `rhs` reads the motion and the states, never `Point::t`.
+        true
+    }
     fn ring_dofs(&self) -> &'static [usize] {
         self.dofs
     }
