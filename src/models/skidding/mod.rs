@@ -273,6 +273,32 @@ struct Pocket {
     m_fric: f64,
 }
 
+/// The limited gyroscopic friction's state for its load derivatives
+/// ([`SkiddingModel::gyro_force`]).
+#[derive(Debug, Clone, Copy)]
+struct GyroLimit {
+    mu: f64,
+    /// `1 + t⁴` and its fourth root.
+    t4: f64,
+    r4: f64,
+    /// Sign of the unlimited force.
+    sign: f64,
+    q_i: f64,
+    q_o: f64,
+    /// `Q_i + Q_o`.
+    sum: f64,
+}
+
+impl GyroLimit {
+    /// `(dF/dQ_i, dF/dQ_o)`: `phi'(t) = 1/(1 + t⁴)^(5/4)` through `Q_h`.
+    fn derivs(&self) -> (f64, f64) {
+        let dphi = 1.0 / (self.t4 * self.r4);
+        let d = self.mu * dphi * self.sign;
+        let s2 = self.sum * self.sum;
+        (d * self.q_o * self.q_o / s2, d * self.q_i * self.q_i / s2)
+    }
+}
+
 /// One ball's loads.
 #[derive(Debug, Clone, Copy)]
 struct Loads {
@@ -749,6 +775,25 @@ impl SkiddingModel {
         st: [f64; 7],
         kq: Option<&mut [[f64; 5]; 5]>,
     ) -> BallOut {
+        self.forces_on::<true>(j, geo, ld, q, v, omega, st, kq)
+    }
+
+    /// [`Self::forces`]; with `WRENCH` false only the rates and the cage torque are right
+    /// (the gyroscopic friction, which acts on the shaft alone, is left out of the wrench),
+    /// for the Jacobian's differences of the rates.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn forces_on<const WRENCH: bool>(
+        &self,
+        j: usize,
+        geo: &Geo,
+        ld: &Loads,
+        q: &[f64; 5],
+        v: &[f64; 5],
+        omega: f64,
+        st: [f64; 7],
+        kq: Option<&mut [[f64; 5]; 5]>,
+    ) -> BallOut {
         let [theta_c, w_c, psi, w_b, w_a, _, u_dot] = st;
         let p = &self.p;
         let r = 0.5 * self.dm;
@@ -798,7 +843,12 @@ impl SkiddingModel {
         // Gyroscopic couple J w_s w_b sin(a) about e_t, carried by lateral friction
         // +-F (n1, -n0) at the two contacts with the traction cap of the quasi-static
         // kernel (module docs).
-        let (f_g, fg_qi, fg_qo) = self.gyro_force(w_b, w_s, q_i, q_o);
+        // Not for the rates alone (`WRENCH` false): it acts on the shaft only.
+        let (f_g, g_lim) = if WRENCH {
+            self.gyro_force(w_b, w_s, q_i, q_o)
+        } else {
+            (0.0, None)
+        };
         // Pocket.
         let Pocket {
             xi,
@@ -934,6 +984,7 @@ impl SkiddingModel {
             }
             // Lateral (gyroscopic) friction.
             if f_g != 0.0 {
+                let (fg_qi, fg_qo) = g_lim.map_or((0.0, 0.0), |l| l.derivs());
                 for cc in 0..5 {
                     let dfg = fg_qi * dqi[cc] + fg_qo * dqo[cc];
                     let dfa = -n[1] * dfg - f_g * dn1[cc];
@@ -1063,19 +1114,20 @@ impl SkiddingModel {
     /// the inner contact and `-F` at the outer one along `(n1, -n0)` (so the ball's lateral
     /// force balance closes and the couple is `F D = Mg`), limited as in the quasi-static
     /// kernel (`models::quasi_static::ball`): `F = (Mg/D) phi(mu Q_h D/|Mg|)`,
-    /// `phi(t) = t/(1 + t⁴)^(1/4)`, `Q_h = Q_i Q_o/(Q_i + Q_o)`. Returns
-    /// `(F, dF/dQ_i, dF/dQ_o)`.
-    fn gyro_force(&self, w_b: f64, w_s: f64, q_i: f64, q_o: f64) -> (f64, f64, f64) {
+    /// `phi(t) = t/(1 + t⁴)^(1/4)`, `Q_h = Q_i Q_o/(Q_i + Q_o)`. Returns `F` and what
+    /// [`GyroLimit::derivs`] needs for `(dF/dQ_i, dF/dQ_o)` (only the stiffness reads
+    /// them, so the right-hand side does not pay their divisions).
+    fn gyro_force(&self, w_b: f64, w_s: f64, q_i: f64, q_o: f64) -> (f64, Option<GyroLimit>) {
         if !self.p.gyroscopic || q_i <= 0.0 || q_o <= 0.0 {
-            return (0.0, 0.0, 0.0);
+            return (0.0, None);
         }
         let fb = self.j * w_s * w_b * self.sin_a / self.d;
         if fb == 0.0 {
-            return (0.0, 0.0, 0.0);
+            return (0.0, None);
         }
         let mu = self.p.gyro_traction;
         if !mu.is_finite() {
-            return (fb, 0.0, 0.0);
+            return (fb, None);
         }
         let sum = q_i + q_o;
         let qh = q_i * q_o / sum;
@@ -1083,13 +1135,16 @@ impl SkiddingModel {
         let t4 = 1.0 + t * t * t * t;
         let r4 = t4.sqrt().sqrt();
         let phi = t / r4;
-        let dphi = 1.0 / (t4 * r4);
-        let d = mu * dphi * fb.signum();
-        (
-            fb * phi,
-            d * q_o * q_o / (sum * sum),
-            d * q_i * q_i / (sum * sum),
-        )
+        let lim = GyroLimit {
+            mu,
+            t4,
+            r4,
+            sign: fb.signum(),
+            q_i,
+            q_o,
+            sum,
+        };
+        (fb * phi, Some(lim))
     }
 
     /// Integral of [`Self::pen`]: the pocket spring's energy per unit stiffness.
@@ -1373,7 +1428,7 @@ impl SkiddingModel {
                         gp.n = [geo.n[0] + h * geo.n[1], geo.n[1] - h * geo.n[0]];
                     }
                 }
-                let b = self.forces(j, &gp, &lp, q, v, omega, st5, None);
+                let b = self.forces_on::<false>(j, &gp, &lp, q, v, omega, st5, None);
                 for ((d, bx), b0) in dp.iter_mut().zip(b.dx).zip(base.dx) {
                     *d = (bx - b0) / h;
                 }
