@@ -174,7 +174,9 @@ impl OdeSystem for Sys<'_> {
     /// `∂f/∂t = 0` exactly when the level is [`LevelModel::autonomous`] and its inputs
     /// do not move within the step ([`inputs_held`]): `f(t + δ, y)` is then `f(t, y)` bit
     /// for bit, so the integrator's forward difference would give these zeros too (the
-    /// trajectory is the same; one right-hand side fewer per step).
+    /// trajectory is the same; one right-hand side fewer per step). The zeros drop the
+    /// `h d_i ∂f/∂t` terms of the Rosenbrock stages (Hairer & Wanner II, §IV.7, the
+    /// non-autonomous form), as for an autonomous system.
     fn time_derivative(&mut self, _t: f64, _y: &[f64], dfdt: &mut [f64]) -> bool {
         #[cfg(test)]
         if tests::FD_DFDT.with(std::cell::Cell::get) {

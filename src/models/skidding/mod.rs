@@ -1180,8 +1180,9 @@ impl SkiddingModel {
     /// `w_a` enters the slips (`d dv_i = d dv_o = (D/2) d w_a`), the gyroscopic couple
     /// through `w_s` (`d w_s = -d w_a`; the limited force `F = F_b phi(t)`,
     /// `t = mu Q_h/|F_b|`, has `dF/dF_b = phi - t phi'(t) = phi t⁴/(1 + t⁴)`), the pocket
-    /// friction through its slide and the spin drag. Checked against central differences
-    /// in a unit test.
+    /// friction through its slide and the spin drag (the terms of the module docs; the
+    /// limiter is the quasi-static kernel's, Harris & Kotzalas Vol. 2 ch. 3). Checked
+    /// against central differences in a unit test.
     fn wa_column(
         &self,
         (mu, v_s): (f64, f64),
