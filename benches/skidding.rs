@@ -145,7 +145,7 @@ fn goal_cases(only_w: bool) {
             let (l2, peak) = force_error(&s, &reference).unwrap_or((f64::NAN, f64::NAN));
             let n = s.t.len() as f64;
             println!(
-                "speed goal case, {name} rtol {rtol:e}: {:.2}x real time ({:.1} us per 0.1 ms step), force error L2 {l2:.1e} peak {peak:.1e} vs RODAS4 rtol 1e-9; per step: rhs {:.2}, jacobians {:.2}, LU {:.2}, accepted {:.2}, rejected {:.2} (load average {})",
+                "speed goal case, {name} rtol {rtol:e}: {:.2}x real time ({:.1} us per 0.1 ms step), force error L2 {l2:.2e} peak {peak:.2e} vs RODAS4 rtol 1e-9; per step: rhs {:.2}, jacobians {:.2}, LU {:.2}, accepted {:.2}, rejected {:.2} (load average {})",
                 1e-4 / cpu,
                 cpu * 1e6,
                 d.rhs as f64 / n,

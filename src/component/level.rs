@@ -141,9 +141,11 @@ pub trait LevelModel: Send + std::fmt::Debug {
     }
     /// Whether the rates and the wrench at a point are a function of the motion, the
     /// states and the memory alone: not of the time `p.t`, no memory outside `aux`, and
-    /// `rhs` writes nothing in `aux`. Then the component lets DOPRI5 start a step with the
-    /// last stage of the step before (first same as last across steps) when nothing that
-    /// stage read changed since, which gives the same bits one evaluation cheaper.
+    /// `rhs` writes nothing in `aux`. Then, with inputs that do not move within a step:
+    /// `∂f/∂t` is exactly zero (the component gives the Rosenbrock methods zeros instead
+    /// of a forward difference that would give them too), and DOPRI5 may start a step with
+    /// the last stage of the step before (first same as last across steps) when nothing
+    /// that stage read changed since. Both give the same bits one evaluation cheaper.
     /// Default `false`.
     fn rhs_time_invariant(&self) -> bool {
         false

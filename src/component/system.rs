@@ -146,7 +146,7 @@ impl Work {
         let k = &self.fsal_key;
         same_bits(&k[..ni], &st.inputs)
             && same_bits(&k[ni..], &st.aux[..naux])
-            && inputs_constant(st, rule)
+            && inputs_constant(st, rule, false)
     }
 
     /// After a successful integration of `st`: remember what its last stage read, if the
@@ -154,7 +154,7 @@ impl Work {
     /// [`super::level::LevelModel::rhs_time_invariant`]; and the inputs did not move
     /// inside the step, so the last stage saw them as the next step's first will).
     pub(super) fn fsal_store(&mut self, st: &State, naux: usize, rule: InputRule, reusable: bool) {
-        self.fsal = reusable && inputs_constant(st, rule);
+        self.fsal = reusable && inputs_constant(st, rule, false);
         if self.fsal {
             let ni = st.inputs.len();
             let k = &mut self.fsal_key;
@@ -173,13 +173,14 @@ fn same_bits(a: &[f64], b: &[f64]) -> bool {
             == 0
 }
 
-/// Whether every input keeps its value through a step under `rule` ([`input_at`] gives
-/// the same bits at every offset): always when held; with velocities, when the velocity
-/// inputs are zero; with derivatives, when every derivative is zero.
-pub(super) fn inputs_constant(st: &State, rule: InputRule) -> bool {
+/// Whether every input the step reads keeps its value through it under `rule`
+/// ([`input_at`] gives the same bits at every offset): always when held; with velocities,
+/// when the velocity inputs are zero or none is read (`ring_state`: the ring's motion is a
+/// state); with derivatives, when every derivative is zero.
+pub(super) fn inputs_constant(st: &State, rule: InputRule, ring_state: bool) -> bool {
     match rule {
         InputRule::Hold => true,
-        InputRule::Velocity => st.inputs[I_V..I_V + 5].iter().all(|v| *v == 0.0),
+        InputRule::Velocity => ring_state || st.inputs[I_V..I_V + 5].iter().all(|v| *v == 0.0),
         InputRule::Derivatives => st.input_derivatives.iter().all(|d| *d == 0.0),
     }
 }
@@ -272,6 +273,24 @@ impl OdeSystem for Sys<'_> {
     fn rhs_at_end(&mut self, t: f64, y: &[f64], dy: &mut [f64]) -> std::result::Result<(), String> {
         self.rates(t, y, dy, true)
     }
+    /// `∂f/∂t = 0` exactly when the level is [`LevelModel::rhs_time_invariant`] and its
+    /// inputs do not move within the step ([`inputs_constant`]): `f(t + δ, y)` is then `f(t, y)` bit
+    /// for bit, so the integrator's forward difference would give these zeros too (the
+    /// trajectory is the same; one right-hand side fewer per step). The zeros drop the
+    /// `h d_i ∂f/∂t` terms of the Rosenbrock stages (Hairer & Wanner II, §IV.7, the
+    /// non-autonomous form), as for an autonomous system.
+    fn time_derivative(&mut self, _t: f64, _y: &[f64], dfdt: &mut [f64]) -> bool {
+        #[cfg(test)]
+        if tests::FD_DFDT.with(std::cell::Cell::get) {
+            return false;
+        }
+        let ring_state = self.causality == Causality::Load && self.ring.is_some();
+        if !(self.level.rhs_time_invariant() && inputs_constant(self.st, self.rule, ring_state)) {
+            return false;
+        }
+        dfdt.fill(0.0);
+        true
+    }
     fn jacobian(&mut self, t: f64, y: &[f64], jac: &mut nalgebra::DMatrix<f64>) -> bool {
         if self.budget.as_mut().is_some_and(Budget::spent) {
             return false;
@@ -299,10 +318,51 @@ impl OdeSystem for Sys<'_> {
         ) {
             return false;
         }
-        jac.fill(0.0);
-        for r in 0..nl {
-            for c in 0..nl {
-                jac[(r, c)] = jw.jx[r * nl + c];
+        // Column-major storage: entry (r, c) at c * n + r.
+        let n = jac.nrows();
+        let a = jac.as_mut_slice();
+        let jx = &jw.jx;
+        match self.level.blocks() {
+            // Independent blocks ([`LevelModel::blocks`]): the structured solver reads only
+            // the diagonal blocks and the border ([`crate::solver::BlockArrowhead`]), and
+            // every one of those entries is written below, so the entries coupling two
+            // blocks (zero by the contract of `blocks`) are neither cleared nor copied:
+            // about `nl²` writes fewer per Jacobian.
+            Some((nb, s)) if nb * s <= nl => {
+                let nb0 = nb * s;
+                for b in 0..nb {
+                    let o = b * s;
+                    for c in o..o + s {
+                        for r in o..o + s {
+                            a[c * n + r] = jx[r * nl + c];
+                        }
+                    }
+                }
+                // The level's border columns (every level row) and rows (the block columns).
+                for c in nb0..nl {
+                    for r in 0..nl {
+                        a[c * n + r] = jx[r * nl + c];
+                    }
+                }
+                for r in nb0..nl {
+                    for c in 0..nb0 {
+                        a[c * n + r] = jx[r * nl + c];
+                    }
+                }
+                // The ring's position rows, of which only `d q/dt = v` is set below.
+                for r in nl..n - self.ring.map_or(0, |g| g.dofs.len()) {
+                    for c in 0..n {
+                        a[c * n + r] = 0.0;
+                    }
+                }
+            }
+            _ => {
+                a.fill(0.0);
+                for r in 0..nl {
+                    for c in 0..nl {
+                        a[c * n + r] = jx[r * nl + c];
+                    }
+                }
             }
         }
         if let Some(ring) = self.ring {
@@ -311,16 +371,16 @@ impl OdeSystem for Sys<'_> {
                 let (iq, iv) = (nl + k, nl + nd + k);
                 let inv = 1.0 / ring.inertia[d];
                 for r in 0..nl {
-                    jac[(r, iq)] = jw.jm[r * 10 + d];
-                    jac[(r, iv)] = jw.jm[r * 10 + 5 + d];
+                    a[iq * n + r] = jw.jm[r * 10 + d];
+                    a[iv * n + r] = jw.jm[r * 10 + 5 + d];
                 }
-                jac[(iq, iv)] = 1.0;
+                a[iv * n + iq] = 1.0;
                 for c in 0..nl {
-                    jac[(iv, c)] = jw.wx[d * nl + c] * inv;
+                    a[c * n + iv] = jw.wx[d * nl + c] * inv;
                 }
                 for (k2, &d2) in ring.dofs.iter().enumerate() {
-                    jac[(iv, nl + k2)] = jw.wm[d * 10 + d2] * inv;
-                    jac[(iv, nl + nd + k2)] = jw.wm[d * 10 + 5 + d2] * inv;
+                    a[(nl + k2) * n + iv] = jw.wm[d * 10 + d2] * inv;
+                    a[(nl + nd + k2) * n + iv] = jw.wm[d * 10 + 5 + d2] * inv;
                 }
             }
         }
@@ -373,6 +433,135 @@ pub(super) fn e_time(e: &SolverError) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::component::{variables, Component, Scene};
+
+    /// The shipped run-up scene (skidding, load-driven, RODAS4) at 6000 rpm.
+    fn runup_scene() -> Scene {
+        let omega = 6000.0 * std::f64::consts::PI / 30.0;
+        let text = include_str!("../../examples/scenes/7008ce-runup.toml").replace(
+            "\"shaft.omega\" = 0.0",
+            &format!("\"shaft.omega\" = {omega}"),
+        );
+        Scene::from_text(&text).unwrap()
+    }
+
+    thread_local! {
+        /// Test switch: let the integrator difference `∂f/∂t` even when it is zero.
+        pub(super) static FD_DFDT: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+    }
+
+    /// The shipped run-up scene (skidding, load-driven, RODAS4) at 6000 rpm: settled in 1 ms
+    /// steps, then component-mode steps of 0.1 ms, with the shaft speed held or ramped
+    /// (`ramp` rad/s² as its first derivative). Returns the states, the outputs and the
+    /// counters, with the integrator's forward-difference `∂f/∂t` forced on (`fd`) or not.
+    fn runup(
+        fd: bool,
+        ramp: f64,
+        method: crate::component::Method,
+    ) -> (Vec<f64>, Vec<f64>, crate::component::Stats) {
+        FD_DFDT.with(|c| c.set(fd));
+        let mut scene = runup_scene();
+        scene.solver.method = method;
+        let mut c = Component::new(scene).unwrap();
+        if ramp != 0.0 {
+            let vr = variables::by_name("shaft.omega").unwrap().vr;
+            c.set_input_derivative(vr, 1, ramp).unwrap();
+        }
+        let mut t = 0.0;
+        for h in [1e-3; 3].into_iter().chain([1e-4; 30]) {
+            c.do_step(t, h).unwrap();
+            t += h;
+        }
+        FD_DFDT.with(|c| c.set(false));
+        let st = c.state();
+        (st.x.clone(), st.outputs.clone(), c.stats())
+    }
+
+    /// The skidding level with its inputs held is autonomous: the integrator's forward
+    /// difference `∂f/∂t` is exactly zero, so skipping it leaves every state and output
+    /// bit for bit the same and saves one right-hand side per linearisation (per step of
+    /// RODAS4). With the speed ramped the difference is taken (the same counts with and
+    /// without the switch). ROS34PW2 (no difference) runs the same either way.
+    #[test]
+    fn held_inputs_skip_the_time_difference_bit_for_bit() {
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        use crate::component::Method;
+        let (x_fd, o_fd, s_fd) = runup(true, 0.0, Method::Rosenbrock);
+        let (x, o, s) = runup(false, 0.0, Method::Rosenbrock);
+        assert_eq!(bits(&x), bits(&x_fd), "states");
+        assert_eq!(bits(&o), bits(&o_fd), "outputs");
+        assert!(s.jacobians > 0 && s.accepted == s_fd.accepted && s.jacobians == s_fd.jacobians);
+        assert_eq!(
+            s_fd.rhs - s.rhs,
+            s.jacobians,
+            "one difference per linearisation"
+        );
+        // Ramped: no skip (the same counts with and without the switch), and a trajectory
+        // that sees the time term.
+        let (x_fd, _, s_fd) = runup(true, 500.0, Method::Rosenbrock);
+        let (xr, _, sr) = runup(false, 500.0, Method::Rosenbrock);
+        assert_eq!(bits(&xr), bits(&x_fd));
+        assert_eq!(sr.rhs, s_fd.rhs);
+        assert_ne!(bits(&xr), bits(&x));
+        // The W-method takes no difference: the zeros change nothing there either.
+        let (x_fd, o_fd, s_fd) = runup(true, 0.0, Method::Ros34pw2);
+        let (x, o, s) = runup(false, 0.0, Method::Ros34pw2);
+        assert_eq!(bits(&x), bits(&x_fd));
+        assert_eq!(bits(&o), bits(&o_fd));
+        assert_eq!(s.rhs, s_fd.rhs);
+    }
+
+    /// With a block-structured level the Jacobian writes only the diagonal blocks and the
+    /// border, yet every entry the block-arrowhead solver reads: a matrix full of stale
+    /// values comes out equal, bit for bit, to one that started at zero on all of those
+    /// entries; and the one from zero is the level's `jx` (and zero between blocks) as the
+    /// whole-matrix copy gave it.
+    #[test]
+    fn block_jacobian_writes_every_entry_the_solver_reads() {
+        let mut c = Component::new(runup_scene()).unwrap();
+        for i in 0..3 {
+            c.do_step(i as f64 * 1e-3, 1e-3).unwrap();
+        }
+        let (nb, bs) = c.level.blocks().unwrap();
+        let nl = c.n_level;
+        let n = c.state.x.len();
+        let x = c.state.x.clone();
+        let t = c.state.t;
+        let mut sys = Sys {
+            jw: Some(&mut c.jwork),
+            level: c.level.as_mut(),
+            st: &mut c.state,
+            ring: c.ring.as_ref(),
+            rule: c.scene.inputs.rule,
+            causality: c.scene.model.causality,
+            nl,
+            naux: c.n_level_aux,
+            t0: t,
+            last_error: None,
+            budget: None,
+        };
+        let mut zero = nalgebra::DMatrix::zeros(n, n);
+        let mut stale = nalgebra::DMatrix::from_element(n, n, 7.0);
+        assert!(sys.jacobian(t, &x, &mut zero) && sys.jacobian(t, &x, &mut stale));
+        let jx = &sys.jw.as_ref().unwrap().jx;
+        let nb0 = nb * bs;
+        let mut couplings = 0;
+        for r in 0..n {
+            for col in 0..n {
+                let (z, s) = (zero[(r, col)], stale[(r, col)]);
+                if r < nb0 && col < nb0 && r / bs != col / bs {
+                    assert_eq!(z, 0.0, "between blocks ({r}, {col})");
+                    continue;
+                }
+                assert_eq!(z.to_bits(), s.to_bits(), "({r}, {col})");
+                if r < nl && col < nl {
+                    assert_eq!(z.to_bits(), jx[r * nl + col].to_bits());
+                }
+                couplings += usize::from(z != 0.0 && (r >= nl || col >= nl));
+            }
+        }
+        assert!(couplings > 0, "the ring's rows and columns are filled");
+    }
 
     /// Cheap evaluations stretch the gap between clock reads, and the next step's budget
     /// starts with that gap (one clock read for a short step); a spent budget still stops

@@ -513,7 +513,13 @@ impl Rosenbrock {
     ) -> Result<(), SolverError> {
         let n = self.n;
         self.dfdt_on = true;
-        if !sys.time_derivative(t, &self.y, &mut self.dfdt) {
+        if sys.time_derivative(t, &self.y, &mut self.dfdt) {
+            // An exactly zero `∂f/∂t` (an autonomous system) leaves the W-method's stages as
+            // without one (no `+ 0.0` terms).
+            if !fd && self.dfdt.iter().all(|&v| v == 0.0) {
+                self.dfdt_on = false;
+            }
+        } else {
             if !fd {
                 self.dfdt_on = false;
                 return Ok(());

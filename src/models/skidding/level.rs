@@ -120,6 +120,12 @@ impl LevelModel for SkiddingLevel {
     fn n_states(&self) -> usize {
         self.model.n_states()
     }
+    fn rhs_time_invariant(&self) -> bool {
+        // `rhs` reads the motion and the states, never `Point::t`; what it keeps (the
+        // balls' last contact states, the memo of the last point) is overwritten by every
+        // evaluation and read only by the outputs.
+        true
+    }
     fn ring_dofs(&self) -> &'static [usize] {
         self.dofs
     }

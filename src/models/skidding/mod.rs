@@ -273,6 +273,32 @@ struct Pocket {
     m_fric: f64,
 }
 
+/// The limited gyroscopic friction's state for its load derivatives
+/// ([`SkiddingModel::gyro_force`]).
+#[derive(Debug, Clone, Copy)]
+struct GyroLimit {
+    mu: f64,
+    /// `1 + t⁴` and its fourth root.
+    t4: f64,
+    r4: f64,
+    /// Sign of the unlimited force.
+    sign: f64,
+    q_i: f64,
+    q_o: f64,
+    /// `Q_i + Q_o`.
+    sum: f64,
+}
+
+impl GyroLimit {
+    /// `(dF/dQ_i, dF/dQ_o)`: `phi'(t) = 1/(1 + t⁴)^(5/4)` through `Q_h`.
+    fn derivs(&self) -> (f64, f64) {
+        let dphi = 1.0 / (self.t4 * self.r4);
+        let d = self.mu * dphi * self.sign;
+        let s2 = self.sum * self.sum;
+        (d * self.q_o * self.q_o / s2, d * self.q_i * self.q_i / s2)
+    }
+}
+
 /// One ball's loads.
 #[derive(Debug, Clone, Copy)]
 struct Loads {
@@ -749,6 +775,25 @@ impl SkiddingModel {
         st: [f64; 7],
         kq: Option<&mut [[f64; 5]; 5]>,
     ) -> BallOut {
+        self.forces_on::<true>(j, geo, ld, q, v, omega, st, kq)
+    }
+
+    /// [`Self::forces`]; with `WRENCH` false only the rates and the cage torque are right
+    /// (the gyroscopic friction, which acts on the shaft alone, is left out of the wrench),
+    /// for the Jacobian's differences of the rates.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn forces_on<const WRENCH: bool>(
+        &self,
+        j: usize,
+        geo: &Geo,
+        ld: &Loads,
+        q: &[f64; 5],
+        v: &[f64; 5],
+        omega: f64,
+        st: [f64; 7],
+        kq: Option<&mut [[f64; 5]; 5]>,
+    ) -> BallOut {
         let [theta_c, w_c, psi, w_b, w_a, _, u_dot] = st;
         let p = &self.p;
         let r = 0.5 * self.dm;
@@ -798,7 +843,12 @@ impl SkiddingModel {
         // Gyroscopic couple J w_s w_b sin(a) about e_t, carried by lateral friction
         // +-F (n1, -n0) at the two contacts with the traction cap of the quasi-static
         // kernel (module docs).
-        let (f_g, fg_qi, fg_qo) = self.gyro_force(w_b, w_s, q_i, q_o);
+        // Not for the rates alone (`WRENCH` false): it acts on the shaft only.
+        let (f_g, g_lim) = if WRENCH {
+            self.gyro_force(w_b, w_s, q_i, q_o)
+        } else {
+            (0.0, None)
+        };
         // Pocket.
         let Pocket {
             xi,
@@ -934,6 +984,7 @@ impl SkiddingModel {
             }
             // Lateral (gyroscopic) friction.
             if f_g != 0.0 {
+                let (fg_qi, fg_qo) = g_lim.map_or((0.0, 0.0), |l| l.derivs());
                 for cc in 0..5 {
                     let dfg = fg_qi * dqi[cc] + fg_qo * dqo[cc];
                     let dfa = -n[1] * dfg - f_g * dn1[cc];
@@ -1063,19 +1114,20 @@ impl SkiddingModel {
     /// the inner contact and `-F` at the outer one along `(n1, -n0)` (so the ball's lateral
     /// force balance closes and the couple is `F D = Mg`), limited as in the quasi-static
     /// kernel (`models::quasi_static::ball`): `F = (Mg/D) phi(mu Q_h D/|Mg|)`,
-    /// `phi(t) = t/(1 + t⁴)^(1/4)`, `Q_h = Q_i Q_o/(Q_i + Q_o)`. Returns
-    /// `(F, dF/dQ_i, dF/dQ_o)`.
-    fn gyro_force(&self, w_b: f64, w_s: f64, q_i: f64, q_o: f64) -> (f64, f64, f64) {
+    /// `phi(t) = t/(1 + t⁴)^(1/4)`, `Q_h = Q_i Q_o/(Q_i + Q_o)`. Returns `F` and what
+    /// [`GyroLimit::derivs`] needs for `(dF/dQ_i, dF/dQ_o)` (only the stiffness reads
+    /// them, so the right-hand side does not pay their divisions).
+    fn gyro_force(&self, w_b: f64, w_s: f64, q_i: f64, q_o: f64) -> (f64, Option<GyroLimit>) {
         if !self.p.gyroscopic || q_i <= 0.0 || q_o <= 0.0 {
-            return (0.0, 0.0, 0.0);
+            return (0.0, None);
         }
         let fb = self.j * w_s * w_b * self.sin_a / self.d;
         if fb == 0.0 {
-            return (0.0, 0.0, 0.0);
+            return (0.0, None);
         }
         let mu = self.p.gyro_traction;
         if !mu.is_finite() {
-            return (fb, 0.0, 0.0);
+            return (fb, None);
         }
         let sum = q_i + q_o;
         let qh = q_i * q_o / sum;
@@ -1083,13 +1135,101 @@ impl SkiddingModel {
         let t4 = 1.0 + t * t * t * t;
         let r4 = t4.sqrt().sqrt();
         let phi = t / r4;
-        let dphi = 1.0 / (t4 * r4);
-        let d = mu * dphi * fb.signum();
-        (
-            fb * phi,
-            d * q_o * q_o / (sum * sum),
-            d * q_i * q_i / (sum * sum),
-        )
+        let lim = GyroLimit {
+            mu,
+            t4,
+            r4,
+            sign: fb.signum(),
+            q_i,
+            q_o,
+            sum,
+        };
+        (fb * phi, Some(lim))
+    }
+
+    /// Whether the rates are linear in each normal load through the traction alone and
+    /// read no contact data: the Coulomb law (`mu tanh(dv/v_s) Q`), no spin friction,
+    /// no radial mass. Then the Jacobian takes some columns analytically
+    /// ([`Self::wa_column`], and `d(rates)/dQ = (f/Q)·(d(rates)/df)`).
+    fn coulomb_rates(&self, ld: &Loads) -> Option<(f64, f64)> {
+        #[cfg(test)]
+        if tests::FD_ONLY.with(std::cell::Cell::get) {
+            return None;
+        }
+        match self.p.traction {
+            TractionLaw::Coulomb { mu_max, v_s } if self.p.spin_friction <= 0.0 && !ld.radial => {
+                Some((mu_max, v_s))
+            }
+            _ => None,
+        }
+    }
+
+    /// `dT/d(dv)` of the Coulomb law `T = mu tanh(dv/v_s) Q` at force `f` (`tanh` from
+    /// `f/(mu Q)`, no second `exp`): `mu Q (1 - tanh²)/v_s`.
+    fn coulomb_slope(mu: f64, v_s: f64, q: f64, f: f64) -> f64 {
+        if q <= 0.0 || mu == 0.0 {
+            return 0.0;
+        }
+        let th = f / (mu * q);
+        mu * q * (1.0 - th * th) / v_s
+    }
+
+    /// The `w_a` column of one ball under [`Self::coulomb_rates`], analytically (the
+    /// geometry and loads do not depend on `w_a`): `d(rates)/dw_a`, `d(cage torque)/dw_a`
+    /// and `d(wrench)/dw_a` at the point `b` of [`Self::forces`] with its pocket `pk`.
+    /// `w_a` enters the slips (`d dv_i = d dv_o = (D/2) d w_a`), the gyroscopic couple
+    /// through `w_s` (`d w_s = -d w_a`; the limited force `F = F_b phi(t)`,
+    /// `t = mu Q_h/|F_b|`, has `dF/dF_b = phi - t phi'(t) = phi t⁴/(1 + t⁴)`), the pocket
+    /// friction through its slide and the spin drag (the terms of the module docs; the
+    /// limiter is the quasi-static kernel's, Harris & Kotzalas Vol. 2 ch. 3). Checked
+    /// against central differences in a unit test.
+    fn wa_column(
+        &self,
+        (mu, v_s): (f64, f64),
+        geo: &Geo,
+        b: &BallOut,
+        pk: &Pocket,
+    ) -> ([f64; 3], f64, [f64; 5]) {
+        let p = &self.p;
+        let (r, hd) = (0.5 * self.dm, 0.5 * self.d);
+        let st = &b.state;
+        let dfi = Self::coulomb_slope(mu, v_s, st.q_i, st.f_i) * hd;
+        let dfo = Self::coulomb_slope(mu, v_s, st.q_o, st.f_o) * hd;
+        // Pocket friction M = -(D/2) mu_c |P| tanh(slide/v_s), slide = (D/2)(w_a cos a - w_c).
+        // (`tanh` from the moment itself, no second `exp`.)
+        let dmf = if pk.force == 0.0 || p.pocket_friction == 0.0 {
+            0.0
+        } else {
+            let m0 = -hd * p.pocket_friction * pk.force.abs();
+            let th = pk.m_fric / m0;
+            m0 * (1.0 - th * th) / p.friction_v_s * (hd * self.cos_a)
+        };
+        let dmd = PI * p.drag_viscosity * self.d.powi(3);
+        let dx = [
+            0.0,
+            (dfi - dfo) / (self.m * r),
+            (-hd * (dfi + dfo) + dmf * self.cos_a - dmd) / self.j,
+        ];
+        let (s, c, n) = (geo.s, geo.c, geo.n);
+        let mut dw = [dfi * s, -dfi * c, 0.0, 0.0, 0.0];
+        if p.gyroscopic && st.q_i > 0.0 && st.q_o > 0.0 {
+            let fb = self.j * st.w_s * st.w_b * self.sin_a / self.d;
+            let mu_g = p.gyro_traction;
+            let slope = if fb == 0.0 || !mu_g.is_finite() {
+                1.0
+            } else {
+                let t = mu_g * (st.q_i * st.q_o / (st.q_i + st.q_o)) / fb.abs();
+                let t4 = t * t * t * t;
+                (st.gyro / fb) * t4 / (1.0 + t4)
+            };
+            let dfg = -slope * self.j * st.w_b * self.sin_a / self.d;
+            let (fa, fr) = (-dfg * n[1], dfg * n[0]);
+            let m = self.ri * fa + self.fid * dfg;
+            for (w, x) in dw.iter_mut().zip([fr * c, fr * s, fa, m * s, -m * c]) {
+                *w += x;
+            }
+        }
+        (dx, -dmf, dw)
     }
 
     /// Integral of [`Self::pen`]: the pocket spring's energy per unit stiffness.
@@ -1212,7 +1352,9 @@ impl SkiddingModel {
     /// whole right-hand side; the columns of `w_a` and of the cage reuse the ball's
     /// geometry and loads, which do not depend on them): `jx = d(rates)/d(states)`
     /// (`n × n`, row-major), `jm = d(rates)/d(q, v)` (`n × 10`), `wx = d(wrench)/d(states)`
-    /// (`5 × n`), `wm = d(wrench)/d(q, v)` (`5 × 10`). Allocation-free.
+    /// (`5 × n`), `wm = d(wrench)/d(q, v)` (`5 × 10`). Allocation-free. The entries of
+    /// `jx` coupling two different balls are zero and are not written (give a zeroed
+    /// buffer; the component's block copy never reads them).
     #[allow(clippy::too_many_arguments)]
     pub fn jacobian(
         &self,
@@ -1227,11 +1369,16 @@ impl SkiddingModel {
         q_cols: &[usize],
     ) {
         let n = self.n_states();
-        jx.fill(0.0);
+        let ic = self.cage_index();
+        // Cleared: each ball row's cage columns (its block is overwritten below) and the
+        // cage rows; not the `n²` entries between balls.
+        for r in 0..ic {
+            jx[r * n + ic..r * n + ic + 2].fill(0.0);
+        }
+        jx[ic * n..].fill(0.0);
         jm.fill(0.0);
         wx.fill(0.0);
         wm.fill(0.0);
-        let ic = self.cage_index();
         let (theta_c, w_c) = (x[ic], x[ic + 1]);
         let jc = self.jc;
         let cr = (ic + 1) * n; // the cage speed's row
@@ -1256,8 +1403,24 @@ impl SkiddingModel {
             } else {
                 self.forces(j, &geo, &ld, q, v, omega, st5, Some(&mut kw))
             };
+            let pk0 = self.pocket(j, [theta_c, w_c, st[0], st[1], st[2]]);
+            let coulomb = self.coulomb_rates(&ld);
             // Ball columns.
             for col in 0..bs {
+                if let (2, Some(law)) = (col, coulomb) {
+                    let (d, dc, dw) = self.wa_column(law, &geo, &base, &pk0);
+                    let c = k + 2;
+                    for (r, dr) in d.iter().enumerate() {
+                        jx[(k + r) * n + c] = *dr;
+                    }
+                    jx[cr + c] = dc / jc;
+                    if !wx.is_empty() {
+                        for (r, dr) in dw.iter().enumerate() {
+                            wx[r * n + c] = *dr;
+                        }
+                    }
+                    continue;
+                }
                 // psi: 1e-7 rad (the loads' solve leaves a relative noise of ~1e-13 in
                 // the rates, which a 1e-9 step would amplify to ~30 %).
                 let h = match col {
@@ -1291,7 +1454,6 @@ impl SkiddingModel {
                 }
             }
             // Cage columns: only the pocket terms depend on the cage.
-            let pk0 = self.pocket(j, [theta_c, w_c, st[0], st[1], st[2]]);
             let rr = 0.5 * self.dm;
             for col in 0..2 {
                 let (tc, wc, h) = if col == 0 {
@@ -1345,6 +1507,24 @@ impl SkiddingModel {
                         if s0 <= 0.0 {
                             continue;
                         }
+                        if let Some((mu, v_s)) = coulomb {
+                            // Linear in the load through the traction: dT/dQ = T/Q
+                            // (mu tanh(dv/v_s) at no load); the cage does not see it.
+                            let (f, dv) = if kp == 0 {
+                                (base.state.f_i, base.state.dv_i)
+                            } else {
+                                (base.state.f_o, base.state.dv_o)
+                            };
+                            let df = if q0 > 0.0 {
+                                f / q0
+                            } else {
+                                mu * crate::contact::traction::tanh(dv / v_s)
+                            };
+                            let sign = if kp == 0 { 1.0 } else { -1.0 };
+                            dp[1] = sign * df / (self.m * 0.5 * self.dm);
+                            dp[2] = -0.5 * self.d * df / self.j;
+                            continue;
+                        }
                         h = 1e-7 * q0.max(1e-3);
                         let sp = &mut lp.sp;
                         let (qq, rr) = if kp == 0 {
@@ -1356,11 +1536,17 @@ impl SkiddingModel {
                         *rr = (*rr * *rr + h / s0).sqrt();
                     }
                     _ => {
+                        // Without spin friction and radial mass the rates and the cage
+                        // torque do not read the contact line's direction (only the
+                        // wrench does): the difference is exactly zero, as left.
+                        if self.p.spin_friction <= 0.0 && !ld.radial {
+                            continue;
+                        }
                         h = 1e-8;
                         gp.n = [geo.n[0] + h * geo.n[1], geo.n[1] - h * geo.n[0]];
                     }
                 }
-                let b = self.forces(j, &gp, &lp, q, v, omega, st5, None);
+                let b = self.forces_on::<false>(j, &gp, &lp, q, v, omega, st5, None);
                 for ((d, bx), b0) in dp.iter_mut().zip(b.dx).zip(base.dx) {
                     *d = (bx - b0) / h;
                 }
@@ -1437,20 +1623,23 @@ mod tests {
 
     /// The analytic stiffness `-dW/dq` and damping `-dW/dv` of the outputs equal the
     /// finite-difference Jacobian of the wrench (balls held), with every term on: contact
-    /// damping at a moving ring, gyroscopic and spin friction, each traction law, a
-    /// ball off the inner race.
+    /// damping at a moving ring, gyroscopic and spin friction (and none), each traction
+    /// law, a ball off the inner race.
     #[test]
     fn analytic_stiffness_matches_finite_differences() {
         use crate::contact::traction::MixedEhl;
         let b = preset("7008ce").unwrap().build().unwrap();
-        for (law, omega) in [
-            (TractionLaw::default(), 2500.0),
-            (TractionLaw::MixedEhl(MixedEhl::default()), 1500.0),
+        // The last case without spin friction: the contact line's direction then drops
+        // out of the rates (its column of d(rates)/dq is not differenced).
+        for (law, omega, spin_friction) in [
+            (TractionLaw::default(), 2500.0, 0.05),
+            (TractionLaw::MixedEhl(MixedEhl::default()), 1500.0, 0.05),
+            (TractionLaw::default(), 2500.0, 0.0),
         ] {
             let p = SkiddingParams {
                 traction: law,
                 contact_damping: 50.0,
-                spin_friction: 0.05,
+                spin_friction,
                 spacing_scatter: 0.5,
                 ..SkiddingParams::default()
             };
@@ -1470,7 +1659,10 @@ mod tests {
             let (mut k, mut c) = ([[0.0; 5]; 5], [[0.0; 5]; 5]);
             m.eval_with_stiffness(&q, &v, omega, &x, &mut dx, &mut k, &mut c);
             assert!(m.balls.iter().any(|s| s.q_i == 0.0), "a ball off the race");
-            assert!(m.balls.iter().any(|s| s.gyro != 0.0 && s.spin_i != 0.0));
+            assert!(m
+                .balls
+                .iter()
+                .any(|s| s.gyro != 0.0 && (s.spin_i != 0.0) == (spin_friction > 0.0)));
             let mut dx2 = vec![0.0; n];
             m.eval(&q, &v, omega, &x, &mut dx2);
             assert_eq!(dx, dx2, "the same rates");
@@ -1563,6 +1755,132 @@ mod tests {
                 }
             }
         }
+    }
+
+    thread_local! {
+        /// Test switch: difference every column (no analytic Coulomb columns).
+        pub(super) static FD_ONLY: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+    }
+
+    /// Under the Coulomb law without spin friction the `w_a` columns and the load slopes
+    /// `d(rates)/dQ` are analytic. Relative to each row's largest entry (rates, cage and
+    /// wrench rows; every ball, one off the inner race, pockets in contact): the `w_a`
+    /// columns equal central differences to 1e-7 and the forward differences they replace
+    /// to 1e-4 (those carry a truncation error); `d(rates)/dq` equals its forward-difference
+    /// form to 1e-5 (1e-3 in the rows of a ball pressed into its pocket: the
+    /// difference's rounding noise); every other entry is unchanged bit for bit.
+    #[test]
+    fn analytic_coulomb_columns_match_the_differences() {
+        let b = preset("7008ce").unwrap().build().unwrap();
+        let p = SkiddingParams {
+            contact_damping: 50.0,
+            spacing_scatter: 0.5,
+            ..SkiddingParams::default()
+        };
+        assert!(p.spin_friction == 0.0 && matches!(p.traction, TractionLaw::Coulomb { .. }));
+        let mut m = SkiddingModel::new(&b, p).unwrap();
+        let n = m.n_states();
+        let omega = 2500.0;
+        let mut x = vec![0.0; n];
+        m.init(omega, &mut x);
+        for j in 0..m.z() {
+            x[BALL0 + 3 * j] += 6e-3 * (j as f64 - 7.5) / 7.5; // some pockets in contact
+            x[BALL0 + 3 * j + 1] *= 1.0 + 0.01 * (j as f64 - 7.0) / 7.0;
+            x[BALL0 + 3 * j + 2] *= 1.0 - 0.02 * (j as f64 - 3.0) / 7.0;
+        }
+        let q = [4e-6, -12e-6, 10e-6, 2e-4, -1e-4];
+        let v = [1e-3, -2e-3, 5e-4, 0.02, 0.01];
+        let mut dx = vec![0.0; n];
+        m.eval(&q, &v, omega, &x, &mut dx);
+        assert!(m.balls.iter().any(|s| s.q_i == 0.0), "a ball off the race");
+        let pockets: Vec<bool> = m.balls.iter().map(|s| s.pocket != 0.0).collect();
+        assert!(pockets.contains(&true) && pockets.contains(&false));
+        assert!(m.balls.iter().any(|s| s.gyro != 0.0));
+        let run = |fd: bool| {
+            FD_ONLY.with(|c| c.set(fd));
+            let mut out = (vec![0.0; n * n], vec![0.0; n * 10], vec![0.0; 5 * n]);
+            let mut wm = vec![0.0; 50];
+            m.jacobian(
+                &q,
+                &v,
+                omega,
+                &x,
+                &mut out.0,
+                &mut out.1,
+                &mut out.2,
+                &mut wm,
+                &[0, 1, 2, 3, 4],
+            );
+            FD_ONLY.with(|c| c.set(false));
+            out
+        };
+        let (ax, am, aw) = run(false);
+        let (fx, fm, fw) = run(true);
+        // Central differences of whole right-hand sides in each ball's w_a (the reference:
+        // the forward differences replaced carry a truncation error of ~1e-5).
+        let z = m.z();
+        let (mut cx, mut cw) = (vec![0.0; n * n], vec![0.0; 5 * n]);
+        let (mut dp, mut dm) = (vec![0.0; n], vec![0.0; n]);
+        for j in 0..z {
+            let c = BALL0 + 3 * j + 2;
+            let h = 1e-7 * x[c].abs().max(1.0);
+            let (mut xp, mut xm) = (x.clone(), x.clone());
+            xp[c] += h;
+            xm[c] -= h;
+            let wp = m.eval(&q, &v, omega, &xp, &mut dp).wrench;
+            let wn = m.eval(&q, &v, omega, &xm, &mut dm).wrench;
+            for r in 0..n {
+                cx[r * n + c] = (dp[r] - dm[r]) / (2.0 * h);
+            }
+            for r in 0..5 {
+                cw[r * n + c] = (wp[r] - wn[r]) / (2.0 * h);
+            }
+        }
+        let (mut to_central, mut to_forward, mut slopes): (f64, f64, f64) = (0.0, 0.0, 0.0);
+        for (a, f, cd, cols) in [
+            (&ax, &fx, Some(&cx), n),
+            (&aw, &fw, Some(&cw), n),
+            (&am, &fm, None, 10),
+        ] {
+            for r in 0..a.len() / cols {
+                let row = r * cols..(r + 1) * cols;
+                let scale = f[row.clone()].iter().fold(1e-300f64, |s, v| s.max(v.abs()));
+                for i in row {
+                    let c = i % cols;
+                    let rel = |u: f64, w: f64| (u - w).abs() / scale;
+                    match cd {
+                        // A w_a column: against central differences, and what moved.
+                        Some(cd) if c < BALL0 + 3 * z && c % 3 == 2 => {
+                            to_central = to_central.max(rel(a[i], cd[i]));
+                            to_forward = to_forward.max(rel(a[i], f[i]));
+                        }
+                        // d(rates)/dq through the load slopes (the forward differences of a
+                        // function linear in the load differ by rounding only).
+                        // (Loose where a pocket force dominates the rate: the forward
+                        // difference's rounding noise.)
+                        None if r < BALL0 + 3 * z && pockets[r / 3] => {
+                            assert!(rel(a[i], f[i]) <= 1e-3, "row {r} col {c}");
+                        }
+                        None => slopes = slopes.max(rel(a[i], f[i])),
+                        _ => assert_eq!(a[i].to_bits(), f[i].to_bits(), "row {r} col {c}"),
+                    }
+                }
+            }
+        }
+        assert!(
+            to_central <= 1e-7,
+            "w_a columns vs central differences: {to_central:e}"
+        );
+        assert!(
+            to_forward <= 1e-4,
+            "w_a columns vs forward differences: {to_forward:e}"
+        );
+        assert!(
+            slopes <= 1e-5,
+            "load slopes vs forward differences: {slopes:e}"
+        );
+        assert!(to_forward > 0.0 && slopes > 0.0, "computed differently");
+        eprintln!("w_a columns: {to_central:.1e} from central, {to_forward:.1e} from forward differences; d(rates)/dq: {slopes:.1e} (of each row's largest entry)");
     }
 
     /// Force split with centrifugal force: `Q_o - Q_i = Fc` and the approaches add up.
