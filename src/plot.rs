@@ -102,14 +102,20 @@ fn tick(v: f64, log: bool) -> String {
     }
 }
 
-const COLORS: [RGBColor; 6] = [
+/// The series colours, by position (cycling after the last).
+const COLORS: [RGBColor; N_COLORS] = [
     RGBColor(31, 119, 180),
     RGBColor(214, 39, 40),
     RGBColor(44, 160, 44),
     RGBColor(255, 127, 14),
     RGBColor(148, 103, 189),
     RGBColor(23, 190, 207),
+    RGBColor(140, 86, 75),
+    RGBColor(227, 119, 194),
 ];
+
+/// Number of distinct series colours.
+pub const N_COLORS: usize = 8;
 
 /// A rectangle in pixels (x to the right, y down).
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -852,12 +852,13 @@ impl Report {
     #[cfg(feature = "plot")]
     pub fn plot(&self, path: &Path) -> Result<bool> {
         use crate::plot::{plot, Axes, Series};
-        // One colour per case (the plot colours series by position, 6 colours): DOPRI5 as
-        // lines first, a blank series to realign the palette, then RODAS4 as points.
+        // One colour per case (the plot colours series by position, `N_COLORS` colours):
+        // DOPRI5 as lines first, blank series to realign the palette, then RODAS4 as points.
         let mut data: Vec<(String, Vec<f64>, Vec<f64>, bool)> = Vec::new();
         for (k, m) in [Method::Dopri5, Method::Rosenbrock].into_iter().enumerate() {
             if k == 1 {
-                let pad = (6 - data.len() % 6) % 6;
+                let n = crate::plot::N_COLORS;
+                let pad = (n - data.len() % n) % n;
                 for _ in 0..pad {
                     data.push((String::new(), Vec::new(), Vec::new(), false));
                 }
