@@ -68,24 +68,14 @@ impl Clone for State {
     /// Field-wise, reusing this state's buffers: no allocation once the sizes match (the
     /// component's transactional `do_step` relies on it).
     fn clone_from(&mut self, o: &Self) {
-        self.scene_fingerprint = o.scene_fingerprint;
-        self.t = o.t;
-        self.started = o.started;
-        self.outputs_stale = o.outputs_stale;
-        self.derivatives_pending = o.derivatives_pending;
-        self.inputs_set = o.inputs_set;
-        self.x.clone_from(&o.x);
-        self.aux.clone_from(&o.aux);
-        self.inputs.clone_from(&o.inputs);
-        self.input_derivatives.clone_from(&o.input_derivatives);
-        self.outputs.clone_from(&o.outputs);
-        self.output_derivatives.clone_from(&o.output_derivatives);
+        self.begin_step_from(o, true);
     }
 }
 
 impl State {
-    /// A step's scratch copy of `o`: everything a step reads or writes, without the
-    /// inputs' derivatives unless the input rule reads them (`derivatives`; a step never
+    /// A step's scratch copy of `o`: every field (with `derivatives`; `clone_from` is this),
+    /// or everything a step reads or writes, without the inputs' derivatives unless the
+    /// input rule reads them (`derivatives`; a step never
     /// writes them, and [`State::commit_step`] leaves them where they are). No allocation
     /// once the sizes match.
     pub(super) fn begin_step_from(&mut self, o: &Self, derivatives: bool) {

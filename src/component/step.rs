@@ -143,26 +143,16 @@ impl Component {
                 self.scene.solver.max_step_cpu_s,
                 self.budget_gap,
             )),
+            continues: continuing,
         };
-        let r = if continuing {
-            self.integrator.integrate_continuing(
-                &mut sys,
-                t0,
-                t0 + h,
-                &mut self.work.y,
-                &mut h_trial,
-                &self.opts,
-            )
-        } else {
-            self.integrator.integrate(
-                &mut sys,
-                t0,
-                t0 + h,
-                &mut self.work.y,
-                &mut h_trial,
-                &self.opts,
-            )
-        };
+        let r = self.integrator.integrate(
+            &mut sys,
+            t0,
+            t0 + h,
+            &mut self.work.y,
+            &mut h_trial,
+            &self.opts,
+        );
         if let Some(b) = &sys.budget {
             self.budget_gap = b.gap;
         }
@@ -326,6 +316,7 @@ impl Component {
             t0,
             last_error: None,
             budget: None,
+            continues: false,
         };
         let mut r = sys.eval(s, &w.y, &mut w.k[0], None);
         for (sign, dest) in [(1.0, &mut fwd), (-1.0, &mut bwd)] {

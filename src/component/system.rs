@@ -210,6 +210,9 @@ pub(super) struct Sys<'a> {
     pub(super) last_error: Option<Error>,
     /// The step's CPU budget (none for output evaluations).
     pub(super) budget: Option<Budget>,
+    /// The right-hand side is the one the last integration ended with
+    /// ([`Work::fsal_matches`]; [`OdeSystem::continues`]).
+    pub(super) continues: bool,
 }
 
 impl Sys<'_> {
@@ -272,6 +275,9 @@ impl OdeSystem for Sys<'_> {
     }
     fn rhs_at_end(&mut self, t: f64, y: &[f64], dy: &mut [f64]) -> std::result::Result<(), String> {
         self.rates(t, y, dy, true)
+    }
+    fn continues(&self) -> bool {
+        self.continues
     }
     /// `∂f/∂t = 0` exactly when the level is [`LevelModel::rhs_time_invariant`] and its
     /// inputs do not move within the step ([`inputs_constant`]): `f(t + δ, y)` is then `f(t, y)` bit
@@ -539,6 +545,7 @@ mod tests {
             t0: t,
             last_error: None,
             budget: None,
+            continues: false,
         };
         let mut zero = nalgebra::DMatrix::zeros(n, n);
         let mut stale = nalgebra::DMatrix::from_element(n, n, 7.0);

@@ -94,8 +94,8 @@ pub struct Dopri5 {
     h_old: f64,
     dense_valid: bool,
     /// `k1 = f(t, y)` holds for `y` as the last call left it (that call succeeded): the last
-    /// stage of its last step, which [`Dopri5::integrate_continuing`] may reuse (FSAL across
-    /// calls).
+    /// stage of its last step, which the next call reuses when its system
+    /// [continues](OdeSystem::continues) this one (FSAL across calls).
     fsal_ready: bool,
     /// `(x, x^β)` of the last `err_old^β` of the PI controller: every call starts from
     /// `err_old = 1e-4`, and small errors keep it there (a `powf` saved per step; the same
@@ -176,25 +176,8 @@ impl Dopri5 {
         h_trial: &mut f64,
         opts: &Options,
     ) -> Result<(), SolverError> {
-        self.run(sys, t0, t1, y, h_trial, opts, false)
-    }
-
-    /// [`Dopri5::integrate`] continuing the last call: when that call succeeded and left
-    /// exactly (bit for bit) this `y`, its last stage `f(t_end, y)` is this call's first
-    /// stage `f(t0, y)` and is not evaluated again (first same as last across calls). The
-    /// caller vouches that `f` is the same function at both points: it does not depend on
-    /// time, and nothing it reads (inputs, memory) changed in between. The result is then
-    /// bit for bit that of [`Dopri5::integrate`], one evaluation cheaper.
-    pub fn integrate_continuing<S: OdeSystem + ?Sized>(
-        &mut self,
-        sys: &mut S,
-        t0: f64,
-        t1: f64,
-        y: &mut [f64],
-        h_trial: &mut f64,
-        opts: &Options,
-    ) -> Result<(), SolverError> {
-        self.run(sys, t0, t1, y, h_trial, opts, true)
+        let continuing = sys.continues();
+        self.run(sys, t0, t1, y, h_trial, opts, continuing)
     }
 
     #[allow(clippy::too_many_arguments)]

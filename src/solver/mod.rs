@@ -95,6 +95,15 @@ pub trait OdeSystem {
         self.rhs(t, y, dy)
     }
 
+    /// Whether this call continues the integrator's last one with the same function: `f`
+    /// does not depend on time and nothing it reads changed since that call's last stage.
+    /// Then DOPRI5 starts with that stage when `y` is bit for bit where the last call left
+    /// it (first same as last across calls: the same bits, one evaluation cheaper); RODAS4
+    /// integrates as usual. Default `false`.
+    fn continues(&self) -> bool {
+        false
+    }
+
     /// Fill the Jacobian `∂f/∂y` at `(t, y)` into `jac` (n × n) and return `true`, or return
     /// `false` (the default) to let the integrator build it by forward differences.
     fn jacobian(&mut self, _t: f64, _y: &[f64], _jac: &mut DMatrix<f64>) -> bool {
@@ -341,26 +350,6 @@ impl Integrator {
     ) -> Result<(), SolverError> {
         match self {
             Integrator::Dopri5(m) => m.integrate(sys, t0, t1, y, h_trial, opts),
-            Integrator::Rosenbrock(m) => m.integrate(sys, t0, t1, y, h_trial, opts),
-        }
-    }
-
-    /// [`Integrator::integrate`] continuing the last call: DOPRI5 reuses that call's last
-    /// stage as its first when `y` is bit for bit where the last call left it
-    /// ([`Dopri5::integrate_continuing`]: the caller vouches that `f` does not depend on
-    /// time and nothing it reads changed); RODAS4 integrates as usual. Same result as
-    /// [`Integrator::integrate`], bit for bit.
-    pub fn integrate_continuing<S: OdeSystem + ?Sized>(
-        &mut self,
-        sys: &mut S,
-        t0: f64,
-        t1: f64,
-        y: &mut [f64],
-        h_trial: &mut f64,
-        opts: &Options,
-    ) -> Result<(), SolverError> {
-        match self {
-            Integrator::Dopri5(m) => m.integrate_continuing(sys, t0, t1, y, h_trial, opts),
             Integrator::Rosenbrock(m) => m.integrate(sys, t0, t1, y, h_trial, opts),
         }
     }
