@@ -4,7 +4,7 @@
 //! dense output, §IV.2 for the stiffness detection).
 
 use super::{
-    check_call, error_norm, eval, eval_at_end, fixed_steps, initial_step, OdeSystem, Options,
+    check_call, error_norm, eval, eval_stage, fixed_steps, initial_step, OdeSystem, Options,
     SolverError, Stats, StepLoop,
 };
 
@@ -176,27 +176,12 @@ impl Dopri5 {
         h_trial: &mut f64,
         opts: &Options,
     ) -> Result<(), SolverError> {
-        let continuing = sys.continues();
-        self.run(sys, t0, t1, y, h_trial, opts, continuing)
-    }
-
-    #[allow(clippy::too_many_arguments)]
-    fn run<S: OdeSystem + ?Sized>(
-        &mut self,
-        sys: &mut S,
-        t0: f64,
-        t1: f64,
-        y: &mut [f64],
-        h_trial: &mut f64,
-        opts: &Options,
-        continuing: bool,
-    ) -> Result<(), SolverError> {
         check_call(self.n, sys.dim(), t0, t1, y, opts)?;
         if t1 == t0 {
             return Ok(());
         }
-        let reuse = continuing
-            && self.fsal_ready
+        let reuse = self.fsal_ready
+            && sys.continues()
             && self
                 .y
                 .iter()
@@ -379,12 +364,7 @@ impl Dopri5 {
             y1[i] =
                 y[i] + h * (A71 * k1[i] + A73 * k3[i] + A74 * k4[i] + A75 * k5[i] + A76 * k6[i]);
         }
-        let bad = if last {
-            eval_at_end(sys, st, tph, y1, k7)?
-        } else {
-            eval(sys, st, tph, y1, k7)?
-        };
-        if let Some(i) = bad {
+        if let Some(i) = eval_stage(sys, st, tph, y1, k7, last)? {
             return Ok(Some((tph, i)));
         }
         Ok(None)

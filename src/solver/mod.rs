@@ -453,24 +453,26 @@ fn eval<S: OdeSystem + ?Sized>(
     y: &[f64],
     dy: &mut [f64],
 ) -> Result<Option<usize>, SolverError> {
-    stats.rhs_evals += 1;
-    sys.rhs(t, y, dy)
-        .map_err(|message| SolverError::Rhs { t, message })?;
-    Ok(dy.iter().position(|v| !v.is_finite()))
+    eval_stage(sys, stats, t, y, dy, false)
 }
 
-/// [`eval`] through [`OdeSystem::rhs_at_end`] (the last stage of a step landing on the
-/// end of the call).
-fn eval_at_end<S: OdeSystem + ?Sized>(
+/// [`eval`], through [`OdeSystem::rhs_at_end`] when `at_end` (the last stage of a step
+/// landing on the end of the call).
+fn eval_stage<S: OdeSystem + ?Sized>(
     sys: &mut S,
     stats: &mut Stats,
     t: f64,
     y: &[f64],
     dy: &mut [f64],
+    at_end: bool,
 ) -> Result<Option<usize>, SolverError> {
     stats.rhs_evals += 1;
-    sys.rhs_at_end(t, y, dy)
-        .map_err(|message| SolverError::Rhs { t, message })?;
+    let r = if at_end {
+        sys.rhs_at_end(t, y, dy)
+    } else {
+        sys.rhs(t, y, dy)
+    };
+    r.map_err(|message| SolverError::Rhs { t, message })?;
     Ok(dy.iter().position(|v| !v.is_finite()))
 }
 
