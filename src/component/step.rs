@@ -162,7 +162,11 @@ impl Component {
                     t: t0,
                     field: "solver.max_step_cpu_s",
                     limit: format!("{} s", self.scene.solver.max_step_cpu_s),
-                    used: format!("{used:.3e} s of CPU time, reaching t = {}", e_time(&e)),
+                    used: format!(
+                        "at most {used:.3e} s of CPU time (the wall time before its first \
+                         CPU-clock check counted as CPU), reaching t = {}",
+                        e_time(&e)
+                    ),
                 });
             }
             let hint = match e {
