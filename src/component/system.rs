@@ -41,7 +41,7 @@ pub(super) struct Budget {
     /// as many: a step of a few cheap evaluations then reads no clock but the wall clock
     /// at its start).
     pub(super) gap: u32,
-    /// CPU time used when the budget ran out.
+    /// CPU time used when the budget ran out (an upper bound: see the type's notes).
     pub(super) spent: Option<f64>,
 }
 
