@@ -227,6 +227,10 @@ pub struct FilmAtSpeed {
     pub u: f64,
     a_i: f64,
     a_o: f64,
+    /// `s* = B^(1/(1 + e))`, the root of the film equation at zero rigid approach (the
+    /// scale of [`root_start`]), and its reciprocal; zero without a film.
+    s_star: f64,
+    inv_s_star: f64,
 }
 
 /// What the film law gives for one ball.
@@ -299,10 +303,20 @@ impl FilmModel {
             }
         }
         let u = entrainment_speed(self.dm, self.gamma, omega);
+        let (a_i, a_o) = (self.fits[0].at(u), self.fits[1].at(u));
+        // The same `B` as `solve`'s.
+        let b = (a_i + a_o) * self.kn_pow;
+        let s_star = if b > 0.0 {
+            b.powf(1.0 / (1.0 + FILM_E))
+        } else {
+            0.0
+        };
         let f = FilmAtSpeed {
             u,
-            a_i: self.fits[0].at(u),
-            a_o: self.fits[1].at(u),
+            a_i,
+            a_o,
+            s_star,
+            inv_s_star: if s_star > 0.0 { 1.0 / s_star } else { 0.0 },
         };
         self.last_speed.set(Some((omega.to_bits(), f)));
         f
@@ -320,7 +334,13 @@ impl FilmModel {
     /// rigid approach is `delta`; `None` when it carries no load.
     ///
     /// In `s = delta_H` the equation is `g(s) = s - delta - B s^-e = 0` with `e = 1.5 x
-    /// 0.067` and `B = (a_i + a_o) Kn^-0.067`. The Newton starts from the Lagrange
+    /// 0.067` and `B = (a_i + a_o) Kn^-0.067`. Scaled by `s* = B^(1/(1 + e))` (the root
+    /// at `delta = 0`), `s = s* y` and `delta = s* d`, it is `y - y^-e = d`: one root
+    /// `y(d)` for every ball, speed and bearing. For `-2 <= d < 18` (from films bridging
+    /// a gap through the edge of the load zone, where the film is comparable to the
+    /// approach, to `c` below 0.05) the Newton starts from [`root_start`]'s table of
+    /// `y(d)` (within 3e-7 of the root, 2e-10 for `d >= 0`), so one Newton step (two
+    /// below `d = -1`) lands at rounding. Above, it starts from the Lagrange
     /// inversion series of the root (Lagrange–Bürmann; e.g. Abramowitz & Stegun 3.6.6):
     /// with `c = B delta^-e / delta` (the film at the rigid approach over the approach),
     /// `s = delta (1 + r)` and `r = c (1 + r)^-e`, so `r = sum_n c^n/n! d^(n-1)/dr^(n-1)
@@ -345,7 +365,15 @@ impl FilmModel {
         let (s, t, q_pow) = if delta + h_max <= s_min {
             (delta + h_max, 0.0, self.qmin_pow)
         } else {
-            let (mut s, mut sp) = if delta > s_min {
+            let start = if f.s_star > 0.0 {
+                root_start(delta * f.inv_s_star)
+            } else {
+                None
+            };
+            let (mut s, mut sp) = if let Some(y) = start {
+                let s = f.s_star * y;
+                (s, pow_neg_e(s))
+            } else if delta > s_min {
                 let h0 = b * pow_neg_e(delta);
                 let c = h0 / delta;
                 let s = if c <= START_SERIES_MAX {
@@ -542,6 +570,93 @@ fn pow_neg_e(x: f64) -> f64 {
 
 /// `e = 1.5 x 0.067`: `h_c ~ Q^-0.067 = (Kn s^1.5)^-0.067 ~ s^-e`.
 const FILM_E: f64 = 1.5 * 0.067;
+
+/// Lower end, upper end and intervals per unit of `d` of [`root_start`]'s two table
+/// segments.
+const ROOT_SEGMENTS: [(f64, f64, f64); 2] = [(-2.0, 2.0, 64.0), (2.0, 18.0, 16.0)];
+/// Intervals of each segment (`(end - start) x per unit`).
+const ROOT_INTERVALS: usize = 256;
+
+/// A start for the film Newton: `y(d)`, the root of `y - y^-e = d` (`e = FILM_E`; the
+/// film equation scaled by its root at zero approach, see [`FilmModel::solve`]), for `-2
+/// <= d < 18`; `None` outside (and for NaN).
+///
+/// Piecewise cubic Hermite interpolation (Abramowitz & Stegun 25.2.28, two-point
+/// Hermite) of `y` between nodes where `y` is solved to rounding and its slope is exact,
+/// `dy/dd = 1 / (1 + e y^(-e-1)) = y / (y + e y^-e)`: 256 intervals of 1/64 on [-2, 2]
+/// and 256 of 1/16 on [2, 18] (16 KiB of coefficients, built at first use from about
+/// two thousand `powf`). Hermite's error bound `h^4/384 max|y''''|` gives, measured against
+/// the direct root (test `root_start_is_within_its_bound`), a relative error below 3e-7
+/// for `d < -1` (where `y` falls steeply to zero), 5e-9 on [-1, 0] and 2e-10 above. It
+/// is only the start: the Newton's own stop test decides the result.
+fn root_start(d: f64) -> Option<f64> {
+    static TABLE: std::sync::OnceLock<[[f64; 4]; 2 * ROOT_INTERVALS]> = std::sync::OnceLock::new();
+    let [(lo0, hi0, n0), (lo1, hi1, n1)] = ROOT_SEGMENTS;
+    let (u, base) = if d >= lo0 && d < hi0 {
+        ((d - lo0) * n0, 0)
+    } else if d >= lo1 && d < hi1 {
+        ((d - lo1) * n1, ROOT_INTERVALS)
+    } else {
+        return None;
+    };
+    let t = TABLE.get_or_init(root_table);
+    // u >= 0, so `as` truncates to the floor; the clamp guards rounding at the top.
+    let i = (u as usize).min(ROOT_INTERVALS - 1);
+    let x = u - i as f64;
+    let [c0, c1, c2, c3] = t[base + i];
+    Some(c0 + x * (c1 + x * (c2 + x * c3)))
+}
+
+/// The root `y` of `y - y^-e = d` to rounding, by Newton from `y0 > 0` (a nearby root).
+/// `g(y) = y - y^-e - d` is increasing and concave, so the iterates settle from the left.
+fn root_newton(d: f64, y0: f64) -> f64 {
+    let e = FILM_E;
+    let mut y = y0;
+    for _ in 0..100 {
+        let p = y.powf(-e);
+        let dy = -(y - p - d) / (1.0 + e * p / y);
+        // A step past zero (from far right of the root) halves instead.
+        y = if y + dy > 0.0 { y + dy } else { 0.5 * y };
+        if dy.abs() <= 1e-15 * y {
+            break;
+        }
+    }
+    y
+}
+
+/// [`root_start`]'s table: per interval, the cubic in `x` in [0, 1] (the fraction of the
+/// interval) of the Hermite interpolant, from the nodes' roots and slopes (no heap: the
+/// first use may fall inside an allocation-free loop).
+fn root_table() -> [[f64; 4]; 2 * ROOT_INTERVALS] {
+    let e = FILM_E;
+    let mut table = [[0.0; 4]; 2 * ROOT_INTERVALS];
+    // At d = -2 the root is about 1e-3; the bisection-free start: y^-e = 2 + y ~ 2.
+    let mut y = root_newton(ROOT_SEGMENTS[0].0, 2f64.powf(-1.0 / e));
+    for (seg, (lo, _, per)) in ROOT_SEGMENTS.into_iter().enumerate() {
+        let h = 1.0 / per;
+        let slope = |y: f64| y / (y + e * y.powf(-e));
+        let node = |k: usize, y_prev: f64| {
+            let d = lo + k as f64 * h;
+            root_newton(d, y_prev)
+        };
+        let mut y0 = node(0, y);
+        for k in 0..ROOT_INTERVALS {
+            // Predict the next node along the slope (the Newton then needs a few steps).
+            let y1 = node(k + 1, y0 + h * slope(y0));
+            // Hermite on [0, 1] with end slopes scaled by the interval h.
+            let (m0, m1) = (h * slope(y0), h * slope(y1));
+            table[seg * ROOT_INTERVALS + k] = [
+                y0,
+                m0,
+                3.0 * (y1 - y0) - 2.0 * m0 - m1,
+                2.0 * (y0 - y1) + m0 + m1,
+            ];
+            y0 = y1;
+        }
+        y = y0;
+    }
+    table
+}
 /// Largest `c` the film Newton starts from the Lagrange series at; above it (balls at the
 /// edge of contact, whose film is comparable to their approach) from `delta + B delta^-e`.
 const START_SERIES_MAX: f64 = 0.5;
@@ -613,57 +728,136 @@ mod tests {
         assert!(m.solve(&f, -5e-6).is_none());
     }
 
-    /// The fast film solve (Lagrange start, one division per Newton step, the combined
-    /// series stiffness) gives the direct solve's approach and load to 6e-15 relative
-    /// (times the condition number of `s = delta + h`), films to 4e-15, and its stiffness
-    /// and damping to 1e-13, over approaches from the frozen
-    /// film through the contact edge (`c` above the series' range) to heavy load, at two
-    /// speeds and at standstill (no film); both say `None` at the same gaps.
+    /// The fast film solve (table or Lagrange start, one division per Newton step, the
+    /// combined series stiffness) gives the direct solve's approach and load to 6e-15
+    /// relative (times the condition number of `s = delta + h`), films to 4e-15, and its
+    /// stiffness and damping to 1e-13, over approaches from the frozen film through the
+    /// contact edge (`c` above the series' range) to heavy load, at two speeds and at
+    /// standstill (no film); both say `None` at the same gaps. The same with the table
+    /// start switched off (the starts it leaves for `d` outside [-2, 18)).
     #[test]
     fn fast_solve_matches_direct() {
         let (m, _) = model(Lubricant::study2());
         let close = |a: f64, b: f64, tol: f64| (a - b).abs() <= tol * a.abs().max(b.abs());
-        let mut used_series = [0usize; 2];
+        // Starts used: plain (s_min or delta + h0), series, table.
+        let mut used = [0usize; 3];
         for omega in [0.0, 183.26, 1500.0] {
-            let f = m.at_speed(omega);
-            let b = (f.a_i + f.a_o) * m.kn_pow;
-            for i in 0..4000 {
-                // -1 µm to 40 µm, denser near zero.
-                let x = i as f64 / 4000.0;
-                let delta = -1e-6 + 41e-6 * x * x * x;
-                let (fast, direct) = (m.solve(&f, delta), m.solve_direct(&f, delta));
-                let (Some(fast), Some(direct)) = (fast, direct) else {
-                    assert_eq!(fast.is_none(), direct.is_none(), "{delta}");
-                    continue;
-                };
-                if delta > m.s_min {
-                    let c = b * delta.powf(-FILM_E) / delta;
-                    used_series[(c <= START_SERIES_MAX) as usize] += 1;
+            let with_table = m.at_speed(omega);
+            let without = FilmAtSpeed {
+                s_star: 0.0,
+                inv_s_star: 0.0,
+                ..with_table
+            };
+            for f in [with_table, without] {
+                let b = (f.a_i + f.a_o) * m.kn_pow;
+                for i in 0..4000 {
+                    // -1 µm to 40 µm, denser near zero.
+                    let x = i as f64 / 4000.0;
+                    let delta = -1e-6 + 41e-6 * x * x * x;
+                    let (fast, direct) = (m.solve(&f, delta), m.solve_direct(&f, delta));
+                    let (Some(fast), Some(direct)) = (fast, direct) else {
+                        assert_eq!(fast.is_none(), direct.is_none(), "{delta}");
+                        continue;
+                    };
+                    if f.s_star > 0.0 && root_start(delta * f.inv_s_star).is_some() {
+                        used[2] += 1;
+                    } else if delta > m.s_min {
+                        let c = b * delta.powf(-FILM_E) / delta;
+                        used[(c <= START_SERIES_MAX) as usize] += 1;
+                    } else {
+                        used[0] += 1;
+                    }
+                    let what = format!("{omega} {delta}: {fast:?} vs {direct:?}");
+                    // `s = delta + h` is known to rounding of the larger of the two: where
+                    // the film bridges a gap (delta < 0, s << h) the relative tolerance
+                    // grows by (|delta| + h) / s, the condition number of the sum.
+                    let s = direct.hertz_approach;
+                    let cond = (delta.abs() + direct.central[0] + direct.central[1]) / s;
+                    assert!(close(fast.hertz_approach, s, 4e-15 * cond), "{what}");
+                    assert!(close(fast.load, direct.load, 6e-15 * cond), "{what}");
+                    for k in 0..2 {
+                        assert!(close(fast.central[k], direct.central[k], 4e-15), "{what}");
+                    }
+                    assert!(
+                        close(fast.stiffness, direct.stiffness, 1e-13 * cond),
+                        "{what}"
+                    );
+                    assert!(close(fast.damping, direct.damping, 1e-13 * cond), "{what}");
+                    assert!(fast.load.is_finite() && fast.damping.is_finite());
                 }
-                let what = format!("{omega} {delta}: {fast:?} vs {direct:?}");
-                // `s = delta + h` is known to rounding of the larger of the two: where the
-                // film bridges a gap (delta < 0, s << h) the relative tolerance grows by
-                // (|delta| + h) / s, the condition number of the sum.
-                let s = direct.hertz_approach;
-                let cond = (delta.abs() + direct.central[0] + direct.central[1]) / s;
-                assert!(close(fast.hertz_approach, s, 4e-15 * cond), "{what}");
-                assert!(close(fast.load, direct.load, 6e-15 * cond), "{what}");
-                for k in 0..2 {
-                    assert!(close(fast.central[k], direct.central[k], 4e-15), "{what}");
-                }
-                assert!(
-                    close(fast.stiffness, direct.stiffness, 1e-13 * cond),
-                    "{what}"
-                );
-                assert!(close(fast.damping, direct.damping, 1e-13 * cond), "{what}");
-                assert!(fast.load.is_finite() && fast.damping.is_finite());
             }
         }
-        // Both starts were exercised.
+        // The three starts were exercised.
+        assert!(used[0] > 10 && used[1] > 1000 && used[2] > 1000, "{used:?}");
+    }
+
+    /// The table start is within its stated bounds of the root (solved by bisection to
+    /// rounding, no Newton) over its whole range, densely: 3e-7 relative below `d = -1`,
+    /// 5e-9 on [-1, 0], 2e-10 above; outside the range (and for NaN) there is no start.
+    /// At a ball of the 6205 model the table's scaled root is the film equation's root.
+    #[test]
+    fn root_start_is_within_its_bound() {
+        let e = FILM_E;
+        let bisect = |d: f64| {
+            let (mut lo, mut hi) = (0.0f64, 100.0f64);
+            for _ in 0..2000 {
+                let mid = 0.5 * (lo + hi);
+                if mid <= lo || mid >= hi {
+                    break;
+                }
+                if mid - mid.powf(-e) < d {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            0.5 * (lo + hi)
+        };
+        let mut worst = [0.0f64; 3];
+        let n = 36_000;
+        for i in 0..n {
+            let d = -2.0 + 20.0 * (i as f64 + 0.37) / n as f64;
+            let Some(y) = root_start(d) else {
+                assert!(d >= 18.0, "{d}");
+                continue;
+            };
+            let want = bisect(d);
+            let rel = (y - want).abs() / want;
+            let k = if d < -1.0 {
+                0
+            } else if d < 0.0 {
+                1
+            } else {
+                2
+            };
+            worst[k] = worst[k].max(rel);
+        }
         assert!(
-            used_series[0] > 10 && used_series[1] > 1000,
-            "{used_series:?}"
+            worst[0] < 3e-7 && worst[1] < 5e-9 && worst[2] < 2e-10,
+            "{worst:?}"
         );
+        // Not trivially exact either (it is an interpolant).
+        assert!(worst[0] > 1e-12, "{worst:?}");
+        for d in [
+            -2.0 - 1e-9,
+            18.0,
+            1e3,
+            f64::NAN,
+            f64::INFINITY,
+            -f64::INFINITY,
+        ] {
+            assert!(root_start(d).is_none(), "{d}");
+        }
+        assert!(root_start(-2.0).is_some() && root_start(18.0 - 1e-12).is_some());
+        // Scaled back: the root of the film equation s - delta - B s^-e = 0.
+        let (m, _) = model(Lubricant::study2());
+        let f = m.at_speed(183.26);
+        let b = (f.a_i + f.a_o) * m.kn_pow;
+        for delta in [-0.1e-6, 0.0, 0.2e-6, 1e-6] {
+            let s = f.s_star * root_start(delta * f.inv_s_star).unwrap();
+            let g = s - delta - b * s.powf(-e);
+            assert!(g.abs() < 1e-9 * s, "{delta}: {g} at {s}");
+        }
     }
 
     /// `at_speed` keeps its last speed's result but answers every speed with the bits of a
