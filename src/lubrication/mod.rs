@@ -322,6 +322,12 @@ impl FilmModel {
         f
     }
 
+    /// The thickest film a ball can have at these coefficients (both contacts, frozen at
+    /// `Q_MIN`), m: [`FilmModel::solve`] says `None` exactly when `delta + max_film <= 0`.
+    pub fn max_film(&self, f: &FilmAtSpeed) -> f64 {
+        (f.a_i + f.a_o) * self.qmin_pow
+    }
+
     /// Thinnest film of a ball carrying `q`, m. It falls with the load, so over a set of
     /// balls it is the one of the largest load.
     pub fn min_film(&self, f: &FilmAtSpeed, q: f64) -> f64 {

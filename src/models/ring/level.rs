@@ -31,8 +31,9 @@ use crate::error::Result;
 use crate::geometry::Bearing;
 use crate::lubrication::entrainment_speed;
 use crate::models::effects::{Effects, FilmKind, RingEffects, WearRegime};
-use crate::models::ring::{RingDof, RingEval, RingModel};
+use crate::models::ring::{Profile, RingDof, RingEval, RingModel};
 use crate::models::thermal::{ContactSums, ThermalModel, ThermalParams};
+use crate::models::waviness::WavySite;
 use crate::models::wear::{self, FilmDefect, WearLaw};
 
 /// Kelvin at 0 °C.
@@ -427,21 +428,38 @@ fn eval_ring<F: FnMut(usize, f64, f64)>(
     per_ball: F,
 ) {
     let [theta_s, turned] = angles;
+    let ev = |p: Profile<'_>, max: f64, eval: &mut RingEval, per_ball: F| {
+        model.eval_with(x[0], wc, &m.q, &m.v, t, (p, max), jac, eval, per_ball)
+    };
     match (profile, slow) {
-        (None, None) => model.eval_with(x[0], wc, &m.q, &m.v, t, None, jac, eval, per_ball),
+        (None, None) => ev(None, 0.0, eval, per_ball),
         (Some(fx), None) => {
             let at = fx.at(x[0], theta_s);
             let p = |j: usize, psi: f64, _t: f64| at.offset(j, psi);
-            model.eval_with(x[0], wc, &m.q, &m.v, t, Some(&p), jac, eval, per_ball)
+            ev(Some(&p), profile_max(fx), eval, per_ball)
         }
+        // The slow offsets (wear maps, thermal clearance) have no bound kept: no skipping.
         (fx, Some(slow)) => {
             let at = fx.map(|fx| fx.at(x[0], theta_s));
             let p = |j: usize, psi: f64, _t: f64| {
                 at.as_ref().map_or(0.0, |at| at.offset(j, psi)) + slow.offset(aux, psi, turned)
             };
-            model.eval_with(x[0], wc, &m.q, &m.v, t, Some(&p), jac, eval, per_ball)
+            ev(Some(&p), f64::INFINITY, eval, per_ball)
         }
     }
+}
+
+/// The largest offset the fast effects can add to a ball's approach, m: a race harmonic
+/// `A sin(..)` adds at most `|A|`, a ball harmonic (met at both races, `w(phi) + w(phi +
+/// pi)`) at most `2|A|`, a defect only takes away (its loss is `>= 0`).
+fn profile_max(fx: &RingEffects) -> f64 {
+    fx.waviness
+        .iter()
+        .map(|w| match w.site {
+            WavySite::Outer | WavySite::Inner => w.amplitude.abs(),
+            WavySite::Ball(_) => 2.0 * w.amplitude.abs(),
+        })
+        .sum()
 }
 
 /// The registry's constructor ([`crate::component::levels::LEVELS`]): 2 or 5 ring

@@ -212,12 +212,35 @@ impl RingModel {
         jac: bool,
         out: &mut RingEval,
     ) {
-        self.eval_with(theta_c, omega_c, q, v, t, profile, jac, out, |_, _, _| {});
+        let profile_max = if profile.is_some() {
+            f64::INFINITY
+        } else {
+            0.0
+        };
+        self.eval_with(
+            theta_c,
+            omega_c,
+            q,
+            v,
+            t,
+            (profile, profile_max),
+            jac,
+            out,
+            |_, _, _| {},
+        );
     }
 
     /// [`RingModel::eval`] that also hands each loaded ball to `per_ball(j, psi_j, Q_j)`
     /// (ball index, azimuth, Hertz load): what the slow effects (wear, friction power)
     /// accumulate. Same arithmetic as `eval`; allocation-free.
+    ///
+    /// `profile_max` bounds the profile's offset from above (`INFINITY` when unknown, `0`
+    /// without one): a ball whose rigid approach plus that bound plus the thickest film
+    /// ([`FilmModel::max_film`]) is below zero carries no load whatever the profile says,
+    /// so its profile and film are not evaluated. The bound is widened by a relative 1e-9
+    /// and 1 fm, far above the rounding of the sums, so a ball is skipped only where the
+    /// full evaluation would find it unloaded: the same results, bit for bit (test
+    /// `skipping_unloaded_balls_changes_no_bit`).
     #[allow(clippy::too_many_arguments)]
     pub fn eval_with<F: FnMut(usize, f64, f64)>(
         &self,
@@ -226,7 +249,7 @@ impl RingModel {
         q: &[f64; 5],
         v: &[f64; 5],
         t: f64,
-        profile: Profile<'_>,
+        (profile, profile_max): (Profile<'_>, f64),
         jac: bool,
         out: &mut RingEval,
         mut per_ball: F,
@@ -236,6 +259,12 @@ impl RingModel {
             .film
             .as_ref()
             .map(|f| f.at_speed(omega_c * self.shaft_per_cage));
+        let film_max = match (&self.film, &film_speed) {
+            (Some(film), Some(fs)) => film.max_film(fs),
+            _ => 0.0,
+        };
+        // Rigid approaches at or below this carry no load (NaN bounds skip nothing).
+        let unloaded_below = -(profile_max + film_max) * (1.0 + 1e-9) - 1e-15;
         let dpsi = 2.0 * PI / self.z as f64;
         let even = self.spacing.is_empty();
         // Evenly spaced: ball j+1 is ball j rotated by the pitch (the rounding this adds
@@ -290,6 +319,9 @@ impl RingModel {
                     (l - self.a, g, n[0] * da1 + n[1] * da2, n, l, jm)
                 }
             };
+            if delta <= unloaded_below {
+                continue;
+            }
             let delta = delta + profile.map_or(0.0, |p| p(j, psi, t));
             let (load, dload, cd) = match (&self.film, &film_speed) {
                 (Some(film), Some(fs)) => {
@@ -501,6 +533,63 @@ mod tests {
         assert!((out.wrench[2] + 16.0 * q * a1 / l).abs() < 1e-9 * out.wrench[2].abs());
         assert!(out.wrench[0].abs() < 1e-6 && out.wrench[3].abs() < 1e-6);
         assert_eq!(out.loaded, 16);
+    }
+
+    /// Skipping the balls that the profile's bound and the thickest film cannot bring into
+    /// contact changes no bit of the forces, matrices and per-ball loads (dry and with a
+    /// film, 2 and 5 DOF, ring positions from centred to heavily loaded), while it does
+    /// skip profile evaluations; a bound below the profile's true maximum would change
+    /// the result (what the comparison would catch).
+    #[test]
+    fn skipping_unloaded_balls_changes_no_bit() {
+        use std::cell::Cell;
+        let b = preset("6205").unwrap().build().unwrap();
+        let amp = 0.3e-6;
+        let calls = Cell::new(0usize);
+        let wavy = |j: usize, psi: f64, _t: f64| {
+            calls.set(calls.get() + 1);
+            amp * (5.0 * psi + j as f64).sin()
+        };
+        let run = |m: &RingModel, q: [f64; 5], max: f64| {
+            let mut out = RingEval::default();
+            let mut balls = Vec::new();
+            let v = [1e-3, -2e-3, 0.0, 0.0, 0.0];
+            m.eval_with(
+                0.37,
+                70.0,
+                &q,
+                &v,
+                0.0,
+                (Some(&wavy), max),
+                true,
+                &mut out,
+                |j, p, l| balls.push((j, p.to_bits(), l.to_bits())),
+            );
+            (out, balls)
+        };
+        let (mut skipped, mut changed) = (0, 0);
+        for dof in [RingDof::Two, RingDof::Five] {
+            let dry = RingModel::new(&b, dof, 100.0);
+            let wet = dry
+                .clone()
+                .with_film(crate::lubrication::Lubricant::study2());
+            for m in [&dry, &wet] {
+                for k in 0..40 {
+                    let r = 1e-6 * (k as f64 - 8.0);
+                    let q = [0.3 * r, -r, 0.5e-6, 1e-5, -2e-5];
+                    calls.set(0);
+                    let full = run(m, q, f64::INFINITY);
+                    let all = calls.get();
+                    calls.set(0);
+                    let bounded = run(m, q, amp);
+                    skipped += all - calls.get();
+                    assert_eq!(full, bounded, "{dof:?} {k}");
+                    // A wrong (too small) bound skips balls the profile would load.
+                    changed += (run(m, q, -amp) != full) as usize;
+                }
+            }
+        }
+        assert!(skipped > 500 && changed > 10, "{skipped} {changed}");
     }
 
     /// A profile that removes material (a defect) unloads the ball it passes.
