@@ -100,6 +100,11 @@ struct WearPart {
     a0: usize,
     /// Contacts (inner, outer) at the nominal angle.
     contacts: [PointContact; 2],
+    /// Their transverse semi-axis coefficients `ca` (`a = ca Q^(1/3)`,
+    /// [`PointContact::semi_axis_coefficients`]), computed once: a ball's two contacts
+    /// share its load, so `Q^(1/3)` is taken once per ball and `a` is
+    /// [`PointContact::semi_axes`]'s, bit for bit.
+    semi_axis_a: [f64; 2],
     /// Groove conformities (inner, outer).
     f: [f64; 2],
     /// Cell lengths on the race (inner, outer), m.
@@ -175,6 +180,7 @@ impl Slow {
                 x0,
                 a0: 0,
                 contacts,
+                semi_axis_a: contacts.map(|c| c.semi_axis_coefficients().0),
                 f: [b.fi, b.fo],
                 cell_len: [circ(b.dm * (1.0 - gamma)), circ(b.dm * (1.0 + gamma))],
                 m: wear::heathcote_mean_factor(),
@@ -388,9 +394,11 @@ impl RingLevel {
         dx_o.fill(0.0);
         dx_i.fill(0.0);
         let per_ball = |_j: usize, psi: f64, q: f64| {
+            // `semi_axes`' own `Q^(1/3)`, once for both contacts.
+            let q3 = q.max(0.0).cbrt();
             for r in 0..2 {
                 let c = &w.contacts[r];
-                let (a, _) = c.semi_axes(q);
+                let a = w.semi_axis_a[r] * q3;
                 let us = wear::heathcote_slip(rel[r], a, w.f[r], slow.d, w.m);
                 let (la, psi_f) = w.law.factors(c, q, u, us, ts[r]);
                 let rate = w.law.area_rate(q, a, us, la, psi_f);
@@ -622,6 +630,21 @@ impl LevelModel for RingLevel {
 mod tests {
     use super::*;
     use crate::geometry::presets::preset;
+
+    /// The wear closure's semi-axis (the kept coefficient times one `Q^(1/3)` per ball) is
+    /// each contact's own `semi_axes`, bit for bit, from zero and negative loads to heavy.
+    #[test]
+    fn kept_semi_axis_is_the_contacts_own() {
+        let b = preset("6012").unwrap().build().unwrap();
+        for race in [Race::Inner, Race::Outer] {
+            let c = PointContact::ball_race(&b, 0.0, race);
+            let ca = c.semi_axis_coefficients().0;
+            for q in [-1.0, 0.0, 1e-9, 0.1, 3.7, 123.456, 2.5e3, 1e5] {
+                let kept = ca * f64::max(q, 0.0).cbrt();
+                assert_eq!(kept.to_bits(), c.semi_axes(q).0.to_bits(), "{race:?} {q}");
+            }
+        }
+    }
 
     fn outputs(l: &mut RingLevel, m: &Motion, x: &[f64]) -> Vec<u64> {
         let mut out = LevelOutputs::default();
