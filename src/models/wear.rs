@@ -200,7 +200,9 @@ pub fn deposit(map: &mut [f64], theta: f64, area_rate: f64, cell_len: f64) {
         return;
     }
     let u = cell_coordinate(theta, n);
-    let k = (u.floor() as usize).min(n - 1);
+    // u is in [0, n] (or NaN): the truncating cast is its floor (NaN -> 0 as
+    // `floor`'s NaN cast), without `floor`'s libm call.
+    let k = (u as usize).min(n - 1);
     let w = (u - k as f64).clamp(0.0, 1.0);
     let r = area_rate / cell_len;
     map[k] += (1.0 - w) * r;
@@ -215,7 +217,8 @@ pub fn sample(map: &[f64], theta: f64) -> f64 {
         return 0.0;
     }
     let u = cell_coordinate(theta, n);
-    let k = (u.floor() as usize).min(n - 1);
+    // The floor of u in [0, n] by the cast, as in `deposit`.
+    let k = (u as usize).min(n - 1);
     let w = (u - k as f64).clamp(0.0, 1.0);
     (1.0 - w) * map[k] + w * map[(k + 1) % n]
 }
@@ -390,6 +393,32 @@ mod tests {
             );
         }
         assert!(cell_coordinate(f64::NAN, n).is_nan());
+    }
+
+    #[test]
+    fn cast_floor_cell_matches_floor() {
+        // The cell index of `deposit` and `sample` (the cast) is `floor`'s over angles far
+        // beyond a turn, both signs, cell boundaries, 2^51 turns and beyond, and NaN.
+        let n = 180;
+        let tau = std::f64::consts::TAU;
+        let mut thetas: Vec<f64> = (0..20_000)
+            .map(|i| (i as f64 - 10_000.0) * 0.0123)
+            .collect();
+        thetas.extend((0..=n).map(|k| tau * k as f64 / n as f64));
+        thetas.extend([
+            0.0,
+            -0.0,
+            -1e-300,
+            1e-300,
+            tau * 2f64.powi(51),
+            -tau * 2f64.powi(60),
+        ]);
+        thetas.extend([f64::NAN, f64::INFINITY, 1e300]);
+        for theta in thetas {
+            let u = cell_coordinate(theta, n);
+            let by_floor = (u.floor() as usize).min(n - 1);
+            assert_eq!((u as usize).min(n - 1), by_floor, "{theta} {u}");
+        }
     }
 
     #[test]
