@@ -129,41 +129,84 @@ pub fn x_turn() -> f64 {
 
 /// Asperity load share `La`, per cent, in `[0, 100]` (module notes).
 pub fn asperity_share(g: &Groups, reading: AsperityReading) -> f64 {
-    if g.sigma.is_nan() || g.sigma <= 0.0 {
-        return 0.0;
+    ShareAt::new(g, reading).share(g.w)
+}
+
+/// [`asperity_share`] of one contact at one speed, with every term that does not depend
+/// on the load `W` (the logarithms of `sigma_bar`, `V`, `G`, `U`) computed once: the same
+/// operations in the same order, so the same bits (`asperity_share` is this with its own
+/// groups).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ShareAt {
+    /// The share whatever the load: 0 without roughness, 100 without entrainment.
+    fixed: Option<f64>,
+    /// `ln 0.689 + s ln sigma_bar + 0.509 ln V` (the leading terms of `ln X1`, summed in
+    /// the formula's order).
+    lead: f64,
+    ln_g: f64,
+    ln_u: f64,
+}
+
+impl ShareAt {
+    /// From the groups (their load `w` is not used).
+    pub fn new(g: &Groups, reading: AsperityReading) -> Self {
+        let fixed = if g.sigma.is_nan() || g.sigma <= 0.0 {
+            Some(0.0)
+        } else if g.u.is_nan() || g.u <= 0.0 {
+            Some(100.0)
+        } else {
+            None
+        };
+        if fixed.is_some() {
+            return ShareAt {
+                fixed,
+                lead: 0.0,
+                ln_g: 0.0,
+                ln_u: 0.0,
+            };
+        }
+        ShareAt {
+            fixed,
+            lead: (0.689f64).ln() + reading.exponent() * g.sigma.ln() + 0.509 * g.v.ln(),
+            ln_g: g.g.ln(),
+            ln_u: g.u.ln(),
+        }
     }
-    if g.u.is_nan() || g.u <= 0.0 {
-        return 100.0;
-    }
-    // x1 = X U^2.9 (the speed-free part of the logarithm's argument).
-    let ln_x1 = (0.689f64).ln() + reading.exponent() * g.sigma.ln() + 0.509 * g.v.ln()
-        - 0.501 * g.w.ln()
-        - 2.87 * g.g.ln();
-    let ln_x = ln_x1 - B_U * g.u.ln();
-    // ln X*: a constant (eight `exp`, an `exp_m1` and a `ln`), computed once.
-    static LN_XT: std::sync::OnceLock<f64> = std::sync::OnceLock::new();
-    let ln_xt = *LN_XT.get_or_init(|| x_turn().ln());
-    // Past the turning point, the share at the turning speed, then blended to 100 %.
-    let (ln_x, ln_u, beyond) = if ln_x > ln_xt {
-        let ln_ut = (ln_x1 - ln_xt) / B_U;
-        (ln_xt, ln_ut, Some(g.u.ln() - ln_ut))
-    } else {
-        (ln_x, g.u.ln(), None)
-    };
-    let log_term = if ln_x > 30.0 {
-        ln_x
-    } else {
-        ln_x.exp().ln_1p()
-    };
-    let la = 10.0 * (-0.083 * g.w.ln() + A_U * ln_u + 0.314 * g.g.ln()).exp() * log_term;
-    if la.is_nan() {
-        return 100.0;
-    }
-    let la = la.clamp(0.0, 100.0);
-    match beyond {
-        // (U/U*)^0.143 falls from 1 at the turning point to 0 with the film.
-        Some(ln_ratio) => la + (100.0 - la) * (1.0 - (A_U * ln_ratio).exp()),
-        None => la,
+
+    /// The share at load group `w`, per cent.
+    pub fn share(&self, w: f64) -> f64 {
+        if let Some(la) = self.fixed {
+            return la;
+        }
+        let ln_w = w.ln();
+        // x1 = X U^2.9 (the speed-free part of the logarithm's argument).
+        let ln_x1 = self.lead - 0.501 * ln_w - 2.87 * self.ln_g;
+        let ln_x = ln_x1 - B_U * self.ln_u;
+        // ln X*: a constant (eight `exp`, an `exp_m1` and a `ln`), computed once.
+        static LN_XT: std::sync::OnceLock<f64> = std::sync::OnceLock::new();
+        let ln_xt = *LN_XT.get_or_init(|| x_turn().ln());
+        // Past the turning point, the share at the turning speed, then blended to 100 %.
+        let (ln_x, ln_u, beyond) = if ln_x > ln_xt {
+            let ln_ut = (ln_x1 - ln_xt) / B_U;
+            (ln_xt, ln_ut, Some(self.ln_u - ln_ut))
+        } else {
+            (ln_x, self.ln_u, None)
+        };
+        let log_term = if ln_x > 30.0 {
+            ln_x
+        } else {
+            ln_x.exp().ln_1p()
+        };
+        let la = 10.0 * (-0.083 * ln_w + A_U * ln_u + 0.314 * self.ln_g).exp() * log_term;
+        if la.is_nan() {
+            return 100.0;
+        }
+        let la = la.clamp(0.0, 100.0);
+        match beyond {
+            // (U/U*)^0.143 falls from 1 at the turning point to 0 with the film.
+            Some(ln_ratio) => la + (100.0 - la) * (1.0 - (A_U * ln_ratio).exp()),
+            None => la,
+        }
     }
 }
 

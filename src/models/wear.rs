@@ -38,7 +38,7 @@
 //! study \[2\] does.
 
 use crate::contact::PointContact;
-use crate::lubrication::asperity::{self, AsperityReading, Groups};
+use crate::lubrication::asperity::{AsperityReading, Groups, ShareAt};
 use crate::lubrication::Lubricant;
 
 /// Universal gas constant used by study \[2\], J/(mol K).
@@ -99,11 +99,51 @@ pub fn heathcote_slip(omega_rel: f64, a: f64, f: f64, d: f64, m: f64) -> f64 {
 /// Film-defect fraction `psi` (study \[2\]); 1 at zero sliding.
 #[inline]
 pub fn film_defect_fraction(us: f64, ax: f64, t0: f64, ea: f64, ts: f64) -> f64 {
+    film_defect_with(us, ax, t0, (-ea / (RG * ts)).exp())
+}
+
+/// [`film_defect_fraction`] with its Arrhenius factor `exp(-Ea/(R Ts))` given.
+#[inline]
+fn film_defect_with(us: f64, ax: f64, t0: f64, arrhenius: f64) -> f64 {
     if us <= 0.0 {
         return 1.0;
     }
-    let x = ax / (us * t0) * (-ea / (RG * ts)).exp();
+    let x = ax / (us * t0) * arrhenius;
     -(-x).exp_m1()
+}
+
+/// [`WearLaw::factors`] of one contact at one entrainment speed and surface temperature,
+/// with what does not depend on the load and the sliding computed once
+/// ([`WearLaw::prepare`]): the asperity share's logarithms ([`ShareAt`]) and the film
+/// defect's Arrhenius factor. The same bits as `factors` (which is this, prepared afresh).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FactorsAt {
+    /// `None`: the dry limit (La = 100, psi = 1).
+    film: Option<FilmFactorsAt>,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct FilmFactorsAt {
+    share: ShareAt,
+    /// `E' Rx²` (the load group is `W = Q / (E' Rx²)`, as in [`Groups::new`]).
+    w_den: f64,
+    ax: f64,
+    t0: f64,
+    arrhenius: f64,
+}
+
+impl FactorsAt {
+    /// `(La, psi)` at load `q` and sliding `us`.
+    #[inline]
+    pub fn factors(&self, q: f64, us: f64) -> (f64, f64) {
+        match &self.film {
+            None => (100.0, 1.0),
+            Some(f) => (
+                f.share.share(q / f.w_den),
+                film_defect_with(us, f.ax, f.t0, f.arrhenius),
+            ),
+        }
+    }
 }
 
 impl WearLaw {
@@ -132,12 +172,31 @@ impl WearLaw {
         ts: f64,
         reading: AsperityReading,
     ) -> (f64, f64) {
-        match &self.film {
-            None => (100.0, 1.0),
-            Some(f) => {
+        self.prepare_read(c, u, ts, reading).factors(q, us)
+    }
+
+    /// [`Self::factors`]' load- and sliding-free part at entrainment speed `u` and surface
+    /// temperature `ts` (the default reading).
+    #[inline]
+    pub fn prepare(&self, c: &PointContact, u: f64, ts: f64) -> FactorsAt {
+        self.prepare_read(c, u, ts, AsperityReading::default())
+    }
+
+    /// [`Self::prepare`] with a chosen reading.
+    #[inline]
+    pub fn prepare_read(
+        &self,
+        c: &PointContact,
+        u: f64,
+        ts: f64,
+        reading: AsperityReading,
+    ) -> FactorsAt {
+        FactorsAt {
+            film: self.film.as_ref().map(|f| {
                 let l = &f.lubricant;
+                // The groups without a load (`w` unused by `ShareAt`).
                 let g = Groups::new(
-                    q,
+                    0.0,
                     u,
                     c.curvature.rx,
                     c.e_eff,
@@ -147,11 +206,15 @@ impl WearLaw {
                     self.hardness,
                     c.ellipse.kappa,
                 );
-                (
-                    asperity::asperity_share(&g, reading),
-                    film_defect_fraction(us, f.ax, f.t0, f.ea, ts),
-                )
-            }
+                let (rx, e_eff) = (c.curvature.rx, c.e_eff);
+                FilmFactorsAt {
+                    share: ShareAt::new(&g, reading),
+                    w_den: e_eff * rx * rx,
+                    ax: f.ax,
+                    t0: f.t0,
+                    arrhenius: (-f.ea / (RG * ts)).exp(),
+                }
+            }),
         }
     }
 
@@ -364,6 +427,124 @@ mod tests {
         let (l1, _) = law(0.2e-6).factors(&c, 180.0, 4.0, 0.01, 293.15);
         let (l2, _) = law(0.42e-6).factors(&c, 180.0, 4.0, 0.01, 293.15);
         assert!(0.0 < l1 && l1 < l2 && l2 < 100.0, "{l1} {l2}");
+    }
+
+    /// The prepared factors (load-free part once: the asperity share's logarithms, the
+    /// Arrhenius factor) are the direct ones bit for bit: the formulas as they stood
+    /// before the split (the groups with the load, the printed `La` and `psi`) over loads,
+    /// sliding, speeds (beyond the turning point too), temperatures, both readings, and
+    /// the limits (no entrainment, no roughness, no sliding, dry).
+    #[test]
+    fn prepared_factors_are_the_direct_ones_bit_for_bit() {
+        use crate::contact::{Curvature, Race};
+        // The asperity share as printed before `ShareAt` (module notes of `asperity`).
+        let past_turn = std::cell::Cell::new(0usize);
+        let share = |g: &Groups, s: f64| -> f64 {
+            if g.sigma.is_nan() || g.sigma <= 0.0 {
+                return 0.0;
+            }
+            if g.u.is_nan() || g.u <= 0.0 {
+                return 100.0;
+            }
+            let ln_x1 = (0.689f64).ln() + s * g.sigma.ln() + 0.509 * g.v.ln()
+                - 0.501 * g.w.ln()
+                - 2.87 * g.g.ln();
+            let ln_x = ln_x1 - 2.9 * g.u.ln();
+            let ln_xt = crate::lubrication::asperity::x_turn().ln();
+            let (ln_x, ln_u, beyond) = if ln_x > ln_xt {
+                past_turn.set(past_turn.get() + 1);
+                let ln_ut = (ln_x1 - ln_xt) / 2.9;
+                (ln_xt, ln_ut, Some(g.u.ln() - ln_ut))
+            } else {
+                (ln_x, g.u.ln(), None)
+            };
+            let log_term = if ln_x > 30.0 {
+                ln_x
+            } else {
+                ln_x.exp().ln_1p()
+            };
+            let la = 10.0 * (-0.083 * g.w.ln() + 0.143 * ln_u + 0.314 * g.g.ln()).exp() * log_term;
+            if la.is_nan() {
+                return 100.0;
+            }
+            let la = la.clamp(0.0, 100.0);
+            match beyond {
+                Some(r) => la + (100.0 - la) * (1.0 - (0.143 * r).exp()),
+                None => la,
+            }
+        };
+        let c = PointContact::new(
+            Curvature::ball_race(10.45e-3, 77.6e-3, 0.0, 0.52, Race::Inner),
+            2.28e11,
+        );
+        let mut n = 0;
+        for sigma in [0.0, 0.2e-6, 0.42e-6, 3e-6] {
+            let law = WearLaw {
+                k: 5e-4,
+                hardness: 2.39e9,
+                film: Some(FilmDefect {
+                    lubricant: Lubricant {
+                        roughness: sigma,
+                        ..Lubricant::study2()
+                    },
+                    ax: 3e-12,
+                    t0: 3e-12,
+                    ea: 49e3,
+                }),
+                surface_temperature: 293.15,
+            };
+            let dry = WearLaw {
+                film: None,
+                ..law.clone()
+            };
+            let f = law.film.as_ref().unwrap();
+            let l = &f.lubricant;
+            for reading in [AsperityReading::FilmParameter, AsperityReading::Quartic] {
+                for u in [0.0, 1e-9, 1e-4, 0.3, 4.0, 25.0] {
+                    for ts in [293.15, 350.0] {
+                        let prep = law.prepare_read(&c, u, ts, reading);
+                        assert_eq!(
+                            dry.prepare_read(&c, u, ts, reading).factors(1.0, 1.0),
+                            (100.0, 1.0)
+                        );
+                        for q in [0.0, 1e-3, 0.7, 180.0, 2.5e3] {
+                            for us in [0.0, 1e-6, 0.01, 0.3] {
+                                let g = Groups::new(
+                                    q,
+                                    u,
+                                    c.curvature.rx,
+                                    c.e_eff,
+                                    l.viscosity,
+                                    l.pressure_viscosity,
+                                    l.roughness,
+                                    law.hardness,
+                                    c.ellipse.kappa,
+                                );
+                                let la = share(&g, reading.exponent());
+                                let psi = if us <= 0.0 {
+                                    1.0
+                                } else {
+                                    let x = f.ax / (us * f.t0) * (-f.ea / (RG * ts)).exp();
+                                    -(-x).exp_m1()
+                                };
+                                let got = prep.factors(q, us);
+                                assert_eq!(
+                                    (got.0.to_bits(), got.1.to_bits()),
+                                    (la.to_bits(), psi.to_bits()),
+                                    "{sigma} {reading:?} {u} {ts} {q} {us}: {got:?} vs {la} {psi}"
+                                );
+                                let direct = law.factors_read(&c, q, u, us, ts, reading);
+                                assert_eq!(direct, got);
+                                n += 1;
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        // Both sides of the turning point were compared.
+        let past = past_turn.get();
+        assert!(n == 1920 && past > 100 && past < 1000, "{n} {past}");
     }
 
     /// The cell coordinate is the exact remainder's to a few ulp of the turn count (times
