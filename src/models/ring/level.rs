@@ -34,7 +34,8 @@ use crate::models::effects::{Effects, FilmKind, RingEffects, WearRegime};
 use crate::models::ring::{Profile, RingDof, RingEval, RingModel};
 use crate::models::thermal::{ContactSums, ThermalModel, ThermalParams};
 use crate::models::waviness::WavySite;
-use crate::models::wear::{self, FilmDefect, WearLaw};
+use crate::models::wear::{self, FactorsAt, FilmDefect, WearLaw};
+use std::cell::Cell;
 
 /// Kelvin at 0 °C.
 const T_ZERO: f64 = 273.15;
@@ -115,6 +116,27 @@ struct WearPart {
     cycles: f64,
     /// Surface temperature without the thermal model, K.
     ts: f64,
+    /// The wear law's load-free factors of both contacts ([`WearLaw::prepare`]) at the
+    /// last entrainment speed and surface temperatures (their bits) asked: a pure function
+    /// of that key, so the same bits with or without it (no history); a load-driven ring
+    /// at a held speed asks for the same key at every right-hand side.
+    last_factors: Cell<Option<([u64; 3], [FactorsAt; 2])>>,
+}
+
+impl WearPart {
+    /// The contacts' [`FactorsAt`] at entrainment speed `u` and surface temperatures `ts`
+    /// (inner, outer).
+    fn factors_at(&self, u: f64, ts: [f64; 2]) -> [FactorsAt; 2] {
+        let key = [u.to_bits(), ts[0].to_bits(), ts[1].to_bits()];
+        if let Some((k, f)) = self.last_factors.get() {
+            if k == key {
+                return f;
+            }
+        }
+        let f = [0, 1].map(|r| self.law.prepare(&self.contacts[r], u, ts[r]));
+        self.last_factors.set(Some((key, f)));
+        f
+    }
 }
 
 /// Thermal part of the slow effects.
@@ -188,6 +210,7 @@ impl Slow {
                 cycle: w.cycle_revs,
                 cycles: w.cycles as f64,
                 ts: w.surface_temperature_c + T_ZERO,
+                last_factors: Cell::new(None),
             }
         });
         let wear_aux = wear.as_ref().map_or(0, |w| 4 * w.n + 2);
@@ -390,6 +413,7 @@ impl RingLevel {
             Some(th) => [th.ambient + aux[th.a0], th.ambient + aux[th.a0 + 1]],
             None => [w.ts; 2],
         };
+        let factors = w.factors_at(u, ts);
         let (dx_o, dx_i) = dx[w.x0..w.x0 + 2 * w.n].split_at_mut(w.n);
         dx_o.fill(0.0);
         dx_i.fill(0.0);
@@ -397,10 +421,10 @@ impl RingLevel {
             // `semi_axes`' own `Q^(1/3)`, once for both contacts.
             let q3 = q.max(0.0).cbrt();
             for r in 0..2 {
-                let c = &w.contacts[r];
                 let a = w.semi_axis_a[r] * q3;
                 let us = wear::heathcote_slip(rel[r], a, w.f[r], slow.d, w.m);
-                let (la, psi_f) = w.law.factors(c, q, u, us, ts[r]);
+                // `w.law.factors(contact, q, u, us, ts)`, its load-free part kept.
+                let (la, psi_f) = factors[r].factors(q, us);
                 let rate = w.law.area_rate(q, a, us, la, psi_f);
                 if r == 0 {
                     wear::deposit(dx_i, psi - turned, rate, w.cell_len[0]);
