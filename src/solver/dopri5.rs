@@ -265,15 +265,18 @@ impl Dopri5 {
                 lp.nonfinite(&mut self.stats, tb, idx)?;
                 continue;
             }
-            // error estimate
-            for i in 0..self.n {
-                self.e[i] = h
-                    * (E1 * self.k1[i]
-                        + E3 * self.k3[i]
-                        + E4 * self.k4[i]
-                        + E5 * self.k5[i]
-                        + E6 * self.k6[i]
-                        + E7 * self.k7[i]);
+            // error estimate (vectors cut to `n`: no bounds checks, as in `attempt`)
+            let n = self.n;
+            let (e, k1, k3, k4) = (
+                &mut self.e[..n],
+                &self.k1[..n],
+                &self.k3[..n],
+                &self.k4[..n],
+            );
+            let (k5, k6, k7) = (&self.k5[..n], &self.k6[..n], &self.k7[..n]);
+            for i in 0..n {
+                e[i] = h
+                    * (E1 * k1[i] + E3 * k3[i] + E4 * k4[i] + E5 * k5[i] + E6 * k6[i] + E7 * k7[i]);
             }
             let err = error_norm(&self.e, &self.y, &self.y1, opts);
             if !err.is_finite() {
@@ -317,15 +320,17 @@ impl Dopri5 {
     ) -> Result<Option<(f64, usize)>, SolverError> {
         let n = self.n;
         let st = &mut self.stats;
-        let (y, y1) = (&self.y, &mut self.y1);
+        // Every vector cut to `n` here, so the stage loops below carry no bounds checks and
+        // vectorise (the same operations per element, so the same bits).
+        let (y, y1) = (&self.y[..n], &mut self.y1[..n]);
         let (k1, k2, k3, k4, k5, k6, k7) = (
-            &self.k1,
-            &mut self.k2,
-            &mut self.k3,
-            &mut self.k4,
-            &mut self.k5,
-            &mut self.k6,
-            &mut self.k7,
+            &self.k1[..n],
+            &mut self.k2[..n],
+            &mut self.k3[..n],
+            &mut self.k4[..n],
+            &mut self.k5[..n],
+            &mut self.k6[..n],
+            &mut self.k7[..n],
         );
         for i in 0..n {
             y1[i] = y[i] + h * A21 * k1[i];
@@ -351,7 +356,7 @@ impl Dopri5 {
         if let Some(i) = eval(sys, st, t + C5 * h, y1, k5)? {
             return Ok(Some((t + C5 * h, i)));
         }
-        let ysti = &mut self.ysti;
+        let ysti = &mut self.ysti[..n];
         for i in 0..n {
             ysti[i] =
                 y[i] + h * (A61 * k1[i] + A62 * k2[i] + A63 * k3[i] + A64 * k4[i] + A65 * k5[i]);
@@ -400,20 +405,25 @@ impl Dopri5 {
     fn accept(&mut self, t: f64, h: f64, t_new: f64) {
         let n = self.n;
         let [r1, r2, r3, r4, r5] = &mut self.rcont;
+        // Cut to `n`: no bounds checks, as in `attempt`.
+        let (r1, r2, r3, r4, r5) = (
+            &mut r1[..n],
+            &mut r2[..n],
+            &mut r3[..n],
+            &mut r4[..n],
+            &mut r5[..n],
+        );
+        let (y, y1, k1, k3) = (&self.y[..n], &self.y1[..n], &self.k1[..n], &self.k3[..n]);
+        let (k4, k5, k6, k7) = (&self.k4[..n], &self.k5[..n], &self.k6[..n], &self.k7[..n]);
         for i in 0..n {
-            let ydiff = self.y1[i] - self.y[i];
-            let bspl = h * self.k1[i] - ydiff;
-            r1[i] = self.y[i];
+            let ydiff = y1[i] - y[i];
+            let bspl = h * k1[i] - ydiff;
+            r1[i] = y[i];
             r2[i] = ydiff;
             r3[i] = bspl;
-            r4[i] = ydiff - h * self.k7[i] - bspl;
-            r5[i] = h
-                * (D1 * self.k1[i]
-                    + D3 * self.k3[i]
-                    + D4 * self.k4[i]
-                    + D5 * self.k5[i]
-                    + D6 * self.k6[i]
-                    + D7 * self.k7[i]);
+            r4[i] = ydiff - h * k7[i] - bspl;
+            r5[i] =
+                h * (D1 * k1[i] + D3 * k3[i] + D4 * k4[i] + D5 * k5[i] + D6 * k6[i] + D7 * k7[i]);
         }
         self.t_old = t;
         self.h_old = t_new - t;
