@@ -25,6 +25,7 @@ mod inputs;
 mod static_start;
 mod step;
 mod system;
+mod through;
 
 pub use scene::{InputRule, Level, Method, Scene};
 pub use state::State;

@@ -1,0 +1,179 @@
+//! A window integrated straight through: the scene's integrator takes its own steps over
+//! many communication intervals, and the outputs at every communication point come from its
+//! dense output (for a stand-alone user who holds the inputs over the window; a host that
+//! couples the component steps it with `do_step`).
+
+use super::system::Sink;
+use super::{index_of, variables, Component, Method, State};
+use crate::error::{Error, Result};
+
+impl Component {
+    /// Advance from `t` over `n` communication intervals of `h` in one integration, and
+    /// report the variables `vrs` at each of the `n` points `t + k h` (`k = 1..=n`): `out`
+    /// is replaced by `n` rows of `vrs.len()` values.
+    ///
+    /// - The inputs are those set now, moved along the scene's input rule from `t` as one
+    ///   step of `n h` moves them (held under the default rule): a stand-alone run, not a
+    ///   coupling (a host that sets inputs at every point steps with [`Component::do_step`]).
+    /// - The integrator steps as its error control decides (not stopped at the points);
+    ///   the states at the points inside the window come from its dense output (DOPRI5: 4th
+    ///   order, RODAS4: 3rd order), and the outputs there are the level's outputs at those
+    ///   states and the inputs at that time, as a stop there would compute them from the
+    ///   same states. The last point is the integration's end: the component is left at
+    ///   `t + n h` exactly as `do_step(t, n h)` leaves it (same bits).
+    /// - Inputs read back give their value as set (as [`Component::get_real`] does).
+    /// - The step budgets (`solver.max_substeps`, `solver.max_step_cpu_s`) count per
+    ///   communication interval: the window may use `n` times them.
+    /// - Refused, naming the cause, and leaving everything as it was: a level that keeps
+    ///   memory it updates at every communication point (warm starts, wear maps, thermal
+    ///   state: outputs between stops would need those updates), the ROS34PW2 integrator
+    ///   (no dense output), `n = 0`, a value reference not in the table, or the checks of
+    ///   `do_step(t, n h)`. A failed integration leaves everything as it was too.
+    pub fn step_through(
+        &mut self,
+        t: f64,
+        h: f64,
+        n: usize,
+        vrs: &[u32],
+        out: &mut Vec<f64>,
+    ) -> Result<()> {
+        const CALL: &str = "step_through";
+        if n == 0 || n > u32::MAX as usize {
+            return Err(Error::invalid(
+                "n",
+                n,
+                format!("1 to {} communication intervals", u32::MAX),
+            ));
+        }
+        if self.n_level_aux > 0 {
+            return Err(Error::invalid(
+                "model.level",
+                self.scene.model.level.name(),
+                "a level without memory it updates at communication points for step_through \
+                 (this one keeps warm starts, wear maps or a thermal state: step it with \
+                 do_step)",
+            ));
+        }
+        if self.scene.solver.method == Method::Ros34pw2 {
+            return Err(Error::invalid(
+                "solver.method",
+                "ros34pw2",
+                "dopri5, rodas4 or auto for step_through (ROS34PW2 has no dense output)",
+            ));
+        }
+        let mut slots = Vec::with_capacity(vrs.len());
+        for &vr in vrs {
+            let (Some(v), Some(i)) = (variables::by_vr(vr), index_of(vr)) else {
+                return Err(Error::invalid(
+                    "value reference",
+                    vr,
+                    "a variable of the table",
+                ));
+            };
+            slots.push((i, v.is_input(self.causality())));
+        }
+        let span = n as f64 * h;
+        if !(h.is_finite() && h > 0.0) {
+            return Err(Error::invalid("h", h, "a finite step > 0"));
+        }
+        self.check_step_call(CALL, t, span)?;
+        self.require_inputs(CALL)?;
+        let rule = self.scene.inputs.rule;
+        let continuing = self.work.fsal_matches(&self.state, self.n_level_aux, rule);
+        if !continuing {
+            self.check_inputs_at(span)?;
+        }
+        self.scratch.clone_from(&self.state);
+        let mut sc = std::mem::take(&mut self.scratch);
+        sc.t = t;
+        let mut rows = Vec::with_capacity(n * slots.len());
+        let r = self.through(&mut sc, t, h, n, continuing, &slots, &mut rows);
+        if r.is_ok() {
+            sc.t = t + span;
+            sc.started = true;
+            sc.outputs_stale = false;
+            self.state.commit_step(&mut sc);
+            *out = rows;
+        }
+        self.scratch = sc;
+        r.map_err(|e| match e {
+            Error::StepFailed { .. } | Error::Budget { .. } => e,
+            other => Error::StepFailed {
+                t,
+                reason: other.to_string(),
+            },
+        })
+    }
+
+    /// Integrate `sc` (at the window start `t`) over the window, then fill `rows` with the
+    /// values of `slots` at the `n` points; `sc` is left as `do_step(t, n h)` leaves its
+    /// scratch state.
+    #[allow(clippy::too_many_arguments)]
+    fn through(
+        &mut self,
+        sc: &mut State,
+        t: f64,
+        h: f64,
+        n: usize,
+        continuing: bool,
+        slots: &[(usize, bool)],
+        rows: &mut Vec<f64>,
+    ) -> Result<()> {
+        let dim = sc.x.len();
+        let span = n as f64 * h;
+        let x0 = sc.x.clone();
+        let mut sink = Sink {
+            t0: t,
+            h,
+            n,
+            next: 1,
+            xs: vec![0.0; (n - 1) * dim],
+            dim,
+            error: None,
+        };
+        if dim > 0 && self.ring.is_none() && self.level.states_are_quadrature() {
+            // States that are a quadrature of the inputs: the quadrature from the window
+            // start to each point (exact for the inputs' time dependence, as the one over the
+            // window is).
+            for k in 1..n {
+                sc.x.copy_from_slice(&x0);
+                self.quadrature(sc, k as f64 * h)?;
+                sink.xs[(k - 1) * dim..k * dim].copy_from_slice(&sc.x);
+            }
+            sc.x.copy_from_slice(&x0);
+            self.integrate_window(sc, span, continuing, None, n as u32)?;
+        } else if dim > 0 {
+            self.integrate_window(sc, span, continuing, Some(&mut sink), n as u32)?;
+            if let Some(e) = sink.error.take() {
+                return Err(e.into());
+            }
+            if sink.next != n {
+                return Err(Error::StepFailed {
+                    t: sink.time(sink.next),
+                    reason: "the integration passed a communication point without its dense \
+                             output"
+                        .into(),
+                });
+            }
+        }
+        let x_end = sc.x.clone();
+        for k in 1..n {
+            sc.x.copy_from_slice(&sink.xs[(k - 1) * dim..k * dim]);
+            self.compute_outputs(sc, k as f64 * h)?;
+            rows.extend(slots.iter().map(|&s| value(sc, s)));
+        }
+        sc.x.copy_from_slice(&x_end);
+        self.compute_outputs(sc, span)?;
+        rows.extend(slots.iter().map(|&s| value(sc, s)));
+        Ok(())
+    }
+}
+
+/// The value of table slot `i` in `sc`: the input as set, or the output.
+fn value(sc: &State, (i, input): (usize, bool)) -> f64 {
+    if input {
+        sc.inputs[i]
+    } else {
+        sc.outputs[i]
+    }
+}
