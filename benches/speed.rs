@@ -402,7 +402,7 @@ fn scipy_peer(quick: bool) -> Result<(String, Option<f64>, Option<f64>), String>
         "### The coupling loop (the job raceway does)\n\nSciPy restarted at every 0.1 ms communication point from the state it reached, as a host coupling it at each macro step would run it (`run_loop` in the peer; one repeat); raceway in its coupling loop.\n\n",
     );
     s += &loop_md;
-    s += "\n### Straight through (the job a stand-alone run does)\n\nSciPy integrates the whole window in one `solve_ivp` call and samples the communication points by dense output (`t_eval`); raceway in one `Component::step_through` call (`raceway run --through` on the command line): its integrator takes its own steps over the window and the outputs at the points come from its dense output. Raceway's time includes computing the forces at every communication point (the level's full outputs there: forces, stiffness and damping matrices, diagnostics); SciPy's does not (the peer computes its forces after the clock stops).\n\n";
+    s += "\n### Straight through (the job a stand-alone run does)\n\nSciPy integrates the whole window in one `solve_ivp` call and samples the communication points by dense output (`t_eval`); raceway in one `Component::step_through` call (`raceway run --through` on the command line): its integrator takes its own steps over the window and the outputs at the points come from its dense output. Raceway's time includes computing the forces at every communication point (asked for the forces only, `step_through` evaluates the level's wrench at the interpolated state, as its right-hand side does, not the stiffness and damping matrices); SciPy's does not (the peer computes its forces after the clock stops).\n\n";
     s += &straight_md;
     s += "\nraceway's own points on this case (same run; loop: a stop at every communication point, straight: one `step_through` over the window):\n\n| integrator | rtol | loop CPU (ms) | loop err L2 | straight CPU (ms) | straight err L2 | straight steps |\n|---|---|---|---|---|---|---|\n";
     for r in &rep.rows {
@@ -724,6 +724,10 @@ fn main() {
     }
 
     if let Some(section) = &only {
+        if section == "peer" && !peer_md.is_empty() {
+            // The section as the page would hold it, for a look without rewriting the page.
+            println!("\n{peer_md}");
+        }
         println!("speed: --only {section}: nothing written");
         return;
     }

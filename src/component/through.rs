@@ -3,8 +3,8 @@
 //! dense output (for a stand-alone user who holds the inputs over the window; a host that
 //! couples the component steps it with `do_step`).
 
-use super::system::Sink;
-use super::{index_of, variables, Component, Method, State};
+use super::system::{Sink, Sys};
+use super::{index_of, variables, Component, Method, State, I_FORCE};
 use crate::error::{Error, Result};
 
 impl Component {
@@ -21,6 +21,11 @@ impl Component {
     ///   states and the inputs at that time, as a stop there would compute them from the
     ///   same states. The last point is the integration's end: the component is left at
     ///   `t + n h` exactly as `do_step(t, n h)` leaves it (same bits).
+    /// - Asked only for forces and moments (and inputs), the points inside the window take
+    ///   the level's wrench from its right-hand side at the interpolated state, not its full
+    ///   outputs (stiffness and damping matrices, diagnostics), when at the last point that
+    ///   wrench equals the outputs' bit for bit in every slot asked for; otherwise (or when
+    ///   anything else is asked for) the full outputs at every point.
     /// - Inputs read back give their value as set (as [`Component::get_real`] does).
     /// - The step budgets (`solver.max_substeps`, `solver.max_step_cpu_s`) count per
     ///   communication interval: the window may use `n` times them.
@@ -156,16 +161,81 @@ impl Component {
                 });
             }
         }
-        let x_end = sc.x.clone();
-        for k in 1..n {
-            sc.x.copy_from_slice(&sink.xs[(k - 1) * dim..k * dim]);
-            self.compute_outputs(sc, k as f64 * h)?;
-            rows.extend(slots.iter().map(|&s| value(sc, s)));
-        }
-        sc.x.copy_from_slice(&x_end);
+        // The last point first: the outputs `do_step(t, n h)` leaves.
         self.compute_outputs(sc, span)?;
-        rows.extend(slots.iter().map(|&s| value(sc, s)));
+        let last: Vec<f64> = slots.iter().map(|&s| value(sc, s)).collect();
+        // Only forces and moments (and inputs) asked for: the level's wrench where the
+        // right-hand side gives it, without the rest of the outputs (stiffness and damping
+        // matrices, diagnostics) — when, at the last point, that wrench is the outputs'
+        // one bit for bit in every slot asked for (a level whose outputs report a wrench
+        // its right-hand side does not, e.g. a component it leaves to zero, takes the full
+        // outputs at every point).
+        let forces_only = n > 1
+            && slots
+                .iter()
+                .all(|&(i, input)| input || (I_FORCE..I_FORCE + 5).contains(&i))
+            && {
+                let w = self.wrench_at(sc, t, span, &sc.x.clone())?;
+                slots
+                    .iter()
+                    .zip(&last)
+                    .all(|(&(i, input), v)| input || w[i - I_FORCE].to_bits() == v.to_bits())
+            };
+        if forces_only {
+            for k in 1..n {
+                let w = self.wrench_at(sc, t, k as f64 * h, &sink.xs[(k - 1) * dim..k * dim])?;
+                rows.extend(slots.iter().map(
+                    |&(i, input)| {
+                        if input {
+                            sc.inputs[i]
+                        } else {
+                            w[i - I_FORCE]
+                        }
+                    },
+                ));
+            }
+        } else if n > 1 {
+            let x_end = sc.x.clone();
+            for k in 1..n {
+                sc.x.copy_from_slice(&sink.xs[(k - 1) * dim..k * dim]);
+                self.compute_outputs(sc, k as f64 * h)?;
+                rows.extend(slots.iter().map(|&s| value(sc, s)));
+            }
+            sc.x.copy_from_slice(&x_end);
+            self.compute_outputs(sc, span)?;
+        }
+        rows.extend(last);
         Ok(())
+    }
+
+    /// The level's wrench at `s` after the window start `t0` with states `x` (the
+    /// right-hand side's, as the integration evaluates it); refused when not finite.
+    fn wrench_at(&mut self, sc: &mut State, t0: f64, s: f64, x: &[f64]) -> Result<[f64; 5]> {
+        let mut w = [0.0; 5];
+        let dy = &mut self.work.k[0];
+        let mut sys = Sys {
+            jw: None,
+            level: self.level.as_mut(),
+            st: sc,
+            ring: self.ring.as_ref(),
+            rule: self.scene.inputs.rule,
+            causality: self.scene.model.causality,
+            nl: self.n_level,
+            naux: self.n_level_aux,
+            t0,
+            last_error: None,
+            budget: None,
+            continues: false,
+            sink: None,
+        };
+        sys.eval(s, x, dy, Some(&mut w))?;
+        if !w.iter().all(|v| v.is_finite()) {
+            return Err(Error::StepFailed {
+                t: t0 + s,
+                reason: "non-finite force".into(),
+            });
+        }
+        Ok(w)
     }
 }
 
