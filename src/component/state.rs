@@ -68,7 +68,7 @@ impl Clone for State {
     /// Field-wise, reusing this state's buffers: no allocation once the sizes match (the
     /// component's transactional `do_step` relies on it).
     fn clone_from(&mut self, o: &Self) {
-        self.begin_step_from(o, true);
+        self.copy_from(o, true, true);
     }
 }
 
@@ -79,6 +79,13 @@ impl State {
     /// writes them, and [`State::commit_step`] leaves them where they are). No allocation
     /// once the sizes match.
     pub(super) fn begin_step_from(&mut self, o: &Self, derivatives: bool) {
+        self.copy_from(o, derivatives, false);
+    }
+
+    /// [`State::begin_step_from`]; `all_inputs`: every slot of the inputs, else only the
+    /// slots below `N_INPUT_SLOTS` that hold inputs (a step reads no other, and
+    /// [`State::commit_step`] leaves the inputs where they are).
+    fn copy_from(&mut self, o: &Self, derivatives: bool, all_inputs: bool) {
         self.scene_fingerprint = o.scene_fingerprint;
         self.t = o.t;
         self.started = o.started;
@@ -87,7 +94,12 @@ impl State {
         self.inputs_set = o.inputs_set;
         self.x.clone_from(&o.x);
         self.aux.clone_from(&o.aux);
-        self.inputs.clone_from(&o.inputs);
+        let ni = super::N_INPUT_SLOTS;
+        if !all_inputs && self.inputs.len() == o.inputs.len() && o.inputs.len() >= ni {
+            self.inputs[..ni].copy_from_slice(&o.inputs[..ni]);
+        } else {
+            self.inputs.clone_from(&o.inputs);
+        }
         if derivatives {
             self.input_derivatives.clone_from(&o.input_derivatives);
         }

@@ -4,7 +4,7 @@
 
 use super::inputs::{input_at, motion_at};
 use super::level::{Jacobians, LevelModel, Point};
-use super::{thread_cpu_s, Causality, InputRule, State, I_LOAD, I_V};
+use super::{thread_cpu_s, Causality, InputRule, State, I_LOAD, I_V, N_INPUT_SLOTS};
 use crate::error::{Error, Result};
 use crate::solver::{DenseFn, OdeSystem, SolverError};
 use std::time::Instant;
@@ -121,7 +121,7 @@ pub(super) struct Work {
     pub(super) y: Vec<f64>,
     pub(super) aux_save: Vec<f64>,
     /// What the last stage of the last step's integration read besides the states: the
-    /// inputs and the level's memory (`inputs | aux[..n_level_aux]`), when `fsal` is set
+    /// inputs and the level's memory (`inputs[..N_INPUT_SLOTS] | aux[..n_level_aux]`), when `fsal` is set
     /// (the inputs' derivatives were zero then, or unused by the input rule).
     pub(super) fsal_key: Vec<f64>,
     /// The last step's last stage may be the next step's first (see
@@ -142,9 +142,9 @@ impl Work {
         if !self.fsal {
             return false;
         }
-        let ni = st.inputs.len();
+        let ni = N_INPUT_SLOTS;
         let k = &self.fsal_key;
-        same_bits(&k[..ni], &st.inputs)
+        same_bits(&k[..ni], &st.inputs[..ni])
             && same_bits(&k[ni..], &st.aux[..naux])
             && inputs_constant(st, rule, false)
     }
@@ -156,9 +156,9 @@ impl Work {
     pub(super) fn fsal_store(&mut self, st: &State, naux: usize, rule: InputRule, reusable: bool) {
         self.fsal = reusable && inputs_constant(st, rule, false);
         if self.fsal {
-            let ni = st.inputs.len();
+            let ni = N_INPUT_SLOTS;
             let k = &mut self.fsal_key;
-            k[..ni].copy_from_slice(&st.inputs);
+            k[..ni].copy_from_slice(&st.inputs[..ni]);
             k[ni..].copy_from_slice(&st.aux[..naux]);
         }
     }

@@ -176,6 +176,22 @@ impl Options {
 
     /// Check the options against the dimension `n` (no allocation unless refused).
     fn check(&self, n: usize) -> Result<(), SolverError> {
+        // Every call checks its options: the usual case (all valid) in one branch-free
+        // pass, the message of a refusal below.
+        let atol_ok = self
+            .atol
+            .iter()
+            .fold(true, |ok, a| ok & a.is_finite() & (*a > 0.0));
+        if self.rtol.is_finite()
+            & (self.rtol >= 0.0)
+            & (self.atol.len() == n)
+            & atol_ok
+            & (self.h_max > 0.0)
+            & (!self.fixed_step | self.h_max.is_finite())
+            & (self.max_steps != 0)
+        {
+            return Ok(());
+        }
         if !(self.rtol.is_finite() && self.rtol >= 0.0) {
             return Err(SolverError::invalid(
                 "rtol",
