@@ -82,9 +82,11 @@ impl State {
         self.copy_from(o, derivatives, false);
     }
 
-    /// [`State::begin_step_from`]; `all_inputs`: every slot of the inputs, else only the
-    /// slots below `N_INPUT_SLOTS` that hold inputs (a step reads no other, and
-    /// [`State::commit_step`] leaves the inputs where they are).
+    /// [`State::begin_step_from`]; `all_inputs`: every slot of the inputs and outputs
+    /// (a whole copy), else of the inputs only the slots below `N_INPUT_SLOTS` that hold
+    /// inputs (a step reads no other, and [`State::commit_step`] leaves the inputs where
+    /// they are), and of the outputs only the slots below it (a successful step writes
+    /// every other).
     fn copy_from(&mut self, o: &Self, derivatives: bool, all_inputs: bool) {
         self.scene_fingerprint = o.scene_fingerprint;
         self.t = o.t;
@@ -103,7 +105,13 @@ impl State {
         if derivatives {
             self.input_derivatives.clone_from(&o.input_derivatives);
         }
-        self.outputs.clone_from(&o.outputs);
+        // A step's outputs (`Component::compute_outputs`, on every successful step) write
+        // every slot from `N_INPUT_SLOTS` on: only the slots below are carried over.
+        if !all_inputs && self.outputs.len() == o.outputs.len() && o.outputs.len() >= ni {
+            self.outputs[..ni].copy_from_slice(&o.outputs[..ni]);
+        } else {
+            self.outputs.clone_from(&o.outputs);
+        }
         self.output_derivatives.clone_from(&o.output_derivatives);
     }
 
