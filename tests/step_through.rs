@@ -155,6 +155,7 @@ fn refused_straight_through_leaves_the_component_as_it_was() {
     check(&mut w, 1e-4, 10, &fy, "solver.method");
     let mut c = ring(Method::Dopri5, 1e-6);
     check(&mut c, 1e-4, 0, &fy, "n");
+    check(&mut c, 1e-12, 1 << 40, &fy, "n");
     check(&mut c, 1e-4, 10, &[999_999], "value reference");
     check(&mut c, f64::NAN, 10, &fy, "h");
     check(&mut c, -1e-4, 10, &fy, "h");

@@ -7,6 +7,9 @@ use super::system::{Sink, Sys};
 use super::{index_of, variables, Component, Method, State, I_FORCE};
 use crate::error::{Error, Result};
 
+/// Most values (states or variables per point times points) one `step_through` keeps.
+const MAX_VALUES: usize = 100_000_000;
+
 impl Component {
     /// Advance from `t` over `n` communication intervals of `h` in one integration, and
     /// report the variables `vrs` at each of the `n` points `t + k h` (`k = 1..=n`): `out`
@@ -32,8 +35,9 @@ impl Component {
     /// - Refused, naming the cause, and leaving everything as it was: a level that keeps
     ///   memory it updates at every communication point (warm starts, wear maps, thermal
     ///   state: outputs between stops would need those updates), the ROS34PW2 integrator
-    ///   (no dense output), `n = 0`, a value reference not in the table, or the checks of
-    ///   `do_step(t, n h)`. A failed integration leaves everything as it was too.
+    ///   (no dense output), `n = 0` or a window keeping more than 1e8 values (states or
+    ///   variables per point times `n`), a value reference not in the table, or the checks
+    ///   of `do_step(t, n h)`. A failed integration leaves everything as it was too.
     pub fn step_through(
         &mut self,
         t: f64,
@@ -76,6 +80,19 @@ impl Component {
                 ));
             };
             slots.push((i, v.is_input(self.causality())));
+        }
+        // The states and values kept for the points (one allocation each, of this size).
+        let dim = self.state.x.len();
+        if n.saturating_mul(dim.max(slots.len()).max(1)) > MAX_VALUES {
+            return Err(Error::invalid(
+                "n",
+                n,
+                format!(
+                    "at most {MAX_VALUES} values ({} states or {} variables per point) per                      step_through: split the window",
+                    dim,
+                    slots.len()
+                ),
+            ));
         }
         let span = n as f64 * h;
         if !(h.is_finite() && h > 0.0) {
