@@ -317,9 +317,10 @@ fn full_ms_per_rev(text: &str, rpm: f64, revs: usize) -> f64 {
     cpu / sim_revs * 1e3
 }
 
-/// The SciPy peer on case 6205-2dof against raceway's two integrators (in its coupling
-/// loop) at equal error: returns the Markdown section and the smallest SciPy-best /
-/// raceway ratio, `(straight through, coupling loop)`.
+/// The SciPy peer on case 6205-2dof against raceway's two integrators at equal error, job
+/// for job: SciPy's coupling loop against raceway's, SciPy straight through against
+/// raceway straight through (`step_through`). Returns the Markdown section and the smallest
+/// SciPy-best / raceway ratio, `(straight through, coupling loop)`.
 fn scipy_peer(quick: bool) -> Result<(String, Option<f64>, Option<f64>), String> {
     let mut cfg = Config {
         verbose: false,
@@ -332,6 +333,7 @@ fn scipy_peer(quick: bool) -> Result<(String, Option<f64>, Option<f64>), String>
         vec![1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9]
     };
     cfg.repeats = if quick { 1 } else { 3 };
+    cfg.through = true;
     let rep = wp::run(&cfg).map_err(|e| e.to_string())?;
     let case = &cfg.cases[0];
     wp::export_for_peer(&cfg, case, &cfg.cache_dir).map_err(|e| e.to_string())?;
@@ -351,17 +353,17 @@ fn scipy_peer(quick: bool) -> Result<(String, Option<f64>, Option<f64>), String>
         let text = std::fs::read_to_string(&p).map_err(|e| format!("{}: {e}", p.display()))?;
         wp::read_peer_csv(&text).map_err(|e| e.to_string())
     };
-    let curve = |m: Method| -> Vec<(f64, f64)> {
-        rep.series("6205-2dof", m)
-            .iter()
+    let curve = |rows: &[wp::Row], m: Method| -> Vec<(f64, f64)> {
+        rows.iter()
+            .filter(|r| r.case == "6205-2dof" && r.method == m)
             .map(|r| (r.err_l2, r.median_s))
             .collect()
     };
-    let (c_dp, c_ro) = (curve(Method::Dopri5), curve(Method::Rosenbrock));
-    // For each SciPy point: raceway's faster integrator interpolated at the same error.
-    // The smallest ratio over every SciPy point is the figure the goal is about
-    // (conservative: every method and tolerance counts).
-    let table = |peer: &[wp::PeerRow]| -> (String, Option<f64>) {
+    // For each SciPy point: raceway's faster integrator, in the same job, interpolated at
+    // the same error. The smallest ratio over every SciPy point is the figure the goal is
+    // about (conservative: every method and tolerance counts).
+    let table = |peer: &[wp::PeerRow], rows: &[wp::Row]| -> (String, Option<f64>) {
+        let (c_dp, c_ro) = (curve(rows, Method::Dopri5), curve(rows, Method::Rosenbrock));
         let mut s = String::from(
             "| peer | rtol | CPU (ms) | err L2 | raceway CPU at that error (ms) | SciPy / raceway |\n|---|---|---|---|---|---|\n",
         );
@@ -394,23 +396,30 @@ fn scipy_peer(quick: bool) -> Result<(String, Option<f64>, Option<f64>), String>
         }
         (s, worst)
     };
-    let (straight_md, straight) = table(&read("6205-2dof-scipy.csv")?);
-    let (loop_md, looped) = table(&read("6205-2dof-scipy-loop.csv")?);
+    let (straight_md, straight) = table(&read("6205-2dof-scipy.csv")?, &rep.through);
+    let (loop_md, looped) = table(&read("6205-2dof-scipy-loop.csv")?, &rep.rows);
     let mut s = String::from(
         "### The coupling loop (the job raceway does)\n\nSciPy restarted at every 0.1 ms communication point from the state it reached, as a host coupling it at each macro step would run it (`run_loop` in the peer; one repeat); raceway in its coupling loop.\n\n",
     );
     s += &loop_md;
-    s += "\n### SciPy straight through\n\nSciPy integrates the whole window in one call and samples the communication points by dense output (`t_eval`); raceway still stops at every communication point. Not the same job: the figure raceway must beat with its own straight-through integration, which the component does not offer yet.\n\n";
+    s += "\n### Straight through (the job a stand-alone run does)\n\nSciPy integrates the whole window in one `solve_ivp` call and samples the communication points by dense output (`t_eval`); raceway in one `Component::step_through` call (`raceway run --through` on the command line): its integrator takes its own steps over the window and the outputs at the points come from its dense output. Raceway's time includes computing the forces at every communication point (asked for the forces only, `step_through` evaluates the level's wrench at the interpolated state, as its right-hand side does, not the stiffness and damping matrices); SciPy's does not (the peer computes its forces after the clock stops).\n\n";
     s += &straight_md;
-    s += "\nraceway's own points on this case (same run):\n\n| integrator | rtol | CPU (ms) | err L2 |\n|---|---|---|---|\n";
+    s += "\nraceway's own points on this case (same run; loop: a stop at every communication point, straight: one `step_through` over the window):\n\n| integrator | rtol | loop CPU (ms) | loop err L2 | straight CPU (ms) | straight err L2 | straight steps |\n|---|---|---|---|---|---|---|\n";
     for r in &rep.rows {
+        let st = rep
+            .through
+            .iter()
+            .find(|x| x.method == r.method && x.rtol == r.rtol);
         let _ = writeln!(
             s,
-            "| {} | {:.0e} | {:.3} | {:.2e} |",
+            "| {} | {:.0e} | {:.3} | {:.2e} | {} | {} | {} |",
             wp::method_name(r.method),
             r.rtol,
             r.median_s * 1e3,
-            r.err_l2
+            r.err_l2,
+            st.map_or("—".into(), |x| format!("{:.3}", x.median_s * 1e3)),
+            st.map_or("—".into(), |x| format!("{:.2e}", x.err_l2)),
+            st.map_or("—".into(), |x| x.stats.accepted.to_string()),
         );
     }
     Ok((s, straight, looped))
@@ -686,15 +695,16 @@ fn main() {
                 let fmt =
                     |r: Option<f64>| r.map_or("no overlap in error".into(), |r| format!("{r:.0}×"));
                 println!(
-                    "SciPy peer: smallest SciPy/raceway ratio at equal error: coupling loop {}, SciPy straight through {}",
+                    "SciPy peer: smallest SciPy/raceway ratio at equal error: coupling loop {}, straight through {} (load average {})",
                     fmt(looped),
-                    fmt(straight)
+                    fmt(straight),
+                    load_average()
                 );
                 goals.push(Goal {
                     case: "the same ring equations in SciPy (LSODA, Radau, DOP853) at equal force error, same run".into(),
                     goal: "≥ 100× faster than the best of them".into(),
                     measured: format!(
-                        "{} in the coupling loop (both stop at every 0.1 ms point); {} against SciPy straight through",
+                        "{} in the coupling loop (both stop at every 0.1 ms point); {} straight through (both integrate the window in one call)",
                         fmt(looped),
                         fmt(straight)
                     ),
@@ -714,6 +724,10 @@ fn main() {
     }
 
     if let Some(section) = &only {
+        if section == "peer" && !peer_md.is_empty() {
+            // The section as the page would hold it, for a look without rewriting the page.
+            println!("\n{peer_md}");
+        }
         println!("speed: --only {section}: nothing written");
         return;
     }
@@ -805,9 +819,11 @@ fn main() {
         page += "\n## SciPy peer\n\n`peers/scipy_ring.py` (run by `scripts/peer-scipy`) \
                  integrates the load-driven 2-DOF 6205 ring of the work-precision case \
                  `6205-2dof` with `solve_ivp` (Radau, LSODA, DOP853), NumPy right-hand side and \
-                 analytic Jacobian, straight through the window; raceway's DOPRI5 and RODAS4 \
-                 points on the same case are measured in the same run and interpolated (log-log) \
-                 at SciPy's error.\n\n";
+                 analytic Jacobian, in two jobs: the coupling loop (a stop at every 0.1 ms \
+                 communication point) and straight through the 0.05 s window. Raceway's DOPRI5 and \
+                 RODAS4 points on the same case, in the same job, are measured in the same run \
+                 and interpolated (log-log) at SciPy's error. The goal counts as met only when \
+                 both jobs reach 100×.\n\n";
         page += &peer_md;
     }
     std::fs::create_dir_all(&out).expect("output folder");

@@ -152,6 +152,37 @@ pub fn run_recording(
     record: Record,
     progress: &mut dyn FnMut(f64),
 ) -> Result<(Series, Component)> {
+    run_with(scene, record, false, progress)
+}
+
+/// [`run_recording`]; `through`: the whole duration in one
+/// [`Component::step_through`] (the integrator takes its own steps, the series at the
+/// communication points from its dense output) instead of a `do_step` per point. Straight
+/// through holds the inputs of the start, so it is refused, naming the field, for a run
+/// that moves them (`speed_ramp_rpm_per_s`, `orbit_um`, `rotating_load_n`), and for what
+/// `step_through` refuses.
+pub fn run_with(
+    scene: &Scene,
+    record: Record,
+    through: bool,
+    progress: &mut dyn FnMut(f64),
+) -> Result<(Series, Component)> {
+    if through {
+        let r = &scene.run;
+        let moving = match scene.model.causality {
+            Causality::Motion => ("run.orbit_um", r.orbit_um),
+            Causality::Load => ("run.rotating_load_n", r.rotating_load_n),
+        };
+        for (field, v) in [("run.speed_ramp_rpm_per_s", r.speed_ramp_rpm_per_s), moving] {
+            if v != 0.0 {
+                return Err(crate::Error::invalid(
+                    field,
+                    v,
+                    "0 for a run straight through (--through holds the inputs of the start)",
+                ));
+            }
+        }
+    }
     let mut c = prepare(scene)?;
     let r = &scene.run;
     let causality = scene.model.causality;
@@ -181,6 +212,19 @@ pub fn run_recording(
         }
     };
     record(&mut c, &mut series, 0.0);
+    if through {
+        let vrs: Vec<u32> = vars.iter().map(|v| v.vr).collect();
+        let mut out = Vec::new();
+        c.step_through(0.0, h, n, &vrs, &mut out)?;
+        for (k, row) in out.chunks_exact(vrs.len().max(1)).enumerate() {
+            series.t.push((k + 1) as f64 * h);
+            for (col, v) in series.columns.iter_mut().zip(row) {
+                col.push(*v);
+            }
+        }
+        progress(1.0);
+        return Ok((series, c));
+    }
     let every = (n / 100).max(1);
     for i in 0..n {
         let t = i as f64 * h;

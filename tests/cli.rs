@@ -477,3 +477,65 @@ fn run_checks_the_file_then_the_overrides() {
         );
     }
 }
+
+/// `raceway run --through` integrates the run in one straight-through call: the same
+/// series shape as the stepped run, the forces within the scene's tolerance of it (the
+/// 6205 ring under radial load: measured 1.2e-4 of the largest force.y, asserted 1e-3);
+/// a run that moves its inputs, or a level with memory, is refused naming the cause.
+#[test]
+fn run_through_matches_the_stepped_run_and_refuses_moving_inputs() {
+    let dir = std::env::temp_dir().join(format!("raceway-through-{}", std::process::id()));
+    let scene = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/examples/scenes/6205-ring2-radial.toml"
+    );
+    let series = |through: bool| -> (Vec<String>, Vec<Vec<f64>>) {
+        let out = dir.join(if through { "t" } else { "l" });
+        let mut args = vec!["run", scene, "-q", "--out", out.to_str().unwrap()];
+        if through {
+            args.push("--through");
+        }
+        let o = run(&args);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let text = std::fs::read_to_string(out.join("series.csv")).unwrap();
+        let mut lines = text.lines();
+        let head = lines.next().unwrap().split(',').map(String::from).collect();
+        let rows = lines
+            .map(|l| l.split(',').map(|x| x.parse().unwrap()).collect())
+            .collect();
+        (head, rows)
+    };
+    let (h1, a) = series(true);
+    let (h2, b) = series(false);
+    assert_eq!(h1, h2);
+    assert_eq!(a.len(), b.len());
+    let i = h1.iter().position(|n| n.starts_with("force.y")).unwrap();
+    let peak = b.iter().map(|r| r[i].abs()).fold(0.0, f64::max);
+    let diff = a
+        .iter()
+        .zip(&b)
+        .map(|(x, y)| (x[i] - y[i]).abs())
+        .fold(0.0, f64::max);
+    assert!(peak > 100.0 && diff < 1e-3 * peak, "{diff} of {peak}");
+    assert!(a.iter().zip(&b).all(|(x, y)| x[0] == y[0]), "same times");
+    let rotating = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/examples/scenes/6205-rotating-load.toml"
+    );
+    refused(
+        &[
+            "run",
+            rotating,
+            "--through",
+            "-q",
+            "--out",
+            dir.to_str().unwrap(),
+        ],
+        &["run.rotating_load_n"],
+    );
+    refused(
+        &["run", "--through", "-q", "--out", dir.to_str().unwrap()],
+        &["model.level", "do_step"],
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

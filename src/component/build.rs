@@ -155,7 +155,7 @@ impl Component {
             k: std::array::from_fn(|_| vec![0.0; dim]),
             y: vec![0.0; dim],
             aux_save: vec![0.0; n_level_aux + AUX_COMPONENT],
-            fsal_key: vec![0.0; n + n_level_aux],
+            fsal_key: vec![0.0; super::N_INPUT_SLOTS + n_level_aux],
             fsal: false,
         };
         let jwork = JacWork {

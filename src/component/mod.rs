@@ -25,6 +25,7 @@ mod inputs;
 mod static_start;
 mod step;
 mod system;
+mod through;
 
 pub use scene::{InputRule, Level, Method, Scene};
 pub use state::State;
@@ -57,6 +58,10 @@ const I_V: usize = 5; // shaft.vx .. shaft.wy
 const I_OMEGA: usize = 10;
 const I_LOAD: usize = 11; // load.x .. load.my
 const I_FORCE: usize = 16; // force.x .. moment.y
+/// The table slots below this hold every input of either causality (the shaft motion and
+/// speed, the loads): all a step reads of `State::inputs` (checked by
+/// `slots_match_the_table`).
+const N_INPUT_SLOTS: usize = I_FORCE;
 const I_TORQUE: usize = 21;
 const I_CAGE_OMEGA: usize = 22;
 const I_DIAG: usize = 23; // cage.slip, balls.loaded, contact.max_load, contact.max_pressure, film, power, wear
@@ -405,6 +410,11 @@ mod tests {
         assert_eq!(variables::by_vr(variables::VR_K0).unwrap().name, "K.x.x");
         assert_eq!(variables::by_vr(variables::VR_C0).unwrap().name, "C.x.x");
         assert!(SCALARS.len() <= 64, "the inputs-set mask is a u64");
+        for (i, v) in variables::all().enumerate() {
+            if v.is_input(Causality::Motion) || v.is_input(Causality::Load) {
+                assert!(i < N_INPUT_SLOTS, "input `{}` at slot {i}", v.name);
+            }
+        }
     }
 
     /// Motion-driven, the cage angle is integrated by quadrature ([`Component::quadrature`]):

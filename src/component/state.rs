@@ -68,7 +68,7 @@ impl Clone for State {
     /// Field-wise, reusing this state's buffers: no allocation once the sizes match (the
     /// component's transactional `do_step` relies on it).
     fn clone_from(&mut self, o: &Self) {
-        self.begin_step_from(o, true);
+        self.copy_from(o, true, true);
     }
 }
 
@@ -79,6 +79,15 @@ impl State {
     /// writes them, and [`State::commit_step`] leaves them where they are). No allocation
     /// once the sizes match.
     pub(super) fn begin_step_from(&mut self, o: &Self, derivatives: bool) {
+        self.copy_from(o, derivatives, false);
+    }
+
+    /// [`State::begin_step_from`]; `all_inputs`: every slot of the inputs and outputs
+    /// (a whole copy), else of the inputs only the slots below `N_INPUT_SLOTS` that hold
+    /// inputs (a step reads no other, and [`State::commit_step`] leaves the inputs where
+    /// they are), and of the outputs only the slots below it (a successful step writes
+    /// every other).
+    fn copy_from(&mut self, o: &Self, derivatives: bool, all_inputs: bool) {
         self.scene_fingerprint = o.scene_fingerprint;
         self.t = o.t;
         self.started = o.started;
@@ -87,11 +96,22 @@ impl State {
         self.inputs_set = o.inputs_set;
         self.x.clone_from(&o.x);
         self.aux.clone_from(&o.aux);
-        self.inputs.clone_from(&o.inputs);
+        let ni = super::N_INPUT_SLOTS;
+        if !all_inputs && self.inputs.len() == o.inputs.len() && o.inputs.len() >= ni {
+            self.inputs[..ni].copy_from_slice(&o.inputs[..ni]);
+        } else {
+            self.inputs.clone_from(&o.inputs);
+        }
         if derivatives {
             self.input_derivatives.clone_from(&o.input_derivatives);
         }
-        self.outputs.clone_from(&o.outputs);
+        // A step's outputs (`Component::compute_outputs`, on every successful step) write
+        // every slot from `N_INPUT_SLOTS` on: only the slots below are carried over.
+        if !all_inputs && self.outputs.len() == o.outputs.len() && o.outputs.len() >= ni {
+            self.outputs[..ni].copy_from_slice(&o.outputs[..ni]);
+        } else {
+            self.outputs.clone_from(&o.outputs);
+        }
         self.output_derivatives.clone_from(&o.output_derivatives);
     }
 

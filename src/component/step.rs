@@ -3,7 +3,7 @@
 
 use super::inputs::{input_at, motion_at};
 use super::level::{LevelOutputs, Point};
-use super::system::{all_finite, e_time, Budget, Sys};
+use super::system::{all_finite, e_time, Budget, Sink, Sys};
 use super::{
     Component, InputRule, State, I_C, I_CAGE, I_CAGE_OMEGA, I_DIAG, I_FORCE, I_K, I_LOAD, I_Q,
     I_RATING, I_TORQUE, I_V, T_MAX,
@@ -33,44 +33,7 @@ impl Component {
     /// Advance from `t` to `t + h`, sub-stepping inside. On error the state is unchanged
     /// and the message says why.
     pub fn do_step(&mut self, t: f64, h: f64) -> Result<()> {
-        if !(h.is_finite() && h > 0.0 && h <= T_MAX) {
-            return Err(Error::invalid(
-                "h",
-                h,
-                format!("a finite step > 0 and <= {T_MAX:e} s"),
-            ));
-        }
-        if !(t.is_finite() && t.abs() + h <= T_MAX) {
-            return Err(Error::invalid(
-                "t",
-                t,
-                format!("a finite time with |t| + h <= {T_MAX:e} s (h = {h} s)"),
-            ));
-        }
-        // The step must advance time by h as a double can tell (to 1 ppm): from t = 1e15 s
-        // a step of 1e-4 s would otherwise leave time where it was.
-        if ((t + h) - t - h).abs() > 1e-6 * h {
-            let least = 1e6 * f64::EPSILON * (t.abs() + h);
-            return Err(Error::invalid(
-                "h",
-                h,
-                format!(
-                    "at least {least:.3e} s at t = {t} s (t + h must differ from t by h to 1 ppm)"
-                ),
-            ));
-        }
-        // An absolute bound on the mismatch (not one that grows with h: a step of 1e10 s
-        // must not excuse a jump of 5 s).
-        let tol = 1e-9 * (1.0 + self.state.t.abs());
-        if self.state.started && (t - self.state.t).abs() > tol {
-            return Err(Error::CallOrder {
-                call: "do_step",
-                reason: format!(
-                    "t = {t} s but the component is at {} s (time must not jump or run backwards)",
-                    self.state.t
-                ),
-            });
-        }
+        self.check_step_call("do_step", t, h)?;
         let clock = self.stages.start();
         self.require_inputs("do_step")?;
         // The last step's last stage is this step's first when nothing it read changed
@@ -110,12 +73,70 @@ impl Component {
         })
     }
 
+    /// The checks of a step from `t` over `h` (`call` names the caller): a finite step
+    /// within [`T_MAX`] that advances time, from the component's own time.
+    pub(super) fn check_step_call(&self, call: &'static str, t: f64, h: f64) -> Result<()> {
+        if !(h.is_finite() && h > 0.0 && h <= T_MAX) {
+            return Err(Error::invalid(
+                "h",
+                h,
+                format!("a finite step > 0 and <= {T_MAX:e} s"),
+            ));
+        }
+        if !(t.is_finite() && t.abs() + h <= T_MAX) {
+            return Err(Error::invalid(
+                "t",
+                t,
+                format!("a finite time with |t| + h <= {T_MAX:e} s (h = {h} s)"),
+            ));
+        }
+        // The step must advance time by h as a double can tell (to 1 ppm): from t = 1e15 s
+        // a step of 1e-4 s would otherwise leave time where it was.
+        if ((t + h) - t - h).abs() > 1e-6 * h {
+            let least = 1e6 * f64::EPSILON * (t.abs() + h);
+            return Err(Error::invalid(
+                "h",
+                h,
+                format!(
+                    "at least {least:.3e} s at t = {t} s (t + h must differ from t by h to 1 ppm)"
+                ),
+            ));
+        }
+        // An absolute bound on the mismatch (not one that grows with h: a step of 1e10 s
+        // must not excuse a jump of 5 s).
+        let tol = 1e-9 * (1.0 + self.state.t.abs());
+        if self.state.started && (t - self.state.t).abs() > tol {
+            return Err(Error::CallOrder {
+                call,
+                reason: format!(
+                    "t = {t} s but the component is at {} s (time must not jump or run backwards)",
+                    self.state.t
+                ),
+            });
+        }
+        Ok(())
+    }
+
     /// Integrate the states of `sc` over `h` with the scene's integrator; `sc.t` is the
     /// step start. The step-size memory lives in the last `aux` slot. `continuing`: the
     /// right-hand side is the one the last integration ended with ([`Work::fsal_matches`]).
     ///
     /// [`Work::fsal_matches`]: super::system::Work::fsal_matches
     pub(super) fn integrate(&mut self, sc: &mut State, h: f64, continuing: bool) -> Result<()> {
+        self.integrate_window(sc, h, continuing, None, 1)
+    }
+
+    /// [`Component::integrate`] over a window of `windows` communication intervals (the
+    /// step budgets, `solver.max_substeps` and `solver.max_step_cpu_s`, scale with it),
+    /// sampling the states at the window's inner communication points into `sink`.
+    pub(super) fn integrate_window(
+        &mut self,
+        sc: &mut State,
+        h: f64,
+        continuing: bool,
+        sink: Option<&mut Sink>,
+        windows: u32,
+    ) -> Result<()> {
         self.work.fsal = false;
         let n = sc.x.len();
         if n == 0 {
@@ -140,11 +161,14 @@ impl Component {
             t0,
             last_error: None,
             budget: Some(Budget::new(
-                self.scene.solver.max_step_cpu_s,
+                self.scene.solver.max_step_cpu_s * windows as f64,
                 self.budget_gap,
             )),
             continues: continuing,
+            sink,
         };
+        let max_steps = self.opts.max_steps;
+        self.opts.max_steps = max_steps.saturating_mul(windows as u64);
         let r = self.integrator.integrate(
             &mut sys,
             t0,
@@ -153,6 +177,7 @@ impl Component {
             &mut h_trial,
             &self.opts,
         );
+        self.opts.max_steps = max_steps;
         if let Some(b) = &sys.budget {
             self.budget_gap = b.gap;
         }
@@ -321,6 +346,7 @@ impl Component {
             last_error: None,
             budget: None,
             continues: false,
+            sink: None,
         };
         let mut r = sys.eval(s, &w.y, &mut w.k[0], None);
         for (sign, dest) in [(1.0, &mut fwd), (-1.0, &mut bwd)] {
@@ -367,6 +393,51 @@ mod tests {
 
     fn vr(name: &str) -> u32 {
         variables::by_name(name).unwrap().vr
+    }
+
+    /// A step writes every output slot from `N_INPUT_SLOTS` on (its scratch copy carries
+    /// only the slots below over): with those slots of the scratch state poisoned before
+    /// every step, the steps leave the same bits as without, for every input rule, both
+    /// causalities and the levels of the work-precision cases that run here quickly.
+    #[test]
+    fn a_step_writes_every_output_slot_it_does_not_carry_over() {
+        let scenes: Vec<crate::component::Scene> = ["6205-2dof", "6205-qs", "6205-linear"]
+            .iter()
+            .map(|n| {
+                let case = cases().into_iter().find(|c| &c.name == n).unwrap();
+                case.scene_with(Method::Dopri5, 1e-6).unwrap()
+            })
+            .chain(std::iter::once(
+                crate::component::Scene::from_text(
+                    "bearing = \"6205\"\n[model]\nlevel = \"ring\"\n[inputs]\ninitial = { \"shaft.x\" = 0.0, \"shaft.y\" = -8e-6, \"shaft.z\" = 0.0, \"shaft.rx\" = 0.0, \"shaft.ry\" = 0.0, \"shaft.vx\" = 0.0, \"shaft.vy\" = 0.0, \"shaft.vz\" = 0.0, \"shaft.wx\" = 0.0, \"shaft.wy\" = 0.0, \"shaft.omega\" = 183.26 }\n",
+                )
+                .unwrap(),
+            ))
+            .collect();
+        for scene in scenes {
+            for rule in [InputRule::Hold, InputRule::Velocity, InputRule::Derivatives] {
+                let mut s = scene.clone();
+                s.inputs.rule = rule;
+                let (mut a, mut b) = (
+                    Component::new(s.clone()).unwrap(),
+                    Component::new(s).unwrap(),
+                );
+                for i in 0..20 {
+                    let t = i as f64 * 1e-4;
+                    a.do_step(t, 1e-4).unwrap();
+                    let n = b.scratch.outputs.len();
+                    if n > super::super::N_INPUT_SLOTS {
+                        b.scratch.outputs[super::super::N_INPUT_SLOTS..].fill(f64::NAN);
+                    }
+                    b.do_step(t, 1e-4).unwrap();
+                    assert_eq!(
+                        a.serialize_state(),
+                        b.serialize_state(),
+                        "{rule:?} step {i}"
+                    );
+                }
+            }
+        }
     }
 
     /// What a step leaves (states, memory, outputs) as bits, and its right-hand sides.

@@ -4,9 +4,9 @@
 
 use super::inputs::{input_at, motion_at};
 use super::level::{Jacobians, LevelModel, Point};
-use super::{thread_cpu_s, Causality, InputRule, State, I_LOAD, I_V};
+use super::{thread_cpu_s, Causality, InputRule, State, I_LOAD, I_V, N_INPUT_SLOTS};
 use crate::error::{Error, Result};
-use crate::solver::{OdeSystem, SolverError};
+use crate::solver::{DenseFn, OdeSystem, SolverError};
 use std::time::Instant;
 
 /// Most evaluations between two reads of the CPU clock (a read costs 0.2 µs, one
@@ -121,7 +121,7 @@ pub(super) struct Work {
     pub(super) y: Vec<f64>,
     pub(super) aux_save: Vec<f64>,
     /// What the last stage of the last step's integration read besides the states: the
-    /// inputs and the level's memory (`inputs | aux[..n_level_aux]`), when `fsal` is set
+    /// inputs and the level's memory (`inputs[..N_INPUT_SLOTS] | aux[..n_level_aux]`), when `fsal` is set
     /// (the inputs' derivatives were zero then, or unused by the input rule).
     pub(super) fsal_key: Vec<f64>,
     /// The last step's last stage may be the next step's first (see
@@ -142,9 +142,9 @@ impl Work {
         if !self.fsal {
             return false;
         }
-        let ni = st.inputs.len();
+        let ni = N_INPUT_SLOTS;
         let k = &self.fsal_key;
-        same_bits(&k[..ni], &st.inputs)
+        same_bits(&k[..ni], &st.inputs[..ni])
             && same_bits(&k[ni..], &st.aux[..naux])
             && inputs_constant(st, rule, false)
     }
@@ -156,9 +156,9 @@ impl Work {
     pub(super) fn fsal_store(&mut self, st: &State, naux: usize, rule: InputRule, reusable: bool) {
         self.fsal = reusable && inputs_constant(st, rule, false);
         if self.fsal {
-            let ni = st.inputs.len();
+            let ni = N_INPUT_SLOTS;
             let k = &mut self.fsal_key;
-            k[..ni].copy_from_slice(&st.inputs);
+            k[..ni].copy_from_slice(&st.inputs[..ni]);
             k[ni..].copy_from_slice(&st.aux[..naux]);
         }
     }
@@ -213,6 +213,53 @@ pub(super) struct Sys<'a> {
     /// The right-hand side is the one the last integration ended with
     /// ([`Work::fsal_matches`]; [`OdeSystem::continues`]).
     pub(super) continues: bool,
+    /// The states wanted at communication points inside the integration (a window
+    /// integrated straight through, [`Component::step_through`]); `None` for a step.
+    ///
+    /// [`Component::step_through`]: super::Component::step_through
+    pub(super) sink: Option<&'a mut Sink>,
+}
+
+/// The states at the communication points strictly inside a window integrated straight
+/// through, sampled from the integrator's dense output as its steps pass them.
+#[derive(Debug, Clone, Default)]
+pub(super) struct Sink {
+    /// Window start, s.
+    pub(super) t0: f64,
+    /// Communication step, s.
+    pub(super) h: f64,
+    /// Communication intervals in the window (points `1..n` are sampled here).
+    pub(super) n: usize,
+    /// The next point to sample.
+    pub(super) next: usize,
+    /// States of points `1..n`, one row of `dim` each.
+    pub(super) xs: Vec<f64>,
+    /// States per point.
+    pub(super) dim: usize,
+    /// The first dense-output refusal, if any.
+    pub(super) error: Option<SolverError>,
+}
+
+impl Sink {
+    /// Time of point `k`, s.
+    pub(super) fn time(&self, k: usize) -> f64 {
+        self.t0 + k as f64 * self.h
+    }
+
+    /// Sample the points in `(.., t_new]` of an accepted step.
+    fn sample(&mut self, t_new: f64, dense: &DenseFn<'_>) {
+        while self.next < self.n && self.error.is_none() {
+            let t = self.time(self.next);
+            if t > t_new {
+                break;
+            }
+            let row = &mut self.xs[(self.next - 1) * self.dim..self.next * self.dim];
+            if let Err(e) = dense(t, row) {
+                self.error = Some(e);
+            }
+            self.next += 1;
+        }
+    }
 }
 
 impl Sys<'_> {
@@ -278,6 +325,14 @@ impl OdeSystem for Sys<'_> {
     }
     fn continues(&self) -> bool {
         self.continues
+    }
+    fn observes_steps(&self) -> bool {
+        self.sink.is_some()
+    }
+    fn step_accepted(&mut self, _t_old: f64, t_new: f64, dense: &DenseFn<'_>) {
+        if let Some(sink) = self.sink.as_deref_mut() {
+            sink.sample(t_new, dense);
+        }
     }
     /// `∂f/∂t = 0` exactly when the level is [`LevelModel::rhs_time_invariant`] and its
     /// inputs do not move within the step ([`inputs_constant`]): `f(t + δ, y)` is then `f(t, y)` bit
@@ -546,6 +601,7 @@ mod tests {
             last_error: None,
             budget: None,
             continues: false,
+            sink: None,
         };
         let mut zero = nalgebra::DMatrix::zeros(n, n);
         let mut stale = nalgebra::DMatrix::from_element(n, n, 7.0);

@@ -189,6 +189,37 @@ pub(crate) fn drive_until(
     Ok((s, thread_cpu_s() - start, None))
 }
 
+/// [`drive`] straight through: the whole window `[0, t_end]` in one
+/// [`Component::step_through`] call (the integrator takes its own steps), the forces at the
+/// communication points from its dense output. `t_end` must be a whole number of steps `h`
+/// (to 1e-9). Returns the forces and the thread CPU time of the call, which includes
+/// computing the forces at every point, s.
+pub fn drive_through(c: &mut Component, t_end: f64, h: f64) -> Result<(Samples, f64)> {
+    let n = (t_end / h).round().max(1.0) as usize;
+    if (n as f64 * h - t_end).abs() > 1e-9 * t_end.abs().max(h) {
+        return Err(Error::invalid(
+            "t_end",
+            t_end,
+            format!("a whole number of communication steps of {h} s"),
+        ));
+    }
+    let mut fvr = [0u32; 3];
+    for (v, name) in fvr.iter_mut().zip(FORCE_NAMES) {
+        *v = variables::by_name(name)
+            .map(|v| v.vr)
+            .ok_or_else(|| Error::invalid("variable", name, "a variable of the table"))?;
+    }
+    let mut out = Vec::new();
+    let start = thread_cpu_s();
+    c.step_through(0.0, h, n, &fvr, &mut out)?;
+    let cpu = thread_cpu_s() - start;
+    let s = Samples {
+        t: (1..=n).map(|k| k as f64 * h).collect(),
+        f: out.chunks_exact(3).map(|r| [r[0], r[1], r[2]]).collect(),
+    };
+    Ok((s, cpu))
+}
+
 pub use crate::counters::thread_cpu_s;
 
 /// The 1-, 5- and 15-minute load averages (`/proc/loadavg`), e.g. `"1.52 1.10 0.80"`, or

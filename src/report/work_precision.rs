@@ -68,6 +68,16 @@ impl Case {
     }
 }
 
+impl Case {
+    /// Run once straight through ([`super::drive_through`]): samples, time (the forces at
+    /// every communication point included) and counters.
+    pub fn run_through(&self, method: Method, rtol: f64) -> Result<(Samples, f64, Stats)> {
+        let mut c = Component::new(self.scene_with(method, rtol)?)?;
+        let (s, dt) = super::drive_through(&mut c, self.t_end, self.h)?;
+        Ok((s, dt, c.stats()))
+    }
+}
+
 /// A case's scene: `head` (title, bearing, level, ring DOFs), then what every case shares
 /// (a load-driven inner ring of 1 kg released from rest, contact damping 3000 N s/m), then
 /// the initial inputs.
@@ -228,6 +238,10 @@ pub struct Config {
     pub reference_rtol: (f64, f64),
     /// Print progress and counters to stdout.
     pub verbose: bool,
+    /// Also measure every point straight through ([`Case::run_through`]: one
+    /// `step_through` call over the window instead of a stop at every communication
+    /// point) into [`Report::through`].
+    pub through: bool,
 }
 
 impl Default for Config {
@@ -241,6 +255,7 @@ impl Default for Config {
             cache_dir: PathBuf::from("target/raceway-bench"),
             reference_rtol: (1e-12, 1e-11),
             verbose: false,
+            through: false,
         }
     }
 }
@@ -306,6 +321,8 @@ pub struct Report {
     pub skipped: Vec<(String, String)>,
     /// The points.
     pub rows: Vec<Row>,
+    /// The points measured straight through ([`Config::through`]; empty otherwise).
+    pub through: Vec<Row>,
     /// Peer results (SciPy), if measured.
     pub peer: Vec<PeerRow>,
     /// Reference tolerances used.
@@ -393,6 +410,26 @@ pub fn measure(
     Ok((s, median(&mut times), reps, stats))
 }
 
+/// [`measure`] straight through ([`Case::run_through`]).
+pub fn measure_through(
+    cfg: &Config,
+    case: &Case,
+    method: Method,
+    rtol: f64,
+) -> Result<(Samples, f64, usize, Stats)> {
+    let (s, first, stats) = case.run_through(method, rtol)?;
+    let reps = if first > 0.0 {
+        ((cfg.budget_s / first).floor() as usize).clamp(1, cfg.repeats.max(1))
+    } else {
+        cfg.repeats.max(1)
+    };
+    let mut times = Vec::with_capacity(reps);
+    for _ in 0..reps {
+        times.push(case.run_through(method, rtol)?.1);
+    }
+    Ok((s, median(&mut times), reps, stats))
+}
+
 /// Run the study.
 pub fn run(cfg: &Config) -> Result<Report> {
     let mut rep = Report {
@@ -400,6 +437,7 @@ pub fn run(cfg: &Config) -> Result<Report> {
         cases: Vec::new(),
         skipped: Vec::new(),
         rows: Vec::new(),
+        through: Vec::new(),
         peer: Vec::new(),
         reference_rtol: cfg.reference_rtol,
     };
@@ -454,6 +492,35 @@ pub fn run(cfg: &Config) -> Result<Report> {
                     );
                 }
                 rep.rows.push(row);
+                if !cfg.through {
+                    continue;
+                }
+                let (s, t, reps, stats) = measure_through(cfg, case, method, rtol)?;
+                let (err_l2, err_peak) = force_error(&s, &refs.primary)?;
+                if cfg.verbose {
+                    println!(
+                        "  {:<7} rtol {:.0e} straight through: {:>9.3} ms  err L2 {:.2e} peak {:.2e}  {}",
+                        method_name(method),
+                        rtol,
+                        t * 1e3,
+                        err_l2,
+                        err_peak,
+                        super::stats_line(&stats)
+                    );
+                }
+                rep.through.push(Row {
+                    case: case.name.to_string(),
+                    level: level.clone(),
+                    method,
+                    rtol,
+                    median_s: t,
+                    repeats: reps,
+                    stats,
+                    err_l2,
+                    err_peak,
+                    floor: refs.floor_l2,
+                    sim_s: case.t_end,
+                });
             }
         }
     }

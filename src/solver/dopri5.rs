@@ -241,7 +241,11 @@ impl Dopri5 {
                     index: idx,
                 });
             }
-            self.accept(t, h, if i + 1 == steps { t1 } else { t + h });
+            let t_new = if i + 1 == steps { t1 } else { t + h };
+            self.accept(t, h, t_new);
+            if sys.observes_steps() {
+                sys.step_accepted(t, t_new, &|tt, out| self.dense(tt, out));
+            }
         }
         Ok(h)
     }
@@ -296,6 +300,9 @@ impl Dopri5 {
                 self.stiffness_test(h);
                 let t_new = if last { t1 } else { t + h };
                 self.accept(t, h, t_new);
+                if sys.observes_steps() {
+                    sys.step_accepted(t, t_new, &|tt, out| self.dense(tt, out));
+                }
                 if let Some(h_next) = lp.accepted(t_new, h_new, h_prop, last, opts) {
                     return Ok(h_next);
                 }

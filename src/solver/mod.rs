@@ -77,6 +77,10 @@ pub(crate) fn check_dense(
     Ok(())
 }
 
+/// Dense output of the last accepted step: `dense(t, out)` fills the solution at `t`
+/// ([`OdeSystem::step_accepted`]).
+pub type DenseFn<'a> = dyn Fn(f64, &mut [f64]) -> Result<(), SolverError> + 'a;
+
 /// A system of ordinary differential equations `y' = f(t, y)` of fixed dimension.
 ///
 /// Time-dependent inputs are the system's business: it knows `t`.
@@ -103,6 +107,18 @@ pub trait OdeSystem {
     fn continues(&self) -> bool {
         false
     }
+
+    /// Whether the system watches the accepted steps ([`OdeSystem::step_accepted`]). Default
+    /// `false` (then the integrators do not call it).
+    fn observes_steps(&self) -> bool {
+        false
+    }
+
+    /// Called after every accepted step `[t_old, t_new]` when [`OdeSystem::observes_steps`]:
+    /// `dense(t, out)` fills the integrator's dense output at any `t` in that interval (an
+    /// `Err` for a `t` outside it or an `out` of another length). For sampling the solution
+    /// between the ends of a call (a window integrated straight through). Default: nothing.
+    fn step_accepted(&mut self, _t_old: f64, _t_new: f64, _dense: &DenseFn<'_>) {}
 
     /// Fill the Jacobian `∂f/∂y` at `(t, y)` into `jac` (n × n) and return `true`, or return
     /// `false` (the default) to let the integrator build it by forward differences.
@@ -160,6 +176,22 @@ impl Options {
 
     /// Check the options against the dimension `n` (no allocation unless refused).
     fn check(&self, n: usize) -> Result<(), SolverError> {
+        // Every call checks its options: the usual case (all valid) in one branch-free
+        // pass, the message of a refusal below.
+        let atol_ok = self
+            .atol
+            .iter()
+            .fold(true, |ok, a| ok & a.is_finite() & (*a > 0.0));
+        if self.rtol.is_finite()
+            & (self.rtol >= 0.0)
+            & (self.atol.len() == n)
+            & atol_ok
+            & (self.h_max > 0.0)
+            & (!self.fixed_step | self.h_max.is_finite())
+            & (self.max_steps != 0)
+        {
+            return Ok(());
+        }
         if !(self.rtol.is_finite() && self.rtol >= 0.0) {
             return Err(SolverError::invalid(
                 "rtol",

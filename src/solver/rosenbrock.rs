@@ -601,7 +601,11 @@ impl Rosenbrock {
                     })
                 }
             }
-            self.accept(t, if i + 1 == steps { t1 } else { t + h });
+            let t_new = if i + 1 == steps { t1 } else { t + h };
+            self.accept(t, t_new);
+            if sys.observes_steps() {
+                sys.step_accepted(t, t_new, &|tt, out| self.dense(tt, out));
+            }
             jac_age += 1;
         }
         Ok(h)
@@ -680,6 +684,9 @@ impl Rosenbrock {
                     accepted_here += 1;
                     let t_new = if last { t1 } else { t + h };
                     self.accept(t, t_new);
+                    if sys.observes_steps() {
+                        sys.step_accepted(t, t_new, &|tt, out| self.dense(tt, out));
+                    }
                     need_linearise = true;
                     if w_method {
                         jac_age += 1;

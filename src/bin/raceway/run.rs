@@ -31,6 +31,12 @@ pub struct RunArgs {
     /// series.csv.
     #[arg(long)]
     pub kc: bool,
+    /// Integrate the whole duration straight through (the integrator takes its own steps;
+    /// the series at every step_s from its dense output) instead of stopping at every
+    /// step_s. Holds the start's inputs: refused for a speed ramp, orbit or rotating load,
+    /// and for levels with memory updated at each point (warm starts, wear, thermal).
+    #[arg(long)]
+    pub through: bool,
 }
 
 fn io(path: &Path, e: std::io::Error) -> Error {
@@ -83,11 +89,12 @@ pub fn run(a: RunArgs) -> Result<String> {
             let _ = std::io::stderr().flush();
         }
     };
-    let (series, comp) = runner::run_recording(
+    let (series, comp) = runner::run_with(
         &scene,
         Record {
             stiffness_damping: a.kc,
         },
+        a.through,
         &mut progress,
     )?;
     if bar_on {
