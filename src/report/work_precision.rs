@@ -862,7 +862,9 @@ impl Report {
              `solve_ivp` call over the window with `t_eval` at the communication points, and is \
              scored with the same metric against raceway's reference. Raceway restarts its \
              integrator at every communication step (it is a co-simulation component); SciPy \
-             integrates straight through, which favours SciPy.\n\n\
+             integrates straight through, which favours SciPy. Job for job (both stopping at \
+             every point, and both straight through with raceway's `Component::step_through`): \
+             docs/speed.md (`cargo bench --bench speed -- --only peer`).\n\n\
              | peer | rtol | time (ms) | nfev | njev | nlu | err L2 | raceway time at that error (ms) | SciPy / raceway |\n\
              |---|---|---|---|---|---|---|---|---|\n",
         );
