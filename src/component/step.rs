@@ -144,6 +144,9 @@ impl Component {
                 self.budget_gap,
             )),
             continues: continuing,
+            carries_jac: !self
+                .state_shared
+                .swap(false, std::sync::atomic::Ordering::Relaxed),
         };
         let r = self.integrator.integrate(
             &mut sys,
@@ -321,6 +324,7 @@ impl Component {
             last_error: None,
             budget: None,
             continues: false,
+            carries_jac: false,
         };
         let mut r = sys.eval(s, &w.y, &mut w.k[0], None);
         for (sign, dest) in [(1.0, &mut fwd), (-1.0, &mut bwd)] {

@@ -213,6 +213,8 @@ pub(super) struct Sys<'a> {
     /// The right-hand side is the one the last integration ended with
     /// ([`Work::fsal_matches`]; [`OdeSystem::continues`]).
     pub(super) continues: bool,
+    /// No state was taken or set since the last step ([`OdeSystem::carries_jacobian`]).
+    pub(super) carries_jac: bool,
 }
 
 impl Sys<'_> {
@@ -278,6 +280,9 @@ impl OdeSystem for Sys<'_> {
     }
     fn continues(&self) -> bool {
         self.continues
+    }
+    fn carries_jacobian(&self) -> bool {
+        self.carries_jac
     }
     /// `∂f/∂t = 0` exactly when the level is [`LevelModel::rhs_time_invariant`] and its
     /// inputs do not move within the step ([`inputs_constant`]): `f(t + δ, y)` is then `f(t, y)` bit
@@ -546,6 +551,7 @@ mod tests {
             last_error: None,
             budget: None,
             continues: false,
+            carries_jac: false,
         };
         let mut zero = nalgebra::DMatrix::zeros(n, n);
         let mut stale = nalgebra::DMatrix::from_element(n, n, 7.0);
