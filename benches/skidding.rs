@@ -105,10 +105,19 @@ fn goal_run(method: Method, rtol: f64, t_end: f64) -> (f64, Samples, raceway::co
 }
 
 fn main() {
-    // `-- goal`: the speed goal's case only (e.g. under perf); `-- goal ros34pw2`: one method.
+    // `-- goal`: the speed goal's case only; `-- goal ros34pw2`: one method.
     let args: Vec<String> = std::env::args().collect();
     let goal_only = args.iter().any(|a| a == "goal");
     let only_w = args.iter().any(|a| a == "ros34pw2");
+    if args.iter().any(|a| a == "profile") {
+        // `-- profile`: ROS34PW2's goal run only, 1 s and no reference (for perf).
+        let (cpu, _, d) = goal_run(Method::Ros34pw2, 1e-5, 1.0);
+        println!(
+            "ROS34PW2 rtol 1e-5: {:.1} us per 0.1 ms step, {d:?}",
+            cpu * 1e6
+        );
+        return;
+    }
     if !goal_only {
         host_steps();
     }
