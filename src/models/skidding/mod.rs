@@ -1917,7 +1917,8 @@ mod tests {
     /// 0.1 ms component steps: the W-method
     /// carries its Jacobian from step to step (a few per 20 steps, not one a step), the
     /// step after a state is taken starts with a fresh one, and the state continues bit for
-    /// bit when restored in the same component or in a new one.
+    /// bit when restored in the same component or in a new one. On the way: the peak
+    /// pressure output (from the largest loads) is the largest of the balls', bit for bit.
     #[test]
     fn ros34pw2_carries_its_jacobian_across_steps_and_a_taken_state_restores_bit_for_bit() {
         use crate::component::{variables, Component};
@@ -1948,6 +1949,16 @@ mod tests {
         let (jac, acc) = (s1.jacobians - s0.jacobians, s1.accepted - s0.accepted);
         println!("20 steps: {jac} Jacobians, {acc} accepted, {s1:?}");
         assert!(acc >= 20 && jac <= 1 + acc / 5, "{s0:?} {s1:?}");
+        // The peak-pressure output (from the largest loads) is the largest of the balls'.
+        let p_out = c.get_real(variables::by_name("contact.max_pressure").unwrap().vr);
+        let m = c.skidding_mut().unwrap().model();
+        let per_ball = m
+            .balls
+            .iter()
+            .map(|b| m.peak_pressure(b.q_i, b.q_o))
+            .fold(0.0, f64::max);
+        assert!(per_ball > 1e8);
+        assert_eq!(p_out.unwrap().to_bits(), per_ball.to_bits());
         let saved = c.get_state();
         let j = c.stats().jacobians;
         c.do_step(c.time(), 1e-4).unwrap();
