@@ -814,7 +814,6 @@ impl Rosenbrock {
         t: f64,
         h: f64,
     ) -> Result<Attempt, SolverError> {
-        let n = self.n;
         let w = &self.w;
         // `!=` is also true for the NaN of "no LU".
         if self.lu_h != h {
@@ -828,45 +827,49 @@ impl Rosenbrock {
         let ih = 1.0 / h;
         let (y, ytmp, f0, dfdt) = (&self.y, &mut self.ytmp, &self.f0, &self.dfdt);
         let (stages, rest) = self.u.split_at_mut(W_STAGES);
+        // The sums run over whole vectors, one stage `j` after the other (each component
+        // gets its terms in the order of `j`, as a sum per component would give them).
         for i in 0..W_STAGES {
             let (done, cur) = stages.split_at_mut(i);
             let ui = &mut cur[0];
             if i == 0 {
                 ui.copy_from_slice(f0);
             } else {
-                for k in 0..n {
-                    let mut v = y[k];
-                    for (j, uj) in done.iter().enumerate() {
-                        v += w.a[i][j] * uj[k];
+                ytmp.copy_from_slice(y);
+                for (j, uj) in done.iter().enumerate() {
+                    let a = w.a[i][j];
+                    for (v, u) in ytmp.iter_mut().zip(uj) {
+                        *v += a * u;
                     }
-                    ytmp[k] = v;
                 }
                 let ti = t + w.c[i] * h;
                 if let Some(idx) = eval(sys, &mut self.stats, ti, ytmp, ui)? {
                     return Ok(Attempt::NonFinite(ti, idx));
                 }
             }
-            for k in 0..n {
-                let mut v = ui[k];
-                for (j, uj) in done.iter().enumerate() {
-                    v += ih * w.cc[i][j] * uj[k];
+            for (j, uj) in done.iter().enumerate() {
+                let c = ih * w.cc[i][j];
+                for (v, u) in ui.iter_mut().zip(uj) {
+                    *v += c * u;
                 }
-                if self.dfdt_on {
-                    v += h * w.d[i] * dfdt[k];
+            }
+            if self.dfdt_on {
+                let d = h * w.d[i];
+                for (v, g) in ui.iter_mut().zip(dfdt) {
+                    *v += d * g;
                 }
-                ui[k] = v;
             }
             self.solver.solve(ui);
         }
         let err = &mut rest[rest.len() - 1];
-        for k in 0..n {
-            let (mut yn, mut e) = (y[k], 0.0);
-            for (j, uj) in stages.iter().enumerate() {
-                yn += w.m[j] * uj[k];
-                e += w.e[j] * uj[k];
+        self.ynew.copy_from_slice(y);
+        err.fill(0.0);
+        for (j, uj) in stages.iter().enumerate() {
+            let (m, e) = (w.m[j], w.e[j]);
+            for ((yn, er), u) in self.ynew.iter_mut().zip(err.iter_mut()).zip(uj) {
+                *yn += m * u;
+                *er += e * u;
             }
-            self.ynew[k] = yn;
-            err[k] = e;
         }
         if let Some(i) = self.ynew.iter().position(|v| !v.is_finite()) {
             return Ok(Attempt::NonFinite(t + h, i));
