@@ -625,6 +625,10 @@ fn main() {
     if want("skidding") {
         // --- Skidding 7008CE 6000 rpm, outputs every 0.1 ms, with the W-method ROS34PW2
         // (its Jacobian carried from step to step); error against RODAS4 at rtol 1e-9.
+        // Named here, not made the level's default: the 0.1 ms communication step bounds
+        // its steps here, but with 1 ms steps at rtol 1e-5 ROS34PW2's cage slip on the
+        // 6012 scene is 30 % off at 40 ms (RODAS4's 0.4 %; tests/skidding.rs), so the
+        // shipped skidding scenes keep RODAS4.
         let t_sk = if quick { 0.005 } else { 0.02 };
         let (cpu_sk, s_sk) = skidding_run(Method::Ros34pw2, 1e-5, t_sk);
         let (_, s_ref) = skidding_run(Method::Rosenbrock, 1e-9, t_sk);
