@@ -105,10 +105,23 @@ fn goal_run(method: Method, rtol: f64, t_end: f64) -> (f64, Samples, raceway::co
 }
 
 fn main() {
-    // `-- goal`: the speed goal's case only (e.g. under perf); `-- goal ros34pw2`: one method.
+    // `-- goal`: the speed goal's case only; `-- goal ros34pw2`: one method.
     let args: Vec<String> = std::env::args().collect();
     let goal_only = args.iter().any(|a| a == "goal");
     let only_w = args.iter().any(|a| a == "ros34pw2");
+    if args.iter().any(|a| a == "profile") {
+        // `-- profile`: ROS34PW2's goal run only, 1 s and no reference (for perf).
+        let (cpu, s, d) = goal_run(Method::Ros34pw2, 1e-5, 1.0);
+        // A fingerprint of every force sample's bits (the same trajectory, bit for bit?).
+        let bits = s.f.iter().flatten().fold(0u64, |h, f| {
+            (h ^ f.to_bits()).wrapping_mul(0x0100_0000_01b3)
+        });
+        println!(
+            "ROS34PW2 rtol 1e-5: {:.1} us per 0.1 ms step, {d:?}, forces {bits:016x}",
+            cpu * 1e6
+        );
+        return;
+    }
     if !goal_only {
         host_steps();
     }

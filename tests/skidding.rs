@@ -702,7 +702,7 @@ initial = {{ "shaft.x" = 0.0, "shaft.y" = {:e}, "shaft.z" = {:e}, "shaft.rx" = 0
 /// slip is 30 % off at 40 ms, RODAS4's 0.4 %). So: ROS34PW2 at rtol 1e-8 agrees with
 /// RODAS4 at the scene's 1e-5 on the load and the slip with fewer right-hand sides, steps
 /// without allocating, and a state restored with `set_state` continues bit for bit (the
-/// Jacobian it keeps across sub-steps lives within one step, not across steps).
+/// Jacobian it carries from step to step is dropped when a state is taken or set).
 #[test]
 fn ros34pw2_carries_the_load_like_rodas4_and_restores_bit_for_bit() {
     let text = include_str!("../examples/scenes/6012-skidding.toml");

@@ -169,6 +169,7 @@ impl Component {
             rating: crate::ratings::RatingOutputs::of(&bearing),
             stages: super::Stages::default(),
             budget_gap: 1,
+            state_shared: false.into(),
             required_inputs: SCALARS
                 .iter()
                 .enumerate()

@@ -116,6 +116,12 @@ pub struct Component {
     /// Bits (as in `State::inputs_set`) of the inputs of this causality: every step checks
     /// that they were all set.
     required_inputs: u64,
+    /// A state was taken or set since the last step: the next step's W-method starts with
+    /// a fresh Jacobian, not the one the last step ended with, so that a state continues
+    /// bit for bit wherever it is restored ([`OdeSystem::carries_jacobian`]).
+    ///
+    /// [`OdeSystem::carries_jacobian`]: crate::solver::OdeSystem::carries_jacobian
+    state_shared: std::sync::atomic::AtomicBool,
 }
 
 impl Component {
@@ -224,12 +230,14 @@ impl Component {
 
     /// A copy of the complete state.
     pub fn get_state(&self) -> State {
+        self.mark_state_shared();
         self.state.clone()
     }
 
     /// The complete state (copy it into a state of the same scene with
     /// `clone_from`, which does not allocate).
     pub fn state(&self) -> &State {
+        self.mark_state_shared();
         &self.state
     }
 
@@ -237,7 +245,14 @@ impl Component {
     pub fn set_state(&mut self, s: &State) -> Result<()> {
         self.check_state(s)?;
         self.state.clone_from(s);
+        self.mark_state_shared();
         Ok(())
+    }
+
+    /// [`Component::state_shared`]: set.
+    fn mark_state_shared(&self) {
+        self.state_shared
+            .store(true, std::sync::atomic::Ordering::Relaxed);
     }
 
     /// Would [`Component::set_state`] accept `s`? (Same scene, same sizes.)

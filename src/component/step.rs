@@ -166,6 +166,9 @@ impl Component {
             )),
             continues: continuing,
             sink,
+            carries_jac: !self
+                .state_shared
+                .swap(false, std::sync::atomic::Ordering::Relaxed),
         };
         let max_steps = self.opts.max_steps;
         self.opts.max_steps = max_steps.saturating_mul(windows as u64);
@@ -347,6 +350,7 @@ impl Component {
             budget: None,
             continues: false,
             sink: None,
+            carries_jac: false,
         };
         let mut r = sys.eval(s, &w.y, &mut w.k[0], None);
         for (sign, dest) in [(1.0, &mut fwd), (-1.0, &mut bwd)] {

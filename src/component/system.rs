@@ -218,6 +218,8 @@ pub(super) struct Sys<'a> {
     ///
     /// [`Component::step_through`]: super::Component::step_through
     pub(super) sink: Option<&'a mut Sink>,
+    /// No state was taken or set since the last step ([`OdeSystem::carries_jacobian`]).
+    pub(super) carries_jac: bool,
 }
 
 /// The states at the communication points strictly inside a window integrated straight
@@ -333,6 +335,9 @@ impl OdeSystem for Sys<'_> {
         if let Some(sink) = self.sink.as_deref_mut() {
             sink.sample(t_new, dense);
         }
+    }
+    fn carries_jacobian(&self) -> bool {
+        self.carries_jac
     }
     /// `∂f/∂t = 0` exactly when the level is [`LevelModel::rhs_time_invariant`] and its
     /// inputs do not move within the step ([`inputs_constant`]): `f(t + δ, y)` is then `f(t, y)` bit
@@ -602,6 +607,7 @@ mod tests {
             budget: None,
             continues: false,
             sink: None,
+            carries_jac: false,
         };
         let mut zero = nalgebra::DMatrix::zeros(n, n);
         let mut stale = nalgebra::DMatrix::from_element(n, n, 7.0);

@@ -244,6 +244,7 @@ impl Component {
             budget: None,
             continues: false,
             sink: None,
+            carries_jac: false,
         };
         sys.eval(s, x, dy, Some(&mut w))?;
         if !w.iter().all(|v| v.is_finite()) {

@@ -177,6 +177,15 @@ pub struct BlockArrowhead {
     /// LU of the Schur complement, column-major `m × m`.
     schur: Vec<f64>,
     spiv: Vec<usize>,
+    /// The border columns `j` where some `G_i` is not zero (ascending): the others are
+    /// skipped in the back substitution (`x_i = z_i − G_i x_b`; the skidding level's balls
+    /// do not see the ring's velocities), which subtracts the same products but for
+    /// zeros. Set by each factorisation.
+    g_cols: Vec<usize>,
+    /// The border rows `r` where some `C_i` is not zero (ascending), likewise in the
+    /// forward elimination (`b_b − Σ C_i z_i`; the cage angle's and the ring positions'
+    /// rates do not depend on the balls).
+    c_rows: Vec<usize>,
 }
 
 impl BlockArrowhead {
@@ -193,6 +202,8 @@ impl BlockArrowhead {
             c: vec![0.0; nb * m * s],
             schur: vec![0.0; m * m],
             spiv: vec![0; m],
+            g_cols: Vec::with_capacity(m),
+            c_rows: Vec::with_capacity(m),
         }
     }
 
@@ -333,6 +344,23 @@ impl BlockArrowhead {
                 }
             }
         }
+        self.g_cols.clear();
+        for j in 0..m {
+            let nonzero = (0..nb).any(|b| {
+                let g = &self.g[b * s * m..(b + 1) * s * m];
+                g[j * s..(j + 1) * s].iter().any(|v| *v != 0.0)
+            });
+            if nonzero {
+                self.g_cols.push(j);
+            }
+        }
+        self.c_rows.clear();
+        for r in 0..m {
+            let nonzero = (0..nb * s).any(|bk| self.c[bk * m + r] != 0.0);
+            if nonzero {
+                self.c_rows.push(r);
+            }
+        }
         lu_factor(&mut self.schur, m, &mut self.spiv).is_ok()
     }
 
@@ -355,8 +383,9 @@ impl BlockArrowhead {
             }
             let c = &self.c[b * m * s..(b + 1) * m * s];
             for (k, zk) in z.iter().enumerate() {
-                for (r, cv) in xr.iter_mut().zip(&c[k * m..(k + 1) * m]) {
-                    *r -= cv * zk;
+                let ck = &c[k * m..(k + 1) * m];
+                for &r in &self.c_rows {
+                    xr[r] -= ck[r] * zk;
                 }
             }
         }
@@ -364,7 +393,9 @@ impl BlockArrowhead {
         for b in 0..nb {
             let z = &mut xb[b * s..(b + 1) * s];
             let g = &self.g[b * s * m..(b + 1) * s * m];
-            for (j, xj) in xr.iter().enumerate() {
+            // A column of zeros would subtract zeros: the same values.
+            for &j in &self.g_cols {
+                let xj = xr[j];
                 for (zi, gv) in z.iter_mut().zip(&g[j * s..(j + 1) * s]) {
                     *zi -= gv * xj;
                 }
@@ -448,6 +479,57 @@ mod tests {
         // a coupling between two blocks breaks the pattern
         j[(0, s)] = 1.0;
         assert!(!blk.fits(&j));
+    }
+
+    /// Border rows with no coupling to the blocks and border columns the blocks do not
+    /// see (the skidding level's cage angle and ring positions, ring velocities) are
+    /// skipped in the solve, and the solution is still that of the dense LU; a border
+    /// column that becomes coupled is no longer skipped.
+    #[test]
+    fn block_arrowhead_skips_zero_border_rows_and_columns() {
+        let (nb, s, m) = (6, 3, 5);
+        let n = nb * s + m;
+        let nb0 = nb * s;
+        let mut seed = 0x2545_F491_4F6C_DD1Du64;
+        let mut j = DMatrix::zeros(n, n);
+        for c in 0..n {
+            for r in 0..n {
+                let same_block = r < nb0 && c < nb0 && r / s == c / s;
+                // no C entries in border rows 0 and 2, no B entries in border column 3
+                let c_zero = r >= nb0 && c < nb0 && [0, 2].contains(&(r - nb0));
+                let b_zero = r < nb0 && c == nb0 + 3;
+                let border = r >= nb0 || c >= nb0;
+                if (same_block || border) && !c_zero && !b_zero {
+                    j[(r, c)] = 3.0 * rng(&mut seed);
+                }
+            }
+        }
+        let sigma = 2.5;
+        for round in 0..2 {
+            let mut blk = BlockArrowhead::new(nb, s, m);
+            let mut dense = DenseLu::new(n);
+            assert!(blk.factor(sigma, &j) && dense.factor(sigma, &j));
+            if round == 0 {
+                assert_eq!(blk.c_rows, [1, 3, 4]);
+                assert_eq!(blk.g_cols, [0, 1, 2, 4]);
+            } else {
+                assert_eq!(blk.g_cols, [0, 1, 2, 3, 4]);
+            }
+            let b: Vec<f64> = (0..n).map(|_| rng(&mut seed)).collect();
+            let (mut xb, mut xd) = (b.clone(), b);
+            blk.solve(&mut xb);
+            dense.solve(&mut xd);
+            for i in 0..n {
+                assert!(
+                    (xb[i] - xd[i]).abs() < 1e-13 * (1.0 + xd[i].abs()),
+                    "round {round}, {i}: {} vs {}",
+                    xb[i],
+                    xd[i]
+                );
+            }
+            // one ball row now sees border column 3
+            j[(4, nb0 + 3)] = 0.7;
+        }
     }
 
     /// The unrolled fixed-size block path (3 and 5 states per ball) gives the same bits as

@@ -120,6 +120,17 @@ pub trait OdeSystem {
     /// between the ends of a call (a window integrated straight through). Default: nothing.
     fn step_accepted(&mut self, _t_old: f64, _t_new: f64, _dense: &DenseFn<'_>) {}
 
+    /// Whether a W-method (ROS34PW2) may start this call with the Jacobian approximation
+    /// (and its age) that its last call ended with, when `y` is bit for bit where that
+    /// call left it, or where it began when its result was not kept (a repeated call then
+    /// starts as that one did). Any matrix keeps a W-method's order; its error estimate
+    /// and the refresh after a rejection keep it honest. The bits of a call then depend
+    /// on the calls before it, not only on its inputs: a system says yes only when that
+    /// history is reproducible for its users. Default `false`.
+    fn carries_jacobian(&self) -> bool {
+        false
+    }
+
     /// Fill the Jacobian `∂f/∂y` at `(t, y)` into `jac` (n × n) and return `true`, or return
     /// `false` (the default) to let the integrator build it by forward differences.
     fn jacobian(&mut self, _t: f64, _y: &[f64], _jac: &mut DMatrix<f64>) -> bool {

@@ -17,20 +17,12 @@
 //! with an embedded method of order 2: its order holds for any matrix in place of `J`
 //! (Hairer & Wanner II, §IV.7, "W-methods"), so `J` and the LU of `I/(hγ) − J` are kept
 //! across the steps of one call (refreshed after a rejection and every
-//! [`W_JAC_MAX_AGE`] accepted steps; the LU whenever `h` changes), and `∂f/∂t` is taken
+//! [`W_JAC_MAX_AGE`] accepted steps; the LU whenever `h` changes), and, when the system allows it ([`OdeSystem::carries_jacobian`]),
+//! across calls that continue one another; `∂f/∂t` is taken
 //! from the system when it gives it and left out otherwise (the autonomous form's
 //! Jacobian approximated without its time column: still a W-method). The published
 //! coefficients `α, Γ, b, b̂` are the data; the transformed ones (`A = αΓ⁻¹`,
 //! `C = diag(Γ)⁻¹ − Γ⁻¹`, `m = bΓ⁻¹`) are computed from them.
-//!
-//! The same integrator also runs ROS34PW2 ([`RosMethod::Ros34pw2`]; Rang & Angermann,
-//! *BIT* 45 (2005) 761–787), a 4-stage, stiffly accurate, L-stable **W-method** of order 3
-//! with an embedded method of order 2: its order holds for any matrix in place of `J`
-//! (Hairer & Wanner II, §IV.7, "W-methods"), so `J` and the LU of `I/(hγ) − J` are kept
-//! across the steps of one call, and `∂f/∂t` is taken from the system when it gives it
-//! and left out otherwise (the autonomous form's Jacobian approximated without its time
-//! column: still a W-method). The published coefficients `α, Γ, b, b̂` are the data; the
-//! transformed ones (`A = αΓ⁻¹`, `C = diag(Γ)⁻¹ − Γ⁻¹`, `m = bΓ⁻¹`) are computed from them.
 
 use super::{
     check_call, error_norm, eval, fixed_steps, initial_step, DenseLu, LinearSolver, OdeSystem,
@@ -268,7 +260,8 @@ impl WCoeffs {
 /// - Dense output [`Rosenbrock::dense`]: RODAS's 3rd-order continuous extension.
 ///
 /// ROS34PW2 differs in: `J` (from the system or by the same differences) at the first
-/// step of a call, after a rejected step and every [`W_JAC_MAX_AGE`] accepted steps; the
+/// step of a call (unless the call carries the last one's, [`OdeSystem::carries_jacobian`]),
+/// after a rejected step and every [`W_JAC_MAX_AGE`] accepted steps; the
 /// LU only when `h` changes; `∂f/∂t` only from the system; step control with `err^(1/3)`
 /// (embedded order 2); no dense output.
 pub struct Rosenbrock {
@@ -281,6 +274,9 @@ pub struct Rosenbrock {
     lu_h: f64,
     /// W-method: whether `dfdt` holds the system's `∂f/∂t` (else the term is left out).
     dfdt_on: bool,
+    /// W-method: what lets a call start with the last call's `J`
+    /// ([`OdeSystem::carries_jacobian`]).
+    carry: Box<Carry>,
     y: Vec<f64>,
     ynew: Vec<f64>,
     f0: Vec<f64>,
@@ -326,6 +322,7 @@ impl Rosenbrock {
             w: Box::new(WCoeffs::ros34pw2()),
             lu_h: f64::NAN,
             dfdt_on: false,
+            carry: Box::new(Carry::new(0)),
             y: v(),
             ynew: v(),
             f0: v(),
@@ -349,6 +346,9 @@ impl Rosenbrock {
     pub fn with_method(method: RosMethod, solver: Box<dyn LinearSolver>) -> Self {
         let mut r = Self::with_solver(solver);
         r.method = method;
+        if method != RosMethod::Rodas4 {
+            r.carry = Box::new(Carry::new(r.n));
+        }
         r
     }
 
@@ -566,6 +566,13 @@ impl Rosenbrock {
                     self.f_at_start(sys, t)?;
                 }
                 if need_jac {
+                    // The J a carried call started with, kept until the call is known
+                    // good (`carry_back`).
+                    let c = &mut *self.carry;
+                    if c.start_ok && !c.prev_saved {
+                        c.jac_prev.copy_from(&self.jac);
+                        c.prev_saved = true;
+                    }
                     self.jacobian_at(sys, t, opts)?;
                     self.lu_h = f64::NAN;
                 }
@@ -618,14 +625,89 @@ impl Rosenbrock {
         t1: f64,
         h0: f64,
         opts: &Options,
-        mut have_f0: bool,
+        have_f0: bool,
     ) -> Result<f64, SolverError> {
-        let mut lp = StepLoop::new(t0, h0);
-        let mut need_linearise = true;
         // W-method: J wanted at the next preparation; accepted steps since the last J.
         let w_method = self.method != RosMethod::Rodas4;
         let mut need_jac = true;
         let mut jac_age: u32 = 0;
+        let carries = w_method && sys.carries_jacobian();
+        if carries {
+            if let Some(age) = self.carry_in() {
+                (need_jac, jac_age) = (age >= W_JAC_MAX_AGE, age);
+            }
+        } else if w_method {
+            self.carry.forget();
+        }
+        let r = self.adaptive_loop(sys, t0, t1, h0, opts, have_f0, need_jac, jac_age);
+        if carries {
+            match r {
+                Ok((_, age)) => self.carry_out(age),
+                Err(_) => self.carry_back(),
+            }
+        }
+        r.map(|(h, _)| h)
+    }
+
+    /// W-method, at the start of a call that may carry `J` (`self.y` its start): the age
+    /// of the `J` it starts with, or `None` for a fresh one. A call from where the last
+    /// one ended continues with that `J`; a call from where the last one began (its result
+    /// was not kept: a failed or refused step) starts with the `J` that one started with.
+    fn carry_in(&mut self) -> Option<u32> {
+        let c = &mut *self.carry;
+        if c.end_ok && same_bits(&c.end_y, &self.y) {
+            c.start_y.copy_from_slice(&self.y);
+            (c.start_ok, c.start_age, c.prev_saved) = (true, c.end_age, false);
+            return Some(c.end_age);
+        }
+        c.end_ok = false;
+        if c.start_ok && same_bits(&c.start_y, &self.y) {
+            if c.prev_saved {
+                self.jac.copy_from(&c.jac_prev);
+                c.prev_saved = false;
+                self.lu_h = f64::NAN;
+            }
+            return Some(c.start_age);
+        }
+        c.start_ok = false;
+        None
+    }
+
+    /// W-method, after a call that may carry `J` ended: where, and how old its `J` is.
+    fn carry_out(&mut self, age: u32) {
+        let c = &mut *self.carry;
+        c.end_y.copy_from_slice(&self.y);
+        (c.end_ok, c.end_age) = (true, age);
+    }
+
+    /// W-method, after a call that may carry `J` failed: the `J` it started with back
+    /// (its LU is redone when next needed), so the next call starts as this one did.
+    fn carry_back(&mut self) {
+        let c = &mut *self.carry;
+        if c.prev_saved {
+            self.jac.copy_from(&c.jac_prev);
+            c.prev_saved = false;
+            self.lu_h = f64::NAN;
+        }
+    }
+
+    /// The step loop of [`Rosenbrock::run_adaptive`] from a `J` wanted (`need_jac`) or kept
+    /// with `jac_age` accepted steps on it: the next step size and the age at the end.
+    #[allow(clippy::too_many_arguments)]
+    fn adaptive_loop<S: OdeSystem + ?Sized>(
+        &mut self,
+        sys: &mut S,
+        t0: f64,
+        t1: f64,
+        h0: f64,
+        opts: &Options,
+        mut have_f0: bool,
+        mut need_jac: bool,
+        mut jac_age: u32,
+    ) -> Result<(f64, u32), SolverError> {
+        let mut lp = StepLoop::new(t0, h0);
+        let mut need_linearise = true;
+        let w_method = self.method != RosMethod::Rodas4;
         let expo = self.method.error_exponent();
         let mut accepted_here: u64 = 0;
         let (mut hacc, mut erracc) = (0.0f64, 0.0f64);
@@ -698,7 +780,7 @@ impl Rosenbrock {
                         }
                     }
                     if let Some(h_next) = lp.accepted(t_new, h_new, h_prop, last, opts) {
-                        return Ok(h_next);
+                        return Ok((h_next, jac_age));
                     }
                     continue;
                 }
@@ -739,7 +821,6 @@ impl Rosenbrock {
         t: f64,
         h: f64,
     ) -> Result<Attempt, SolverError> {
-        let n = self.n;
         let w = &self.w;
         // `!=` is also true for the NaN of "no LU".
         if self.lu_h != h {
@@ -753,45 +834,49 @@ impl Rosenbrock {
         let ih = 1.0 / h;
         let (y, ytmp, f0, dfdt) = (&self.y, &mut self.ytmp, &self.f0, &self.dfdt);
         let (stages, rest) = self.u.split_at_mut(W_STAGES);
+        // The sums run over whole vectors, one stage `j` after the other (each component
+        // gets its terms in the order of `j`, as a sum per component would give them).
         for i in 0..W_STAGES {
             let (done, cur) = stages.split_at_mut(i);
             let ui = &mut cur[0];
             if i == 0 {
                 ui.copy_from_slice(f0);
             } else {
-                for k in 0..n {
-                    let mut v = y[k];
-                    for (j, uj) in done.iter().enumerate() {
-                        v += w.a[i][j] * uj[k];
+                ytmp.copy_from_slice(y);
+                for (j, uj) in done.iter().enumerate() {
+                    let a = w.a[i][j];
+                    for (v, u) in ytmp.iter_mut().zip(uj) {
+                        *v += a * u;
                     }
-                    ytmp[k] = v;
                 }
                 let ti = t + w.c[i] * h;
                 if let Some(idx) = eval(sys, &mut self.stats, ti, ytmp, ui)? {
                     return Ok(Attempt::NonFinite(ti, idx));
                 }
             }
-            for k in 0..n {
-                let mut v = ui[k];
-                for (j, uj) in done.iter().enumerate() {
-                    v += ih * w.cc[i][j] * uj[k];
+            for (j, uj) in done.iter().enumerate() {
+                let c = ih * w.cc[i][j];
+                for (v, u) in ui.iter_mut().zip(uj) {
+                    *v += c * u;
                 }
-                if self.dfdt_on {
-                    v += h * w.d[i] * dfdt[k];
+            }
+            if self.dfdt_on {
+                let d = h * w.d[i];
+                for (v, g) in ui.iter_mut().zip(dfdt) {
+                    *v += d * g;
                 }
-                ui[k] = v;
             }
             self.solver.solve(ui);
         }
         let err = &mut rest[rest.len() - 1];
-        for k in 0..n {
-            let (mut yn, mut e) = (y[k], 0.0);
-            for (j, uj) in stages.iter().enumerate() {
-                yn += w.m[j] * uj[k];
-                e += w.e[j] * uj[k];
+        self.ynew.copy_from_slice(y);
+        err.fill(0.0);
+        for (j, uj) in stages.iter().enumerate() {
+            let (m, e) = (w.m[j], w.e[j]);
+            for ((yn, er), u) in self.ynew.iter_mut().zip(err.iter_mut()).zip(uj) {
+                *yn += m * u;
+                *er += e * u;
             }
-            self.ynew[k] = yn;
-            err[k] = e;
         }
         if let Some(i) = self.ynew.iter().position(|v| !v.is_finite()) {
             return Ok(Attempt::NonFinite(t + h, i));
@@ -913,6 +998,46 @@ impl Rosenbrock {
     }
 }
 
+/// W-method memory across calls ([`OdeSystem::carries_jacobian`]): where the last carrying
+/// call ended (`end_y`, with `end_age` accepted steps on `J`) and where it began
+/// (`start_y`, `start_age`), and the `J` it began with (`jac_prev`) if it replaced it.
+#[derive(Debug)]
+struct Carry {
+    end_y: Vec<f64>,
+    end_age: u32,
+    end_ok: bool,
+    start_y: Vec<f64>,
+    start_age: u32,
+    start_ok: bool,
+    jac_prev: DMatrix<f64>,
+    prev_saved: bool,
+}
+
+impl Carry {
+    fn new(n: usize) -> Self {
+        Carry {
+            end_y: vec![0.0; n],
+            end_age: 0,
+            end_ok: false,
+            start_y: vec![0.0; n],
+            start_age: 0,
+            start_ok: false,
+            jac_prev: DMatrix::zeros(n, n),
+            prev_saved: false,
+        }
+    }
+
+    /// Nothing to carry: the next carrying call starts with a fresh `J`.
+    fn forget(&mut self) {
+        (self.end_ok, self.start_ok, self.prev_saved) = (false, false, false);
+    }
+}
+
+/// `a` and `b` bit for bit.
+fn same_bits(a: &[f64], b: &[f64]) -> bool {
+    a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits())
+}
+
 /// No NaN or infinity in `v`: an OR over the exponent bits (all ones for NaN and inf).
 fn all_finite(v: &[f64]) -> bool {
     const EXP: u64 = 0x7ff0_0000_0000_0000;
@@ -925,4 +1050,162 @@ enum Attempt {
     Done,
     Singular,
     NonFinite(f64, usize),
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Van der Pol, stiff (`ε = 1e-3`), analytic `J`; `carry` says whether calls may carry
+    /// `J`; from the `fail_at`-th right-hand side on, every evaluation fails.
+    struct Vdp {
+        carry: bool,
+        evals: usize,
+        fail_at: usize,
+        h_call: f64,
+    }
+    impl OdeSystem for Vdp {
+        fn dim(&self) -> usize {
+            2
+        }
+        fn rhs(&mut self, _t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), String> {
+            self.evals += 1;
+            if self.evals >= self.fail_at {
+                return Err("refused".into());
+            }
+            dy[0] = y[1];
+            dy[1] = ((1.0 - y[0] * y[0]) * y[1] - y[0]) / 1e-3;
+            Ok(())
+        }
+        fn jacobian(&mut self, _t: f64, y: &[f64], j: &mut DMatrix<f64>) -> bool {
+            j[(0, 0)] = 0.0;
+            j[(0, 1)] = 1.0;
+            j[(1, 0)] = (-2.0 * y[0] * y[1] - 1.0) / 1e-3;
+            j[(1, 1)] = (1.0 - y[0] * y[0]) / 1e-3;
+            true
+        }
+        fn carries_jacobian(&self) -> bool {
+            self.carry
+        }
+    }
+
+    fn w() -> Rosenbrock {
+        Rosenbrock::with_method(RosMethod::Ros34pw2, Box::new(DenseLu::new(2)))
+    }
+
+    const CALLS: usize = 60;
+    /// Calls of a few steps each, most on the `J` of an earlier call.
+    const SHORT: f64 = 2e-3;
+    /// Calls of tens of steps: `J` is often replaced inside a call.
+    const LONG: f64 = 2e-2;
+
+    /// One call `i` of the run (`[i H, (i+1) H]`) from `y`, `h`.
+    fn call(r: &mut Rosenbrock, sys: &mut Vdp, i: usize, y: &mut [f64; 2], h: &mut f64) -> bool {
+        let opts = Options::new(2, 1e-6, 1e-8);
+        let t = i as f64 * sys.h_call;
+        r.integrate(sys, t, t + sys.h_call, y, h, &opts).is_ok()
+    }
+
+    /// What runs before call `i`: `between(i, r, sys, y, h)`.
+    type Between<'a> = dyn FnMut(usize, &mut Rosenbrock, &mut Vdp, &mut [f64; 2], &mut f64) + 'a;
+
+    /// `(y, h)` bits after every call; `between` runs before every call.
+    fn run(carry: bool, h_call: f64, between: &mut Between) -> (Vec<[u64; 3]>, Stats) {
+        let mut r = w();
+        let mut sys = Vdp {
+            carry,
+            evals: 0,
+            fail_at: usize::MAX,
+            h_call,
+        };
+        let (mut y, mut h) = ([2.0, 0.0], 0.0);
+        let mut out = Vec::new();
+        for i in 0..CALLS {
+            between(i, &mut r, &mut sys, &mut y, &mut h);
+            assert!(call(&mut r, &mut sys, i, &mut y, &mut h), "call {i}");
+            out.push([y[0].to_bits(), y[1].to_bits(), h.to_bits()]);
+        }
+        (out, r.stats)
+    }
+
+    /// A carried `J` is the last call's: fewer Jacobians than calls (and than the
+    /// calls-fresh run), the same solution to the tolerance's order, not the same bits.
+    #[test]
+    fn calls_that_continue_one_another_carry_the_jacobian() {
+        let (fresh, sf) = run(false, SHORT, &mut |_, _, _, _, _| {});
+        let (kept, sk) = run(true, SHORT, &mut |_, _, _, _, _| {});
+        println!("fresh {sf:?}\ncarried {sk:?}");
+        assert!(sf.jac_evals >= CALLS as u64, "{sf:?}");
+        assert!(sk.jac_evals < sf.jac_evals / 2, "{sk:?} {sf:?}");
+        assert!(sk.lu_decomps < sf.lu_decomps, "{sk:?} {sf:?}");
+        assert_ne!(fresh, kept);
+        let y = |b: &[u64; 3]| [f64::from_bits(b[0]), f64::from_bits(b[1])];
+        let (a, b) = (y(&fresh[CALLS - 1]), y(&kept[CALLS - 1]));
+        assert!(
+            (a[0] - b[0]).abs() < 1e-3 && (a[1] - b[1]).abs() < 1e-2,
+            "{a:?} {b:?}"
+        );
+    }
+
+    /// A call that fails (whatever it did to `J` before failing) or whose result is not
+    /// kept, then repeated, gives the bits of the run without it; some of the dropped
+    /// calls failed, some had replaced a `J` that the repeat keeps.
+    #[test]
+    fn a_failed_or_dropped_call_leaves_the_carried_jacobian_as_it_was() {
+        let (plain, _) = run(true, LONG, &mut |_, _, _, _, _| {});
+        let (mut replaced, mut failed) = (0, 0);
+        for at in 1..CALLS / 3 {
+            for fail_after in [1, 3, 6, 9, 14, 25, usize::MAX] {
+                let (mut jac_in_dropped, mut young) = (0, false);
+                let (with, _) = run(true, LONG, &mut |i, r, sys, y, h| {
+                    if i != at {
+                        return;
+                    }
+                    let (y0, h0) = (*y, *h);
+                    let j0 = r.stats.jac_evals;
+                    // A J of the call's start would be computed again by the repeat.
+                    young = r.carry.end_ok && r.carry.end_age < W_JAC_MAX_AGE;
+                    sys.fail_at = sys.evals + fail_after;
+                    if !call(r, sys, i, y, h) {
+                        failed += 1;
+                    }
+                    sys.fail_at = usize::MAX;
+                    jac_in_dropped = r.stats.jac_evals - j0;
+                    (*y, *h) = (y0, h0);
+                });
+                replaced += usize::from(jac_in_dropped > 0 && young);
+                assert!(with == plain, "call {at}, failing after {fail_after}");
+            }
+        }
+        println!("{failed} calls failed, {replaced} dropped calls replaced a kept J");
+        assert!(replaced > 0 && failed > 0);
+    }
+
+    /// A call that may not carry (a state taken or restored) starts with a fresh `J`;
+    /// from there a fresh integrator gives the same bits as the used one.
+    #[test]
+    fn a_call_that_may_not_carry_starts_fresh_like_a_new_integrator() {
+        let at = 23;
+        let mut start = None;
+        let (used, _) = run(true, SHORT, &mut |i, r, sys, y, h| {
+            sys.carry = i != at;
+            if i == at {
+                start = Some((*y, *h, r.stats.jac_evals));
+            }
+        });
+        let (y0, h0, _) = start.unwrap();
+        let mut r = w();
+        let mut sys = Vdp {
+            carry: false,
+            evals: 0,
+            fail_at: usize::MAX,
+            h_call: SHORT,
+        };
+        let (mut y, mut h) = (y0, h0);
+        for (i, bits) in used.iter().enumerate().skip(at) {
+            sys.carry = i != at;
+            assert!(call(&mut r, &mut sys, i, &mut y, &mut h));
+            assert_eq!(&[y[0].to_bits(), y[1].to_bits(), h.to_bits()], bits, "{i}");
+        }
+    }
 }

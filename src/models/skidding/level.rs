@@ -223,14 +223,16 @@ impl LevelModel for SkiddingLevel {
         let eps = 1e-3;
         let w_c = x[self.model.cage_index() + 1];
         let slip = 1.0 - w_c * wk / (wk * wk + eps * eps);
-        let mut max_p: f64 = 0.0;
+        // The peak pressure grows with the load (as its cube root), so the largest is that
+        // of the largest inner or outer load: two cube roots, not two per ball.
+        let (mut q_i_max, mut q_o_max) = (0.0f64, 0.0f64);
         let mut pocket: f64 = 0.0;
         for b in &self.model.balls {
             pocket = pocket.max(b.pocket.abs());
-            if b.q_i > 0.0 || b.q_o > 0.0 {
-                max_p = max_p.max(self.model.peak_pressure(b.q_i, b.q_o));
-            }
+            q_i_max = q_i_max.max(b.q_i);
+            q_o_max = q_o_max.max(b.q_o);
         }
+        let max_p = self.model.peak_pressure(q_i_max, q_o_max);
         let mut k = [[0.0; 5]; 5];
         let mut c = [[0.0; 5]; 5];
         for &r in self.dofs {
