@@ -103,7 +103,8 @@ pub enum Method {
     Dopri5,
     /// Linearly implicit, L-stable Rosenbrock method.
     Rosenbrock,
-    /// ROS34PW2, a Rosenbrock W-method of order 3 (Jacobian kept across sub-steps).
+    /// ROS34PW2, a Rosenbrock W-method of order 3 (Jacobian and LU kept across sub-steps
+    /// and, unless a state was taken or set, across steps).
     Ros34pw2,
 }
 
