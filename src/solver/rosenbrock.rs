@@ -1165,7 +1165,7 @@ mod tests {
                     let j0 = r.stats.jac_evals;
                     // A J of the call's start would be computed again by the repeat.
                     young = r.carry.end_ok && r.carry.end_age < W_JAC_MAX_AGE;
-                    sys.fail_at = sys.evals + fail_after;
+                    sys.fail_at = sys.evals.saturating_add(fail_after);
                     if !call(r, sys, i, y, h) {
                         failed += 1;
                     }
