@@ -57,8 +57,24 @@ impl Component {
         let clock = self.stages.start();
         let r = r.and_then(|_| self.compute_outputs(&mut sc, h));
         super::Stages::stop(&mut self.stages.outputs, clock);
+        self.finish_step(sc, r, t, t + h)
+    }
+
+    /// The end of a step's transaction (`do_step`, `step_through`): the scratch state `sc`,
+    /// integrated from `t` and with its outputs, becomes the state at `t_end` when `r` is
+    /// ok, else the state stays as it was; `sc` goes back to scratch either way. An error
+    /// that is not already a step failure or a budget refusal is reported as the failure
+    /// of the step at `t`.
+    #[inline]
+    pub(super) fn finish_step(
+        &mut self,
+        mut sc: State,
+        r: Result<()>,
+        t: f64,
+        t_end: f64,
+    ) -> Result<()> {
         if r.is_ok() {
-            sc.t = t + h;
+            sc.t = t_end;
             sc.started = true;
             sc.outputs_stale = false;
             self.state.commit_step(&mut sc);

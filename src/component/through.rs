@@ -88,7 +88,7 @@ impl Component {
                 "n",
                 n,
                 format!(
-                    "at most {MAX_VALUES} values ({} states or {} variables per point) per                      step_through: split the window",
+                    "at most {MAX_VALUES} values ({} states or {} variables per point) per step_through call: split the window",
                     dim,
                     slots.len()
                 ),
@@ -111,20 +111,9 @@ impl Component {
         let mut rows = Vec::with_capacity(n * slots.len());
         let r = self.through(&mut sc, t, h, n, continuing, &slots, &mut rows);
         if r.is_ok() {
-            sc.t = t + span;
-            sc.started = true;
-            sc.outputs_stale = false;
-            self.state.commit_step(&mut sc);
             *out = rows;
         }
-        self.scratch = sc;
-        r.map_err(|e| match e {
-            Error::StepFailed { .. } | Error::Budget { .. } => e,
-            other => Error::StepFailed {
-                t,
-                reason: other.to_string(),
-            },
-        })
+        self.finish_step(sc, r, t, t + span)
     }
 
     /// Integrate `sc` (at the window start `t`) over the window, then fill `rows` with the

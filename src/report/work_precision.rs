@@ -397,17 +397,7 @@ pub fn measure(
     method: Method,
     rtol: f64,
 ) -> Result<(Samples, f64, usize, Stats)> {
-    let (s, first, stats) = case.run(method, rtol)?;
-    let reps = if first > 0.0 {
-        ((cfg.budget_s / first).floor() as usize).clamp(1, cfg.repeats.max(1))
-    } else {
-        cfg.repeats.max(1)
-    };
-    let mut times = Vec::with_capacity(reps);
-    for _ in 0..reps {
-        times.push(case.run(method, rtol)?.1);
-    }
-    Ok((s, median(&mut times), reps, stats))
+    measure_runs(cfg, || case.run(method, rtol))
 }
 
 /// [`measure`] straight through ([`Case::run_through`]).
@@ -417,7 +407,16 @@ pub fn measure_through(
     method: Method,
     rtol: f64,
 ) -> Result<(Samples, f64, usize, Stats)> {
-    let (s, first, stats) = case.run_through(method, rtol)?;
+    measure_runs(cfg, || case.run_through(method, rtol))
+}
+
+/// `run` once for the samples and counters, then as often as the time budget and the
+/// repeats allow: the median time.
+fn measure_runs(
+    cfg: &Config,
+    run: impl Fn() -> Result<(Samples, f64, Stats)>,
+) -> Result<(Samples, f64, usize, Stats)> {
+    let (s, first, stats) = run()?;
     let reps = if first > 0.0 {
         ((cfg.budget_s / first).floor() as usize).clamp(1, cfg.repeats.max(1))
     } else {
@@ -425,7 +424,7 @@ pub fn measure_through(
     };
     let mut times = Vec::with_capacity(reps);
     for _ in 0..reps {
-        times.push(case.run_through(method, rtol)?.1);
+        times.push(run()?.1);
     }
     Ok((s, median(&mut times), reps, stats))
 }
@@ -465,62 +464,47 @@ pub fn run(cfg: &Config) -> Result<Report> {
         ));
         for &method in &cfg.methods {
             for &rtol in &cfg.rtols {
-                let (s, t, reps, stats) = measure(cfg, case, method, rtol)?;
-                let (err_l2, err_peak) = force_error(&s, &refs.primary)?;
-                let row = Row {
-                    case: case.name.to_string(),
-                    level: level.clone(),
-                    method,
-                    rtol,
-                    median_s: t,
-                    repeats: reps,
-                    stats,
-                    err_l2,
-                    err_peak,
-                    floor: refs.floor_l2,
-                    sim_s: case.t_end,
-                };
-                if cfg.verbose {
-                    println!(
-                        "  {:<7} rtol {:.0e}: {:>9.3} ms  err L2 {:.2e} peak {:.2e}  {}",
-                        method_name(method),
+                for through in [false, true] {
+                    if through && !cfg.through {
+                        continue;
+                    }
+                    let (s, t, reps, stats) = if through {
+                        measure_through(cfg, case, method, rtol)?
+                    } else {
+                        measure(cfg, case, method, rtol)?
+                    };
+                    let (err_l2, err_peak) = force_error(&s, &refs.primary)?;
+                    if cfg.verbose {
+                        println!(
+                            "  {:<7} rtol {:.0e}{}: {:>9.3} ms  err L2 {:.2e} peak {:.2e}  {}",
+                            method_name(method),
+                            rtol,
+                            if through { " straight through" } else { "" },
+                            t * 1e3,
+                            err_l2,
+                            err_peak,
+                            super::stats_line(&stats)
+                        );
+                    }
+                    let row = Row {
+                        case: case.name.to_string(),
+                        level: level.clone(),
+                        method,
                         rtol,
-                        t * 1e3,
+                        median_s: t,
+                        repeats: reps,
+                        stats,
                         err_l2,
                         err_peak,
-                        super::stats_line(&stats)
-                    );
+                        floor: refs.floor_l2,
+                        sim_s: case.t_end,
+                    };
+                    if through {
+                        rep.through.push(row);
+                    } else {
+                        rep.rows.push(row);
+                    }
                 }
-                rep.rows.push(row);
-                if !cfg.through {
-                    continue;
-                }
-                let (s, t, reps, stats) = measure_through(cfg, case, method, rtol)?;
-                let (err_l2, err_peak) = force_error(&s, &refs.primary)?;
-                if cfg.verbose {
-                    println!(
-                        "  {:<7} rtol {:.0e} straight through: {:>9.3} ms  err L2 {:.2e} peak {:.2e}  {}",
-                        method_name(method),
-                        rtol,
-                        t * 1e3,
-                        err_l2,
-                        err_peak,
-                        super::stats_line(&stats)
-                    );
-                }
-                rep.through.push(Row {
-                    case: case.name.to_string(),
-                    level: level.clone(),
-                    method,
-                    rtol,
-                    median_s: t,
-                    repeats: reps,
-                    stats,
-                    err_l2,
-                    err_peak,
-                    floor: refs.floor_l2,
-                    sim_s: case.t_end,
-                });
             }
         }
     }
