@@ -6,7 +6,7 @@ use super::inputs::{input_at, motion_at};
 use super::level::{Jacobians, LevelModel, Point};
 use super::{thread_cpu_s, Causality, InputRule, State, I_LOAD, I_V, N_INPUT_SLOTS};
 use crate::error::{Error, Result};
-use crate::solver::{DenseFn, OdeSystem, SolverError};
+use crate::solver::{same_bits, DenseFn, OdeSystem, SolverError};
 use std::time::Instant;
 
 /// Most evaluations between two reads of the CPU clock (a read costs 0.2 µs, one
@@ -162,15 +162,6 @@ impl Work {
             k[ni..].copy_from_slice(&st.aux[..naux]);
         }
     }
-}
-
-/// `a` and `b` bit for bit (a branch-free OR of the XORs, which the compiler vectorises).
-fn same_bits(a: &[f64], b: &[f64]) -> bool {
-    a.len() == b.len()
-        && a.iter()
-            .zip(b)
-            .fold(0u64, |d, (x, y)| d | (x.to_bits() ^ y.to_bits()))
-            == 0
 }
 
 /// Whether every input the step reads keeps its value through it under `rule`

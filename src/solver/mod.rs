@@ -247,6 +247,15 @@ impl Options {
 }
 
 /// Work counters of an integrator (kept with every other counter in [`crate::counters`]).
+/// `a` and `b` bit for bit (a branch-free OR of the XORs, which the compiler vectorises).
+pub(crate) fn same_bits(a: &[f64], b: &[f64]) -> bool {
+    a.len() == b.len()
+        && a.iter()
+            .zip(b)
+            .fold(0u64, |d, (x, y)| d | (x.to_bits() ^ y.to_bits()))
+            == 0
+}
+
 pub use crate::counters::IntegratorStats as Stats;
 
 /// Why an integration failed. The caller's state and step-size memory are unchanged.

@@ -17,9 +17,9 @@
 //! with an embedded method of order 2: its order holds for any matrix in place of `J`
 //! (Hairer & Wanner II, §IV.7, "W-methods"), so `J` and the LU of `I/(hγ) − J` are kept
 //! across the steps of one call (refreshed after a rejection and every
-//! [`W_JAC_MAX_AGE`] accepted steps; the LU whenever `h` changes), and, when the system allows it ([`OdeSystem::carries_jacobian`]),
-//! across calls that continue one another; `∂f/∂t` is taken
-//! from the system when it gives it and left out otherwise (the autonomous form's
+//! [`W_JAC_MAX_AGE`] accepted steps; the LU whenever `h` changes) and, when the system
+//! allows it ([`OdeSystem::carries_jacobian`]), across calls that continue one another;
+//! `∂f/∂t` is taken from the system when it gives it and left out otherwise (the autonomous form's
 //! Jacobian approximated without its time column: still a W-method). The published
 //! coefficients `α, Γ, b, b̂` are the data; the transformed ones (`A = αΓ⁻¹`,
 //! `C = diag(Γ)⁻¹ − Γ⁻¹`, `m = bΓ⁻¹`) are computed from them.
@@ -28,6 +28,7 @@ use super::{
     check_call, error_norm, eval, fixed_steps, initial_step, DenseLu, LinearSolver, OdeSystem,
     Options, SolverError, Stats, StepLoop, UROUND,
 };
+use crate::solver::same_bits;
 use nalgebra::DMatrix;
 
 const GAMMA: f64 = 0.25;
@@ -1031,11 +1032,6 @@ impl Carry {
     fn forget(&mut self) {
         (self.end_ok, self.start_ok, self.prev_saved) = (false, false, false);
     }
-}
-
-/// `a` and `b` bit for bit.
-fn same_bits(a: &[f64], b: &[f64]) -> bool {
-    a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits())
 }
 
 /// No NaN or infinity in `v`: an OR over the exponent bits (all ones for NaN and inf).

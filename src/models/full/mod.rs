@@ -121,6 +121,7 @@ use crate::lubrication::drag::{disk_moment, sphere_drag_force, sphere_spin_momen
 use crate::lubrication::guide_land::GuideLand;
 use crate::lubrication::pocket::{PocketForce, PocketLaw, PreparedPocket};
 use crate::models::quasi_static::{BallResult, BallState, Options, QuasiStatic, RaceControl};
+use crate::solver::same_bits;
 use ball::{add, cross, dot, norm, scale, sub, tangential, PositionSolver, V3};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
@@ -534,11 +535,6 @@ struct Memo {
     races: Vec<BallRace>,
     terms: Vec<BallTerms>,
     balls: Vec<BallInfo>,
-}
-
-/// `a` and `b` hold the same numbers bit for bit.
-fn same_bits(a: &[f64], b: &[f64]) -> bool {
-    a.len() == b.len() && a.iter().zip(b).all(|(a, b)| a.to_bits() == b.to_bits())
 }
 
 /// The motion `(q, v, omega)` as one array.
