@@ -56,9 +56,9 @@ pub type Profile<'a> = Option<&'a dyn Fn(usize, f64, f64) -> f64>;
 pub struct RingEval {
     /// Force and moment on the shaft `(Fx, Fy, Fz, Mx, My)`.
     pub wrench: [f64; 5],
-    /// Stiffness `-dF/dq` (filled when asked).
+    /// Stiffness `-dF/dq` (filled when asked; not to be read otherwise).
     pub k: [[f64; 5]; 5],
-    /// Damping `-dF/dv` (filled when asked).
+    /// Damping `-dF/dv` (filled when asked; not to be read otherwise).
     pub c: [[f64; 5]; 5],
     /// Balls in contact.
     pub loaded: usize,
@@ -95,6 +95,9 @@ pub struct RingModel {
     spacing_sc: Vec<(f64, f64)>,
     /// Each ball's own `sin_cos` of its azimuth instead (the tests' reference).
     direct_angles: bool,
+    /// Every evaluation through the general loop (the tests' reference for the plain
+    /// 2-DOF path, [`RingModel::two_plain`]).
+    general_only: bool,
     /// EHL film law (None: dry contact).
     film: Option<FilmModel>,
     /// `omega / omega_c` (kinematic), to get the shaft speed back from the cage speed.
@@ -130,6 +133,7 @@ impl RingModel {
             spacing: Vec::new(),
             spacing_sc: Vec::new(),
             direct_angles: false,
+            general_only: false,
             film: None,
             pitch_sc: (2.0 * PI / b.z as f64).sin_cos(),
             shaft_per_cage: 1.0
@@ -159,6 +163,13 @@ impl RingModel {
     #[cfg(test)]
     fn with_direct_angles(mut self) -> Self {
         self.direct_angles = true;
+        self
+    }
+
+    /// Every evaluation through the general loop (the plain 2-DOF path's reference).
+    #[cfg(test)]
+    fn with_general_loop(mut self) -> Self {
+        self.general_only = true;
         self
     }
 
@@ -254,6 +265,19 @@ impl RingModel {
         out: &mut RingEval,
         mut per_ball: F,
     ) {
+        if self.dof == RingDof::Two
+            && profile.is_none()
+            && self.film.is_none()
+            && self.spacing.is_empty()
+            && !self.direct_angles
+            && !self.general_only
+        {
+            return if jac {
+                self.two_plain::<true, F>(theta_c, omega_c, q, v, out, per_ball)
+            } else {
+                self.two_plain::<false, F>(theta_c, omega_c, q, v, out, per_ball)
+            };
+        }
         *out = RingEval::default();
         let film_speed = self
             .film
@@ -392,6 +416,88 @@ impl RingModel {
     }
 }
 
+impl RingModel {
+    /// [`RingModel::eval_with`] of the plain 2-DOF ring (evenly spaced balls, dry contacts,
+    /// no profile): the general loop's arithmetic, operation for operation, with the
+    /// ball's gradient `(cos psi, sin psi)`, the force sums and (with `JAC`) the 2×2
+    /// stiffness and damping sums kept in registers instead of five-wide arrays, and only
+    /// the fields the evaluation fills written (without `JAC`, `k` and `c` are left as
+    /// they were). The results are the general loop's bit for bit (test
+    /// `plain_two_dof_is_the_general_loop_bit_for_bit`). In a load-driven 2-DOF ring this
+    /// is every right-hand side and every output.
+    #[inline]
+    fn two_plain<const JAC: bool, F: FnMut(usize, f64, f64)>(
+        &self,
+        theta_c: f64,
+        omega_c: f64,
+        q: &[f64; 5],
+        v: &[f64; 5],
+        out: &mut RingEval,
+        mut per_ball: F,
+    ) {
+        let (sp, cp) = self.pitch_sc;
+        let dpsi = 2.0 * PI / self.z as f64;
+        let half_pd = 0.5 * self.pd;
+        let (q0, q1, v0, v1) = (q[0], q[1], v[0], v[1]);
+        let (mut s, mut c) = theta_c.sin_cos();
+        let (mut fx, mut fy) = (0.0, 0.0);
+        let (mut loaded, mut max_load) = (0, 0.0_f64);
+        // Row-major [xx, xy, yx, yy] sums of K and C (xy and yx round differently).
+        let (mut k, mut cm) = ([0.0; 4], [0.0; 4]);
+        for j in 0..self.z {
+            let (sj, cj) = (s, c);
+            (s, c) = (sj * cp + cj * sp, cj * cp - sj * sp);
+            let delta = q0 * cj + q1 * sj - half_pd;
+            // The general loop's two tests (`delta <= -1e-15`, then `delta + 0.0 <= 0`)
+            // in one: the same balls pass, NaN included.
+            if delta <= 0.0 {
+                continue;
+            }
+            let rate = v0 * cj + v1 * sj + omega_c * (-q0 * sj + q1 * cj);
+            let sq = delta.sqrt();
+            // `(delta / DAMPING_RAMP).min(1.0)`: the division is correctly rounded and
+            // monotonic, so at or past the ramp it is at least 1 and the blend is 1.
+            let blend = if delta >= DAMPING_RAMP {
+                1.0
+            } else {
+                (delta / DAMPING_RAMP).min(1.0)
+            };
+            let load = self.kn * delta * sq;
+            let dload = 1.5 * self.kn * sq;
+            let cd = self.damping * blend;
+            per_ball(j, theta_c + dpsi * j as f64, load);
+            let fn_ = load + cd * rate;
+            fx -= fn_ * cj;
+            fy -= fn_ * sj;
+            loaded += 1;
+            max_load = max_load.max(load);
+            if JAC {
+                let g = [cj, sj];
+                for r in 0..2 {
+                    for col in 0..2 {
+                        k[2 * r + col] += dload * g[r] * g[col];
+                        cm[2 * r + col] += cd * g[r] * g[col];
+                    }
+                }
+            }
+        }
+        out.wrench = [fx, fy, 0.0, 0.0, 0.0];
+        out.loaded = loaded;
+        out.max_load = max_load;
+        out.film_min = 0.0;
+        if JAC {
+            out.k = [[0.0; 5]; 5];
+            out.c = [[0.0; 5]; 5];
+            for r in 0..2 {
+                for col in 0..2 {
+                    out.k[r][col] = k[2 * r + col];
+                    out.c[r][col] = cm[2 * r + col];
+                }
+            }
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -418,6 +524,84 @@ mod tests {
         let mut out = RingEval::default();
         m.eval(theta, 0.0, &q, &[0.0; 5], 0.0, None, true, &mut out);
         out
+    }
+
+    /// The plain 2-DOF ring's evaluation ([`RingModel::two_plain`]), with and without the
+    /// matrices, is the general loop's bit for bit in the wrench, the stiffness and damping
+    /// matrices, the loaded count, the largest load and the loads handed to `per_ball`:
+    /// over displacements from free to heavily
+    /// loaded, approaches straddling zero and the damping ramp, signed velocities and cage
+    /// speeds, cage angles up to 10^4 rad, zero damping, and non-finite inputs.
+    #[test]
+    fn plain_two_dof_is_the_general_loop_bit_for_bit() {
+        let b = preset("6205").unwrap().build().unwrap();
+        let half_pd = 0.5 * b.pd;
+        let mut qs: Vec<[f64; 2]> = vec![[0.0, 0.0], [f64::NAN, 0.0], [f64::INFINITY, 0.0]];
+        // A ball at psi = 0 exactly at, just inside and just past contact and the ramp.
+        for d in [
+            0.0,
+            1e-15,
+            -1e-15,
+            1e-7,
+            1e-7 * (1.0 + 1e-15),
+            0.999e-7,
+            5e-6,
+        ] {
+            qs.push([half_pd + d, 0.0]);
+        }
+        let mut r = 0x9e37_79b9_7f4a_7c15_u64;
+        let mut rand = || {
+            r ^= r << 13;
+            r ^= r >> 7;
+            r ^= r << 17;
+            (r >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        };
+        for _ in 0..400 {
+            qs.push([3e-5 * rand(), 3e-5 * rand()]);
+        }
+        for damping in [0.0, 3000.0] {
+            let m = RingModel::new(&b, RingDof::Two, damping);
+            let reference = RingModel::new(&b, RingDof::Two, damping).with_general_loop();
+            for (i, q) in qs.iter().enumerate() {
+                let q = [q[0], q[1], 0.0, 0.0, 0.0];
+                let v = [0.3 * rand(), 0.3 * rand(), 0.0, 0.0, 0.0];
+                let theta = [0.0, 0.37 * i as f64, 1e4 + 0.1 * rand()][i % 3];
+                let wc = [0.0, 80.0, -300.0 * rand()][i % 3];
+                for jac in [false, true] {
+                    let run = |m: &RingModel| {
+                        let mut out = RingEval::default();
+                        let mut loads = Vec::new();
+                        m.eval_with(
+                            theta,
+                            wc,
+                            &q,
+                            &v,
+                            0.0,
+                            (None, 0.0),
+                            jac,
+                            &mut out,
+                            |j, psi, l| loads.push((j, psi.to_bits(), l.to_bits())),
+                        );
+                        (out, loads)
+                    };
+                    let ((plain, lp), (general, lg)) = (run(&m), run(&reference));
+                    let bits = |e: &RingEval| {
+                        let mut b: Vec<u64> = e.wrench.map(f64::to_bits).to_vec();
+                        b.extend([e.max_load.to_bits(), e.film_min.to_bits(), e.loaded as u64]);
+                        if jac {
+                            b.extend(e.k.iter().chain(&e.c).flatten().map(|x| x.to_bits()));
+                        }
+                        b
+                    };
+                    assert_eq!(
+                        bits(&plain),
+                        bits(&general),
+                        "q {q:?} v {v:?} at {theta}, {jac}"
+                    );
+                    assert_eq!(lp, lg);
+                }
+            }
+        }
     }
 
     /// Zero clearance, one ball under the load line: the static radial balance
