@@ -265,17 +265,23 @@ impl RingModel {
         out: &mut RingEval,
         mut per_ball: F,
     ) {
-        if self.dof == RingDof::Two
-            && profile.is_none()
-            && self.film.is_none()
-            && self.spacing.is_empty()
-            && !self.direct_angles
-            && !self.general_only
-        {
-            return if jac {
-                self.two_plain::<true, F>(theta_c, omega_c, q, v, out, per_ball)
-            } else {
-                self.two_plain::<false, F>(theta_c, omega_c, q, v, out, per_ball)
+        if self.dof == RingDof::Two && !self.direct_angles && !self.general_only {
+            let plain = profile.is_none() && self.film.is_none() && self.spacing.is_empty();
+            let args = (
+                theta_c,
+                omega_c,
+                q,
+                v,
+                t,
+                (profile, profile_max),
+                out,
+                per_ball,
+            );
+            return match (plain, jac) {
+                (true, false) => self.two::<true, false, F>(args),
+                (true, true) => self.two::<true, true, F>(args),
+                (false, false) => self.two::<false, false, F>(args),
+                (false, true) => self.two::<false, true, F>(args),
             };
         }
         *out = RingEval::default();
@@ -416,56 +422,104 @@ impl RingModel {
     }
 }
 
+/// [`RingModel::eval_with`]'s arguments but `jac`, as [`RingModel::two`] takes them.
+type TwoArgs<'a, F> = (
+    f64,
+    f64,
+    &'a [f64; 5],
+    &'a [f64; 5],
+    f64,
+    (Profile<'a>, f64),
+    &'a mut RingEval,
+    F,
+);
+
 impl RingModel {
-    /// [`RingModel::eval_with`] of the plain 2-DOF ring (evenly spaced balls, dry contacts,
-    /// no profile): the general loop's arithmetic, operation for operation, with the
-    /// ball's gradient `(cos psi, sin psi)`, the force sums and (with `JAC`) the 2×2
-    /// stiffness and damping sums kept in registers instead of five-wide arrays, and only
-    /// the fields the evaluation fills written (without `JAC`, `k` and `c` are left as
-    /// they were). The results are the general loop's bit for bit (test
-    /// `plain_two_dof_is_the_general_loop_bit_for_bit`). In a load-driven 2-DOF ring this
-    /// is every right-hand side and every output.
+    /// [`RingModel::eval_with`] of the 2-DOF ring: the general loop's arithmetic,
+    /// operation for operation (ball places, unloaded-ball skip, profile, film or dry
+    /// contact, damping blend), with the ball's gradient `(cos psi, sin psi)`, the force
+    /// sums and (with `JAC`) the 2×2 stiffness and damping sums kept in registers instead
+    /// of five-wide arrays, and only the fields the evaluation fills written (without
+    /// `JAC`, `k` and `c` are left as they were). The results are the general loop's bit
+    /// for bit (test `two_dof_is_the_general_loop_bit_for_bit`). Every right-hand side
+    /// and output of a 2-DOF ring comes through here.
+    ///
+    /// `PLAIN` (evenly spaced balls, dry contacts, no profile) drops those branches at
+    /// compile time, and with them the unloaded-ball bound: for a dry ball without a
+    /// profile the general loop's two tests (`delta <= -1e-15`, then `delta + 0.0 <= 0`)
+    /// pass the same balls as `delta <= 0`, NaN included.
     #[inline]
-    fn two_plain<const JAC: bool, F: FnMut(usize, f64, f64)>(
+    fn two<const PLAIN: bool, const JAC: bool, F: FnMut(usize, f64, f64)>(
         &self,
-        theta_c: f64,
-        omega_c: f64,
-        q: &[f64; 5],
-        v: &[f64; 5],
-        out: &mut RingEval,
-        mut per_ball: F,
+        (theta_c, omega_c, q, v, t, (profile, profile_max), out, mut per_ball): TwoArgs<'_, F>,
     ) {
+        let film = match &self.film {
+            Some(f) if !PLAIN => Some((f, f.at_speed(omega_c * self.shaft_per_cage))),
+            _ => None,
+        };
+        let film_max = film.as_ref().map_or(0.0, |(f, fs)| f.max_film(fs));
+        // Rigid approaches at or below this carry no load (NaN bounds skip nothing).
+        let unloaded_below = -(profile_max + film_max) * (1.0 + 1e-9) - 1e-15;
         let (sp, cp) = self.pitch_sc;
         let dpsi = 2.0 * PI / self.z as f64;
+        let even = PLAIN || self.spacing.is_empty();
         let half_pd = 0.5 * self.pd;
         let (q0, q1, v0, v1) = (q[0], q[1], v[0], v[1]);
-        let (mut s, mut c) = theta_c.sin_cos();
+        let cage = theta_c.sin_cos();
+        let (mut s, mut c) = cage;
         let (mut fx, mut fy) = (0.0, 0.0);
         let (mut loaded, mut max_load) = (0, 0.0_f64);
         // Row-major [xx, xy, yx, yy] sums of K and C (xy and yx round differently).
         let (mut k, mut cm) = ([0.0; 4], [0.0; 4]);
         for j in 0..self.z {
-            let (sj, cj) = (s, c);
-            (s, c) = (sj * cp + cj * sp, cj * cp - sj * sp);
+            let psi = theta_c + dpsi * j as f64;
+            let (psi, sj, cj) = if even {
+                let (sj, cj) = (s, c);
+                (s, c) = (sj * cp + cj * sp, cj * cp - sj * sp);
+                (psi, sj, cj)
+            } else {
+                let ((st, ct), (sa, ca)) = (cage, self.spacing_sc[j]);
+                (psi + self.spacing[j], st * ca + ct * sa, ct * ca - st * sa)
+            };
             let delta = q0 * cj + q1 * sj - half_pd;
-            // The general loop's two tests (`delta <= -1e-15`, then `delta + 0.0 <= 0`)
-            // in one: the same balls pass, NaN included.
-            if delta <= 0.0 {
+            if !PLAIN && delta <= unloaded_below {
                 continue;
             }
             let rate = v0 * cj + v1 * sj + omega_c * (-q0 * sj + q1 * cj);
-            let sq = delta.sqrt();
-            // `(delta / DAMPING_RAMP).min(1.0)`: the division is correctly rounded and
-            // monotonic, so at or past the ramp it is at least 1 and the blend is 1.
-            let blend = if delta >= DAMPING_RAMP {
-                1.0
+            let delta = if PLAIN {
+                delta
             } else {
-                (delta / DAMPING_RAMP).min(1.0)
+                delta + profile.map_or(0.0, |p| p(j, psi, t))
             };
-            let load = self.kn * delta * sq;
-            let dload = 1.5 * self.kn * sq;
-            let cd = self.damping * blend;
-            per_ball(j, theta_c + dpsi * j as f64, load);
+            let (load, dload, cd) = match &film {
+                Some((film, fs)) => {
+                    // Film in series with Hertz, squeeze damping in parallel (lubrication).
+                    let Some(b) = film.solve(fs, delta) else {
+                        continue;
+                    };
+                    let blend = (b.hertz_approach / DAMPING_RAMP).min(1.0);
+                    (b.load, b.stiffness, (self.damping + b.damping) * blend)
+                }
+                None => {
+                    if delta <= 0.0 {
+                        continue;
+                    }
+                    let sq = delta.sqrt();
+                    // `(delta / DAMPING_RAMP).min(1.0)`: the division is correctly rounded
+                    // and monotonic, so at or past the ramp it is at least 1.
+                    let blend = if delta >= DAMPING_RAMP {
+                        1.0
+                    } else {
+                        (delta / DAMPING_RAMP).min(1.0)
+                    };
+                    (
+                        self.kn * delta * sq,
+                        1.5 * self.kn * sq,
+                        self.damping * blend,
+                    )
+                }
+            };
+            per_ball(j, psi, load);
             let fn_ = load + cd * rate;
             fx -= fn_ * cj;
             fy -= fn_ * sj;
@@ -493,6 +547,10 @@ impl RingModel {
                     out.k[r][col] = k[2 * r + col];
                     out.c[r][col] = cm[2 * r + col];
                 }
+            }
+            // The thinnest film is the most loaded ball's (it thins with the load).
+            if let (true, Some((film, fs))) = (loaded > 0, &film) {
+                out.film_min = film.min_film(fs, max_load);
             }
         }
     }
@@ -526,14 +584,15 @@ mod tests {
         out
     }
 
-    /// The plain 2-DOF ring's evaluation ([`RingModel::two_plain`]), with and without the
-    /// matrices, is the general loop's bit for bit in the wrench, the stiffness and damping
-    /// matrices, the loaded count, the largest load and the loads handed to `per_ball`:
-    /// over displacements from free to heavily
-    /// loaded, approaches straddling zero and the damping ramp, signed velocities and cage
-    /// speeds, cage angles up to 10^4 rad, zero damping, and non-finite inputs.
+    /// The 2-DOF ring's own loop ([`RingModel::two`]), with and without the matrices, is
+    /// the general loop's bit for bit in the wrench, the stiffness and damping matrices,
+    /// the loaded count, the largest load, the thinnest film and the loads handed to
+    /// `per_ball`: plain, with scattered balls, an EHL film, a profile (bounded, unbounded
+    /// and without bound) and all three; over displacements from free to heavily loaded,
+    /// approaches straddling zero and the damping ramp, signed velocities and cage speeds,
+    /// cage angles up to 10^4 rad, zero damping, and non-finite inputs.
     #[test]
-    fn plain_two_dof_is_the_general_loop_bit_for_bit() {
+    fn two_dof_is_the_general_loop_bit_for_bit() {
         let b = preset("6205").unwrap().build().unwrap();
         let half_pd = 0.5 * b.pd;
         let mut qs: Vec<[f64; 2]> = vec![[0.0, 0.0], [f64::NAN, 0.0], [f64::INFINITY, 0.0]];
@@ -556,52 +615,73 @@ mod tests {
             r ^= r << 17;
             (r >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
         };
-        for _ in 0..400 {
+        for _ in 0..150 {
             qs.push([3e-5 * rand(), 3e-5 * rand()]);
         }
+        let amp = 0.3e-6;
+        let wavy = |j: usize, psi: f64, t: f64| amp * (5.0 * psi + j as f64 + 40.0 * t).sin();
+        let offsets: Vec<f64> = (0..b.z).map(|j| 2e-2 * (j as f64 - 3.3)).collect();
+        let lube = crate::lubrication::Lubricant::study2();
+        let mut checked = 0;
         for damping in [0.0, 3000.0] {
-            let m = RingModel::new(&b, RingDof::Two, damping);
-            let reference = RingModel::new(&b, RingDof::Two, damping).with_general_loop();
-            for (i, q) in qs.iter().enumerate() {
-                let q = [q[0], q[1], 0.0, 0.0, 0.0];
-                let v = [0.3 * rand(), 0.3 * rand(), 0.0, 0.0, 0.0];
-                let theta = [0.0, 0.37 * i as f64, 1e4 + 0.1 * rand()][i % 3];
-                let wc = [0.0, 80.0, -300.0 * rand()][i % 3];
-                for jac in [false, true] {
-                    let run = |m: &RingModel| {
-                        let mut out = RingEval::default();
-                        let mut loads = Vec::new();
-                        m.eval_with(
-                            theta,
-                            wc,
-                            &q,
-                            &v,
-                            0.0,
-                            (None, 0.0),
-                            jac,
-                            &mut out,
-                            |j, psi, l| loads.push((j, psi.to_bits(), l.to_bits())),
-                        );
-                        (out, loads)
-                    };
-                    let ((plain, lp), (general, lg)) = (run(&m), run(&reference));
-                    let bits = |e: &RingEval| {
-                        let mut b: Vec<u64> = e.wrench.map(f64::to_bits).to_vec();
-                        b.extend([e.max_load.to_bits(), e.film_min.to_bits(), e.loaded as u64]);
-                        if jac {
-                            b.extend(e.k.iter().chain(&e.c).flatten().map(|x| x.to_bits()));
-                        }
-                        b
-                    };
-                    assert_eq!(
-                        bits(&plain),
-                        bits(&general),
-                        "q {q:?} v {v:?} at {theta}, {jac}"
-                    );
-                    assert_eq!(lp, lg);
+            let base = RingModel::new(&b, RingDof::Two, damping);
+            let models = [
+                base.clone(),
+                base.clone().with_spacing(offsets.clone()),
+                base.clone().with_film(lube.clone()),
+                base.clone()
+                    .with_spacing(offsets.clone())
+                    .with_film(lube.clone()),
+            ];
+            for (mi, m) in models.iter().enumerate() {
+                let reference = m.clone().with_general_loop();
+                for (i, q) in qs.iter().enumerate() {
+                    let q = [q[0], q[1], 0.0, 0.0, 0.0];
+                    let v = [0.3 * rand(), 0.3 * rand(), 0.0, 0.0, 0.0];
+                    let theta = [0.0, 0.37 * i as f64, 1e4 + 0.1 * rand()][i % 3];
+                    let wc = [0.0, 80.0, -300.0 * rand()][i % 3];
+                    let t = 1e-3 * i as f64;
+                    let profiles: [(Profile<'_>, f64); 4] = [
+                        (None, 0.0),
+                        (Some(&wavy), amp),
+                        (Some(&wavy), f64::INFINITY),
+                        (Some(&wavy), f64::NAN),
+                    ];
+                    for (profile, jac) in profiles.iter().flat_map(|p| [(p, false), (p, true)]) {
+                        let run = |m: &RingModel| {
+                            let mut out = RingEval::default();
+                            let mut loads = Vec::new();
+                            m.eval_with(
+                                theta,
+                                wc,
+                                &q,
+                                &v,
+                                t,
+                                *profile,
+                                jac,
+                                &mut out,
+                                |j, psi, l| loads.push((j, psi.to_bits(), l.to_bits())),
+                            );
+                            (out, loads)
+                        };
+                        let ((own, lo), (general, lg)) = (run(m), run(&reference));
+                        let bits = |e: &RingEval| {
+                            let mut b: Vec<u64> = e.wrench.map(f64::to_bits).to_vec();
+                            b.extend([e.max_load.to_bits(), e.film_min.to_bits(), e.loaded as u64]);
+                            if jac {
+                                b.extend(e.k.iter().chain(&e.c).flatten().map(|x| x.to_bits()));
+                            }
+                            b
+                        };
+                        let at = format!("model {mi} q {q:?} v {v:?} at {theta}, jac {jac}");
+                        assert_eq!(bits(&own), bits(&general), "{at}");
+                        assert_eq!(lo, lg, "{at}");
+                        checked += (own.loaded > 0) as usize;
+                    }
                 }
             }
         }
+        assert!(checked > 2000, "{checked} loaded cases");
     }
 
     /// Zero clearance, one ball under the load line: the static radial balance
