@@ -628,10 +628,8 @@ mod tests {
             let models = [
                 base.clone(),
                 base.clone().with_spacing(offsets.clone()),
-                base.clone().with_film(lube.clone()),
-                base.clone()
-                    .with_spacing(offsets.clone())
-                    .with_film(lube.clone()),
+                base.clone().with_film(lube),
+                base.clone().with_spacing(offsets.clone()).with_film(lube),
             ];
             for (mi, m) in models.iter().enumerate() {
                 let reference = m.clone().with_general_loop();
