@@ -265,18 +265,18 @@ impl RingModel {
         out: &mut RingEval,
         mut per_ball: F,
     ) {
+        let args = (
+            theta_c,
+            omega_c,
+            q,
+            v,
+            t,
+            (profile, profile_max),
+            out,
+            per_ball,
+        );
         if self.dof == RingDof::Two && !self.direct_angles && !self.general_only {
             let plain = profile.is_none() && self.film.is_none() && self.spacing.is_empty();
-            let args = (
-                theta_c,
-                omega_c,
-                q,
-                v,
-                t,
-                (profile, profile_max),
-                out,
-                per_ball,
-            );
             return match (plain, jac) {
                 (true, false) => self.two::<true, false, F>(args),
                 (true, true) => self.two::<true, true, F>(args),
@@ -284,6 +284,23 @@ impl RingModel {
                 (false, true) => self.two::<false, true, F>(args),
             };
         }
+        match (self.dof, jac) {
+            (RingDof::Two, false) => self.general::<false, false, F>(args),
+            (RingDof::Two, true) => self.general::<false, true, F>(args),
+            (RingDof::Five, false) => self.general::<true, false, F>(args),
+            (RingDof::Five, true) => self.general::<true, true, F>(args),
+        }
+    }
+
+    /// [`RingModel::eval_with`]'s general loop, for either geometry (`FIVE`: the 5-DOF
+    /// Jones geometry, else the 2-DOF radial one) with or without the matrices (`JAC`),
+    /// both switches fixed at compile time so the per-coordinate loops have fixed bounds.
+    #[inline]
+    fn general<const FIVE: bool, const JAC: bool, F: FnMut(usize, f64, f64)>(
+        &self,
+        (theta_c, omega_c, q, v, t, (profile, profile_max), out, mut per_ball): EvalArgs<'_, F>,
+    ) {
+        let jac = JAC;
         *out = RingEval::default();
         let film_speed = self
             .film
@@ -304,10 +321,7 @@ impl RingModel {
         // Coordinates a ball's normal moves: 2-DOF, x and y only (the gradient's other
         // entries are zeros, whose products add nothing to the +0 sums of the stiffness and
         // damping, and the wrench's other components are set to zero below).
-        let nq = match self.dof {
-            RingDof::Two => 2,
-            RingDof::Five => 5,
-        };
+        let nq = if FIVE { 5 } else { 2 };
         let mut next = theta_c.sin_cos();
         let cage = next;
         for j in 0..self.z {
@@ -324,7 +338,7 @@ impl RingModel {
                 (st * cj + ct * sj, ct * cj - st * sj)
             };
             // g: gradient of delta w.r.t. q; rate: d(delta)/dt; plus what the Hessian needs.
-            let (delta, g, rate, n, l, jm) = match self.dof {
+            let (delta, g, rate, n, l, jm) = match if FIVE { RingDof::Five } else { RingDof::Two } {
                 RingDof::Two => {
                     let delta = q[0] * c + q[1] * s - 0.5 * self.pd;
                     let g = [c, s, 0.0, 0.0, 0.0];
@@ -389,20 +403,22 @@ impl RingModel {
                         out.c[r][col] += cd * g[r] * g[col];
                     }
                 }
-                if self.dof == RingDof::Five {
+                if FIVE {
                     // Geometric term Q J^T (I - n n^T) J / l.
                     let p = [
                         [1.0 - n[0] * n[0], -n[0] * n[1]],
                         [-n[0] * n[1], 1.0 - n[1] * n[1]],
                     ];
+                    // `h = sum_ab J[a][r] P[a][b] J[b][col]` from +0 has one structurally
+                    // non-zero term: row 0 of J (the axial offset) moves z, rx, ry only,
+                    // row 1 (the radial offset) x, y only. The other three are +-0 and leave
+                    // a sum from +0 as the lone term would (x + +-0 = x for x != 0, and a
+                    // sum from +0 of zeros is +0), so `0 + term` has the full sum's bits.
                     for r in 0..5 {
+                        let a = (r < 2) as usize;
                         for col in 0..5 {
-                            let mut h = 0.0;
-                            for a in 0..2 {
-                                for b in 0..2 {
-                                    h += jm[a][r] * p[a][b] * jm[b][col];
-                                }
-                            }
+                            let b = (col < 2) as usize;
+                            let h = 0.0 + jm[a][r] * p[a][b] * jm[b][col];
                             out.k[r][col] += load * h / l;
                         }
                     }
@@ -413,7 +429,7 @@ impl RingModel {
         if let (true, Some(film), Some(fs)) = (jac && out.loaded > 0, &self.film, &film_speed) {
             out.film_min = film.min_film(fs, out.max_load);
         }
-        if self.dof == RingDof::Two {
+        if !FIVE {
             // Moments and axial force are not modelled by the radial geometry.
             for k in 2..5 {
                 out.wrench[k] = 0.0;
@@ -422,8 +438,8 @@ impl RingModel {
     }
 }
 
-/// [`RingModel::eval_with`]'s arguments but `jac`, as [`RingModel::two`] takes them.
-type TwoArgs<'a, F> = (
+/// [`RingModel::eval_with`]'s arguments but `jac`, as its loops take them.
+type EvalArgs<'a, F> = (
     f64,
     f64,
     &'a [f64; 5],
@@ -451,7 +467,7 @@ impl RingModel {
     #[inline]
     fn two<const PLAIN: bool, const JAC: bool, F: FnMut(usize, f64, f64)>(
         &self,
-        (theta_c, omega_c, q, v, t, (profile, profile_max), out, mut per_ball): TwoArgs<'_, F>,
+        (theta_c, omega_c, q, v, t, (profile, profile_max), out, mut per_ball): EvalArgs<'_, F>,
     ) {
         let film = match &self.film {
             Some(f) if !PLAIN => Some((f, f.at_speed(omega_c * self.shaft_per_cage))),
@@ -680,6 +696,49 @@ mod tests {
             }
         }
         assert!(checked > 2000, "{checked} loaded cases");
+    }
+
+    /// The 5-DOF geometric stiffness term keeps one of its four products per entry (the
+    /// other three are structural zeros of `J`): `0 + term` has the bits of the full sum
+    /// from +0, over contact normals in every quadrant, cage angles where `sin` or `cos`
+    /// is tiny, and signed zeros.
+    #[test]
+    fn geometric_term_with_its_lone_product_is_the_full_sum() {
+        let ri = 0.0231;
+        let mut cases = 0;
+        for k in 0..2000 {
+            let th = 0.0123 * k as f64 - 3.0;
+            let (s, c) = if k % 100 == 0 {
+                (0.0, -1.0)
+            } else {
+                th.sin_cos()
+            };
+            let phi = 0.731 * k as f64;
+            let (mut n0, mut n1) = phi.sin_cos();
+            if k % 7 == 0 {
+                n0 = -0.0;
+            }
+            if k % 11 == 0 {
+                n1 = 0.0;
+            }
+            let jm = [[0.0, 0.0, 1.0, ri * s, -ri * c], [c, s, 0.0, 0.0, 0.0]];
+            let p = [[1.0 - n0 * n0, -n0 * n1], [-n0 * n1, 1.0 - n1 * n1]];
+            for r in 0..5 {
+                for col in 0..5 {
+                    let mut full = 0.0;
+                    for a in 0..2 {
+                        for b in 0..2 {
+                            full += jm[a][r] * p[a][b] * jm[b][col];
+                        }
+                    }
+                    let (a, b) = ((r < 2) as usize, (col < 2) as usize);
+                    let lone = 0.0 + jm[a][r] * p[a][b] * jm[b][col];
+                    assert_eq!(lone.to_bits(), full.to_bits(), "{k} ({r}, {col})");
+                    cases += 1;
+                }
+            }
+        }
+        assert_eq!(cases, 50_000);
     }
 
     /// Zero clearance, one ball under the load line: the static radial balance
