@@ -32,7 +32,7 @@ pub mod level;
 
 use crate::contact::{series_constant, BallRaceContacts, PointContact};
 use crate::geometry::Bearing;
-use crate::lubrication::{FilmModel, Lubricant};
+use crate::lubrication::{FilmAtSpeed, FilmModel, Lubricant};
 use std::f64::consts::PI;
 
 /// Approach over which contact damping is blended in, m.
@@ -263,7 +263,7 @@ impl RingModel {
         (profile, profile_max): (Profile<'_>, f64),
         jac: bool,
         out: &mut RingEval,
-        mut per_ball: F,
+        per_ball: F,
     ) {
         let args = (
             theta_c,
@@ -292,6 +292,53 @@ impl RingModel {
         }
     }
 
+    /// The film at cage speed `omega_c` (`None`: dry) and the rigid approach at or below
+    /// which a ball carries no load, whatever the profile (bounded above by
+    /// `profile_max`) and the film add ([`RingModel::eval_with`]; NaN bounds skip nothing).
+    #[inline]
+    fn film_and_bound(
+        &self,
+        omega_c: f64,
+        profile_max: f64,
+    ) -> (Option<(&FilmModel, FilmAtSpeed)>, f64) {
+        let film = (self.film.as_ref()).map(|f| (f, f.at_speed(omega_c * self.shaft_per_cage)));
+        let film_max = film.as_ref().map_or(0.0, |(f, fs)| f.max_film(fs));
+        (film, -(profile_max + film_max) * (1.0 + 1e-9) - 1e-15)
+    }
+
+    /// A ball's contact at approach `delta` (profile included): `(Q, dQ/d delta, c)` with
+    /// `c` the blended damping coefficient, or `None` when it carries no load. Dry: Hertz
+    /// `Q = K_n delta^1.5`; with a film (`crate::lubrication`), the film in series with
+    /// Hertz and squeeze damping in parallel.
+    #[inline(always)]
+    fn ball_law(
+        &self,
+        film: Option<&(&FilmModel, FilmAtSpeed)>,
+        delta: f64,
+    ) -> Option<(f64, f64, f64)> {
+        if let Some((film, fs)) = film {
+            let b = film.solve(fs, delta)?;
+            let blend = (b.hertz_approach / DAMPING_RAMP).min(1.0);
+            return Some((b.load, b.stiffness, (self.damping + b.damping) * blend));
+        }
+        if delta <= 0.0 {
+            return None;
+        }
+        let sq = delta.sqrt();
+        // `(delta / DAMPING_RAMP).min(1.0)`: the division is correctly rounded and
+        // monotonic, so at or past the ramp it is at least 1 and the blend is 1.
+        let blend = if delta >= DAMPING_RAMP {
+            1.0
+        } else {
+            (delta / DAMPING_RAMP).min(1.0)
+        };
+        Some((
+            self.kn * delta * sq,
+            1.5 * self.kn * sq,
+            self.damping * blend,
+        ))
+    }
+
     /// [`RingModel::eval_with`]'s general loop, for either geometry (`FIVE`: the 5-DOF
     /// Jones geometry, else the 2-DOF radial one) with or without the matrices (`JAC`),
     /// both switches fixed at compile time so the per-coordinate loops have fixed bounds.
@@ -302,16 +349,7 @@ impl RingModel {
     ) {
         let jac = JAC;
         *out = RingEval::default();
-        let film_speed = self
-            .film
-            .as_ref()
-            .map(|f| f.at_speed(omega_c * self.shaft_per_cage));
-        let film_max = match (&self.film, &film_speed) {
-            (Some(film), Some(fs)) => film.max_film(fs),
-            _ => 0.0,
-        };
-        // Rigid approaches at or below this carry no load (NaN bounds skip nothing).
-        let unloaded_below = -(profile_max + film_max) * (1.0 + 1e-9) - 1e-15;
+        let (film, unloaded_below) = self.film_and_bound(omega_c, profile_max);
         let dpsi = 2.0 * PI / self.z as f64;
         let even = self.spacing.is_empty();
         // Evenly spaced: ball j+1 is ball j rotated by the pitch (the rounding this adds
@@ -367,27 +405,8 @@ impl RingModel {
                 continue;
             }
             let delta = delta + profile.map_or(0.0, |p| p(j, psi, t));
-            let (load, dload, cd) = match (&self.film, &film_speed) {
-                (Some(film), Some(fs)) => {
-                    // Film in series with Hertz, squeeze damping in parallel (lubrication).
-                    let Some(b) = film.solve(fs, delta) else {
-                        continue;
-                    };
-                    let blend = (b.hertz_approach / DAMPING_RAMP).min(1.0);
-                    (b.load, b.stiffness, (self.damping + b.damping) * blend)
-                }
-                _ => {
-                    if delta <= 0.0 {
-                        continue;
-                    }
-                    let sq = delta.sqrt();
-                    let blend = (delta / DAMPING_RAMP).min(1.0);
-                    (
-                        self.kn * delta * sq,
-                        1.5 * self.kn * sq,
-                        self.damping * blend,
-                    )
-                }
+            let Some((load, dload, cd)) = self.ball_law(film.as_ref(), delta) else {
+                continue;
             };
             per_ball(j, psi, load);
             let fn_ = load + cd * rate;
@@ -426,7 +445,7 @@ impl RingModel {
             }
         }
         // The thinnest film is the most loaded ball's (it thins with the load).
-        if let (true, Some(film), Some(fs)) = (jac && out.loaded > 0, &self.film, &film_speed) {
+        if let (true, Some((film, fs))) = (jac && out.loaded > 0, &film) {
             out.film_min = film.min_film(fs, out.max_load);
         }
         if !FIVE {
@@ -469,13 +488,11 @@ impl RingModel {
         &self,
         (theta_c, omega_c, q, v, t, (profile, profile_max), out, mut per_ball): EvalArgs<'_, F>,
     ) {
-        let film = match &self.film {
-            Some(f) if !PLAIN => Some((f, f.at_speed(omega_c * self.shaft_per_cage))),
-            _ => None,
+        let (film, unloaded_below) = if PLAIN {
+            (None, -1e-15)
+        } else {
+            self.film_and_bound(omega_c, profile_max)
         };
-        let film_max = film.as_ref().map_or(0.0, |(f, fs)| f.max_film(fs));
-        // Rigid approaches at or below this carry no load (NaN bounds skip nothing).
-        let unloaded_below = -(profile_max + film_max) * (1.0 + 1e-9) - 1e-15;
         let (sp, cp) = self.pitch_sc;
         let dpsi = 2.0 * PI / self.z as f64;
         let even = PLAIN || self.spacing.is_empty();
@@ -507,33 +524,8 @@ impl RingModel {
             } else {
                 delta + profile.map_or(0.0, |p| p(j, psi, t))
             };
-            let (load, dload, cd) = match &film {
-                Some((film, fs)) => {
-                    // Film in series with Hertz, squeeze damping in parallel (lubrication).
-                    let Some(b) = film.solve(fs, delta) else {
-                        continue;
-                    };
-                    let blend = (b.hertz_approach / DAMPING_RAMP).min(1.0);
-                    (b.load, b.stiffness, (self.damping + b.damping) * blend)
-                }
-                None => {
-                    if delta <= 0.0 {
-                        continue;
-                    }
-                    let sq = delta.sqrt();
-                    // `(delta / DAMPING_RAMP).min(1.0)`: the division is correctly rounded
-                    // and monotonic, so at or past the ramp it is at least 1.
-                    let blend = if delta >= DAMPING_RAMP {
-                        1.0
-                    } else {
-                        (delta / DAMPING_RAMP).min(1.0)
-                    };
-                    (
-                        self.kn * delta * sq,
-                        1.5 * self.kn * sq,
-                        self.damping * blend,
-                    )
-                }
+            let Some((load, dload, cd)) = self.ball_law(film.as_ref(), delta) else {
+                continue;
             };
             per_ball(j, psi, load);
             let fn_ = load + cd * rate;
