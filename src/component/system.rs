@@ -77,28 +77,38 @@ impl Budget {
     /// every [`BUDGET_READ_S`] of CPU time as estimated from the evaluations so far (and
     /// from the last step's before the first read), and at least every [`BUDGET_EVERY`]
     /// evaluations.
+    ///
+    /// Inlined (it runs before every right-hand side): the count and one comparison; the
+    /// clock read and the new gap are [`Budget::check`], out of line.
+    #[inline]
     pub(super) fn spent(&mut self) -> bool {
         if self.spent.is_some() {
             return true;
         }
         self.evals = self.evals.saturating_add(1);
-        if self.evals >= self.next {
-            let used = self.used();
-            if used > self.limit {
-                self.spent = Some(used);
-                return true;
-            }
-            // This call precedes its evaluation: `evals - 1` of them are done.
-            let done = self.evals - 1;
-            let gap = if done == 0 {
-                1.0
-            } else {
-                let per_eval = used / done as f64;
-                (BUDGET_READ_S / per_eval.max(1e-12)).clamp(1.0, BUDGET_EVERY as f64)
-            };
-            self.gap = gap as u32;
-            self.next = self.evals.saturating_add(self.gap);
+        self.evals >= self.next && self.check()
+    }
+
+    /// The clock read of [`Budget::spent`], due at this evaluation: `true` when the budget
+    /// is spent, else the evaluation count of the next read is set.
+    #[cold]
+    #[inline(never)]
+    fn check(&mut self) -> bool {
+        let used = self.used();
+        if used > self.limit {
+            self.spent = Some(used);
+            return true;
         }
+        // This call precedes its evaluation: `evals - 1` of them are done.
+        let done = self.evals - 1;
+        let gap = if done == 0 {
+            1.0
+        } else {
+            let per_eval = used / done as f64;
+            (BUDGET_READ_S / per_eval.max(1e-12)).clamp(1.0, BUDGET_EVERY as f64)
+        };
+        self.gap = gap as u32;
+        self.next = self.evals.saturating_add(self.gap);
         false
     }
 }
@@ -269,6 +279,12 @@ impl Sys<'_> {
 
     /// [`Sys::eval`]; `at_end`: through [`LevelModel::rhs_at_end`] (the last stage of a
     /// step landing on the end of the integration, where the outputs are evaluated next).
+    ///
+    /// Inlined into [`Sys::rates`] (the integrators' right-hand side): this layer runs at
+    /// every evaluation, so the motion is built in place and the ring's rows are written
+    /// through slices cut once, with no bounds check per coordinate. The arithmetic is the
+    /// same (`(w + load) / inertia`, a division: a reciprocal would change the bits).
+    #[inline(always)]
     fn eval_level(
         &mut self,
         s: f64,
@@ -292,10 +308,12 @@ impl Sys<'_> {
                     self.level.rhs(p, &mut dy[..nl], Some(&mut w))?;
                 }
                 let nd = ring.dofs.len();
-                for (k, &d) in ring.dofs.iter().enumerate() {
+                let (dq, dv) = dy[nl..nl + 2 * nd].split_at_mut(nd);
+                let v = &y[nl + nd..nl + 2 * nd];
+                for (((dq, dv), &v), &d) in dq.iter_mut().zip(dv).zip(v).zip(ring.dofs) {
                     let load = input_at(self.st, I_LOAD + d, s, self.rule);
-                    dy[nl + k] = y[nl + nd + k];
-                    dy[nl + nd + k] = (w[d] + load) / ring.inertia[d];
+                    *dq = v;
+                    *dv = (w[d] + load) / ring.inertia[d];
                 }
                 if let Some(out) = wrench {
                     *out = w;
@@ -446,7 +464,10 @@ impl OdeSystem for Sys<'_> {
 }
 
 impl Sys<'_> {
-    /// The integrator's right-hand side (`at_end`: [`OdeSystem::rhs_at_end`]).
+    /// The integrator's right-hand side (`at_end`: [`OdeSystem::rhs_at_end`]). Inlined
+    /// into the integrators' stages with [`Sys::eval_level`]; a failed evaluation is
+    /// [`Sys::failed`], out of line.
+    #[inline]
     fn rates(
         &mut self,
         t: f64,
@@ -460,10 +481,18 @@ impl Sys<'_> {
         // A trial state can be far off (a too-large trial step through a stiff contact):
         // a level that cannot evaluate there makes the step fail and shrink, not the run.
         if let Err(e) = self.eval_level(t - self.t0, y, dy, None, at_end) {
-            dy.fill(f64::NAN);
-            self.last_error = Some(e);
+            self.failed(dy, e);
         }
         Ok(())
+    }
+
+    /// A level that could not evaluate at a trial point: NaN rates (the integrator retries
+    /// with a smaller step) and the error kept as the cause to report if it gives up.
+    #[cold]
+    #[inline(never)]
+    fn failed(&mut self, dy: &mut [f64], e: Error) {
+        dy.fill(f64::NAN);
+        self.last_error = Some(e);
     }
 }
 

@@ -159,8 +159,12 @@ impl Dopri5 {
         super::check_dense(self.last_step(), t, out.len(), self.n)?;
         let th = (t - self.t_old) / self.h_old;
         let th1 = 1.0 - th;
+        // Cut to `n`: no bounds checks, as in `attempt` (checked above: `out.len() == n`).
+        let n = self.n;
+        let out = &mut out[..n];
         let [r1, r2, r3, r4, r5] = &self.rcont;
-        for i in 0..self.n {
+        let (r1, r2, r3, r4, r5) = (&r1[..n], &r2[..n], &r3[..n], &r4[..n], &r5[..n]);
+        for i in 0..n {
             out[i] = r1[i] + th * (r2[i] + th1 * (r3[i] + th * (r4[i] + th1 * r5[i])));
         }
         Ok(())
