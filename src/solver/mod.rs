@@ -407,6 +407,15 @@ impl Integrator {
         }
     }
 
+    /// Keep (the default) or skip the dense output of the accepted steps the system does
+    /// not observe: [`Dopri5::set_dense_output`]. RODAS4 keeps its own (its coefficients
+    /// come with its stages).
+    pub fn set_dense_output(&mut self, keep: bool) {
+        if let Integrator::Dopri5(m) = self {
+            m.set_dense_output(keep);
+        }
+    }
+
     /// Work counters (accumulated over all calls).
     pub fn stats(&self) -> &Stats {
         match self {
