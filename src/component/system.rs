@@ -496,12 +496,18 @@ impl Sys<'_> {
     }
 }
 
-/// No NaN or infinity in `v`: a branch-free OR over the exponent bits (all ones for NaN
-/// and inf), which the compiler vectorises; the outputs are checked after every step.
+/// No NaN or infinity in `v`, branch-free; the outputs are checked after every step. The
+/// exponent bits plus one exponent unit carry into the sign bit exactly when they are all
+/// ones (NaN, inf): an OR of these sums over `v` has its top bit set exactly when some
+/// value is not finite. An OR of integers vectorises to a mask, an add and an OR per
+/// element (the compare of a `bool` fold took twice as many instructions on SSE2).
 pub(super) fn all_finite(v: &[f64]) -> bool {
     const EXP: u64 = 0x7ff0_0000_0000_0000;
-    !v.iter()
-        .fold(false, |bad, x| bad | (x.to_bits() & EXP == EXP))
+    const ONE: u64 = 1 << 52;
+    let carry = v
+        .iter()
+        .fold(0u64, |acc, x| acc | ((x.to_bits() & EXP) + ONE));
+    carry >> 63 == 0
 }
 
 /// The time an integration failure reached (for messages).
@@ -650,6 +656,29 @@ mod tests {
             }
         }
         assert!(couplings > 0, "the ring's rows and columns are filled");
+    }
+
+    /// `all_finite` refuses exactly NaN and the infinities, wherever they sit.
+    #[test]
+    fn all_finite_refuses_exactly_nan_and_inf() {
+        let finite = [
+            0.0,
+            -0.0,
+            1.0,
+            -1.0,
+            f64::MAX,
+            f64::MIN,
+            f64::MIN_POSITIVE,
+            5e-324,
+        ];
+        assert!(all_finite(&finite) && all_finite(&[]));
+        for bad in [f64::NAN, -f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            for at in 0..=finite.len() {
+                let mut v = finite.to_vec();
+                v.insert(at, bad);
+                assert!(!all_finite(&v), "{bad} at {at}");
+            }
+        }
     }
 
     /// Cheap evaluations stretch the gap between clock reads, and the next step's budget
