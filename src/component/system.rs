@@ -277,6 +277,24 @@ impl Sys<'_> {
         self.eval_level(s, y, dy, wrench, false)
     }
 
+    /// The level's wrench at `s` after the step start with states `y`, as [`Sys::eval`]
+    /// gives it, into `w` (zeros on entry, as there); the level's rates go to `dy`, the
+    /// ring's are not computed (outputs between the integration's stops need the wrench
+    /// only).
+    pub(super) fn wrench(
+        &mut self,
+        s: f64,
+        y: &[f64],
+        dy: &mut [f64],
+        w: &mut [f64; 5],
+    ) -> Result<()> {
+        let nl = self.nl;
+        let m = motion_at(self.st, self.rule, s, self.causality, self.ring, nl, y);
+        let (aux, _) = self.st.aux.split_at_mut(self.naux);
+        let p = Point::new(self.t0 + s, &m, &y[..nl], aux);
+        self.level.rhs(p, &mut dy[..nl], Some(w))
+    }
+
     /// [`Sys::eval`]; `at_end`: through [`LevelModel::rhs_at_end`] (the last stage of a
     /// step landing on the end of the integration, where the outputs are evaluated next).
     ///

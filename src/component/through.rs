@@ -266,7 +266,7 @@ impl Component {
 /// finite.
 fn wrench(sys: &mut Sys<'_>, dy: &mut [f64], s: f64, x: &[f64]) -> Result<[f64; 5]> {
     let mut w = [0.0; 5];
-    sys.eval(s, x, dy, Some(&mut w))?;
+    sys.wrench(s, x, dy, &mut w)?;
     if !w.iter().all(|v| v.is_finite()) {
         return Err(Error::StepFailed {
             t: sys.t0 + s,
