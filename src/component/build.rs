@@ -37,12 +37,16 @@ fn make_integrator(
         };
         Rosenbrock::with_method(m, solver)
     };
-    let integrator = match scene.solver.method {
+    let mut integrator = match scene.solver.method {
         Method::Auto if stiff => Integrator::Rosenbrock(rodas(RosMethod::Rodas4)),
         Method::Auto | Method::Dopri5 => Integrator::Dopri5(Dopri5::new(n)),
         Method::Rosenbrock => Integrator::Rosenbrock(rodas(RosMethod::Rodas4)),
         Method::Ros34pw2 => Integrator::Rosenbrock(rodas(RosMethod::Ros34pw2)),
     };
+    // The component reads the dense output only from the steps its system observes (a
+    // window integrated straight through, `Sys::step_accepted`): a step of `do_step`
+    // skips DOPRI5's coefficients.
+    integrator.set_dense_output(false);
     let s = &scene.solver;
     let mut opts = Options::new(n, s.rtol, s.atol_m);
     // Angles (cage, shaft, balls): an angle error atol_m / (D/2) moves a ball surface by

@@ -150,6 +150,11 @@ pub(super) fn same_length(vrs: &[u32], values: &[f64]) -> std::result::Result<()
 }
 
 /// Input `i` at `s` after the step start under `rule`.
+///
+/// Inlined: every right-hand side reads the speed and, load-driven, one load per ring
+/// coordinate through it; inlined, a held input is a plain load and the `match` on the
+/// rule is one predictable branch (the call and its bounds check cost more than the read).
+#[inline]
 pub(super) fn input_at(st: &State, i: usize, s: f64, rule: InputRule) -> f64 {
     let u = st.inputs[i];
     match rule {
@@ -170,6 +175,11 @@ pub(super) fn input_at(st: &State, i: usize, s: f64, rule: InputRule) -> f64 {
 
 /// The ring's motion at `s` after the step start: from the inputs (motion-driven) or from
 /// the states `y` (load-driven).
+///
+/// Always inlined into the right-hand side (built in place, not returned through memory:
+/// its arguments and the copy-out cost as much as the few loads), with the ring's states
+/// read from slices cut once (no bounds check per coordinate).
+#[inline(always)]
 pub(super) fn motion_at(
     st: &State,
     rule: InputRule,
@@ -186,9 +196,10 @@ pub(super) fn motion_at(
     match (c, ring) {
         (Causality::Load, Some(r)) => {
             let nd = r.dofs.len();
-            for (k, &d) in r.dofs.iter().enumerate() {
-                m.q[d] = y[nl + k];
-                m.v[d] = y[nl + nd + k];
+            let (q, v) = y[nl..nl + 2 * nd].split_at(nd);
+            for ((&d, &q), &v) in r.dofs.iter().zip(q).zip(v) {
+                m.q[d] = q;
+                m.v[d] = v;
             }
         }
         _ => {

@@ -188,18 +188,7 @@ impl Component {
                     .all(|(&(i, input), v)| input || w[i - I_FORCE].to_bits() == v.to_bits())
             };
         if forces_only {
-            for k in 1..n {
-                let w = self.wrench_at(sc, t, k as f64 * h, &sink.xs[(k - 1) * dim..k * dim])?;
-                rows.extend(slots.iter().map(
-                    |&(i, input)| {
-                        if input {
-                            sc.inputs[i]
-                        } else {
-                            w[i - I_FORCE]
-                        }
-                    },
-                ));
-            }
+            self.forces_inside(sc, t, h, n, &sink.xs, slots, rows)?;
         } else if n > 1 {
             let x_end = sc.x.clone();
             for k in 1..n {
@@ -214,12 +203,45 @@ impl Component {
         Ok(())
     }
 
-    /// The level's wrench at `s` after the window start `t0` with states `x` (the
-    /// right-hand side's, as the integration evaluates it); refused when not finite.
+    /// The values of `slots` at the points `1..n` inside the window from `t0` (states `xs`,
+    /// one row each), appended to `rows`: the inputs as set and the level's wrench
+    /// ([`wrench`]). One system serves every point (the per-point work is the level's).
+    #[allow(clippy::too_many_arguments)]
+    fn forces_inside(
+        &mut self,
+        sc: &mut State,
+        t0: f64,
+        h: f64,
+        n: usize,
+        xs: &[f64],
+        slots: &[(usize, bool)],
+        rows: &mut Vec<f64>,
+    ) -> Result<()> {
+        let dim = sc.x.len();
+        let (mut sys, dy) = self.sys_at(sc, t0);
+        for k in 1..n {
+            let w = wrench(&mut sys, dy, k as f64 * h, &xs[(k - 1) * dim..k * dim])?;
+            for &(i, input) in slots {
+                rows.push(if input {
+                    sys.st.inputs[i]
+                } else {
+                    w[i - I_FORCE]
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// The level's wrench at `s` after the window start `t0` with states `x` ([`wrench`]).
     fn wrench_at(&mut self, sc: &mut State, t0: f64, s: f64, x: &[f64]) -> Result<[f64; 5]> {
-        let mut w = [0.0; 5];
-        let dy = &mut self.work.k[0];
-        let mut sys = Sys {
+        let (mut sys, dy) = self.sys_at(sc, t0);
+        wrench(&mut sys, dy, s, x)
+    }
+
+    /// The system of the window from `t0` for evaluations outside an integration (no
+    /// budget, Jacobian or sink), and the work vector its rates go to.
+    fn sys_at<'a>(&'a mut self, sc: &'a mut State, t0: f64) -> (Sys<'a>, &'a mut [f64]) {
+        let sys = Sys {
             jw: None,
             level: self.level.as_mut(),
             st: sc,
@@ -235,15 +257,23 @@ impl Component {
             sink: None,
             carries_jac: false,
         };
-        sys.eval(s, x, dy, Some(&mut w))?;
-        if !w.iter().all(|v| v.is_finite()) {
-            return Err(Error::StepFailed {
-                t: t0 + s,
-                reason: "non-finite force".into(),
-            });
-        }
-        Ok(w)
+        (sys, &mut self.work.k[0])
     }
+}
+
+/// The level's wrench at `s` after the start of `sys` with states `x` (the right-hand
+/// side's, as the integration evaluates it; its rates go to `dy`); refused when not
+/// finite.
+fn wrench(sys: &mut Sys<'_>, dy: &mut [f64], s: f64, x: &[f64]) -> Result<[f64; 5]> {
+    let mut w = [0.0; 5];
+    sys.wrench(s, x, dy, &mut w)?;
+    if !w.iter().all(|v| v.is_finite()) {
+        return Err(Error::StepFailed {
+            t: sys.t0 + s,
+            reason: "non-finite force".into(),
+        });
+    }
+    Ok(w)
 }
 
 /// The value of table slot `i` in `sc`: the input as set, or the output.

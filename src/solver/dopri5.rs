@@ -93,6 +93,9 @@ pub struct Dopri5 {
     t_old: f64,
     h_old: f64,
     dense_valid: bool,
+    /// Accepted steps the system does not observe keep their dense output coefficients
+    /// ([`Dopri5::set_dense_output`]).
+    dense_output: bool,
     /// `k1 = f(t, y)` holds for `y` as the last call left it (that call succeeded): the last
     /// stage of its last step, which the next call reuses when its system
     /// [continues](OdeSystem::continues) this one (FSAL across calls).
@@ -129,6 +132,7 @@ impl Dopri5 {
             t_old: 0.0,
             h_old: 0.0,
             dense_valid: false,
+            dense_output: true,
             fsal_ready: false,
             pow_memo: (FACOLD0, FACOLD0.powf(BETA)),
             iasti: 0,
@@ -140,6 +144,17 @@ impl Dopri5 {
     /// The state dimension.
     pub fn dim(&self) -> usize {
         self.n
+    }
+
+    /// Keep (`true`, the default) or skip the dense output coefficients of the accepted
+    /// steps the system does not observe ([`OdeSystem::observes_steps`]: observed steps
+    /// always keep them for [`OdeSystem::step_accepted`]). Skipped, [`Dopri5::last_step`]
+    /// and [`Dopri5::dense`] see no accepted step after such a step. For a caller that reads
+    /// the dense output only while observing (the co-simulation component): the
+    /// coefficients cost about a tenth of a step of a cheap system; the trajectory is the
+    /// same bit for bit.
+    pub fn set_dense_output(&mut self, keep: bool) {
+        self.dense_output = keep;
     }
 
     /// The interval `[t_old, t_new]` of the last accepted step, if any.
@@ -159,8 +174,12 @@ impl Dopri5 {
         super::check_dense(self.last_step(), t, out.len(), self.n)?;
         let th = (t - self.t_old) / self.h_old;
         let th1 = 1.0 - th;
+        // Cut to `n`: no bounds checks, as in `attempt` (checked above: `out.len() == n`).
+        let n = self.n;
+        let out = &mut out[..n];
         let [r1, r2, r3, r4, r5] = &self.rcont;
-        for i in 0..self.n {
+        let (r1, r2, r3, r4, r5) = (&r1[..n], &r2[..n], &r3[..n], &r4[..n], &r5[..n]);
+        for i in 0..n {
             out[i] = r1[i] + th * (r2[i] + th1 * (r3[i] + th * (r4[i] + th1 * r5[i])));
         }
         Ok(())
@@ -236,8 +255,9 @@ impl Dopri5 {
                 });
             }
             let t_new = if i + 1 == steps { t1 } else { t + h };
-            self.accept(t, h, t_new);
-            if sys.observes_steps() {
+            let observed = sys.observes_steps();
+            self.accept(t, h, t_new, self.dense_output || observed);
+            if observed {
                 sys.step_accepted(t, t_new, &|tt, out| self.dense(tt, out));
             }
         }
@@ -293,8 +313,9 @@ impl Dopri5 {
                 facold = err.max(FACOLD0);
                 self.stiffness_test(h);
                 let t_new = if last { t1 } else { t + h };
-                self.accept(t, h, t_new);
-                if sys.observes_steps() {
+                let observed = sys.observes_steps();
+                self.accept(t, h, t_new, self.dense_output || observed);
+                if observed {
                     sys.step_accepted(t, t_new, &|tt, out| self.dense(tt, out));
                 }
                 if let Some(h_next) = lp.accepted(t_new, h_new, h_prop, last, opts) {
@@ -402,8 +423,20 @@ impl Dopri5 {
     }
 
     /// Accept the attempted step `[t, t_new]` (`t_new = t + h`, or exactly `t1` on the last
-    /// step): dense output coefficients, FSAL, new state.
-    fn accept(&mut self, t: f64, h: f64, t_new: f64) {
+    /// step): dense output coefficients (with `dense`), FSAL, new state.
+    fn accept(&mut self, t: f64, h: f64, t_new: f64, dense: bool) {
+        if dense {
+            self.dense_coefficients(t, h, t_new);
+        }
+        self.dense_valid = dense;
+        std::mem::swap(&mut self.k1, &mut self.k7);
+        std::mem::swap(&mut self.y, &mut self.y1);
+        self.stats.accepted += 1;
+    }
+
+    /// The dense output coefficients of the attempted step `[t, t_new]` (before
+    /// [`Dopri5::accept`] swaps the stages).
+    fn dense_coefficients(&mut self, t: f64, h: f64, t_new: f64) {
         let n = self.n;
         let [r1, r2, r3, r4, r5] = &mut self.rcont;
         // Cut to `n`: no bounds checks, as in `attempt`.
@@ -428,9 +461,76 @@ impl Dopri5 {
         }
         self.t_old = t;
         self.h_old = t_new - t;
-        self.dense_valid = true;
-        std::mem::swap(&mut self.k1, &mut self.k7);
-        std::mem::swap(&mut self.y, &mut self.y1);
-        self.stats.accepted += 1;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::solver::{DenseFn, Options};
+
+    /// `y' = -y` (2 states), optionally watching the accepted steps: the dense output at
+    /// each step's midpoint is collected.
+    struct Decay {
+        observe: bool,
+        mids: Vec<f64>,
+    }
+
+    impl OdeSystem for Decay {
+        fn dim(&self) -> usize {
+            2
+        }
+        fn rhs(&mut self, _t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), String> {
+            dy[0] = -y[0];
+            dy[1] = -2.0 * y[1];
+            Ok(())
+        }
+        fn observes_steps(&self) -> bool {
+            self.observe
+        }
+        fn step_accepted(&mut self, t_old: f64, t_new: f64, dense: &DenseFn<'_>) {
+            let mut out = [0.0; 2];
+            dense(0.5 * (t_old + t_new), &mut out).unwrap();
+            self.mids.extend(out);
+        }
+    }
+
+    fn run(keep: bool, observe: bool) -> (Dopri5, Vec<u64>, Vec<f64>) {
+        let mut d = Dopri5::new(2);
+        d.set_dense_output(keep);
+        let mut sys = Decay {
+            observe,
+            mids: Vec::new(),
+        };
+        let opts = Options::new(2, 1e-6, 1e-9);
+        let (mut y, mut h) = ([1.0, 1.0], 0.0);
+        d.integrate(&mut sys, 0.0, 1.0, &mut y, &mut h, &opts)
+            .unwrap();
+        d.integrate(&mut sys, 1.0, 2.0, &mut y, &mut h, &opts)
+            .unwrap();
+        let bits = y.iter().chain([&h]).map(|v| v.to_bits()).collect();
+        (d, bits, sys.mids)
+    }
+
+    /// Skipping the dense output of unobserved steps changes no bit of the trajectory; it
+    /// leaves no dense output to read afterwards, and observed steps still give theirs (the
+    /// same bits as with it kept).
+    #[test]
+    fn skipped_dense_output_changes_no_bit() {
+        let (kept, y_kept, _) = run(true, false);
+        let (skipped, y_skipped, _) = run(false, false);
+        assert_eq!(y_kept, y_skipped);
+        assert_eq!(kept.stats, skipped.stats);
+        let mut out = [0.0; 2];
+        assert!(kept.last_step().is_some() && kept.dense(1.99, &mut out).is_ok());
+        assert!(skipped.last_step().is_none() && skipped.dense(1.99, &mut out).is_err());
+        let (_, y_obs_kept, mids_kept) = run(true, true);
+        let (observed, y_obs, mids) = run(false, true);
+        assert_eq!(y_obs, y_kept);
+        assert_eq!(y_obs_kept, y_kept);
+        assert!(!mids.is_empty());
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        assert_eq!(bits(&mids), bits(&mids_kept));
+        assert!(observed.last_step().is_some());
     }
 }

@@ -189,10 +189,11 @@ impl Options {
     fn check(&self, n: usize) -> Result<(), SolverError> {
         // Every call checks its options: the usual case (all valid) in one branch-free
         // pass, the message of a refusal below.
+        // `0 < a < inf` is `a.is_finite() && a > 0` (NaN fails both comparisons).
         let atol_ok = self
             .atol
             .iter()
-            .fold(true, |ok, a| ok & a.is_finite() & (*a > 0.0));
+            .fold(true, |ok, a| ok & (*a > 0.0) & (*a < f64::INFINITY));
         if self.rtol.is_finite()
             & (self.rtol >= 0.0)
             & (self.atol.len() == n)
@@ -406,6 +407,15 @@ impl Integrator {
         }
     }
 
+    /// Keep (the default) or skip the dense output of the accepted steps the system does
+    /// not observe: [`Dopri5::set_dense_output`]. RODAS4 keeps its own (its coefficients
+    /// come with its stages).
+    pub fn set_dense_output(&mut self, keep: bool) {
+        if let Integrator::Dopri5(m) = self {
+            m.set_dense_output(keep);
+        }
+    }
+
     /// Work counters (accumulated over all calls).
     pub fn stats(&self) -> &Stats {
         match self {
@@ -498,6 +508,7 @@ fn check_call(
 /// Evaluate the right-hand side, count it, and report the first non-finite component.
 ///
 /// `Ok(None)`: finite; `Ok(Some(i))`: component `i` is not finite; `Err`: the system failed.
+#[inline]
 fn eval<S: OdeSystem + ?Sized>(
     sys: &mut S,
     stats: &mut Stats,
@@ -510,6 +521,10 @@ fn eval<S: OdeSystem + ?Sized>(
 
 /// [`eval`], through [`OdeSystem::rhs_at_end`] when `at_end` (the last stage of a step
 /// landing on the end of the call).
+///
+/// Inlined into the stages: it wraps every evaluation (the count, the system's
+/// right-hand side, the finiteness scan), so a call of its own per stage is overhead.
+#[inline]
 fn eval_stage<S: OdeSystem + ?Sized>(
     sys: &mut S,
     stats: &mut Stats,
