@@ -23,7 +23,7 @@
 //! `time_scale`, on its own step ([`ThermalModel::advance`]). This file is the glue: the
 //! memory layout and which physics runs when.
 
-use crate::component::level::{LevelModel, LevelOutputs, Motion, Point};
+use crate::component::level::{Jacobians, LevelModel, LevelOutputs, Motion, Point};
 use crate::component::levels::cage_speed;
 use crate::component::{Scene, State};
 use crate::contact::{Curvature, PointContact, Race};
@@ -31,7 +31,7 @@ use crate::error::Result;
 use crate::geometry::Bearing;
 use crate::lubrication::entrainment_speed;
 use crate::models::effects::{Effects, FilmKind, RingEffects, WearRegime};
-use crate::models::ring::{Profile, RingDof, RingEval, RingModel};
+use crate::models::ring::{Profile, RingDof, RingEval, RingJacobian, RingModel};
 use crate::models::thermal::{ContactSums, ThermalModel, ThermalParams};
 use crate::models::waviness::WavySite;
 use crate::models::wear::{self, FactorsAt, FilmDefect, WearLaw};
@@ -533,6 +533,36 @@ impl LevelModel for RingLevel {
         // `rhs` reads the motion, the states and `aux` (wear maps, thermal clearance) and
         // writes only `self.eval`, which every evaluation overwrites; the time reaches only
         // the profile, whose offsets depend on the angles, not on `t`.
+        true
+    }
+    /// The analytic Jacobian of the plain ring (dry contacts, no profile, no slow
+    /// effects: [`RingModel::wrench_jacobian`]); otherwise `false` and the integrator
+    /// differences. The cage angle's rate is the fixed ratio of the shaft speed (an
+    /// input), so the rates' rows are zero; the wrench's columns are its derivatives in
+    /// the cage angle, the displacement and the velocity. One pass over the balls instead
+    /// of a right-hand side per state.
+    fn jacobian(&mut self, p: Point<'_>, j: Jacobians<'_>) -> bool {
+        if self.slow.is_some() || self.profile.is_some() || self.shaft_angle {
+            return false;
+        }
+        let Point { m, x, .. } = p;
+        let wc = self.cage_ratio * m.omega;
+        let mut d = RingJacobian::default();
+        if !self.model.wrench_jacobian(x[0], wc, &m.q, &m.v, &mut d) {
+            return false;
+        }
+        let Jacobians { jx, jm, wx, wm } = j;
+        jx.fill(0.0);
+        jm.fill(0.0);
+        if !wm.is_empty() {
+            let n = wx.len() / 5;
+            wx.fill(0.0);
+            for r in 0..5 {
+                wx[r * n] = d.dtheta[r];
+                wm[r * 10..r * 10 + 5].copy_from_slice(&d.dq[r]);
+                wm[r * 10 + 5..r * 10 + 10].copy_from_slice(&d.dv[r]);
+            }
+        }
         true
     }
     fn init(&mut self, _m: &Motion, x: &mut [f64], aux: &mut [f64]) -> Result<()> {

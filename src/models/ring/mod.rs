@@ -69,6 +69,19 @@ pub struct RingEval {
     pub film_min: f64,
 }
 
+/// Derivatives of the wrench `(Fx, Fy, Fz, Mx, My)` on the shaft
+/// ([`RingModel::wrench_jacobian`]), `[row][column]`.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct RingJacobian {
+    /// `d wrench / d q`: minus the stiffness, and the damping force's own dependence on
+    /// the displacement (the damping ramp and the turning of the contact normal).
+    pub dq: [[f64; 5]; 5],
+    /// `d wrench / d v`: minus the damping matrix.
+    pub dv: [[f64; 5]; 5],
+    /// `d wrench / d theta_c` (the cage angle; every ball turns with it).
+    pub dtheta: [f64; 5],
+}
+
 /// The ring-on-massless-balls force law of one bearing.
 #[derive(Debug, Clone)]
 pub struct RingModel {
@@ -93,6 +106,8 @@ pub struct RingModel {
     /// `(sin, cos)` of each ball's place relative to the cage, `2 pi j / Z + spacing_j`
     /// (with offsets): ball `j`'s azimuth is the cage angle rotated by it.
     spacing_sc: Vec<(f64, f64)>,
+    /// `(sin, cos)` of `2 pi j / Z` (the even places; the analytic Jacobian's rotations).
+    even_sc: Vec<(f64, f64)>,
     /// Each ball's own `sin_cos` of its azimuth instead (the tests' reference).
     direct_angles: bool,
     /// Every evaluation through the general loop (the tests' reference for the plain
@@ -132,6 +147,9 @@ impl RingModel {
             ],
             spacing: Vec::new(),
             spacing_sc: Vec::new(),
+            even_sc: (0..b.z)
+                .map(|j| (2.0 * PI / b.z as f64 * j as f64).sin_cos())
+                .collect(),
             direct_angles: false,
             general_only: false,
             film: None,
@@ -290,6 +308,156 @@ impl RingModel {
             (RingDof::Five, false) => self.general::<true, false, F>(args),
             (RingDof::Five, true) => self.general::<true, true, F>(args),
         }
+    }
+
+    /// The exact derivatives of [`RingModel::eval`]'s wrench (dry contacts, no profile)
+    /// with respect to the displacement `q`, the velocity `v` and the cage angle
+    /// `theta_c`, for an implicit integrator's Jacobian; `false` with an EHL film, whose
+    /// squeeze damping's derivative the film law does not give (the caller then
+    /// differences). Per loaded ball, with `fn = Q(delta) + c(delta) rate` and
+    /// `W = -sum fn g` (`g = d delta / d q`):
+    ///
+    /// - `dW/dq = -sum [(Q' + c' rate) g g^T + fn H + c g (d rate / d q)^T]`, `H = dg/dq`
+    ///   (zero in 2-DOF; `J^T (I - n n^T) J / l` in 5-DOF), which is `-K` plus the damping
+    ///   force's terms (the ramp `c' = c / DAMPING_RAMP` below the ramp, the normal turning
+    ///   with `q`, the cage-speed part of the approach rate);
+    /// - `dW/dv = -sum c g g^T = -C`;
+    /// - `dW/dtheta`: the same chain through the ball azimuth `psi = theta_c + ...`.
+    ///
+    /// Checked against central differences of the wrench (test
+    /// `wrench_jacobian_matches_central_differences`).
+    pub fn wrench_jacobian(
+        &self,
+        theta_c: f64,
+        omega_c: f64,
+        q: &[f64; 5],
+        v: &[f64; 5],
+        out: &mut RingJacobian,
+    ) -> bool {
+        if self.film.is_some() {
+            return false;
+        }
+        *out = RingJacobian::default();
+        let (cage_s, cage_c) = theta_c.sin_cos();
+        let nq = match self.dof {
+            RingDof::Two => 2,
+            RingDof::Five => 5,
+        };
+        for j in 0..self.z {
+            // The cage angle rotated by the ball's place (a Jacobian needs no bit-for-bit
+            // agreement with the right-hand side's rotations).
+            let (sa, ca) = if self.spacing_sc.is_empty() {
+                self.even_sc[j]
+            } else {
+                self.spacing_sc[j]
+            };
+            let (s, c) = (cage_s * ca + cage_c * sa, cage_c * ca - cage_s * sa);
+            // Per geometry: delta, g, rate, d(rate)/dq, H (as a closure over index pairs),
+            // and the azimuth derivatives d(delta)/dpsi, dg/dpsi, d(rate)/dpsi.
+            let (delta, g, rate, drate_dq, dd_dpsi, dg_dpsi, drate_dpsi, geo) = match self.dof {
+                RingDof::Two => {
+                    let g = [c, s, 0.0, 0.0, 0.0];
+                    let gp = [-s, c, 0.0, 0.0, 0.0];
+                    let delta = q[0] * c + q[1] * s - 0.5 * self.pd;
+                    let qg = q[0] * c + q[1] * s;
+                    let qgp = q[0] * gp[0] + q[1] * gp[1];
+                    let vgp = v[0] * gp[0] + v[1] * gp[1];
+                    let rate = v[0] * c + v[1] * s + omega_c * qgp;
+                    let drate_dq = [omega_c * gp[0], omega_c * gp[1], 0.0, 0.0, 0.0];
+                    let drate_dpsi = vgp - omega_c * qg;
+                    (delta, g, rate, drate_dq, qgp, gp, drate_dpsi, None)
+                }
+                RingDof::Five => {
+                    let ri = self.ri;
+                    let a = [
+                        self.a10 + q[2] + ri * (q[3] * s - q[4] * c),
+                        self.a20 + q[0] * c + q[1] * s,
+                    ];
+                    let l = (a[0] * a[0] + a[1] * a[1]).sqrt();
+                    let n = [a[0] / l, a[1] / l];
+                    let jm = [[0.0, 0.0, 1.0, ri * s, -ri * c], [c, s, 0.0, 0.0, 0.0]];
+                    // dJ/dpsi, dA/dpsi, d2A/dpsi2.
+                    let jp = [[0.0, 0.0, 0.0, ri * c, ri * s], [-s, c, 0.0, 0.0, 0.0]];
+                    let ap = [ri * (q[3] * c + q[4] * s), -q[0] * s + q[1] * c];
+                    let app = [ri * (-q[3] * s + q[4] * c), -q[0] * c - q[1] * s];
+                    let dot5 =
+                        |x: &[f64; 5], y: &[f64; 5]| (0..5).map(|k| x[k] * y[k]).sum::<f64>();
+                    let da = [
+                        dot5(&jm[0], v) + omega_c * ap[0],
+                        dot5(&jm[1], v) + omega_c * ap[1],
+                    ];
+                    let g: [f64; 5] = std::array::from_fn(|k| jm[0][k] * n[0] + jm[1][k] * n[1]);
+                    let rate = n[0] * da[0] + n[1] * da[1];
+                    // P = I - n n^T; P da / l and P A_psi / l.
+                    let proj = |x: [f64; 2]| {
+                        let d = n[0] * x[0] + n[1] * x[1];
+                        [(x[0] - d * n[0]) / l, (x[1] - d * n[1]) / l]
+                    };
+                    let pda = proj(da);
+                    let pap = proj(ap);
+                    let drate_dq: [f64; 5] = std::array::from_fn(|k| {
+                        jm[0][k] * pda[0]
+                            + jm[1][k] * pda[1]
+                            + omega_c * (jp[0][k] * n[0] + jp[1][k] * n[1])
+                    });
+                    let dd_dpsi = n[0] * ap[0] + n[1] * ap[1];
+                    let dg_dpsi: [f64; 5] = std::array::from_fn(|k| {
+                        jp[0][k] * n[0] + jp[1][k] * n[1] + jm[0][k] * pap[0] + jm[1][k] * pap[1]
+                    });
+                    let drate_dpsi = pap[0] * da[0]
+                        + pap[1] * da[1]
+                        + n[0] * (dot5(&jp[0], v) + omega_c * app[0])
+                        + n[1] * (dot5(&jp[1], v) + omega_c * app[1]);
+                    let p = [
+                        [1.0 - n[0] * n[0], -n[0] * n[1]],
+                        [-n[0] * n[1], 1.0 - n[1] * n[1]],
+                    ];
+                    (
+                        l - self.a,
+                        g,
+                        rate,
+                        drate_dq,
+                        dd_dpsi,
+                        dg_dpsi,
+                        drate_dpsi,
+                        Some((jm, p, l)),
+                    )
+                }
+            };
+            if delta <= 0.0 {
+                continue;
+            }
+            let sq = delta.sqrt();
+            let (load, dload) = (self.kn * delta * sq, 1.5 * self.kn * sq);
+            let (cd, dcd) = if delta < DAMPING_RAMP {
+                (
+                    self.damping * delta / DAMPING_RAMP,
+                    self.damping / DAMPING_RAMP,
+                )
+            } else {
+                (self.damping, 0.0)
+            };
+            let fn_ = load + cd * rate;
+            let dfn_ddelta = dload + dcd * rate;
+            for r in 0..nq {
+                for col in 0..nq {
+                    let h = geo.map_or(0.0, |(jm, p, l): ([[f64; 5]; 2], [[f64; 2]; 2], f64)| {
+                        let mut h = 0.0;
+                        for a in 0..2 {
+                            for b in 0..2 {
+                                h += jm[a][r] * p[a][b] * jm[b][col];
+                            }
+                        }
+                        h / l
+                    });
+                    out.dq[r][col] -=
+                        dfn_ddelta * g[r] * g[col] + fn_ * h + cd * g[r] * drate_dq[col];
+                    out.dv[r][col] -= cd * g[r] * g[col];
+                }
+                out.dtheta[r] -= (dfn_ddelta * dd_dpsi + cd * drate_dpsi) * g[r] + fn_ * dg_dpsi[r];
+            }
+        }
+        true
     }
 
     /// The film at cage speed `omega_c` (`None`: dry) and the rigid approach at or below
@@ -731,6 +899,107 @@ mod tests {
             }
         }
         assert_eq!(cases, 50_000);
+    }
+
+    /// The wrench's analytic derivatives ([`RingModel::wrench_jacobian`]) against central
+    /// differences of the wrench itself, 2-DOF and 5-DOF, with contact damping and a
+    /// turning cage, over loaded states (balls on and past the damping ramp): every entry
+    /// within 1e-5 of its column's scale. Points where a ball crosses contact or the end of
+    /// the ramp within the difference step are skipped (two step sizes disagree there).
+    #[test]
+    fn wrench_jacobian_matches_central_differences() {
+        let mut r = 0x2545_f491_4f6c_dd1d_u64;
+        let mut rand = || {
+            r ^= r << 13;
+            r ^= r >> 7;
+            r ^= r << 17;
+            (r >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        };
+        let mut checked = 0;
+        for (name, dof) in [("6205", RingDof::Two), ("7008ce", RingDof::Five)] {
+            let b = preset(name).unwrap().build().unwrap();
+            let m = RingModel::new(&b, dof, 3000.0);
+            let wrench = |q: &[f64; 5], v: &[f64; 5], th: f64| {
+                let mut e = RingEval::default();
+                m.eval(th, 80.0, q, v, 0.0, None, false, &mut e);
+                e.wrench
+            };
+            for case in 0..60 {
+                let q = match dof {
+                    RingDof::Two => [1.5e-5 * rand(), 1.5e-5 * rand(), 0.0, 0.0, 0.0],
+                    RingDof::Five => [
+                        8e-6 * rand(),
+                        8e-6 * rand(),
+                        1.5e-5 + 5e-6 * rand(),
+                        2e-4 * rand(),
+                        2e-4 * rand(),
+                    ],
+                };
+                // Small velocities put some balls' approach rates near zero, large ones
+                // make the damping force a good part of the load.
+                let vs = if case % 2 == 0 { 1e-3 } else { 0.2 };
+                let v: [f64; 5] =
+                    std::array::from_fn(|k| vs * rand() * if k >= 3 { 10.0 } else { 1.0 });
+                let th = 0.37 * case as f64;
+                let mut jac = RingJacobian::default();
+                assert!(m.wrench_jacobian(th, 80.0, &q, &v, &mut jac));
+                let nq = if dof == RingDof::Two { 2 } else { 5 };
+                // Columns: q_k, v_k, theta.
+                for col in 0..2 * nq + 1 {
+                    let fd = |h: f64| -> [f64; 5] {
+                        let (mut qp, mut qm, mut vp, mut vm) = (q, q, v, v);
+                        let (mut tp, mut tm) = (th, th);
+                        if col < nq {
+                            qp[col] += h;
+                            qm[col] -= h;
+                        } else if col < 2 * nq {
+                            vp[col - nq] += h;
+                            vm[col - nq] -= h;
+                        } else {
+                            tp += h;
+                            tm -= h;
+                        }
+                        let (a, b) = (wrench(&qp, &vp, tp), wrench(&qm, &vm, tm));
+                        std::array::from_fn(|k| (a[k] - b[k]) / (2.0 * h))
+                    };
+                    let h = if col < nq {
+                        if col >= 3 {
+                            1e-9
+                        } else {
+                            1e-12
+                        }
+                    } else if col < 2 * nq {
+                        1e-6
+                    } else {
+                        1e-8
+                    };
+                    let (f1, f2) = (fd(h), fd(0.5 * h));
+                    let an: [f64; 5] = std::array::from_fn(|k| {
+                        if col < nq {
+                            jac.dq[k][col]
+                        } else if col < 2 * nq {
+                            jac.dv[k][col - nq]
+                        } else {
+                            jac.dtheta[k]
+                        }
+                    });
+                    let scale = an.iter().chain(&f1).fold(1e-30f64, |a, x| a.max(x.abs()));
+                    if (0..5).any(|k| (f1[k] - f2[k]).abs() > 1e-6 * scale) {
+                        continue; // a kink within the step
+                    }
+                    for k in 0..5 {
+                        assert!(
+                            (an[k] - f2[k]).abs() <= 1e-5 * scale,
+                            "{name} case {case} column {col} row {k}: analytic {} vs {}",
+                            an[k],
+                            f2[k]
+                        );
+                    }
+                    checked += 1;
+                }
+            }
+        }
+        assert!(checked > 500, "{checked} columns checked");
     }
 
     /// Zero clearance, one ball under the load line: the static radial balance
