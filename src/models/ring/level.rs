@@ -717,6 +717,125 @@ mod tests {
         v.iter().map(|x| x.to_bits()).collect()
     }
 
+    /// The level's Jacobian puts the model's derivatives where the component reads them:
+    /// `wm` (wrench by q, then by v) and `wx` (wrench by the cage angle, state 0) match
+    /// central differences of the level's own right-hand-side wrench (1e-5 of each
+    /// column's scale), the rates' rows are zero; a scene with a film or a profile says
+    /// `false` (the integrator differences).
+    #[test]
+    fn jacobian_matches_differences_of_the_right_hand_side() {
+        for (name, dof, q) in [
+            ("6205", RingDof::Two, [2e-6, -1.2e-5, 0.0, 0.0, 0.0]),
+            ("7008ce", RingDof::Five, [3e-6, -6e-6, 1.4e-5, 5e-5, -8e-5]),
+        ] {
+            let b = preset(name).unwrap().build().unwrap();
+            let mut l = RingLevel::new(&b, dof, 3000.0);
+            let m = Motion {
+                q,
+                v: [0.02, -0.03, 0.01, 0.2, -0.1],
+                omega: 300.0,
+            };
+            let x = [0.7];
+            let n = 1;
+            let (mut jx, mut jm, mut wx, mut wm) = (
+                vec![9.0; n * n],
+                vec![9.0; n * 10],
+                vec![9.0; 5 * n],
+                vec![9.0; 50],
+            );
+            let j = Jacobians {
+                jx: &mut jx,
+                jm: &mut jm,
+                wx: &mut wx,
+                wm: &mut wm,
+            };
+            assert!(l.jacobian(Point::new(0.0, &m, &x, &mut []), j));
+            assert!(jx.iter().chain(&jm).all(|&v| v == 0.0));
+            let mut wrench = |m: &Motion, x: &[f64]| {
+                let (mut dx, mut w) = ([0.0; 1], [0.0; 5]);
+                l.rhs(Point::new(0.0, m, x, &mut []), &mut dx, Some(&mut w))
+                    .unwrap();
+                w
+            };
+            for col in 0..11 {
+                let h = [
+                    1e-11, 1e-11, 1e-11, 1e-9, 1e-9, 1e-6, 1e-6, 1e-6, 1e-6, 1e-6, 1e-8,
+                ][col];
+                let (mut mp, mut mm, mut xp, mut xm) = (m, m, x, x);
+                match col {
+                    0..=4 => {
+                        mp.q[col] += h;
+                        mm.q[col] -= h;
+                    }
+                    5..=9 => {
+                        mp.v[col - 5] += h;
+                        mm.v[col - 5] -= h;
+                    }
+                    _ => {
+                        xp[0] += h;
+                        xm[0] -= h;
+                    }
+                }
+                let (a, c) = (wrench(&mp, &xp), wrench(&mm, &xm));
+                let fd: [f64; 5] = std::array::from_fn(|r| (a[r] - c[r]) / (2.0 * h));
+                let an: [f64; 5] = std::array::from_fn(|r| {
+                    if col < 10 {
+                        wm[r * 10 + col]
+                    } else {
+                        wx[r * n]
+                    }
+                });
+                let scale = fd.iter().chain(&an).fold(1e-30f64, |a, v| a.max(v.abs()));
+                for r in 0..5 {
+                    assert!(
+                        (an[r] - fd[r]).abs() <= 1e-5 * scale,
+                        "{name} row {r} col {col}: {} vs {}",
+                        an[r],
+                        fd[r]
+                    );
+                }
+            }
+        }
+        let scene = |effects: &str| {
+            Scene::from_text(&format!(
+                "bearing = \"6205\"\n[model]\nlevel = \"ring\"\ncausality = \"load\"\n[effects]\n{effects}\n"
+            ))
+            .unwrap()
+        };
+        let b = preset("6205").unwrap().build().unwrap();
+        for effects in [
+            "lubrication = { film = \"ehl\", lubricant = \"study2\" }",
+            "defects = [{ race = \"outer\", angle_deg = 0.0, width_mm = 1.0, depth_um = 10.0 }]",
+        ] {
+            let s = scene(effects);
+            let mut l = build(&s, &b).unwrap();
+            let m = Motion {
+                q: [0.0, -1e-5, 0.0, 0.0, 0.0],
+                v: [0.0; 5],
+                omega: 100.0,
+            };
+            let x = vec![0.0; l.n_states()];
+            let mut aux = vec![0.0; l.n_aux()];
+            let ns = x.len();
+            let (mut jx, mut jm, mut wx, mut wm) = (
+                vec![0.0; ns * ns],
+                vec![0.0; ns * 10],
+                vec![0.0; 5 * ns],
+                vec![0.0; 50],
+            );
+            let j = Jacobians {
+                jx: &mut jx,
+                jm: &mut jm,
+                wx: &mut wx,
+                wm: &mut wm,
+            };
+            assert!(
+                !l.jacobian(Point::new(0.0, &m, &x, &mut aux), j),
+                "{effects}"
+            );
+        }
+    }
+
     /// The last stage's evaluation kept for the outputs at the same point gives them bit
     /// for bit; any other evaluation in between, or another point, evaluates again.
     #[test]
