@@ -104,10 +104,9 @@ pub struct RingModel {
     /// Ball azimuth offsets (empty: evenly spaced).
     spacing: Vec<f64>,
     /// `(sin, cos)` of each ball's place relative to the cage, `2 pi j / Z + spacing_j`
-    /// (with offsets): ball `j`'s azimuth is the cage angle rotated by it.
+    /// (offset 0 when evenly spaced): ball `j`'s azimuth is the cage angle rotated by it
+    /// (with offsets in the evaluation, always in the analytic Jacobian).
     spacing_sc: Vec<(f64, f64)>,
-    /// `(sin, cos)` of `2 pi j / Z` (the even places; the analytic Jacobian's rotations).
-    even_sc: Vec<(f64, f64)>,
     /// Each ball's own `sin_cos` of its azimuth instead (the tests' reference).
     direct_angles: bool,
     /// Every evaluation through the general loop (the tests' reference for the plain
@@ -146,8 +145,7 @@ impl RingModel {
                 outer.semi_axis_coefficients(),
             ],
             spacing: Vec::new(),
-            spacing_sc: Vec::new(),
-            even_sc: (0..b.z)
+            spacing_sc: (0..b.z)
                 .map(|j| (2.0 * PI / b.z as f64 * j as f64).sin_cos())
                 .collect(),
             direct_angles: false,
@@ -167,10 +165,8 @@ impl RingModel {
     pub fn with_spacing(mut self, offsets: Vec<f64>) -> Self {
         assert!(offsets.is_empty() || offsets.len() == self.z);
         let dpsi = 2.0 * PI / self.z as f64;
-        self.spacing_sc = offsets
-            .iter()
-            .enumerate()
-            .map(|(j, o)| (dpsi * j as f64 + o).sin_cos())
+        self.spacing_sc = (0..self.z)
+            .map(|j| (dpsi * j as f64 + offsets.get(j).copied().unwrap_or(0.0)).sin_cos())
             .collect();
         self.spacing = offsets;
         self
@@ -346,11 +342,7 @@ impl RingModel {
         for j in 0..self.z {
             // The cage angle rotated by the ball's place (a Jacobian needs no bit-for-bit
             // agreement with the right-hand side's rotations).
-            let (sa, ca) = if self.spacing_sc.is_empty() {
-                self.even_sc[j]
-            } else {
-                self.spacing_sc[j]
-            };
+            let (sa, ca) = self.spacing_sc[j];
             let (s, c) = (cage_s * ca + cage_c * sa, cage_c * ca - cage_s * sa);
             // Per geometry: delta, g, rate, d(rate)/dq, H (as a closure over index pairs),
             // and the azimuth derivatives d(delta)/dpsi, dg/dpsi, d(rate)/dpsi.
