@@ -20,8 +20,11 @@ pub trait LinearSolver: Send {
 }
 
 /// In-place LU factorisation with partial pivoting of the column-major `n × n` matrix `a`
-/// (leading dimension `n`): on return `a` holds the unit lower factor `L` below the diagonal
-/// and `U` on and above it; `piv[k]` is the row swapped with row `k` at step `k`.
+/// (leading dimension `n`): on return `a` holds the unit lower factor `L` below the diagonal,
+/// `U` above it and the reciprocals `1/u_kk` of `U`'s diagonal on it (the solve multiplies
+/// by them: a division per unknown on the back substitution's critical path would cost
+/// about three times the multiplication, and the reciprocal is computed here anyway to
+/// scale `L`'s column); `piv[k]` is the row swapped with row `k` at step `k`.
 /// `Err(k)`: the pivot in column `k` is zero or not finite (singular).
 #[inline]
 pub fn lu_factor(a: &mut [f64], n: usize, piv: &mut [usize]) -> Result<(), usize> {
@@ -51,6 +54,7 @@ pub fn lu_factor(a: &mut [f64], n: usize, piv: &mut [usize]) -> Result<(), usize
         for i in k + 1..n {
             a[col + i] *= inv;
         }
+        a[col + k] = inv;
         for j in k + 1..n {
             let akj = a[j * n + k];
             if akj != 0.0 {
@@ -66,9 +70,53 @@ pub fn lu_factor(a: &mut [f64], n: usize, piv: &mut [usize]) -> Result<(), usize
     Ok(())
 }
 
-/// Solve with the factors of [`lu_factor`]: `b` is overwritten by `x`.
+/// Solve with the factors of [`lu_factor`]: `b` is overwritten by `x`. Up to `n = 12`
+/// (a 2-DOF ring level has 5 states, a 5-DOF one 11) with the size fixed at compile time.
 #[inline]
 pub fn lu_solve(a: &[f64], n: usize, piv: &[usize], b: &mut [f64]) {
+    macro_rules! fixed {
+        ($($k:literal)*) => {
+            match n {
+                $($k => return lu_solve_n::<$k>(&a[..$k * $k], &piv[..$k], &mut b[..$k]),)*
+                _ => {}
+            }
+        };
+    }
+    fixed!(1 2 3 4 5 6 7 8 9 10 11 12);
+    lu_solve_n_dyn(a, n, piv, b)
+}
+
+/// [`lu_solve`] for `n = N`, known at compile time: the row swaps in `b`, then the
+/// substitutions in a local array with every index a constant (registers, no branch): a
+/// zero `b_k` subtracts its zero products instead of skipping them, which differs from the
+/// general loop only in the sign of a zero.
+#[inline(always)]
+fn lu_solve_n<const N: usize>(a: &[f64], piv: &[usize], b: &mut [f64]) {
+    for (k, &p) in piv.iter().enumerate() {
+        if p != k {
+            b.swap(k, p);
+        }
+    }
+    let mut x = [0.0; N];
+    x.copy_from_slice(b);
+    for k in 0..N {
+        let bk = x[k];
+        for i in k + 1..N {
+            x[i] -= a[k * N + i] * bk;
+        }
+    }
+    for k in (0..N).rev() {
+        x[k] *= a[k * N + k];
+        let bk = x[k];
+        for i in 0..k {
+            x[i] -= a[k * N + i] * bk;
+        }
+    }
+    b.copy_from_slice(&x);
+}
+
+/// [`lu_solve`] for any `n`, skipping the products of a zero `b_k`.
+fn lu_solve_n_dyn(a: &[f64], n: usize, piv: &[usize], b: &mut [f64]) {
     for (k, &p) in piv.iter().enumerate().take(n) {
         if p != k {
             b.swap(k, p);
@@ -86,7 +134,7 @@ pub fn lu_solve(a: &[f64], n: usize, piv: &[usize], b: &mut [f64]) {
     }
     // back substitution with U
     for k in (0..n).rev() {
-        b[k] /= a[k * n + k];
+        b[k] *= a[k * n + k];
         let bk = b[k];
         if bk != 0.0 {
             let col = &a[k * n..k * n + k];
@@ -435,6 +483,43 @@ mod tests {
         // singular matrix is reported
         let s = DMatrix::from_row_slice(2, 2, &[1.0, 2.0, 2.0, 4.0]);
         assert!(!DenseLu::new(2).factor(0.0, &s));
+    }
+
+    /// Every size, fixed at compile time (1 to 12) or not (13, 14), solves random systems
+    /// needing row exchanges to a residual at rounding level, and the fixed-size solve gives
+    /// the general loop's values (a zero may differ in sign only), zeros in `b` included.
+    #[test]
+    fn lu_solve_of_every_size_solves_and_matches_the_general_loop() {
+        let mut seed = 0x2545_f491_4f6c_dd1d_u64;
+        for n in 1..=14 {
+            for trial in 0..20 {
+                let mut a: Vec<f64> = (0..n * n).map(|_| rng(&mut seed)).collect();
+                // Small leading diagonal: partial pivoting must swap rows.
+                a[0] *= 1e-3;
+                let mut b: Vec<f64> = (0..n).map(|_| rng(&mut seed)).collect();
+                if trial % 4 == 0 {
+                    b[n / 2] = 0.0;
+                }
+                let mut f = a.clone();
+                let mut piv = vec![0; n];
+                lu_factor(&mut f, n, &mut piv).unwrap();
+                if n > 1 && trial == 0 {
+                    assert_ne!(piv[0], 0, "n = {n}: the first pivot was not exchanged");
+                }
+                let mut x = b.clone();
+                lu_solve(&f, n, &piv, &mut x);
+                let mut y = b.clone();
+                lu_solve_n_dyn(&f, n, &piv, &mut y);
+                assert_eq!(x, y, "n = {n}");
+                let scale: f64 = a.iter().map(|v| v.abs()).sum::<f64>()
+                    * x.iter().map(|v| v.abs()).fold(0.0, f64::max);
+                for i in 0..n {
+                    // column-major: a[j * n + i] is entry (i, j)
+                    let r: f64 = (0..n).map(|j| a[j * n + i] * x[j]).sum::<f64>() - b[i];
+                    assert!(r.abs() <= 1e-13 * scale, "n = {n}, row {i}: residual {r:e}");
+                }
+            }
+        }
     }
 
     #[test]
