@@ -899,14 +899,24 @@ impl Rosenbrock {
             return Ok(Attempt::Singular);
         }
         let st = &mut self.stats;
+        // Every vector cut to `n` once, so the stage loops run without bounds checks.
         let (y, ytmp, ftmp, f0, dfdt) = (
-            &self.y,
-            &mut self.ytmp,
-            &mut self.ftmp,
-            &self.f0,
-            &self.dfdt,
+            &self.y[..n],
+            &mut self.ytmp[..n],
+            &mut self.ftmp[..n],
+            &self.f0[..n],
+            &self.dfdt[..n],
         );
         let [u1, u2, u3, u4, u5, u6] = &mut self.u;
+        let (u1, u2, u3, u4, u5, u6) = (
+            &mut u1[..n],
+            &mut u2[..n],
+            &mut u3[..n],
+            &mut u4[..n],
+            &mut u5[..n],
+            &mut u6[..n],
+        );
+        let ynew = &mut self.ynew[..n];
         let solver = &mut self.solver;
         let ih = 1.0 / h;
 
@@ -973,9 +983,9 @@ impl Rosenbrock {
         }
         solver.solve(u6);
         for i in 0..n {
-            self.ynew[i] = ytmp[i] + u6[i];
+            ynew[i] = ytmp[i] + u6[i];
         }
-        if let Some(i) = self.ynew.iter().position(|v| !v.is_finite()) {
+        if let Some(i) = ynew.iter().position(|v| !v.is_finite()) {
             return Ok(Attempt::NonFinite(tph, i));
         }
         Ok(Attempt::Done)
