@@ -89,7 +89,8 @@ pub fn lu_solve(a: &[f64], n: usize, piv: &[usize], b: &mut [f64]) {
 /// [`lu_solve`] for `n = N`, known at compile time: the row swaps in `b`, then the
 /// substitutions in a local array with every index a constant (registers, no branch): a
 /// zero `b_k` subtracts its zero products instead of skipping them, which differs from the
-/// general loop only in the sign of a zero.
+/// general loop only in the sign of a zero (the factors are finite: the Rosenbrock
+/// integrators refuse a Jacobian that is not, and a non-finite pivot is singular).
 #[inline(always)]
 fn lu_solve_n<const N: usize>(a: &[f64], piv: &[usize], b: &mut [f64]) {
     for (k, &p) in piv.iter().enumerate() {
