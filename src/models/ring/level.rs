@@ -578,7 +578,24 @@ impl LevelModel for RingLevel {
         if self.shaft_angle {
             dx[1] = m.omega;
         }
-        if self.slow.as_ref().is_some_and(|s| s.wear.is_some()) {
+        if self.profile.is_none() && self.slow.is_none() {
+            // Nothing but the model: `evaluate` without the angles it would compute for
+            // the effects (the same call `eval_ring` makes then).
+            if let Some(w) = wrench {
+                self.model.eval_with(
+                    x[0],
+                    wc,
+                    &m.q,
+                    &m.v,
+                    t,
+                    (None, 0.0),
+                    false,
+                    &mut self.eval,
+                    |_, _, _| {},
+                );
+                *w = self.eval.wrench;
+            }
+        } else if self.slow.as_ref().is_some_and(|s| s.wear.is_some()) {
             self.wear_rates(t, m, x, aux, wc, dx);
             if let Some(w) = wrench {
                 *w = self.eval.wrench;
