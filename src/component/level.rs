@@ -169,4 +169,41 @@ pub trait LevelModel: Send + std::fmt::Debug {
     }
     /// Everything the level reports at `p`. Must not allocate.
     fn outputs(&mut self, p: Point<'_>, out: &mut LevelOutputs) -> Result<()>;
+    /// The wrench at each of `p`'s points into `out[k]` (zeros on entry), bit for bit as
+    /// [`LevelModel::rhs`] gives it there, for the outputs between an integration's stops
+    /// (the rates are not wanted: `dx`, of `n_states`, is scratch). Asked only of a level
+    /// without memory (`n_aux = 0`). Default: `rhs` at each point ([`wrenches_by_rhs`]);
+    /// a level overrides it where one call for many points saves its dispatch.
+    fn wrenches(&mut self, p: Points<'_>, dx: &mut [f64], out: &mut [[f64; 5]]) -> Result<()> {
+        wrenches_by_rhs(self, p, dx, out)
+    }
+}
+
+/// The points of [`LevelModel::wrenches`]: point `k` at time `t[k]` with motion `m[k]` and
+/// the level's states `x[k * stride..][..n_states]`.
+#[derive(Debug, Clone, Copy)]
+pub struct Points<'a> {
+    /// Times, s.
+    pub t: &'a [f64],
+    /// The ring's motion at each point.
+    pub m: &'a [Motion],
+    /// The level's states, one row of `stride` per point.
+    pub x: &'a [f64],
+    /// Values per row of `x`.
+    pub stride: usize,
+}
+
+/// [`LevelModel::wrenches`] by one [`LevelModel::rhs`] per point.
+pub fn wrenches_by_rhs<L: LevelModel + ?Sized>(
+    level: &mut L,
+    p: Points<'_>,
+    dx: &mut [f64],
+    out: &mut [[f64; 5]],
+) -> Result<()> {
+    let nl = level.n_states();
+    for (k, (w, m)) in out.iter_mut().zip(p.m).enumerate() {
+        let x = &p.x[k * p.stride..k * p.stride + nl];
+        level.rhs(Point::new(p.t[k], m, x, &mut []), &mut dx[..nl], Some(w))?;
+    }
+    Ok(())
 }

@@ -3,7 +3,7 @@
 //! preallocated work space.
 
 use super::inputs::{input_at, motion_at};
-use super::level::{Jacobians, LevelModel, Point};
+use super::level::{Jacobians, LevelModel, Motion, Point, Points};
 use super::{thread_cpu_s, Causality, InputRule, State, I_LOAD, I_V, N_INPUT_SLOTS};
 use crate::error::{Error, Result};
 use crate::solver::{same_bits, DenseFn, OdeSystem, SolverError};
@@ -265,6 +265,9 @@ impl Sink {
     }
 }
 
+/// Points per [`Sys::wrenches`] call (their motions are built on the stack).
+pub(super) const WRENCH_CHUNK: usize = 32;
+
 impl Sys<'_> {
     /// Right-hand side at `s` after the step start; with `wrench`, also the bearing force.
     pub(super) fn eval(
@@ -293,6 +296,36 @@ impl Sys<'_> {
         let (aux, _) = self.st.aux.split_at_mut(self.naux);
         let p = Point::new(self.t0 + s, &m, &y[..nl], aux);
         self.level.rhs(p, &mut dy[..nl], Some(w))
+    }
+
+    /// [`Sys::wrench`] at the points `s[k]` after the step start with states
+    /// `xs[k * dim..(k + 1) * dim]`, into `out[k]` (at most [`WRENCH_CHUNK`] points): one
+    /// call of [`LevelModel::wrenches`] for them all.
+    pub(super) fn wrenches(
+        &mut self,
+        s: &[f64],
+        xs: &[f64],
+        dim: usize,
+        dy: &mut [f64],
+        out: &mut [[f64; 5]],
+    ) -> Result<()> {
+        let n = s.len();
+        debug_assert!(n <= WRENCH_CHUNK && out.len() == n && xs.len() >= n * dim);
+        let mut m = [Motion::default(); WRENCH_CHUNK];
+        let mut t = [0.0; WRENCH_CHUNK];
+        for (k, (&s, (m, t))) in s.iter().zip(m.iter_mut().zip(&mut t)).enumerate() {
+            let y = &xs[k * dim..(k + 1) * dim];
+            *m = motion_at(self.st, self.rule, s, self.causality, self.ring, self.nl, y);
+            *t = self.t0 + s;
+        }
+        out.fill([0.0; 5]);
+        let p = Points {
+            t: &t[..n],
+            m: &m[..n],
+            x: xs,
+            stride: dim,
+        };
+        self.level.wrenches(p, &mut dy[..self.nl], out)
     }
 
     /// [`Sys::eval`]; `at_end`: through [`LevelModel::rhs_at_end`] (the last stage of a

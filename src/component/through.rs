@@ -3,7 +3,7 @@
 //! dense output (for a stand-alone user who holds the inputs over the window; a host that
 //! couples the component steps it with `do_step`).
 
-use super::system::{Sink, Sys};
+use super::system::{Sink, Sys, WRENCH_CHUNK};
 use super::{index_of, variables, Component, Method, State, I_FORCE};
 use crate::error::{Error, Result};
 
@@ -219,15 +219,26 @@ impl Component {
     ) -> Result<()> {
         let dim = sc.x.len();
         let (mut sys, dy) = self.sys_at(sc, t0);
-        for k in 1..n {
-            let w = wrench(&mut sys, dy, k as f64 * h, &xs[(k - 1) * dim..k * dim])?;
-            for &(i, input) in slots {
-                rows.push(if input {
-                    sys.st.inputs[i]
-                } else {
-                    w[i - I_FORCE]
-                });
+        let (mut s, mut w) = ([0.0; WRENCH_CHUNK], [[0.0; 5]; WRENCH_CHUNK]);
+        let mut k0 = 1;
+        while k0 < n {
+            let m = (n - k0).min(WRENCH_CHUNK);
+            for (i, s) in s[..m].iter_mut().enumerate() {
+                *s = (k0 + i) as f64 * h;
             }
+            let rows_x = &xs[(k0 - 1) * dim..(k0 - 1 + m) * dim];
+            sys.wrenches(&s[..m], rows_x, dim, dy, &mut w[..m])?;
+            for (w, &s) in w[..m].iter().zip(&s[..m]) {
+                finite_wrench(&sys, s, w)?;
+                for &(i, input) in slots {
+                    rows.push(if input {
+                        sys.st.inputs[i]
+                    } else {
+                        w[i - I_FORCE]
+                    });
+                }
+            }
+            k0 += m;
         }
         Ok(())
     }
@@ -267,13 +278,19 @@ impl Component {
 fn wrench(sys: &mut Sys<'_>, dy: &mut [f64], s: f64, x: &[f64]) -> Result<[f64; 5]> {
     let mut w = [0.0; 5];
     sys.wrench(s, x, dy, &mut w)?;
+    finite_wrench(sys, s, &w)?;
+    Ok(w)
+}
+
+/// The wrench `w` at `s` after the start of `sys`, refused when not finite.
+fn finite_wrench(sys: &Sys<'_>, s: f64, w: &[f64; 5]) -> Result<()> {
     if !w.iter().all(|v| v.is_finite()) {
         return Err(Error::StepFailed {
             t: sys.t0 + s,
             reason: "non-finite force".into(),
         });
     }
-    Ok(w)
+    Ok(())
 }
 
 /// The value of table slot `i` in `sc`: the input as set, or the output.

@@ -383,8 +383,11 @@ impl Rosenbrock {
         super::check_dense(self.last_step(), t, out.len(), self.n)?;
         let th = (t - self.t_old) / self.h_old;
         let th1 = 1.0 - th;
-        for (i, o) in out.iter_mut().enumerate() {
-            *o = th1 * self.y_old[i] + th * (self.y[i] + th1 * (self.kd1[i] + th * self.kd2[i]));
+        let n = out.len();
+        let (y_old, y) = (&self.y_old[..n], &self.y[..n]);
+        let (kd1, kd2) = (&self.kd1[..n], &self.kd2[..n]);
+        for i in 0..n {
+            out[i] = th1 * y_old[i] + th * (y[i] + th1 * (kd1[i] + th * kd2[i]));
         }
         Ok(())
     }

@@ -23,7 +23,9 @@
 //! `time_scale`, on its own step ([`ThermalModel::advance`]). This file is the glue: the
 //! memory layout and which physics runs when.
 
-use crate::component::level::{Jacobians, LevelModel, LevelOutputs, Motion, Point};
+use crate::component::level::{
+    wrenches_by_rhs, Jacobians, LevelModel, LevelOutputs, Motion, Point, Points,
+};
 use crate::component::levels::cage_speed;
 use crate::component::{Scene, State};
 use crate::contact::{Curvature, PointContact, Race};
@@ -606,6 +608,29 @@ impl LevelModel for RingLevel {
         }
         Ok(())
     }
+    /// Without effects, the model at each point as `rhs` calls it, in one loop.
+    fn wrenches(&mut self, p: Points<'_>, dx: &mut [f64], out: &mut [[f64; 5]]) -> Result<()> {
+        if self.profile.is_some() || self.slow.is_some() {
+            return wrenches_by_rhs(self, p, dx, out);
+        }
+        self.kept = None;
+        for (k, (w, m)) in out.iter_mut().zip(p.m).enumerate() {
+            let wc = self.cage_ratio * m.omega;
+            self.model.eval_with(
+                p.x[k * p.stride],
+                wc,
+                &m.q,
+                &m.v,
+                p.t[k],
+                (None, 0.0),
+                false,
+                &mut self.eval,
+                |_, _, _| {},
+            );
+            *w = self.eval.wrench;
+        }
+        Ok(())
+    }
     fn rhs_at_end(
         &mut self,
         p: Point<'_>,
@@ -732,6 +757,71 @@ mod tests {
         v.extend(out.k.iter().flatten());
         v.extend(out.c.iter().flatten());
         v.iter().map(|x| x.to_bits()).collect()
+    }
+
+    /// One `wrenches` call over many points gives, at each, the wrench of the level's own
+    /// right-hand side there and of its full outputs, bit for bit (2 and 5 ring DOFs; free,
+    /// loaded and contacts within the damping ramp; states rows wider than the level's).
+    #[test]
+    fn wrenches_are_each_points_right_hand_side_wrench() {
+        for (name, dof) in [("6205", RingDof::Two), ("7008ce", RingDof::Five)] {
+            let b = preset(name).unwrap().build().unwrap();
+            let mut l = RingLevel::new(&b, dof, 3000.0);
+            let n = 40;
+            let stride = 3;
+            let ms: Vec<Motion> = (0..n)
+                .map(|k| {
+                    let a = k as f64 * 0.37;
+                    // Every fourth point centred: free.
+                    let r = if k % 4 == 0 { 0.0 } else { 1.0 };
+                    Motion {
+                        q: [
+                            r * 1.5e-5 * a.cos(),
+                            r * (-1.5e-5 * a.sin() - 1e-6),
+                            if dof == RingDof::Five {
+                                r * 1e-5 * a.cos()
+                            } else {
+                                0.0
+                            },
+                            if dof == RingDof::Five {
+                                r * 4e-5 * a.sin()
+                            } else {
+                                0.0
+                            },
+                            0.0,
+                        ],
+                        v: [0.02 * a.sin(), -0.03, 0.01, 0.2, -0.1],
+                        omega: 100.0 + 10.0 * k as f64,
+                    }
+                })
+                .collect();
+            let xs: Vec<f64> = (0..n * stride).map(|i| 0.11 * i as f64).collect();
+            let ts: Vec<f64> = (0..n).map(|k| 1e-4 * k as f64).collect();
+            let mut out = vec![[0.0; 5]; n];
+            let mut dx = [0.0; 1];
+            let p = Points {
+                t: &ts,
+                m: &ms,
+                x: &xs,
+                stride,
+            };
+            l.wrenches(p, &mut dx, &mut out).unwrap();
+            let mut loaded = 0;
+            for k in 0..n {
+                let x = &xs[k * stride..k * stride + 1];
+                let mut w = [0.0; 5];
+                l.rhs(Point::new(ts[k], &ms[k], x, &mut []), &mut dx, Some(&mut w))
+                    .unwrap();
+                assert_eq!(w.map(f64::to_bits), out[k].map(f64::to_bits), "{name} {k}");
+                let full = outputs(&mut l, &ms[k], x);
+                assert_eq!(&full[6..11], &out[k].map(f64::to_bits)[..], "{name} {k}");
+                loaded += (out[k][1] != 0.0) as usize;
+            }
+            assert!(
+                loaded > n / 2 && loaded < n,
+                "{name}: {loaded} of {n} loaded"
+            );
+        }
     }
 
     /// The level's Jacobian puts the model's derivatives where the component reads them:
