@@ -4,7 +4,7 @@
 
 use super::inputs::{input_at, motion_at};
 use super::level::{Jacobians, LevelModel, Motion, Point, Points};
-use super::{thread_cpu_s, Causality, InputRule, State, I_LOAD, I_V, N_INPUT_SLOTS};
+use super::{thread_cpu_s, Causality, InputRule, State, I_LOAD, I_OMEGA, I_V, N_INPUT_SLOTS};
 use crate::error::{Error, Result};
 use crate::solver::{same_bits, DenseFn, OdeSystem, SolverError};
 use std::time::Instant;
@@ -265,8 +265,9 @@ impl Sink {
     }
 }
 
-/// Points per [`Sys::wrenches`] call (their motions are built on the stack).
-pub(super) const WRENCH_CHUNK: usize = 32;
+/// Points per [`Sys::wrenches`] call in a window integrated straight through (their
+/// motions are kept between the calls).
+pub(super) const WRENCH_CHUNK: usize = 256;
 
 impl Sys<'_> {
     /// Right-hand side at `s` after the step start; with `wrench`, also the bearing force.
@@ -299,29 +300,47 @@ impl Sys<'_> {
     }
 
     /// [`Sys::wrench`] at the points `s[k]` after the step start with states
-    /// `xs[k * dim..(k + 1) * dim]`, into `out[k]` (at most [`WRENCH_CHUNK`] points): one
-    /// call of [`LevelModel::wrenches`] for them all.
+    /// `xs[k * dim..(k + 1) * dim]`, into `out` (replaced, one wrench per point): one call
+    /// of [`LevelModel::wrenches`] for them all; `ms` and `ts` are the caller's buffers for
+    /// their motions and times (kept across calls: no allocation once they hold `s.len()`).
+    #[allow(clippy::too_many_arguments)]
     pub(super) fn wrenches(
         &mut self,
         s: &[f64],
         xs: &[f64],
         dim: usize,
         dy: &mut [f64],
-        out: &mut [[f64; 5]],
+        (ms, ts): (&mut Vec<Motion>, &mut Vec<f64>),
+        out: &mut Vec<[f64; 5]>,
     ) -> Result<()> {
-        let n = s.len();
-        debug_assert!(n <= WRENCH_CHUNK && out.len() == n && xs.len() >= n * dim);
-        let mut m = [Motion::default(); WRENCH_CHUNK];
-        let mut t = [0.0; WRENCH_CHUNK];
-        for (k, (&s, (m, t))) in s.iter().zip(m.iter_mut().zip(&mut t)).enumerate() {
-            let y = &xs[k * dim..(k + 1) * dim];
-            *m = motion_at(self.st, self.rule, s, self.causality, self.ring, self.nl, y);
-            *t = self.t0 + s;
+        debug_assert!(xs.len() >= s.len() * dim);
+        ms.resize(s.len(), Motion::default());
+        ts.clear();
+        let nl = self.nl;
+        for ((&s, y), m) in s.iter().zip(xs.chunks_exact(dim)).zip(ms.iter_mut()) {
+            match (self.causality, self.ring) {
+                // `motion_at`'s load-driven motion written in place: a motion built on
+                // the stack and then copied here would be read back wider than its
+                // fields were written (a stalled store forwarding per point).
+                (Causality::Load, Some(r)) => {
+                    m.omega = input_at(self.st, I_OMEGA, s, self.rule);
+                    (m.q, m.v) = ([0.0; 5], [0.0; 5]);
+                    let nd = r.dofs.len();
+                    let (q, v) = y[nl..nl + 2 * nd].split_at(nd);
+                    for ((&d, &q), &v) in r.dofs.iter().zip(q).zip(v) {
+                        m.q[d] = q;
+                        m.v[d] = v;
+                    }
+                }
+                _ => *m = motion_at(self.st, self.rule, s, self.causality, self.ring, nl, y),
+            }
+            ts.push(self.t0 + s);
         }
-        out.fill([0.0; 5]);
+        out.clear();
+        out.resize(s.len(), [0.0; 5]);
         let p = Points {
-            t: &t[..n],
-            m: &m[..n],
+            t: ts,
+            m: ms,
             x: xs,
             stride: dim,
         };

@@ -219,16 +219,17 @@ impl Component {
     ) -> Result<()> {
         let dim = sc.x.len();
         let (mut sys, dy) = self.sys_at(sc, t0);
-        let (mut s, mut w) = ([0.0; WRENCH_CHUNK], [[0.0; 5]; WRENCH_CHUNK]);
+        let chunk = WRENCH_CHUNK.min(n - 1);
+        let (mut s, mut w) = (Vec::with_capacity(chunk), Vec::with_capacity(chunk));
+        let (mut ms, mut ts) = (Vec::with_capacity(chunk), Vec::with_capacity(chunk));
         let mut k0 = 1;
         while k0 < n {
-            let m = (n - k0).min(WRENCH_CHUNK);
-            for (i, s) in s[..m].iter_mut().enumerate() {
-                *s = (k0 + i) as f64 * h;
-            }
+            let m = (n - k0).min(chunk);
+            s.clear();
+            s.extend((k0..k0 + m).map(|k| k as f64 * h));
             let rows_x = &xs[(k0 - 1) * dim..(k0 - 1 + m) * dim];
-            sys.wrenches(&s[..m], rows_x, dim, dy, &mut w[..m])?;
-            for (w, &s) in w[..m].iter().zip(&s[..m]) {
+            sys.wrenches(&s, rows_x, dim, dy, (&mut ms, &mut ts), &mut w)?;
+            for (w, &s) in w.iter().zip(&s) {
                 finite_wrench(&sys, s, w)?;
                 for &(i, input) in slots {
                     rows.push(if input {
