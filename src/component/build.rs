@@ -27,12 +27,15 @@ fn make_integrator(
     let n = nl + ring.map_or(0, |r| 2 * r.dofs.len());
     // A stiff level (its registry entry) gets RODAS4 by default.
     let stiff = scene.model.level.entry().stiff;
-    // A level with independent blocks of states gets the block-arrowhead solver.
+    // A level with independent blocks of states gets the block-arrowhead solver; a
+    // load-driven ring (its positions and velocities after the level's states, `dq/dt =
+    // v`) the reduced second-order one.
     let rodas = |m: RosMethod| -> Rosenbrock {
-        let solver: Box<dyn crate::solver::LinearSolver> = match level.blocks() {
-            Some((nb, s)) if nb * s <= nl => {
+        let solver: Box<dyn crate::solver::LinearSolver> = match (level.blocks(), ring) {
+            (Some((nb, s)), _) if nb * s <= nl => {
                 Box::new(crate::solver::BlockArrowhead::new(nb, s, n - nb * s))
             }
+            (None, Some(r)) => Box::new(crate::solver::SecondOrderLu::new(nl, r.dofs.len())),
             _ => Box::new(crate::solver::DenseLu::new(n)),
         };
         Rosenbrock::with_method(m, solver)

@@ -188,6 +188,134 @@ impl LinearSolver for DenseLu {
     }
 }
 
+/// Solver for states ordered `[z | q | v]` (`nz`, `nd`, `nd` of them) with `dq/dt = v`:
+/// a body's positions and velocities after other states (a load-driven ring after its
+/// level's). Then `J`'s `q` rows are `[0 | 0 | I]`, and with them `(σI − J) x = b` gives
+/// `x_q = (b_q + x_v)/σ`; the other rows, `r = (z, v)`, reduce to
+///
+/// ```text
+/// R x_r = b_r + G b_q,   R = σI − J_rr − G E,   G = J_rq / σ
+/// ```
+///
+/// where `J_rr` is `J` on the rows and columns `r`, `J_rq` its `q` columns on the rows `r`,
+/// and `E` picks the `v` columns (`(G E)_ij = G_ik` when column `j` is `v_k`). One
+/// LU of `nz + nd` (3 for a 2-DOF ring with its cage angle, 6 with 5 DOFs) instead of
+/// `nz + 2 nd` (5, 11): the same solution as the dense LU in exact arithmetic. A `J`
+/// whose `q` rows are not exactly `[0 | 0 | I]` (a difference quotient of them) is
+/// factored dense.
+#[derive(Debug, Clone)]
+pub struct SecondOrderLu {
+    nz: usize,
+    nd: usize,
+    /// `R`'s LU (column-major, `m = nz + nd`), as [`lu_factor`] leaves it.
+    red: Vec<f64>,
+    piv: Vec<usize>,
+    /// `G` (`m × nd`, column-major).
+    g: Vec<f64>,
+    /// `1/σ` of the last factorisation.
+    inv_sigma: f64,
+    /// The last `J` did not have the structure: its dense LU.
+    dense: Option<DenseLu>,
+    r: Vec<f64>,
+}
+
+impl SecondOrderLu {
+    /// Storage for `nz` other states and `nd` positions and velocities.
+    pub fn new(nz: usize, nd: usize) -> Self {
+        let m = nz + nd;
+        SecondOrderLu {
+            nz,
+            nd,
+            red: vec![0.0; m * m],
+            piv: vec![0; m],
+            g: vec![0.0; m * nd],
+            inv_sigma: f64::NAN,
+            dense: None,
+            r: vec![0.0; m],
+        }
+    }
+
+    /// Full index of reduced index `i` (`z` first, then `v`).
+    #[inline]
+    fn full(&self, i: usize) -> usize {
+        if i < self.nz {
+            i
+        } else {
+            i + self.nd
+        }
+    }
+
+    /// Whether `J`'s `q` rows are exactly `[0 | 0 | I]`.
+    pub fn fits(&self, jac: &DMatrix<f64>) -> bool {
+        let (nz, nd) = (self.nz, self.nd);
+        let n = nz + 2 * nd;
+        (0..nd).all(|k| (0..n).all(|c| jac[(nz + k, c)] == f64::from(c == nz + nd + k)))
+    }
+}
+
+impl LinearSolver for SecondOrderLu {
+    fn dim(&self) -> usize {
+        self.nz + 2 * self.nd
+    }
+
+    fn factor(&mut self, sigma: f64, jac: &DMatrix<f64>) -> bool {
+        let (nz, nd) = (self.nz, self.nd);
+        let n = nz + 2 * nd;
+        debug_assert_eq!(jac.shape(), (n, n));
+        if !self.fits(jac) {
+            let dense = self.dense.get_or_insert_with(|| DenseLu::new(n));
+            return dense.factor(sigma, jac);
+        }
+        self.dense = None;
+        let m = nz + nd;
+        let inv = 1.0 / sigma;
+        self.inv_sigma = inv;
+        for i in 0..m {
+            let fi = self.full(i);
+            for k in 0..nd {
+                self.g[k * m + i] = jac[(fi, nz + k)] * inv;
+            }
+        }
+        for j in 0..m {
+            let fj = self.full(j);
+            for i in 0..m {
+                let fi = self.full(i);
+                let mut v = -jac[(fi, fj)];
+                if j >= nz {
+                    v -= self.g[(j - nz) * m + i];
+                }
+                if i == j {
+                    v += sigma;
+                }
+                self.red[j * m + i] = v;
+            }
+        }
+        lu_factor(&mut self.red, m, &mut self.piv).is_ok()
+    }
+
+    fn solve(&mut self, b: &mut [f64]) {
+        if let Some(d) = self.dense.as_mut() {
+            return d.solve(b);
+        }
+        let (nz, nd) = (self.nz, self.nd);
+        let m = nz + nd;
+        for i in 0..m {
+            let mut v = b[self.full(i)];
+            for k in 0..nd {
+                v += self.g[k * m + i] * b[nz + k];
+            }
+            self.r[i] = v;
+        }
+        lu_solve(&self.red, m, &self.piv, &mut self.r);
+        for i in 0..m {
+            b[self.full(i)] = self.r[i];
+        }
+        for k in 0..nd {
+            b[nz + k] = (b[nz + k] + b[nz + nd + k]) * self.inv_sigma;
+        }
+    }
+}
+
 /// Block-arrowhead solver for states ordered `[block_1 … block_nb | border]`: each diagonal
 /// block (`s × s`, e.g. one ball's states) couples to the other blocks only through the
 /// border (`m` states, e.g. rings and cage):
@@ -519,6 +647,66 @@ mod tests {
                     let r: f64 = (0..n).map(|j| a[j * n + i] * x[j]).sum::<f64>() - b[i];
                     assert!(r.abs() <= 1e-13 * scale, "n = {n}, row {i}: residual {r:e}");
                 }
+            }
+        }
+    }
+
+    /// States `[z | q | v]` with `dq/dt = v`: the reduced solve gives the dense LU's
+    /// solution to rounding level (1, 2 and 5 DOFs, with and without other states, rows
+    /// needing exchanges), and a `J` whose position rows are not exactly `[0 | 0 | I]`
+    /// (a difference quotient) is solved dense, bit for bit as [`DenseLu`].
+    #[test]
+    fn second_order_lu_matches_dense_lu() {
+        let mut seed = 0x1234_5678_9abc_def1_u64;
+        for (nz, nd) in [(0, 1), (1, 2), (0, 2), (1, 5), (3, 5)] {
+            let n = nz + 2 * nd;
+            for trial in 0..10 {
+                let mut j = DMatrix::zeros(n, n);
+                for c in 0..n {
+                    for r in 0..n {
+                        let q_row = r >= nz && r < nz + nd;
+                        j[(r, c)] = if q_row {
+                            f64::from(c == r + nd)
+                        } else {
+                            // Stiff entries, as contact stiffness over a mass.
+                            1e6 * rng(&mut seed)
+                        };
+                    }
+                }
+                let mut so = SecondOrderLu::new(nz, nd);
+                assert!(so.fits(&j));
+                let sigma = [1e2, 1e3, 1e4, 3e5][trial % 4];
+                let mut dense = DenseLu::new(n);
+                assert!(so.factor(sigma, &j) && dense.factor(sigma, &j));
+                let b: Vec<f64> = (0..n).map(|_| rng(&mut seed)).collect();
+                let (mut x, mut y) = (b.clone(), b.clone());
+                so.solve(&mut x);
+                dense.solve(&mut y);
+                // The residual of (σI − J) x = b, against its terms' size.
+                for r in 0..n {
+                    let mut res = sigma * x[r] - b[r];
+                    let mut size = (sigma * x[r]).abs() + b[r].abs();
+                    for c in 0..n {
+                        res -= j[(r, c)] * x[c];
+                        size += (j[(r, c)] * x[c]).abs();
+                    }
+                    assert!(
+                        res.abs() <= 1e-13 * size,
+                        "{nz} {nd} {trial} row {r}: {res:e}"
+                    );
+                }
+                let scale = y.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+                for (a, d) in x.iter().zip(&y) {
+                    assert!((a - d).abs() <= 1e-11 * scale, "{nz} {nd} {trial}: {a} {d}");
+                }
+                // A position row off by a rounding: dense, the same bits.
+                j[(nz, nz + nd)] = 1.0 + f64::EPSILON;
+                assert!(!so.fits(&j));
+                assert!(so.factor(sigma, &j) && dense.factor(sigma, &j));
+                let (mut x, mut y) = (b.clone(), b.clone());
+                so.solve(&mut x);
+                dense.solve(&mut y);
+                assert_eq!(x, y);
             }
         }
     }

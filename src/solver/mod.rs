@@ -35,7 +35,7 @@ pub mod newton;
 mod rosenbrock;
 
 pub use dopri5::Dopri5;
-pub use linalg::{lu_factor, lu_solve, BlockArrowhead, DenseLu, LinearSolver};
+pub use linalg::{lu_factor, lu_solve, BlockArrowhead, DenseLu, LinearSolver, SecondOrderLu};
 pub use rosenbrock::{
     RosMethod, Rosenbrock, WCoeffs, ROS34PW2_ALPHA, ROS34PW2_B, ROS34PW2_BHAT, ROS34PW2_GAMMA,
     ROS34PW2_GAMMA_MATRIX, W_JAC_MAX_AGE,
