@@ -115,7 +115,7 @@ pub struct RingModel {
     spacing: Vec<f64>,
     /// `(sin, cos)` of each ball's place relative to the cage, `2 pi j / Z + spacing_j`
     /// (offset 0 when evenly spaced): ball `j`'s azimuth is the cage angle rotated by it
-    /// (with offsets in the evaluation, always in the analytic Jacobian).
+    /// (in every evaluation and the analytic Jacobian).
     spacing_sc: Vec<(f64, f64)>,
     /// Each ball's own `sin_cos` of its azimuth instead (the tests' reference).
     direct_angles: bool,
@@ -126,9 +126,6 @@ pub struct RingModel {
     film: Option<FilmModel>,
     /// `omega / omega_c` (kinematic), to get the shaft speed back from the cage speed.
     shaft_per_cage: f64,
-    /// `(sin, cos)` of the ball pitch `2 pi / Z`: evenly spaced balls are reached by
-    /// rotating the first one (one `sin_cos` per evaluation instead of one per ball).
-    pitch_sc: (f64, f64),
 }
 
 impl RingModel {
@@ -161,7 +158,6 @@ impl RingModel {
             direct_angles: false,
             general_only: false,
             film: None,
-            pitch_sc: (2.0 * PI / b.z as f64).sin_cos(),
             shaft_per_cage: 1.0
                 / crate::geometry::kinematics::cage_speed(
                     crate::geometry::kinematics::gamma(b, alpha),
@@ -522,27 +518,21 @@ impl RingModel {
         let (film, unloaded_below) = self.film_and_bound(omega_c, profile_max);
         let dpsi = 2.0 * PI / self.z as f64;
         let even = self.spacing.is_empty();
-        // Evenly spaced: ball j+1 is ball j rotated by the pitch (the rounding this adds
-        // over Z rotations, ~Z ulp, is below that of `theta_c + dpsi j` at large angles).
-        // With offsets: the cage angle rotated by the ball's precomputed place.
-        let (sp, cp) = self.pitch_sc;
+        // Each ball: the cage angle rotated by the ball's precomputed place (evenly spaced
+        // or with offsets), one rotation (~1 ulp, below the rounding of `theta_c + dpsi j`
+        // at large angles); the rotations are independent, so they overlap in the CPU
+        // where a recurrence from ball to ball would chain them.
         // Coordinates a ball's normal moves: 2-DOF, x and y only (the gradient's other
         // entries are zeros, whose products add nothing to the +0 sums of the stiffness and
         // damping, and the wrench's other components are set to zero below).
         let nq = if FIVE { 5 } else { 2 };
-        let mut next = cage_sin_cos(theta_c);
-        let cage = next;
-        for j in 0..self.z {
+        let (st, ct) = cage_sin_cos(theta_c);
+        for (j, &(sj, cj)) in self.spacing_sc.iter().enumerate() {
             let psi = theta_c + dpsi * j as f64;
             let psi = if even { psi } else { psi + self.spacing[j] };
             let (s, c) = if self.direct_angles {
                 psi.sin_cos()
-            } else if even {
-                let (s, c) = next;
-                next = (s * cp + c * sp, c * cp - s * sp);
-                (s, c)
             } else {
-                let ((st, ct), (sj, cj)) = (cage, self.spacing_sc[j]);
                 (st * cj + ct * sj, ct * cj - st * sj)
             };
             // g: gradient of delta w.r.t. q; rate: d(delta)/dt; plus what the Hessian needs.
@@ -663,27 +653,19 @@ impl RingModel {
         } else {
             self.film_and_bound(omega_c, profile_max)
         };
-        let (sp, cp) = self.pitch_sc;
         let dpsi = 2.0 * PI / self.z as f64;
         let even = PLAIN || self.spacing.is_empty();
         let half_pd = 0.5 * self.pd;
         let (q0, q1, v0, v1) = (q[0], q[1], v[0], v[1]);
-        let cage = cage_sin_cos(theta_c);
-        let (mut s, mut c) = cage;
+        let (st, ct) = cage_sin_cos(theta_c);
         let (mut fx, mut fy) = (0.0, 0.0);
         let (mut loaded, mut max_load) = (0, 0.0_f64);
         // Row-major [xx, xy, yx, yy] sums of K and C (xy and yx round differently).
         let (mut k, mut cm) = ([0.0; 4], [0.0; 4]);
-        for j in 0..self.z {
+        for (j, &(sa, ca)) in self.spacing_sc.iter().enumerate() {
             let psi = theta_c + dpsi * j as f64;
-            let (psi, sj, cj) = if even {
-                let (sj, cj) = (s, c);
-                (s, c) = (sj * cp + cj * sp, cj * cp - sj * sp);
-                (psi, sj, cj)
-            } else {
-                let ((st, ct), (sa, ca)) = (cage, self.spacing_sc[j]);
-                (psi + self.spacing[j], st * ca + ct * sa, ct * ca - st * sa)
-            };
+            let psi = if even { psi } else { psi + self.spacing[j] };
+            let (sj, cj) = (st * ca + ct * sa, ct * ca - st * sa);
             let delta = q0 * cj + q1 * sj - half_pd;
             if !PLAIN && delta <= unloaded_below {
                 continue;
