@@ -102,7 +102,7 @@ impl Component {
                     / 12.0;
                 Some(RingBody {
                     dofs: level.ring_dofs(),
-                    inertia: [m, m, m, it, it],
+                    inv_inertia: [1.0 / m, 1.0 / m, 1.0 / m, 1.0 / it, 1.0 / it],
                 })
             }
         };

@@ -316,7 +316,7 @@ impl Component {
             for &d in ring.dofs {
                 let load = input_at(sc, I_LOAD + d, s, rule);
                 sc.output_derivatives[I_Q + d] = m.v[d];
-                sc.output_derivatives[I_V + d] = (out.wrench[d] + load) / ring.inertia[d];
+                sc.output_derivatives[I_V + d] = (out.wrench[d] + load) * ring.inv_inertia[d];
             }
         }
         if !all_finite(&sc.outputs) || !all_finite(&sc.output_derivatives[..I_FORCE]) {

@@ -118,8 +118,10 @@ impl Budget {
 pub(super) struct RingBody {
     /// Coordinates integrated (indices into q).
     pub(super) dofs: &'static [usize],
-    /// Mass (translations) or transverse inertia (tilts) per coordinate of `q`.
-    pub(super) inertia: [f64; 5],
+    /// Reciprocal mass (translations) or transverse inertia (tilts) per coordinate of `q`:
+    /// the accelerations multiply by it (a division per coordinate and right-hand side
+    /// sat on the integration's critical path).
+    pub(super) inv_inertia: [f64; 5],
 }
 
 /// Preallocated work space of a step (no allocation inside `do_step`).
@@ -352,8 +354,8 @@ impl Sys<'_> {
     ///
     /// Inlined into [`Sys::rates`] (the integrators' right-hand side): this layer runs at
     /// every evaluation, so the motion is built in place and the ring's rows are written
-    /// through slices cut once, with no bounds check per coordinate. The arithmetic is the
-    /// same (`(w + load) / inertia`, a division: a reciprocal would change the bits).
+    /// through slices cut once, with no bounds check per coordinate; the acceleration is
+    /// `(w + load) · (1/inertia)` with the reciprocal kept ([`RingBody::inv_inertia`]).
     #[inline(always)]
     fn eval_level(
         &mut self,
@@ -383,7 +385,7 @@ impl Sys<'_> {
                 for (((dq, dv), &v), &d) in dq.iter_mut().zip(dv).zip(v).zip(ring.dofs) {
                     let load = input_at(self.st, I_LOAD + d, s, self.rule);
                     *dq = v;
-                    *dv = (w[d] + load) / ring.inertia[d];
+                    *dv = (w[d] + load) * ring.inv_inertia[d];
                 }
                 if let Some(out) = wrench {
                     *out = w;
@@ -514,7 +516,7 @@ impl OdeSystem for Sys<'_> {
             let nd = ring.dofs.len();
             for (k, &d) in ring.dofs.iter().enumerate() {
                 let (iq, iv) = (nl + k, nl + nd + k);
-                let inv = 1.0 / ring.inertia[d];
+                let inv = ring.inv_inertia[d];
                 for r in 0..nl {
                     a[iq * n + r] = jw.jm[r * 10 + d];
                     a[iv * n + r] = jw.jm[r * 10 + 5 + d];
