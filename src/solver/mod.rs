@@ -8,7 +8,8 @@
 //! - [`Rosenbrock`]: RODAS4, the L-stable, stiffly accurate 6-stage Rosenbrock method of
 //!   order 4(3) (Hairer & Wanner, *Solving ODEs II*, 2nd ed., §VI.4, Table 4.1 / the code
 //!   RODAS), one LU per step attempt, with a pluggable linear solver ([`LinearSolver`]:
-//!   [`DenseLu`] by default, [`BlockArrowhead`] for ball-structured systems). The same
+//!   [`DenseLu`] by default, [`BlockArrowhead`] for ball-structured systems, [`SecondOrderLu`]
+//!   for positions and velocities with `dq/dt = v`). The same
 //!   integrator runs the W-method ROS34PW2 ([`RosMethod::Ros34pw2`], order 3(2)), which
 //!   keeps `J` and its LU across the steps of a call and needs no `∂f/∂t`.
 //!
