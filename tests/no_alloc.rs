@@ -135,6 +135,10 @@ fn do_step_and_the_c_loop_do_not_allocate() {
         "bearing = \"6205\"\n[model]\nlevel = \"quasi_static\"\ncausality = \"load\"\n[inputs]\ninitial = { \"load.x\" = 0.0, \"load.y\" = -500.0, \"load.z\" = 0.0, \"load.mx\" = 0.0, \"load.my\" = 0.0, \"shaft.omega\" = 183.26 }\n",
         "bearing = \"6205\"\n[model]\nlevel = \"linear\"\ncausality = \"load\"\ncontact_damping = 100.0\n[inputs]\ninitial = { \"load.x\" = 0.0, \"load.y\" = -900.0, \"load.z\" = 0.0, \"load.mx\" = 0.0, \"load.my\" = 0.0, \"shaft.omega\" = 183.26 }\n",
         "bearing = \"7008ce\"\n[model]\nlevel = \"ring\"\nring_dof = 5\ncausality = \"load\"\ncontact_damping = 500.0\n[inputs]\ninitial = { \"load.x\" = 0.0, \"load.y\" = -300.0, \"load.z\" = 200.0, \"load.mx\" = 0.0, \"load.my\" = 0.0, \"shaft.omega\" = 600.0 }\n",
+        // RODAS4 on a load-driven 2-DOF ring: the reduced second-order solve (analytic
+        // Jacobian), and with waviness its dense fallback (differenced Jacobian).
+        "bearing = \"6205\"\n[model]\nlevel = \"ring\"\ncausality = \"load\"\ncontact_damping = 3000.0\n[solver]\nmethod = \"rosenbrock\"\n[inputs]\ninitial = { \"load.x\" = 0.0, \"load.y\" = -1000.0, \"load.z\" = 0.0, \"load.mx\" = 0.0, \"load.my\" = 0.0, \"shaft.omega\" = 183.26 }\n",
+        "bearing = \"6205\"\n[model]\nlevel = \"ring\"\ncausality = \"load\"\ncontact_damping = 3000.0\n[solver]\nmethod = \"rosenbrock\"\n[inputs]\ninitial = { \"load.x\" = 0.0, \"load.y\" = -1000.0, \"load.z\" = 0.0, \"load.mx\" = 0.0, \"load.my\" = 0.0, \"shaft.omega\" = 183.26 }\n[effects]\nwaviness = [{ race = \"outer\", order = 12, amplitude_um = 0.3, phase_deg = 0.0 }]\n",
         "bearing = \"7004\"\n[model]\nlevel = \"full\"\n[inputs]\ninitial = { \"shaft.x\" = 0.0, \"shaft.y\" = -2.96568e-6, \"shaft.z\" = 4.364864e-5, \"shaft.rx\" = 0.0, \"shaft.ry\" = 0.0, \"shaft.vx\" = 0.0, \"shaft.vy\" = 0.0, \"shaft.vz\" = 0.0, \"shaft.wx\" = 0.0, \"shaft.wy\" = 0.0, \"shaft.omega\" = 3141.59 }\n",
     ] {
         assert_eq!(allocations_in_steps(scene, 1e-4), 0, "{scene}");

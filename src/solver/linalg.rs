@@ -214,8 +214,11 @@ pub struct SecondOrderLu {
     g: Vec<f64>,
     /// `1/σ` of the last factorisation.
     inv_sigma: f64,
-    /// The last `J` did not have the structure: its dense LU.
-    dense: Option<DenseLu>,
+    /// The dense LU, for a `J` without the structure (allocated with the solver: no
+    /// allocation when a step first meets one).
+    dense: DenseLu,
+    /// The last `J` did not have the structure: `dense` holds its LU.
+    use_dense: bool,
     r: Vec<f64>,
 }
 
@@ -230,7 +233,8 @@ impl SecondOrderLu {
             piv: vec![0; m],
             g: vec![0.0; m * nd],
             inv_sigma: f64::NAN,
-            dense: None,
+            dense: DenseLu::new(nz + 2 * nd),
+            use_dense: false,
             r: vec![0.0; m],
         }
     }
@@ -262,11 +266,10 @@ impl LinearSolver for SecondOrderLu {
         let (nz, nd) = (self.nz, self.nd);
         let n = nz + 2 * nd;
         debug_assert_eq!(jac.shape(), (n, n));
-        if !self.fits(jac) {
-            let dense = self.dense.get_or_insert_with(|| DenseLu::new(n));
-            return dense.factor(sigma, jac);
+        self.use_dense = !self.fits(jac);
+        if self.use_dense {
+            return self.dense.factor(sigma, jac);
         }
-        self.dense = None;
         let m = nz + nd;
         let inv = 1.0 / sigma;
         self.inv_sigma = inv;
@@ -294,8 +297,8 @@ impl LinearSolver for SecondOrderLu {
     }
 
     fn solve(&mut self, b: &mut [f64]) {
-        if let Some(d) = self.dense.as_mut() {
-            return d.solve(b);
+        if self.use_dense {
+            return self.dense.solve(b);
         }
         let (nz, nd) = (self.nz, self.nd);
         let m = nz + nd;
