@@ -191,7 +191,8 @@ fn failed_straight_through_leaves_the_component_as_it_was() {
 /// Asked only for forces and moments, the points inside the window take the level's
 /// wrench from its right-hand side instead of its full outputs: the same bits as the full
 /// outputs give them (asked together with a matrix entry, which needs the full outputs), for
-/// both causalities, both integrators and the skidding level.
+/// both causalities, both integrators, the 5-DOF ring, a ring with race waviness (its
+/// points through one right-hand side each) and the skidding level.
 #[test]
 fn forces_alone_are_the_full_outputs_forces_bit_for_bit() {
     let forces: Vec<u32> = ["force.x", "force.y", "force.z", "moment.x", "moment.y"]
@@ -205,6 +206,21 @@ fn forces_alone_are_the_full_outputs_forces_bit_for_bit() {
         &(|| ring(Method::Dopri5, 1e-5)) as &dyn Fn() -> Component,
         &|| ring(Method::Rosenbrock, 1e-5),
         &|| Component::from_text(RING_MOTION).unwrap(),
+        &|| {
+            let s = case("7008ce-5dof")
+                .scene_with(Method::Rosenbrock, 1e-5)
+                .unwrap();
+            Component::new(s).unwrap()
+        },
+        &|| {
+            let mut s = case("6205-2dof").scene_with(Method::Dopri5, 1e-5).unwrap();
+            s.effects = raceway::component::Scene::from_text(
+                "bearing = \"6205\"\n[effects]\nwaviness = [{ race = \"outer\", order = 12, amplitude_um = 0.3, phase_deg = 0.0 }]\n",
+            )
+            .unwrap()
+            .effects;
+            Component::new(s).unwrap()
+        },
         // The skidding level (its own balls; its outputs may leave unresolved components
         // of the wrench at zero, which the guard at the last point catches).
         &|| {
