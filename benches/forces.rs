@@ -1,7 +1,9 @@
 //! Timing of the motion-driven quasi-static force evaluation (the right-hand side of a time
 //! integration): `acbb16` at 10 000 rpm, at the operating displacement of Fa = 20 kN,
 //! Fr = 2 kN, warm-started from the previous call while the cage turns a little between
-//! calls, as in time integration.
+//! calls, as in time integration. Then the 2-DOF ring's force evaluation (the 6205's nine
+//! balls, the 500 states of a 0.05 s window) and, inside it, the cage angle's sine and
+//! cosine: the `libm` crate's `sincos` (`models::ring::cage_sin_cos`) against `f64::sin_cos`.
 //!
 //! Median of repeats (numerics.md §6: minimum or median of repeated runs after warm-up,
 //! setup excluded, single thread) of the thread's CPU time (`CLOCK_THREAD_CPUTIME_ID`,
@@ -10,6 +12,7 @@
 
 use raceway::geometry::preset;
 use raceway::models::quasi_static::{azimuths, BallState, Options, QuasiStatic};
+use raceway::models::ring::{cage_sin_cos, RingDof, RingEval, RingModel};
 use raceway::report::{load_average, thread_cpu_s};
 use raceway::units::rpm_to_rad_s;
 use std::hint::black_box;
@@ -77,4 +80,73 @@ fn main() {
     );
     let cpu = time(true);
     println!("  forces + 5x5 K:   median {cpu:.0} ns/eval thread CPU");
+    ring(bench);
+}
+
+/// Median over repeats of `f`'s thread CPU time per call, ns (`calls` calls per repeat, two
+/// warm-up repeats).
+fn per_call(calls: usize, repeats: usize, mut f: impl FnMut() -> f64) -> f64 {
+    let mut cpu = Vec::with_capacity(repeats);
+    let mut sink = 0.0;
+    for r in 0..repeats + 2 {
+        let c0 = thread_cpu_ns();
+        sink += f();
+        let c1 = thread_cpu_ns();
+        if r >= 2 {
+            cpu.push((c1 - c0) / calls as f64);
+        }
+    }
+    black_box(sink);
+    median(cpu)
+}
+
+/// The 2-DOF ring's force evaluation and the cage angle's sine and cosine in it.
+fn ring(bench: bool) {
+    let repeats = if bench { 201 } else { 1 };
+    let b = preset("6205").unwrap().build().unwrap();
+    let m = RingModel::new(&b, RingDof::Two, 3000.0);
+    // A ring 12 µm down (about half the balls loaded), orbiting 0.1 µm, the cage turning
+    // at 73 rad/s: 500 points 0.1 ms apart.
+    let pts: Vec<([f64; 5], [f64; 5], f64)> = (0..500)
+        .map(|k| {
+            let t = k as f64 * 1e-4;
+            let q = [1e-7 * (300.0 * t).sin(), -1.2e-5 + 1e-7 * (600.0 * t).cos()];
+            let v = [1e-4 * (300.0 * t).cos(), 1e-4];
+            (
+                [q[0], q[1], 0.0, 0.0, 0.0],
+                [v[0], v[1], 0.0, 0.0, 0.0],
+                73.0 * t,
+            )
+        })
+        .collect();
+    let mut out = RingEval::default();
+    let eval = per_call(pts.len(), repeats, || {
+        let mut s = 0.0;
+        for (q, v, th) in &pts {
+            m.eval(black_box(*th), 73.0, q, v, 0.0, None, false, &mut out);
+            s += out.wrench[1];
+        }
+        s
+    });
+    let angles: Vec<f64> = pts.iter().map(|p| p.2 + 0.1).collect();
+    let sc = |f: fn(f64) -> (f64, f64)| {
+        per_call(angles.len(), repeats, || {
+            angles
+                .iter()
+                .map(|&a| {
+                    let (s, c) = f(black_box(a));
+                    s + c
+                })
+                .sum()
+        })
+    };
+    let (ours, std) = (sc(cage_sin_cos), sc(f64::sin_cos));
+    println!(
+        "ring 6205, 2 DOF, 9 balls, forces (load average {}):",
+        load_average()
+    );
+    println!("  forces only:      median {eval:.1} ns/eval thread CPU");
+    println!(
+        "  cage angle sine and cosine: cage_sin_cos (libm) {ours:.1} ns, f64::sin_cos {std:.1} ns"
+    );
 }
