@@ -305,7 +305,6 @@ impl Sys<'_> {
     /// `xs[k * dim..(k + 1) * dim]`, into `out` (replaced, one wrench per point): one call
     /// of [`LevelModel::wrenches`] for them all; `ms` and `ts` are the caller's buffers for
     /// their motions and times (kept across calls: no allocation once they hold `s.len()`).
-    #[allow(clippy::too_many_arguments)]
     pub(super) fn wrenches(
         &mut self,
         s: &[f64],
