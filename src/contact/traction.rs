@@ -44,14 +44,22 @@ use crate::component::fields::{choice, closed, ge, gt, number, table, ANY};
 use crate::component::limits::SLIP_SPEED_MIN;
 use std::f64::consts::PI;
 
+/// Where [`tanh`]'s quotient is exactly `1.0` in `f64`.
+const TANH_ONE: f64 = 19.0;
+
 /// `tanh(x)` through one `exp` (about twice as fast as `f64::tanh`, which goes through
 /// `expm1`): `(1 - e^(-2|x|)) / (1 + e^(-2|x|))` with the sign of `x`, and the odd Taylor
 /// series `x - x³/3 + 2x⁵/15` below `|x| = 1e-3` (where the quotient would lose digits).
 /// Exactly odd; relative error below `1e-13` everywhere (checked in a unit test).
+/// From `|x| = 19` on the quotient is exactly `±1` in `f64` (`e^(-38) ≈ 3.1e-17` is below
+/// half an ulp of 1), so it returns `±1` without the `exp`: far beyond the regularising
+/// speed, `exp` of a large negative argument went through libm's slow underflow path.
 #[inline]
 pub fn tanh(x: f64) -> f64 {
     let a = x.abs();
-    if a < 1e-3 {
+    if a >= TANH_ONE {
+        1.0f64.copysign(x)
+    } else if a < 1e-3 {
         let x2 = x * x;
         x * (1.0 - x2 * (1.0 / 3.0 - x2 * (2.0 / 15.0)))
     } else {
@@ -458,6 +466,29 @@ impl TractionLaw {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The early return beyond `|x| = 19` gives the quotient's own bits: `(1 - e)/(1 + e)`
+    /// with `e = exp(-2|x|)` is exactly 1 there, and also just below the threshold the
+    /// quotient already rounds to 1 (from about 18.72), so moving the threshold down to
+    /// 18.8 would still be bit for bit; 18.7 would not.
+    #[test]
+    fn tanh_early_return_is_the_quotients_bits() {
+        let quotient = |x: f64| {
+            let e = (-2.0 * x.abs()).exp();
+            ((1.0 - e) / (1.0 + e)).copysign(x)
+        };
+        let mut x = 18.0;
+        while x < 800.0 {
+            for s in [x, -x] {
+                assert_eq!(tanh(s).to_bits(), quotient(s).to_bits(), "x = {s}");
+            }
+            x *= 1.0 + 1e-4;
+        }
+        assert_eq!(quotient(18.8), 1.0);
+        assert!(quotient(18.7) < 1.0);
+        assert_eq!(tanh(f64::INFINITY), 1.0);
+        assert_eq!(tanh(-1e300), -1.0);
+    }
 
     fn contact() -> ContactState {
         ContactState {
