@@ -5,7 +5,7 @@
 //! balls, the 500 states of a 0.05 s window) and, inside it, the cage angle's sine and
 //! cosine: the `libm` crate's `sincos` (`models::ring::cage_sin_cos`) against `f64::sin_cos`.
 //!
-//! Median of repeats (numerics.md §6: minimum or median of repeated runs after warm-up,
+//! Median of repeats (docs/physics.md §N6: minimum or median of repeated runs after warm-up,
 //! setup excluded, single thread) of the thread's CPU time (`CLOCK_THREAD_CPUTIME_ID`,
 //! [`raceway::report::thread_cpu_s`]), which other processes on a shared machine do not
 //! inflate; the load average is printed beside it. Run with `cargo bench --bench forces`.

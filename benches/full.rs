@@ -1,4 +1,4 @@
-//! CPU time per shaft revolution of the full level (physics.md §5.5, study [0]): the 7004
+//! CPU time per shaft revolution of the full level (docs/physics.md §5.5, study \[0\]): the 7004
 //! at 30 000 and 120 000 rpm under Fa 2000 N, Fr 400 N, motion-driven (the scenes
 //! `examples/scenes/7004-30000.toml` and `7004-120000.toml`), through the component
 //! (RODAS4 with the level's block Jacobian). Prints the figures and the integrator

@@ -1,4 +1,4 @@
-//! Cage-whirl study of the hybrid 7004 (study [0], Ye, Wang, Zhang; physics.md §5.5 and the
+//! Cage-whirl study of the hybrid 7004 (study \[0\], Ye, Wang, Zhang; docs/physics.md §5.5 and the
 //! §10 row): the `full` level at 30 000, 60 000, 80 000 and 120 000 rpm under Fa 2000 N,
 //! Fr 400 N, from the scenes `examples/scenes/7004-*.toml`, for both cage guidances
 //! (outer- and inner-ring land) and both readings of the study's 0.25 mm guide clearance

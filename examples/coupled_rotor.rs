@@ -70,7 +70,7 @@ fn main() {
              step (a one-step lag, first order in H); `velocity` extrapolates with the given \
              velocity and `derivatives` also uses the acceleration, so the coupling error \
              falls faster as H shrinks. Beyond about 5e-5 s the explicit coupling of a \
-             1e8 N/m contact with an 8 kg rotor loses stability (fmi.md §5.3).\n"
+             1e8 N/m contact with an 8 kg rotor loses stability (docs/physics.md §C5.3).\n"
         );
         raceway::fsutil::write_atomic(std::path::Path::new("docs/coupling.md"), doc)
             .expect("write docs/coupling.md");

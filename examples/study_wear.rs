@@ -22,7 +22,7 @@ type Res<T> = Result<T, Box<dyn std::error::Error>>;
 /// The La plot shows cells whose mean ball load is at least this share of the heaviest.
 const LOADED: f64 = 0.1;
 
-/// Study [2]'s data (physics.md §10).
+/// Study \[2\]'s data (docs/physics.md §10).
 const ROUGHNESS: [f64; 2] = [0.2e-6, 0.42e-6];
 
 struct Run {
@@ -427,7 +427,7 @@ fn write_page(
             ""
         }
     )?;
-    writeln!(s, "## Set-up (physics.md §10)\n")?;
+    writeln!(s, "## Set-up (docs/physics.md §10)\n")?;
     writeln!(
         s,
         "- Bearing 6012 (deep groove, Z = 14, D = 10.45 mm, dm = 77.6 mm, Pd = 10 µm), \

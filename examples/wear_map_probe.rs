@@ -1,4 +1,4 @@
-//! Probe of the dry wear map's ball-spacing pattern (issue #15): one window of study [2]'s
+//! Probe of the dry wear map's ball-spacing pattern (issue #15): one window of study \[2\]'s
 //! 6012, dry, with the output step, the window length and the cell count as options; prints
 //! the map's Z-th circumferential harmonic outside the load zone and, with `--dump FILE`,
 //! every loaded ball's `(t, j, psi, q_o, dv_o, area_rate)` at every sample.

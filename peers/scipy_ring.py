@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """SciPy peer of raceway's work-precision study: the 2-DOF ring on massless balls
-(physics.md §5.1, numerics.md §4.1) of case `6205-2dof`, load-driven, integrated with
+(docs/physics.md §5.1, docs/physics.md §N4.1) of case `6205-2dof`, load-driven, integrated with
 scipy.integrate.solve_ivp (Radau, LSODA and DOP853) with a NumPy right-hand side vectorised over
 the balls and the analytic Jacobian, scored with raceway's metric against raceway's
 reference.

@@ -244,7 +244,7 @@ mod tests {
     use super::*;
 
     /// The skidding level's own ball loads: their inner-contact vector sum carries the
-    /// 500 N radial load of study [2]'s 6012 (small contact angles under a radial load, so
+    /// 500 N radial load of study \[2\]'s 6012 (small contact angles under a radial load, so
     /// within 5 %) pointing down like the load; the quasi-static level has none of its own.
     #[test]
     fn skidding_ball_loads_carry_the_load() {

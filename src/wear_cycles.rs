@@ -1,4 +1,4 @@
-//! Wear cycles on the skidding level (study \[2\]'s procedure, its §3.1; physics.md §7):
+//! Wear cycles on the skidding level (study \[2\]'s procedure, its §3.1; docs/physics.md §7):
 //! run the dynamics, measure the outer race's wear rate per cage revolution over a window
 //! ([`crate::models::wear_map`]), extrapolate it over a cycle of many revolutions, add it
 //! to the race profile (which widens the clearance under the balls), run the dynamics

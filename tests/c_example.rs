@@ -137,7 +137,7 @@ fn expected_orbit_amplitudes(scene: &str, sag: f64, omega: f64) -> (f64, f64) {
 #[test]
 fn static_sag_under_gravity_is_the_bearings_static_solution() {
     // The quasi-static level: balls pass under the load, so the sag carries the
-    // varying-compliance ripple (a few per cent of the deflection, numerics.md §5.2); its
+    // varying-compliance ripple (a few per cent of the deflection, docs/physics.md §N5.2); its
     // mean is the static solution.
     let out = rotor(&["unbalance=0".into(), "revs=30".into(), "avg_revs=10".into()]);
     let scene = std::fs::read_to_string(scene_path()).unwrap();

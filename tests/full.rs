@@ -1,4 +1,4 @@
-//! The full level (physics.md §5.5, study [0]): quasi-static start, ideal-cage limit
+//! The full level (docs/physics.md §5.5, study \[0\]): quasi-static start, ideal-cage limit
 //! against the skidding level, angular-momentum balance, cage orbit and whirl index.
 //!
 //! Each test integrates at most a few milliseconds of the 7004 (6 balls).
@@ -23,7 +23,7 @@ fn rpm(n: f64) -> f64 {
     n * PI / 30.0
 }
 
-/// Study [0]'s load: Fa 2000 N, Fr 400 N (external load on the inner ring).
+/// Study \[0\]'s load: Fa 2000 N, Fr 400 N (external load on the inner ring).
 const LOAD: [f64; 5] = [0.0, -400.0, 2000.0, 0.0, 0.0];
 
 /// The quasi-static (Jones–Harris) equilibrium displacement `(x, y, z)` of the 7004 under
@@ -227,7 +227,7 @@ fn skidding_scene(q: [f64; 5], omega: f64, traction: &str) -> String {
 
 /// Test 2: with the cage constraint made ideal (centred, rotation only, tangential
 /// pockets), the same traction law and no drag, the full level reproduces the skidding
-/// level's steady cage speed at a moderate speed (7004, 10 000 rpm, study [0]'s load) up
+/// level's steady cage speed at a moderate speed (7004, 10 000 rpm, study \[0\]'s load) up
 /// to the one thing the skidding level leaves out: it rolls the balls on the races at the
 /// nominal contact angle (24°), while the full level's loaded contact angles are larger
 /// (their own Jones geometry). So: the full level's cage speed equals the quasi-static

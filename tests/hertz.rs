@@ -1,4 +1,4 @@
-//! Hertz point contact against published numbers (numerics.md §3.5, Abramowitz & Stegun
+//! Hertz point contact against published numbers (docs/physics.md §N3.5, Abramowitz & Stegun
 //! table 17.1, Johnson §4.2, Harris & Kotzalas Vol. 1 ch. 6), the fit and table errors
 //! against the exact solve, and the derivatives against finite differences.
 
@@ -29,7 +29,7 @@ fn steel_harris() -> Material {
 }
 
 /// A preset with Harris's steel (E = 206.8 GPa, nu = 0.30) for rings, and balls of
-/// `ball` (steel or Si3N4), as numerics.md §3.5 computes its tables.
+/// `ball` (steel or Si3N4), as docs/physics.md §N3.5 computes its tables.
 /// The 6205 uses the CWRU inch dimensions exactly (D = 0.3126 in, dm = 1.537 in), as the
 /// reference table does.
 fn bearing(name: &str, si3n4_ball: bool) -> Bearing {
@@ -51,7 +51,7 @@ fn bearing(name: &str, si3n4_ball: bool) -> Bearing {
 
 #[test]
 fn elliptic_integrals_match_abramowitz_stegun() {
-    // numerics.md §3.5 and A&S table 17.1 (also mpmath to 18 digits).
+    // docs/physics.md §N3.5 and A&S table 17.1 (also mpmath to 18 digits).
     for (m, k, e) in [
         (0.5, 1.854074677301372, 1.350643881047675),
         (0.1, 1.612441348720219, 1.530757636897763),
@@ -89,7 +89,7 @@ fn circular_contact_is_exact() {
 
 #[test]
 fn f_rho_0_9_reference() {
-    // F(rho) = 0.9 <=> Ry/Rx = 19: b/a = 0.1489585016, E - 1 = 0.0311638410 (numerics.md
+    // F(rho) = 0.9 <=> Ry/Rx = 19: b/a = 0.1489585016, E - 1 = 0.0311638410 (docs/physics.md (numerics part)
     // §3.5, Harris's F(rho) table).
     let cv = Curvature::from_radii(1.0, 19.0);
     assert!((cv.f_rho() - 0.9).abs() < 1e-15);
@@ -124,7 +124,7 @@ fn sphere_on_flat_reduces_to_johnson() {
     }
 }
 
-/// One row of numerics.md §3.5's 209 table.
+/// One row of docs/physics.md §N3.5's 209 table.
 struct Row209 {
     sum_rho_mm: f64,
     f_rho: f64,
@@ -214,7 +214,7 @@ fn bearing_209_matches_reference_table() {
         digits(&tag("b"), bb * 1e3, w.b_mm, 1e-4);
         digits(&tag("delta"), c.deflection(q) * 1e6, w.delta_um, 1e-3);
         digits(&tag("p_max"), c.peak_pressure(q) * 1e-9, w.p_gpa, 1e-3);
-        // Harris's dimensionless forms give the same numbers as Hamrock's (numerics.md
+        // Harris's dimensionless forms give the same numbers as Hamrock's (docs/physics.md (numerics part)
         // §3.1): a = a* (3Q/(E' Sum rho))^(1/3), delta = delta* (...)^(2/3) Sum rho/2,
         // Kc = 2^(3/2) E'/3 Sum rho^(-1/2) delta*^(-3/2).
         let s = (3.0 * q / (c.e_eff * cv.sum_rho)).cbrt();
@@ -241,7 +241,7 @@ fn bearing_209_matches_reference_table() {
     digits("209 K_n Si3N4", hybrid.series_constant(), 1.3901e10, 1e6);
 }
 
-/// One row of numerics.md §3.5's 6205 / 218 tables: (race, Sum rho [1/mm], F(rho),
+/// One row of docs/physics.md §N3.5's 6205 / 218 tables: (race, Sum rho [1/mm], F(rho),
 /// ratio, kappa, delta*, Kc steel, delta @ 1 kN [µm], p_max @ 1 kN [GPa]).
 type ShortRow = (Race, f64, f64, f64, f64, f64, f64, f64, f64);
 
@@ -368,7 +368,7 @@ fn fit_errors(fit: fn(f64) -> Ellipse) -> [f64; 7] {
     worst
 }
 
-/// The doc comments of `ellipse_fit` and `ellipse_fit_hb83` state these numbers; numerics.md
+/// The doc comments of `ellipse_fit` and `ellipse_fit_hb83` state these numbers; docs/physics.md (numerics part)
 /// §3.4 gives HB77 a* 4.2 %, b* 2.0 %, delta* 3.8 %, Kc 5.9 %; HB83 a* 2.7 %, b* 1.2 %,
 /// delta* 4.1 %, Kc 6.5 %. Each is pinned to its stated value within 0.05 points.
 #[test]
@@ -382,7 +382,7 @@ fn fit_error_is_as_documented() {
     for (got, want) in hb77.iter().zip(stated77).chain(hb83.iter().zip(stated83)) {
         assert!((got - want).abs() <= 5e-4, "{got} vs stated {want}");
     }
-    // At the 209 contacts (alpha = 0, numerics.md §3.4): HB77 kappa / Kc / delta errors
+    // At the 209 contacts (alpha = 0, docs/physics.md §N3.4): HB77 kappa / Kc / delta errors
     // +1.55/+1.64/-1.08 % (inner), +0.48/+0.61/-0.40 % (outer).
     let b = bearing("209", false);
     for (race, want) in [

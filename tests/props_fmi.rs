@@ -5,7 +5,7 @@
 //! Random call sequences in any order (setup, enter/exit initialisation, set and get with
 //! NaN, huge and unknown references, steps at the right and wrong time, terminate, reset,
 //! get/set/serialise/deserialise FMU state) run against a model of the state machine
-//! written from the standard's tables (`shared/reference/fmi.md` §1.6: FMI 2.0 §4.2,
+//! written from the standard's tables (docs/physics.md §C1.6: FMI 2.0 §4.2,
 //! FMI 3.0 §2.3 and the Reference FMUs' masks), not from the implementation's masks.
 //! Properties of every call:
 //!

@@ -1,4 +1,4 @@
-//! The skidding level (physics.md §5.2) through the component and the model API.
+//! The skidding level (docs/physics.md §5.2) through the component and the model API.
 //!
 //! Each test integrates at most a few tenths of a simulated second of a 6012 (14 balls).
 
@@ -251,7 +251,7 @@ fn angular_momentum_and_energy_balances_close() {
     assert!((e1 - e0 - work).abs() < 1e-4 * e1, "energy balance");
 }
 
-/// Load-driven (the 6012 scene of study [2]): the ring settles where the bearing carries
+/// Load-driven (the 6012 scene of study \[2\]): the ring settles where the bearing carries
 /// the 500 N load, and stepping allocates nothing.
 #[test]
 fn load_driven_6012_carries_its_load_without_allocating() {
@@ -283,7 +283,7 @@ fn run_steps_only(c: &mut Component, n: usize, h: f64) -> usize {
     n
 }
 
-/// The 7008CE of study [3] under 300 N axial at constant speeds: print the cage slip.
+/// The 7008CE of study \[3\] under 300 N axial at constant speeds: print the cage slip.
 #[test]
 #[ignore]
 fn explore_7008ce_speeds() {
@@ -351,7 +351,7 @@ fn explore_7008ce_balls() {
     }
 }
 
-/// The 7008CE run-up scene (study [3]): load-driven from rest at 500 rad/s².
+/// The 7008CE run-up scene (study \[3\]): load-driven from rest at 500 rad/s².
 #[test]
 fn runup_7008ce_scene_from_rest() {
     let text = include_str!("../examples/scenes/7008ce-runup.toml");

@@ -1,5 +1,5 @@
-//! Slow physics (physics.md §7, §8): race wear and thermal growth through the component.
-//! Motion-driven 6012 (study [2]) with the shaft held off-centre, so each run is a few
+//! Slow physics (docs/physics.md §7, §8): race wear and thermal growth through the component.
+//! Motion-driven 6012 (study \[2\]) with the shaft held off-centre, so each run is a few
 //! revolutions of cheap dynamics.
 
 use raceway::component::{variables, Component, Scene};

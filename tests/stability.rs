@@ -143,7 +143,7 @@ fn dynamic_levels_hard_cells_converge() {
 }
 
 /// The motion-driven full base sits at the square-held quasi-static equilibrium: for
-/// study [0]'s 7004 at 30 000 rpm under Fa 2000 N, Fr 400 N it gives the displacement of
+/// study \[0\]'s 7004 at 30 000 rpm under Fa 2000 N, Fr 400 N it gives the displacement of
 /// the catalogue scene examples/scenes/7004-30000.toml (solved independently there).
 #[test]
 fn square_equilibrium_reproduces_the_catalogue_scene() {

@@ -1,8 +1,8 @@
-//! Vibration physics on the ring level (physics.md §5.1, §5.3, §5.4, §6): the spectral
+//! Vibration physics on the ring level (docs/physics.md §5.1, §5.3, §5.4, §6): the spectral
 //! signatures of a healthy bearing, local defects and waviness, the EHL film laws, and
 //! that every effect switched off recovers the plain model bit for bit.
 //!
-//! The dynamic runs are study [4]'s set-up: a 6205 inner ring with 1 kg attached, load-
+//! The dynamic runs are study \[4\]'s set-up: a 6205 inner ring with 1 kg attached, load-
 //! driven under 1000 N downward, 10 µm clearance, 1750 rpm (fs = 29.17 Hz, FTF = 11.62,
 //! BPFO = 104.56, BPFI = 157.94, BSF = 68.74 Hz), sampled at 10 kHz for 0.5 s (2 Hz bins).
 
@@ -138,7 +138,7 @@ fn assert_line(s: &Spectrum, label: &str, f: f64, min_over_floor: f64) {
 }
 
 /// A healthy bearing with clearance vibrates at the varying-compliance frequency
-/// Z f_cage = BPFO and its harmonics (Sunnersjö 1978; numerics.md §5.2).
+/// Z f_cage = BPFO and its harmonics (Sunnersjö 1978; docs/physics.md §N5.2).
 #[test]
 fn healthy_bearing_peaks_at_varying_compliance_frequency() {
     let (k, _) = kin();

@@ -7,7 +7,7 @@ use raceway::lubrication::asperity::AsperityReading;
 use raceway::models::wear_map::OuterRaceWear;
 use raceway::wear_cycles::WearCycles;
 
-/// Study [2]'s 6012 (500 N, 2000 rpm) with its friction law, short windows.
+/// Study \[2\]'s 6012 (500 N, 2000 rpm) with its friction law, short windows.
 fn cycles(sigma: Option<f64>) -> WearCycles {
     let mut scene =
         Scene::from_text(include_str!("../examples/scenes/6012-skidding.toml")).unwrap();

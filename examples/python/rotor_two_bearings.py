@@ -19,7 +19,7 @@ linearised about what the bearings last reported,
 
 using the K and C outputs (s_hat_j, v_hat_j: the motion the bearing computed that output
 for; the bearings run with input_rule = "hold", so that is the input of their last step).
-For a linear bearing this is exact, so the coupling adds no instability (shared/reference/fmi.md §5.3). The rotor
+For a linear bearing this is exact, so the coupling adds no instability (docs/physics.md §C5.3). The rotor
 integrates this linear ODE with the Newmark average-acceleration rule (trapezoidal,
 unconditionally stable; Hairer & Wanner, Newmark 1959).
 

@@ -1,6 +1,6 @@
 //! Spectra of simulated signals: windowed amplitude spectrum, envelope spectrum (Hilbert
 //! transform), and the bearing's characteristic frequencies with the nearest peaks
-//! (physics.md §9; Randall & Antoni, *Mech. Syst. Signal Process.* 25 (2011), "Rolling
+//! (docs/physics.md §9; Randall & Antoni, *Mech. Syst. Signal Process.* 25 (2011), "Rolling
 //! element bearing diagnostics—a tutorial").
 //!
 //! The FFT is `rustfft`'s (any length).
@@ -202,7 +202,7 @@ pub struct Mark {
 /// The characteristic frequencies of `k` (computed at shaft speed `shaft_hz`): shaft
 /// speed, FTF, BSF, and `harmonics` multiples of BPFO, BPFI and 2 BSF, with `sidebands`
 /// side bands at the shaft speed around the BPFI lines and at FTF around the 2 BSF lines
-/// (the modulations of physics.md §5.3–5.4).
+/// (the modulations of docs/physics.md §5.3–5.4).
 pub fn characteristic_marks(
     k: &Kinematics,
     shaft_hz: f64,
@@ -379,7 +379,7 @@ pub fn find_peaks(s: &Spectrum, marks: &[Mark], tol: f64) -> Vec<FoundPeak> {
 
 /// Cage whirl instability index `sigma = std(|v|) / mean(|v|)` of the cage-centre speed
 /// (Ghaisas, Wassgren and Sadeghi, *Cage instabilities in cylindrical roller bearings*,
-/// J. Tribology 126 (2004); used by study [0], physics.md §5.5): 0 for a steady circular
+/// J. Tribology 126 (2004); used by study \[0\], docs/physics.md §5.5): 0 for a steady circular
 /// whirl (constant speed), growing as the motion becomes irregular. Population standard
 /// deviation over the samples given. `None` for no samples or a cage centre at rest (the
 /// ratio is undefined), never NaN.

@@ -16,7 +16,7 @@ use crate::solver::{Dopri5, Integrator, Options, RosMethod, Rosenbrock};
 
 /// The scene's integrator and its options. `Auto` picks RODAS4 for a level its registry
 /// entry marks stiff (traction slopes), DOPRI5 for the others (a massless-ball ring is a
-/// few-kHz oscillator, numerics.md §1.2).
+/// few-kHz oscillator, docs/physics.md §N1.2).
 fn make_integrator(
     scene: &Scene,
     b: &Bearing,

@@ -19,7 +19,7 @@ pub type Build = fn(&Scene, &Bearing) -> Result<Box<dyn LevelModel>>;
 pub struct LevelEntry {
     /// Scene spelling (`model.level`).
     pub name: &'static str,
-    /// Stiff (numerics.md §1.2: traction slopes): `solver.method = "auto"` picks RODAS4;
+    /// Stiff (docs/physics.md §N1.2: traction slopes): `solver.method = "auto"` picks RODAS4;
     /// otherwise DOPRI5.
     pub stiff: bool,
     /// Takes the scene's `[effects]` (defects, waviness, films, wear, thermal); a scene
@@ -75,11 +75,11 @@ impl Level {
     /// Per-ball Jones–Harris equilibrium at the current motion, balls at the cage's
     /// kinematic positions.
     pub const QuasiStatic: Level = Level::named("quasi_static");
-    /// Ring on massless balls (physics.md §5.1).
+    /// Ring on massless balls (docs/physics.md §5.1).
     pub const Ring: Level = Level::named("ring");
-    /// Ball orbit and spin, cage, traction and drag (physics.md §5.2).
+    /// Ball orbit and spin, cage, traction and drag (docs/physics.md §5.2).
     pub const Skidding: Level = Level::named("skidding");
-    /// High-speed dynamics with cage whirl (physics.md §5.5).
+    /// High-speed dynamics with cage whirl (docs/physics.md §5.5).
     pub const Full: Level = Level::named("full");
 
     /// Every level, lowest fidelity first.
@@ -213,7 +213,7 @@ impl<'de> Deserialize<'de> for Level {
 }
 
 /// Kinematic cage speed for the nominal contact angle, outer ring fixed:
-/// `omega_c = omega (1 - gamma) / 2` (physics.md §1).
+/// `omega_c = omega (1 - gamma) / 2` (docs/physics.md §1).
 pub fn cage_speed(b: &Bearing, omega: f64) -> f64 {
     use crate::geometry::kinematics as kin;
     kin::cage_speed(kin::gamma(b, b.nominal_contact_angle()), omega, 0.0)

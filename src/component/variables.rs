@@ -1,5 +1,5 @@
 //! The variable table: every name, value reference, unit and role of the co-simulation
-//! contract (`../shared/spec/cosim-interface.md`), once. The C header, the FMI model
+//! contract (docs/physics.md §9, §C1–§C5), once. The C header, the FMI model
 //! descriptions and the documentation tables are generated from this table.
 
 /// Which causality a scene runs in.

@@ -1,5 +1,5 @@
 //! Complete elliptic integrals of the first and second kind by the arithmetic–geometric
-//! mean (Abramowitz & Stegun §17.6; numerics.md §3.2).
+//! mean (Abramowitz & Stegun §17.6; docs/physics.md §N3.2).
 //!
 //! Parameter convention: `m = k²` (A&S), `K(m) = ∫₀^{π/2} dθ / sqrt(1 - m sin²θ)`,
 //! `E(m) = ∫₀^{π/2} sqrt(1 - m sin²θ) dθ`.
@@ -9,7 +9,7 @@
 //! (the last is the identity `c_{n+1} = (a_n - b_n)/2` written without cancellation), and
 //! gives `K = π / (2 a_N)` and `E = K (1 - S)` with `S = Σ_{n≥0} 2^{n-1} c_n²`
 //! (A&S 17.6.3–4). Convergence is quadratic: 4–6 iterations reach machine precision for
-//! `m <= 0.99999` (numerics.md §3.2).
+//! `m <= 0.99999` (docs/physics.md §N3.2).
 //!
 //! `S = (K - E)/K` is returned as well: the Hertz ellipticity equation needs `K - E` and
 //! `κ²E - K`, both of which vanish like `m` at `m → 0`; `K S` and `K κ² (m - S)` give them
@@ -95,7 +95,7 @@ pub fn ellip_e(m: f64) -> f64 {
 }
 
 /// Derivatives `(dK/dm, dE/dm)` from the AGM result (DLMF 19.4.1 with `m = k²`;
-/// numerics.md §3.1):
+/// docs/physics.md §N3.1):
 /// `dK/dm = (E - (1-m) K) / (2 m (1-m)) = K (m - S) / (2 m (1-m))`,
 /// `dE/dm = (E - K) / (2m) = -K S / (2m)`; written with `S` and `T` so that they keep full
 /// precision at small `m` (the limits at `m = 0` are `π/8` and `-π/8`).
@@ -133,7 +133,7 @@ mod tests {
 
     #[test]
     fn known_values() {
-        // numerics.md §3.5 and A&S table 17.1 (K, E at m = sin²(alpha)).
+        // docs/physics.md §N3.5 and A&S table 17.1 (K, E at m = sin²(alpha)).
         let (k, e) = ellip_ke(0.5);
         assert!(rel(k, 1.854074677301372) < 4e-16, "{k}");
         assert!(rel(e, 1.350643881047675) < 4e-16, "{e}");

@@ -1,4 +1,4 @@
-//! Hertz point contact (physics.md §3; numerics.md §3).
+//! Hertz point contact (docs/physics.md §3; docs/physics.md §N3).
 //!
 //! Sources: Harris & Kotzalas, *Rolling Bearing Analysis* 5th ed., Vol. 1 ch. 6 (curvature
 //! sums, `F(rho)`, the ellipticity equation, `Q = K delta^1.5`, contacts in series);
@@ -10,7 +10,7 @@
 //! `ratio = Ry/Rx`, `kappa = a/b >= 1`, `m = 1 - 1/kappa²`, `K = K(m)`, `E = E(m)` (complete
 //! elliptic integrals, [`super::elliptic`]), `E' = 2 / ((1-nu1²)/E1 + (1-nu2²)/E2)`.
 //!
-//! - Ellipticity equation (Harris & Kotzalas Vol. 1 ch. 6; numerics.md §3.1):
+//! - Ellipticity equation (Harris & Kotzalas Vol. 1 ch. 6; docs/physics.md §N3.1):
 //!   `ratio = (kappa² E - K)/(K - E)`, the same as
 //!   `F(rho) = ((kappa²+1) E - 2K)/((kappa²-1) E)` with `F(rho) = (ratio-1)/(ratio+1)`.
 //! - Semi-axes `a = (6 kappa² E Q R/(pi E'))^(1/3)` (along the larger radius, i.e. across
@@ -52,7 +52,7 @@ pub struct Curvature {
 
 impl Curvature {
     /// Ball of diameter `d` on a race of groove curvature ratio `f` at contact angle `alpha`
-    /// in a bearing of pitch diameter `dm` (Harris & Kotzalas Vol. 1 ch. 2 and 6; physics.md
+    /// in a bearing of pitch diameter `dm` (Harris & Kotzalas Vol. 1 ch. 2 and 6; docs/physics.md
     /// §3): ball `2/D` in both planes; inner race `2/D gamma/(1-gamma)` rolling, outer race
     /// `-2/D gamma/(1+gamma)`; both `-1/(f D)` transverse; `gamma = D cos(alpha)/dm`.
     pub fn ball_race(d: f64, dm: f64, alpha: f64, f: f64, race: Race) -> Self {
@@ -402,7 +402,7 @@ impl Ellipse {
     }
 }
 
-/// Brewe & Hamrock (1977) fits ("HB77" in numerics.md §3.4): `kappa ~ 1.0339 (Ry/Rx)^0.636`,
+/// Brewe & Hamrock (1977) fits ("HB77" in docs/physics.md §N3.4): `kappa ~ 1.0339 (Ry/Rx)^0.636`,
 /// `E ~ 1.0003 + 0.5968 Rx/Ry`, `K ~ 1.5277 + 0.6023 ln(Ry/Rx)`.
 ///
 /// Measured against [`Ellipse::exact`] (test `fit_error_is_as_documented` in
@@ -410,7 +410,7 @@ impl Ellipse {
 /// `[1.5, 100]`: `kappa` 6.3 %, `K` 1.0 %, `E` 0.51 % (both at ratio 1.5), `a*` 4.2 %,
 /// `b*` 2.0 %, `delta*` 3.8 %, `Kc` 5.9 %. At the 209 bearing's contacts (alpha = 0):
 /// inner `kappa` +1.55 %, `Kc` +1.64 %, `delta` -1.08 %; outer `kappa` +0.48 %, `Kc`
-/// +0.61 %, `delta` -0.40 % (as numerics.md §3.4). Use [`Ellipse::exact`] or
+/// +0.61 %, `delta` -0.40 % (as docs/physics.md §N3.4). Use [`Ellipse::exact`] or
 /// [`ContactTable`] in production.
 pub fn ellipse_fit(ratio: f64) -> Ellipse {
     let r = ratio.max(1.0 / ratio);
@@ -421,7 +421,7 @@ pub fn ellipse_fit(ratio: f64) -> Ellipse {
     }
 }
 
-/// Hamrock & Brewe (1983) simplified fits ("HB83" in numerics.md §3.4):
+/// Hamrock & Brewe (1983) simplified fits ("HB83" in docs/physics.md §N3.4):
 /// `kappa ~ (Ry/Rx)^(2/pi)`, `E ~ 1 + q Rx/Ry`, `K ~ pi/2 + q ln(Ry/Rx)`, `q = pi/2 - 1`.
 /// Exact at `ratio = 1`. Measured maximum relative error over `[1.5, 100]`: `kappa` 3.8 %,
 /// `K` 2.1 %, `E` 0.91 %, `a*` 2.7 %, `b*` 1.2 %, `delta*` 4.1 %, `Kc` 6.5 % (test
@@ -593,7 +593,7 @@ impl BallRaceContacts {
     }
 
     /// Inner contact at `alpha_i`, outer at `alpha_o` (rad), as in the high-speed
-    /// quasi-static model (physics.md §4).
+    /// quasi-static model (docs/physics.md §4).
     pub fn at_angles(bearing: &Bearing, alpha_i: f64, alpha_o: f64) -> Self {
         BallRaceContacts {
             inner: PointContact::ball_race(bearing, alpha_i, Race::Inner),
@@ -676,7 +676,7 @@ pub const FINE_TABLE_INTERVALS: usize = 128;
 /// Fast path for one bearing race: `Kc`, `dKc/d alpha` and the semi-axis coefficients
 /// against the contact angle, by piecewise cubic Hermite interpolation in `x = cos alpha`
 /// on a uniform grid over `[cos alpha_max, 1]` (node values and `x`-derivatives from the
-/// exact solve and [`Ellipse::exact_with_sensitivity`]; numerics.md §3.3). Lookup is
+/// exact solve and [`Ellipse::exact_with_sensitivity`]; docs/physics.md §N3.3). Lookup is
 /// loop-free (one index computation, three cubics). Even in `alpha` (the curvatures depend
 /// on `cos alpha` only). Angles with `|alpha| > alpha_max` fall back to the exact solve
 /// (several times slower, same values to the table's error).

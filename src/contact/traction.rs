@@ -1,4 +1,4 @@
-//! Traction (tangential force) laws of a lubricated ball–race contact (physics.md §5.2).
+//! Traction (tangential force) laws of a lubricated ball–race contact (docs/physics.md §5.2).
 //!
 //! Each law gives the tangential force `f` a contact transmits as a function of the slip
 //! velocity `dv` (the faster surface minus the slower, in the rolling direction), the
@@ -21,7 +21,7 @@
 //!   pi a b sign(dv)` (a limiting-shear-stress Newtonian film: the shear stress
 //!   `eta dv / h_c` saturating at `Lambda_lim p_h`; Bair & Winer's limiting-shear model),
 //!   with `p_h = (1 - La/100) Q / (pi a b)` the film's share of the mean pressure, `h_c` the
-//!   Hamrock–Dowson central film thickness (physics.md §6). `La` is the one asperity-share
+//!   Hamrock–Dowson central film thickness (docs/physics.md §6). `La` is the one asperity-share
 //!   function of the crate, [`crate::lubrication::asperity`] (study \[2\]'s eq. (8), its
 //!   roughness term restored; the user-set power law [`AsperityFit`] remains only as an
 //!   override, `fit = {...}` in the scene). The viscosity `eta` is corrected for pressure
@@ -205,7 +205,7 @@ pub struct MixedEhl {
 
 impl Default for MixedEhl {
     fn default() -> Self {
-        // Study [2]'s lubricant (physics.md §10): 0.04667 Pa s, 2.1e-8 1/Pa, Lambda 0.04,
+        // Study [2]'s lubricant (docs/physics.md §10): 0.04667 Pa s, 2.1e-8 1/Pa, Lambda 0.04,
         // roughness sqrt(0.2² + 0.42²) um, hardness 2.39 GPa.
         MixedEhl {
             viscosity: 0.04667,
@@ -223,7 +223,7 @@ impl Default for MixedEhl {
 }
 
 impl MixedEhl {
-    /// Hamrock–Dowson central film thickness (physics.md §6), m, at entrainment speed `u`.
+    /// Hamrock–Dowson central film thickness (docs/physics.md §6), m, at entrainment speed `u`.
     pub fn film_thickness(&self, c: &ContactState, u: f64) -> f64 {
         let (uu, g, w) = self.groups(c, u);
         if uu <= 0.0 || w <= 0.0 {

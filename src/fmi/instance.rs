@@ -930,7 +930,7 @@ impl Instance {
         }
         let tc = self.time;
         let mismatch = (t - tc).abs();
-        // Relative tolerance on the communication point (fmi.md §4 #9): a mismatch within
+        // Relative tolerance on the communication point (docs/physics.md §C4 #9): a mismatch within
         // 1e-6 of the step (or 1e-12 of the time) re-syncs to the FMU's time and lands on
         // t + h; rounding noise (a few ulps) passes silently, more is a warning.
         let tol = (1e-6 * h).max(1e-12 * tc.abs());

@@ -14,7 +14,7 @@
 //!   `fmi2Functions.c` / `fmi3Functions.c`, logging, FMU state and its byte form);
 //! - `params`: how the `PARAMETERS` map onto a scene.
 //!
-//! Rules kept here (see `shared/reference/fmi.md` §4): every export runs inside
+//! Rules kept here (see docs/physics.md §C4): every export runs inside
 //! `catch_unwind`; no global mutable state; callbacks are `Option<extern fn>` copied at
 //! instantiation; the FMI 2 logger is called with `"%s"`; strings are copied; the FMI 2
 //! resource location is a percent-decoded `file:` URI and FMI 3's `resourcePath` may be NULL.

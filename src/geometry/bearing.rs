@@ -4,7 +4,7 @@
 //! Geometry after Harris & Kotzalas, *Rolling Bearing Analysis* (5th ed.), Vol. 1, ch. 2:
 //! `A = (f_i + f_o - 1) D` is the distance between the groove curvature centres at zero
 //! load and zero clearance, and the free contact angle and the diametral clearance are tied
-//! by `Pd = 2 A (1 - cos alpha0)` (physics.md §1).
+//! by `Pd = 2 A (1 - cos alpha0)` (docs/physics.md §1).
 
 use super::material::{effective_modulus, Material};
 use crate::component::fields::{
@@ -237,7 +237,7 @@ pub struct Cage {
     pub guidance: Guidance,
 }
 
-/// A validated bearing in SI units. Field names follow physics.md.
+/// A validated bearing in SI units. Field names follow docs/physics.md.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Bearing {
     /// Designation.
@@ -527,7 +527,7 @@ impl Bearing {
     }
 
     /// Radius of the locus of the inner groove curvature centres,
-    /// `Ri = dm/2 + (f_i - 0.5) D cos(alpha)` at the nominal contact angle (physics.md §4).
+    /// `Ri = dm/2 + (f_i - 0.5) D cos(alpha)` at the nominal contact angle (docs/physics.md §4).
     pub fn inner_groove_centre_radius(&self) -> f64 {
         0.5 * self.dm + (self.fi - 0.5) * self.d * self.nominal_contact_angle().cos()
     }

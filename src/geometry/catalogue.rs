@@ -19,7 +19,7 @@
 //!   angular-contact: the nominal contact angle of the suffix at zero clearance.
 //!
 //! The method's error against the bearings whose internal geometry is known (the presets
-//! of [`super::presets`]) is measured by `estimate_error_against_presets` in the tests and
+//! of [`super::presets`](mod@super::presets)) is measured by `estimate_error_against_presets` in the tests and
 //! reported in docs/catalogue.md: ball diameter within 10 %, ball count within one ball,
 //! `C` within 22 % (worst: the full-ceramic 7008ce; the study bearing 7004 with its
 //! unusual 6 balls excluded). Use a bearing file with the maker's data for design work.

@@ -1,4 +1,4 @@
-//! Rigid-body rolling kinematics and the characteristic frequencies (physics.md §1;
+//! Rigid-body rolling kinematics and the characteristic frequencies (docs/physics.md §1;
 //! Harris & Kotzalas Vol. 1 ch. 8). Pure rolling, no skid.
 
 use super::bearing::Bearing;
@@ -77,7 +77,7 @@ mod tests {
     use super::*;
     use crate::geometry::presets::preset;
 
-    /// CWRU 6205-2RS drive-end orders (numerics.md §5.1), which follow exactly from
+    /// CWRU 6205-2RS drive-end orders (docs/physics.md §N5.1), which follow exactly from
     /// D = 0.3126 in, dm = 1.537 in: FTF 0.39831, BPFO 3.58478, BPFI 5.41522, 2 BSF 4.71344.
     #[test]
     fn cwru_6205_orders() {

@@ -1,4 +1,4 @@
-//! Materials of the bodies (physics.md §2).
+//! Materials of the bodies (docs/physics.md §2).
 //!
 //! Elastic data from the studies' tables; thermal data are typical handbook values
 //! (Harris & Kotzalas, *Rolling Bearing Analysis* 5th ed., Vol. 1, Table 5.x; supplier sheets
@@ -51,7 +51,7 @@ impl Material {
         }
     }
 
-    /// The material presets of physics.md §2, by key.
+    /// The material presets of docs/physics.md §2, by key.
     pub fn presets() -> Vec<Material> {
         vec![
             Material::preset("steel", 208.0, 0.30, 7850.0, 12.5e-6, 46.6, 475.0),

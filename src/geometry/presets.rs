@@ -1,4 +1,4 @@
-//! Bearing presets: the bearings of the studies in physics.md §10 and of Harris's worked
+//! Bearing presets: the bearings of the studies in docs/physics.md §10 and of Harris's worked
 //! examples. Each preset records where its numbers come from and what was assumed.
 
 use super::bearing::{BearingKind, BearingSpec, CageSpec, Guidance, MaterialSpec, MaterialsSpec};

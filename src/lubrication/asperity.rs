@@ -25,7 +25,7 @@
 //! `printed_quarter_exponent_is_impossible`). The exponent used, [`SIGMA_EXPONENT`]
 //! `= 2.9/0.67 ≈ 4.33`, makes the roughness enter the logarithm through the same combination
 //! as the speed enters the film: the film thickness grows as `U^0.67` (Hamrock–Dowson,
-//! physics.md §6), so `U^-2.9` is `(h/Rx)^(-2.9/0.67)` and the film parameter
+//! docs/physics.md §6), so `U^-2.9` is `(h/Rx)^(-2.9/0.67)` and the film parameter
 //! `Lambda = h/sigma` appears as `Lambda^-4.33` — roughness and speed trade against each
 //! other as they do in `Lambda`. This is a reconstruction, not the paper: the alternative
 //! reading `s = 4` (the `4` of the printed `1/4`) is [`AsperityReading::Quartic`], and the
@@ -214,8 +214,8 @@ impl ShareAt {
 mod tests {
     use super::*;
 
-    /// Study [2]'s outer contact: 6012 (D 10.45 mm, dm 77.6 mm), a ball load near the
-    /// peak of 500 N radial, 2000 rpm, its oil (physics.md §10), steel E' = 2.28e11 Pa.
+    /// Study \[2\]'s outer contact: 6012 (D 10.45 mm, dm 77.6 mm), a ball load near the
+    /// peak of 500 N radial, 2000 rpm, its oil (docs/physics.md §10), steel E' = 2.28e11 Pa.
     fn study(sigma: f64) -> Groups {
         let (d, dm) = (10.45e-3, 77.6e-3);
         let gamma = d / dm;
@@ -293,7 +293,7 @@ mod tests {
     }
 
     /// The printed exponent 1/4 on the roughness gives an impossible share (> 100 %) at
-    /// study [2]'s own operating point: it cannot be the lost roughness exponent.
+    /// study \[2\]'s own operating point: it cannot be the lost roughness exponent.
     #[test]
     fn printed_quarter_exponent_is_impossible() {
         let g = study(0.2e-6);

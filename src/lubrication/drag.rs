@@ -1,5 +1,5 @@
-//! Lubricant (oil–air mixture) drag on balls and cage of the `full` model (physics.md §5.2
-//! and §5.5; study [0] after Gupta, *Advanced Dynamics of Rolling Elements*, 1984, which
+//! Lubricant (oil–air mixture) drag on balls and cage of the `full` model (docs/physics.md §5.2
+//! and §5.5; study \[0\] after Gupta, *Advanced Dynamics of Rolling Elements*, 1984, which
 //! uses Schlichting's boundary-layer results). Every law is odd in the speed, zero at zero
 //! and finite for finite input; each one joins its Stokes (creeping-flow) limit to its
 //! boundary-layer limit.

@@ -1,5 +1,5 @@
 //! Cage–guide-land interaction: the short (Ocvirk) journal bearing formed by the cage's
-//! guiding surface and the land of the guiding ring (physics.md §5.5; Gupta, *Advanced
+//! guiding surface and the land of the guiding ring (docs/physics.md §5.5; Gupta, *Advanced
 //! Dynamics of Rolling Elements*, 1984, ch. 5).
 //!
 //! **Film forces.** Reynolds' equation with the short-bearing approximation (Ocvirk 1952;
@@ -17,7 +17,7 @@
 //! F_t =  K [ pi eps w_w / (4 (1 - eps²)^1.5)  +  s 2 eps eps_dot / (1 - eps²)² ]
 //! ```
 //! along `e_hat` (radial, negative = back toward the centre) and `e_perp` (+90° about `+z`).
-//! At `e_dot = 0` these are exactly physics.md's `W_M` and `W_phi` with
+//! At `e_dot = 0` these are exactly docs/physics.md's `W_M` and `W_phi` with
 //! `w_w = w_ring + w_c`. `s` is the side on which the squeeze pressure sits: `sign(w_w)`
 //! when the wedge dominates; here the smooth `s = a / sqrt(a² + b²)`, `a = e w_w`,
 //! `b = 2 e_dot_r`, which is the cosine of the angle by which the pressure zone turns when
@@ -33,13 +33,13 @@
 //! to the guiding ring's centre) Newton's third law gives the *same* force on the cage
 //! whether the cage is the journal (outer-ring guided) or the bearing (inner-ring guided):
 //! a restoring radial force and a tangential force that drives whirl in the direction of
-//! the mean surface speed `w_ring + w_c`. physics.md's "sign flips for outer-ring guidance"
+//! the mean surface speed `w_ring + w_c`. docs/physics.md's "sign flips for outer-ring guidance"
 //! is Gupta's convention, in which the eccentricity is that of the journal in the bearing
 //! (the land in the cage for inner-ring guidance); with this module's `e` no flip is
 //! needed, and `outer` changes nothing in the force (a test checks the third-law
 //! equivalence).
 //!
-//! **Torque.** Couette (Petroff) drag over the full film, physics.md's `W_rho`, plus the
+//! **Torque.** Couette (Petroff) drag over the full film, docs/physics.md's `W_rho`, plus the
 //! pressure-gradient shear, which acts on both surfaces equally: about each member's own
 //! centre it is `-(e x F)/2` (from `tau = -(h/2) dp/dx` on both walls and integration by
 //! parts, `∫ h dp/dtheta = -∫ p dh/dtheta`; it makes the moment balance of the film
@@ -159,7 +159,7 @@ mod tests {
         }
     }
 
-    /// At `e_dot = 0` the force is physics.md's `W_M`, `W_phi` (by numbers), resolved on
+    /// At `e_dot = 0` the force is docs/physics.md's `W_M`, `W_phi` (by numbers), resolved on
     /// the line of centres and rotated to x, y.
     #[test]
     fn reduces_to_physics_md_without_squeeze() {

@@ -1,4 +1,4 @@
-//! Elastohydrodynamic lubrication of the ball–race contacts (physics.md §6).
+//! Elastohydrodynamic lubrication of the ball–race contacts (docs/physics.md §6).
 //!
 //! - **Film thickness**: the isothermal Hamrock–Dowson formulas for elliptical contacts
 //!   (Hamrock & Dowson, *J. Lubr. Technol.* 99(2) 1977, 264–276; Hamrock, Schmid &
@@ -12,7 +12,7 @@
 //!   Hertz approach is `delta_H = delta + h_c,i(Q) + h_c,o(Q)` where `delta` is the rigid
 //!   (geometric) approach. Solving that for `Q` gives exactly the series compliance
 //!   `1/k = 1/k_Hertz + 1/k_film` with the film's own stiffness `k_film = -dQ/dh =
-//!   Q / (0.067 h_c)` (physics.md §6; Wijnant, Wensing & van Nijen, *J. Sound Vib.* 222(4)
+//!   Q / (0.067 h_c)` (docs/physics.md §6; Wijnant, Wensing & van Nijen, *J. Sound Vib.* 222(4)
 //!   1999 note that it is far stiffer than Hertz). Below `Q_MIN` the film is frozen at its
 //!   `Q_MIN` value (the formula is for loaded EHL contacts, and `Q^-0.067` diverges at 0).
 //! - **Inlet damping in parallel**: the Reynolds squeeze film (Reynolds, *Phil. Trans. R.
@@ -66,7 +66,7 @@ pub struct Lubricant {
 }
 
 impl Lubricant {
-    /// Study \[2\]'s oil (Cao et al.; physics.md §10): eta0 = 0.04667 Pa s,
+    /// Study \[2\]'s oil (Cao et al.; docs/physics.md §10): eta0 = 0.04667 Pa s,
     /// alpha_p = 2.1e-8 m²/N, 860 kg/m³, 0.04 /K, and the composite roughness of the
     /// study's smoother case, 0.2 µm. The study runs two cases of composite roughness,
     /// 0.2 and 0.42 µm (each already `sqrt(s1² + s2²)`), not one ball of 0.2 on a race of
@@ -213,7 +213,7 @@ pub struct FilmModel {
     squeeze: [Squeeze; 2],
     /// [`FilmModel::at_speed`]'s last shaft speed (its bits) and result.
     last_speed: Cell<Option<(u64, FilmAtSpeed)>>,
-    /// The contacts and their `K` (for [`FilmModel::solve_direct`]).
+    /// The contacts and their `K` (for `FilmModel::solve_direct`).
     #[cfg(test)]
     contacts: [PointContact; 2],
     #[cfg(test)]
@@ -228,7 +228,7 @@ pub struct FilmAtSpeed {
     a_i: f64,
     a_o: f64,
     /// `s* = B^(1/(1 + e))`, the root of the film equation at zero rigid approach (the
-    /// scale of [`root_start`]), and its reciprocal; zero without a film.
+    /// scale of `root_start`), and its reciprocal; zero without a film.
     s_star: f64,
     inv_s_star: f64,
 }
@@ -344,7 +344,7 @@ impl FilmModel {
     /// at `delta = 0`), `s = s* y` and `delta = s* d`, it is `y - y^-e = d`: one root
     /// `y(d)` for every ball, speed and bearing. For `-2 <= d < 18` (from films bridging
     /// a gap through the edge of the load zone, where the film is comparable to the
-    /// approach, to `c` below 0.05) the Newton starts from [`root_start`]'s table of
+    /// approach, to `c` below 0.05) the Newton starts from `root_start`'s table of
     /// `y(d)` (within 3e-7 of the root, 2e-10 for `d >= 0`), so one Newton step (two
     /// below `d = -1`) lands at rounding. Above, it starts from the Lagrange
     /// inversion series of the root (Lagrange–Bürmann; e.g. Abramowitz & Stegun 3.6.6):
@@ -354,9 +354,9 @@ impl FilmModel {
     /// e(5e+1)(5e+2)(5e+3)/24 c^5 - ...`; five terms are within 3e-6 of the root for
     /// `c <= 0.2` (the loaded balls of the shipped scenes), so one Newton step lands at
     /// rounding and the stop test (the quadratic error bound of the next step) ends it.
-    /// The powers `s^-e` come from [`pow_neg_e`] (a few ulp, no `powf`) and the binomial
-    /// series of [`scale_power`]. The result is the root to rounding, as
-    /// [`FilmModel::solve_direct`]'s (test `fast_solve_matches_direct`).
+    /// The powers `s^-e` come from `pow_neg_e` (a few ulp, no `powf`) and the binomial
+    /// series of `scale_power`. The result is the root to rounding, as
+    /// `FilmModel::solve_direct`'s (test `fast_solve_matches_direct`).
     pub fn solve(&self, f: &FilmAtSpeed, delta: f64) -> Option<BallFilm> {
         let a = f.a_i + f.a_o;
         let kn = self.kn;
@@ -577,7 +577,7 @@ fn pow_neg_e(x: f64) -> f64 {
 /// `e = 1.5 x 0.067`: `h_c ~ Q^-0.067 = (Kn s^1.5)^-0.067 ~ s^-e`.
 const FILM_E: f64 = 1.5 * 0.067;
 
-/// Lower end, upper end and intervals per unit of `d` of [`root_start`]'s two table
+/// Lower end, upper end and intervals per unit of `d` of `root_start`'s two table
 /// segments.
 const ROOT_SEGMENTS: [(f64, f64, f64); 2] = [(-2.0, 2.0, 64.0), (2.0, 18.0, 16.0)];
 /// Intervals of each segment (`(end - start) x per unit`).
@@ -630,7 +630,7 @@ fn root_newton(d: f64, y0: f64) -> f64 {
     y
 }
 
-/// [`root_start`]'s table: per interval, the cubic in `x` in [0, 1] (the fraction of the
+/// `root_start`'s table: per interval, the cubic in `x` in [0, 1] (the fraction of the
 /// interval) of the Hermite interpolant, from the nodes' roots and slopes (no heap: the
 /// first use may fall inside an allocation-free loop).
 fn root_table() -> [[f64; 4]; 2 * ROOT_INTERVALS] {

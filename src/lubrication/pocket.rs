@@ -1,4 +1,4 @@
-//! Ball–pocket interaction of the `full` cage model (physics.md §5.5, study [0] after
+//! Ball–pocket interaction of the `full` cage model (docs/physics.md §5.5, study \[0\] after
 //! Gupta, *Advanced Dynamics of Rolling Elements*, 1984): Hertzian contact with friction
 //! when the gap is below the composite roughness, a rigid-isoviscous hydrodynamic film
 //! beyond it.

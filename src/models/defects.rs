@@ -1,5 +1,5 @@
 //! Local defects (spalls): the depth loss `H_j` a ball sees as it crosses a rectangular
-//! pit (physics.md §5.3; study \[4\], Yan et al.; the finite-ball geometry of Moazen-Ahmadi &
+//! pit (docs/physics.md §5.3; study \[4\], Yan et al.; the finite-ball geometry of Moazen-Ahmadi &
 //! Howard, *Mech. Syst. Signal Process.* 80 (2016) and Sawalhi & Randall,
 //! *Mech. Syst. Signal Process.* 22 (2008)).
 //!
@@ -106,7 +106,7 @@ pub fn wrap_exact(a: f64) -> f64 {
 }
 
 /// `Hr = R - sqrt(R² - (L/2)²)`: how far a ball of radius `r` sinks into a slot of width
-/// `l` when it rides on both edges (physics.md §5.3).
+/// `l` when it rides on both edges (docs/physics.md §5.3).
 pub fn edge_depth(r: f64, l: f64) -> f64 {
     sagitta(r, 0.5 * l)
 }

@@ -125,7 +125,7 @@ pub struct LubricationSpec {
     /// `ehl` or `dry`.
     #[serde(default)]
     pub film: FilmKind,
-    /// Preset: `study2` (physics.md §10).
+    /// Preset: `study2` (docs/physics.md §10).
     #[serde(default = "default_lubricant")]
     pub lubricant: String,
     /// Inlet viscosity, Pa s.
@@ -170,9 +170,9 @@ pub struct Effects {
     pub ball_spacing: Option<SpacingSpec>,
     /// Lubrication.
     pub lubrication: Option<LubricationSpec>,
-    /// Race wear (physics.md §7; `crate::models::wear`).
+    /// Race wear (docs/physics.md §7; `crate::models::wear`).
     pub wear: Option<WearSpec>,
-    /// Friction power and thermal growth (physics.md §8; `crate::models::thermal`).
+    /// Friction power and thermal growth (docs/physics.md §8; `crate::models::thermal`).
     pub thermal: Option<ThermalSpec>,
 }
 
@@ -567,7 +567,7 @@ impl RingEffects {
     }
 
     /// Deflection offset of ball `j` at azimuth `psi` with the shaft turned by `theta_s`:
-    /// waviness interference minus defect depth loss (physics.md §5.1: `- H_j + w_j`), m.
+    /// waviness interference minus defect depth loss (docs/physics.md §5.1: `- H_j + w_j`), m.
     /// Each harmonic's `sin` evaluated afresh: the reference for [`RingEffects::at`].
     #[inline]
     pub fn offset(&self, j: usize, psi: f64, theta_s: f64) -> f64 {

@@ -1,4 +1,4 @@
-//! Friction power and thermal growth (physics.md §8, study \[3\]: Wang et al., 7008CE).
+//! Friction power and thermal growth (docs/physics.md §8, study \[3\]: Wang et al., 7008CE).
 //!
 //! **Friction** (Harris & Kotzalas, *Essential Concepts of Bearing Technology*, 5th ed.,
 //! ch. 9 "Friction in rolling bearings"; Palmgren, *Ball and Roller Bearing Engineering*):
@@ -19,7 +19,7 @@
 //!   (land radius `r` = cage outside/bore radius, land width `L` = cage width / 4, radial
 //!   guide clearance `c`; zero for a ball-riding cage).
 //!
-//! The sum follows physics.md §8; Palmgren's empirical `M0 + M1` already contains part of
+//! The sum follows docs/physics.md §8; Palmgren's empirical `M0 + M1` already contains part of
 //! the spin and hysteresis losses, so every term has its own factor and can be set to 0.
 //!
 //! **Heat** flows through four lumped nodes (inner ring, outer ring, balls, oil), each with

@@ -1,4 +1,4 @@
-//! Waviness and ball-spacing scatter (physics.md §5.4; study \[3\], Wang et al.; the
+//! Waviness and ball-spacing scatter (docs/physics.md §5.4; study \[3\], Wang et al.; the
 //! harmonic description of Wardle, *Proc. IMechE C* 202 (1988) and Harsha, *J. Sound Vib.*
 //! 290 (2006)).
 //!

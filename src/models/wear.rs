@@ -1,4 +1,4 @@
-//! Race wear (physics.md §7, study \[2\]: Cao et al., 6012): Archard's law with the
+//! Race wear (docs/physics.md §7, study \[2\]: Cao et al., 6012): Archard's law with the
 //! lubrication-aware factors of study \[2\],
 //!
 //! `dh/dt = K psi (La/100) p u_s / Hv`,
@@ -316,7 +316,7 @@ pub fn revolutions_to(history: &[(f64, f64)], depth: f64) -> Option<f64> {
     (rate > 0.0).then(|| r1 + (depth - d1) / rate)
 }
 
-/// Close a wear window (physics.md §7's time-scale separation): once the shaft has turned
+/// Close a wear window (docs/physics.md §7's time-scale separation): once the shaft has turned
 /// `window` revolutions since the window began (`revs` is the turn now), the depth
 /// accumulated in the window is scaled to a cycle of `cycle` revolutions and added to the
 /// maps, at most `cycles` times. `acc` holds the depths accumulated since the start (one

@@ -1,4 +1,4 @@
-//! Outer-race wear from the skidding dynamics (study \[2\], physics.md §7): the wear law of
+//! Outer-race wear from the skidding dynamics (study \[2\], docs/physics.md §7): the wear law of
 //! [`crate::models::wear`] fed with what the skidding level resolves per ball — the
 //! outer-contact load, the slip speed `u_s = |dv_o|` of the ball over the race and the
 //! rolling speed — as study \[2\] feeds its dynamic model's slip ("considering clearance,
@@ -51,7 +51,7 @@ pub struct OuterRaceWear {
 }
 
 impl OuterRaceWear {
-    /// Study \[2\]'s wear data (physics.md §10): `K = 5e-4`, `Hv = 2.39 GPa`, its oil with
+    /// Study \[2\]'s wear data (docs/physics.md §10): `K = 5e-4`, `Hv = 2.39 GPa`, its oil with
     /// composite roughness `sigma` (m; `None`: dry), `a_x = t0 = 3e-12`, `Ea = 49 kJ/mol`,
     /// inlet temperature 293.15 K, limiting shear 0.04 and the traction law's default `f_c`.
     pub fn study2(sigma: Option<f64>, reading: AsperityReading) -> Self {

@@ -1,12 +1,12 @@
 //! Reports on what a run costs and what it is worth: work-precision (error bought per
 //! second of run time, [`work_precision`]) and the stability campaign ([`stability`]).
 //!
-//! Methodology after numerics.md §6 (DiffEqDevTools' `WorkPrecisionSet`; Hairer, Nørsett &
+//! Methodology after docs/physics.md §N6 (DiffEqDevTools' `WorkPrecisionSet`; Hairer, Nørsett &
 //! Wanner, *Solving ODEs I*, §II.10 "numerical comparisons"): reference solutions by two
 //! different methods at tight tolerance, their difference as the error floor, the median of
 //! repeated timings after a warm-up, and the hardware-independent counters beside the time.
 //!
-//! Everything here drives the public [`Component`](crate::Component) exactly as a host
+//! Everything here drives the public [`Component`] exactly as a host
 //! would (`set_real`, `do_step`, `get_real`): the numbers describe the product, not a
 //! side path.
 
@@ -69,7 +69,7 @@ impl Samples {
 /// `(relative L2 over the window, relative peak)` with
 /// `L2 = sqrt(sum |F - F_ref|^2 / sum |F_ref|^2)` and
 /// `peak = max |F - F_ref| / max |F_ref|` (Euclidean norm over the force components;
-/// numerics.md §6.2, metric 1: reaction forces at communication points).
+/// docs/physics.md §N6.2, metric 1: reaction forces at communication points).
 pub fn force_error(run: &Samples, reference: &Samples) -> Result<(f64, f64)> {
     if run.t.len() != reference.t.len()
         || run

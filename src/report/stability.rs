@@ -1,7 +1,7 @@
 //! Stability campaign: over model levels, speeds, loads, clearances, ball materials, macro
 //! steps and step inputs, every cell must either give finite outputs that converge under
 //! refinement (rtol and rtol/10 agree) or end in a clean error (an `Err` naming the cause):
-//! never a panic, never a NaN. The axes follow numerics.md §5.5.
+//! never a panic, never a NaN. The axes follow docs/physics.md §N5.5.
 //!
 //! A cell is data ([`Cell`]); the level bases are a table ([`BASES`]); a new level is one
 //! more row there.
@@ -309,7 +309,7 @@ pub enum Outcome {
     /// Finite outputs that agree pointwise only at rtol 1e-7 vs 1e-8 (`tight` true), or
     /// only in statistics (`tight` false: mean and RMS of each force component agree within
     /// [`STATISTICS_LIMIT`] while the trajectories separate, as impacting or chaotic motion
-    /// in the clearance does after a few Lyapunov times, numerics.md §6.4).
+    /// in the clearance does after a few Lyapunov times, docs/physics.md §N6.4).
     Statistical {
         /// Pointwise difference rtol 1e-7 vs 1e-8 (tight) or of the statistics.
         diff: f64,
@@ -940,7 +940,7 @@ pub fn markdown(
          than {CONVERGENCE_LIMIT:.0e} (RMS difference over RMS force, or over 1 N when the \
          forces are smaller), or if the component refuses cleanly with an error naming the \
          cause. A panic, a NaN or a run that does not converge is a failure.\n\n\
-         Axes (numerics.md §5.5): level; speed (standing, ramped from rest through input \
+         Axes (docs/physics.md §N5.5): level; speed (standing, ramped from rest through input \
          derivatives, reversed, 1750 rpm, 120 000 rpm); radial load (0, 10 N, 1 kN, the load \
          whose Stribeck ball load gives a 4 GPa Hertz peak, for steel balls at zero \
          clearance); an axial load of a share of it where the base says; diametral clearance \
@@ -959,7 +959,7 @@ pub fn markdown(
          1e-7 (1e-7 and 1e-8 agree pointwise), converged in statistics (mean and RMS of each \
          force over the second half agree within {STATISTICS_LIMIT} of the RMS force while \
          the trajectories separate: impacts in the clearance or chaotic cage motion, \
-         numerics.md §6.4), or failed.\n\n\
+         docs/physics.md §N6.4), or failed.\n\n\
          **{n} cells: {conv} converged, {stat} converged late or in statistics, {clean} clean \
          errors, {failed} failed.**\n",
         super::Machine::detect().describe()

@@ -1,5 +1,5 @@
 //! Work-precision: the error of the reaction forces bought with each second of run time,
-//! per model level and integrator, over a tolerance sweep (numerics.md §6; the layout of
+//! per model level and integrator, over a tolerance sweep (docs/physics.md §N6; the layout of
 //! DiffEqDevTools' `WorkPrecisionSet`: x = error, y = CPU time, log-log).
 //!
 //! - The cases are data ([`cases`]): a scene (any level, any causality), a window and a
@@ -793,7 +793,7 @@ impl Report {
              within the need. Needs: **real-time coupling** (force error ≤ 1e-2: well below \
              a typical co-simulation coupling error, see docs/coupling.md); **vibration \
              spectra** (≤ 1e-4: the varying-compliance line is 0.4–2 % of the deflection, \
-             numerics.md §5.2, so this resolves it to about 1 %); **reference accuracy** \
+             docs/physics.md §N5.2, so this resolves it to about 1 %); **reference accuracy** \
              (≤ 1e-7, or within 10× the floor).\n\n\
              | case | need | method | rtol | time (ms) | real-time factor | err L2 |\n|---|---|---|---|---|---|---|\n",
         );

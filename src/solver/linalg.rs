@@ -5,7 +5,7 @@
 //!   (Golub & Van Loan, *Matrix Computations*, 4th ed., Alg. 3.4.1).
 //! - [`BlockArrowhead`]: the same for a block-arrowhead matrix (independent diagonal blocks
 //!   coupled only through a border) by Schur-complement elimination of the blocks
-//!   (Golub & Van Loan §3.2.11 block LU; numerics.md §2.4 item 4).
+//!   (Golub & Van Loan §3.2.11 block LU; docs/physics.md §N2.4 item 4).
 
 use nalgebra::DMatrix;
 

@@ -108,7 +108,7 @@ def test_binary_carries_no_build_paths_and_stays_loaded(unzipped):
     for path in (str(ROOT), os.path.expanduser("~/.cargo"), os.environ.get("CARGO_HOME", "")):
         if path:
             assert path.encode() not in data, path
-    # -z nodelete: hosts dlclose the library in freeInstance (fmi.md §4 #7)
+    # -z nodelete: hosts dlclose the library in freeInstance (docs/physics.md §C4 #7)
     dyn = subprocess.run(["readelf", "-d", str(so)], check=True, capture_output=True,
                          text=True).stdout
     assert "NODELETE" in dyn

@@ -2,7 +2,7 @@
 
 Each case is a 6205 at the ring level (study [4]'s test-rig set-up, as
 examples/scenes/6205-outer-spall.toml: inner ring load-driven under 1000 N downward with
-1 kg of shaft, 10 µm clearance, contact damping) carrying one local defect (physics.md
+1 kg of shaft, 10 µm clearance, contact damping) carrying one local defect (docs/physics.md
 §5.3: a spall of the given width on the outer race, the inner race or one ball), or none (the
 healthy reference). ``raceway.run`` integrates it; the cases run on two threads (the package
 releases the GIL). Written:

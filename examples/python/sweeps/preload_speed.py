@@ -1,6 +1,6 @@
 """A design sweep of a spindle bearing: axial preload × speed → peak contact pressure and stiffness.
 
-A 7008CE angular-contact bearing (physics.md §10: 16 balls, 15° free contact angle) under
+A 7008CE angular-contact bearing (docs/physics.md §10: 16 balls, 15° free contact angle) under
 a constant 200 N radial load and an axial preload, at speeds up to 30 000 rpm. Each grid
 point is the Jones–Harris quasi-static equilibrium (``raceway.quasi_static``: the balls'
 centrifugal force and gyroscopic moment included, outer-race control), run on two threads

@@ -1,6 +1,6 @@
 //! Small 3-vector helpers and the quasi-static ball position solve of the full level.
 //!
-//! # Quasi-static ball position (study [0]'s way, physics.md §4 and §5.5)
+//! # Quasi-static ball position (study \[0\]'s way, docs/physics.md §4 and §5.5)
 //!
 //! In the ball plane at azimuth `psi`, coordinates `(axial, radial)`: `X = (X1, X2)` is the
 //! ball centre relative to the outer groove curvature centre and `A` the inner groove

@@ -1,4 +1,4 @@
-//! The `full` level: high-speed dynamics with cage whirl (physics.md §5.5, study [0])
+//! The `full` level: high-speed dynamics with cage whirl (docs/physics.md §5.5, study \[0\])
 //! behind the level seam. States and physics: [`crate::models::full`].
 //!
 //! Memory (`aux`, in the component state so a restored state continues bit for bit): the

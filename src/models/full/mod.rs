@@ -1,10 +1,10 @@
-//! Full high-speed dynamics with cage whirl (physics.md §5.5; study [0] after Gupta,
+//! Full high-speed dynamics with cage whirl (docs/physics.md §5.5; study \[0\] after Gupta,
 //! *Advanced Dynamics of Rolling Elements*, Springer 1984, ch. 3–5; Harris & Kotzalas,
 //! *Rolling Bearing Analysis* 5th ed., Vol. 2 ch. 3 for the contact kinematics).
 //!
 //! # Bodies, frames and states
 //!
-//! Fixed frame as physics.md §0 (`z` the shaft axis). Ball `j`: centre in cylindrical
+//! Fixed frame as docs/physics.md §0 (`z` the shaft axis). Ball `j`: centre in cylindrical
 //! coordinates `(rho_j, psi_j, z_j)`, angular velocity `w_j` in **fixed-frame Cartesian**
 //! components. A sphere's orientation angles never enter the forces (isotropic inertia,
 //! `J = m D²/10`, and a ball surface that looks the same in every orientation), so only
@@ -13,7 +13,7 @@
 //! quasi-static model appears here as the moment the contacts must supply to turn `w` with
 //! the orbit).
 //!
-//! - `ball_contacts = quasi_static` (default, study [0]'s way): `rho_j, z_j` solved at every
+//! - `ball_contacts = quasi_static` (default, study \[0\]'s way): `rho_j, z_j` solved at every
 //!   evaluation from the ball's radial/axial balance of the two race normal loads and the
 //!   centrifugal force (`ball.rs`), warm-started from `aux`; states `(psi, w_orb, w)`.
 //!   The orbital equation is `m rho psi'' = F_t` (the Coriolis term `2 m rho' psi'` is
@@ -30,7 +30,7 @@
 //! angular momentum is `I_p w_c (by, -bx, 1) + I_t (bx', by', 0)`). `cage = ideal`: centre
 //! held on the ring axis, no tilt, only `theta_c` dynamic; pockets act tangentially only.
 //!
-//! # Nondimensional states (study [0])
+//! # Nondimensional states (study \[0\])
 //!
 //! Lengths in `L = D/2`, time in `T0 = sqrt(m_b D / (2 F_ref))`: stored are `x/L`,
 //! `v T0/L`, angles, `w T0`; the right-hand side returns their derivatives in physical time.
@@ -66,7 +66,7 @@
 //! Pocket `j` is a cylindrical hole along the cage-radial direction at
 //! `theta_c + 2 pi j/Z`, centre at the pitch radius. The ball centre's offset from the
 //! pocket centre has a tangential and an axial component; the two directions are treated
-//! independently (physics.md: "the two pocket directions independent"): in each, both
+//! independently (docs/physics.md: "the two pocket directions independent"): in each, both
 //! walls act, with gaps `h = (D_p - D)/2 -+ offset` (pocket diameter `D_p = D + c_p`, the
 //! bearing's diametral pocket play `c_p`), each a force from [`PocketLaw`] normal to the
 //! wall (films on both sides, so the force is continuous through the pocket centre) plus
@@ -82,9 +82,9 @@
 //!
 //! Guidance (`FullParams::guidance`, the bearing's unless the scene sets
 //! `model.full.guidance`): outer-ring land radius = cage OD/2, inner-ring land radius = cage
-//! bore/2 (study [0]'s cage, ID 30 mm and OD 35 mm, runs between the inner-ring land below
+//! bore/2 (study \[0\]'s cage, ID 30 mm and OD 35 mm, runs between the inner-ring land below
 //! 30 mm and the outer-ring land above 35 mm). Why one force law serves both, with the
-//! sign physics.md gives for Gupta's eccentricity: [`GuideLand`]'s notes.
+//! sign docs/physics.md gives for Gupta's eccentricity: [`GuideLand`]'s notes.
 //!
 //! Cage mass unbalance `u` (`cage_unbalance`): the mass centre sits at
 //! `c + u (cos theta_c, sin theta_c, 0)`, so the geometric centre (the states, the land's
@@ -130,7 +130,7 @@ use std::f64::consts::PI;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
 #[serde(rename_all = "snake_case")]
 pub enum BallContacts {
-    /// Ball radial and axial position in quasi-static equilibrium (study [0]).
+    /// Ball radial and axial position in quasi-static equilibrium (study \[0\]).
     #[default]
     QuasiStatic,
     /// Radial and axial position integrated with the ball mass.
@@ -318,8 +318,8 @@ impl CageKin {
     }
 }
 
-/// Angular velocity of the inner ring (small tilts `rx = q[3]`, `ry = q[4]` and their rates
-/// `v[3]`, `v[4]`, spin `omega`): `(rx' + omega ry, ry' - omega rx, omega)`, as for the
+/// Angular velocity of the inner ring (small tilts `rx = q\[3\]`, `ry = q\[4\]` and their rates
+/// `v\[3\]`, `v\[4\]`, spin `omega`): `(rx' + omega ry, ry' - omega rx, omega)`, as for the
 /// cage ([`CageKin::omega`]); the groove's axial lift `ri (rx sin - ry cos)` moves with it.
 fn ring_omega(q: &[f64; 5], v: &[f64; 5], omega: f64) -> V3 {
     [v[3] + omega * q[4], v[4] - omega * q[3], omega]

@@ -1,6 +1,6 @@
 //! The per-ball kernel of the Jones–Harris model: contact geometry, race-control kinematics,
 //! centrifugal force, gyroscopic moment, the two ball equilibrium equations and their damped
-//! Newton solve (physics.md §4; Harris & Kotzalas, *Rolling Bearing Analysis* 5th ed., Vol. 2
+//! Newton solve (docs/physics.md §4; Harris & Kotzalas, *Rolling Bearing Analysis* 5th ed., Vol. 2
 //! ch. 3; Jones 1960).
 //!
 //! # Geometry (the ball plane at azimuth `psi`)
@@ -47,7 +47,7 @@
 //! (`e_t` the orbital direction, `(e_z, e_r, e_t)` right-handed). Friction forces
 //! `f_o (-cos a_o, sin a_o)` at the outer contact and `f_i (cos a_i, -sin a_i)` at the inner
 //! contact, `f_k = lambda_k Mg / D`, give exactly `+Mg e_t`. This is the sign we use; it is
-//! the opposite of the friction terms as physics.md §4 prints them (Harris's figure draws the
+//! the opposite of the friction terms as docs/physics.md §4 prints them (Harris's figure draws the
 //! couple for the mirrored ball), which would give `-Mg e_t` in this frame.
 //!
 //! Friction cannot exceed what the contacts can carry: a ball that touches one race only
@@ -68,7 +68,7 @@
 //! T_i sin a_i)` and, about the centre of the inner groove-centre circle, the moment
 //! `m = Ri F_a + T_i f_i D` in the ball plane (the normal force passes through the groove
 //! centre at radius `Ri`; the friction force acts at the contact point, `f_i D` from it;
-//! with `T_i = lambda_i Mg/D` the last term is physics.md's `lambda_i f_i Mg` couple).
+//! with `T_i = lambda_i Mg/D` the last term is docs/physics.md's `lambda_i f_i Mg` couple).
 
 use super::dual::Dual;
 use super::kc::KcTable;

@@ -1,7 +1,7 @@
 //! The Hertz load–deflection constant `Kc` as a function of the contact angle, for one race.
 //!
 //! This is the ONE place the quasi-static model gets `Kc(alpha)` from. It samples
-//! [`PointContact::new`]`(Curvature::ball_race(D, dm, alpha, f, race), E').kc` (physics.md
+//! [`PointContact::new`]`(Curvature::ball_race(D, dm, alpha, f, race), E').kc` (docs/physics.md
 //! §3; Harris & Kotzalas Vol. 1 ch. 6) on a uniform grid in `c = cos(alpha)` once per bearing
 //! and interpolates with cubic Hermite polynomials (node slopes by central differences of the
 //! exact function), so the per-ball kernel gets `Kc` and `dKc/dc` without solving the

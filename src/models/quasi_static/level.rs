@@ -1,5 +1,5 @@
 //! The `quasi_static` level: Jones–Harris equilibrium of every ball at the current ring
-//! motion (physics.md §4), balls at the cage's kinematic positions so the force varies as
+//! motion (docs/physics.md §4), balls at the cage's kinematic positions so the force varies as
 //! balls pass. State: the cage angle. Memory (in the component state, so a restored state
 //! continues bit for bit): each ball's warm start.
 //!

@@ -1,4 +1,4 @@
-//! Jones–Harris quasi-static equilibrium of a ball bearing (physics.md §4; Harris &
+//! Jones–Harris quasi-static equilibrium of a ball bearing (docs/physics.md §4; Harris &
 //! Kotzalas, *Rolling Bearing Analysis* 5th ed., Vol. 2 ch. 3; Jones, *A general theory for
 //! elastically constrained ball and radial roller bearings under arbitrary load and speed
 //! conditions*, ASME J. Basic Eng. 1960).
@@ -15,7 +15,7 @@
 //!   find `q` and every ball by a damped Newton–Raphson on the five ring equations with the
 //!   ball equations solved inside (nested).
 //!
-//! # Conventions (physics.md §0)
+//! # Conventions (docs/physics.md §0)
 //!
 //! Fixed frame, `z` along the shaft axis, ball `j` at azimuth `psi_j` from `+x` toward `+y`.
 //! `q = (x, y, z, rx, ry)`: translation of the inner-ring centre and small rotations about
@@ -1001,7 +1001,7 @@ mod tests {
     }
 
     /// With both contacts on one line (equal angles) the race-control speeds reduce to the
-    /// rigid rolling kinematics of physics.md §1: cage `omega (1 - gamma)/2` whatever the
+    /// rigid rolling kinematics of docs/physics.md §1: cage `omega (1 - gamma)/2` whatever the
     /// attitude, and with `beta = alpha` the ball spin `dm/(2D) (1 - gamma^2) omega`.
     #[test]
     fn equal_angles_reduce_to_rolling_kinematics() {

@@ -1,6 +1,6 @@
-//! The `ring` level: ring on massless balls (physics.md §5.1) behind the level seam, with
+//! The `ring` level: ring on massless balls (docs/physics.md §5.1) behind the level seam, with
 //! the optional effects of the scene (defects, waviness, spacing scatter, EHL film) and the
-//! slow effects (wear, physics.md §7; friction power and thermal growth, §8).
+//! slow effects (wear, docs/physics.md §7; friction power and thermal growth, §8).
 //!
 //! Slow state (only when the scene turns wear or thermal on; see [`SlowLayout`]):
 //! - continuous states after the cage (and shaft) angle: the wear depth accumulated since
@@ -15,7 +15,7 @@
 //!   temperature rises (K), the time of the last thermal update, energy generated and
 //!   removed (J), the last power loss (W) and the clearance change (m).
 //!
-//! Time-scale separation (physics.md §7): at a communication point where the window of
+//! Time-scale separation (docs/physics.md §7): at a communication point where the window of
 //! `window_revs` shaft revolutions is complete, the window's accumulated wear is scaled to
 //! `cycle_revs` revolutions and added to the maps, which enter every ball's deflection like
 //! a defect (`- h_outer(psi) - h_inner(psi - theta_s)`) ([`wear::close_window`]). The
@@ -282,7 +282,7 @@ impl Slow {
     }
 }
 
-/// Ring on massless balls (physics.md §5.1). States: the cage angle, and the shaft angle
+/// Ring on massless balls (docs/physics.md §5.1). States: the cage angle, and the shaft angle
 /// when an effect turns with the shaft or the balls (inner-race or ball defects/waviness).
 #[derive(Debug)]
 pub struct RingLevel {

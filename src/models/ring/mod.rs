@@ -1,4 +1,4 @@
-//! Ring on massless balls (physics.md §5.1; Sunnersjö, *J. Sound Vib.* 58(3) 1978; Harsha,
+//! Ring on massless balls (docs/physics.md §5.1; Sunnersjö, *J. Sound Vib.* 58(3) 1978; Harsha,
 //! *J. Sound Vib.* 290 (2006); study \[4\]).
 //!
 //! Balls carry no inertia; ball `j` sits at `psi_j = theta_c + 2 pi j / Z`, the cage angle
@@ -20,7 +20,7 @@
 //!
 //! Contact damping `c d(delta)/dt` acts on loaded balls only, blended in over the first
 //! `DAMPING_RAMP` of approach so the force stays continuous at contact onset (a
-//! Hunt–Crossley-like regularisation; numerics.md §1.3).
+//! Hunt–Crossley-like regularisation; docs/physics.md §N1.3).
 //!
 //! Effects (all off by default, and then the arithmetic is exactly the plain model's): a
 //! per-ball deflection offset (defects and waviness, `crate::models::effects`), fixed ball
@@ -988,7 +988,7 @@ mod tests {
     }
 
     /// Zero clearance, one ball under the load line: the static radial balance
-    /// `Fr = Kn sum_j (delta cos psi_j)^1.5 cos psi_j` (numerics.md §5.2's construction).
+    /// `Fr = Kn sum_j (delta cos psi_j)^1.5 cos psi_j` (docs/physics.md §N5.2's construction).
     #[test]
     fn two_dof_matches_hand_sum_and_pushes_back() {
         let b = preset("209").unwrap().build().unwrap();

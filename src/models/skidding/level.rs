@@ -1,4 +1,4 @@
-//! The `skidding` level: ball orbit and spin, cage, traction and drag (physics.md §5.2)
+//! The `skidding` level: ball orbit and spin, cage, traction and drag (docs/physics.md §5.2)
 //! behind the level seam. States: `[(psi_j, w_b_j, w_a_j[, u_j, u_j']), theta_c, w_c]`
 //! (balls first, so the Jacobian is block-arrowhead), see [`crate::models::skidding`].
 //!

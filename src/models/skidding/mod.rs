@@ -1,10 +1,10 @@
-//! Skidding level: ball orbit and spin, cage, traction, lubricant drag (physics.md §5.2;
+//! Skidding level: ball orbit and spin, cage, traction, lubricant drag (docs/physics.md §5.2;
 //! studies \[2\] and \[3\]; Harris & Kotzalas Vol. 2 ch. 3 for the slip kinematics, Gupta
 //! *Advanced Dynamics of Rolling Elements* ch. 3–4 for the ball and cage equations).
 //!
 //! # Free-body diagram and sign conventions
 //!
-//! Fixed frame as physics.md §0: `z` along the shaft, ball `j` at azimuth `psi_j`, radial
+//! Fixed frame as docs/physics.md §0: `z` along the shaft, ball `j` at azimuth `psi_j`, radial
 //! unit vector `e_r`, rolling direction `e_t = z × e_r` (the direction of increasing `psi`).
 //! Every speed is positive in the sense of the shaft's rotation `omega` (about `+z`).
 //!
@@ -19,7 +19,7 @@
 //! - outer contact: `(dm/2) w_b + (D/2) w_a`.
 //!
 //! The race surfaces move at `(d_i/2) omega` (inner, `d_i = dm - D cos(alpha)`) and 0
-//! (outer fixed). Slip velocities, as in physics.md §5.2 with the spin relative to the cage
+//! (outer fixed). Slip velocities, as in docs/physics.md §5.2 with the spin relative to the cage
 //! frame `w_s = w_b cos(alpha) - w_a`:
 //!
 //! - `dv_i = (d_i/2) omega - [(dm/2) w_b - (D/2) w_a] = (d_i/2)(omega - w_b) - (D/2) w_s`
@@ -27,7 +27,7 @@
 //! - `dv_o = (dm/2) w_b + (D/2) w_a = (d_o/2) w_b - (D/2) w_s` (ball minus race: positive
 //!   when the ball surface slides forward over the fixed race).
 //!
-//! Both vanish at the kinematic speeds of physics.md §1: `w_b = omega (1 - gamma)/2`,
+//! Both vanish at the kinematic speeds of docs/physics.md §1: `w_b = omega (1 - gamma)/2`,
 //! `w_s = dm/(2D) (1 - gamma²) omega` (a unit test checks it).
 //!
 //! Forces on the ball along `e_t`: `+f_i = T(dv_i) ` from the inner race, `-f_o = -T(dv_o)`
@@ -103,7 +103,7 @@
 //! `dn = (dA/dq - n g)/|A|`, and the traction, lateral and spin terms through them),
 //! checked against central differences in a unit test.
 //!
-//! Drag (physics.md §5.2): `F_d = C_d rho_eff pi D² v|v|/8` with `v = (dm/2) w_b` (dynamic
+//! Drag (docs/physics.md §5.2): `F_d = C_d rho_eff pi D² v|v|/8` with `v = (dm/2) w_b` (dynamic
 //! pressure on the frontal area); ball spin drag `M = pi eta D³ w_a` (Stokes' rotating
 //! sphere, `8 pi eta R³ w`); cage drag `M_cage = c_cage w_c` (linear viscous).
 
@@ -503,7 +503,7 @@ impl SkiddingModel {
     }
 
     /// Kinematic orbital (cage) speed and ball spin relative to the cage at shaft speed
-    /// `omega`, outer ring fixed (physics.md §1).
+    /// `omega`, outer ring fixed (docs/physics.md §1).
     pub fn kinematic(&self, omega: f64) -> (f64, f64) {
         let gamma = self.d * self.cos_a / self.dm;
         let wb = crate::geometry::kinematics::cage_speed(gamma, omega, 0.0);
@@ -1600,7 +1600,7 @@ mod tests {
     use super::*;
     use crate::geometry::preset;
 
-    /// At the kinematic speeds of physics.md §1 both slips vanish, for a deep-groove and
+    /// At the kinematic speeds of docs/physics.md §1 both slips vanish, for a deep-groove and
     /// an angular-contact bearing.
     #[test]
     fn zero_slip_at_kinematic_speeds() {
