@@ -15,6 +15,7 @@
 #![warn(missing_docs)]
 
 pub mod analysis;
+pub mod calculator;
 pub mod component;
 pub mod contact;
 pub mod counters;

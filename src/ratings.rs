@@ -16,7 +16,9 @@
 //!   never above 1.
 //! - **Basic static load rating** `C0 = f0 i Z Dw² cos α` (ISO 76:2006 eq. (1)), `f0` from
 //!   its Table 2 by linear interpolation. Its values correspond to a 4 200 MPa contact
-//!   pressure at the most heavily loaded contact (tested against our own Hertz solution).
+//!   pressure at the most heavily loaded contact (tested against our own Hertz solution);
+//!   for grooves wider than 0.52/0.53 Dw `f0` is recomputed from that pressure
+//!   ([`static_groove_factor`]).
 //! - **Equivalent loads** `P = X Fr + Y Fa` (ISO 281 Table 3, single row, normal clearance;
 //!   `e`, `Y` interpolated in `f0 Fa / C0`, and between the tabulated contact angles) and
 //!   `P0 = max(X0 Fr + Y0 Fa, Fr)` (ISO 76 Table 3).
@@ -177,7 +179,7 @@ pub struct LoadRatings {
     pub fc: f64,
     /// Conformity reduction applied to `fc` (1: none).
     pub fc_reduction: f64,
-    /// `f0` of ISO 76 Table 2.
+    /// `f0` of ISO 76 Table 2 (times [`static_groove_factor`] for wide grooves).
     pub f0: f64,
     /// Basic dynamic radial load rating `C`, N.
     pub c: f64,
@@ -194,7 +196,7 @@ pub fn load_ratings(b: &Bearing) -> Result<LoadRatings> {
     let g = gamma(b);
     let red = conformity_reduction(g, b.fi, b.fo);
     let fc = fc(g)? * red;
-    let f0 = f0(g)?;
+    let f0 = f0(g)? * static_groove_factor(g, b.fi, b.fo);
     let dw = b.d * 1e3;
     let dpw = b.dm * 1e3;
     let z = b.z as f64;
@@ -752,6 +754,27 @@ pub fn assess_run(b: &Bearing, series: &crate::runner::Series, start: usize) -> 
     assess_load(b, &load, &inputs)
 }
 
+/// Correction of ISO 76's `f0` for groove radii larger than 0.52 Dw (inner) / 0.53 Dw
+/// (outer), where its Table 2 does not apply: ISO 76:2006 §5.1 defines `C0` by the 4 200 MPa
+/// contact pressure at the most heavily loaded contact, so `f0` scales with the ball load
+/// that reaches a given Hertz pressure, `Q ∝ (p0 / E*)³ / f(ΣρN)`. The factor is the ratio of
+/// that load at the bearing's radii to the one at 0.52/0.53 (the smaller of the two races in
+/// each case); radii closer than 0.52/0.53 keep the table value (factor 1), as the standard
+/// gives no increase for them. Independent of the elastic constants.
+pub fn static_groove_factor(gamma: f64, fi: f64, fo: f64) -> f64 {
+    use crate::contact::{Curvature, PointContact, Race};
+    if fi <= 0.52 && fo <= 0.53 {
+        return 1.0;
+    }
+    let dm = if gamma > 0.0 { 1.0 / gamma } else { 1e3 };
+    let q_at = |race: Race, f: f64| {
+        let c = PointContact::new(Curvature::ball_race(1.0, dm, 0.0, f, race), 1.0);
+        (1.0 / c.peak_pressure(1.0)).powi(3)
+    };
+    let load = |fi: f64, fo: f64| q_at(Race::Inner, fi).min(q_at(Race::Outer, fo));
+    (load(fi.max(0.52), fo.max(0.53)) / load(0.52, 0.53)).min(1.0)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -853,7 +876,11 @@ mod tests {
         let r = load_ratings(&b).unwrap();
         let g = b.d * b.alpha0.cos() / b.dm;
         assert!((r.gamma - g).abs() < 1e-15);
-        let want = f0(g).unwrap() * 16.0 * 22.23f64.powi(2) * b.alpha0.cos();
+        // 218's grooves are wider than 0.52/0.53 Dw: f0 is the table's times the ISO 76
+        // 4 200 MPa correction (issue #35), the formula otherwise unchanged.
+        let f0_218 = f0(g).unwrap() * static_groove_factor(g, b.fi, b.fo);
+        assert!(f0_218 < f0(g).unwrap() && (r.f0 - f0_218).abs() < 1e-12);
+        let want = f0_218 * 16.0 * 22.23f64.powi(2) * b.alpha0.cos();
         assert!((r.c0 - want).abs() < 1e-9 * want);
         assert!(
             r.fc_reduction < 0.99 && r.fc_reduction > 0.9,
@@ -1026,6 +1053,45 @@ mod tests {
         });
         let (edge, sh) = t.expect("truncation warning at 14 kN axial");
         assert!(edge > sh && (sh - shi).abs() < 1e-12, "{edge} {sh} {shi}");
+    }
+
+    /// ISO 76 for every groove: at the reported C0, `Qmax = 5 C0 / (Z cos α)` gives 4 200 MPa
+    /// (within the table's 2 % rounding) also for wide grooves (acbb16, 218: 4 332 and
+    /// 4 340 MPa with the table f0 unchanged), deeper grooves give a lower C0, and the
+    /// standard groove keeps the table value exactly.
+    #[test]
+    fn c0_from_4200_mpa_for_every_groove() {
+        for name in ["acbb16", "218", "6205"] {
+            let b = bearing(name);
+            let r = load_ratings(&b).unwrap();
+            let ca = b.nominal_contact_angle().cos();
+            let q = 5.0 * r.c0 / (b.z as f64 * ca);
+            // ISO 76's geometry: the contact angle in gamma, Dpw = Dw / gamma.
+            let dm_g = b.d / gamma(&b);
+            let p = |race: Race, f: f64, e: f64| {
+                PointContact::new(Curvature::ball_race(b.d, dm_g, 0.0, f, race), e).peak_pressure(q)
+            };
+            let pmax_g =
+                p(Race::Inner, b.fi, b.e_eff_inner()).max(p(Race::Outer, b.fo, b.e_eff_outer()));
+            assert!(
+                (pmax_g / STATIC_PRESSURE_LIMIT - 1.0).abs() < 0.02,
+                "{name}: {:.0} MPa at C0 {:.0} N",
+                pmax_g / 1e6,
+                r.c0
+            );
+        }
+        let mut spec = preset("6205").unwrap();
+        let std = load_ratings(&spec.clone().build().unwrap()).unwrap();
+        assert_eq!(static_groove_factor(std.gamma, 0.52, 0.53), 1.0);
+        assert_eq!(std.f0, f0(std.gamma).unwrap());
+        let mut last = std.c0;
+        for f in [0.54, 0.56, 0.58] {
+            spec.inner_curvature = Some(f);
+            spec.outer_curvature = Some(f);
+            let r = load_ratings(&spec.clone().build().unwrap()).unwrap();
+            assert!(r.c0 < last, "fi = fo = {f}: C0 {} not below {last}", r.c0);
+            last = r.c0;
+        }
     }
 }
 

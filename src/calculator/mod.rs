@@ -1,0 +1,5 @@
+//! The design calculator: the checks a bearing engineer runs beside the load distribution —
+//! subsurface stress below each contact, friction moment, and the like. Plain data in, plain
+//! data out; SI units inside.
+
+pub mod subsurface;
