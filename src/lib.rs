@@ -24,6 +24,7 @@ pub mod fsutil;
 pub mod geometry;
 pub mod lubrication;
 pub mod models;
+pub mod nesting;
 #[cfg(feature = "plot")]
 pub mod plot;
 pub mod ratings;

@@ -3,4 +3,4 @@
 # run, which runs the scene and C ABI property tests): about 128 sequences per version.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
-cargo test --quiet --features fmi --test props_fmi
+cargo test --quiet --features fmi --test props_fmi --test small_stack

@@ -356,6 +356,9 @@ impl Scene {
             what: what.into(),
             message: super::schema::user_words(&message),
         };
+        // Nesting first, without recursion: the parsers below recurse per level and a
+        // small host thread must survive any text.
+        crate::nesting::check(text).map_err(|e| parse(e.to_string()))?;
         // The untyped tree first: a list where a table belongs is named as such before
         // serde reads it by position or names a Rust type.
         let tree = if json {

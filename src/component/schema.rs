@@ -1155,6 +1155,14 @@ pub fn check(text: &str) -> Vec<Problem> {
         problems: Vec::new(),
         places: Vec::new(),
     };
+    if let Err(e) = crate::nesting::check(text) {
+        c.problems.push(Problem {
+            path: String::new(),
+            line_col: Some((e.line, e.column)),
+            message: e.to_string(),
+        });
+        return c.problems;
+    }
     let root = if json {
         match serde_json::from_str::<serde_json::Value>(text) {
             Ok(v) => from_json(&v),

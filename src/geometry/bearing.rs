@@ -491,6 +491,12 @@ impl BearingSpec {
 
     /// Parse a TOML bearing file (same fields as a preset).
     pub fn from_toml(text: &str) -> Result<BearingSpec> {
+        crate::nesting::check_toml(text, crate::nesting::MAX_NESTING).map_err(|e| {
+            Error::Parse {
+                what: "bearing file".into(),
+                message: e.to_string(),
+            }
+        })?;
         toml::from_str(text).map_err(|e| Error::Parse {
             what: "bearing file".into(),
             message: e.to_string(),

@@ -161,6 +161,13 @@ impl Sweep {
     /// Parse and check a sweep file; `dir` is the folder a relative `scene` path is taken
     /// from. Every problem at once, each with its line:column, or the sweep.
     pub fn from_text(text: &str, dir: &Path) -> std::result::Result<Sweep, Vec<Problem>> {
+        if let Err(e) = crate::nesting::check_toml(text, crate::nesting::MAX_NESTING) {
+            return Err(vec![Problem {
+                path: String::new(),
+                line_col: Some((e.line, e.column)),
+                message: e.to_string(),
+            }]);
+        }
         let (doc, errors) = toml::de::DeTable::parse_recoverable(text);
         let mut pr = Problems {
             places: Places { text, root: None },
