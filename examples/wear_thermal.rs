@@ -40,7 +40,7 @@ fn run(
 }
 
 fn wear_case(label: &str, scene: &Scene) -> Result<(), Box<dyn std::error::Error>> {
-    let layout = SlowLayout::of(scene)?;
+    let layout = SlowLayout::of(&scene.effects, &scene.validate()?)?;
     let w = scene.effects.wear.clone().expect("wear on");
     let omega = scene.inputs.initial["shaft.omega"];
     let rev_s = std::f64::consts::TAU / omega;
@@ -52,9 +52,9 @@ fn wear_case(label: &str, scene: &Scene) -> Result<(), Box<dyn std::error::Error
     let (vx, vy) = (vr("shaft.x"), vr("shaft.y"));
     let mut c = run(scene, duration, h, |c| {
         let st = c.get_state();
-        let done = layout.wear_cycles(&st).unwrap_or(0.0) as usize;
+        let done = layout.wear_cycles(&st.aux).unwrap_or(0.0) as usize;
         if done > maps.len() {
-            let (outer, inner) = layout.wear_maps(&st).expect("wear");
+            let (outer, inner) = layout.wear_maps(&st.aux).expect("wear");
             let revs = done as f64 * w.cycle_revs;
             let deepest = wear::deepest(outer).0.max(wear::deepest(inner).0);
             history.push((revs, deepest));
@@ -68,7 +68,7 @@ fn wear_case(label: &str, scene: &Scene) -> Result<(), Box<dyn std::error::Error
         }
     })?;
     let st = c.get_state();
-    let (outer, inner) = layout.wear_maps(&st).expect("wear");
+    let (outer, inner) = layout.wear_maps(&st.aux).expect("wear");
     let (d_o, a_o) = wear::deepest(outer);
     let (d_i, a_i) = wear::deepest(inner);
     let to_1um = wear::revolutions_to(&history, 1e-6);
@@ -175,7 +175,7 @@ fn wear_study() -> Result<(), Box<dyn std::error::Error>> {
 fn thermal_study() -> Result<(), Box<dyn std::error::Error>> {
     let text = std::fs::read_to_string("examples/scenes/7008ce-thermal.toml")?;
     let base = Scene::from_text(&text)?;
-    let layout = SlowLayout::of(&base)?;
+    let layout = SlowLayout::of(&base.effects, &base.validate()?)?;
     let pd = base.validate()?.pd;
     let mut rpm = vec![];
     let mut rise = [vec![], vec![], vec![], vec![]];
@@ -187,7 +187,7 @@ fn thermal_study() -> Result<(), Box<dyn std::error::Error>> {
         s.inputs.initial.insert("shaft.omega".into(), omega);
         let mut c = run(&s, s.run.duration_s, s.run.step_s, |_| {})?;
         let st = c.get_state();
-        let th = layout.thermal(&st).expect("thermal on");
+        let th = layout.thermal(&st.aux).expect("thermal on");
         let pd_op = pd + th[8];
         println!(
             "{n:>6}  {:8.2} {:8.2} {:8.2} {:8.2}   {:9.1}  {:12.4}  {:10.2}",

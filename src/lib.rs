@@ -30,6 +30,7 @@ pub mod plot;
 pub mod ratings;
 pub mod report;
 pub mod runner;
+pub mod seam;
 pub mod solver;
 pub mod summary;
 pub mod sweep;

@@ -732,26 +732,16 @@ pub fn assess_load(b: &Bearing, load: &[f64; 5], inputs: &LifeInputs) -> Result<
     assess(b, &sol, inputs)
 }
 
-/// Ratings at the mean load of a recorded run (from sample `start` on): the load on the
-/// inner ring is minus the mean bearing force `(force.x, force.y, force.z, moment.x,
-/// moment.y)`; solved again at the quasi-static level at the run's last shaft speed. What
-/// `raceway run` puts in its summary.
-pub fn assess_run(b: &Bearing, series: &crate::runner::Series, start: usize) -> Result<Assessment> {
-    let mean = |n: &str| -> f64 {
-        let c = series.column(n).unwrap_or(&[]);
-        let c = &c[start.min(c.len())..];
-        c.iter().sum::<f64>() / c.len().max(1) as f64
-    };
-    let load = ["force.x", "force.y", "force.z", "moment.x", "moment.y"].map(|n| -mean(n));
-    let omega = series
-        .column("shaft.omega")
-        .and_then(|c| c.last().copied())
-        .unwrap_or(0.0);
+/// Ratings at the mean load of a recorded run: `load` is the load on the inner ring (minus
+/// the run's mean bearing force `(force.x, force.y, force.z, moment.x, moment.y)`), solved
+/// again at the quasi-static level at the shaft speed `omega` (rad/s; the run's last). What
+/// `raceway run` puts in its summary (the run's means are taken by the summary).
+pub fn assess_run(b: &Bearing, load: &[f64; 5], omega: f64) -> Result<Assessment> {
     let inputs = LifeInputs {
         speed_rpm: crate::units::rad_s_to_rpm(omega.abs()),
         ..LifeInputs::default()
     };
-    assess_load(b, &load, &inputs)
+    assess_load(b, load, &inputs)
 }
 
 /// Correction of ISO 76's `f0` for groove radii larger than 0.52 Dw (inner) / 0.53 Dw

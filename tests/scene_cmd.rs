@@ -479,3 +479,26 @@ fn a_field_of_another_traction_law_is_located_by_the_parser() {
     assert_eq!(problems[0].line_col.map(|l| l.0), Some(5), "{problems:#?}");
     assert!(problems[0].message.contains("mu_max"), "{problems:#?}");
 }
+
+/// A scene names a catalogue bearing the way it names a preset, alone or with
+/// overrides (a maker's ball count, say).
+#[test]
+fn a_scene_accepts_a_designation() {
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/examples/scenes/209-qs-load.toml"
+    ))
+    .unwrap();
+    let s = raceway::component::Scene::from_text(
+        &text.replace("bearing = \"209\"", "bearing = \"6206\""),
+    )
+    .unwrap();
+    let b = s.validate().unwrap();
+    assert_eq!((b.name.as_str(), b.z), ("6206", 8));
+    let s = raceway::component::Scene::from_text(&text.replace(
+        "bearing = \"209\"",
+        "bearing = { preset = \"6206\", ball_count = 9 }",
+    ))
+    .unwrap();
+    assert_eq!(s.validate().unwrap().z, 9);
+}

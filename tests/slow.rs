@@ -71,15 +71,18 @@ fn no_sliding_or_no_load_gives_no_wear() {
     // Loaded but not turning: no sliding, the accumulators stay exactly zero.
     let s = scene(12.0, 0.0, 100.0, &wear_line(", regime = \"dry\""));
     let c = run(&s, 0.01);
-    let (x0, _, n) = SlowLayout::of(&s).unwrap().wear.unwrap();
+    let (x0, _, n) = SlowLayout::of(&s.effects, &s.validate().unwrap())
+        .unwrap()
+        .wear
+        .unwrap();
     let st = c.get_state();
     assert!(st.x[x0..x0 + 2 * n].iter().all(|&v| v == 0.0));
     // Turning but centred inside the clearance: no ball loaded, no wear after two cycles.
     let s = scene(0.0, 2000.0, 100.0, &wear_line(", regime = \"dry\""));
     let mut c = run(&s, 2.2 * REV);
     let st = c.get_state();
-    let layout = SlowLayout::of(&s).unwrap();
-    assert_eq!(layout.wear_cycles(&st), Some(2.0));
+    let layout = SlowLayout::of(&s.effects, &s.validate().unwrap()).unwrap();
+    assert_eq!(layout.wear_cycles(&st.aux), Some(2.0));
     assert!(st.x[x0..x0 + 2 * n].iter().all(|&v| v == 0.0));
     assert_eq!(max_depth(&mut c), 0.0);
     // The same held off-centre and turning does wear.
@@ -92,8 +95,8 @@ fn wear_concentrates_in_the_load_zone() {
     let s = scene(12.0, 2000.0, 100.0, &wear_line(", regime = \"dry\""));
     let c = run(&s, 2.2 * REV);
     let st = c.get_state();
-    let layout = SlowLayout::of(&s).unwrap();
-    let (outer, inner) = layout.wear_maps(&st).unwrap();
+    let layout = SlowLayout::of(&s.effects, &s.validate().unwrap()).unwrap();
+    let (outer, inner) = layout.wear_maps(&st.aux).unwrap();
     let (deep, angle) = wear::deepest(outer);
     // The shaft is pushed to -y: the load line is at 270 deg.
     assert!(
@@ -166,7 +169,11 @@ fn heat_balance_closes() {
     let s = scene(12.0, 2000.0, 100.0, THERMAL);
     let mut c = run(&s, 0.05);
     let st = c.get_state();
-    let th = SlowLayout::of(&s).unwrap().thermal(&st).unwrap().to_vec();
+    let th = SlowLayout::of(&s.effects, &s.validate().unwrap())
+        .unwrap()
+        .thermal(&st.aux)
+        .unwrap()
+        .to_vec();
     let cap = capacities(&s);
     let stored: f64 = (0..4).map(|k| cap[k] * th[k]).sum();
     let (generated, removed) = (th[5], th[6]);
@@ -195,7 +202,11 @@ fn growth_equals_alpha_dt_d_and_closes_the_clearance() {
     let mut c = run(&s, 0.05);
     c.refresh_outputs().unwrap();
     let st = c.get_state();
-    let th = SlowLayout::of(&s).unwrap().thermal(&st).unwrap().to_vec();
+    let th = SlowLayout::of(&s.effects, &s.validate().unwrap())
+        .unwrap()
+        .thermal(&st.aux)
+        .unwrap()
+        .to_vec();
     let b = s.validate().unwrap();
     let gamma = b.d * b.nominal_contact_angle().cos() / b.dm;
     let (di, d_o) = (b.dm * (1.0 - gamma), b.dm * (1.0 + gamma));

@@ -9,10 +9,11 @@ use super::level::LevelModel;
 use super::scene::Scene;
 use crate::error::{Error, Result};
 use crate::geometry::Bearing;
+use crate::models::LevelArgs;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
-/// Builds a level for a validated scene and its bearing (one signature for every level).
-pub type Build = fn(&Scene, &Bearing) -> Result<Box<dyn LevelModel>>;
+/// Builds a level from plain data (one signature for every level).
+pub type Build = fn(&LevelArgs) -> Result<Box<dyn LevelModel>>;
 
 /// What the component knows about a level.
 #[derive(Clone, Copy)]
@@ -153,7 +154,17 @@ impl Level {
                 ),
             ));
         }
-        (entry.build)(scene, b)
+        let m = &scene.model;
+        (entry.build)(&LevelArgs {
+            bearing: b,
+            race_control: m.race_control,
+            ring_dof: m.ring_dof,
+            contact_damping: m.contact_damping,
+            operating_point: &m.operating_point,
+            skidding: &m.skidding,
+            full: &m.full,
+            effects: &scene.effects,
+        })
     }
 }
 
@@ -212,12 +223,8 @@ impl<'de> Deserialize<'de> for Level {
     }
 }
 
-/// Kinematic cage speed for the nominal contact angle, outer ring fixed:
-/// `omega_c = omega (1 - gamma) / 2` (docs/physics.md §1).
-pub fn cage_speed(b: &Bearing, omega: f64) -> f64 {
-    use crate::geometry::kinematics as kin;
-    kin::cage_speed(kin::gamma(b, b.nominal_contact_angle()), omega, 0.0)
-}
+/// Kinematic cage speed for the nominal contact angle (written once, in the geometry).
+pub use crate::geometry::kinematics::nominal_cage_speed as cage_speed;
 
 #[cfg(test)]
 mod tests {

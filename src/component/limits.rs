@@ -43,11 +43,8 @@ pub const P_CONTACT_MAX: f64 = 7.5e9;
 /// Hoop stress taken as the burst limit of a spinning inner ring, Pa.
 pub const SIGMA_RING_MAX: f64 = 2.5e9;
 
-/// Smallest regularising slip speed of a traction or pocket friction law, m/s. A law
-/// `mu(dv) = mu_max tanh(dv/v_s)` with `v_s` below it is a step no integrator resolves:
-/// elastic creep alone (Kalker) slips a rolling contact by ~1e-4 of its rolling speed,
-/// mm/s at the slowest speeds a bearing model is run at, three orders above this floor.
-pub const SLIP_SPEED_MIN: f64 = 1e-6;
+/// Smallest regularising slip speed (declared beside the traction laws).
+pub use crate::contact::traction::SLIP_SPEED_MIN;
 
 /// Plausible ranges of a bearing's inputs (symmetric: `|value| <= limit`), SI.
 #[derive(Debug, Clone, Copy, PartialEq)]

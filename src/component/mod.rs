@@ -147,7 +147,9 @@ impl Component {
     /// `crate::wear_cycles`); `None` for the other levels. Changing the profile makes the
     /// outputs stale.
     pub fn skidding_mut(&mut self) -> Option<&mut crate::models::skidding::level::SkiddingLevel> {
-        self.level.as_skidding_mut()
+        self.level
+            .as_any_mut()
+            .and_then(|l| l.downcast_mut::<crate::models::skidding::level::SkiddingLevel>())
     }
     /// The causality.
     pub fn causality(&self) -> Causality {

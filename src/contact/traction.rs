@@ -40,9 +40,13 @@
 //!   by Newton's method (one root, as `f_f` falls with `dT`), so the law stays a
 //!   continuous function of the slip.
 
-use crate::component::fields::{choice, closed, ge, gt, number, table, ANY};
-use crate::component::limits::SLIP_SPEED_MIN;
+use crate::seam::fields::{choice, closed, ge, gt, number, table, ANY};
 use std::f64::consts::PI;
+/// Smallest regularising slip speed of a traction or pocket friction law, m/s. A law
+/// `mu(dv) = mu_max tanh(dv/v_s)` with `v_s` below it is a step no integrator resolves:
+/// elastic creep alone (Kalker) slips a rolling contact by ~1e-4 of its rolling speed,
+/// mm/s at the slowest speeds a bearing model is run at, three orders above this floor.
+pub const SLIP_SPEED_MIN: f64 = 1e-6;
 
 /// Where [`tanh`]'s quotient is exactly `1.0` in `f64`.
 const TANH_ONE: f64 = 19.0;
@@ -425,7 +429,7 @@ impl TractionLaw {
     /// Check the coefficients against [`TractionLaw::FIELDS`]; errors name
     /// `field.<coefficient>`.
     pub fn validate(&self, field: &str) -> crate::error::Result<()> {
-        use crate::component::fields::check;
+        use crate::seam::fields::check;
         check(field, Self::FIELDS, self)?;
         if let TractionLaw::MixedEhl(m) = self {
             check(&format!("{field}.fit"), AsperityFit::FIELDS, &m.fit)?;

@@ -7,10 +7,10 @@
 //! by `Pd = 2 A (1 - cos alpha0)` (docs/physics.md §1).
 
 use super::material::{effective_modulus, Material};
-use crate::component::fields::{
+use crate::error::{Error, Result};
+use crate::seam::fields::{
     between, choice, gt, integer, name_or_table, number, table, text, Names, ANY,
 };
-use crate::error::{Error, Result};
 use crate::units::{deg, mm, um};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
@@ -286,8 +286,8 @@ impl BearingSpec {
     pub fn build(&self) -> Result<Bearing> {
         // Every field within its declared row ([`BearingSpec::FIELDS`], [`CageSpec::FIELDS`]);
         // the rules across fields follow.
-        crate::component::fields::check("bearing", Self::FIELDS, self)?;
-        crate::component::fields::check("bearing.cage", CageSpec::FIELDS, &self.cage)?;
+        crate::seam::fields::check("bearing", Self::FIELDS, self)?;
+        crate::seam::fields::check("bearing.cage", CageSpec::FIELDS, &self.cage)?;
         let d = mm(self.ball_diameter_mm);
         let dm = mm(self.pitch_diameter_mm);
         let z = self.ball_count as usize;

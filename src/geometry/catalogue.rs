@@ -285,29 +285,6 @@ mod tests {
         assert!(lookup("7205").is_none() && lookup("6221").is_none() && lookup("62x6").is_none());
     }
 
-    /// A scene names a catalogue bearing the way it names a preset, alone or with
-    /// overrides (a maker's ball count, say).
-    #[test]
-    fn a_scene_accepts_a_designation() {
-        let text = std::fs::read_to_string(concat!(
-            env!("CARGO_MANIFEST_DIR"),
-            "/examples/scenes/209-qs-load.toml"
-        ))
-        .unwrap();
-        let s = crate::component::Scene::from_text(
-            &text.replace("bearing = \"209\"", "bearing = \"6206\""),
-        )
-        .unwrap();
-        let b = s.validate().unwrap();
-        assert_eq!((b.name.as_str(), b.z), ("6206", 8));
-        let s = crate::component::Scene::from_text(&text.replace(
-            "bearing = \"209\"",
-            "bearing = { preset = \"6206\", ball_count = 9 }",
-        ))
-        .unwrap();
-        assert_eq!(s.validate().unwrap().z, 9);
-    }
-
     /// The estimate applied to the envelopes of the presets whose internal geometry is
     /// known. Prints the table docs/catalogue.md quotes; asserts the bounds it states.
     #[test]

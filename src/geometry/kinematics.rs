@@ -67,6 +67,12 @@ pub fn kinematics_at(b: &Bearing, alpha: f64, omega_i: f64, omega_o: f64) -> Kin
     }
 }
 
+/// Kinematic cage speed for the nominal contact angle, outer ring fixed:
+/// `omega_c = omega (1 - gamma) / 2` (docs/physics.md §1).
+pub fn nominal_cage_speed(b: &Bearing, omega: f64) -> f64 {
+    cage_speed(gamma(b, b.nominal_contact_angle()), omega, 0.0)
+}
+
 /// Kinematics at the nominal contact angle with the outer ring fixed.
 pub fn kinematics(b: &Bearing, omega_i: f64) -> Kinematics {
     kinematics_at(b, b.nominal_contact_angle(), omega_i, 0.0)

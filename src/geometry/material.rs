@@ -4,8 +4,8 @@
 //! (Harris & Kotzalas, *Rolling Bearing Analysis* 5th ed., Vol. 1, Table 5.x; supplier sheets
 //! for the ceramics) and only matter for the thermal model.
 
-use crate::component::fields::{between, ge, gt, number, text};
 use crate::error::{Error, Result};
+use crate::seam::fields::{between, ge, gt, number, text};
 use serde::{Deserialize, Serialize};
 
 /// Mechanical and thermal properties of one body, SI units.
@@ -77,7 +77,7 @@ impl Material {
 
     /// Check every field; errors name `prefix.field`.
     pub fn validate(&self, prefix: &str) -> Result<()> {
-        crate::component::fields::check(prefix, Self::FIELDS, self)?;
+        crate::seam::fields::check(prefix, Self::FIELDS, self)?;
         Ok(())
     }
 

@@ -13,12 +13,12 @@
 
 use super::defects::{Defect, DefectSite};
 use super::waviness::{spacing_offsets, Harmonic, WavySite};
-use crate::component::fields::{
-    between, check, choice, closed, ge, gt, integer, name, number, Names, ANY,
-};
 use crate::error::{Error, Result};
 use crate::geometry::{kinematics, Bearing};
 use crate::lubrication::Lubricant;
+use crate::seam::fields::{
+    between, check, choice, closed, ge, gt, integer, name, number, Names, ANY,
+};
 use serde::{Deserialize, Serialize};
 
 /// Which element a defect or a waviness sits on.
@@ -617,18 +617,12 @@ impl ProfileAt<'_> {
 
 #[cfg(test)]
 mod tests {
-    use crate::component::Scene;
-
     /// The prepared profile (one `sin_cos` per harmonic) gives the per-ball reference
     /// `offset` to rounding, for race and ball harmonics, scattered balls and a defect, at
     /// small and large cage angles.
     #[test]
     fn prepared_profile_matches_offset() {
         let text = r#"
-bearing = "7008ce"
-[model]
-level = "ring"
-[effects]
 waviness = [
   { race = "outer", order = 16, amplitude_um = 0.3, phase_deg = 10.0 },
   { race = "inner", order = 15, amplitude_um = 0.2, phase_deg = 30.0 },
@@ -638,9 +632,9 @@ waviness = [
 defects = [{ race = "outer", angle_deg = 200.0, width_mm = 1.0, depth_um = 5.0 }]
 ball_spacing = { scatter = 0.5, seed = 7 }
 "#;
-        let scene = Scene::from_text(text).unwrap();
-        let b = scene.build_bearing().unwrap();
-        let fx = super::RingEffects::new(&scene.effects, &b).unwrap();
+        let effects: super::Effects = toml::from_str(text).unwrap();
+        let b = crate::geometry::preset("7008ce").unwrap().build().unwrap();
+        let fx = super::RingEffects::new(&effects, &b).unwrap();
         assert_eq!(fx.spacing.len(), b.z);
         let a_sum = 0.65e-6;
         let pitch = 2.0 * std::f64::consts::PI / b.z as f64;

@@ -283,7 +283,18 @@ fn cage_lines(c: &Ctx, s: &mut Summary) {
 /// ISO ratings, life, static safety and warnings at the run's mean load over the second
 /// half (crate::ratings).
 fn rating_lines(c: &Ctx, s: &mut Summary) {
-    let rating = crate::ratings::assess_run(c.comp.bearing(), c.series, c.start);
+    let mean = |n: &str| -> f64 {
+        let col = c.series.column(n).unwrap_or(&[]);
+        let col = &col[c.start.min(col.len())..];
+        col.iter().sum::<f64>() / col.len().max(1) as f64
+    };
+    let load = ["force.x", "force.y", "force.z", "moment.x", "moment.y"].map(|n| -mean(n));
+    let omega = c
+        .series
+        .column("shaft.omega")
+        .and_then(|col| col.last().copied())
+        .unwrap_or(0.0);
+    let rating = crate::ratings::assess_run(c.comp.bearing(), &load, omega);
     match &rating {
         Ok(a) => s.text += &format!("at the mean load of the second half:\n{}", a.text()),
         Err(e) => s.line(format!("ratings and life: not available ({e})")),

@@ -220,8 +220,8 @@ impl Checker<'_> {
             };
             let cnorm = normalise_child(norm, key);
             self.places.push((cpath.clone(), kofs.or(*vofs)));
-            if norm == "inputs.initial" && !Names::InputVariable.contains(key) {
-                let list = Names::InputVariable.list();
+            if norm == "inputs.initial" && !input_names().iter().any(|n| n == key) {
+                let list = input_names();
                 let hint = nearest(key, list.iter().map(String::as_str))
                     .map(|n| format!(" (did you mean `{n}`?)"))
                     .unwrap_or_default();
@@ -356,7 +356,6 @@ impl Checker<'_> {
                         Names::BearingPreset => "bearing preset",
                         Names::Material => "material",
                         Names::Lubricant => "lubricant",
-                        Names::InputVariable => "input variable",
                     };
                     self.report(
                         path,
@@ -582,4 +581,17 @@ pub(super) fn line_col_in(message: &str) -> Option<(usize, usize)> {
         .or_else(|| rest.split_once(" column "))?;
     let c: String = rest.chars().take_while(char::is_ascii_digit).collect();
     Some((l.trim().parse().ok()?, c.parse().ok()?))
+}
+
+/// Input variables of either causality ([`crate::component::variables::SCALARS`]): the
+/// keys `inputs.initial` takes.
+fn input_names() -> Vec<String> {
+    use crate::component::variables;
+    variables::SCALARS
+        .iter()
+        .filter(|v| {
+            v.is_input(variables::Causality::Motion) || v.is_input(variables::Causality::Load)
+        })
+        .map(|v| v.name.to_string())
+        .collect()
 }

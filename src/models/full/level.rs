@@ -12,12 +12,12 @@
 //! wrench with the level's states held (the quasi-static ball positions re-solved: they
 //! are not states), on a scratch copy of `aux` so that the outputs never change the run.
 
-use crate::component::level::{Jacobians, LevelModel, LevelOutputs, Motion, Point};
-use crate::component::levels::cage_speed;
-use crate::component::Scene;
 use crate::error::{Error, Result};
+use crate::geometry::kinematics::nominal_cage_speed as cage_speed;
 use crate::geometry::Bearing;
 use crate::models::full::{FullModel, FullParams, Totals};
+use crate::models::LevelArgs;
+use crate::seam::{Jacobians, LevelModel, LevelOutputs, Motion, Point};
 
 /// The level.
 #[derive(Debug)]
@@ -76,11 +76,11 @@ impl FullLevel {
 
 /// The registry's constructor ([`crate::component::levels::LEVELS`]): the scene's
 /// `[model.full]` options with its race control.
-pub fn build(scene: &Scene, b: &Bearing) -> Result<Box<dyn LevelModel>> {
-    let m = &scene.model;
+pub fn build(a: &LevelArgs) -> Result<Box<dyn LevelModel>> {
+    let b = a.bearing;
     Ok(Box::new(FullLevel::new(
         b,
-        m.full.params(b, m.race_control)?,
+        a.full.params(b, a.race_control)?,
     )?))
 }
 

@@ -1,10 +1,10 @@
 //! `[model.full]`: the full level's scene spec, its fields declared once, and its validated
 //! model parameters.
 
-use crate::component::fields::{choice, closed, gt, number, table};
 use crate::error::Result;
 use crate::geometry::Bearing;
 use crate::models::quasi_static::RaceControl;
+use crate::seam::fields::{choice, closed, gt, number, table};
 use serde::{Deserialize, Serialize};
 
 /// `[model.full]`: options of the full level (SI unless the name says otherwise); see
@@ -59,7 +59,7 @@ crate::declare_fields!(FullSpec {
         .note("absent: the bearing's cage pocket clearance"),
     pocket_friction: 0.1 => number("-", closed(0.0, 2.0), "full level: ball–pocket friction coefficient"),
     pocket_roughness_um: 0.3 => number("µm", closed(0.0, 1e3), "full level: composite roughness of ball and pocket"),
-    pocket_v_s: 0.05 => number("m/s", closed(crate::component::limits::SLIP_SPEED_MIN, 1e3), "full level: regularising slip speed of the pocket friction"),
+    pocket_v_s: 0.05 => number("m/s", closed(crate::contact::traction::SLIP_SPEED_MIN, 1e3), "full level: regularising slip speed of the pocket friction"),
     guide_width_mm: None => number("mm", gt(0.0), "full level: guide land width")
         .note("absent: half the cage width"),
     guide_stiffness: 1e7 => number("N/m", gt(0.0), "full level: guide-land contact stiffness beyond guide_eps_max"),
@@ -81,7 +81,7 @@ impl FullSpec {
         race_control: RaceControl,
     ) -> Result<crate::models::full::FullParams> {
         self.traction.validate("model.full.traction")?;
-        crate::component::fields::check("model.full", Self::FIELDS, self)?;
+        crate::seam::fields::check("model.full", Self::FIELDS, self)?;
         Ok(crate::models::full::FullParams {
             traction: self.traction,
             ball_contacts: self.ball_contacts,

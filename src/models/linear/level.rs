@@ -4,13 +4,12 @@
 //! `K` is the exact Jones–Harris stiffness at the operating point; `C` is the contact
 //! damping of the ring level (`model.contact_damping` per loaded ball) at `q0`.
 
-use crate::component::level::{LevelModel, LevelOutputs, Motion, Point};
-use crate::component::levels::cage_speed;
-use crate::component::scene::Scene;
 use crate::error::Result;
-use crate::geometry::Bearing;
+use crate::geometry::kinematics::nominal_cage_speed as cage_speed;
 use crate::models::quasi_static::{Options, QuasiStatic};
 use crate::models::ring::{RingDof, RingEval, RingModel};
+use crate::models::LevelArgs;
+use crate::seam::{LevelModel, LevelOutputs, Motion, Point};
 use crate::units::rpm_to_rad_s;
 
 /// The level.
@@ -28,12 +27,13 @@ pub struct LinearLevel {
 
 impl LinearLevel {
     /// Linearise at the scene's operating point.
-    pub fn new(scene: &Scene, b: &Bearing) -> Result<Self> {
-        let op = &scene.model.operating_point;
+    pub fn new(a: &LevelArgs) -> Result<Self> {
+        let b = a.bearing;
+        let op = a.operating_point;
         let qs = QuasiStatic::new(
             b,
             Options {
-                race_control: scene.model.race_control,
+                race_control: a.race_control,
                 ..Options::default()
             },
         )?;
@@ -41,7 +41,7 @@ impl LinearLevel {
             &[op.fx, op.fy, op.fz, op.mx, op.my],
             rpm_to_rad_s(op.speed_rpm),
         )?;
-        let ring = RingModel::new(b, RingDof::Five, scene.model.contact_damping);
+        let ring = RingModel::new(b, RingDof::Five, a.contact_damping);
         let mut e = RingEval::default();
         ring.eval(0.0, 0.0, &sol.q, &[0.0; 5], 0.0, None, true, &mut e);
         let mut max_p: f64 = 0.0;
@@ -77,8 +77,8 @@ impl LinearLevel {
 }
 
 /// The registry's constructor ([`crate::component::levels::LEVELS`]).
-pub fn build(scene: &Scene, b: &Bearing) -> Result<Box<dyn LevelModel>> {
-    Ok(Box::new(LinearLevel::new(scene, b)?))
+pub fn build(a: &LevelArgs) -> Result<Box<dyn LevelModel>> {
+    Ok(Box::new(LinearLevel::new(a)?))
 }
 
 impl LevelModel for LinearLevel {

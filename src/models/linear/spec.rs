@@ -1,6 +1,6 @@
 //! `[model.operating_point]`: the linear level's scene spec, its fields declared once.
 
-use crate::component::fields::{number, ANY};
+use crate::seam::fields::{number, ANY};
 use serde::{Deserialize, Serialize};
 
 /// The operating point the `linear` level linearises about.

@@ -7,13 +7,12 @@
 //! level: `c d(delta)/dt` along each loaded ball's contact line (the ring level's massless
 //! ball geometry), blended in over the first 0.1 µm of approach; off (no cost) at 0.
 
-use crate::component::level::{LevelModel, LevelOutputs, Motion, Point};
-use crate::component::levels::cage_speed;
-use crate::component::scene::Scene;
 use crate::error::Result;
-use crate::geometry::Bearing;
+use crate::geometry::kinematics::nominal_cage_speed as cage_speed;
 use crate::models::quasi_static::{BallState, Options, QuasiStatic};
 use crate::models::ring::{RingDof, RingEval, RingModel};
+use crate::models::LevelArgs;
+use crate::seam::{LevelModel, LevelOutputs, Motion, Point};
 use std::f64::consts::PI;
 
 /// Values per ball in the component's `aux`: `X` (2), the groove offset it was solved at
@@ -34,9 +33,10 @@ pub struct QuasiStaticLevel {
 
 impl QuasiStaticLevel {
     /// Build for the scene's bearing and race control.
-    pub fn new(scene: &Scene, b: &Bearing) -> Result<Self> {
+    pub fn new(a: &LevelArgs) -> Result<Self> {
+        let b = a.bearing;
         let opts = Options {
-            race_control: scene.model.race_control,
+            race_control: a.race_control,
             ..Options::default()
         };
         let qs = QuasiStatic::new(b, opts)?;
@@ -45,9 +45,9 @@ impl QuasiStaticLevel {
             cage_ratio: cage_speed(b, 1.0),
             psi: vec![0.0; b.z],
             balls: vec![BallState::default(); b.z],
-            damping: (scene.model.contact_damping > 0.0).then(|| {
+            damping: (a.contact_damping > 0.0).then(|| {
                 (
-                    RingModel::new(b, RingDof::Five, scene.model.contact_damping),
+                    RingModel::new(b, RingDof::Five, a.contact_damping),
                     RingModel::new(b, RingDof::Five, 0.0),
                     RingEval::default(),
                     RingEval::default(),
@@ -110,8 +110,8 @@ impl QuasiStaticLevel {
 }
 
 /// The registry's constructor ([`crate::component::levels::LEVELS`]).
-pub fn build(scene: &Scene, b: &Bearing) -> Result<Box<dyn LevelModel>> {
-    Ok(Box::new(QuasiStaticLevel::new(scene, b)?))
+pub fn build(a: &LevelArgs) -> Result<Box<dyn LevelModel>> {
+    Ok(Box::new(QuasiStaticLevel::new(a)?))
 }
 
 impl LevelModel for QuasiStaticLevel {

@@ -23,13 +23,9 @@
 //! `time_scale`, on its own step ([`ThermalModel::advance`]). This file is the glue: the
 //! memory layout and which physics runs when.
 
-use crate::component::level::{
-    wrenches_by_rhs, Jacobians, LevelModel, LevelOutputs, Motion, Point, Points,
-};
-use crate::component::levels::cage_speed;
-use crate::component::{Scene, State};
 use crate::contact::{Curvature, PointContact, Race};
 use crate::error::Result;
+use crate::geometry::kinematics::nominal_cage_speed as cage_speed;
 use crate::geometry::Bearing;
 use crate::lubrication::entrainment_speed;
 use crate::models::effects::{Effects, FilmKind, RingEffects, WearRegime};
@@ -37,6 +33,8 @@ use crate::models::ring::{Profile, RingDof, RingEval, RingJacobian, RingModel};
 use crate::models::thermal::{ContactSums, ThermalModel, ThermalParams};
 use crate::models::waviness::WavySite;
 use crate::models::wear::{self, FactorsAt, FilmDefect, WearLaw};
+use crate::models::LevelArgs;
+use crate::seam::{wrenches_by_rhs, Jacobians, LevelModel, LevelOutputs, Motion, Point, Points};
 use std::cell::Cell;
 
 /// Kelvin at 0 °C.
@@ -54,14 +52,12 @@ pub struct SlowLayout {
 pub use crate::models::thermal::THERMAL_SLOTS;
 
 impl SlowLayout {
-    /// The layout a scene's ring level uses.
-    pub fn of(scene: &Scene) -> Result<SlowLayout> {
-        let b = scene.validate()?;
-        let e = &scene.effects;
+    /// The layout a ring level with effects `e` on bearing `b` uses.
+    pub fn of(e: &Effects, b: &Bearing) -> Result<SlowLayout> {
         let nx = if e.is_off() {
             1
         } else {
-            1 + RingEffects::new(e, &b)?.needs_shaft_angle as usize
+            1 + RingEffects::new(e, b)?.needs_shaft_angle as usize
         };
         let wear = e.wear.as_ref().map(|w| (nx, 0, w.cells as usize));
         let thermal = e
@@ -73,22 +69,23 @@ impl SlowLayout {
 
     /// Wear maps acting on the clearance `(outer, inner)`, m per cell (cell `k` centred at
     /// `2 pi k / n`; outer in the fixed frame, inner in the shaft's).
-    pub fn wear_maps<'a>(&self, st: &'a State) -> Option<(&'a [f64], &'a [f64])> {
+    /// `aux` is the component state's memory (`State::aux`).
+    pub fn wear_maps<'a>(&self, aux: &'a [f64]) -> Option<(&'a [f64], &'a [f64])> {
         let (_, a0, n) = self.wear?;
-        Some((&st.aux[a0..a0 + n], &st.aux[a0 + n..a0 + 2 * n]))
+        Some((&aux[a0..a0 + n], &aux[a0 + n..a0 + 2 * n]))
     }
 
     /// Wear cycles done.
-    pub fn wear_cycles(&self, st: &State) -> Option<f64> {
+    pub fn wear_cycles(&self, aux: &[f64]) -> Option<f64> {
         let (_, a0, n) = self.wear?;
-        Some(st.aux[a0 + 4 * n + 1])
+        Some(aux[a0 + 4 * n + 1])
     }
 
     /// Thermal block: `[dT inner, dT outer, dT balls, dT oil]` (K), last update time (s),
     /// energy generated and removed (J), power loss (W), clearance change (m).
-    pub fn thermal<'a>(&self, st: &'a State) -> Option<&'a [f64]> {
+    pub fn thermal<'a>(&self, aux: &'a [f64]) -> Option<&'a [f64]> {
         let a0 = self.thermal?;
-        Some(&st.aux[a0..a0 + THERMAL_SLOTS])
+        Some(&aux[a0..a0 + THERMAL_SLOTS])
     }
 }
 
@@ -498,18 +495,17 @@ fn profile_max(fx: &RingEffects) -> f64 {
 
 /// The registry's constructor ([`crate::component::levels::LEVELS`]): 2 or 5 ring
 /// coordinates (`model.ring_dof`), contact damping and the scene's effects.
-pub fn build(scene: &Scene, b: &Bearing) -> Result<Box<dyn LevelModel>> {
-    let m = &scene.model;
-    let dof = if m.ring_dof == 5 {
+pub fn build(a: &LevelArgs) -> Result<Box<dyn LevelModel>> {
+    let dof = if a.ring_dof == 5 {
         RingDof::Five
     } else {
         RingDof::Two
     };
     Ok(Box::new(RingLevel::with_effects(
-        b,
+        a.bearing,
         dof,
-        m.contact_damping,
-        &scene.effects,
+        a.contact_damping,
+        a.effects,
     )?))
 }
 
@@ -903,19 +899,13 @@ mod tests {
                 }
             }
         }
-        let scene = |effects: &str| {
-            Scene::from_text(&format!(
-                "bearing = \"6205\"\n[model]\nlevel = \"ring\"\ncausality = \"load\"\n[effects]\n{effects}\n"
-            ))
-            .unwrap()
-        };
         let b = preset("6205").unwrap().build().unwrap();
         for effects in [
             "lubrication = { film = \"ehl\", lubricant = \"study2\" }",
             "defects = [{ race = \"outer\", angle_deg = 0.0, width_mm = 1.0, depth_um = 10.0 }]",
         ] {
-            let s = scene(effects);
-            let mut l = build(&s, &b).unwrap();
+            let e: Effects = toml::from_str(effects).unwrap();
+            let mut l = RingLevel::with_effects(&b, RingDof::Two, 0.0, &e).unwrap();
             let m = Motion {
                 q: [0.0, -1e-5, 0.0, 0.0, 0.0],
                 v: [0.0; 5],

@@ -7,11 +7,11 @@
 //! component's repeated evaluations of the same point (outputs, the base of its `dF/dt`
 //! difference, the next step's first stage and `df/dt`) cost nothing.
 
-use crate::component::level::{Jacobians, LevelModel, LevelOutputs, Motion, Point};
-use crate::component::Scene;
 use crate::error::{Error, Result};
 use crate::geometry::Bearing;
 use crate::models::skidding::{BallState, SkidTotals, SkiddingModel, SkiddingParams, BALL0};
+use crate::models::LevelArgs;
+use crate::seam::{Jacobians, LevelModel, LevelOutputs, Motion, Point};
 
 /// Skidding level.
 #[derive(Debug)]
@@ -98,14 +98,14 @@ impl SkiddingLevel {
 
 /// The registry's constructor ([`crate::component::levels::LEVELS`]): the scene's
 /// `[model.skidding]` options with its contact damping.
-pub fn build(scene: &Scene, b: &Bearing) -> Result<Box<dyn LevelModel>> {
-    let mut p = scene.model.skidding.params(b)?;
-    p.contact_damping = scene.model.contact_damping;
-    Ok(Box::new(SkiddingLevel::new(b, p)?))
+pub fn build(a: &LevelArgs) -> Result<Box<dyn LevelModel>> {
+    let mut p = a.skidding.params(a.bearing)?;
+    p.contact_damping = a.contact_damping;
+    Ok(Box::new(SkiddingLevel::new(a.bearing, p)?))
 }
 
 impl LevelModel for SkiddingLevel {
-    fn as_skidding_mut(&mut self) -> Option<&mut SkiddingLevel> {
+    fn as_any_mut(&mut self) -> Option<&mut dyn std::any::Any> {
         Some(self)
     }
     fn ball_loads(&self) -> Option<Vec<(f64, f64, f64)>> {

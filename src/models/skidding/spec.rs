@@ -1,9 +1,9 @@
 //! `[model.skidding]`: the skidding level's scene spec, its fields declared once, and its
 //! validated model parameters.
 
-use crate::component::fields::{closed, flag, ge, gt, integer, number, table};
 use crate::error::Result;
 use crate::geometry::Bearing;
+use crate::seam::fields::{closed, flag, ge, gt, integer, number, table};
 use serde::{Deserialize, Serialize};
 
 /// `[model.skidding]`: options of the skidding level (SI unless the name says otherwise).
@@ -67,7 +67,7 @@ impl SkiddingSpec {
     /// Validated model parameters for bearing `b`; errors name `model.skidding.<field>`.
     pub fn params(&self, b: &Bearing) -> Result<crate::models::skidding::SkiddingParams> {
         self.traction.validate("model.skidding.traction")?;
-        crate::component::fields::check("model.skidding", Self::FIELDS, self)?;
+        crate::seam::fields::check("model.skidding", Self::FIELDS, self)?;
         let cp = self
             .pocket_clearance_mm
             .map_or(b.cage.pocket_clearance, |v| v * 1e-3);

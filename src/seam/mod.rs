@@ -1,0 +1,212 @@
+//! The seam between the component and the physics: every model level implements
+//! [`LevelModel`]. The component owns time, inputs, the integrator, transactions and the
+//! variable table; a level owns its states and its physics. A new level (skidding, full
+//! dynamics) or effect (defects, waviness, EHL, wear, thermal) plugs in here and is seen
+//! by the C ABI and the FMUs without any change to them.
+
+pub mod fields;
+
+use crate::error::Result;
+
+/// The inner ring's motion at one instant (SI): displacement `q = (x, y, z, rx, ry)`, its
+/// rate `v`, and the spin speed `omega`.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Motion {
+    /// Displacement and tilts.
+    pub q: [f64; 5],
+    /// Velocities and tilt rates.
+    pub v: [f64; 5],
+    /// Spin speed about z, rad/s.
+    pub omega: f64,
+}
+
+/// Where a level is evaluated: time `t`, the ring's motion `m`, the level's states `x` and
+/// its memory `aux` (warm starts, which the evaluation may update).
+#[derive(Debug)]
+pub struct Point<'a> {
+    /// Time, s.
+    pub t: f64,
+    /// The ring's motion.
+    pub m: &'a Motion,
+    /// The level's states (length `n_states`).
+    pub x: &'a [f64],
+    /// The level's memory (length `n_aux`).
+    pub aux: &'a mut [f64],
+}
+
+impl<'a> Point<'a> {
+    /// The point `(t, m, x, aux)`.
+    pub fn new(t: f64, m: &'a Motion, x: &'a [f64], aux: &'a mut [f64]) -> Self {
+        Point { t, m, x, aux }
+    }
+}
+
+/// The Jacobians a level fills ([`LevelModel::jacobian`]). With `n = n_states`, all
+/// row-major: `jx = d(rates)/d(states)` (`n × n`), `jm = d(rates)/d(q, v)` (`n × 10`),
+/// `wx = d(wrench)/d(states)` (`5 × n`), `wm = d(wrench)/d(q, v)` (`5 × 10`).
+/// Motion-driven, `jm`, `wx` and `wm` are empty (not needed).
+#[derive(Debug)]
+pub struct Jacobians<'a> {
+    /// `d(rates)/d(states)`.
+    pub jx: &'a mut [f64],
+    /// `d(rates)/d(q, v)`.
+    pub jm: &'a mut [f64],
+    /// `d(wrench)/d(states)`.
+    pub wx: &'a mut [f64],
+    /// `d(wrench)/d(q, v)`.
+    pub wm: &'a mut [f64],
+}
+
+/// What a level reports at a communication point. Fields a level does not model stay 0.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct LevelOutputs {
+    /// `(Fx, Fy, Fz, Mx, My)` on the shaft.
+    pub wrench: [f64; 5],
+    /// Friction torque on the shaft about z, N m.
+    pub torque: f64,
+    /// Stiffness `-dF/dq`.
+    pub k: [[f64; 5]; 5],
+    /// Damping `-dF/dv`.
+    pub c: [[f64; 5]; 5],
+    /// Cage speed, rad/s.
+    pub cage_omega: f64,
+    /// Cage slip ratio.
+    pub cage_slip: f64,
+    /// Balls in contact.
+    pub balls_loaded: f64,
+    /// Largest contact load, N.
+    pub max_load: f64,
+    /// Largest Hertz peak pressure, Pa.
+    pub max_pressure: f64,
+    /// Thinnest EHL film, m.
+    pub film_min: f64,
+    /// Friction power, W.
+    pub power_loss: f64,
+    /// Deepest wear, m.
+    pub wear_max: f64,
+    /// Cage-centre displacement `(x, y)` in units of the guide clearance.
+    pub cage_xy: [f64; 2],
+    /// Speed of the cage centre, m/s.
+    pub cage_speed: f64,
+    /// Largest ball-pocket force, N.
+    pub pocket_force: f64,
+    /// Cage guide-land force, N.
+    pub guide_force: f64,
+}
+
+/// One model level.
+pub trait LevelModel: Send + std::fmt::Debug {
+    /// Number of continuous states the level integrates (cage angle, ball states, ...).
+    fn n_states(&self) -> usize;
+    /// Number of algebraic/memory values (warm starts) kept in the component state.
+    fn n_aux(&self) -> usize {
+        0
+    }
+    /// The level as `Any`, for a caller that knows a concrete level (the wear cycles take
+    /// the skidding level's per-ball contacts and outer-race wear profile); `None`
+    /// (default) for levels nobody needs to see.
+    fn as_any_mut(&mut self) -> Option<&mut dyn std::any::Any> {
+        None
+    }
+    /// The level's own ball loads at its last evaluation, `(azimuth rad, inner N, outer
+    /// N)` per ball, when it resolves the balls itself; `None` (default) otherwise.
+    fn ball_loads(&self) -> Option<Vec<(f64, f64, f64)>> {
+        None
+    }
+    /// Which ring coordinates the level resolves (load-driven integrates only these).
+    fn ring_dofs(&self) -> &'static [usize] {
+        &[0, 1, 2, 3, 4]
+    }
+    /// Block structure of the level's states for a structured linear solver: `Some((nb,
+    /// s))` when the first `nb·s` states form `nb` independent blocks of `s` (no rate of
+    /// one block depends on another block's states) and the rest, with the ring's states,
+    /// form the border ([`crate::solver::BlockArrowhead`]). `None` (default): dense.
+    fn blocks(&self) -> Option<(usize, usize)> {
+        None
+    }
+    /// Absolute tolerances of the level's states, given the scene's displacement
+    /// tolerance `atol_m`: fill `atol` (length `n_states`) and return `true`, or return
+    /// `false` (the default) to let the component treat every state as an angle.
+    fn state_atol(&self, _atol_m: f64, _atol: &mut [f64]) -> bool {
+        false
+    }
+    /// Jacobians of the level at `p` into `j` (optional; `false`, the default, lets the
+    /// integrator difference the whole right-hand side). Must not allocate.
+    fn jacobian(&mut self, _p: Point<'_>, _j: Jacobians<'_>) -> bool {
+        false
+    }
+    /// Whether the states' rates depend on the motion inputs (and time) only, never on the
+    /// states or the level's memory: then a motion-driven step integrates them by
+    /// quadrature instead of an adaptive integrator (the cage angle at a fixed ratio of the
+    /// shaft speed). Default `false`.
+    fn states_are_quadrature(&self) -> bool {
+        false
+    }
+    /// Whether the rates and the wrench at a point are a function of the motion, the
+    /// states and the memory alone: not of the time `p.t`, no memory outside `aux`, and
+    /// `rhs` writes nothing in `aux`. Then, with inputs that do not move within a step:
+    /// `∂f/∂t` is exactly zero (the component gives the Rosenbrock methods zeros instead
+    /// of a forward difference that would give them too), and DOPRI5 may start a step with
+    /// the last stage of the step before (first same as last across steps) when nothing
+    /// that stage read changed since. Both give the same bits one evaluation cheaper.
+    /// Default `false`.
+    fn rhs_time_invariant(&self) -> bool {
+        false
+    }
+    /// Initial states at the start motion.
+    fn init(&mut self, m: &Motion, x: &mut [f64], aux: &mut [f64]) -> Result<()>;
+    /// Time derivatives of the level's states at `p`; when `wrench` is given, also the
+    /// force and moment on the shaft. Must not allocate.
+    fn rhs(&mut self, p: Point<'_>, dx: &mut [f64], wrench: Option<&mut [f64; 5]>) -> Result<()>;
+    /// [`LevelModel::rhs`] at the end of an integration's last step, where the component
+    /// evaluates the outputs next: a level may keep what it evaluates there for
+    /// [`LevelModel::outputs`] at the same point. The rates and the wrench must be those of
+    /// `rhs`. Default: `rhs`.
+    fn rhs_at_end(
+        &mut self,
+        p: Point<'_>,
+        dx: &mut [f64],
+        wrench: Option<&mut [f64; 5]>,
+    ) -> Result<()> {
+        self.rhs(p, dx, wrench)
+    }
+    /// Everything the level reports at `p`. Must not allocate.
+    fn outputs(&mut self, p: Point<'_>, out: &mut LevelOutputs) -> Result<()>;
+    /// The wrench at each of `p`'s points into `out[k]` (zeros on entry), bit for bit as
+    /// [`LevelModel::rhs`] gives it there, for the outputs between an integration's stops
+    /// (the rates are not wanted: `dx`, of `n_states`, is scratch). Asked only of a level
+    /// without memory (`n_aux = 0`). Default: `rhs` at each point ([`wrenches_by_rhs`]);
+    /// a level overrides it where one call for many points saves its dispatch.
+    fn wrenches(&mut self, p: Points<'_>, dx: &mut [f64], out: &mut [[f64; 5]]) -> Result<()> {
+        wrenches_by_rhs(self, p, dx, out)
+    }
+}
+
+/// The points of [`LevelModel::wrenches`]: point `k` at time `t[k]` with motion `m[k]` and
+/// the level's states `x[k * stride..][..n_states]`.
+#[derive(Debug, Clone, Copy)]
+pub struct Points<'a> {
+    /// Times, s.
+    pub t: &'a [f64],
+    /// The ring's motion at each point.
+    pub m: &'a [Motion],
+    /// The level's states, one row of `stride` per point.
+    pub x: &'a [f64],
+    /// Values per row of `x`.
+    pub stride: usize,
+}
+
+/// [`LevelModel::wrenches`] by one [`LevelModel::rhs`] per point.
+pub fn wrenches_by_rhs<L: LevelModel + ?Sized>(
+    level: &mut L,
+    p: Points<'_>,
+    dx: &mut [f64],
+    out: &mut [[f64; 5]],
+) -> Result<()> {
+    let nl = level.n_states();
+    for (k, (w, m)) in out.iter_mut().zip(p.m).enumerate() {
+        let x = &p.x[k * p.stride..k * p.stride + nl];
+        level.rhs(Point::new(p.t[k], m, x, &mut []), &mut dx[..nl], Some(w))?;
+    }
+    Ok(())
+}
