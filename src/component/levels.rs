@@ -8,7 +8,7 @@
 use super::level::LevelModel;
 use super::scene::Scene;
 use crate::error::{Error, Result};
-use crate::geometry::Bearing;
+use crate::geometry::{Bearing, ElementKind};
 use crate::models::LevelArgs;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
@@ -28,7 +28,23 @@ pub struct LevelEntry {
     pub effects: bool,
     /// Constructor.
     pub build: Build,
+    /// The rolling-element kinds the level models; a bearing of another kind is refused
+    /// naming both.
+    pub elements: &'static [ElementKind],
+    /// Checks of the level's own options at scene validation (before anything is built).
+    pub check: Check,
 }
+
+/// Checks a level's own options (one signature for every level).
+pub type Check = fn(&LevelArgs) -> Result<()>;
+
+/// For levels whose options need no check beyond their field rows.
+fn no_check(_: &LevelArgs) -> Result<()> {
+    Ok(())
+}
+
+/// Balls only.
+const BALLS: &[ElementKind] = &[ElementKind::Ball];
 
 impl LevelEntry {
     const fn new(name: &'static str, stiff: bool, effects: bool, build: Build) -> Self {
@@ -37,7 +53,14 @@ impl LevelEntry {
             stiff,
             effects,
             build,
+            elements: BALLS,
+            check: no_check,
         }
+    }
+
+    const fn with_check(mut self, check: Check) -> Self {
+        self.check = check;
+        self
     }
 }
 
@@ -58,7 +81,8 @@ pub const LEVELS: &[LevelEntry] = &[
     LevelEntry::new("linear",       false, false,   crate::models::linear::level::build),
     LevelEntry::new("quasi_static", false, false,   crate::models::quasi_static::level::build),
     LevelEntry::new("ring",         false, true,    crate::models::ring::level::build),
-    LevelEntry::new("skidding",     true,  false,   crate::models::skidding::level::build),
+    LevelEntry::new("skidding",     true,  false,   crate::models::skidding::level::build)
+        .with_check(crate::models::skidding::level::check),
     LevelEntry::new("full",         true,  false,   crate::models::full::level::build),
 ];
 
@@ -135,10 +159,50 @@ impl Level {
         &LEVELS[self.0 as usize]
     }
 
-    /// Build the level for a validated scene: refuses effects on a level that does not
-    /// take them, then calls the level's constructor.
+    /// Does the level model bearings with `element`? Refused naming both, and the levels
+    /// that do.
+    pub fn accepts(self, element: ElementKind) -> Result<()> {
+        let entry = self.entry();
+        if entry.elements.contains(&element) {
+            return Ok(());
+        }
+        let takers: Vec<&str> = LEVELS
+            .iter()
+            .filter(|l| l.elements.contains(&element))
+            .map(|l| l.name)
+            .collect();
+        Err(Error::invalid(
+            "model.level",
+            entry.name,
+            format!(
+                "a level that models {element} bearings (level `{}` takes {}; levels that take {element}s: {})",
+                entry.name,
+                entry
+                    .elements
+                    .iter()
+                    .map(|e| format!("{e}s"))
+                    .collect::<Vec<_>>()
+                    .join(", "),
+                if takers.is_empty() {
+                    "none yet".to_string()
+                } else {
+                    takers.join(", ")
+                }
+            ),
+        ))
+    }
+
+    /// Check the level's own options for a scene (its registry entry's check).
+    pub fn check(self, scene: &Scene, b: &Bearing) -> Result<()> {
+        self.accepts(b.element())?;
+        (self.entry().check)(&scene.level_args(b))
+    }
+
+    /// Build the level for a validated scene: refuses an element kind or effects the
+    /// level does not take, then calls the level's constructor.
     pub fn build(self, scene: &Scene, b: &Bearing) -> Result<Box<dyn LevelModel>> {
         let entry = self.entry();
+        self.accepts(b.element())?;
         if !scene.effects.is_off() && !entry.effects {
             let takers: Vec<String> = LEVELS
                 .iter()
@@ -154,17 +218,7 @@ impl Level {
                 ),
             ));
         }
-        let m = &scene.model;
-        (entry.build)(&LevelArgs {
-            bearing: b,
-            race_control: m.race_control,
-            ring_dof: m.ring_dof,
-            contact_damping: m.contact_damping,
-            operating_point: &m.operating_point,
-            skidding: &m.skidding,
-            full: &m.full,
-            effects: &scene.effects,
-        })
+        (entry.build)(&scene.level_args(b))
     }
 }
 
@@ -252,5 +306,25 @@ mod tests {
             "{e}"
         );
         assert_eq!(Level::default().name(), "quasi_static");
+    }
+
+    /// The registry says which element kinds each level takes: every level takes balls, and
+    /// a bearing of a kind a level does not take is refused naming the level, the kind and
+    /// the levels that do take it.
+    #[test]
+    fn a_level_refuses_an_element_kind_it_does_not_take_naming_both() {
+        for l in Level::ALL {
+            assert!(l.accepts(ElementKind::Ball).is_ok(), "{}", l.name());
+            let e = l.accepts(ElementKind::Roller).unwrap_err().to_string();
+            assert!(
+                e.contains("model.level")
+                    && e.contains(&format!("level `{}`", l.name()))
+                    && e.contains("roller")
+                    && e.contains("levels that take rollers: none yet"),
+                "{e}"
+            );
+        }
+        let b = crate::geometry::preset("6205").unwrap().build().unwrap();
+        assert_eq!(b.element(), ElementKind::Ball);
     }
 }

@@ -379,6 +379,22 @@ impl Scene {
         }
     }
 
+    /// What a level is built from: the bearing `b` (this scene's, validated) and this
+    /// scene's model and effects options, as plain data.
+    pub fn level_args<'a>(&'a self, b: &'a Bearing) -> crate::models::LevelArgs<'a> {
+        let m = &self.model;
+        crate::models::LevelArgs {
+            bearing: b,
+            race_control: m.race_control,
+            ring_dof: m.ring_dof,
+            contact_damping: m.contact_damping,
+            operating_point: &m.operating_point,
+            skidding: &m.skidding,
+            full: &m.full,
+            effects: &self.effects,
+        }
+    }
+
     /// The embedded default scene.
     pub fn default_scene() -> Scene {
         Scene::from_text(DEFAULT_SCENE).expect("the embedded default scene parses")
@@ -414,9 +430,7 @@ impl Scene {
         let lim = super::limits::Limits::of(&b);
         let m = &self.model;
         check("model", ModelSpec::FIELDS, m)?;
-        if m.level == Level::Skidding {
-            m.skidding.params(&b)?;
-        }
+        m.level.check(self, &b)?;
         // The full level's options are checked whatever the level (cheap, and a bad value
         // is named even in a scene that does not use it yet).
         m.full.params(&b, m.race_control)?;

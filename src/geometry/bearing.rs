@@ -336,7 +336,7 @@ impl BearingSpec {
                 return Err(Error::invalid(field, f, "in (0.5, 1.0)"));
             }
         }
-        let a = (fi + fo - 1.0) * d;
+        let a = super::element::groove_centre_distance(fi, fo, d);
         let (alpha0, pd) = match (self.kind, alpha_in, pd_in) {
             (BearingKind::AngularContact, Some(al), None) => (al, 2.0 * a * (1.0 - al.cos())),
             (BearingKind::AngularContact, None, Some(pd)) => {
@@ -508,7 +508,12 @@ impl Bearing {
     /// Distance between the groove curvature centres at zero load and zero clearance,
     /// `A = (f_i + f_o - 1) D`.
     pub fn a(&self) -> f64 {
-        (self.fi + self.fo - 1.0) * self.d
+        super::element::groove_centre_distance(self.fi, self.fo, self.d)
+    }
+
+    /// The kind of rolling element: balls (the only kind this description builds).
+    pub fn element(&self) -> super::ElementKind {
+        super::ElementKind::Ball
     }
 
     /// The contact angle used for kinematics and the radial models: 0 for a deep-groove

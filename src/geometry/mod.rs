@@ -2,6 +2,7 @@
 
 pub mod bearing;
 pub mod catalogue;
+pub mod element;
 pub mod kinematics;
 pub mod material;
 pub mod presets;
@@ -9,6 +10,7 @@ pub mod presets;
 pub use bearing::{
     Bearing, BearingKind, BearingSpec, Cage, CageSpec, Guidance, MaterialSpec, MaterialsSpec,
 };
+pub use element::ElementKind;
 pub use kinematics::{kinematics, kinematics_at, Kinematics};
 pub use material::{effective_modulus, Material};
 pub use presets::{preset, presets};

@@ -96,6 +96,11 @@ impl SkiddingLevel {
     }
 }
 
+/// The registry's check of the scene's `[model.skidding]` options against the bearing.
+pub fn check(a: &LevelArgs) -> Result<()> {
+    a.skidding.params(a.bearing).map(|_| ())
+}
+
 /// The registry's constructor ([`crate::component::levels::LEVELS`]): the scene's
 /// `[model.skidding]` options with its contact damping.
 pub fn build(a: &LevelArgs) -> Result<Box<dyn LevelModel>> {
