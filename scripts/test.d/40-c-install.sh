@@ -32,6 +32,9 @@ rm -rf "$prefix"
 scripts/install-c --prefix "$prefix" --build-dir "$target/c-lib" > "$work.log" 2>&1 || { cat "$work.log"; fail "install failed"; }
 
 # Layout: real file, SONAME link, development link, static library, package files.
+for f in LICENSE-MIT LICENSE-APACHE THIRD-PARTY-NOTICES.md; do
+  [ -s "$prefix/share/doc/raceway/$f" ] || fail "the installed package lacks share/doc/raceway/$f"
+done
 pc=$(find "$prefix" -name raceway.pc)
 [ -n "$pc" ] || fail "no raceway.pc under $prefix"
 libdir=$(dirname "$(dirname "$pc")")
