@@ -539,3 +539,18 @@ fn run_through_matches_the_stepped_run_and_refuses_moving_inputs() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// The developer benches are hidden from `--help`, `run` is listed first, and a bench
+/// writes nowhere unless `--out` names the folder (inside a clone the default used to
+/// rewrite tracked files under docs/).
+#[test]
+fn bench_is_a_hidden_developer_tool_that_needs_out() {
+    let out = run(&["--help"]);
+    assert!(out.status.success());
+    let help = String::from_utf8_lossy(&out.stdout);
+    assert!(!help.contains("bench"), "{help}");
+    let commands = help.split("Commands:").nth(1).expect("a command list");
+    assert!(commands.trim_start().starts_with("run"), "{commands}");
+    refused(&["bench", "--quick"], &["--out"]);
+    refused(&["bench", "--stability"], &["--out"]);
+}
