@@ -24,7 +24,7 @@ need c++ g++
 
 fail() { echo "40-c-install: $*" >&2; exit 1; }
 
-version=$(cargo pkgid -p raceway | sed 's/.*[#@]//')
+version=$(cargo pkgid -p raceway-bearing | sed 's/.*[#@]//')
 major=${version%%.*}
 prefix="$work/prefix"
 mkdir -p "$work"
