@@ -116,7 +116,10 @@ pub fn run(a: RunArgs) -> Result<String> {
     )
     .map_err(|e| io(&sj, e))?;
 
-    let pngs = write_plots(&out, &ctx)?;
+    let (pngs, skipped) = write_plots(&out, &ctx);
+    for w in &skipped {
+        eprintln!("warning: {w}");
+    }
     if quiet {
         return Ok(String::new());
     }
@@ -132,8 +135,18 @@ pub fn run(a: RunArgs) -> Result<String> {
     Ok(s)
 }
 
-/// Write the plots; returns their file names.
-fn write_plots(out: &Path, c: &Ctx) -> Result<Vec<String>> {
+/// Record a plot: written, or skipped with its reason.
+fn keep(name: &str, made: Result<()>, written: &mut Vec<String>, skipped: &mut Vec<String>) {
+    match made {
+        Ok(()) => written.push(name.to_string()),
+        Err(e) => skipped.push(format!("{name} skipped: {e}")),
+    }
+}
+
+/// Write the plots; returns the file names written and, for each plot that could not be
+/// made, a warning naming it and why. A plot is an optional product: it never fails a run
+/// whose integration finished and whose series and summaries are written.
+fn write_plots(out: &Path, c: &Ctx) -> (Vec<String>, Vec<String>) {
     let scene = c.scene;
     let series = c.series;
     let col = |n: &str| c.col(n)[c.start.min(c.col(n).len())..].to_vec();
@@ -142,6 +155,8 @@ fn write_plots(out: &Path, c: &Ctx) -> Result<Vec<String>> {
     let t = &series.t;
     let t_half = series.t.get(c.start).copied().unwrap_or(0.0);
     let mut written = Vec::new();
+    let mut skipped = Vec::new();
+
     // Orbit over the second half: the start transient (release from the initial state,
     // run-up) is left out, as in the spectrum.
     let (ox, oy, lx, ly, what) = if scene.model.causality == Causality::Load {
@@ -162,7 +177,7 @@ fn write_plots(out: &Path, c: &Ctx) -> Result<Vec<String>> {
         )
     };
     let title = format!("{what}, t >= {t_half:.3} s (start transient left out)");
-    plot(
+    let made = plot(
         &out.join("orbit.png"),
         &Axes {
             title: &title,
@@ -178,8 +193,8 @@ fn write_plots(out: &Path, c: &Ctx) -> Result<Vec<String>> {
             points: false,
         }],
         &[],
-    )?;
-    written.push("orbit.png".to_string());
+    );
+    keep("orbit.png", made, &mut written, &mut skipped);
     let f = [all("force.x"), all("force.y"), all("force.z")];
     let panels: Vec<(Axes, Vec<Series>)> = ["Fx (N)", "Fy (N)", "Fz (N)"]
         .iter()
@@ -201,28 +216,33 @@ fn write_plots(out: &Path, c: &Ctx) -> Result<Vec<String>> {
             )
         })
         .collect();
-    plot_stack(
+    let made = plot_stack(
         &out.join("force.png"),
         "force of the bearing on the shaft",
         &panels,
-    )?;
-    written.push("force.png".to_string());
-    spectrum_plot(out, "spectrum.png", c, &c.spec, "spectrum", &mut written)?;
+    );
+    keep("force.png", made, &mut written, &mut skipped);
+    let made = spectrum_plot(out, "spectrum.png", c, &c.spec, "spectrum", &mut written);
+    if let Err(e) = made {
+        skipped.push(format!("spectrum.png skipped: {e}"));
+    }
     if let Some((env, _, _)) = &c.envelope {
-        spectrum_plot(
+        let made = spectrum_plot(
             out,
             "envelope.png",
             c,
             env,
             "envelope spectrum",
             &mut written,
-        )?;
+        );
+        if let Err(e) = made {
+            skipped.push(format!("envelope.png skipped: {e}"));
+        }
     }
-    ball_loads_plot(out, c)?;
-    written.push("ball-loads.png".to_string());
+    keep("ball-loads.png", ball_loads_plot(out, c), &mut written, &mut skipped);
     if c.cage_dynamics() {
         let slip = all("cage.slip");
-        plot(
+        let made = plot(
             &out.join("cage-slip.png"),
             &Axes {
                 title: "cage slip",
@@ -237,15 +257,19 @@ fn write_plots(out: &Path, c: &Ctx) -> Result<Vec<String>> {
                 points: false,
             }],
             &[],
-        )?;
-        written.push("cage-slip.png".to_string());
+        );
+        keep("cage-slip.png", made, &mut written, &mut skipped);
     }
     if scene.model.level.name() == "full" {
-        write_cage_plots(out, series)?;
-        written.push("cage-orbit.png".to_string());
-        written.push("speeds.png".to_string());
+        match write_cage_plots(out, series) {
+            Ok(()) => {
+                written.push("cage-orbit.png".to_string());
+                written.push("speeds.png".to_string());
+            }
+            Err(e) => skipped.push(format!("cage-orbit.png and speeds.png skipped: {e}")),
+        }
     }
-    Ok(written)
+    (written, skipped)
 }
 
 fn spectrum_plot(
