@@ -590,3 +590,24 @@ fn a_plot_that_cannot_be_made_is_skipped_with_a_warning() {
     assert!(!out_dir.join("ball-loads.png").exists());
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// `quasi-static` enforces the limits the component enforces (issue #38, item 7): the
+/// 6205's rings burst above about 346 500 rpm (|omega| <= 3.6291e4 rad/s), so 350 000 rpm
+/// and 1e6 rpm are refused naming `--speed-rpm` and the limit (before: 350 000 rpm gave a
+/// result and 1e6 rpm failed in the line search naming nothing); a load past the plastic
+/// limit is refused naming its flag.
+#[test]
+fn quasi_static_enforces_the_components_limits() {
+    for rpm in ["350000", "1e6"] {
+        refused(
+            &["quasi-static", "--bearing", "6205", "--speed-rpm", rpm, "--fy", "-1000"],
+            &["--speed-rpm", "burst speed", "shaft.omega"],
+        );
+    }
+    let out = run(&["quasi-static", "--bearing", "6205", "--speed-rpm", "340000", "--fy", "-1000"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    refused(
+        &["quasi-static", "--bearing", "6205", "--fy", "-1e7"],
+        &["--fy", "plausibility limits"],
+    );
+}
