@@ -611,3 +611,46 @@ fn quasi_static_enforces_the_components_limits() {
         &["--fy", "plausibility limits"],
     );
 }
+
+/// A run's folder is one run's (issue #38, item 3): the run is written into a hidden
+/// sibling and moved into place when complete, so a finished run replaces the previous
+/// folder as a whole (a file only the previous run had is gone), a failed run leaves the
+/// previous folder exactly as it was, and no temporary folder stays behind.
+#[test]
+fn an_output_folder_never_mixes_two_runs() {
+    let dir = std::env::temp_dir().join(format!("raceway-cli-atomic-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let out_dir = dir.join("out");
+    std::fs::create_dir_all(&out_dir).unwrap();
+    std::fs::write(out_dir.join("from-the-previous-run.txt"), "old").unwrap();
+    let siblings = || -> Vec<String> {
+        std::fs::read_dir(&dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .filter(|n| n != "out" && !n.ends_with(".toml"))
+            .collect()
+    };
+    // A run that fails at its first step (the quasi-static level, shaft far inside the
+    // elastic range's edge): the previous folder is untouched.
+    let failing = dir.join("failing.toml");
+    std::fs::write(
+        &failing,
+        "bearing = \"6205\"\n[model]\nlevel = \"quasi_static\"\n[inputs.initial]\n\"shaft.y\" = 1.0\n",
+    )
+    .unwrap();
+    let o = out_dir.to_str().unwrap();
+    let bad = run(&["run", failing.to_str().unwrap(), "--out", o, "--quiet"]);
+    assert!(!bad.status.success());
+    assert!(out_dir.join("from-the-previous-run.txt").is_file());
+    assert!(!out_dir.join("series.csv").exists());
+    assert_eq!(siblings(), Vec::<String>::new());
+    // A finished run replaces the folder as a whole.
+    let good = run(&["run", "--out", o, "--duration", "0.01", "--quiet"]);
+    assert!(good.status.success(), "{}", String::from_utf8_lossy(&good.stderr));
+    assert!(!out_dir.join("from-the-previous-run.txt").exists());
+    for f in ["series.csv", "summary.txt", "summary.json"] {
+        assert!(out_dir.join(f).is_file(), "{f}");
+    }
+    assert_eq!(siblings(), Vec::<String>::new());
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -3,7 +3,7 @@
 
 use raceway::analysis::Spectrum;
 use raceway::component::scene::DEFAULT_SCENE;
-use raceway::component::{schema, Causality};
+use raceway::component::{schema, Causality, Scene};
 use raceway::models::quasi_static::{azimuths, BallResult, BallState, Options, QuasiStatic};
 use raceway::plot::{plot, plot_stack, Axes, Marker, Series};
 use raceway::runner::{self, Record, Series as Run};
@@ -72,7 +72,90 @@ pub fn run(a: RunArgs) -> Result<String> {
         .out
         .clone()
         .unwrap_or_else(|| PathBuf::from("out").join(&name));
-    std::fs::create_dir_all(&out).map_err(|e| io(&out, e))?;
+    // The run is written into a fresh hidden sibling folder and moved into place only when
+    // complete: a failed, killed or interrupted run never leaves a folder that mixes its
+    // files with a previous run's (the previous folder stays as it was; an interrupted
+    // run is the `.<name>.partial-<pid>` folder, removed by the next run into `out`).
+    let staging = Staging::new(&out)?;
+    let result = write_run(&a, &scene, &name, &staging.dir);
+    match result {
+        Ok(text) => {
+            staging.publish()?;
+            Ok(text.replace(&staging.dir.display().to_string(), &out.display().to_string()))
+        }
+        Err(e) => {
+            staging.discard();
+            Err(e)
+        }
+    }
+}
+
+/// A run's output folder while it is written.
+struct Staging {
+    /// Where the run writes.
+    dir: PathBuf,
+    /// Where it goes when complete.
+    out: PathBuf,
+}
+
+impl Staging {
+    fn new(out: &Path) -> Result<Staging> {
+        let parent = out
+            .parent()
+            .filter(|p| !p.as_os_str().is_empty())
+            .unwrap_or(Path::new("."));
+        std::fs::create_dir_all(parent).map_err(|e| io(parent, e))?;
+        let base = out
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_else(|| "out".into());
+        // Earlier interrupted runs into the same folder.
+        let prefix = format!(".{base}.partial-");
+        if let Ok(entries) = std::fs::read_dir(parent) {
+            for e in entries.flatten() {
+                if e.file_name().to_string_lossy().starts_with(&prefix) {
+                    let _ = std::fs::remove_dir_all(e.path());
+                }
+            }
+        }
+        let dir = parent.join(format!("{prefix}{}", std::process::id()));
+        std::fs::create_dir_all(&dir).map_err(|e| io(&dir, e))?;
+        Ok(Staging {
+            dir,
+            out: out.to_path_buf(),
+        })
+    }
+
+    /// Move the complete run into place, replacing the previous one as a whole.
+    fn publish(&self) -> Result<()> {
+        let old = self.dir.with_file_name(
+            self.dir
+                .file_name()
+                .unwrap()
+                .to_string_lossy()
+                .replace(".partial-", ".replaced-"),
+        );
+        if self.out.exists() {
+            std::fs::rename(&self.out, &old).map_err(|e| io(&self.out, e))?;
+        }
+        std::fs::rename(&self.dir, &self.out).map_err(|e| io(&self.out, e))?;
+        let _ = std::fs::remove_dir_all(&old);
+        Ok(())
+    }
+
+    fn discard(&self) {
+        let _ = std::fs::remove_dir_all(&self.dir);
+    }
+}
+
+/// Run the scene and write everything into `out` (the staging folder).
+fn write_run(
+    a: &RunArgs,
+    scene: &Scene,
+    name: &str,
+    out: &Path,
+) -> Result<String> {
+    let out = out.to_path_buf();
     let quiet = a.quiet;
     let bar_on = !quiet && std::io::IsTerminal::is_terminal(&std::io::stderr());
     let cpu0 = raceway::report::thread_cpu_s();
