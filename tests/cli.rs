@@ -630,12 +630,13 @@ fn an_output_folder_never_mixes_two_runs() {
             .filter(|n| n != "out" && !n.ends_with(".toml"))
             .collect()
     };
-    // A run that fails at its first step (the quasi-static level, shaft far inside the
-    // elastic range's edge): the previous folder is untouched.
+    // A run that fails once it has started (the quasi-static level near the edge of the
+    // accepted shaft range fails its first step, issue #38 item 5): the previous folder is
+    // untouched and the partial one removed.
     let failing = dir.join("failing.toml");
     std::fs::write(
         &failing,
-        "bearing = \"6205\"\n[model]\nlevel = \"quasi_static\"\n[inputs.initial]\n\"shaft.y\" = 1.0\n",
+        "bearing = \"6205\"\n[model]\nlevel = \"quasi_static\"\n[inputs.initial]\n\"shaft.y\" = -1.8e-4\n",
     )
     .unwrap();
     let o = out_dir.to_str().unwrap();
