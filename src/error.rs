@@ -91,9 +91,18 @@ impl Error {
     ) -> Self {
         Error::Invalid {
             field: field.into(),
-            value: value.to_string(),
+            value: short_number(value.to_string()),
             allowed: allowed.into(),
         }
+    }
+}
+
+/// A number that `Display` wrote as a long decimal (`1e300` as 301 digits) in exponent form;
+/// anything else as it is.
+fn short_number(s: String) -> String {
+    match s.parse::<f64>() {
+        Ok(x) if s.len() > 24 && x.is_finite() => format!("{x:e}"),
+        _ => s,
     }
 }
 
@@ -175,5 +184,22 @@ pub fn in_range(field: &str, value: f64, lo: f64, hi: f64) -> Result<f64> {
 impl From<std::io::Error> for Error {
     fn from(e: std::io::Error) -> Self {
         Error::Io(e.to_string())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Huge and tiny values are named in exponent form (issue #38, item 9: `1e300` came out
+    /// as a 301-digit decimal in FMI and `do_step` messages); ordinary ones as written.
+    #[test]
+    fn refused_values_are_short() {
+        let e = Error::invalid("t", 1e300, "finite").to_string();
+        assert!(e.contains("1e300") && !e.contains("0000000000"), "{e}");
+        let e = Error::invalid("h", -2.5e-200, "positive").to_string();
+        assert!(e.contains("-2.5e-200") && e.len() < 80, "{e}");
+        assert!(Error::invalid("x", 1.5, "y").to_string().contains("1.5"));
+        assert!(Error::invalid("x", "text value", "y").to_string().contains("text value"));
     }
 }

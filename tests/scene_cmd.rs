@@ -502,3 +502,28 @@ fn a_scene_accepts_a_designation() {
     .unwrap();
     assert_eq!(s.validate().unwrap().z, 9);
 }
+
+/// A preload inside the declared clearance range but past what any input allows is refused
+/// at the scene, naming `bearing.clearance_um` with a bound that can be met (issue #38, item
+/// 8: the 6205 at -400 µm used to refuse every `shaft.y`, even 0, with the empty range
+/// "[8.4663e-6, -8.4663e-6] m" blaming another field).
+#[test]
+fn a_preload_no_input_could_take_is_refused_at_the_scene() {
+    let scene = |um: f64| {
+        raceway::component::Scene::from_text(&format!(
+            "[bearing]\npreset = \"6205\"\nclearance_um = {um}\n"
+        ))
+        .unwrap()
+    };
+    let e = scene(-400.0).validate().unwrap_err().to_string();
+    assert!(e.contains("bearing.clearance_um") && e.contains("at least -3"), "{e}");
+    // The bound it names is met.
+    let bound: f64 = e
+        .split("at least ")
+        .nth(1)
+        .and_then(|r| r.split(' ').next())
+        .and_then(|x| x.parse().ok())
+        .expect("a number");
+    assert!(bound < -300.0 && bound > -400.0, "{bound}");
+    scene(bound + 1.0).validate().expect("inside the bound");
+}

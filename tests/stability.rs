@@ -1,7 +1,7 @@
 //! Stability campaign, CI sample (one factor at a time around each level's nominal cell,
 //! plus corners; short windows; the dynamic levels, skidding and full, a few hard cells
 //! over a shorter window). The long campaign:
-//! `cargo run --release -- bench --stability --long`.
+//! `cargo run --release -- bench --stability --long --out docs`.
 //! Every cell must converge under refinement or refuse cleanly: never a panic or a NaN.
 
 use raceway::report::stability::{self, Cell, Clearance, Load, Outcome, Speed, BASES};

@@ -7,7 +7,7 @@ venv=$(scripts/venv)
 "$venv/bin/python" -m pip install --quiet --disable-pip-version-check -r tests/python/requirements.txt
 
 # unit tests of the FMI layer (the `fmi` feature is off in the main test run)
-cargo test --quiet -p raceway --features fmi --lib fmi::
+cargo test --quiet -p raceway-bearing --features fmi --lib fmi::
 
 scripts/build-fmu --no-docs
 MPLBACKEND=Agg "$venv/bin/python" -m pytest -q tests/python

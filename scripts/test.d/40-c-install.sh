@@ -24,7 +24,7 @@ need c++ g++
 
 fail() { echo "40-c-install: $*" >&2; exit 1; }
 
-version=$(cargo pkgid -p raceway | sed 's/.*[#@]//')
+version=$(cargo pkgid -p raceway-bearing | sed 's/.*[#@]//')
 major=${version%%.*}
 prefix="$work/prefix"
 mkdir -p "$work"
@@ -32,6 +32,9 @@ rm -rf "$prefix"
 scripts/install-c --prefix "$prefix" --build-dir "$target/c-lib" > "$work.log" 2>&1 || { cat "$work.log"; fail "install failed"; }
 
 # Layout: real file, SONAME link, development link, static library, package files.
+for f in LICENSE-MIT LICENSE-APACHE THIRD-PARTY-NOTICES.md; do
+  [ -s "$prefix/share/doc/raceway/$f" ] || fail "the installed package lacks share/doc/raceway/$f"
+done
 pc=$(find "$prefix" -name raceway.pc)
 [ -n "$pc" ] || fail "no raceway.pc under $prefix"
 libdir=$(dirname "$(dirname "$pc")")

@@ -428,6 +428,19 @@ impl Scene {
             ));
         }
         let lim = super::limits::Limits::of(&b);
+        if !(lim.radial >= 0.0 && lim.axial >= 0.0) {
+            // A preload so deep that every ball is past the plastic limit at zero
+            // displacement: no input could be accepted (every range would be empty).
+            let min_um = -2.0 * lim.approach * 1e6;
+            return Err(Error::invalid(
+                "bearing.clearance_um",
+                format!("{:.1} µm", b.pd * 1e6),
+                format!(
+                    "at least {min_um:.1} µm for this bearing: a deeper preload presses every ball past the {:.1} GPa plausibility limit at zero displacement (the bound follows from bearing.ball_diameter_mm, the groove curvatures and the materials)",
+                    super::limits::P_CONTACT_MAX * 1e-9
+                ),
+            ));
+        }
         let m = &self.model;
         check("model", ModelSpec::FIELDS, m)?;
         m.level.check(self, &b)?;

@@ -203,7 +203,7 @@ crate::declare_fields!(BearingSpec {
     contact_angle_deg => number("deg", between(0.0, true, 80.0, true), "free contact angle alpha0")
         .note("give this or clearance_um (angular-contact)"),
     clearance_um => number("µm", ANY, "diametral clearance Pd (negative: preload)")
-        .note("deep-groove (-0.1 D, 2A); angular-contact [0, 2A), A = (f_i + f_o - 1) D"),
+        .note("deep-groove (-0.1 D, 2A) and no deeper than the preload that takes every ball to the plausibility limit at zero displacement (computed for the bearing: `raceway scene --check`); angular-contact [0, 2A), A = (f_i + f_o - 1) D"),
     bore_mm => number("mm", gt(0.0), "bore").note("< dm - D; absent: dm - 1.6 D"),
     outer_diameter_mm => number("mm", gt(0.0), "outside diameter").note("> dm + D; absent: dm + 1.6 D"),
     width_mm => number("mm", gt(0.0), "width").note("absent: 1.2 D"),

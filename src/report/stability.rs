@@ -1017,9 +1017,9 @@ pub fn campaign(long: bool, dir: &std::path::Path, verbose: bool) -> Result<Vec<
         times.push((b.name, super::thread_cpu_s() - start));
     }
     let cmd = if long {
-        "cargo run --release -- bench --stability --long"
+        "cargo run --release -- bench --stability --long --out docs"
     } else {
-        "cargo run --release -- bench --stability"
+        "cargo run --release -- bench --stability --out docs"
     };
     super::write_file(
         &dir.join("stability.md"),

@@ -229,9 +229,27 @@ impl QsProblem {
                 ">= 0 (the inner ring turns, the outer ring is fixed; the direction does not change the equilibrium)",
             ));
         }
+        // The plausibility limits every face uses (component inputs, scenes), written once
+        // in `component::limits`: the rings' burst speed, the loads that would take the most
+        // loaded contact past the plastic limit.
+        let lim = crate::component::limits::Limits::of(&bearing);
+        let omega = rpm_to_rad_s(speed_rpm);
+        if omega > lim.omega {
+            return Err(Error::invalid(
+                names.speed_rpm,
+                speed_rpm,
+                format!(
+                    "<= {:.0} rpm for this bearing: the rings' burst speed, the limit the component enforces on shaft.omega ({:.4e} rad/s)",
+                    crate::units::rad_s_to_rpm(lim.omega),
+                    lim.omega
+                ),
+            ));
+        }
         let mut checked = [0.0; 5];
+        const VARS: [&str; 5] = ["load.x", "load.y", "load.z", "load.mx", "load.my"];
         for k in 0..5 {
             checked[k] = finite(names.load[k], load[k])?;
+            lim.check(names.load[k], VARS[k], checked[k])?;
         }
         Ok(QsProblem {
             bearing,

@@ -90,7 +90,13 @@ def test_archive_layout(version, platform):
     with zipfile.ZipFile(fmu_path(version)) as z:
         names = sorted(z.namelist())
         assert names == ["binaries/%s/raceway.so" % platform, "documentation/index.html",
+                         "documentation/licenses/LICENSE-APACHE",
+                         "documentation/licenses/LICENSE-MIT",
+                         "documentation/licenses/THIRD-PARTY-NOTICES.md",
                          "documentation/licenses/license.txt", "modelDescription.xml"]
+        assert b"Apache License" in z.read("documentation/licenses/LICENSE-APACHE")
+        assert b"Permission is hereby granted" in z.read("documentation/licenses/LICENSE-MIT")
+        assert b"nalgebra" in z.read("documentation/licenses/THIRD-PARTY-NOTICES.md")
         for info in z.infolist():
             assert info.compress_type == zipfile.ZIP_DEFLATED
             assert "\\" not in info.filename and not info.filename.startswith(("/", "."))

@@ -9,7 +9,8 @@
 //!
 //! Writes `<dir>/stage/<name>/` for each archive name (`raceway-fmi2`, `raceway-fmi3`,
 //! `raceway-load-fmi2`, `raceway-load-fmi3`: modelDescription.xml, binaries/<platform>/
-//! raceway.so, documentation/index.html, documentation/licenses/license.txt,
+//! raceway.so, documentation/index.html, documentation/licenses/ (license.txt, the two licence
+//! texts and the third-party notices),
 //! resources/scene.toml when `--scene` is given, in the two archives of the scene's
 //! causality), zips each into `<dir>/<name>.fmu` and writes `<dir>/variables.md`.
 
@@ -17,6 +18,16 @@ use raceway_core::fmi::model_description as md;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+
+/// The licence texts and the third-party notices, in every FMU's `documentation/licenses/`.
+const LICENSE_FILES: [(&str, &str); 3] = [
+    ("LICENSE-MIT", include_str!("../../../LICENSE-MIT")),
+    ("LICENSE-APACHE", include_str!("../../../LICENSE-APACHE")),
+    (
+        "THIRD-PARTY-NOTICES.md",
+        include_str!("../../../THIRD-PARTY-NOTICES.md"),
+    ),
+];
 
 fn platforms() -> Result<(&'static str, &'static str, &'static str), String> {
     // (FMI 2 folder, FMI 3 platform tuple, library extension); spec2 2_3, spec3 2_5.
@@ -139,6 +150,9 @@ fn run() -> Result<(), String> {
                     &docs.join("licenses").join("license.txt"),
                     md::license_text().as_bytes(),
                 )?;
+                for (name, text) in LICENSE_FILES {
+                    write(&docs.join("licenses").join(name), text.as_bytes())?;
+                }
                 // the scene goes into the FMUs of its own causality
                 if let Some((t, _)) = scene_text.as_ref().filter(|(_, sc)| *sc == c) {
                     write(&root.join("resources").join("scene.toml"), t.as_bytes())?;

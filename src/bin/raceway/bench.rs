@@ -1,11 +1,13 @@
 //! `raceway bench`: the work-precision study (error of the reaction forces against a tight
 //! two-method reference, against CPU time, for every level and integrator) and the
-//! stability campaign. Writes into `--out` (default `docs/`).
+//! stability campaign: developer tools, hidden from `raceway --help`. They write only where
+//! `--out` says (required: regenerating the project's pages is `--out docs`, asked for by
+//! name, never a default that rewrites tracked files when run inside a clone).
 //!
-//! - `raceway bench [--out docs] [--quick] [--peer]`: docs/work-precision.{csv,md,png};
+//! - `raceway bench --out DIR [--quick] [--peer]`: DIR/work-precision.{csv,md,png};
 //!   `--quick`: three tolerances, one repeat; `--peer`: also the SciPy peer
 //!   (scripts/peer-scipy) with its speed ratio at equal error.
-//! - `raceway bench --stability [--long] [--out docs]`: docs/stability.md.
+//! - `raceway bench --stability [--long] --out DIR`: DIR/stability.md.
 
 use raceway::report::stability;
 use raceway::report::work_precision::{self as wp, Config};
@@ -15,8 +17,8 @@ use std::path::{Path, PathBuf};
 /// Options of `raceway bench`.
 #[derive(clap::Args, Debug)]
 pub struct BenchArgs {
-    /// Output folder.
-    #[arg(long, default_value = "docs")]
+    /// Output folder (required; `--out docs` regenerates the project's pages).
+    #[arg(long)]
     pub out: PathBuf,
     /// Three tolerances and one repeat (a quick look).
     #[arg(long)]

@@ -45,12 +45,13 @@ struct Cli {
 
 #[derive(Subcommand, Debug)]
 enum Cmd {
-    /// Work-precision study (error against CPU time per level and integrator) or, with
-    /// --stability, the stability campaign; results into docs/.
-    Bench(bench::BenchArgs),
     /// Run a scene stand-alone (the embedded default scene without a file): time series,
     /// summary and plots into out/<scene>/.
     Run(run::RunArgs),
+    /// Developer tool (hidden): the work-precision study or, with --stability, the
+    /// stability campaign, into --out (required).
+    #[command(hide = true)]
+    Bench(bench::BenchArgs),
     /// List the bearing presets and their data, or show one bearing (a preset or a
     /// catalogue designation such as 6206 or 7205B) with its ISO ratings and provenance.
     Bearings {

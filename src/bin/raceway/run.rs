@@ -3,7 +3,7 @@
 
 use raceway::analysis::Spectrum;
 use raceway::component::scene::DEFAULT_SCENE;
-use raceway::component::{schema, Causality};
+use raceway::component::{schema, Causality, Scene};
 use raceway::models::quasi_static::{azimuths, BallResult, BallState, Options, QuasiStatic};
 use raceway::plot::{plot, plot_stack, Axes, Marker, Series};
 use raceway::runner::{self, Record, Series as Run};
@@ -72,7 +72,90 @@ pub fn run(a: RunArgs) -> Result<String> {
         .out
         .clone()
         .unwrap_or_else(|| PathBuf::from("out").join(&name));
-    std::fs::create_dir_all(&out).map_err(|e| io(&out, e))?;
+    // The run is written into a fresh hidden sibling folder and moved into place only when
+    // complete: a failed, killed or interrupted run never leaves a folder that mixes its
+    // files with a previous run's (the previous folder stays as it was; an interrupted
+    // run is the `.<name>.partial-<pid>` folder, removed by the next run into `out`).
+    let staging = Staging::new(&out)?;
+    let result = write_run(&a, &scene, &name, &staging.dir);
+    match result {
+        Ok(text) => {
+            staging.publish()?;
+            Ok(text.replace(&staging.dir.display().to_string(), &out.display().to_string()))
+        }
+        Err(e) => {
+            staging.discard();
+            Err(e)
+        }
+    }
+}
+
+/// A run's output folder while it is written.
+struct Staging {
+    /// Where the run writes.
+    dir: PathBuf,
+    /// Where it goes when complete.
+    out: PathBuf,
+}
+
+impl Staging {
+    fn new(out: &Path) -> Result<Staging> {
+        let parent = out
+            .parent()
+            .filter(|p| !p.as_os_str().is_empty())
+            .unwrap_or(Path::new("."));
+        std::fs::create_dir_all(parent).map_err(|e| io(parent, e))?;
+        let base = out
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_else(|| "out".into());
+        // Earlier interrupted runs into the same folder.
+        let prefix = format!(".{base}.partial-");
+        if let Ok(entries) = std::fs::read_dir(parent) {
+            for e in entries.flatten() {
+                if e.file_name().to_string_lossy().starts_with(&prefix) {
+                    let _ = std::fs::remove_dir_all(e.path());
+                }
+            }
+        }
+        let dir = parent.join(format!("{prefix}{}", std::process::id()));
+        std::fs::create_dir_all(&dir).map_err(|e| io(&dir, e))?;
+        Ok(Staging {
+            dir,
+            out: out.to_path_buf(),
+        })
+    }
+
+    /// Move the complete run into place, replacing the previous one as a whole.
+    fn publish(&self) -> Result<()> {
+        let old = self.dir.with_file_name(
+            self.dir
+                .file_name()
+                .unwrap()
+                .to_string_lossy()
+                .replace(".partial-", ".replaced-"),
+        );
+        if self.out.exists() {
+            std::fs::rename(&self.out, &old).map_err(|e| io(&self.out, e))?;
+        }
+        std::fs::rename(&self.dir, &self.out).map_err(|e| io(&self.out, e))?;
+        let _ = std::fs::remove_dir_all(&old);
+        Ok(())
+    }
+
+    fn discard(&self) {
+        let _ = std::fs::remove_dir_all(&self.dir);
+    }
+}
+
+/// Run the scene and write everything into `out` (the staging folder).
+fn write_run(
+    a: &RunArgs,
+    scene: &Scene,
+    name: &str,
+    out: &Path,
+) -> Result<String> {
+    let out = out.to_path_buf();
     let quiet = a.quiet;
     let bar_on = !quiet && std::io::IsTerminal::is_terminal(&std::io::stderr());
     let cpu0 = raceway::report::thread_cpu_s();
@@ -116,7 +199,10 @@ pub fn run(a: RunArgs) -> Result<String> {
     )
     .map_err(|e| io(&sj, e))?;
 
-    let pngs = write_plots(&out, &ctx)?;
+    let (pngs, skipped) = write_plots(&out, &ctx);
+    for w in &skipped {
+        eprintln!("warning: {w}");
+    }
     if quiet {
         return Ok(String::new());
     }
@@ -132,8 +218,18 @@ pub fn run(a: RunArgs) -> Result<String> {
     Ok(s)
 }
 
-/// Write the plots; returns their file names.
-fn write_plots(out: &Path, c: &Ctx) -> Result<Vec<String>> {
+/// Record a plot: written, or skipped with its reason.
+fn keep(name: &str, made: Result<()>, written: &mut Vec<String>, skipped: &mut Vec<String>) {
+    match made {
+        Ok(()) => written.push(name.to_string()),
+        Err(e) => skipped.push(format!("{name} skipped: {e}")),
+    }
+}
+
+/// Write the plots; returns the file names written and, for each plot that could not be
+/// made, a warning naming it and why. A plot is an optional product: it never fails a run
+/// whose integration finished and whose series and summaries are written.
+fn write_plots(out: &Path, c: &Ctx) -> (Vec<String>, Vec<String>) {
     let scene = c.scene;
     let series = c.series;
     let col = |n: &str| c.col(n)[c.start.min(c.col(n).len())..].to_vec();
@@ -142,6 +238,8 @@ fn write_plots(out: &Path, c: &Ctx) -> Result<Vec<String>> {
     let t = &series.t;
     let t_half = series.t.get(c.start).copied().unwrap_or(0.0);
     let mut written = Vec::new();
+    let mut skipped = Vec::new();
+
     // Orbit over the second half: the start transient (release from the initial state,
     // run-up) is left out, as in the spectrum.
     let (ox, oy, lx, ly, what) = if scene.model.causality == Causality::Load {
@@ -162,7 +260,7 @@ fn write_plots(out: &Path, c: &Ctx) -> Result<Vec<String>> {
         )
     };
     let title = format!("{what}, t >= {t_half:.3} s (start transient left out)");
-    plot(
+    let made = plot(
         &out.join("orbit.png"),
         &Axes {
             title: &title,
@@ -178,8 +276,8 @@ fn write_plots(out: &Path, c: &Ctx) -> Result<Vec<String>> {
             points: false,
         }],
         &[],
-    )?;
-    written.push("orbit.png".to_string());
+    );
+    keep("orbit.png", made, &mut written, &mut skipped);
     let f = [all("force.x"), all("force.y"), all("force.z")];
     let panels: Vec<(Axes, Vec<Series>)> = ["Fx (N)", "Fy (N)", "Fz (N)"]
         .iter()
@@ -201,28 +299,33 @@ fn write_plots(out: &Path, c: &Ctx) -> Result<Vec<String>> {
             )
         })
         .collect();
-    plot_stack(
+    let made = plot_stack(
         &out.join("force.png"),
         "force of the bearing on the shaft",
         &panels,
-    )?;
-    written.push("force.png".to_string());
-    spectrum_plot(out, "spectrum.png", c, &c.spec, "spectrum", &mut written)?;
+    );
+    keep("force.png", made, &mut written, &mut skipped);
+    let made = spectrum_plot(out, "spectrum.png", c, &c.spec, "spectrum", &mut written);
+    if let Err(e) = made {
+        skipped.push(format!("spectrum.png skipped: {e}"));
+    }
     if let Some((env, _, _)) = &c.envelope {
-        spectrum_plot(
+        let made = spectrum_plot(
             out,
             "envelope.png",
             c,
             env,
             "envelope spectrum",
             &mut written,
-        )?;
+        );
+        if let Err(e) = made {
+            skipped.push(format!("envelope.png skipped: {e}"));
+        }
     }
-    ball_loads_plot(out, c)?;
-    written.push("ball-loads.png".to_string());
+    keep("ball-loads.png", ball_loads_plot(out, c), &mut written, &mut skipped);
     if c.cage_dynamics() {
         let slip = all("cage.slip");
-        plot(
+        let made = plot(
             &out.join("cage-slip.png"),
             &Axes {
                 title: "cage slip",
@@ -237,15 +340,19 @@ fn write_plots(out: &Path, c: &Ctx) -> Result<Vec<String>> {
                 points: false,
             }],
             &[],
-        )?;
-        written.push("cage-slip.png".to_string());
+        );
+        keep("cage-slip.png", made, &mut written, &mut skipped);
     }
     if scene.model.level.name() == "full" {
-        write_cage_plots(out, series)?;
-        written.push("cage-orbit.png".to_string());
-        written.push("speeds.png".to_string());
+        match write_cage_plots(out, series) {
+            Ok(()) => {
+                written.push("cage-orbit.png".to_string());
+                written.push("speeds.png".to_string());
+            }
+            Err(e) => skipped.push(format!("cage-orbit.png and speeds.png skipped: {e}")),
+        }
     }
-    Ok(written)
+    (written, skipped)
 }
 
 fn spectrum_plot(
