@@ -200,6 +200,8 @@ mod tests {
         let e = Error::invalid("h", -2.5e-200, "positive").to_string();
         assert!(e.contains("-2.5e-200") && e.len() < 80, "{e}");
         assert!(Error::invalid("x", 1.5, "y").to_string().contains("1.5"));
-        assert!(Error::invalid("x", "text value", "y").to_string().contains("text value"));
+        assert!(Error::invalid("x", "text value", "y")
+            .to_string()
+            .contains("text value"));
     }
 }

@@ -584,7 +584,13 @@ fn a_plot_that_cannot_be_made_is_skipped_with_a_warning() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(out.status.success(), "{err}");
     assert!(err.contains("warning: ball-loads.png skipped: "), "{err}");
-    for f in ["series.csv", "summary.txt", "summary.json", "orbit.png", "force.png"] {
+    for f in [
+        "series.csv",
+        "summary.txt",
+        "summary.json",
+        "orbit.png",
+        "force.png",
+    ] {
         assert!(out_dir.join(f).is_file(), "{f} missing");
     }
     assert!(!out_dir.join("ball-loads.png").exists());
@@ -600,12 +606,32 @@ fn a_plot_that_cannot_be_made_is_skipped_with_a_warning() {
 fn quasi_static_enforces_the_components_limits() {
     for rpm in ["350000", "1e6"] {
         refused(
-            &["quasi-static", "--bearing", "6205", "--speed-rpm", rpm, "--fy", "-1000"],
+            &[
+                "quasi-static",
+                "--bearing",
+                "6205",
+                "--speed-rpm",
+                rpm,
+                "--fy",
+                "-1000",
+            ],
             &["--speed-rpm", "burst speed", "shaft.omega"],
         );
     }
-    let out = run(&["quasi-static", "--bearing", "6205", "--speed-rpm", "100000", "--fy", "-1000"]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let out = run(&[
+        "quasi-static",
+        "--bearing",
+        "6205",
+        "--speed-rpm",
+        "100000",
+        "--fy",
+        "-1000",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     refused(
         &["quasi-static", "--bearing", "6205", "--fy", "-1e7"],
         &["--fy", "plausibility limits"],
@@ -630,24 +656,30 @@ fn an_output_folder_never_mixes_two_runs() {
             .filter(|n| n != "out" && !n.ends_with(".toml"))
             .collect()
     };
-    // A run that fails once it has started (the quasi-static level near the edge of the
-    // accepted shaft range fails its first step, issue #38 item 5): the previous folder is
-    // untouched and the partial one removed.
-    let failing = dir.join("failing.toml");
-    std::fs::write(
-        &failing,
-        "bearing = \"6205\"\n[model]\nlevel = \"quasi_static\"\n[inputs.initial]\n\"shaft.y\" = -1.8e-4\n",
-    )
-    .unwrap();
+    // A run refused once its folder is staged (straight through a speed ramp): the
+    // previous folder is untouched and the partial one removed.
+    let failing =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/scenes/7008ce-runup.toml");
     let o = out_dir.to_str().unwrap();
-    let bad = run(&["run", failing.to_str().unwrap(), "--out", o, "--quiet"]);
+    let bad = run(&[
+        "run",
+        failing.to_str().unwrap(),
+        "--through",
+        "--out",
+        o,
+        "--quiet",
+    ]);
     assert!(!bad.status.success());
     assert!(out_dir.join("from-the-previous-run.txt").is_file());
     assert!(!out_dir.join("series.csv").exists());
     assert_eq!(siblings(), Vec::<String>::new());
     // A finished run replaces the folder as a whole.
     let good = run(&["run", "--out", o, "--duration", "0.01", "--quiet"]);
-    assert!(good.status.success(), "{}", String::from_utf8_lossy(&good.stderr));
+    assert!(
+        good.status.success(),
+        "{}",
+        String::from_utf8_lossy(&good.stderr)
+    );
     assert!(!out_dir.join("from-the-previous-run.txt").exists());
     for f in ["series.csv", "summary.txt", "summary.json"] {
         assert!(out_dir.join(f).is_file(), "{f}");

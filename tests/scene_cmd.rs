@@ -516,7 +516,10 @@ fn a_preload_no_input_could_take_is_refused_at_the_scene() {
         .unwrap()
     };
     let e = scene(-400.0).validate().unwrap_err().to_string();
-    assert!(e.contains("bearing.clearance_um") && e.contains("at least -3"), "{e}");
+    assert!(
+        e.contains("bearing.clearance_um") && e.contains("at least -3"),
+        "{e}"
+    );
     // The bound it names is met.
     let bound: f64 = e
         .split("at least ")

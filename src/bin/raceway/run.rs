@@ -81,7 +81,10 @@ pub fn run(a: RunArgs) -> Result<String> {
     match result {
         Ok(text) => {
             staging.publish()?;
-            Ok(text.replace(&staging.dir.display().to_string(), &out.display().to_string()))
+            Ok(text.replace(
+                &staging.dir.display().to_string(),
+                &out.display().to_string(),
+            ))
         }
         Err(e) => {
             staging.discard();
@@ -149,12 +152,7 @@ impl Staging {
 }
 
 /// Run the scene and write everything into `out` (the staging folder).
-fn write_run(
-    a: &RunArgs,
-    scene: &Scene,
-    name: &str,
-    out: &Path,
-) -> Result<String> {
+fn write_run(a: &RunArgs, scene: &Scene, name: &str, out: &Path) -> Result<String> {
     let out = out.to_path_buf();
     let quiet = a.quiet;
     let bar_on = !quiet && std::io::IsTerminal::is_terminal(&std::io::stderr());
@@ -173,7 +171,7 @@ fn write_run(
         }
     };
     let (series, comp) = runner::run_with(
-        &scene,
+        scene,
         Record {
             stiffness_damping: a.kc,
         },
@@ -188,7 +186,7 @@ fn write_run(
     let csv = out.join("series.csv");
     raceway::fsutil::write_atomic(&csv, series.to_csv()).map_err(|e| io(&csv, e))?;
 
-    let ctx = Ctx::new(&scene, &name, &series, &comp, cpu);
+    let ctx = Ctx::new(scene, name, &series, &comp, cpu);
     let sm = summary_of(&ctx);
     let summary = out.join("summary.txt");
     raceway::fsutil::write_atomic(&summary, &sm.text).map_err(|e| io(&summary, e))?;
@@ -322,7 +320,12 @@ fn write_plots(out: &Path, c: &Ctx) -> (Vec<String>, Vec<String>) {
             skipped.push(format!("envelope.png skipped: {e}"));
         }
     }
-    keep("ball-loads.png", ball_loads_plot(out, c), &mut written, &mut skipped);
+    keep(
+        "ball-loads.png",
+        ball_loads_plot(out, c),
+        &mut written,
+        &mut skipped,
+    );
     if c.cage_dynamics() {
         let slip = all("cage.slip");
         let made = plot(
