@@ -530,3 +530,24 @@ fn a_preload_no_input_could_take_is_refused_at_the_scene() {
     assert!(bound < -300.0 && bound > -400.0, "{bound}");
     scene(bound + 1.0).validate().expect("inside the bound");
 }
+
+/// The scene's `solver.method` spellings are the method registry's (plus `auto`), each
+/// spelling reads back as the variant that names that registry row, and `auto` resolves by
+/// the level's stiffness.
+#[test]
+fn method_spellings_are_the_registrys() {
+    use raceway::component::scene::Method;
+    use raceway::solver::methods::{METHODS, METHOD_NAMES};
+    assert_eq!(METHOD_NAMES.len(), METHODS.len() + 1);
+    for name in METHOD_NAMES {
+        let m: Method = serde_json::from_str(&format!("\"{name}\"")).unwrap();
+        assert_eq!(serde_json::to_string(&m).unwrap(), format!("\"{name}\""));
+        match m.entry() {
+            None => assert_eq!(name, "auto"),
+            Some(e) => assert_eq!(e.name, name),
+        }
+    }
+    assert_eq!(Method::Auto.resolve(true).name, "rosenbrock");
+    assert_eq!(Method::Auto.resolve(false).name, "dopri5");
+    assert!(!Method::Ros34pw2.resolve(false).dense_output);
+}

@@ -7,12 +7,12 @@ use super::static_start::static_start;
 use super::system::{JacWork, RingBody, Work};
 use super::variables::SCALARS;
 use super::{
-    fingerprint, index_of, limits, n_variables, scene, variables, Causality, Component, Method,
-    Scene, State, AUX_COMPONENT, I_LOAD,
+    fingerprint, index_of, limits, n_variables, scene, variables, Causality, Component, Scene,
+    State, AUX_COMPONENT, I_LOAD,
 };
 use crate::error::Result;
 use crate::geometry::Bearing;
-use crate::solver::{Dopri5, Integrator, Options, RosMethod, Rosenbrock};
+use crate::solver::{Integrator, Options};
 
 /// The scene's integrator and its options. `Auto` picks RODAS4 for a level its registry
 /// entry marks stiff (traction slopes), DOPRI5 for the others (a massless-ball ring is a
@@ -30,22 +30,16 @@ fn make_integrator(
     // A level with independent blocks of states gets the block-arrowhead solver; a
     // load-driven ring (its positions and velocities after the level's states, `dq/dt =
     // v`) the reduced second-order one.
-    let rodas = |m: RosMethod| -> Rosenbrock {
-        let solver: Box<dyn crate::solver::LinearSolver> = match (level.blocks(), ring) {
+    let mut linear = || -> Box<dyn crate::solver::LinearSolver> {
+        match (level.blocks(), ring) {
             (Some((nb, s)), _) if nb * s <= nl => {
                 Box::new(crate::solver::BlockArrowhead::new(nb, s, n - nb * s))
             }
             (None, Some(r)) => Box::new(crate::solver::SecondOrderLu::new(nl, r.dofs.len())),
             _ => Box::new(crate::solver::DenseLu::new(n)),
-        };
-        Rosenbrock::with_method(m, solver)
+        }
     };
-    let mut integrator = match scene.solver.method {
-        Method::Auto if stiff => Integrator::Rosenbrock(rodas(RosMethod::Rodas4)),
-        Method::Auto | Method::Dopri5 => Integrator::Dopri5(Dopri5::new(n)),
-        Method::Rosenbrock => Integrator::Rosenbrock(rodas(RosMethod::Rodas4)),
-        Method::Ros34pw2 => Integrator::Rosenbrock(rodas(RosMethod::Ros34pw2)),
-    };
+    let mut integrator = (scene.solver.method.resolve(stiff).build)(n, &mut linear);
     // The component reads the dense output only from the steps its system observes (a
     // window integrated straight through, `Sys::step_accepted`): a step of `do_step`
     // skips DOPRI5's coefficients.

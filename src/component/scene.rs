@@ -108,6 +108,26 @@ pub enum Method {
     Ros34pw2,
 }
 
+impl Method {
+    /// The registered method this spelling names, `None` for `auto`
+    /// ([`crate::solver::methods::METHODS`]).
+    pub fn entry(self) -> Option<&'static crate::solver::methods::MethodEntry> {
+        let name = match self {
+            Method::Auto => return None,
+            Method::Dopri5 => "dopri5",
+            Method::Rosenbrock => "rosenbrock",
+            Method::Ros34pw2 => "ros34pw2",
+        };
+        crate::solver::methods::by_name(name)
+    }
+
+    /// The method a level of stiffness `stiff` runs with this choice.
+    pub fn resolve(self, stiff: bool) -> &'static crate::solver::methods::MethodEntry {
+        self.entry()
+            .unwrap_or_else(|| crate::solver::methods::auto(stiff))
+    }
+}
+
 /// Solver section.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -134,7 +154,7 @@ pub struct SolverSpec {
 pub const MAX_STEP_CPU_S: f64 = 20.0;
 
 crate::declare_fields!(SolverSpec {
-    method: Method::Auto => choice(&["auto", "dopri5", "rosenbrock", "ros34pw2"], "integrator (auto: the level's default)"),
+    method: Method::Auto => choice(&crate::solver::methods::METHOD_NAMES, "integrator (auto: the level's default)"),
     rtol: 1e-6 => number("-", closed(1e-14, 0.1), "relative tolerance"),
     atol_m: 1e-10 => number("m", closed(1e-20, 1e-3), "absolute tolerance on displacements")
         .why("below 1e-20 m the tolerance is under the rounding of any displacement; the work-precision references use 1e-16 m"),

@@ -4,7 +4,7 @@
 //! couples the component steps it with `do_step`).
 
 use super::system::{Sink, Sys, WRENCH_CHUNK};
-use super::{index_of, variables, Component, Method, State, I_FORCE};
+use super::{index_of, variables, Component, State, I_FORCE};
 use crate::error::{Error, Result};
 
 /// Most values (states or variables per point times points) one `step_through` keeps.
@@ -63,11 +63,17 @@ impl Component {
                  do_step)",
             ));
         }
-        if self.scene.solver.method == Method::Ros34pw2 {
+        let stiff = self.scene.model.level.entry().stiff;
+        let method = self.scene.solver.method.resolve(stiff);
+        if !method.dense_output {
             return Err(Error::invalid(
                 "solver.method",
-                "ros34pw2",
-                "dopri5, rodas4 or auto for step_through (ROS34PW2 has no dense output)",
+                method.name,
+                format!(
+                    "{} for step_through ({} has no dense output)",
+                    crate::solver::methods::with_dense_output(),
+                    method.name
+                ),
             ));
         }
         let mut slots = Vec::with_capacity(vrs.len());

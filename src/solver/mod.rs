@@ -32,6 +32,7 @@
 
 mod dopri5;
 mod linalg;
+pub mod methods;
 pub mod newton;
 mod rosenbrock;
 
