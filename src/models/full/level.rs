@@ -74,7 +74,7 @@ impl FullLevel {
     }
 }
 
-/// The registry's constructor ([`crate::component::levels::LEVELS`]): the scene's
+/// The registry's constructor (the level registry, `LEVELS` in `component/levels.rs`): the scene's
 /// `[model.full]` options with its race control.
 pub fn build(a: &LevelArgs) -> Result<Box<dyn LevelModel>> {
     let b = a.bearing;

@@ -76,7 +76,7 @@ impl LinearLevel {
     }
 }
 
-/// The registry's constructor ([`crate::component::levels::LEVELS`]).
+/// The registry's constructor (the level registry, `LEVELS` in `component/levels.rs`).
 pub fn build(a: &LevelArgs) -> Result<Box<dyn LevelModel>> {
     Ok(Box::new(LinearLevel::new(a)?))
 }

@@ -109,7 +109,7 @@ impl QuasiStaticLevel {
     }
 }
 
-/// The registry's constructor ([`crate::component::levels::LEVELS`]).
+/// The registry's constructor (the level registry, `LEVELS` in `component/levels.rs`).
 pub fn build(a: &LevelArgs) -> Result<Box<dyn LevelModel>> {
     Ok(Box::new(QuasiStaticLevel::new(a)?))
 }

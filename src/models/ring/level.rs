@@ -493,7 +493,7 @@ fn profile_max(fx: &RingEffects) -> f64 {
         .sum()
 }
 
-/// The registry's constructor ([`crate::component::levels::LEVELS`]): 2 or 5 ring
+/// The registry's constructor (the level registry, `LEVELS` in `component/levels.rs`): 2 or 5 ring
 /// coordinates (`model.ring_dof`), contact damping and the scene's effects.
 pub fn build(a: &LevelArgs) -> Result<Box<dyn LevelModel>> {
     let dof = if a.ring_dof == 5 {

@@ -101,7 +101,7 @@ pub fn check(a: &LevelArgs) -> Result<()> {
     a.skidding.params(a.bearing).map(|_| ())
 }
 
-/// The registry's constructor ([`crate::component::levels::LEVELS`]): the scene's
+/// The registry's constructor (the level registry, `LEVELS` in `component/levels.rs`): the scene's
 /// `[model.skidding]` options with its contact damping.
 pub fn build(a: &LevelArgs) -> Result<Box<dyn LevelModel>> {
     let mut p = a.skidding.params(a.bearing)?;
