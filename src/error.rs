@@ -80,6 +80,12 @@ pub enum Error {
     },
     /// Input/output failure (files).
     Io(String),
+    /// The run was asked to stop (Ctrl-C, SIGTERM) at time `at_s` of the run; what was
+    /// computed is dropped.
+    Interrupted {
+        /// Time reached, s.
+        at_s: f64,
+    },
 }
 
 impl Error {
@@ -144,6 +150,12 @@ impl fmt::Display for Error {
             ),
             Error::CallOrder { call, reason } => write!(f, "`{call}` refused: {reason}"),
             Error::Io(m) => write!(f, "{m}"),
+            Error::Interrupted { at_s } => {
+                write!(
+                    f,
+                    "interrupted at t = {at_s} s of the run (a stop was requested)"
+                )
+            }
         }
     }
 }

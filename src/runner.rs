@@ -167,6 +167,19 @@ pub fn run_with(
     through: bool,
     progress: &mut dyn FnMut(f64),
 ) -> Result<(Series, Component)> {
+    run_until(scene, record, through, progress, &mut || false)
+}
+
+/// [`run_with`], asking `stop` before every communication step: when it answers true the
+/// run ends with [`crate::Error::Interrupted`] (Ctrl-C in the command line and in Python).
+/// `stop` is called once per step, so it should be cheap (check a flag, or the clock).
+pub fn run_until(
+    scene: &Scene,
+    record: Record,
+    through: bool,
+    progress: &mut dyn FnMut(f64),
+    stop: &mut dyn FnMut() -> bool,
+) -> Result<(Series, Component)> {
     if through {
         let r = &scene.run;
         let moving = match scene.model.causality {
@@ -228,6 +241,9 @@ pub fn run_with(
     let every = (n / 100).max(1);
     for i in 0..n {
         let t = i as f64 * h;
+        if stop() {
+            return Err(crate::Error::Interrupted { at_s: t });
+        }
         set_inputs(&mut c, scene, t)?;
         c.do_step(t, h)?;
         record(&mut c, &mut series, (i + 1) as f64 * h);

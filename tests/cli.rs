@@ -687,3 +687,47 @@ fn an_output_folder_never_mixes_two_runs() {
     assert_eq!(siblings(), Vec::<String>::new());
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Ctrl-C stops `raceway run` (issue #38, item 2): SIGINT during a long run ends it before
+/// its next step, within a fraction of a second, with exit status 130 and no output folder
+/// written (the staged one is removed).
+#[test]
+fn sigint_stops_a_run_promptly_and_writes_nothing() {
+    let dir = std::env::temp_dir().join(format!("raceway-cli-sigint-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let out_dir = dir.join("out");
+    let scene = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("examples/scenes/7008ce-skidding-24000.toml");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_raceway"))
+        .args([
+            "run",
+            scene.to_str().unwrap(),
+            "--duration",
+            "20",
+            "--out",
+            out_dir.to_str().unwrap(),
+        ])
+        .stderr(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(1500));
+    assert!(child.try_wait().unwrap().is_none(), "the run ended early");
+    let sent = std::time::Instant::now();
+    unsafe { libc::kill(child.id() as libc::pid_t, libc::SIGINT) };
+    let status = child.wait().unwrap();
+    let took = sent.elapsed();
+    let mut err = String::new();
+    std::io::Read::read_to_string(&mut child.stderr.take().unwrap(), &mut err).unwrap();
+    assert_eq!(status.code(), Some(130), "{err}");
+    assert!(took.as_secs_f64() < 0.5, "stopped {took:?} after SIGINT");
+    assert!(err.contains("stopped: interrupted"), "{err}");
+    assert!(!out_dir.exists());
+    assert_eq!(
+        std::fs::read_dir(&dir).unwrap().count(),
+        0,
+        "a staged folder stayed"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -36,6 +36,7 @@ fn kind_field(e: &raceway::Error) -> (&'static str, Option<String>) {
         E::Budget { field, .. } => ("budget", Some(field.to_string())),
         E::CallOrder { .. } => ("call_order", None),
         E::Io(_) => ("io", None),
+        E::Interrupted { .. } => ("interrupted", None),
     }
 }
 
@@ -421,14 +422,34 @@ fn run(
         .into_iter()
         .collect();
     let scene = load_scene(py, &text, &overrides)?;
-    compute(py, || {
+    // Ctrl-C: the run asks Python for pending signals every 50 ms of wall time (taking the
+    // GIL back for that moment); a KeyboardInterrupt stops it before its next step and is
+    // raised as itself.
+    let mut interrupt: Option<PyErr> = None;
+    let result = compute(py, || {
         let c0 = raceway::report::thread_cpu_s();
-        let (series, comp) = raceway::runner::run_recording(
+        let mut last = std::time::Instant::now();
+        let mut stop = || {
+            if last.elapsed() < std::time::Duration::from_millis(50) {
+                return false;
+            }
+            last = std::time::Instant::now();
+            match Python::attach(|py| py.check_signals()) {
+                Ok(()) => false,
+                Err(e) => {
+                    interrupt = Some(e);
+                    true
+                }
+            }
+        };
+        let (series, comp) = raceway::runner::run_until(
             &scene,
             raceway::runner::Record {
                 stiffness_damping: kc,
             },
+            false,
             &mut |_| {},
+            &mut stop,
         )?;
         let cpu = raceway::report::thread_cpu_s() - c0;
         let summary = raceway::summary::summarize(&scene, &name, &series, &comp, cpu);
@@ -443,7 +464,11 @@ fn run(
             columns,
             serde_json::Value::Object(summary.json).to_string(),
         ))
-    })
+    });
+    match interrupt {
+        Some(e) => Err(e),
+        None => result,
+    }
 }
 
 /// `raceway quasi-static --json` as text, plus (ball columns with units, their values).

@@ -171,7 +171,7 @@ impl From<Error> for Failure {
             Error::StepFailed { .. } | Error::NotConverged { .. } | Error::Budget { .. } => {
                 RacewayStatus::StepFailed
             }
-            Error::Io(_) => RacewayStatus::Error,
+            Error::Io(_) | Error::Interrupted { .. } => RacewayStatus::Error,
         };
         Failure::new(status, e.to_string())
     }

@@ -138,6 +138,10 @@ fn main() -> ExitCode {
             print!("{text}");
             ExitCode::SUCCESS
         }
+        Err(e @ raceway::Error::Interrupted { .. }) => {
+            eprintln!("stopped: {e}; nothing was written and the output folder is as before");
+            ExitCode::from(130)
+        }
         Err(e) => {
             eprintln!("error: {e}");
             ExitCode::from(1)

@@ -39,12 +39,31 @@ pub struct RunArgs {
     pub through: bool,
 }
 
+/// Set by SIGINT or SIGTERM: the run stops before its next step and its staged folder is
+/// removed (the previous output folder is left as it was).
+static STOP: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+
+extern "C" fn on_signal(_: libc::c_int) {
+    STOP.store(true, std::sync::atomic::Ordering::Relaxed);
+}
+
+/// Ctrl-C and SIGTERM ask the run to stop instead of killing the process mid-write.
+fn catch_stop_signals() {
+    let handler = on_signal as extern "C" fn(libc::c_int) as libc::sighandler_t;
+    // SAFETY: the handler only stores to an atomic, which is async-signal-safe.
+    unsafe {
+        libc::signal(libc::SIGINT, handler);
+        libc::signal(libc::SIGTERM, handler);
+    }
+}
+
 fn io(path: &Path, e: std::io::Error) -> Error {
     Error::Io(format!("cannot write `{}`: {e}", path.display()))
 }
 
 /// Run and report; returns the text for standard output.
 pub fn run(a: RunArgs) -> Result<String> {
+    catch_stop_signals();
     // One validation path: the file is checked as `raceway scene --check` checks it (every
     // problem at once), then again with the command-line overrides applied.
     let (text, file, name) = match &a.scene {
@@ -170,13 +189,14 @@ fn write_run(a: &RunArgs, scene: &Scene, name: &str, out: &Path) -> Result<Strin
             let _ = std::io::stderr().flush();
         }
     };
-    let (series, comp) = runner::run_with(
+    let (series, comp) = runner::run_until(
         scene,
         Record {
             stiffness_damping: a.kc,
         },
         a.through,
         &mut progress,
+        &mut || STOP.load(std::sync::atomic::Ordering::Relaxed),
     )?;
     if bar_on {
         eprintln!();
