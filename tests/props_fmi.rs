@@ -168,21 +168,11 @@ struct Fmu {
     time: f64,
 }
 
-thread_local!(static PANICS: Cell<u64> = const { Cell::new(0) });
+#[path = "common/fmi_callbacks.rs"]
+mod fmi_callbacks;
+use fmi_callbacks::callbacks;
 
-fn callbacks() -> &'static Fmi2CallbackFunctions {
-    struct Cb(Fmi2CallbackFunctions);
-    // SAFETY: only NULL pointers and None callbacks inside.
-    unsafe impl Sync for Cb {}
-    static CB: Cb = Cb(Fmi2CallbackFunctions {
-        logger: None,
-        allocate_memory: None,
-        free_memory: None,
-        step_finished: None,
-        component_environment: std::ptr::null_mut(),
-    });
-    &CB.0
-}
+thread_local!(static PANICS: Cell<u64> = const { Cell::new(0) });
 
 impl Fmu {
     fn new(v: Version) -> Fmu {

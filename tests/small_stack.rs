@@ -73,9 +73,11 @@ fn nested_scenes_are_refused_on_a_small_stack_with_their_place() {
         );
     }
     // `scene --check` and the scene parser say the same, with the place.
-    let problems = raceway::component::schema::check(&nested_texts()[0].1);
-    assert_eq!(problems.len(), 1);
-    assert_eq!(problems[0].line_col.map(|(l, _)| l), Some(1));
+    for (what, text) in nested_texts() {
+        let problems = on_stack(PARSE_KIB, move || raceway::component::schema::check(&text));
+        assert_eq!(problems.len(), 1, "{what}");
+        assert_eq!(problems[0].line_col.map(|(l, _)| l), Some(1), "{what}");
+    }
 }
 
 /// A whole cycle on the promised stack: create from the default scene, set the motion,
@@ -117,30 +119,24 @@ fn the_default_scene_runs_on_the_promised_stack() {
 }
 
 #[cfg(feature = "fmi")]
+#[path = "common/fmi_callbacks.rs"]
+mod fmi_callbacks;
+
+#[cfg(feature = "fmi")]
 #[test]
 fn an_fmu_refuses_a_nested_scene_on_a_small_stack() {
     use raceway::fmi::fmi2::*;
     use raceway::fmi::{Status, GUID};
     for (what, text) in nested_texts() {
-        let status = on_stack(PROMISED_KIB, move || unsafe {
+        let status = on_stack(PARSE_KIB, move || unsafe {
             let name = CString::new("nested").unwrap();
             let guid = CString::new(GUID).unwrap();
-            struct Cb(Fmi2CallbackFunctions);
-            // SAFETY: only NULL pointers and None callbacks inside.
-            unsafe impl Sync for Cb {}
-            static CB: Cb = Cb(Fmi2CallbackFunctions {
-                logger: None,
-                allocate_memory: None,
-                free_memory: None,
-                step_finished: None,
-                component_environment: std::ptr::null_mut(),
-            });
             let c = fmi2Instantiate(
                 name.as_ptr(),
                 1,
                 guid.as_ptr(),
                 std::ptr::null(),
-                &CB.0,
+                fmi_callbacks::callbacks(),
                 0,
                 0,
             );

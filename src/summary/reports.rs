@@ -248,8 +248,9 @@ impl QsProblem {
         let mut checked = [0.0; 5];
         const VARS: [&str; 5] = ["load.x", "load.y", "load.z", "load.mx", "load.my"];
         for k in 0..5 {
-            checked[k] = finite(names.load[k], load[k])?;
-            lim.check(names.load[k], VARS[k], checked[k])?;
+            // Refuses a non-finite value too, naming it as `finite` does.
+            lim.check(names.load[k], VARS[k], load[k])?;
+            checked[k] = load[k];
         }
         Ok(QsProblem {
             bearing,

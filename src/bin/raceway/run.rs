@@ -96,14 +96,10 @@ pub fn run(a: RunArgs) -> Result<String> {
     // files with a previous run's (the previous folder stays as it was; an interrupted
     // run is the `.<name>.partial-<pid>` folder, removed by the next run into `out`).
     let staging = Staging::new(&out)?;
-    let result = write_run(&a, &scene, &name, &staging.dir);
-    match result {
+    match write_run(&a, &scene, &name, &staging.dir, &out) {
         Ok(text) => {
             staging.publish()?;
-            Ok(text.replace(
-                &staging.dir.display().to_string(),
-                &out.display().to_string(),
-            ))
+            Ok(text)
         }
         Err(e) => {
             staging.discard();
@@ -170,8 +166,9 @@ impl Staging {
     }
 }
 
-/// Run the scene and write everything into `out` (the staging folder).
-fn write_run(a: &RunArgs, scene: &Scene, name: &str, out: &Path) -> Result<String> {
+/// Run the scene and write everything into `out` (the staging folder); the text for
+/// standard output names `shown`, where the folder goes when complete.
+fn write_run(a: &RunArgs, scene: &Scene, name: &str, out: &Path, shown: &Path) -> Result<String> {
     let out = out.to_path_buf();
     let quiet = a.quiet;
     let bar_on = !quiet && std::io::IsTerminal::is_terminal(&std::io::stderr());
@@ -228,7 +225,7 @@ fn write_run(a: &RunArgs, scene: &Scene, name: &str, out: &Path) -> Result<Strin
     writeln!(
         s,
         "results in {}/ (series.csv{}, summary.txt, summary.json, {})",
-        out.display(),
+        shown.display(),
         if a.kc { " with K and C" } else { "" },
         pngs.join(", ")
     )
