@@ -15,8 +15,8 @@
 //! above what a scene uses.
 
 /// The deepest nesting a scene may have. Every shipped scene stays within 6 levels (the
-/// test `every_shipped_scene_is_far_inside_the_limit`); 32 leaves room for any hand-written layout while the parsers' recursion stays a few
-/// kilobytes of stack.
+/// test `every_shipped_scene_is_far_inside_the_limit`); 32 leaves room for any hand-written
+/// layout while the parsers' recursion stays a few kilobytes of stack.
 pub const MAX_NESTING: usize = 32;
 
 /// Where a text first nests deeper than the limit: 1-based line and column, and the depth
