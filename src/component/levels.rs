@@ -62,6 +62,13 @@ impl LevelEntry {
         self.check = check;
         self
     }
+
+    /// The element kinds the level takes (default: balls).
+    #[allow(dead_code)] // every level takes balls only, until the roller contact law lands
+    const fn with_elements(mut self, elements: &'static [ElementKind]) -> Self {
+        self.elements = elements;
+        self
+    }
 }
 
 impl std::fmt::Debug for LevelEntry {
