@@ -12,7 +12,7 @@
 //! ball geometry), blended in over the first 0.1 µm of approach; off (no cost) at 0.
 
 use crate::error::{Error, Result};
-use crate::geometry::element::Element;
+use crate::geometry::element::{Element, ElementKind};
 use crate::geometry::kinematics::nominal_cage_speed as cage_speed;
 use crate::models::quasi_static::{Options, QuasiStatic};
 use crate::models::ring::{RingDof, RingEval, RingModel};
@@ -20,6 +20,10 @@ use crate::models::LevelArgs;
 use crate::seam::element::{assemble, ElementLaw, Want};
 use crate::seam::{LevelModel, LevelOutputs, Motion, Point};
 use std::f64::consts::PI;
+
+/// The element kinds this level takes: those [`element_law`] has a law for (the level
+/// registry reads it).
+pub const ELEMENTS: &[ElementKind] = &[ElementKind::Ball];
 
 /// The contact law of the bearing's element at this level.
 pub fn element_law(a: &LevelArgs, opts: Options) -> Result<Box<dyn ElementLaw>> {
