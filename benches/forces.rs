@@ -12,7 +12,7 @@
 
 use raceway::geometry::preset;
 use raceway::models::quasi_static::{azimuths, BallState, Options, QuasiStatic};
-use raceway::models::ring::{cage_sin_cos, RingDof, RingEval, RingModel};
+use raceway::models::ring::{cage_sin_cos, RingAt, RingDof, RingEval, RingModel};
 use raceway::report::{load_average, thread_cpu_s};
 use raceway::units::rpm_to_rad_s;
 use std::hint::black_box;
@@ -123,7 +123,18 @@ fn ring(bench: bool) {
     let eval = per_call(pts.len(), repeats, || {
         let mut s = 0.0;
         for (q, v, th) in &pts {
-            m.eval(black_box(*th), 73.0, q, v, 0.0, None, false, &mut out);
+            m.eval(
+                RingAt {
+                    theta_c: black_box(*th),
+                    omega_c: 73.0,
+                    q,
+                    v,
+                    t: 0.0,
+                },
+                None,
+                false,
+                &mut out,
+            );
             s += out.wrench[1];
         }
         s

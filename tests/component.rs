@@ -188,7 +188,7 @@ fn bad_scenes_name_the_field() {
 /// at the cage angle the component integrated, and K/C match the directional derivative.
 #[test]
 fn motion_driven_ring_matches_the_model() {
-    use raceway::models::ring::{RingDof, RingEval, RingModel};
+    use raceway::models::ring::{RingAt, RingDof, RingEval, RingModel};
     let mut c = Component::from_text(RING_MOTION).unwrap();
     let h = 1e-3;
     c.do_step(0.0, h).unwrap();
@@ -197,11 +197,13 @@ fn motion_driven_ring_matches_the_model() {
     let wc = raceway::component::levels::cage_speed(&b, 183.26);
     let mut e = RingEval::default();
     m.eval(
-        wc * h,
-        wc,
-        &[0.0, -8e-6, 0.0, 0.0, 0.0],
-        &[0.0; 5],
-        h,
+        RingAt {
+            theta_c: wc * h,
+            omega_c: wc,
+            q: &[0.0, -8e-6, 0.0, 0.0, 0.0],
+            v: &[0.0; 5],
+            t: h,
+        },
         None,
         true,
         &mut e,

@@ -4,7 +4,7 @@
 
 use raceway::component::{variables, Component, Scene};
 use raceway::models::ring::level::SlowLayout;
-use raceway::models::ring::{RingDof, RingEval, RingModel};
+use raceway::models::ring::{RingAt, RingDof, RingEval, RingModel};
 use raceway::models::wear;
 
 fn vr(name: &str) -> u32 {
@@ -223,7 +223,18 @@ fn growth_equals_alpha_dt_d_and_closes_the_clearance() {
     let model = RingModel::new(&hot, RingDof::Two, 0.0);
     let mut e = RingEval::default();
     let q = [0.0, -12e-6, 0.0, 0.0, 0.0];
-    model.eval(st.x[0], 0.0, &q, &[0.0; 5], 0.0, None, false, &mut e);
+    model.eval(
+        RingAt {
+            theta_c: st.x[0],
+            omega_c: 0.0,
+            q: &q,
+            v: &[0.0; 5],
+            t: 0.0,
+        },
+        None,
+        false,
+        &mut e,
+    );
     let fy = c.get_real(vr("force.y")).unwrap();
     assert!(
         (fy - e.wrench[1]).abs() < 1e-9 * fy.abs(),
@@ -231,8 +242,18 @@ fn growth_equals_alpha_dt_d_and_closes_the_clearance() {
         e.wrench[1]
     );
     let mut cold = RingEval::default();
-    RingModel::new(&b, RingDof::Two, 0.0)
-        .eval(st.x[0], 0.0, &q, &[0.0; 5], 0.0, None, false, &mut cold);
+    RingModel::new(&b, RingDof::Two, 0.0).eval(
+        RingAt {
+            theta_c: st.x[0],
+            omega_c: 0.0,
+            q: &q,
+            v: &[0.0; 5],
+            t: 0.0,
+        },
+        None,
+        false,
+        &mut cold,
+    );
     assert!(
         change < 0.0 && fy.abs() > cold.wrench[1].abs(),
         "tighter when warm"

@@ -13,19 +13,39 @@ fn mat(ball: &str, ring: &str, cage: &str) -> MaterialsSpec {
     }
 }
 
-#[allow(clippy::too_many_arguments)]
-fn spec(
-    name: &str,
+/// A preset's row as the studies give it (mm, degrees, µm); the rest takes the bearing
+/// file's defaults.
+struct Row<'a> {
+    name: &'a str,
     kind: BearingKind,
+    /// Ball diameter, mm.
     d: f64,
+    /// Pitch diameter, mm.
     dm: f64,
+    /// Number of balls.
     z: u32,
+    /// Groove curvature ratios `(f_i, f_o)`.
     f: Option<(f64, f64)>,
     alpha_deg: Option<f64>,
     pd_um: Option<f64>,
+    /// Bore, outside diameter and width, mm.
     envelope: (f64, f64, f64),
-    source: &str,
-) -> BearingSpec {
+    source: &'a str,
+}
+
+fn spec(r: Row<'_>) -> BearingSpec {
+    let Row {
+        name,
+        kind,
+        d,
+        dm,
+        z,
+        f,
+        alpha_deg,
+        pd_um,
+        envelope,
+        source,
+    } = r;
     BearingSpec {
         name: name.into(),
         kind,
@@ -52,18 +72,18 @@ pub fn presets() -> Vec<BearingSpec> {
     use BearingKind::*;
     let mut v = Vec::new();
 
-    let mut b7004 = spec(
-        "7004",
-        AngularContact,
-        8.0,
-        31.0,
-        6,
-        Some((0.56, 0.52)),
-        Some(24.0),
-        None,
-        (20.0, 42.0, 12.0),
-        "study [0] (Ye, Wang, Zhang), hybrid high-speed 7004; Z = 6 as the study gives it; envelope from the 7004 series",
-    );
+    let mut b7004 = spec(Row {
+            name: "7004",
+            kind: AngularContact,
+            d: 8.0,
+            dm: 31.0,
+            z: 6,
+            f: Some((0.56, 0.52)),
+            alpha_deg: Some(24.0),
+            pd_um: None,
+            envelope: (20.0, 42.0, 12.0),
+            source: "study [0] (Ye, Wang, Zhang), hybrid high-speed 7004; Z = 6 as the study gives it; envelope from the 7004 series",
+        });
     b7004.materials = mat("si3n4", "steel-7004", "phenolic");
     b7004.cage = CageSpec {
         inner_diameter_mm: Some(30.0),
@@ -75,18 +95,18 @@ pub fn presets() -> Vec<BearingSpec> {
     };
     v.push(b7004);
 
-    let acbb16 = spec(
-        "acbb16",
-        AngularContact,
-        22.23,
-        135.0,
-        16,
-        Some((0.523, 0.523)),
-        Some(40.0),
-        None,
-        (100.0, 170.0, 28.0),
-        "study [1] (Jiang, Yang, Chang), 16-ball angular-contact bearing, steel balls; envelope assumed",
-    );
+    let acbb16 = spec(Row {
+            name: "acbb16",
+            kind: AngularContact,
+            d: 22.23,
+            dm: 135.0,
+            z: 16,
+            f: Some((0.523, 0.523)),
+            alpha_deg: Some(40.0),
+            pd_um: None,
+            envelope: (100.0, 170.0, 28.0),
+            source: "study [1] (Jiang, Yang, Chang), 16-ball angular-contact bearing, steel balls; envelope assumed",
+        });
     // The same bearing with other materials: its geometry is acbb16's by construction.
     let hybrid = BearingSpec {
         name: "acbb16-si3n4".into(),
@@ -97,74 +117,74 @@ pub fn presets() -> Vec<BearingSpec> {
     v.push(acbb16);
     v.push(hybrid);
 
-    let mut b6012 = spec(
-        "6012",
-        DeepGroove,
-        10.45,
-        77.6,
-        14,
-        Some((0.52, 0.52)),
-        None,
-        Some(10.0),
-        (60.0, 95.0, 18.0),
-        "study [2] (Cao et al.); race radii 33.5/44.0 mm; f = 0.52 assumed (not given)",
-    );
+    let mut b6012 = spec(Row {
+        name: "6012",
+        kind: DeepGroove,
+        d: 10.45,
+        dm: 77.6,
+        z: 14,
+        f: Some((0.52, 0.52)),
+        alpha_deg: None,
+        pd_um: Some(10.0),
+        envelope: (60.0, 95.0, 18.0),
+        source: "study [2] (Cao et al.); race radii 33.5/44.0 mm; f = 0.52 assumed (not given)",
+    });
     b6012.cage.inertia_kg_m2 = Some(3.2e-5);
     v.push(b6012);
 
-    let mut b7008 = spec(
-        "7008ce",
-        AngularContact,
-        8.003,
-        54.0,
-        16,
-        None,
-        Some(15.0),
-        Some(28.37),
-        (40.0, 68.0, 15.0),
-        "study [3] (Wang et al.), full-ceramic ZrO2; race diameters 46.062/62.096 mm; f_i = f_o derived from alpha0 and Pd",
-    );
+    let mut b7008 = spec(Row {
+            name: "7008ce",
+            kind: AngularContact,
+            d: 8.003,
+            dm: 54.0,
+            z: 16,
+            f: None,
+            alpha_deg: Some(15.0),
+            pd_um: Some(28.37),
+            envelope: (40.0, 68.0, 15.0),
+            source: "study [3] (Wang et al.), full-ceramic ZrO2; race diameters 46.062/62.096 mm; f_i = f_o derived from alpha0 and Pd",
+        });
     b7008.materials = mat("zro2", "zro2", "zro2");
     v.push(b7008);
 
-    v.push(spec(
-        "6205",
-        DeepGroove,
-        7.94,
-        39.04,
-        9,
-        Some((0.52, 0.52)),
-        None,
-        Some(0.0),
-        (25.0, 52.0, 15.0),
-        "study [4] (Yan et al.) / CWRU 6205-2RS; f = 0.52 and zero clearance assumed (not given)",
-    ));
+    v.push(spec(Row {
+            name: "6205",
+            kind: DeepGroove,
+            d: 7.94,
+            dm: 39.04,
+            z: 9,
+            f: Some((0.52, 0.52)),
+            alpha_deg: None,
+            pd_um: Some(0.0),
+            envelope: (25.0, 52.0, 15.0),
+            source: "study [4] (Yan et al.) / CWRU 6205-2RS; f = 0.52 and zero clearance assumed (not given)",
+        }));
 
-    v.push(spec(
-        "209",
-        DeepGroove,
-        12.7,
-        65.0,
-        9,
-        Some((0.52, 0.52)),
-        None,
-        Some(15.0),
-        (45.0, 85.0, 19.0),
-        "Harris & Kotzalas worked examples, 209 deep-groove bearing (raceway diameters 52.291/77.706 mm)",
-    ));
+    v.push(spec(Row {
+            name: "209",
+            kind: DeepGroove,
+            d: 12.7,
+            dm: 65.0,
+            z: 9,
+            f: Some((0.52, 0.52)),
+            alpha_deg: None,
+            pd_um: Some(15.0),
+            envelope: (45.0, 85.0, 19.0),
+            source: "Harris & Kotzalas worked examples, 209 deep-groove bearing (raceway diameters 52.291/77.706 mm)",
+        }));
 
-    v.push(spec(
-        "218",
-        AngularContact,
-        22.23,
-        125.3,
-        16,
-        Some((0.5232, 0.5232)),
-        Some(40.0),
-        None,
-        (90.0, 160.0, 30.0),
-        "Harris & Kotzalas worked examples, 218 angular-contact bearing",
-    ));
+    v.push(spec(Row {
+        name: "218",
+        kind: AngularContact,
+        d: 22.23,
+        dm: 125.3,
+        z: 16,
+        f: Some((0.5232, 0.5232)),
+        alpha_deg: Some(40.0),
+        pd_um: None,
+        envelope: (90.0, 160.0, 30.0),
+        source: "Harris & Kotzalas worked examples, 218 angular-contact bearing",
+    }));
     v
 }
 

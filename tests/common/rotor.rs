@@ -14,7 +14,7 @@
 #![allow(dead_code, clippy::needless_range_loop)]
 
 use raceway::component::{levels::cage_speed, variables, Component, InputRule};
-use raceway::models::ring::{RingDof, RingEval, RingModel};
+use raceway::models::ring::{RingAt, RingDof, RingEval, RingModel};
 
 /// Rotor and run parameters.
 #[derive(Debug, Clone, Copy)]
@@ -102,11 +102,13 @@ pub fn monolithic(r: &Rotor, t_end: f64, dt: f64, sample: f64) -> Vec<(f64, f64,
         for k in 0..2 {
             let bm = bearing_motion(s, r.z[k]);
             model.eval(
-                wc * t,
-                wc,
-                &[bm[0], bm[1], 0.0, 0.0, 0.0],
-                &[bm[2], bm[3], 0.0, 0.0, 0.0],
-                t,
+                RingAt {
+                    theta_c: wc * t,
+                    omega_c: wc,
+                    q: &[bm[0], bm[1], 0.0, 0.0, 0.0],
+                    v: &[bm[2], bm[3], 0.0, 0.0, 0.0],
+                    t,
+                },
                 None,
                 false,
                 &mut e,

@@ -7,7 +7,7 @@
 use crate::error::Result;
 use crate::geometry::kinematics::nominal_cage_speed as cage_speed;
 use crate::models::quasi_static::{Options, QuasiStatic};
-use crate::models::ring::{RingDof, RingEval, RingModel};
+use crate::models::ring::{RingAt, RingDof, RingEval, RingModel};
 use crate::models::LevelArgs;
 use crate::seam::{LevelModel, LevelOutputs, Motion, Point};
 use crate::units::rpm_to_rad_s;
@@ -43,7 +43,18 @@ impl LinearLevel {
         )?;
         let ring = RingModel::new(b, RingDof::Five, a.contact_damping);
         let mut e = RingEval::default();
-        ring.eval(0.0, 0.0, &sol.q, &[0.0; 5], 0.0, None, true, &mut e);
+        ring.eval(
+            RingAt {
+                theta_c: 0.0,
+                omega_c: 0.0,
+                q: &sol.q,
+                v: &[0.0; 5],
+                t: 0.0,
+            },
+            None,
+            true,
+            &mut e,
+        );
         let mut max_p: f64 = 0.0;
         let mut max_load: f64 = 0.0;
         let mut loaded = 0.0;

@@ -15,7 +15,7 @@ use crate::error::{Error, Result};
 use crate::geometry::element::{Element, ElementKind};
 use crate::geometry::kinematics::nominal_cage_speed as cage_speed;
 use crate::models::quasi_static::{Options, QuasiStatic};
-use crate::models::ring::{RingDof, RingEval, RingModel};
+use crate::models::ring::{RingAt, RingDof, RingEval, RingModel};
 use crate::models::LevelArgs;
 use crate::seam::element::{assemble, ElementLaw, Want};
 use crate::seam::{LevelModel, LevelOutputs, Motion, Point};
@@ -107,8 +107,30 @@ impl QuasiStaticLevel {
         if let Some((with, without, e1, e0)) = &mut self.damping {
             let wc = self.cage_ratio * m.omega;
             let jac = c.is_some();
-            with.eval(theta, wc, &m.q, &m.v, 0.0, None, jac, e1);
-            without.eval(theta, wc, &m.q, &m.v, 0.0, None, false, e0);
+            with.eval(
+                RingAt {
+                    theta_c: theta,
+                    omega_c: wc,
+                    q: &m.q,
+                    v: &m.v,
+                    t: 0.0,
+                },
+                None,
+                jac,
+                e1,
+            );
+            without.eval(
+                RingAt {
+                    theta_c: theta,
+                    omega_c: wc,
+                    q: &m.q,
+                    v: &m.v,
+                    t: 0.0,
+                },
+                None,
+                false,
+                e0,
+            );
             for ((w, a), b) in w.iter_mut().zip(e1.wrench).zip(e0.wrench) {
                 *w += a - b;
             }

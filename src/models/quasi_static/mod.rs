@@ -375,28 +375,6 @@ impl QuasiStatic {
                 ));
             }
         }
-        let want = balls.is_some();
-        self.evaluate_with(q, omega, psi, state, stiffness, want, |j, e4, p, x| {
-            if let Some(b) = balls.as_deref_mut() {
-                b[j] = self.ball_result(e4, p, x);
-            }
-        })
-    }
-
-    /// [`QuasiStatic::evaluate`] handing each ball's `N = 4` evaluation at its root to
-    /// `per_ball(j, e, psi_j, x_j)` when `want_balls` (what a caller that needs less than
-    /// the whole [`BallResult`] reads; the slice lengths are the caller's to check).
-    #[allow(clippy::too_many_arguments)]
-    pub(crate) fn evaluate_with<F: FnMut(usize, &Eval<4>, f64, [f64; 2])>(
-        &self,
-        q: &[f64; 5],
-        omega: f64,
-        psi: &[f64],
-        state: &mut [BallState],
-        stiffness: Option<&mut [[f64; 5]; 5]>,
-        want_balls: bool,
-        mut per_ball: F,
-    ) -> Result<[f64; 5]> {
         if !omega.is_finite() {
             return Err(Error::invalid("omega", omega, "a finite number"));
         }
@@ -410,7 +388,7 @@ impl QuasiStatic {
         // The `N = 4` evaluation at each ball's root when the stiffness or the reports
         // are wanted (else the forces alone, `ball.rs`).
         let want_k = stiffness.is_some();
-        let full = want_k || want_balls;
+        let full = want_k || balls.is_some();
         element::assemble(q, psi, stiffness, |j, at, u| {
             let st = &mut state[j];
             let sol = self.solve_ball(at, u, omega, st, full)?;
@@ -422,8 +400,8 @@ impl QuasiStatic {
                 if want_k {
                     r.df = self.ball_df(e4);
                 }
-                if want_balls {
-                    per_ball(j, e4, at.psi, st.x);
+                if let Some(b) = balls.as_deref_mut() {
+                    b[j] = self.ball_result(e4, at.psi, st.x);
                 }
             }
             Ok(r)

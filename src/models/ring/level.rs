@@ -29,7 +29,7 @@ use crate::geometry::kinematics::nominal_cage_speed as cage_speed;
 use crate::geometry::Bearing;
 use crate::lubrication::entrainment_speed;
 use crate::models::effects::{Effects, FilmKind, RingEffects, WearRegime};
-use crate::models::ring::{Profile, RingDof, RingEval, RingJacobian, RingModel};
+use crate::models::ring::{Profile, RingAt, RingDof, RingEval, RingJacobian, RingModel};
 use crate::models::thermal::{ContactSums, ThermalModel, ThermalParams};
 use crate::models::waviness::WavySite;
 use crate::models::wear::{self, FactorsAt, FilmDefect, WearLaw};
@@ -374,26 +374,23 @@ impl RingLevel {
 
     /// Evaluate the ring model with the level's effects into `self.eval` (cage speed `wc`);
     /// `per_ball(slow, j, psi, q)` sees each ball's load with the slow effects.
-    #[allow(clippy::too_many_arguments)]
     fn evaluate<F: FnMut(Option<&Slow>, usize, f64, f64)>(
         &mut self,
-        t: f64,
-        m: &Motion,
-        x: &[f64],
-        aux: &[f64],
-        wc: f64,
+        at: LevelAt<'_>,
         jac: bool,
         mut per_ball: F,
     ) {
-        let angles = self.angles(x);
         let slow = self.slow.as_ref();
+        let sources = Sources {
+            profile: self.profile.as_ref(),
+            slow,
+            angles: self.angles(at.x),
+        };
         eval_ring(
             &self.model,
             &mut self.eval,
-            self.profile.as_ref(),
-            slow,
-            angles,
-            (t, m, x, aux, wc),
+            sources,
+            at,
             jac,
             |j, psi, q| per_ball(slow, j, psi, q),
         );
@@ -432,35 +429,71 @@ impl RingLevel {
                 }
             }
         };
+        let sources = Sources {
+            profile: self.profile.as_ref(),
+            slow: Some(slow),
+            angles,
+        };
         eval_ring(
             &self.model,
             &mut self.eval,
-            self.profile.as_ref(),
-            Some(slow),
-            angles,
-            (t, m, x, aux, wc),
+            sources,
+            LevelAt { t, m, x, aux, wc },
             false,
             per_ball,
         );
     }
 }
 
+/// Where the level evaluates its ring model: time, motion, the level's states and memory,
+/// the cage speed `wc` (rad/s).
+#[derive(Clone, Copy)]
+struct LevelAt<'a> {
+    t: f64,
+    m: &'a Motion,
+    x: &'a [f64],
+    aux: &'a [f64],
+    wc: f64,
+}
+
+/// The effects a ring evaluation reads: the fast profile, the slow state and the shaft
+/// angles `[for the fast effects, turned]`.
+#[derive(Clone, Copy)]
+struct Sources<'a> {
+    profile: Option<&'a RingEffects>,
+    slow: Option<&'a Slow>,
+    angles: [f64; 2],
+}
+
 /// Evaluate the ring model with the profile of the effects and the slow state.
 /// `angles = [shaft angle for the fast effects, shaft angle turned]`.
-#[allow(clippy::too_many_arguments)]
 fn eval_ring<F: FnMut(usize, f64, f64)>(
     model: &RingModel,
     eval: &mut RingEval,
-    profile: Option<&RingEffects>,
-    slow: Option<&Slow>,
-    angles: [f64; 2],
-    (t, m, x, aux, wc): (f64, &Motion, &[f64], &[f64], f64),
+    Sources {
+        profile,
+        slow,
+        angles,
+    }: Sources<'_>,
+    LevelAt { t, m, x, aux, wc }: LevelAt<'_>,
     jac: bool,
     per_ball: F,
 ) {
     let [theta_s, turned] = angles;
     let ev = |p: Profile<'_>, max: f64, eval: &mut RingEval, per_ball: F| {
-        model.eval_with(x[0], wc, &m.q, &m.v, t, (p, max), jac, eval, per_ball)
+        model.eval_with(
+            RingAt {
+                theta_c: x[0],
+                omega_c: wc,
+                q: &m.q,
+                v: &m.v,
+                t,
+            },
+            (p, max),
+            jac,
+            eval,
+            per_ball,
+        )
     };
     match (profile, slow) {
         (None, None) => ev(None, 0.0, eval, per_ball),
@@ -581,11 +614,13 @@ impl LevelModel for RingLevel {
             // the effects (the same call `eval_ring` makes then).
             if let Some(w) = wrench {
                 self.model.eval_with(
-                    x[0],
-                    wc,
-                    &m.q,
-                    &m.v,
-                    t,
+                    RingAt {
+                        theta_c: x[0],
+                        omega_c: wc,
+                        q: &m.q,
+                        v: &m.v,
+                        t,
+                    },
                     (None, 0.0),
                     false,
                     &mut self.eval,
@@ -599,7 +634,7 @@ impl LevelModel for RingLevel {
                 *w = self.eval.wrench;
             }
         } else if let Some(w) = wrench {
-            self.evaluate(t, m, x, aux, wc, false, |_, _, _, _| {});
+            self.evaluate(LevelAt { t, m, x, aux, wc }, false, |_, _, _, _| {});
             *w = self.eval.wrench;
         }
         Ok(())
@@ -613,11 +648,13 @@ impl LevelModel for RingLevel {
         for (k, (w, m)) in out.iter_mut().zip(p.m).enumerate() {
             let wc = self.cage_ratio * m.omega;
             self.model.eval_with(
-                p.x[k * p.stride],
-                wc,
-                &m.q,
-                &m.v,
-                p.t[k],
+                RingAt {
+                    theta_c: p.x[k * p.stride],
+                    omega_c: wc,
+                    q: &m.q,
+                    v: &m.v,
+                    t: p.t[k],
+                },
                 (None, 0.0),
                 false,
                 &mut self.eval,
@@ -645,7 +682,7 @@ impl LevelModel for RingLevel {
         if self.shaft_angle {
             dx[1] = m.omega;
         }
-        self.evaluate(t, m, x, aux, wc, true, |_, _, _, _| {});
+        self.evaluate(LevelAt { t, m, x, aux, wc }, true, |_, _, _, _| {});
         *w = self.eval.wrench;
         self.kept = Some(self.point_key(m, x));
         Ok(())
@@ -673,7 +710,7 @@ impl LevelModel for RingLevel {
         let kept = self.slow.is_none() && self.kept == Some(self.point_key(m, x));
         if !kept {
             self.kept = None;
-            self.evaluate(t, m, x, aux, wc, true, |slow, _j, _psi, q| {
+            self.evaluate(LevelAt { t, m, x, aux, wc }, true, |slow, _j, _psi, q| {
                 if let Some(th) = slow.and_then(|s| s.thermal.as_ref()) {
                     th.model.add_ball(omega, q, &mut sums);
                 }

@@ -95,6 +95,23 @@ pub struct RingJacobian {
     pub dtheta: [f64; 5],
 }
 
+/// Where the ring model is evaluated: cage angle `theta_c` (rad) and speed `omega_c`
+/// (rad/s), inner-ring displacement `q` and velocity `v` (m, rad; m/s, rad/s), time `t` (s,
+/// for a profile that moves).
+#[derive(Debug, Clone, Copy)]
+pub struct RingAt<'a> {
+    /// Cage angle, rad.
+    pub theta_c: f64,
+    /// Cage speed, rad/s.
+    pub omega_c: f64,
+    /// Displacement `(x, y, z, rx, ry)`.
+    pub q: &'a [f64; 5],
+    /// Velocity.
+    pub v: &'a [f64; 5],
+    /// Time, s.
+    pub t: f64,
+}
+
 /// The ring-on-massless-balls force law of one bearing.
 #[derive(Debug, Clone)]
 pub struct RingModel {
@@ -231,37 +248,16 @@ impl RingModel {
         p0(self.axes[0]).max(p0(self.axes[1]))
     }
 
-    /// Forces at cage angle `theta_c` (rad), cage speed `omega_c` (rad/s), ring
-    /// displacement `q` and velocity `v`, time `t` (for the profile). With `jac` the
-    /// stiffness and damping matrices are filled too. Allocation-free.
-    #[allow(clippy::too_many_arguments)]
-    pub fn eval(
-        &self,
-        theta_c: f64,
-        omega_c: f64,
-        q: &[f64; 5],
-        v: &[f64; 5],
-        t: f64,
-        profile: Profile<'_>,
-        jac: bool,
-        out: &mut RingEval,
-    ) {
+    /// Forces at `at` (cage angle and speed, ring displacement and velocity, time for the
+    /// profile). With `jac` the stiffness and damping matrices are filled too.
+    /// Allocation-free.
+    pub fn eval(&self, at: RingAt<'_>, profile: Profile<'_>, jac: bool, out: &mut RingEval) {
         let profile_max = if profile.is_some() {
             f64::INFINITY
         } else {
             0.0
         };
-        self.eval_with(
-            theta_c,
-            omega_c,
-            q,
-            v,
-            t,
-            (profile, profile_max),
-            jac,
-            out,
-            |_, _, _| {},
-        );
+        self.eval_with(at, (profile, profile_max), jac, out, |_, _, _| {});
     }
 
     /// [`RingModel::eval`] that also hands each loaded ball to `per_ball(j, psi_j, Q_j)`
@@ -275,14 +271,15 @@ impl RingModel {
     /// and 1 fm, far above the rounding of the sums, so a ball is skipped only where the
     /// full evaluation would find it unloaded: the same results, bit for bit (test
     /// `skipping_unloaded_balls_changes_no_bit`).
-    #[allow(clippy::too_many_arguments)]
     pub fn eval_with<F: FnMut(usize, f64, f64)>(
         &self,
-        theta_c: f64,
-        omega_c: f64,
-        q: &[f64; 5],
-        v: &[f64; 5],
-        t: f64,
+        RingAt {
+            theta_c,
+            omega_c,
+            q,
+            v,
+            t,
+        }: RingAt<'_>,
         (profile, profile_max): (Profile<'_>, f64),
         jac: bool,
         out: &mut RingEval,

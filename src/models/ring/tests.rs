@@ -20,7 +20,18 @@ fn peak_pressure_is_the_contacts_own_bit_for_bit() {
 
 fn eval(m: &RingModel, q: [f64; 5], theta: f64) -> RingEval {
     let mut out = RingEval::default();
-    m.eval(theta, 0.0, &q, &[0.0; 5], 0.0, None, true, &mut out);
+    m.eval(
+        RingAt {
+            theta_c: theta,
+            omega_c: 0.0,
+            q: &q,
+            v: &[0.0; 5],
+            t: 0.0,
+        },
+        None,
+        true,
+        &mut out,
+    );
     out
 }
 
@@ -90,11 +101,13 @@ fn two_dof_is_the_general_loop_bit_for_bit() {
                         let mut out = RingEval::default();
                         let mut loads = Vec::new();
                         m.eval_with(
-                            theta,
-                            wc,
-                            &q,
-                            &v,
-                            t,
+                            RingAt {
+                                theta_c: theta,
+                                omega_c: wc,
+                                q: &q,
+                                v: &v,
+                                t,
+                            },
                             *profile,
                             jac,
                             &mut out,
@@ -185,7 +198,18 @@ fn wrench_jacobian_matches_central_differences() {
         let m = RingModel::new(&b, dof, 3000.0);
         let wrench = |q: &[f64; 5], v: &[f64; 5], th: f64| {
             let mut e = RingEval::default();
-            m.eval(th, 80.0, q, v, 0.0, None, false, &mut e);
+            m.eval(
+                RingAt {
+                    theta_c: th,
+                    omega_c: 80.0,
+                    q,
+                    v,
+                    t: 0.0,
+                },
+                None,
+                false,
+                &mut e,
+            );
             e.wrench
         };
         for case in 0..60 {
@@ -422,11 +446,13 @@ fn skipping_unloaded_balls_changes_no_bit() {
         let mut balls = Vec::new();
         let v = [1e-3, -2e-3, 0.0, 0.0, 0.0];
         m.eval_with(
-            0.37,
-            70.0,
-            &q,
-            &v,
-            0.0,
+            RingAt {
+                theta_c: 0.37,
+                omega_c: 70.0,
+                q: &q,
+                v: &v,
+                t: 0.0,
+            },
             (Some(&wavy), max),
             true,
             &mut out,
@@ -468,7 +494,18 @@ fn profile_offsets_the_deflection() {
     let plain = eval(&m, q, 0.0);
     let dent = |_j: usize, psi: f64, _t: f64| if psi.cos() > 0.999 { -20e-6 } else { 0.0 };
     let mut out = RingEval::default();
-    m.eval(0.0, 0.0, &q, &[0.0; 5], 0.0, Some(&dent), false, &mut out);
+    m.eval(
+        RingAt {
+            theta_c: 0.0,
+            omega_c: 0.0,
+            q: &q,
+            v: &[0.0; 5],
+            t: 0.0,
+        },
+        Some(&dent),
+        false,
+        &mut out,
+    );
     assert_eq!(out.loaded, plain.loaded - 1);
     assert!(out.wrench[0] > plain.wrench[0]);
 }
@@ -487,7 +524,18 @@ fn film_and_spacing_keep_k_consistent() {
     let wavy = |j: usize, psi: f64, _t: f64| 0.2e-6 * (3.0 * psi).sin() - 1e-8 * j as f64;
     let at = |m: &RingModel, q: [f64; 5]| {
         let mut out = RingEval::default();
-        m.eval(0.1, wc, &q, &[0.0; 5], 0.0, Some(&wavy), true, &mut out);
+        m.eval(
+            RingAt {
+                theta_c: 0.1,
+                omega_c: wc,
+                q: &q,
+                v: &[0.0; 5],
+                t: 0.0,
+            },
+            Some(&wavy),
+            true,
+            &mut out,
+        );
         out
     };
     let q = [2e-6, -12e-6, 0.0, 0.0, 0.0];
