@@ -3,6 +3,7 @@
 
 pub mod elliptic;
 pub mod hertz;
+pub mod lamina;
 pub mod traction;
 
 pub use hertz::{
