@@ -6,6 +6,7 @@ pub mod element;
 pub mod kinematics;
 pub mod material;
 pub mod presets;
+pub mod roller;
 
 pub use bearing::{
     Bearing, BearingKind, BearingSpec, Cage, CageSpec, Guidance, MaterialSpec, MaterialsSpec,
