@@ -7,6 +7,7 @@ pub mod kinematics;
 pub mod material;
 pub mod presets;
 pub mod roller;
+pub mod roller_catalogue;
 
 pub use bearing::{
     Bearing, BearingKind, BearingSpec, Cage, CageSpec, Guidance, MaterialSpec, MaterialsSpec,
