@@ -1,4 +1,5 @@
-//! Line contact of a roller by laminae (slicing), after ISO/TS 16281:2008 (docs/physics.md §R).
+//! Line contact of a roller by laminae (slicing), after ISO/TS 16281:2008
+//! (docs/physics.md §R1–§R3).
 //!
 //! **The method.** The roller's effective length `Lwe` is cut into `ns` laminae of equal width
 //! `w = Lwe/ns`; lamina `k` is centred at `x_k = (k + 1/2) w - Lwe/2` from the roller's
@@ -29,16 +30,16 @@
 //! the project's `steel` preset (208 GPa, ν = 0.30), so steel reproduces ISO/TS 16281's constant
 //! exactly ([`E_PRIME_REFERENCE`]; the TS itself states no modulus). Limits: the law keeps
 //! Palmgren's exponent 10/9, a fit for steel over bearing loads; the Poisson ratios enter the
-//! exact approach through constant terms of order `ν/(2(1 - ν))` beside logarithms of about 5, so
-//! a pair whose ratios differ from 0.3 (Si3N4: 0.26) carries an error of about 1 % from that
-//! alone; and the laminae are independent springs (no elastic coupling along the roller), the
+//! exact two-dimensional approach also through constant terms beside the logarithms, not only
+//! through `E'`, so a pair whose ratios differ from steel's 0.3 (Si3N4: 0.26) carries a further
+//! error, small but not quantified here; and the laminae are independent springs (no elastic coupling along the roller), the
 //! TS's simplification, so the true edge-stress singularity of a straight roller is not
 //! resolved — it shows as a large but finite edge-lamina load.
 //!
 //! **Pressure per lamina.** Line Hertz on each lamina with its load per length
 //! `q' = q_k / w` and the reduced radius `R` in the rolling direction of the roller–race contact:
 //! half-width `b = sqrt(8 q' R / (pi E'))`, peak pressure `p0 = 2 q' / (pi b) =
-//! sqrt(q' E' / (2 pi R))` ([Johnson 1985] §4.2, eqs. (4.43)–(4.45), written with the project's
+//! sqrt(q' E' / (2 pi R))` ([Johnson 1985] ch. 4, two-dimensional contact of cylinders, written with the project's
 //! `E' = 2 E*`, docs/physics.md §2).
 //!
 //! **Profiles** ([`Profile`]), the drop `P(x)` of one roller surface from the cylinder, defined on
@@ -635,7 +636,7 @@ mod tests {
         let (b, p0) = line_hertz(q, r, e);
         // Semi-ellipse integrates to the load per length.
         assert!((0.5 * PI * p0 * b / q - 1.0).abs() < 1e-12);
-        // Johnson (4.45) with E* = E'/2: p0 = sqrt(q E*/(pi R)).
+        // Johnson's two-dimensional Hertz with E* = E'/2: p0 = sqrt(q E*/(pi R)).
         assert!((p0 / (q * 0.5 * e / (PI * r)).sqrt() - 1.0).abs() < 1e-12);
     }
 

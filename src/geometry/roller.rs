@@ -1,7 +1,7 @@
 //! Roller bearing geometry: cylindrical (NU, N, NJ, NUP) and single-row tapered roller
 //! bearings, as a file gives them (edge units, mm, degrees, µm: [`RollerBearingSpec`]) and in
 //! the validated SI form the levels use ([`RollerBearing`]). Plain data and derived quantities;
-//! the contact law is `contact::lamina` (docs/physics.md §R).
+//! the contact law is `contact::lamina` (docs/physics.md §R4; laminae §R1).
 //!
 //! Conventions ([Harris 2007] vol. 1 ch. 1–2; ISO 281 for the symbols):
 //!

@@ -1,6 +1,8 @@
 //! Roller bearings by designation: cylindrical NU/N/NJ/NUP 2xx, 3xx and 22xx and tapered
 //! 302xx, 303xx and 320xx(X), bore codes 04..20 (d = 20..100 mm).
 //!
+//! docs/physics.md §R6, docs/catalogue.md.
+//!
 //! **What is public and what is estimated.** The boundary dimensions are those of ISO 15
 //! (cylindrical, dimension series 02, 03 and 22) and ISO 355 (tapered: `d × D × T`, cone width
 //! `B`, cup width `C`), as the maker's table we compared with prints them (URB Group, *ART

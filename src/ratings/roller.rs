@@ -1,5 +1,5 @@
 //! Load ratings, equivalent loads and basic rating life of radial roller bearings (cylindrical
-//! and tapered, single row, bearing steel), docs/physics.md §R.5.
+//! and tapered, single row, bearing steel), docs/physics.md §R5.
 //!
 //! - **Basic dynamic radial load rating** (ISO 281:2007 §7.1.1):
 //!   `Cr = bm fc (i Lwe cos α)^(7/9) Z^(3/4) Dwe^(29/27)` (N, mm), `bm = 1.1` for cylindrical and
