@@ -42,6 +42,13 @@
 //! sqrt(q' E' / (2 pi R))` ([Johnson 1985] ch. 4, two-dimensional contact of cylinders, written with the project's
 //! `E' = 2 E*`, docs/physics.md §2).
 //!
+//! **Profiles and independent laminae.** Lundberg's and Fujiwara–Kawase's profiles are designed
+//! with the elastic coupling along the roller (the compliance of a strip falls towards its ends);
+//! the laminae are independent springs, so here every profile, Lundberg's too, shows as an end
+//! relief, never as the uniform pressure it gives in an elastically coupled model
+//! ([Teutsch 2004] discusses the gap). What the slicing does resolve is the relative effect of
+//! the profiles under load and tilt, which is what ISO/TS 16281 uses it for.
+//!
 //! **Profiles** ([`Profile`]), the drop `P(x)` of one roller surface from the cylinder, defined on
 //! `|x| < Lwe/2`; the roller's end chamfer begins at `|x| = Lwe/2`, where no lamina reaches, so a
 //! logarithmic profile's infinity at the ends is never evaluated (the edge lamina's centre is
