@@ -88,6 +88,7 @@
 //! `powf` calls per roller and evaluation: 30 is the default.
 
 use crate::error::{Error, Result};
+use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 
 /// ISO/TS 16281 constant of a steel roller between steel raceways, N/mm^(10/9), with `Lwe` in
@@ -128,7 +129,7 @@ pub fn line_hertz(q_per_m: f64, r: f64, e_prime: f64) -> (f64, f64) {
 }
 
 /// What a profile needs to know about the roller and the contact.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct LineGeometry {
     /// Effective roller length `Lwe`, m.
     pub lwe: f64,
@@ -142,7 +143,8 @@ pub struct LineGeometry {
 
 /// Roller profile: the drop `P(x)` of one roller surface from the cylinder (or cone) at `x`
 /// from mid-length. SI.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "type", rename_all = "snake_case")]
 pub enum Profile {
     /// Straight roller: `P = 0` (edge loading under tilt).
     None,
@@ -292,7 +294,7 @@ impl Profile {
 }
 
 /// Roller force, tilting moment and their derivatives from one evaluation of the laminae.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
 pub struct RollerLoad {
     /// Roller load `Q = Σ q_k`, N.
     pub force: f64,

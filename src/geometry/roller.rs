@@ -240,7 +240,7 @@ pub struct Flange {
 }
 
 /// A validated roller bearing, SI.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct RollerBearing {
     /// Designation.
     pub name: String,
