@@ -914,6 +914,51 @@ mod tests {
         assert!(e.contains("bearing.flange.angle_deg"), "{e}");
     }
 
+    /// Stribeck's limit for line contact ([Harris 2007] vol. 1 ch. 7): with zero clearance and
+    /// many rollers, `Fr = Z Qmax J_r(0.5)`, `J_r(0.5) = 0.2453` (`Qmax ≈ 4.08 Fr/Z`). A
+    /// one-DOF radial equilibrium on the laminae of straight rollers reproduces it.
+    #[test]
+    fn straight_rollers_at_zero_clearance_give_stribecks_limit() {
+        let mut s = nu206();
+        s.clearance_um = Some(0.0);
+        s.profile = ProfileSpec::None;
+        for z in [13u32, 40] {
+            s.roller_count = z;
+            s.pitch_diameter_mm = if z == 40 { 120.0 } else { 46.5 };
+            s.bore_mm = None;
+            s.outer_diameter_mm = None;
+            s.width_mm = None;
+            let b = s.build().unwrap();
+            let l = b.laminae().unwrap();
+            let fr_target = 8000.0;
+            let fr_of = |dr: f64| {
+                let (mut fr, mut qmax) = (0.0, 0.0f64);
+                for j in 0..b.z {
+                    let psi = 2.0 * PI * j as f64 / b.z as f64;
+                    let q = l.evaluate(dr * psi.cos() - 0.5 * b.pd, 0.0).force;
+                    fr += q * psi.cos();
+                    qmax = qmax.max(q);
+                }
+                (fr, qmax)
+            };
+            let (mut lo, mut hi) = (0.0, 1e-3);
+            for _ in 0..200 {
+                let mid = 0.5 * (lo + hi);
+                if fr_of(mid).0 > fr_target {
+                    hi = mid;
+                } else {
+                    lo = mid;
+                }
+            }
+            let (fr, qmax) = fr_of(0.5 * (lo + hi));
+            let k = qmax * b.z as f64 / fr;
+            println!("Z = {z}: Qmax Z / Fr = {k:.4}");
+            // Measured 4.093 (Z = 13) and 4.085 (Z = 40) against the continuous 1/0.2453 = 4.077.
+            let tol = if z == 40 { 0.005 } else { 0.01 };
+            assert!((k / 4.077 - 1.0).abs() < tol, "Z = {z}: {k}");
+        }
+    }
+
     #[test]
     fn ceramic_rollers_stiffen_the_roller() {
         let mut s = nu206();
