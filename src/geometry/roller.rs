@@ -44,6 +44,7 @@
 
 use super::bearing::MaterialSpec;
 use super::material::{effective_modulus, Material};
+use crate::contact::hertz::Curvature;
 use crate::contact::lamina::{LineGeometry, Profile, DEFAULT_LAMINAE, MAX_LAMINAE};
 use crate::error::{Error, Result};
 use crate::units::{deg, mm, um};
@@ -169,8 +170,8 @@ pub struct FlangeSpec {
     /// mm. Absent: 0.3 Dwe (an assumption; makers do not publish it).
     pub contact_height_mm: Option<f64>,
     /// Radius of the roller's spherical end, mm. Absent: flat ends for cylindrical rollers; for
-    /// tapered rollers the distance from the large end to the apex (an assumption: the end
-    /// sphere centred at the apex).
+    /// tapered rollers 0.9 times the distance from the large end to the apex (an assumption;
+    /// an end sphere centred at the apex would conform to the rib around the circumference).
     pub roller_end_radius_mm: Option<f64>,
     /// Tapered: flange angle `alpha_f`, degrees (module docs). Absent: `90° - alpha_R` (flange
     /// face square to the roller axis). Cylindrical: the flange face's inclination from the
@@ -237,6 +238,16 @@ pub struct Flange {
     pub roller_end_radius: Option<f64>,
     /// Tapered: flange angle `alpha_f`, rad; cylindrical: layback from the radial plane, rad.
     pub angle: f64,
+}
+
+/// Which ring's flange a roller end meets.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum FlangeRing {
+    /// Inner ring (for a tapered bearing: the cone back flange).
+    Inner,
+    /// Outer ring.
+    Outer,
 }
 
 /// A validated roller bearing, SI.
@@ -541,8 +552,8 @@ impl RollerBearingSpec {
                     }
                     Some(mm(r))
                 }
-                // Apex distance of the large end: s + Lw/2 along the roller axis.
-                (None, true) => Some(0.5 * dpw / alpha_roller.sin() + 0.5 * lw),
+                // 0.9 x the apex distance of the large end, s + Lw/2 along the roller axis.
+                (None, true) => Some(0.9 * (0.5 * dpw / alpha_roller.sin() + 0.5 * lw)),
                 (None, false) => None,
             };
             let angle = if self.kind.is_tapered() {
@@ -578,7 +589,7 @@ impl RollerBearingSpec {
             None
         };
 
-        Ok(RollerBearing {
+        let b = RollerBearing {
             name: self.name.clone(),
             kind: self.kind,
             dwe,
@@ -600,7 +611,12 @@ impl RollerBearingSpec {
             roller_material,
             inner_material,
             outer_material,
-        })
+        };
+        if b.kind.is_tapered() {
+            // The roller end must not conform to the cone back flange.
+            b.flange_curvature(FlangeRing::Inner)?;
+        }
+        Ok(b)
     }
 
     /// Parse a TOML roller bearing file.
@@ -703,6 +719,80 @@ impl RollerBearing {
         } else {
             f64::INFINITY
         }
+    }
+
+    /// Radius from the bearing axis of the roller-end/flange contact point, m: cylindrical
+    /// `Dpw/2 ∓ (Dwe/2 - h)` for the inner/outer ring's flange; tapered (cone back flange at
+    /// the large end, `h` above the cone raceway)
+    /// `Dpw/2 + (Lw/2) sin(alpha_R) - (r_L - h) cos(alpha_R)`, `r_L = (s + Lw/2) tan(beta)` the
+    /// large-end radius. `None` without a flange contact.
+    pub fn flange_contact_radius(&self, ring: FlangeRing) -> Option<f64> {
+        let f = self.flange?;
+        let h = f.contact_height;
+        Some(match (self.kind.is_tapered(), ring) {
+            (true, _) => {
+                let (ar, s) = (self.alpha_roller, self.apex_distance());
+                let r_large = (s + 0.5 * self.lw) * self.beta.tan();
+                0.5 * self.dpw + 0.5 * self.lw * ar.sin() - (r_large - h) * ar.cos()
+            }
+            (false, FlangeRing::Inner) => 0.5 * self.dpw - (0.5 * self.dwe - h),
+            (false, FlangeRing::Outer) => 0.5 * self.dpw + (0.5 * self.dwe - h),
+        })
+    }
+
+    /// Principal radii of the roller-end/flange point contact, for the Hertz point contact of
+    /// `contact::hertz` (docs/physics.md §R4): the roller's spherical end `1/R_e` in both
+    /// directions against a flange face that is a cone about the bearing axis — tapered, the
+    /// rib with generator angle `alpha_f`; cylindrical, the flange face tilted by its layback —
+    /// whose concave curvature around the circumference is `cos(phi)/r_f` (`phi` the generator
+    /// angle to the axis, `r_f` [`RollerBearing::flange_contact_radius`]) and zero along the
+    /// generator. `rx` is the circumferential radius. Errors name the field: no flange contact
+    /// (`bearing.kind`), a flat roller end (`bearing.flange.roller_end_radius_mm`: a flat end
+    /// meets the flange on its chamfer edge, not in a point contact), an end sphere that would
+    /// conform to the flange, the outer ring of a tapered bearing (it has no flange).
+    pub fn flange_curvature(&self, ring: FlangeRing) -> Result<Curvature> {
+        let f = self.flange.ok_or_else(|| {
+            Error::invalid(
+                "bearing.kind",
+                ROLLER_KINDS[self.kind as usize],
+                "nj, nup or tapered (a bearing with a roller-end/flange contact)",
+            )
+        })?;
+        if self.kind.is_tapered() && ring == FlangeRing::Outer {
+            return Err(Error::invalid(
+                "flange ring",
+                "outer",
+                "inner (a tapered bearing's flange is the cone back flange)",
+            ));
+        }
+        let re = f.roller_end_radius.ok_or_else(|| {
+            Error::invalid(
+                "bearing.flange.roller_end_radius_mm",
+                "missing",
+                format!(
+                    "a spherical roller-end radius ≥ Dwe/2 = {} mm (a flat end meets the flange on its chamfer edge, not in a point contact)",
+                    0.5 * self.dwe * 1e3
+                ),
+            )
+        })?;
+        let cos_phi = if self.kind.is_tapered() {
+            f.angle.cos()
+        } else {
+            f.angle.sin().abs()
+        };
+        let rf = self.flange_contact_radius(ring).unwrap_or(0.5 * self.dpw);
+        let rho_circ = 1.0 / re - cos_phi / rf;
+        if !(rho_circ > 0.0 && rf > 0.0) {
+            return Err(Error::invalid(
+                "bearing.flange.roller_end_radius_mm",
+                re * 1e3,
+                format!(
+                    "< {:.3} mm (a larger end sphere conforms to the flange around the circumference)",
+                    rf / cos_phi * 1e3
+                ),
+            ));
+        }
+        Ok(Curvature::from_radii(1.0 / rho_circ, re))
     }
 
     /// Tapered, a roller at rest: `(Q_i/Q_o, Q_f/Q_o)`, the cone and flange loads per unit cup
@@ -841,8 +931,55 @@ mod tests {
         assert!(b.reduced_radius_inner() < b.reduced_radius_outer());
         assert!(
             b.kind.axial_directions() == 1
-                && b.flange.unwrap().roller_end_radius.unwrap() > b.apex_distance()
+                && (b.flange.unwrap().roller_end_radius.unwrap()
+                    - 0.9 * (b.apex_distance() + 0.5 * b.lw))
+                    .abs()
+                    < 1e-15
         );
+    }
+
+    #[test]
+    fn flange_contacts_are_point_contacts() {
+        // Tapered: the rib's concave circumferential curvature is below the end sphere's.
+        let b = t30206().build().unwrap();
+        let c = b.flange_curvature(FlangeRing::Inner).unwrap();
+        let re = b.flange.unwrap().roller_end_radius.unwrap();
+        assert!(c.ry == re && c.rx > re, "{c:?}");
+        c.validate("flange").unwrap();
+        // The contact lies between the cone raceway and the roller axis at the large end.
+        let rf = b.flange_contact_radius(FlangeRing::Inner).unwrap();
+        assert!(
+            rf > b.inner_contact_radius() && rf < 0.5 * b.dpw + 0.5 * b.lw * b.alpha_roller.sin()
+        );
+        assert!(b.flange_curvature(FlangeRing::Outer).is_err());
+        // An end sphere centred beyond the rib's axis distance is refused at build.
+        let mut s = t30206();
+        s.flange.roller_end_radius_mm = Some(1000.0);
+        let e = s.build().unwrap_err().to_string();
+        assert!(
+            e.contains("bearing.flange.roller_end_radius_mm") && e.contains("conforms"),
+            "{e}"
+        );
+        // Cylindrical NJ: flat flange, spherical end -> sphere on a flat; flat end refused.
+        let mut s = nu206();
+        s.kind = RollerKind::Nj;
+        let b = s.build().unwrap();
+        let e = b
+            .flange_curvature(FlangeRing::Inner)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("bearing.flange.roller_end_radius_mm"), "{e}");
+        s.flange.roller_end_radius_mm = Some(40.0);
+        let b = s.build().unwrap();
+        let c = b.flange_curvature(FlangeRing::Outer).unwrap();
+        assert!((c.rx - 0.04).abs() < 1e-15 && (c.ry - 0.04).abs() < 1e-15);
+        let e = nu206()
+            .build()
+            .unwrap()
+            .flange_curvature(FlangeRing::Inner)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("bearing.kind"), "{e}");
     }
 
     #[test]
