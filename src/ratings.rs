@@ -196,9 +196,9 @@ pub struct LoadRatings {
 pub fn load_ratings(b: &Bearing) -> Result<LoadRatings> {
     let alpha = b.nominal_contact_angle();
     let g = gamma(b);
-    let red = conformity_reduction(g, b.fi, b.fo);
+    let red = conformity_reduction(g, b.fi(), b.fo());
     let fc = fc(g)? * red;
-    let f0 = f0(g)? * static_groove_factor(g, b.fi, b.fo);
+    let f0 = f0(g)? * static_groove_factor(g, b.fi(), b.fo());
     let dw = b.d * 1e3;
     let dpw = b.dm * 1e3;
     let z = b.z as f64;
@@ -474,7 +474,7 @@ pub fn shoulder_angles(b: &Bearing) -> (f64, f64) {
         BearingKind::AngularContact => ASSUMED_SHOULDER_HEIGHT_AC,
     } * b.d;
     let ang = |f: f64| (1.0 - h / (f * b.d)).clamp(-1.0, 1.0).acos();
-    (ang(b.fi), ang(b.fo))
+    (ang(b.fi()), ang(b.fo()))
 }
 
 /// Per-raceway basic dynamic load ratings `(Qci, Qco)`, N (module docs).
@@ -490,8 +490,8 @@ pub fn raceway_ratings(b: &Bearing) -> (f64, f64) {
     };
     let common = a * (b.d / b.dm).powf(0.3) * size * z.powf(-1.0 / 3.0);
     let conf = |f: f64| (2.0 * f / (2.0 * f - 1.0)).powf(0.41);
-    let qci = common * conf(b.fi) * (1.0 - g).powf(1.39) / (1.0 + g).powf(1.0 / 3.0);
-    let qco = common * conf(b.fo) * (1.0 + g).powf(1.39) / (1.0 - g).powf(1.0 / 3.0);
+    let qci = common * conf(b.fi()) * (1.0 - g).powf(1.39) / (1.0 + g).powf(1.0 / 3.0);
+    let qco = common * conf(b.fo()) * (1.0 + g).powf(1.39) / (1.0 - g).powf(1.0 / 3.0);
     (qci, qco)
 }
 
@@ -551,7 +551,7 @@ pub fn assess(b: &Bearing, sol: &Solution, inputs: &LifeInputs) -> Result<Assess
                 ball.q_i,
                 ball.alpha_i,
                 ball.a_i,
-                b.fi,
+                b.fi(),
                 shi,
             ),
             (
@@ -560,7 +560,7 @@ pub fn assess(b: &Bearing, sol: &Solution, inputs: &LifeInputs) -> Result<Assess
                 ball.q_o,
                 ball.alpha_o,
                 ball.a_o,
-                b.fo,
+                b.fo(),
                 sho,
             ),
         ] {
@@ -870,7 +870,7 @@ mod tests {
         assert!((r.gamma - g).abs() < 1e-15);
         // 218's grooves are wider than 0.52/0.53 Dw: f0 is the table's times the ISO 76
         // 4 200 MPa correction (issue #35), the formula otherwise unchanged.
-        let f0_218 = f0(g).unwrap() * static_groove_factor(g, b.fi, b.fo);
+        let f0_218 = f0(g).unwrap() * static_groove_factor(g, b.fi(), b.fo());
         assert!(f0_218 < f0(g).unwrap() && (r.f0 - f0_218).abs() < 1e-12);
         let want = f0_218 * 16.0 * 22.23f64.powi(2) * b.alpha0.cos();
         assert!((r.c0 - want).abs() < 1e-9 * want);
@@ -1063,8 +1063,11 @@ mod tests {
             let p = |race: Race, f: f64, e: f64| {
                 PointContact::new(Curvature::ball_race(b.d, dm_g, 0.0, f, race), e).peak_pressure(q)
             };
-            let pmax_g =
-                p(Race::Inner, b.fi, b.e_eff_inner()).max(p(Race::Outer, b.fo, b.e_eff_outer()));
+            let pmax_g = p(Race::Inner, b.fi(), b.e_eff_inner()).max(p(
+                Race::Outer,
+                b.fo(),
+                b.e_eff_outer(),
+            ));
             assert!(
                 (pmax_g / STATIC_PRESSURE_LIMIT - 1.0).abs() < 0.02,
                 "{name}: {:.0} MPa at C0 {:.0} N",

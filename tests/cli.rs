@@ -65,7 +65,7 @@ fn bearings_json_lists_every_preset_with_library_numbers() {
         assert!(close(f(&row["ball_mass_kg"]), b.ball_mass(), 1e-12));
         assert!((f(&row["free_contact_angle_deg"]) - b.alpha0.to_degrees()).abs() < 1e-9);
         let kc = PointContact::new(
-            Curvature::ball_race(b.d, b.dm, b.nominal_contact_angle(), b.fi, Race::Inner),
+            Curvature::ball_race(b.d, b.dm, b.nominal_contact_angle(), b.fi(), Race::Inner),
             b.e_eff_inner(),
         )
         .kc;

@@ -8,6 +8,7 @@ use raceway::contact::traction::TractionLaw;
 use raceway::geometry::preset;
 use raceway::models::full::{BallContacts, FullModel, FullParams};
 use raceway::models::quasi_static::{BallResult, BallState, Options, QuasiStatic};
+use raceway::seam::{Jacobians, Motion};
 use raceway::solver::{OdeSystem, Options as SolverOptions, Rosenbrock};
 use std::f64::consts::PI;
 
@@ -400,19 +401,18 @@ fn block_jacobian_matches_whole_differences() {
         x[11] *= 0.99;
         let mut jx = vec![0.0; n * n];
         let mut scratch = vec![0.0; 3 * n + aux.len()];
-        m.jacobian(
-            &q,
-            &[0.0; 5],
+        let motion = Motion {
+            q,
+            v: [0.0; 5],
             omega,
-            &x,
-            &aux,
-            &mut jx,
-            &mut [],
-            &mut [],
-            &mut [],
-            &mut scratch,
-        )
-        .unwrap();
+        };
+        let jac = Jacobians {
+            jx: &mut jx,
+            jm: &mut [],
+            wx: &mut [],
+            wm: &mut [],
+        };
+        m.jacobian(&motion, &x, &aux, jac, &mut scratch).unwrap();
         let mut d0 = vec![0.0; n];
         let mut d1 = vec![0.0; n];
         let mut a = aux.clone();
@@ -491,19 +491,14 @@ fn block_jacobian_ring_parts_match() {
         vec![0.0; 50],
     );
     let mut scratch = vec![0.0; 3 * n + aux.len()];
-    m.jacobian(
-        &q,
-        &v,
-        omega,
-        &x,
-        &aux,
-        &mut jx,
-        &mut jm,
-        &mut wx,
-        &mut wm,
-        &mut scratch,
-    )
-    .unwrap();
+    let jac = Jacobians {
+        jx: &mut jx,
+        jm: &mut jm,
+        wx: &mut wx,
+        wm: &mut wm,
+    };
+    m.jacobian(&Motion { q, v, omega }, &x, &aux, jac, &mut scratch)
+        .unwrap();
     let mut d0 = vec![0.0; n];
     let mut d1 = vec![0.0; n];
     let t0 = m

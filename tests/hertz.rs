@@ -556,7 +556,7 @@ fn warm_start_agrees_with_cold_and_is_short() {
     let mut prev = PointContact::ball_race(&b, 0.6, Race::Inner);
     for i in 1..200 {
         let a = 0.6 + f64::to_radians(0.01) * i as f64;
-        let cv = Curvature::ball_race(b.d, b.dm, a, b.fi, Race::Inner);
+        let cv = Curvature::ball_race(b.d, b.dm, a, b.fi(), Race::Inner);
         let warm = PointContact::new_warm(cv, prev.e_eff, prev.ellipse.kappa);
         let cold = PointContact::new(cv, prev.e_eff);
         // Same root to the rounding of the residual (a few ulp of ln kappa).

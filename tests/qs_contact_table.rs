@@ -18,8 +18,8 @@ fn report_table_matches_exact_solve_to_rounding() {
         let b = spec.build().unwrap();
         for race in [Race::Inner, Race::Outer] {
             let (f, e_eff) = match race {
-                Race::Inner => (b.fi, b.e_eff_inner()),
-                Race::Outer => (b.fo, b.e_eff_outer()),
+                Race::Inner => (b.fi(), b.e_eff_inner()),
+                Race::Outer => (b.fo(), b.e_eff_outer()),
             };
             let t = ContactTable::from_parts(
                 b.d,

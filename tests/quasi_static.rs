@@ -40,12 +40,12 @@ fn zero_speed_pure_thrust_matches_the_closed_form() {
     let a = b.a();
     let kn = |al: f64| {
         let ki = PointContact::new(
-            Curvature::ball_race(b.d, b.dm, al, b.fi, Race::Inner),
+            Curvature::ball_race(b.d, b.dm, al, b.fi(), Race::Inner),
             b.e_eff_inner(),
         )
         .kc;
         let ko = PointContact::new(
-            Curvature::ball_race(b.d, b.dm, al, b.fo, Race::Outer),
+            Curvature::ball_race(b.d, b.dm, al, b.fo(), Race::Outer),
             b.e_eff_outer(),
         )
         .kc;

@@ -62,6 +62,12 @@ impl LevelEntry {
         self.check = check;
         self
     }
+
+    /// The element kinds the level takes (default: balls).
+    const fn with_elements(mut self, elements: &'static [ElementKind]) -> Self {
+        self.elements = elements;
+        self
+    }
 }
 
 impl std::fmt::Debug for LevelEntry {
@@ -79,7 +85,8 @@ impl std::fmt::Debug for LevelEntry {
 pub const LEVELS: &[LevelEntry] = &[
     //              name            stiff  effects  constructor
     LevelEntry::new("linear",       false, false,   crate::models::linear::level::build),
-    LevelEntry::new("quasi_static", false, false,   crate::models::quasi_static::level::build),
+    LevelEntry::new("quasi_static", false, false,   crate::models::quasi_static::level::build)
+        .with_elements(crate::models::quasi_static::level::ELEMENTS),
     LevelEntry::new("ring",         false, true,    crate::models::ring::level::build),
     LevelEntry::new("skidding",     true,  false,   crate::models::skidding::level::build)
         .with_check(crate::models::skidding::level::check),

@@ -10,6 +10,20 @@ use crate::error::{Error, Result};
 /// Most values (states or variables per point times points) one `step_through` keeps.
 const MAX_VALUES: usize = 100_000_000;
 
+/// The communication points of one `step_through` window and what is asked at them: the
+/// points `t + k h` for `k = 1..=n`, and the table `slots` (index, whether an input).
+#[derive(Debug, Clone, Copy)]
+struct Window<'a> {
+    /// The window's start, s.
+    t: f64,
+    /// The communication interval, s.
+    h: f64,
+    /// The number of intervals.
+    n: usize,
+    /// The values asked for at each point.
+    slots: &'a [(usize, bool)],
+}
+
 impl Component {
     /// Advance from `t` over `n` communication intervals of `h` in one integration, and
     /// report the variables `vrs` at each of the `n` points `t + k h` (`k = 1..=n`): `out`
@@ -115,27 +129,30 @@ impl Component {
         let mut sc = std::mem::take(&mut self.scratch);
         sc.t = t;
         let mut rows = Vec::with_capacity(n * slots.len());
-        let r = self.through(&mut sc, t, h, n, continuing, &slots, &mut rows);
+        let win = Window {
+            t,
+            h,
+            n,
+            slots: &slots,
+        };
+        let r = self.through(&mut sc, &win, continuing, &mut rows);
         if r.is_ok() {
             *out = rows;
         }
         self.finish_step(sc, r, t, t + span)
     }
 
-    /// Integrate `sc` (at the window start `t`) over the window, then fill `rows` with the
-    /// values of `slots` at the `n` points; `sc` is left as `do_step(t, n h)` leaves its
-    /// scratch state.
-    #[allow(clippy::too_many_arguments)]
+    /// Integrate `sc` (at the window start `t`) over the window `win`, then fill `rows`
+    /// with the values of `slots` at the `n` points; `sc` is left as `do_step(t, n h)`
+    /// leaves its scratch state.
     fn through(
         &mut self,
         sc: &mut State,
-        t: f64,
-        h: f64,
-        n: usize,
+        win: &Window<'_>,
         continuing: bool,
-        slots: &[(usize, bool)],
         rows: &mut Vec<f64>,
     ) -> Result<()> {
+        let Window { t, h, n, slots } = *win;
         let dim = sc.x.len();
         let span = n as f64 * h;
         let x0 = sc.x.clone();
@@ -194,7 +211,7 @@ impl Component {
                     .all(|(&(i, input), v)| input || w[i - I_FORCE].to_bits() == v.to_bits())
             };
         if forces_only {
-            self.forces_inside(sc, t, h, n, &sink.xs, slots, rows)?;
+            self.forces_inside(sc, win, &sink.xs, rows)?;
         } else if n > 1 {
             let x_end = sc.x.clone();
             for k in 1..n {
@@ -209,20 +226,18 @@ impl Component {
         Ok(())
     }
 
-    /// The values of `slots` at the points `1..n` inside the window from `t0` (states `xs`,
-    /// one row each), appended to `rows`: the inputs as set and the level's wrench
-    /// ([`wrench`]). One system serves every point (the per-point work is the level's).
-    #[allow(clippy::too_many_arguments)]
+    /// The values of `slots` at the points `1..n` inside the window `win` from `t0`
+    /// (states `xs`, one row each), appended to `rows`: the inputs as set and the level's
+    /// wrench ([`wrench`]). One system serves every point (the per-point work is the
+    /// level's).
     fn forces_inside(
         &mut self,
         sc: &mut State,
-        t0: f64,
-        h: f64,
-        n: usize,
+        win: &Window<'_>,
         xs: &[f64],
-        slots: &[(usize, bool)],
         rows: &mut Vec<f64>,
     ) -> Result<()> {
+        let Window { t: t0, h, n, slots } = *win;
         let dim = sc.x.len();
         let (mut sys, dy) = self.sys_at(sc, t0);
         let chunk = WRENCH_CHUNK.min(n - 1);

@@ -565,8 +565,8 @@ pub fn hertz_load_and_stiffness(kc: f64, delta: f64) -> (f64, f64) {
 
 fn race_data(b: &Bearing, race: Race) -> (f64, f64) {
     match race {
-        Race::Inner => (b.fi, b.e_eff_inner()),
-        Race::Outer => (b.fo, b.e_eff_outer()),
+        Race::Inner => (b.fi(), b.e_eff_inner()),
+        Race::Outer => (b.fo(), b.e_eff_outer()),
     }
 }
 

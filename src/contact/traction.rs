@@ -251,18 +251,19 @@ impl MixedEhl {
     /// override `fit`.
     pub fn asperity_load_ratio(&self, c: &ContactState, u: f64) -> f64 {
         let Some(f) = &self.fit else {
-            let g = crate::lubrication::asperity::Groups::new(
-                c.q,
+            use crate::lubrication::asperity;
+            let g = asperity::Groups::new(&asperity::Contact {
+                q: c.q,
                 u,
-                c.rx,
-                c.e_eff,
-                self.viscosity,
-                self.alpha_p,
-                self.roughness,
-                self.hardness,
-                c.kappa,
-            );
-            return crate::lubrication::asperity::asperity_share(&g, self.reading);
+                rx: c.rx,
+                e_eff: c.e_eff,
+                eta0: self.viscosity,
+                alpha_p: self.alpha_p,
+                sigma: self.roughness,
+                h: self.hardness,
+                kappa: c.kappa,
+            });
+            return asperity::asperity_share(&g, self.reading);
         };
         let (uu, g, w) = self.groups(c, u);
         if self.roughness <= 0.0 {
@@ -642,17 +643,18 @@ mod tests {
             over.asperity_load_ratio(&c, 5.0),
         );
         assert!(a != b && a > 0.0 && b > 0.0, "{a} {b}");
-        let g = crate::lubrication::asperity::Groups::new(
-            c.q,
-            5.0,
-            c.rx,
-            c.e_eff,
-            shared.viscosity,
-            shared.alpha_p,
-            shared.roughness,
-            shared.hardness,
-            c.kappa,
-        );
+        use crate::lubrication::asperity;
+        let g = asperity::Groups::new(&asperity::Contact {
+            q: c.q,
+            u: 5.0,
+            rx: c.rx,
+            e_eff: c.e_eff,
+            eta0: shared.viscosity,
+            alpha_p: shared.alpha_p,
+            sigma: shared.roughness,
+            h: shared.hardness,
+            kappa: c.kappa,
+        });
         assert_eq!(
             a,
             crate::lubrication::asperity::asperity_share(&g, shared.reading)

@@ -6,6 +6,7 @@
 //! load and zero clearance, and the free contact angle and the diametral clearance are tied
 //! by `Pd = 2 A (1 - cos alpha0)` (docs/physics.md §1).
 
+use super::element::{Element, ElementKind, Groove};
 use super::material::{effective_modulus, Material};
 use crate::error::{Error, Result};
 use crate::seam::fields::{
@@ -244,16 +245,14 @@ pub struct Bearing {
     pub name: String,
     /// Deep-groove or angular-contact.
     pub kind: BearingKind,
-    /// Ball diameter `D`, m.
+    /// Rolling-element diameter `D` (ball or roller), m.
     pub d: f64,
     /// Pitch diameter `dm`, m.
     pub dm: f64,
-    /// Number of balls `Z`.
+    /// Number of rolling elements `Z`.
     pub z: usize,
-    /// Inner groove curvature ratio `f_i`.
-    pub fi: f64,
-    /// Outer groove curvature ratio `f_o`.
-    pub fo: f64,
+    /// The rolling element: a ball with its groove, or a roller.
+    pub element: Element,
     /// Free contact angle `alpha0`, rad (for a deep-groove bearing with clearance, the angle
     /// at which the balls would touch under a pure axial shift).
     pub alpha0: f64,
@@ -271,7 +270,7 @@ pub struct Bearing {
     pub outer_ring_mass: f64,
     /// Cage.
     pub cage: Cage,
-    /// Ball material.
+    /// Rolling-element material (balls or rollers).
     pub ball_material: Material,
     /// Inner-ring material.
     pub inner_material: Material,
@@ -307,6 +306,105 @@ impl BearingSpec {
                 format!("<= {zmax} (more balls of this size overlap on the pitch circle)"),
             ));
         }
+        let (groove, alpha0, pd) = self.ball_groove(d)?;
+        let element = Element::Ball(groove);
+
+        let bore = self.bore_mm.map(mm).unwrap_or(dm - 1.6 * d);
+        let od = self.outer_diameter_mm.map(mm).unwrap_or(dm + 1.6 * d);
+        let width = self.width_mm.map(mm).unwrap_or(1.2 * d);
+        if bore >= dm - d {
+            return Err(Error::invalid(
+                "bearing.bore_mm",
+                bore * 1e3,
+                format!("< dm - D = {:.3} mm", (dm - d) * 1e3),
+            ));
+        }
+        if od <= dm + d {
+            return Err(Error::invalid(
+                "bearing.outer_diameter_mm",
+                od * 1e3,
+                format!(
+                    "> dm + D = {:.3} mm (the ball is larger than the annulus)",
+                    (dm + d) * 1e3
+                ),
+            ));
+        }
+        let ball_material = self.materials.ball.resolve("bearing.materials.ball")?;
+        let inner_material = self
+            .materials
+            .inner_ring
+            .resolve("bearing.materials.inner_ring")?;
+        let outer_material = self
+            .materials
+            .outer_ring
+            .resolve("bearing.materials.outer_ring")?;
+        let cage_material = self.materials.cage.resolve("bearing.materials.cage")?;
+
+        // Ring masses: annuli from the bore to the race bottom and from the race bottom to
+        // the outside diameter, 90 % full (shoulders and grooves), when not given.
+        let inner_ring_mass = self.inner_ring_mass_kg.unwrap_or_else(|| {
+            0.9 * inner_material.density * PI / 4.0 * ((dm - d).powi(2) - bore * bore) * width
+        });
+        let outer_ring_mass = self.outer_ring_mass_kg.unwrap_or_else(|| {
+            0.9 * outer_material.density * PI / 4.0 * (od * od - (dm + d).powi(2)) * width
+        });
+
+        let c = &self.cage;
+        let cid = c.inner_diameter_mm.map(mm).unwrap_or(dm - 0.35 * d);
+        let cod = c.outer_diameter_mm.map(mm).unwrap_or(dm + 0.35 * d);
+        if !(cid < dm && cod > dm && cid > bore && cod < od) {
+            return Err(Error::invalid(
+                "bearing.cage",
+                format!("ID {:.3} mm, OD {:.3} mm", cid * 1e3, cod * 1e3),
+                "bore < cage ID < dm < cage OD < outside diameter",
+            ));
+        }
+        let cw = c.width_mm.map(mm).unwrap_or(0.8 * d);
+        let cmass = c.mass_kg.unwrap_or_else(|| {
+            let ring = PI / 4.0 * (cod * cod - cid * cid) * cw;
+            let pockets = z as f64 * PI / 4.0 * d * d * (cod - cid) / 2.0;
+            cage_material.density * (ring - pockets).max(0.2 * ring)
+        });
+        let cinertia = c
+            .inertia_kg_m2
+            .unwrap_or(cmass * (cod * cod + cid * cid) / 8.0);
+        let pocket_clearance = c.pocket_clearance_mm.map(mm).unwrap_or(0.02 * d);
+        let guide_clearance = c.guide_clearance_mm.map(mm).unwrap_or(0.005 * dm);
+
+        Ok(Bearing {
+            name: self.name.clone(),
+            kind: self.kind,
+            d,
+            dm,
+            z,
+            element,
+            alpha0,
+            pd,
+            bore,
+            outer_diameter: od,
+            width,
+            inner_ring_mass,
+            outer_ring_mass,
+            cage: Cage {
+                inner_diameter: cid,
+                outer_diameter: cod,
+                width: cw,
+                mass: cmass,
+                inertia: cinertia,
+                pocket_clearance,
+                guide_clearance,
+                guidance: c.guidance,
+            },
+            ball_material,
+            inner_material,
+            outer_material,
+            cage_material,
+        })
+    }
+
+    /// A ball bearing's groove, free contact angle and diametral clearance for ball
+    /// diameter `d` (m), from whichever of curvatures, contact angle and clearance are given.
+    fn ball_groove(&self, d: f64) -> Result<(Groove, f64, f64)> {
         let alpha_in = self.contact_angle_deg.map(deg);
         let pd_in = self.clearance_um.map(um);
 
@@ -394,99 +492,7 @@ impl BearingSpec {
                 (alpha0, pd)
             }
         };
-
-        let bore = self.bore_mm.map(mm).unwrap_or(dm - 1.6 * d);
-        let od = self.outer_diameter_mm.map(mm).unwrap_or(dm + 1.6 * d);
-        let width = self.width_mm.map(mm).unwrap_or(1.2 * d);
-        if bore >= dm - d {
-            return Err(Error::invalid(
-                "bearing.bore_mm",
-                bore * 1e3,
-                format!("< dm - D = {:.3} mm", (dm - d) * 1e3),
-            ));
-        }
-        if od <= dm + d {
-            return Err(Error::invalid(
-                "bearing.outer_diameter_mm",
-                od * 1e3,
-                format!(
-                    "> dm + D = {:.3} mm (the ball is larger than the annulus)",
-                    (dm + d) * 1e3
-                ),
-            ));
-        }
-        let ball_material = self.materials.ball.resolve("bearing.materials.ball")?;
-        let inner_material = self
-            .materials
-            .inner_ring
-            .resolve("bearing.materials.inner_ring")?;
-        let outer_material = self
-            .materials
-            .outer_ring
-            .resolve("bearing.materials.outer_ring")?;
-        let cage_material = self.materials.cage.resolve("bearing.materials.cage")?;
-
-        // Ring masses: annuli from the bore to the race bottom and from the race bottom to
-        // the outside diameter, 90 % full (shoulders and grooves), when not given.
-        let inner_ring_mass = self.inner_ring_mass_kg.unwrap_or_else(|| {
-            0.9 * inner_material.density * PI / 4.0 * ((dm - d).powi(2) - bore * bore) * width
-        });
-        let outer_ring_mass = self.outer_ring_mass_kg.unwrap_or_else(|| {
-            0.9 * outer_material.density * PI / 4.0 * (od * od - (dm + d).powi(2)) * width
-        });
-
-        let c = &self.cage;
-        let cid = c.inner_diameter_mm.map(mm).unwrap_or(dm - 0.35 * d);
-        let cod = c.outer_diameter_mm.map(mm).unwrap_or(dm + 0.35 * d);
-        if !(cid < dm && cod > dm && cid > bore && cod < od) {
-            return Err(Error::invalid(
-                "bearing.cage",
-                format!("ID {:.3} mm, OD {:.3} mm", cid * 1e3, cod * 1e3),
-                "bore < cage ID < dm < cage OD < outside diameter",
-            ));
-        }
-        let cw = c.width_mm.map(mm).unwrap_or(0.8 * d);
-        let cmass = c.mass_kg.unwrap_or_else(|| {
-            let ring = PI / 4.0 * (cod * cod - cid * cid) * cw;
-            let pockets = z as f64 * PI / 4.0 * d * d * (cod - cid) / 2.0;
-            cage_material.density * (ring - pockets).max(0.2 * ring)
-        });
-        let cinertia = c
-            .inertia_kg_m2
-            .unwrap_or(cmass * (cod * cod + cid * cid) / 8.0);
-        let pocket_clearance = c.pocket_clearance_mm.map(mm).unwrap_or(0.02 * d);
-        let guide_clearance = c.guide_clearance_mm.map(mm).unwrap_or(0.005 * dm);
-
-        Ok(Bearing {
-            name: self.name.clone(),
-            kind: self.kind,
-            d,
-            dm,
-            z,
-            fi,
-            fo,
-            alpha0,
-            pd,
-            bore,
-            outer_diameter: od,
-            width,
-            inner_ring_mass,
-            outer_ring_mass,
-            cage: Cage {
-                inner_diameter: cid,
-                outer_diameter: cod,
-                width: cw,
-                mass: cmass,
-                inertia: cinertia,
-                pocket_clearance,
-                guide_clearance,
-                guidance: c.guidance,
-            },
-            ball_material,
-            inner_material,
-            outer_material,
-            cage_material,
-        })
+        Ok((Groove { fi, fo }, alpha0, pd))
     }
 
     /// Parse a TOML bearing file (same fields as a preset).
@@ -505,15 +511,43 @@ impl BearingSpec {
 }
 
 impl Bearing {
-    /// Distance between the groove curvature centres at zero load and zero clearance,
-    /// `A = (f_i + f_o - 1) D`.
-    pub fn a(&self) -> f64 {
-        super::element::groove_centre_distance(self.fi, self.fo, self.d)
+    /// The groove of a ball bearing, for the ball-only geometry below. A roller bearing
+    /// has none; the level registry keeps it from every ball-only model, and here it reads
+    /// as the conformity limit `f = 0.5` (`A = 0`), so nothing past the registry's refusal
+    /// can turn it into a NaN.
+    fn ball_groove(&self) -> Groove {
+        match self.element {
+            Element::Ball(g) => g,
+            Element::Roller(_) => Groove { fi: 0.5, fo: 0.5 },
+        }
     }
 
-    /// The kind of rolling element: balls (the only kind this description builds).
-    pub fn element(&self) -> super::ElementKind {
-        super::ElementKind::Ball
+    /// The groove of a ball bearing; a roller bearing is refused naming what asked
+    /// ([`Element::groove`]).
+    pub fn groove(&self, what: &str) -> Result<&Groove> {
+        self.element.groove(what)
+    }
+
+    /// Inner groove curvature ratio `f_i` of a ball bearing (the conformity limit 0.5 for a
+    /// roller bearing, see [`Bearing::groove`]).
+    pub fn fi(&self) -> f64 {
+        self.ball_groove().fi
+    }
+
+    /// Outer groove curvature ratio `f_o` of a ball bearing (0.5 for a roller bearing).
+    pub fn fo(&self) -> f64 {
+        self.ball_groove().fo
+    }
+
+    /// Distance between the groove curvature centres at zero load and zero clearance,
+    /// `A = (f_i + f_o - 1) D` (ball bearings; 0 for a roller bearing).
+    pub fn a(&self) -> f64 {
+        self.ball_groove().centre_distance(self.d)
+    }
+
+    /// The kind of rolling element.
+    pub fn element(&self) -> ElementKind {
+        self.element.kind()
     }
 
     /// The contact angle used for kinematics and the radial models: 0 for a deep-groove
@@ -540,12 +574,14 @@ impl Bearing {
     /// Radius of the locus of the inner groove curvature centres,
     /// `Ri = dm/2 + (f_i - 0.5) D cos(alpha)` at the nominal contact angle (docs/physics.md §4).
     pub fn inner_groove_centre_radius(&self) -> f64 {
-        0.5 * self.dm + (self.fi - 0.5) * self.d * self.nominal_contact_angle().cos()
+        let fi = self.ball_groove().fi;
+        0.5 * self.dm + (fi - 0.5) * self.d * self.nominal_contact_angle().cos()
     }
 
     /// Radius of the locus of the outer groove curvature centres.
     pub fn outer_groove_centre_radius(&self) -> f64 {
-        0.5 * self.dm - (self.fo - 0.5) * self.d * self.nominal_contact_angle().cos()
+        let fo = self.ball_groove().fo;
+        0.5 * self.dm - (fo - 0.5) * self.d * self.nominal_contact_angle().cos()
     }
 
     /// Mass of one ball, kg.

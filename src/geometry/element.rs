@@ -1,9 +1,11 @@
-//! The rolling element a bearing carries, as the levels see it: which kind it is, so the
-//! level registry can say which kinds each level accepts and refuse a pair it cannot model
-//! with a message naming both. Balls (point contact, docs/physics.md §3) are the only kind
-//! built today; rollers (line contact by laminae, §3 and ISO/TS 16281) are named so a
-//! scene that asks for them is refused clearly rather than read as a ball bearing.
+//! The rolling element a bearing carries. A bearing description ([`super::Bearing`]) is what
+//! every bearing has in common (rings, clearance, pitch diameter, count, materials, cage)
+//! plus one [`Element`]: a ball with the groove curvatures it runs in, or a roller with its
+//! effective length. The level registry says which [`ElementKind`]s each level accepts and
+//! refuses a pair it cannot model with a message naming both; the contact law of an element
+//! sits behind [`crate::seam::element::ElementLaw`].
 
+use crate::error::{Error, Result};
 use serde::{Deserialize, Serialize};
 
 /// The kind of rolling element.
@@ -33,6 +35,67 @@ impl ElementKind {
 impl std::fmt::Display for ElementKind {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.write_str(self.name())
+    }
+}
+
+/// A ball's groove: the curvature ratios of the raceways it runs in (docs/physics.md §1).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Groove {
+    /// Inner groove curvature ratio `f_i = r_i / D` (> 0.5).
+    pub fi: f64,
+    /// Outer groove curvature ratio `f_o = r_o / D` (> 0.5).
+    pub fo: f64,
+}
+
+impl Groove {
+    /// Distance between the groove curvature centres at zero load and zero clearance,
+    /// `A = (f_i + f_o - 1) D` for ball diameter `d` (docs/physics.md §1): the one place it
+    /// is written.
+    pub fn centre_distance(&self, d: f64) -> f64 {
+        groove_centre_distance(self.fi, self.fo, d)
+    }
+}
+
+/// A roller as the element of a bearing: what line contact needs beyond the common
+/// description (the roller diameter is the bearing's element diameter `D`). Scenes and
+/// bearing files do not describe rollers yet (the roller bearing issue adds its fields,
+/// profile and flanges); code can build one.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Roller {
+    /// Effective length `L_we` (the length that carries load), m.
+    pub effective_length: f64,
+}
+
+/// The rolling element of a bearing.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Element {
+    /// A ball in its grooves.
+    Ball(Groove),
+    /// A roller.
+    Roller(Roller),
+}
+
+impl Element {
+    /// Its kind.
+    pub const fn kind(&self) -> ElementKind {
+        match self {
+            Element::Ball(_) => ElementKind::Ball,
+            Element::Roller(_) => ElementKind::Roller,
+        }
+    }
+
+    /// The groove of a ball; a roller has none: the refusal names the element kind and what
+    /// asked (`what`, e.g. "the ISO 281 ball rating").
+    pub fn groove(&self, what: &str) -> Result<&Groove> {
+        match self {
+            Element::Ball(g) => Ok(g),
+            Element::Roller(_) => Err(Error::invalid(
+                "bearing.roller",
+                "a roller bearing",
+                format!("a ball bearing: {what} is written for balls"),
+            )),
+        }
     }
 }
 

@@ -206,7 +206,7 @@ mod tests {
         // Pd = 2A(1 - cos alpha0) holds by construction; the study's race diameters give
         // d_o - d_i - 2D = 62.096 - 46.062 - 16.006 = 0.028 mm = Pd to its rounding.
         assert!((b.pd * 1e6 - 28.37).abs() < 1e-9);
-        assert!((b.fi - 0.526).abs() < 1e-3, "f = {}", b.fi);
+        assert!((b.fi() - 0.526).abs() < 1e-3, "f = {}", b.fi());
         assert!((b.alpha0.to_degrees() - 15.0).abs() < 1e-9);
     }
 

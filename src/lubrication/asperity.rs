@@ -83,22 +83,43 @@ pub struct Groups {
     pub v: f64,
 }
 
+/// One rough lubricated contact in SI units, what [`Groups::new`] makes dimensionless.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Contact {
+    /// Load, N.
+    pub q: f64,
+    /// Entrainment speed, m/s (its magnitude is used).
+    pub u: f64,
+    /// Effective radius in the rolling direction, m.
+    pub rx: f64,
+    /// Effective modulus `E'`, Pa.
+    pub e_eff: f64,
+    /// Inlet viscosity, Pa s.
+    pub eta0: f64,
+    /// Pressure–viscosity coefficient, 1/Pa.
+    pub alpha_p: f64,
+    /// Composite rms roughness, m.
+    pub sigma: f64,
+    /// Hardness, Pa.
+    pub h: f64,
+    /// Ellipticity `a/b`.
+    pub kappa: f64,
+}
+
 impl Groups {
-    /// From SI data: load `q` N, entrainment speed `u` m/s, effective radius `rx` m,
-    /// modulus `e_eff` Pa, inlet viscosity `eta0` Pa s, pressure–viscosity `alpha_p` 1/Pa,
-    /// composite rms roughness `sigma` m, hardness `h` Pa, ellipticity `kappa`.
-    #[allow(clippy::too_many_arguments)]
-    pub fn new(
-        q: f64,
-        u: f64,
-        rx: f64,
-        e_eff: f64,
-        eta0: f64,
-        alpha_p: f64,
-        sigma: f64,
-        h: f64,
-        kappa: f64,
-    ) -> Self {
+    /// The groups of the contact `c`.
+    pub fn new(c: &Contact) -> Self {
+        let Contact {
+            q,
+            u,
+            rx,
+            e_eff,
+            eta0,
+            alpha_p,
+            sigma,
+            h,
+            kappa,
+        } = *c;
         Groups {
             kappa,
             w: q / (e_eff * rx * rx),
@@ -222,7 +243,17 @@ mod tests {
         let rx = 0.5 * d * (1.0 + gamma);
         let omega = 2000.0 * std::f64::consts::PI / 30.0;
         let u = 0.25 * dm * omega * (1.0 - gamma * gamma);
-        Groups::new(180.0, u, rx, 2.28e11, 0.04667, 2.1e-8, sigma, 2.39e9, 8.0)
+        Groups::new(&Contact {
+            q: 180.0,
+            u,
+            rx,
+            e_eff: 2.28e11,
+            eta0: 0.04667,
+            alpha_p: 2.1e-8,
+            sigma,
+            h: 2.39e9,
+            kappa: 8.0,
+        })
     }
 
     #[test]

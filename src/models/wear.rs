@@ -38,7 +38,7 @@
 //! study \[2\] does.
 
 use crate::contact::PointContact;
-use crate::lubrication::asperity::{AsperityReading, Groups, ShareAt};
+use crate::lubrication::asperity::{self, AsperityReading, Groups, ShareAt};
 use crate::lubrication::Lubricant;
 
 /// Universal gas constant used by study \[2\], J/(mol K).
@@ -195,17 +195,17 @@ impl WearLaw {
             film: self.film.as_ref().map(|f| {
                 let l = &f.lubricant;
                 // The groups without a load (`w` unused by `ShareAt`).
-                let g = Groups::new(
-                    0.0,
+                let g = Groups::new(&asperity::Contact {
+                    q: 0.0,
                     u,
-                    c.curvature.rx,
-                    c.e_eff,
-                    l.viscosity,
-                    l.pressure_viscosity,
-                    l.roughness,
-                    self.hardness,
-                    c.ellipse.kappa,
-                );
+                    rx: c.curvature.rx,
+                    e_eff: c.e_eff,
+                    eta0: l.viscosity,
+                    alpha_p: l.pressure_viscosity,
+                    sigma: l.roughness,
+                    h: self.hardness,
+                    kappa: c.ellipse.kappa,
+                });
                 let (rx, e_eff) = (c.curvature.rx, c.e_eff);
                 FilmFactorsAt {
                     share: ShareAt::new(&g, reading),
@@ -509,17 +509,17 @@ mod tests {
                         );
                         for q in [0.0, 1e-3, 0.7, 180.0, 2.5e3] {
                             for us in [0.0, 1e-6, 0.01, 0.3] {
-                                let g = Groups::new(
+                                let g = Groups::new(&asperity::Contact {
                                     q,
                                     u,
-                                    c.curvature.rx,
-                                    c.e_eff,
-                                    l.viscosity,
-                                    l.pressure_viscosity,
-                                    l.roughness,
-                                    law.hardness,
-                                    c.ellipse.kappa,
-                                );
+                                    rx: c.curvature.rx,
+                                    e_eff: c.e_eff,
+                                    eta0: l.viscosity,
+                                    alpha_p: l.pressure_viscosity,
+                                    sigma: l.roughness,
+                                    h: law.hardness,
+                                    kappa: c.ellipse.kappa,
+                                });
                                 let la = share(&g, reading.exponent());
                                 let psi = if us <= 0.0 {
                                     1.0

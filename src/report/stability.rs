@@ -392,7 +392,7 @@ pub fn load_for_pressure(preset_name: &str, p: f64) -> Result<f64> {
     let b = preset(preset_name)?.build()?;
     let a = b.nominal_contact_angle();
     let c = PointContact::new(
-        Curvature::ball_race(b.d, b.dm, a, b.fi, Race::Inner),
+        Curvature::ball_race(b.d, b.dm, a, b.fi(), Race::Inner),
         b.e_eff_inner(),
     );
     let (mut lo, mut hi) = (1.0f64, 1e6f64);

@@ -4,6 +4,7 @@
 //! dynamics) or effect (defects, waviness, EHL, wear, thermal) plugs in here and is seen
 //! by the C ABI and the FMUs without any change to them.
 
+pub mod element;
 pub mod fields;
 
 use crate::error::Result;

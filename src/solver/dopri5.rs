@@ -5,7 +5,7 @@
 
 use super::{
     check_call, error_norm, eval, eval_stage, fixed_steps, initial_step, OdeSystem, Options,
-    SolverError, Stats, StepLoop,
+    SolverError, Start, Stats, StepLoop,
 };
 
 // Dormand–Prince coefficients (Hairer, Nørsett & Wanner I, Table II.5.2).
@@ -217,12 +217,15 @@ impl Dopri5 {
             let h0 = if h_trial.is_finite() && *h_trial > 0.0 {
                 h_trial.min(opts.h_max)
             } else {
+                let start = Start {
+                    t0,
+                    y0: &self.y,
+                    f0: &self.k1,
+                };
                 initial_step(
                     sys,
                     &mut self.stats,
-                    t0,
-                    &self.y,
-                    &self.k1,
+                    &start,
                     &mut self.y1,
                     &mut self.k2,
                     5,

@@ -557,21 +557,28 @@ fn error_norm(e: &[f64], y0: &[f64], y1: &[f64], opts: &Options) -> f64 {
     (s / n.max(1) as f64).sqrt()
 }
 
+/// Where an integration starts: time `t0`, states `y0` and their rates `f0 = f(t0, y0)`.
+#[derive(Debug, Clone, Copy)]
+struct Start<'a> {
+    t0: f64,
+    y0: &'a [f64],
+    f0: &'a [f64],
+}
+
 /// Initial step size, Hairer's `HINIT` (Hairer, Nørsett & Wanner I, §II.4, "Starting step
-/// size"): balance `h·‖f0‖` and `h²·‖f'‖` against the tolerance for a method of order
-/// `order`. Uses `y1`, `f1` as scratch and one extra right-hand side evaluation.
-#[allow(clippy::too_many_arguments)]
+/// size"), from `start`: balance `h·‖f0‖` and `h²·‖f'‖` against the tolerance for a
+/// method of order `order`. Uses `y1`, `f1` as scratch and one extra right-hand side
+/// evaluation.
 fn initial_step<S: OdeSystem + ?Sized>(
     sys: &mut S,
     stats: &mut Stats,
-    t0: f64,
-    y0: &[f64],
-    f0: &[f64],
+    start: &Start<'_>,
     y1: &mut [f64],
     f1: &mut [f64],
     order: i32,
     opts: &Options,
 ) -> Result<f64, SolverError> {
+    let Start { t0, y0, f0 } = *start;
     let n = y0.len();
     let (mut dnf, mut dny) = (0.0, 0.0);
     for i in 0..n {

@@ -57,8 +57,8 @@ pub struct PresetRow {
 
 fn kc(b: &Bearing, race: Race) -> f64 {
     let (f, e) = match race {
-        Race::Inner => (b.fi, b.e_eff_inner()),
-        Race::Outer => (b.fo, b.e_eff_outer()),
+        Race::Inner => (b.fi(), b.e_eff_inner()),
+        Race::Outer => (b.fo(), b.e_eff_outer()),
     };
     PointContact::new(
         Curvature::ball_race(b.d, b.dm, b.nominal_contact_angle(), f, race),
@@ -75,8 +75,8 @@ pub fn preset_row(source: &str, b: &Bearing) -> PresetRow {
         ball_diameter_mm: b.d * 1e3,
         pitch_diameter_mm: b.dm * 1e3,
         ball_count: b.z,
-        inner_curvature: b.fi,
-        outer_curvature: b.fo,
+        inner_curvature: b.fi(),
+        outer_curvature: b.fo(),
         free_contact_angle_deg: b.alpha0.to_degrees(),
         nominal_contact_angle_deg: b.nominal_contact_angle().to_degrees(),
         clearance_um: b.pd * 1e6,

@@ -104,7 +104,8 @@ pub fn bearing_detail(name: &str, as_json: bool) -> Result<String> {
     let _ = writeln!(
         s,
         "groove curvatures f_i/f_o: {:.4} / {:.4}{tag}",
-        b.fi, b.fo
+        b.fi(),
+        b.fo()
     );
     let _ = writeln!(
         s,

@@ -363,8 +363,8 @@ mod tests {
     fn solver_7004() -> (PositionSolver, [f64; 2], f64) {
         let b = crate::geometry::preset("7004").unwrap().build().unwrap();
         let s = PositionSolver {
-            ri_free: (b.fi - 0.5) * b.d,
-            ro_free: (b.fo - 0.5) * b.d,
+            ri_free: (b.fi() - 0.5) * b.d,
+            ro_free: (b.fo() - 0.5) * b.d,
             r_og: b.outer_groove_centre_radius(),
             inner: ContactTable::new(&b, Race::Inner),
             outer: ContactTable::new(&b, Race::Outer),

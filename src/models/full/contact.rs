@@ -2,6 +2,7 @@
 //! contact, the inner contact and the ball's two race contacts (docs/physics.md §5.5).
 
 use super::*;
+use crate::seam::Motion;
 
 pub(super) fn csi_peak(cs: &ContactState) -> f64 {
     if cs.a > 0.0 && cs.b > 0.0 {
@@ -50,13 +51,10 @@ impl FullModel {
 
     /// The inner race contact of a ball: its load and traction, and what they do to the
     /// shaft (the part of [`Self::ball_race`] the wrench needs, shared with
-    /// [`Self::wrench_at`] so that both compute the same numbers).
-    #[allow(clippy::too_many_arguments)]
+    /// [`Self::wrench_at`] so that both compute the same numbers), at the shaft's motion `m`.
     pub(super) fn inner_contact(
         &self,
-        q: &[f64; 5],
-        v: &[f64; 5],
-        omega: f64,
+        m: &Motion,
         bk: &BallKin,
         fr: &BallFrame,
         xrel: [f64; 2],
@@ -71,7 +69,7 @@ impl FullModel {
                 let ci = match known {
                     Known::Solved(c) => c[0],
                     _ => {
-                        let a = self.groove_offset_sc(q, s, c);
+                        let a = self.groove_offset_sc(&m.q, s, c);
                         ball::contact_full(
                             &self.pos.inner,
                             self.pos.ri_free,
@@ -90,7 +88,8 @@ impl FullModel {
         let rci = add(fr.rb, ri_);
         let vbs_i = add(fr.vb, cross(w, ri_));
         // Inner ring angular velocity: spin plus tilt rates.
-        let wr = ring_omega(q, v, omega);
+        let (q, v) = (&m.q, &m.v);
+        let wr = ring_omega(q, v, m.omega);
         let vq = [v[0], v[1], v[2]];
         let vr_i = add(vq, cross(wr, sub(rci, [q[0], q[1], q[2]])));
         let vcp_i = cross(wo, rci);
@@ -134,12 +133,11 @@ impl FullModel {
 
     /// The part of ball `j`'s terms that does not depend on the cage: race contacts,
     /// tractions, spin moments and drag at the ball position `xrel` (the ball centre
-    /// relative to the outer groove centre `(X1, X2)`), with the shaft's wrench.
+    /// relative to the outer groove centre `(X1, X2)`), with the shaft's wrench, at the
+    /// shaft's motion `m`.
     pub(super) fn ball_race(
         &self,
-        q: &[f64; 5],
-        v: &[f64; 5],
-        omega: f64,
+        m: &Motion,
         bk: &BallKin,
         xrel: [f64; 2],
         known: Known,
@@ -150,7 +148,7 @@ impl FullModel {
             _ => BallFrame::new(bk),
         };
         let (er, et, ez) = (fr.er(), fr.et(), EZ);
-        let inn = self.inner_contact(q, v, omega, bk, &fr, xrel, known);
+        let inn = self.inner_contact(m, bk, &fr, xrel, known);
         let (qi, ni2, ni) = (inn.qi, inn.ni2, inn.ni);
         let (co, cso) = match known {
             Known::Kept(k) => (k.contacts[1], k.cs[1]),

@@ -3,6 +3,7 @@
 //! from the quasi-static solution (docs/physics.md §5.5).
 
 use super::*;
+use crate::seam::Motion;
 
 impl FullModel {
     /// Quasi-static ball position for ball states `xb` (warm start in `aux[0..3]`:
@@ -64,21 +65,19 @@ impl FullModel {
         })
     }
 
-    /// The race part of ball `j`'s terms at its states `xb` ([`Self::ball_kin_at`]).
-    #[allow(clippy::too_many_arguments)]
+    /// The race part of ball `j`'s terms at the shaft's motion `m` and the ball's states
+    /// `xb` ([`Self::ball_kin_at`]).
     pub(super) fn ball_race_at(
         &self,
         j: usize,
-        q: &[f64; 5],
-        v: &[f64; 5],
-        omega: f64,
+        m: &Motion,
         xb: &[f64],
         aux: &mut [f64],
         solve: bool,
     ) -> Result<BallRace> {
-        let (bk, xrel, c) = self.ball_kin_at(j, q, xb, aux, solve)?;
+        let (bk, xrel, c) = self.ball_kin_at(j, &m.q, xb, aux, solve)?;
         let known = c.map_or(Known::Nothing, Known::Solved);
-        Ok(self.ball_race(q, v, omega, &bk, xrel, known))
+        Ok(self.ball_race(m, &bk, xrel, known))
     }
 
     /// Ball rates (stored-state derivatives) from its terms.
@@ -137,6 +136,11 @@ impl FullModel {
         aux: &mut [f64],
         solve: bool,
     ) -> Result<[f64; 5]> {
+        let motion = Motion {
+            q: *q,
+            v: *v,
+            omega,
+        };
         let mut w = [0.0; 5];
         // Positions kept at the displacement and states of the last evaluation, from the
         // warm starts it left: its frames, contacts and contact states are these.
@@ -154,7 +158,7 @@ impl FullModel {
             } else {
                 (BallFrame::new(&bk), c.map_or(Known::Nothing, Known::Solved))
             };
-            let inn = self.inner_contact(q, v, omega, &bk, &fr, xrel, known);
+            let inn = self.inner_contact(&motion, &bk, &fr, xrel, known);
             for (a, b) in w.iter_mut().zip(inn.wrench) {
                 *a += b;
             }
@@ -182,37 +186,42 @@ impl FullModel {
         aux: &mut [f64],
         dx: &mut [f64],
     ) -> Result<Totals> {
-        self.eval_memo(q, v, omega, x, aux, dx, false)
+        self.eval_memo(
+            &Motion {
+                q: *q,
+                v: *v,
+                omega,
+            },
+            x,
+            aux,
+            dx,
+            false,
+        )
     }
 
-    /// [`Self::eval`], the balls' race parts kept for [`Self::jacobian_from`].
-    #[allow(clippy::too_many_arguments)]
+    /// [`Self::eval`] at the shaft's motion `m`, the balls' race parts kept for
+    /// [`Self::jacobian_from`].
     pub(crate) fn eval_keep(
         &mut self,
-        q: &[f64; 5],
-        v: &[f64; 5],
-        omega: f64,
+        m: &Motion,
         x: &[f64],
         aux: &mut [f64],
         dx: &mut [f64],
     ) -> Result<Totals> {
-        self.eval_memo(q, v, omega, x, aux, dx, true)
+        self.eval_memo(m, x, aux, dx, true)
     }
 
-    /// [`Self::eval`] (`keep`: [`Self::eval_keep`]), the numbers of the last one taken
-    /// when it was at the same point ([`Memo`]).
-    #[allow(clippy::too_many_arguments)]
+    /// [`Self::eval`] at the shaft's motion `shaft` (`keep`: [`Self::eval_keep`]), the
+    /// numbers of the last one taken when it was at the same point ([`Memo`]).
     pub(super) fn eval_memo(
         &mut self,
-        q: &[f64; 5],
-        v: &[f64; 5],
-        omega: f64,
+        shaft: &Motion,
         x: &[f64],
         aux: &mut [f64],
         dx: &mut [f64],
         keep: bool,
     ) -> Result<Totals> {
-        let motion = motion_of(q, v, omega);
+        let motion = motion_of(&shaft.q, &shaft.v, shaft.omega);
         let m = &self.memo;
         if m.p.as_ref() == Some(&self.p)
             && same_bits(&m.motion, &motion)
@@ -231,7 +240,7 @@ impl FullModel {
         self.memo.p = None;
         self.memo.aux_in.copy_from_slice(aux);
         let tot = if keep {
-            let tot = self.eval_with(q, v, omega, x, aux, dx, Races::Keep)?;
+            let tot = self.eval_with(shaft, x, aux, dx, Races::Keep)?;
             self.memo.races.copy_from_slice(&self.races);
             self.memo.terms.copy_from_slice(&self.terms);
             tot
@@ -239,7 +248,7 @@ impl FullModel {
             // The race parts and terms into the memo's, the kept ones left as they are.
             std::mem::swap(&mut self.races, &mut self.memo.races);
             std::mem::swap(&mut self.terms, &mut self.memo.terms);
-            let tot = self.eval_with(q, v, omega, x, aux, dx, Races::Keep);
+            let tot = self.eval_with(shaft, x, aux, dx, Races::Keep);
             std::mem::swap(&mut self.races, &mut self.memo.races);
             std::mem::swap(&mut self.terms, &mut self.memo.terms);
             tot?
@@ -255,13 +264,11 @@ impl FullModel {
         Ok(tot)
     }
 
-    /// [`Self::eval`], the balls' race parts computed, kept or taken from the kept ones.
-    #[allow(clippy::too_many_arguments)]
+    /// [`Self::eval`] at the shaft's motion `m`, the balls' race parts computed, kept or
+    /// taken from the kept ones.
     pub(super) fn eval_with(
         &mut self,
-        q: &[f64; 5],
-        v: &[f64; 5],
-        omega: f64,
+        m: &Motion,
         x: &[f64],
         aux: &mut [f64],
         dx: &mut [f64],
@@ -280,11 +287,11 @@ impl FullModel {
             let bt = match races {
                 Races::Kept => self.ball_cage(&ck, sc, &self.races[j]),
                 Races::Compute => {
-                    let r = self.ball_race_at(j, q, v, omega, xb, aux, true)?;
+                    let r = self.ball_race_at(j, m, xb, aux, true)?;
                     self.ball_cage(&ck, sc, &r)
                 }
                 Races::Keep => {
-                    self.races[j] = self.ball_race_at(j, q, v, omega, xb, aux, true)?;
+                    self.races[j] = self.ball_race_at(j, m, xb, aux, true)?;
                     let bt = self.ball_cage(&ck, sc, &self.races[j]);
                     self.terms[j] = bt;
                     bt
@@ -327,10 +334,11 @@ impl FullModel {
             }
             CageModel::Free => {
                 let (e, e_dot, w_ring) = if self.guided_inner {
+                    let (q, v) = (&m.q, &m.v);
                     (
                         [ck.c[0] - q[0], ck.c[1] - q[1]],
                         [ck.v[0] - v[0], ck.v[1] - v[1]],
-                        omega,
+                        m.omega,
                     )
                 } else {
                     ([ck.c[0], ck.c[1]], [ck.v[0], ck.v[1]], 0.0)

@@ -2,54 +2,44 @@
 //! where the evaluation is not differentiated by hand.
 
 use super::*;
+use crate::seam::{Jacobians, Motion};
 
 impl FullModel {
-    /// Jacobians by block-wise forward differences, all row-major: `jx = d(rates)/d(states)`
-    /// (`n × n`), and when load-driven (non-empty slices) `jm = d(rates)/d(q, v)`
-    /// (`n × 10`), `wx = d(wrench)/d(states)` (`5 × n`), `wm = d(wrench)/d(q, v)`
-    /// (`5 × 10`). A ball's column costs one ball evaluation (its rates, its share of the
+    /// Jacobians at the shaft's motion `m` by block-wise forward differences, into `jac`, all
+    /// row-major: `jx = d(rates)/d(states)` (`n × n`), and when load-driven (non-empty
+    /// slices) `jm = d(rates)/d(q, v)` (`n × 10`), `wx = d(wrench)/d(states)` (`5 × n`),
+    /// `wm = d(wrench)/d(q, v)` (`5 × 10`). A ball's column costs one ball evaluation (its rates, its share of the
     /// cage's and of the wrench, differenced against the ball's terms kept from the
     /// evaluation at `x`; a spin column keeps the ball's position), a cage column
     /// the pockets of every ball on the race parts kept from the evaluation at `x` (the
     /// cage reaches a ball only through its pocket), a ring column one right-hand side.
     /// The cage columns equal whole-evaluation differences bit for bit. `scratch` holds
     /// `3 n + n_aux` values. Allocation-free.
-    #[allow(clippy::too_many_arguments)]
     pub fn jacobian(
         &mut self,
-        q: &[f64; 5],
-        v: &[f64; 5],
-        omega: f64,
+        m: &Motion,
         x: &[f64],
         aux: &[f64],
-        jx: &mut [f64],
-        jm: &mut [f64],
-        wx: &mut [f64],
-        wm: &mut [f64],
+        jac: Jacobians<'_>,
         scratch: &mut [f64],
     ) -> Result<()> {
-        self.jacobian_from(q, v, omega, x, aux, jx, jm, wx, wm, scratch, None)
+        self.jacobian_from(m, x, aux, jac, scratch, None)
     }
 
     /// [`Self::jacobian`]; `kept`: the rates and totals of an evaluation with
     /// [`Races::Keep`] at this motion, these states and with `aux` as it left it (its
     /// positions are then those a solve from `aux` returns, bit for bit), which stands in
     /// for the evaluation at `x`.
-    #[allow(clippy::too_many_arguments)]
     pub(crate) fn jacobian_from(
         &mut self,
-        q: &[f64; 5],
-        v: &[f64; 5],
-        omega: f64,
+        m: &Motion,
         x: &[f64],
         aux: &[f64],
-        jx: &mut [f64],
-        jm: &mut [f64],
-        wx: &mut [f64],
-        wm: &mut [f64],
+        jac: Jacobians<'_>,
         scratch: &mut [f64],
         kept: Option<(&[f64], &Totals)>,
     ) -> Result<()> {
+        let Jacobians { jx, jm, wx, wm } = jac;
         let n = self.n_states();
         let na = self.n_aux();
         let (xs, rest) = scratch.split_at_mut(n);
@@ -68,13 +58,13 @@ impl FullModel {
                 d0.copy_from_slice(dk);
                 *tk
             }
-            None => self.eval_with(q, v, omega, x, auxs, d0, Races::Keep)?,
+            None => self.eval_with(m, x, auxs, d0, Races::Keep)?,
         };
         let step = |xv: f64| 1.5e-8 * xv.abs().max(1.0);
         if load {
             // Ring columns: displacements and velocities (steps as the outputs' K and C).
             for c in 0..10 {
-                let (mut qp, mut vp) = (*q, *v);
+                let mut mp = *m;
                 let h = match c {
                     0..=2 => 1e-10,
                     3 | 4 => 1e-8,
@@ -82,12 +72,12 @@ impl FullModel {
                     _ => 1e-4,
                 };
                 if c < 5 {
-                    qp[c] += h;
+                    mp.q[c] += h;
                 } else {
-                    vp[c - 5] += h;
+                    mp.v[c - 5] += h;
                 }
                 auxs.copy_from_slice(aux);
-                let t = self.eval_with(&qp, &vp, omega, x, auxs, col, Races::Compute)?;
+                let t = self.eval_with(&mp, x, auxs, col, Races::Compute)?;
                 for r in 0..n {
                     jm[r * 10 + c] = (col[r] - d0[r]) / h;
                 }
@@ -102,7 +92,7 @@ impl FullModel {
         for c in 0..self.nc {
             let h = step(x[c]);
             xs[c] = x[c] + h;
-            let t = self.eval_with(q, v, omega, xs, auxs, col, Races::Kept)?;
+            let t = self.eval_with(m, xs, auxs, col, Races::Kept)?;
             for r in 0..n {
                 jx[r * n + c] = (col[r] - d0[r]) / h;
             }
@@ -138,10 +128,10 @@ impl FullModel {
                 // (states 0 and 1), not on the spin: the spin columns keep it.
                 // They keep its frame, contacts and contact states too.
                 let race = if qs && c >= 2 {
-                    let (bk, xrel, _) = self.ball_kin_at(j, q, &xb[..nb], auxs, false)?;
-                    self.ball_race(q, v, omega, &bk, xrel, Known::Kept(&self.races[j]))
+                    let (bk, xrel, _) = self.ball_kin_at(j, &m.q, &xb[..nb], auxs, false)?;
+                    self.ball_race(m, &bk, xrel, Known::Kept(&self.races[j]))
                 } else {
-                    self.ball_race_at(j, q, v, omega, &xb[..nb], auxs, true)?
+                    self.ball_race_at(j, m, &xb[..nb], auxs, true)?
                 };
                 let bt = self.ball_cage(&ck, self.pocket_sc[j], &race);
                 let mut r1 = [0.0; 9];

@@ -110,7 +110,7 @@ impl LevelModel for FullLevel {
         true
     }
     fn jacobian(&mut self, p: Point<'_>, j: Jacobians<'_>) -> bool {
-        let (Point { m, x, aux, .. }, Jacobians { jx, jm, wx, wm }) = (p, j);
+        let Point { m, x, aux, .. } = p;
         let kept = match &self.last_rhs {
             Some((lm, tot)) if lm == m && self.last_x == x && self.last_aux == aux => {
                 Some((&self.last_dx[..], tot))
@@ -118,19 +118,7 @@ impl LevelModel for FullLevel {
             _ => None,
         };
         self.model
-            .jacobian_from(
-                &m.q,
-                &m.v,
-                m.omega,
-                x,
-                aux,
-                jx,
-                jm,
-                wx,
-                wm,
-                &mut self.jscratch,
-                kept,
-            )
+            .jacobian_from(m, x, aux, j, &mut self.jscratch, kept)
             .is_ok()
     }
     fn init(&mut self, m: &Motion, x: &mut [f64], aux: &mut [f64]) -> Result<()> {
@@ -142,7 +130,7 @@ impl LevelModel for FullLevel {
     fn rhs(&mut self, p: Point<'_>, dx: &mut [f64], wrench: Option<&mut [f64; 5]>) -> Result<()> {
         let Point { m, x, aux, .. } = p;
         self.last_rhs = None;
-        let tot = self.model.eval_keep(&m.q, &m.v, m.omega, x, aux, dx)?;
+        let tot = self.model.eval_keep(m, x, aux, dx)?;
         self.last_x.copy_from_slice(x);
         self.last_aux.copy_from_slice(aux);
         self.last_dx.copy_from_slice(dx);

@@ -574,7 +574,7 @@ impl FullModel {
         )?;
         let (a10, a20) = b.reference_groove_offset();
         let alpha0 = b.nominal_contact_angle();
-        let ro_free = (b.fo - 0.5) * b.d;
+        let ro_free = (b.fo() - 0.5) * b.d;
         let m = b.ball_mass();
         let l = 0.5 * b.d;
         let t0 = (m * b.d / (2.0 * p.reference_load)).sqrt();
@@ -622,7 +622,7 @@ impl FullModel {
             ri: b.inner_groove_centre_radius(),
             z_og: -ro_free * alpha0.sin(),
             pos: PositionSolver {
-                ri_free: (b.fi - 0.5) * b.d,
+                ri_free: (b.fi() - 0.5) * b.d,
                 ro_free,
                 r_og: b.outer_groove_centre_radius(),
                 inner: ContactTable::new(b, Race::Inner),

@@ -1,4 +1,5 @@
 use super::*;
+use crate::seam::{Jacobians, Motion};
 
 /// The 7004 at 30 000 rpm at the scene's displacement (examples/scenes/7004-30000.toml),
 /// started, with the cage off centre and slower so the pockets act.
@@ -27,19 +28,18 @@ fn motion_jacobian(
     let mut jx = vec![0.0; n * n];
     let mut scratch = vec![0.0; 3 * n + aux.len()];
     let (jm, wx, wm) = (&mut [], &mut [], &mut []);
-    m.jacobian(
-        q,
-        &[0.0; 5],
+    let motion = Motion {
+        q: *q,
+        v: [0.0; 5],
         omega,
-        x,
-        aux,
-        &mut jx,
+    };
+    let jac = Jacobians {
+        jx: &mut jx,
         jm,
         wx,
         wm,
-        &mut scratch,
-    )
-    .unwrap();
+    };
+    m.jacobian(&motion, x, aux, jac, &mut scratch).unwrap();
     jx
 }
 
@@ -78,6 +78,7 @@ fn a_repeated_evaluation_is_a_fresh_one() {
     let (m0, q, omega, x, aux) = started_7004();
     let n = x.len();
     let v = [0.0; 5];
+    let motion = Motion { q, v, omega };
     let bits = |a: &[f64]| a.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
     // A first evaluation (the memo's), then repeats from the warm starts it found and
     // from those it left, against a fresh model's.
@@ -90,12 +91,10 @@ fn a_repeated_evaluation_is_a_fresh_one() {
             let mut fresh = m0.clone();
             let (mut af, mut df) = (start.clone(), vec![0.0; n]);
             let tf = fresh
-                .eval_memo(&q, &v, omega, &x, &mut af, &mut df, keep)
+                .eval_memo(&motion, &x, &mut af, &mut df, keep)
                 .unwrap();
             let (mut am, mut dm) = (start.clone(), vec![0.0; n]);
-            let tm = m
-                .eval_memo(&q, &v, omega, &x, &mut am, &mut dm, keep)
-                .unwrap();
+            let tm = m.eval_memo(&motion, &x, &mut am, &mut dm, keep).unwrap();
             assert_eq!(format!("{tf:?}"), format!("{tm:?}"));
             assert_eq!(bits(&df), bits(&dm));
             assert_eq!(bits(&af), bits(&am));

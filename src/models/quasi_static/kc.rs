@@ -26,8 +26,8 @@ pub(crate) struct KcTable {
 /// The exact constant at `cos(alpha) = c` (through the contact module).
 pub(crate) fn kc_exact(b: &Bearing, race: Race, c: f64) -> f64 {
     let (f, e) = match race {
-        Race::Inner => (b.fi, b.e_eff_inner()),
-        Race::Outer => (b.fo, b.e_eff_outer()),
+        Race::Inner => (b.fi(), b.e_eff_inner()),
+        Race::Outer => (b.fo(), b.e_eff_outer()),
     };
     let alpha = c.clamp(0.0, 1.0).acos();
     PointContact::new(Curvature::ball_race(b.d, b.dm, alpha, f, race), e).kc

@@ -1,31 +1,54 @@
-//! The `quasi_static` level: Jones–Harris equilibrium of every ball at the current ring
-//! motion (docs/physics.md §4), balls at the cage's kinematic positions so the force varies as
-//! balls pass. State: the cage angle. Memory (in the component state, so a restored state
-//! continues bit for bit): each ball's warm start.
+//! The `quasi_static` level: every rolling element in equilibrium at the current ring
+//! motion (balls: Jones–Harris, docs/physics.md §4), elements at the cage's kinematic
+//! positions so the force varies as they pass. State: the cage angle. Memory (in the
+//! component state, so a restored state continues bit for bit): each element's warm start.
+//!
+//! The level sums elements through their contact law ([`ElementLaw`],
+//! [`crate::seam::element::assemble`]); [`element_law`] picks the law of the bearing's
+//! element: the one place an element type is plugged in.
 //!
 //! Contact damping (`model.contact_damping`, N s/m per loaded ball) acts as in the ring
 //! level: `c d(delta)/dt` along each loaded ball's contact line (the ring level's massless
 //! ball geometry), blended in over the first 0.1 µm of approach; off (no cost) at 0.
 
-use crate::error::Result;
+use crate::error::{Error, Result};
+use crate::geometry::element::{Element, ElementKind};
 use crate::geometry::kinematics::nominal_cage_speed as cage_speed;
-use crate::models::quasi_static::{BallState, Options, QuasiStatic};
+use crate::models::quasi_static::{Options, QuasiStatic};
 use crate::models::ring::{RingDof, RingEval, RingModel};
 use crate::models::LevelArgs;
+use crate::seam::element::{assemble, ElementLaw, Want};
 use crate::seam::{LevelModel, LevelOutputs, Motion, Point};
 use std::f64::consts::PI;
 
-/// Values per ball in the component's `aux`: `X` (2), the groove offset it was solved at
-/// (2), `dX/dA` (4), warm flag.
-const AUX_PER_BALL: usize = 9;
+/// The element kinds this level takes: those [`element_law`] has a law for (the level
+/// registry reads it).
+pub const ELEMENTS: &[ElementKind] = &[ElementKind::Ball];
+
+/// The contact law of the bearing's element at this level.
+pub fn element_law(a: &LevelArgs, opts: Options) -> Result<Box<dyn ElementLaw>> {
+    match a.bearing.element {
+        Element::Ball(_) => Ok(Box::new(QuasiStatic::new(a.bearing, opts)?)),
+        Element::Roller(_) => Err(no_law("roller")),
+    }
+}
+
+/// The refusal of an element kind without a contact law at this level (the registry
+/// refuses it first, naming the level).
+fn no_law(kind: &str) -> Error {
+    Error::invalid(
+        "bearing",
+        format!("a {kind} bearing"),
+        format!("a ball bearing: the quasi-static level has no {kind} contact law"),
+    )
+}
 
 /// The level.
 #[derive(Debug)]
 pub struct QuasiStaticLevel {
-    qs: QuasiStatic,
+    law: Box<dyn ElementLaw>,
     cage_ratio: f64,
     psi: Vec<f64>,
-    balls: Vec<BallState>,
     /// Contact damping: the ring model with and without damping (their difference is the
     /// damping force); `None` when the scene has none.
     damping: Option<(RingModel, RingModel, RingEval, RingEval)>,
@@ -39,12 +62,21 @@ impl QuasiStaticLevel {
             race_control: a.race_control,
             ..Options::default()
         };
-        let qs = QuasiStatic::new(b, opts)?;
+        let law = element_law(a, opts)?;
+        if a.contact_damping > 0.0 && law.name() != "ball" {
+            return Err(Error::invalid(
+                "model.contact_damping",
+                a.contact_damping,
+                format!(
+                    "0 for a {} bearing (contact damping is modelled for balls)",
+                    law.name()
+                ),
+            ));
+        }
         Ok(QuasiStaticLevel {
-            qs,
+            law,
             cage_ratio: cage_speed(b, 1.0),
             psi: vec![0.0; b.z],
-            balls: vec![BallState::default(); b.z],
             damping: (a.contact_damping > 0.0).then(|| {
                 (
                     RingModel::new(b, RingDof::Five, a.contact_damping),
@@ -56,17 +88,11 @@ impl QuasiStaticLevel {
         })
     }
 
-    fn load_aux(&mut self, theta: f64, aux: &[f64]) {
+    /// The elements' azimuths at cage angle `theta`.
+    fn place(&mut self, theta: f64) {
         let z = self.psi.len();
-        for j in 0..z {
-            self.psi[j] = theta + 2.0 * PI * j as f64 / z as f64;
-            let a = &aux[AUX_PER_BALL * j..AUX_PER_BALL * (j + 1)];
-            self.balls[j] = BallState {
-                x: [a[0], a[1]],
-                a: [a[2], a[3]],
-                dxda: [[a[4], a[5]], [a[6], a[7]]],
-                warm: a[8] != 0.0,
-            };
+        for (j, p) in self.psi.iter_mut().enumerate() {
+            *p = theta + 2.0 * PI * j as f64 / z as f64;
         }
     }
 
@@ -91,22 +117,6 @@ impl QuasiStaticLevel {
             }
         }
     }
-
-    fn store_aux(&self, aux: &mut [f64]) {
-        for (j, b) in self.balls.iter().enumerate() {
-            aux[AUX_PER_BALL * j..AUX_PER_BALL * (j + 1)].copy_from_slice(&[
-                b.x[0],
-                b.x[1],
-                b.a[0],
-                b.a[1],
-                b.dxda[0][0],
-                b.dxda[0][1],
-                b.dxda[1][0],
-                b.dxda[1][1],
-                b.warm as u8 as f64,
-            ]);
-        }
-    }
 }
 
 /// The registry's constructor (the level registry, `LEVELS` in `component/levels.rs`).
@@ -123,7 +133,7 @@ impl LevelModel for QuasiStaticLevel {
         true
     }
     fn n_aux(&self) -> usize {
-        AUX_PER_BALL * self.psi.len()
+        self.law.state_len() * self.psi.len()
     }
     fn init(&mut self, _m: &Motion, x: &mut [f64], aux: &mut [f64]) -> Result<()> {
         x[0] = 0.0;
@@ -134,40 +144,42 @@ impl LevelModel for QuasiStaticLevel {
         let Point { m, x, aux, .. } = p;
         dx[0] = self.cage_ratio * m.omega;
         if let Some(w) = wrench {
-            self.load_aux(x[0], aux);
-            *w = self
-                .qs
-                .evaluate(&m.q, m.omega, &self.psi, &mut self.balls, None, None)?;
-            self.store_aux(aux);
+            self.place(x[0]);
+            let (law, n) = (&self.law, self.law.state_len());
+            *w = assemble(&m.q, &self.psi, None, |j, at, u| {
+                law.react(
+                    at,
+                    u,
+                    m.omega,
+                    &mut aux[n * j..n * (j + 1)],
+                    Want::default(),
+                )
+            })?;
             self.add_damping(x[0], m, w, None);
         }
         Ok(())
     }
     fn outputs(&mut self, p: Point<'_>, out: &mut LevelOutputs) -> Result<()> {
         let Point { m, x, aux, .. } = p;
-        self.load_aux(x[0], aux);
+        self.place(x[0]);
         let mut k = [[0.0; 5]; 5];
-        // Loaded balls, largest load and pressure: all the outputs read of the balls
-        // (their contact angles and semi-axes are not formed).
+        // Loaded elements, largest load and pressure: all the outputs read of the
+        // elements.
         let (mut loaded, mut max_load, mut max_p) = (0usize, 0.0f64, 0.0f64);
-        let qs = &self.qs;
-        let mut wrench = qs.evaluate_with(
-            &m.q,
-            m.omega,
-            &self.psi,
-            &mut self.balls,
-            Some(&mut k),
-            true,
-            |_, e, _, _| {
-                if e.qi > 0.0 {
-                    loaded += 1;
-                }
-                max_load = max_load.max(e.qi).max(e.qo);
-                let (p_i, p_o) = qs.peak_pressures(e);
-                max_p = max_p.max(p_i).max(p_o);
-            },
-        )?;
-        self.store_aux(aux);
+        let (law, n) = (&self.law, self.law.state_len());
+        let want = Want {
+            stiffness: true,
+            report: true,
+        };
+        let mut wrench = assemble(&m.q, &self.psi, Some(&mut k), |j, at, u| {
+            let r = law.react(at, u, m.omega, &mut aux[n * j..n * (j + 1)], want)?;
+            if r.load[0] > 0.0 {
+                loaded += 1;
+            }
+            max_load = max_load.max(r.load[0]).max(r.load[1]);
+            max_p = max_p.max(r.pressure[0]).max(r.pressure[1]);
+            Ok(r)
+        })?;
         let mut c = [[0.0; 5]; 5];
         self.add_damping(x[0], m, &mut wrench, Some(&mut c));
         *out = LevelOutputs {

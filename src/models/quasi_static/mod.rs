@@ -48,6 +48,7 @@
 mod ball;
 mod dual;
 mod kc;
+pub mod law;
 pub mod level;
 
 pub use ball::BallState;
@@ -55,6 +56,7 @@ pub use ball::BallState;
 use crate::contact::{ContactTable, Race};
 use crate::error::{Error, Result};
 use crate::geometry::Bearing;
+use crate::seam::element::{self, ElementAt, ElementDisplacement, ElementReaction};
 use crate::solver::newton;
 use ball::{Eval, Geo};
 use kc::KcTable;
@@ -259,9 +261,9 @@ impl QuasiStatic {
         let geo = Geo {
             d: bearing.d,
             dm: bearing.dm,
-            ri_free: (bearing.fi - 0.5) * bearing.d,
-            ro_free: (bearing.fo - 0.5) * bearing.d,
-            fid: bearing.fi * bearing.d,
+            ri_free: (bearing.fi() - 0.5) * bearing.d,
+            ro_free: (bearing.fo() - 0.5) * bearing.d,
+            fid: bearing.fi() * bearing.d,
             ri,
             g: bearing.d / bearing.dm,
             mass: bearing.ball_mass(),
@@ -391,11 +393,10 @@ impl QuasiStatic {
         omega: f64,
         psi: &[f64],
         state: &mut [BallState],
-        mut stiffness: Option<&mut [[f64; 5]; 5]>,
+        stiffness: Option<&mut [[f64; 5]; 5]>,
         want_balls: bool,
         mut per_ball: F,
     ) -> Result<[f64; 5]> {
-        check_finite("q", q)?;
         if !omega.is_finite() {
             return Err(Error::invalid("omega", omega, "a finite number"));
         }
@@ -406,42 +407,66 @@ impl QuasiStatic {
                 format!("= psi.len() = {}", psi.len()),
             ));
         }
-        if let Some(k) = stiffness.as_deref_mut() {
-            *k = [[0.0; 5]; 5];
-        }
-        let mut f = [0.0; 5];
         // The `N = 4` evaluation at each ball's root when the stiffness or the reports
         // are wanted (else the forces alone, `ball.rs`).
-        let full = stiffness.is_some() || want_balls;
-        for (j, (&p, st)) in psi.iter().zip(state.iter_mut()).enumerate() {
-            if !p.is_finite() {
-                return Err(Error::invalid(format!("psi[{j}]"), p, "a finite number"));
-            }
-            let (s, c) = p.sin_cos();
-            let a = self.groove_offset_sc(q, s, c);
-            self.check_geometry(q, j, p, a)?;
-            let sol = self.geo.solve(omega, a, st, full)?;
-            let [fa, fr, m] = sol.f;
-            f[0] += fr * c;
-            f[1] += fr * s;
-            f[2] += fa;
-            f[3] += m * s;
-            f[4] -= m * c;
+        let want_k = stiffness.is_some();
+        let full = want_k || want_balls;
+        element::assemble(q, psi, stiffness, |j, at, u| {
+            let st = &mut state[j];
+            let sol = self.solve_ball(at, u, omega, st, full)?;
+            let mut r = ElementReaction {
+                f: sol.f,
+                ..Default::default()
+            };
             if let Some(e4) = &sol.full {
-                if let Some(k) = stiffness.as_deref_mut() {
-                    self.add_ball_stiffness(e4, s, c, k);
+                if want_k {
+                    r.df = self.ball_df(e4);
                 }
                 if want_balls {
-                    per_ball(j, e4, p, st.x);
+                    per_ball(j, e4, at.psi, st.x);
                 }
             }
-        }
-        check_finite("forces", &f).map_err(|_| Error::NotConverged {
-            what: "quasi-static ring forces (non-finite)",
-            iterations: 0,
-            residual: f64::NAN,
-        })?;
-        Ok(f)
+            Ok(r)
+        })
+    }
+
+    /// The groove offset `(A1, A2)` of a ball with displacement `u` at its place: the
+    /// reference offset moved axially by `u.axial` and by the tilt at the inner groove
+    /// centre radius, radially by `u.radial`.
+    fn groove_offset_of(&self, u: ElementDisplacement) -> [f64; 2] {
+        [
+            self.a_ref[0] + u.axial + self.ri * u.tilt,
+            self.a_ref[1] + u.radial,
+        ]
+    }
+
+    /// One ball's equilibrium at displacement `u` (module docs), after the geometry
+    /// check that names the ring displacement when it is impossible.
+    fn solve_ball(
+        &self,
+        at: ElementAt<'_>,
+        u: ElementDisplacement,
+        omega: f64,
+        st: &mut BallState,
+        full: bool,
+    ) -> Result<ball::Solved> {
+        let a = self.groove_offset_of(u);
+        self.check_geometry(at.q, at.index, at.psi, a)?;
+        self.geo.solve(omega, a, st, full)
+    }
+
+    /// A ball's `d (F_a, F_r, m) / d (axial, radial, tilt)` at its root (implicit-function
+    /// theorem on the ball equations: `dX/dA = -(dg/dX)^-1 dg/dA`; the tilt moves the
+    /// groove offset axially at radius `Ri`).
+    fn ball_df(&self, e: &Eval<4>) -> [[f64; 3]; 3] {
+        let dxda = ball::sensitivity(e); // dxda[r][col] = dX_r / dA_col
+        let total = |o: &dual::D4| -> [f64; 3] {
+            let ox = [o.d[0] - o.d[2], o.d[1] - o.d[3]];
+            let da1 = o.d[2] + ox[0] * dxda[0][0] + ox[1] * dxda[1][0];
+            let da2 = o.d[3] + ox[0] * dxda[0][1] + ox[1] * dxda[1][1];
+            [da1, da2, self.ri * da1]
+        };
+        [total(&e.fa), total(&e.fr), total(&e.m)]
     }
 
     /// Largest total approach `|A_j| - A` of a ball (sum of both contact deflections) the
@@ -503,37 +528,6 @@ impl QuasiStatic {
                 ));
         }
         Ok(())
-    }
-
-    /// Add ball `e`'s contribution to `K = -dF/dq` (implicit-function theorem on the ball
-    /// equations: `dX/dA = -(dg/dX)^-1 dg/dA`).
-    fn add_ball_stiffness(&self, e: &Eval<4>, s: f64, c: f64, k: &mut [[f64; 5]; 5]) {
-        let dxda = ball::sensitivity(e); // dxda[r][col] = dX_r / dA_col
-        let total = |o: &dual::D4| -> [f64; 2] {
-            let ox = [o.d[0] - o.d[2], o.d[1] - o.d[3]];
-            [
-                o.d[2] + ox[0] * dxda[0][0] + ox[1] * dxda[1][0],
-                o.d[3] + ox[0] * dxda[0][1] + ox[1] * dxda[1][1],
-            ]
-        };
-        let dfa = total(&e.fa);
-        let dfr = total(&e.fr);
-        let dm = total(&e.m);
-        let ri = self.ri;
-        let da1 = [0.0, 0.0, 1.0, ri * s, -ri * c];
-        let da2 = [c, s, 0.0, 0.0, 0.0];
-        let rows = [
-            [dfr[0] * c, dfr[1] * c],
-            [dfr[0] * s, dfr[1] * s],
-            dfa,
-            [dm[0] * s, dm[1] * s],
-            [-dm[0] * c, -dm[1] * c],
-        ];
-        for (i, r) in rows.iter().enumerate() {
-            for jj in 0..5 {
-                k[i][jj] -= r[0] * da1[jj] + r[1] * da2[jj];
-            }
-        }
     }
 
     /// Semi-axes and peak pressure `(a, b, p)` of a contact at angle `(sin, cos)` = `sc`

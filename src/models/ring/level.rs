@@ -165,11 +165,11 @@ impl Slow {
         let alpha = b.nominal_contact_angle();
         let contacts = [
             PointContact::new(
-                Curvature::ball_race(b.d, b.dm, alpha, b.fi, Race::Inner),
+                Curvature::ball_race(b.d, b.dm, alpha, b.fi(), Race::Inner),
                 b.e_eff_inner(),
             ),
             PointContact::new(
-                Curvature::ball_race(b.d, b.dm, alpha, b.fo, Race::Outer),
+                Curvature::ball_race(b.d, b.dm, alpha, b.fo(), Race::Outer),
                 b.e_eff_outer(),
             ),
         ];
@@ -202,7 +202,7 @@ impl Slow {
                 a0: 0,
                 contacts,
                 semi_axis_a: contacts.map(|c| c.semi_axis_coefficients().0),
-                f: [b.fi, b.fo],
+                f: [b.fi(), b.fo()],
                 cell_len: [circ(b.dm * (1.0 - gamma)), circ(b.dm * (1.0 + gamma))],
                 m: wear::heathcote_mean_factor(),
                 window: w.window_revs,

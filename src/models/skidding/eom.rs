@@ -2,83 +2,61 @@
 //! (traction, pocket, gyroscopic limit, drag) and the right-hand sides (docs/physics.md §5.2).
 
 use super::*;
+use crate::seam::Motion;
 
 impl SkiddingModel {
-    /// One ball's contribution at shaft motion `(q, v, omega)`, cage `(theta_c, w_c)` and
-    /// ball states `(psi, w_b, w_a)`, the ball in quasi-static radial equilibrium (also
-    /// with the radial-mass option, whose position states it does not see).
+    /// One ball's contribution at shaft motion `m`, cage and ball states
+    /// `s = [theta_c, w_c, psi, w_b, w_a]`, the ball in quasi-static radial equilibrium
+    /// (also with the radial-mass option, whose position states it does not see).
     /// Allocation-free.
-    #[allow(clippy::too_many_arguments)]
-    pub fn ball(
-        &self,
-        j: usize,
-        q: &[f64; 5],
-        v: &[f64; 5],
-        omega: f64,
-        theta_c: f64,
-        w_c: f64,
-        psi: f64,
-        w_b: f64,
-        w_a: f64,
-    ) -> BallOut {
+    pub fn ball(&self, j: usize, m: &Motion, s: [f64; 5]) -> BallOut {
+        let [theta_c, w_c, psi, w_b, w_a] = s;
         // Radial mass or not, this is the quasi-static split (no ball position given).
-        let geo = self.geo(q, psi);
+        let geo = self.geo(&m.q, psi);
         let ld = self.loads(&geo, w_b, None);
         let st = [theta_c, w_c, psi, w_b, w_a, 0.0, 0.0];
-        self.forces(j, &geo, &ld, q, v, omega, st, None)
+        self.forces(j, &geo, &ld, m, st, None)
     }
 
     /// [`Self::ball`] with all states `[theta_c, w_c, psi, w_b, w_a, u, u']` (the last
     /// two used with radial mass only).
-    pub(super) fn ball_r(
-        &self,
-        j: usize,
-        q: &[f64; 5],
-        v: &[f64; 5],
-        omega: f64,
-        st: [f64; 7],
-    ) -> BallOut {
-        let geo = self.geo(q, st[2]);
+    pub(super) fn ball_r(&self, j: usize, m: &Motion, st: [f64; 7]) -> BallOut {
+        let geo = self.geo(&m.q, st[2]);
         let u = (self.bs == 5).then_some(st[5]);
         let ld = self.loads(&geo, st[3], u);
-        self.forces(j, &geo, &ld, q, v, omega, st, None)
+        self.forces(j, &geo, &ld, m, st, None)
     }
 
     /// Everything but the geometry and the normal loads: tractions, gyroscopic and spin
     /// friction, pocket, drag, the wrench; with `kq`, also adds the wrench's derivative
-    /// `dW/dq` (balls and cage held) to it, analytically (see the module docs).
-    /// `s = [theta_c, w_c, psi, w_b, w_a]`.
-    #[allow(clippy::too_many_arguments)]
+    /// `dW/dq` (balls and cage held) to it, analytically (see the module docs). At shaft
+    /// motion `m`; `st = [theta_c, w_c, psi, w_b, w_a, u, u']`.
     pub(super) fn forces(
         &self,
         j: usize,
         geo: &Geo,
         ld: &Loads,
-        q: &[f64; 5],
-        v: &[f64; 5],
-        omega: f64,
+        m: &Motion,
         st: [f64; 7],
         kq: Option<&mut [[f64; 5]; 5]>,
     ) -> BallOut {
-        self.forces_on::<true>(j, geo, ld, q, v, omega, st, kq)
+        self.forces_on::<true>(j, geo, ld, m, st, kq)
     }
 
     /// [`Self::forces`]; with `WRENCH` false only the rates and the cage torque are right
     /// (the gyroscopic friction, which acts on the shaft alone, is left out of the wrench),
     /// for the Jacobian's differences of the rates.
-    #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     pub(super) fn forces_on<const WRENCH: bool>(
         &self,
         j: usize,
         geo: &Geo,
         ld: &Loads,
-        q: &[f64; 5],
-        v: &[f64; 5],
-        omega: f64,
+        m: &Motion,
         st: [f64; 7],
         kq: Option<&mut [[f64; 5]; 5]>,
     ) -> BallOut {
+        let (q, v, omega) = (&m.q, &m.v, m.omega);
         let [theta_c, w_c, psi, w_b, w_a, _, u_dot] = st;
         let p = &self.p;
         let r = 0.5 * self.dm;
@@ -432,24 +410,31 @@ impl SkiddingModel {
         x: &[f64],
         dx: &mut [f64],
     ) -> SkidTotals {
-        self.eval_inner(q, v, omega, x, dx, None)
+        self.eval_inner(
+            &Motion {
+                q: *q,
+                v: *v,
+                omega,
+            },
+            x,
+            dx,
+            None,
+        )
     }
 
-    /// [`Self::eval`] plus the shaft stiffness `k = -dW/dq` and damping `c = -dW/dv` with
-    /// the balls and cage held (analytic, at the cost of about one right-hand side).
-    #[allow(clippy::too_many_arguments)]
+    /// [`Self::eval`] at shaft motion `m` plus the shaft stiffness `k = -dW/dq` and damping
+    /// `c = -dW/dv` with the balls and cage held (analytic, at the cost of about one
+    /// right-hand side).
     pub fn eval_with_stiffness(
         &mut self,
-        q: &[f64; 5],
-        v: &[f64; 5],
-        omega: f64,
+        m: &Motion,
         x: &[f64],
         dx: &mut [f64],
         k: &mut [[f64; 5]; 5],
         c: &mut [[f64; 5]; 5],
     ) -> SkidTotals {
         let mut kw = [[0.0; 5]; 5];
-        let tot = self.eval_inner(q, v, omega, x, dx, Some((&mut kw, c)));
+        let tot = self.eval_inner(m, x, dx, Some((&mut kw, c)));
         for (kr, wr) in k.iter_mut().zip(kw) {
             for (kk, w) in kr.iter_mut().zip(wr) {
                 *kk = -w;
@@ -461,9 +446,7 @@ impl SkiddingModel {
     #[allow(clippy::type_complexity)]
     pub(super) fn eval_inner(
         &mut self,
-        q: &[f64; 5],
-        v: &[f64; 5],
-        omega: f64,
+        m: &Motion,
         x: &[f64],
         dx: &mut [f64],
         mut kc: Option<(&mut [[f64; 5]; 5], &mut [[f64; 5]; 5])>,
@@ -479,7 +462,7 @@ impl SkiddingModel {
         }
         for j in 0..self.z {
             let k = BALL0 + self.bs * j;
-            let geo = self.geo(q, x[k]);
+            let geo = self.geo(&m.q, x[k]);
             let (u, ud) = if self.bs == 5 {
                 (Some(x[k + 3]), x[k + 4])
             } else {
@@ -487,16 +470,7 @@ impl SkiddingModel {
             };
             let ld = self.loads(&geo, x[k + 1], u);
             let st = [theta_c, w_c, x[k], x[k + 1], x[k + 2], u.unwrap_or(0.0), ud];
-            let b = self.forces(
-                j,
-                &geo,
-                &ld,
-                q,
-                v,
-                omega,
-                st,
-                kc.as_mut().map(|(k, _)| &mut **k),
-            );
+            let b = self.forces(j, &geo, &ld, m, st, kc.as_mut().map(|(k, _)| &mut **k));
             if let Some((_, c)) = kc.as_mut() {
                 for r in 0..5 {
                     for cc in 0..5 {

@@ -2,6 +2,7 @@
 //! Coulomb (regularised traction) slopes.
 
 use super::*;
+use crate::seam::{Jacobians, Motion};
 
 impl SkiddingModel {
     /// Derivatives with respect to `q` of the contact line `n` and of the normal loads
@@ -105,7 +106,7 @@ impl SkiddingModel {
         (dx, -dmf, dw)
     }
 
-    /// Jacobians by per-ball finite differences (each ball's terms depend only on its own
+    /// Jacobians at shaft motion `m` into `jac` by per-ball finite differences (each ball's terms depend only on its own
     /// states, the cage's and the ring's, so a column costs one ball evaluation, not a
     /// whole right-hand side; the columns of `w_a` and of the cage reuse the ball's
     /// geometry and loads, which do not depend on them): `jx = d(rates)/d(states)`
@@ -113,19 +114,8 @@ impl SkiddingModel {
     /// (`5 × n`), `wm = d(wrench)/d(q, v)` (`5 × 10`). Allocation-free. The entries of
     /// `jx` coupling two different balls are zero and are not written (give a zeroed
     /// buffer; the component's block copy never reads them).
-    #[allow(clippy::too_many_arguments)]
-    pub fn jacobian(
-        &self,
-        q: &[f64; 5],
-        v: &[f64; 5],
-        omega: f64,
-        x: &[f64],
-        jx: &mut [f64],
-        jm: &mut [f64],
-        wx: &mut [f64],
-        wm: &mut [f64],
-        q_cols: &[usize],
-    ) {
+    pub fn jacobian(&self, m: &Motion, x: &[f64], jac: Jacobians<'_>, q_cols: &[usize]) {
+        let Jacobians { jx, jm, wx, wm } = jac;
         let n = self.n_states();
         let ic = self.cage_index();
         // Cleared: each ball row's cage columns (its block is overwritten below) and the
@@ -149,9 +139,9 @@ impl SkiddingModel {
             let mut st = [0.0; 5];
             st[..bs].copy_from_slice(&x[k..k + bs]);
             let radial = |s: &[f64; 5]| (bs == 5).then_some(s[3]);
-            let geo = self.geo(q, st[0]);
+            let geo = self.geo(&m.q, st[0]);
             let ld = self.loads(&geo, st[1], radial(&st));
-            let at = |s5: [f64; 7]| self.forces(j, &geo, &ld, q, v, omega, s5, None);
+            let at = |s5: [f64; 7]| self.forces(j, &geo, &ld, m, s5, None);
             let st5 = [theta_c, w_c, st[0], st[1], st[2], st[3], st[4]];
             // The base point, with the analytic wrench stiffness when the ring's columns
             // are wanted.
@@ -159,7 +149,7 @@ impl SkiddingModel {
             let base = if jm.is_empty() {
                 at(st5)
             } else {
-                self.forces(j, &geo, &ld, q, v, omega, st5, Some(&mut kw))
+                self.forces(j, &geo, &ld, m, st5, Some(&mut kw))
             };
             let pk0 = self.pocket(j, [theta_c, w_c, st[0], st[1], st[2]]);
             let coulomb = self.coulomb_rates(&ld);
@@ -196,9 +186,9 @@ impl SkiddingModel {
                     // w_b, u: same geometry, new loads.
                     1 | 3 => {
                         let ld1 = self.loads(&geo, sp[1], radial(&sp));
-                        self.forces(j, &geo, &ld1, q, v, omega, s5, None)
+                        self.forces(j, &geo, &ld1, m, s5, None)
                     }
-                    _ => self.ball_r(j, q, v, omega, s5),
+                    _ => self.ball_r(j, m, s5),
                 };
                 let c = k + col;
                 for r in 0..bs {
@@ -304,7 +294,7 @@ impl SkiddingModel {
                         gp.n = [geo.n[0] + h * geo.n[1], geo.n[1] - h * geo.n[0]];
                     }
                 }
-                let b = self.forces_on::<false>(j, &gp, &lp, q, v, omega, st5, None);
+                let b = self.forces_on::<false>(j, &gp, &lp, m, st5, None);
                 for ((d, bx), b0) in dp.iter_mut().zip(b.dx).zip(base.dx) {
                     *d = (bx - b0) / h;
                 }

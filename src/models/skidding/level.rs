@@ -161,8 +161,14 @@ impl LevelModel for SkiddingLevel {
     }
     fn jacobian(&mut self, p: Point<'_>, j: Jacobians<'_>) -> bool {
         let (Point { m, x, .. }, Jacobians { jx, jm, wx, wm }) = (p, j);
-        self.model
-            .jacobian(&m.q, &m.v, m.omega, x, jx, jm, wx, wm, self.dofs);
+        // `wx` and `wm` lent, not given: the radial level clears rows of them below.
+        let jac = Jacobians {
+            jx,
+            jm,
+            wx: &mut *wx,
+            wm: &mut *wm,
+        };
+        self.model.jacobian(m, x, jac, self.dofs);
         if self.dofs.len() == 2 && !wm.is_empty() {
             // The radial level reports no axial force or moments.
             let n = wx.len() / 5;
@@ -213,9 +219,9 @@ impl LevelModel for SkiddingLevel {
         // ball positions (balls held), analytically in one pass.
         let mut kf = [[0.0; 5]; 5];
         let mut cf = [[0.0; 5]; 5];
-        let tot =
-            self.model
-                .eval_with_stiffness(&m.q, &m.v, m.omega, x, &mut buf[..n], &mut kf, &mut cf);
+        let tot = self
+            .model
+            .eval_with_stiffness(m, x, &mut buf[..n], &mut kf, &mut cf);
         self.memo_store(m, x, &buf[..n]);
         self.last = tot;
         let mut w = tot.wrench;

@@ -459,7 +459,7 @@ impl SkiddingModel {
             ax_o: axes(&outer),
             kc3_i: inner.kc.cbrt(),
             kc3_o: outer.kc.cbrt(),
-            fid: b.fi * b.d,
+            fid: b.fi() * b.d,
             z: b.z,
             d: b.d,
             dm: b.dm,

@@ -1,5 +1,6 @@
 use super::*;
 use crate::geometry::preset;
+use crate::seam::{Jacobians, Motion};
 
 /// At the kinematic speeds of docs/physics.md §1 both slips vanish, for a deep-groove and
 /// an angular-contact bearing.
@@ -58,7 +59,7 @@ fn analytic_stiffness_matches_finite_differences() {
         let v = [1e-3, -2e-3, 5e-4, 0.02, 0.01];
         let mut dx = vec![0.0; n];
         let (mut k, mut c) = ([[0.0; 5]; 5], [[0.0; 5]; 5]);
-        m.eval_with_stiffness(&q, &v, omega, &x, &mut dx, &mut k, &mut c);
+        m.eval_with_stiffness(&Motion { q, v, omega }, &x, &mut dx, &mut k, &mut c);
         assert!(m.balls.iter().any(|s| s.q_i == 0.0), "a ball off the race");
         assert!(m
             .balls
@@ -86,17 +87,13 @@ fn analytic_stiffness_matches_finite_differences() {
                 kfd[r][col] = -(wp[r] - wn[r]) / (2.0 * h);
             }
         }
-        m.jacobian(
-            &q,
-            &v,
-            omega,
-            &x,
-            &mut jx,
-            &mut jm,
-            &mut wx,
-            &mut wm,
-            &[0, 1, 2, 3, 4],
-        );
+        let jac = Jacobians {
+            jx: &mut jx,
+            jm: &mut jm,
+            wx: &mut wx,
+            wm: &mut wm,
+        };
+        m.jacobian(&Motion { q, v, omega }, &x, jac, &[0, 1, 2, 3, 4]);
         // The integrator's d(rates)/dq (differenced along the analytic load
         // derivatives) against central differences of whole right-hand sides.
         let (mut dp, mut dm) = (vec![0.0; n], vec![0.0; n]);
@@ -199,17 +196,13 @@ fn analytic_coulomb_columns_match_the_differences() {
         FD_ONLY.with(|c| c.set(fd));
         let mut out = (vec![0.0; n * n], vec![0.0; n * 10], vec![0.0; 5 * n]);
         let mut wm = vec![0.0; 50];
-        m.jacobian(
-            &q,
-            &v,
-            omega,
-            &x,
-            &mut out.0,
-            &mut out.1,
-            &mut out.2,
-            &mut wm,
-            &[0, 1, 2, 3, 4],
-        );
+        let jac = Jacobians {
+            jx: &mut out.0,
+            jm: &mut out.1,
+            wx: &mut out.2,
+            wm: &mut wm,
+        };
+        m.jacobian(&Motion { q, v, omega }, &x, jac, &[0, 1, 2, 3, 4]);
         FD_ONLY.with(|c| c.set(false));
         out
     };

@@ -32,7 +32,7 @@ mod tests;
 
 use super::{
     check_call, error_norm, eval, fixed_steps, initial_step, DenseLu, LinearSolver, OdeSystem,
-    Options, SolverError, Stats, StepLoop, UROUND,
+    Options, SolverError, Start, Stats, StepLoop, UROUND,
 };
 use crate::solver::same_bits;
 use nalgebra::DMatrix;
@@ -251,12 +251,15 @@ impl Rosenbrock {
                 h_trial.min(opts.h_max)
             } else {
                 self.f_at_start(sys, t0)?;
+                let start = Start {
+                    t0,
+                    y0: &self.y,
+                    f0: &self.f0,
+                };
                 initial_step(
                     sys,
                     &mut self.stats,
-                    t0,
-                    &self.y,
-                    &self.f0,
+                    &start,
                     &mut self.ytmp,
                     &mut self.ftmp,
                     self.method.order(),
@@ -479,7 +482,12 @@ impl Rosenbrock {
         } else if w_method {
             self.carry.forget();
         }
-        let r = self.adaptive_loop(sys, t0, t1, h0, opts, have_f0, need_jac, jac_age);
+        let lin = Linearisation {
+            have_f0,
+            need_jac,
+            jac_age,
+        };
+        let r = self.adaptive_loop(sys, t0, t1, h0, opts, lin);
         if carries {
             match r {
                 Ok((_, age)) => self.carry_out(age),
@@ -531,9 +539,9 @@ impl Rosenbrock {
         }
     }
 
-    /// The step loop of [`Rosenbrock::run_adaptive`] from a `J` wanted (`need_jac`) or kept
-    /// with `jac_age` accepted steps on it: the next step size and the age at the end.
-    #[allow(clippy::too_many_arguments)]
+    /// The step loop of [`Rosenbrock::run_adaptive`] from the linearisation `lin` (a `J`
+    /// wanted, or kept with `jac_age` accepted steps on it): the next step size and the age
+    /// at the end.
     fn adaptive_loop<S: OdeSystem + ?Sized>(
         &mut self,
         sys: &mut S,
@@ -541,10 +549,13 @@ impl Rosenbrock {
         t1: f64,
         h0: f64,
         opts: &Options,
-        mut have_f0: bool,
-        mut need_jac: bool,
-        mut jac_age: u32,
+        lin: Linearisation,
     ) -> Result<(f64, u32), SolverError> {
+        let Linearisation {
+            mut have_f0,
+            mut need_jac,
+            mut jac_age,
+        } = lin;
         let mut lp = StepLoop::new(t0, h0);
         let mut need_linearise = true;
         let w_method = self.method != RosMethod::Rodas4;
@@ -633,6 +644,16 @@ impl Rosenbrock {
             }
         }
     }
+}
+
+/// What the step loop starts from ([`Rosenbrock::adaptive_loop`]): `f(t0, y0)` already
+/// in `f0` (`have_f0`), and a `J` wanted (`need_jac`) or kept with `jac_age` accepted steps
+/// on it.
+#[derive(Debug, Clone, Copy)]
+struct Linearisation {
+    have_f0: bool,
+    need_jac: bool,
+    jac_age: u32,
 }
 
 /// W-method memory across calls ([`OdeSystem::carries_jacobian`]): where the last carrying
