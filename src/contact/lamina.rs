@@ -311,6 +311,8 @@ pub struct RollerLoad {
     pub dmoment_dtilt: f64,
     /// Number of laminae in contact.
     pub loaded: usize,
+    /// Largest lamina load, N (for the peak pressure without storing the laminae).
+    pub max_lamina: f64,
 }
 
 /// A roller's laminae, set up once (centres, profile drops, lamina constant); evaluating them
@@ -410,6 +412,7 @@ impl Laminae {
             if q > 0.0 {
                 let x = self.x[k];
                 r.loaded += 1;
+                r.max_lamina = r.max_lamina.max(q);
                 r.force += q;
                 r.moment += q * x;
                 r.dforce_ddelta += dq;
