@@ -32,15 +32,15 @@
 //! Palmgren's exponent 10/9, a fit for steel over bearing loads; the Poisson ratios enter the
 //! exact two-dimensional approach also through constant terms beside the logarithms, not only
 //! through `E'`, so a pair whose ratios differ from steel's 0.3 (Si3N4: 0.26) carries a further
-//! error, small but not quantified here; and the laminae are independent springs (no elastic coupling along the roller), the
-//! TS's simplification, so the true edge-stress singularity of a straight roller is not
-//! resolved — it shows as a large but finite edge-lamina load.
+//! error, small but not quantified here; and the laminae are independent springs (no elastic
+//! coupling along the roller), the TS's simplification, so the true edge-stress singularity of
+//! a straight roller is not resolved — it shows as a large but finite edge-lamina load.
 //!
 //! **Pressure per lamina.** Line Hertz on each lamina with its load per length
 //! `q' = q_k / w` and the reduced radius `R` in the rolling direction of the roller–race contact:
 //! half-width `b = sqrt(8 q' R / (pi E'))`, peak pressure `p0 = 2 q' / (pi b) =
-//! sqrt(q' E' / (2 pi R))` ([Johnson 1985] ch. 4, two-dimensional contact of cylinders, written with the project's
-//! `E' = 2 E*`, docs/physics.md §2).
+//! sqrt(q' E' / (2 pi R))` ([Johnson 1985] ch. 4, two-dimensional contact of cylinders,
+//! written with the project's `E' = 2 E*`, docs/physics.md §2).
 //!
 //! **Profiles and independent laminae.** Lundberg's and Fujiwara–Kawase's profiles are designed
 //! with the elastic coupling along the roller (the compliance of a strip falls towards its ends);
