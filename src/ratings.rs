@@ -48,6 +48,8 @@
 //! beyond the static limit, a contact ellipse that runs over the groove shoulder, fewer
 //! than two loaded balls, κ < 1.
 
+pub mod roller;
+
 use crate::error::{Error, Result};
 use crate::geometry::{Bearing, BearingKind};
 use crate::models::quasi_static::Solution;

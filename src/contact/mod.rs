@@ -3,6 +3,8 @@
 
 pub mod elliptic;
 pub mod hertz;
+pub mod lamina;
+pub mod roller_law;
 pub mod traction;
 
 pub use hertz::{

@@ -6,6 +6,8 @@ pub mod element;
 pub mod kinematics;
 pub mod material;
 pub mod presets;
+pub mod roller;
+pub mod roller_catalogue;
 
 pub use bearing::{
     Bearing, BearingKind, BearingSpec, Cage, CageSpec, Guidance, MaterialSpec, MaterialsSpec,
