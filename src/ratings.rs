@@ -739,6 +739,7 @@ pub fn assess_load(b: &Bearing, load: &[f64; 5], inputs: &LifeInputs) -> Result<
 /// again at the quasi-static level at the shaft speed `omega` (rad/s; the run's last). What
 /// `raceway run` puts in its summary (the run's means are taken by the summary).
 pub fn assess_run(b: &Bearing, load: &[f64; 5], omega: f64) -> Result<Assessment> {
+    b.groove("the run's rating summary (the roller bearing's S0 and L10 are in the series)")?;
     let inputs = LifeInputs {
         speed_rpm: crate::units::rad_s_to_rpm(omega.abs()),
         ..LifeInputs::default()
@@ -1108,6 +1109,23 @@ pub struct RatingOutputs {
 impl RatingOutputs {
     /// The ratings of `b` (computed here, once).
     pub fn of(b: &Bearing) -> Self {
+        if let crate::geometry::element::Element::Roller(r) = &b.element {
+            // ISO 281/76 for roller bearings (`ratings::roller`): the ratings go in `c`
+            // and `c0`, the load factors are taken per load in `outputs`.
+            return RatingOutputs {
+                ratings: roller::roller_ratings(r).ok().map(|rr| LoadRatings {
+                    gamma: rr.gamma,
+                    fc: rr.fc,
+                    fc_reduction: 1.0,
+                    f0: 0.0,
+                    c: rr.cr,
+                    c0: rr.c0r,
+                    cu: 0.0,
+                }),
+                x0y0: (1.0, 0.0),
+                limit: roller::STATIC_PRESSURE_LIMIT_ROLLER,
+            };
+        }
         RatingOutputs {
             ratings: load_ratings(b).ok(),
             x0y0: static_factors(b),
@@ -1129,6 +1147,21 @@ impl RatingOutputs {
         };
         let fr = wrench[0].hypot(wrench[1]);
         let fa = wrench[2].abs();
+        if let crate::geometry::element::Element::Roller(rb) = &b.element {
+            let p0 = roller::equivalent_static_load(rb, fr, fa);
+            let s0 = if p0 * S0_UNLOADED > r.c0 {
+                r.c0 / p0
+            } else {
+                S0_UNLOADED
+            };
+            let p = roller::equivalent_dynamic_load(rb, fr, fa).0;
+            let l10 = if p > 0.0 {
+                roller::l10_roller(r.c, p).min(L10_UNLOADED)
+            } else {
+                L10_UNLOADED
+            };
+            return [s0, l10, warnings];
+        }
         let (x0, y0) = self.x0y0;
         let p0 = (x0 * fr + y0 * fa).max(fr);
         let s0 = if p0 * S0_UNLOADED > r.c0 {

@@ -35,6 +35,8 @@
 use super::variables;
 use crate::contact::hertz::BallRaceContacts;
 use crate::error::{Error, Result};
+use crate::geometry::element::Element;
+use crate::geometry::roller::RollerBearing;
 use crate::geometry::Bearing;
 
 /// Peak Hertz pressure taken as the end of the elastic range of a ball–race contact, Pa.
@@ -72,6 +74,9 @@ pub struct Limits {
 impl Limits {
     /// The limits of bearing `b` (see the module documentation for each formula).
     pub fn of(b: &Bearing) -> Limits {
+        if let Element::Roller(r) = &b.element {
+            return Self::of_rollers(b, r);
+        }
         let c = BallRaceContacts::new(b, b.nominal_contact_angle());
         // p0 grows as Q^(1/3): Q* = (p_max / p0(1 N))³ on the worse race.
         let q_at = |p1: f64| (P_CONTACT_MAX / p1).powi(3);
@@ -96,6 +101,37 @@ impl Limits {
             omega,
             force,
             moment: force * ri,
+        }
+    }
+
+    /// The limits of a roller bearing: the elastic range of a line contact (the load per
+    /// length whose line-Hertz peak pressure `p0 = sqrt(q' E'/(2 pi R))` reaches
+    /// [`P_CONTACT_MAX`] on the worse race, over the effective length), the matching approach
+    /// of the roller's load law `Q = c_L delta^(10/9)` (docs/physics.md §R1), radial
+    /// `Pd/2 + delta*`; axially a cylindrical roller is free on its raceway, so the axial
+    /// limit is half the effective length (the raceway leaving the roller), and a tilt
+    /// brings the roller's end to `delta*` at `(Pd/2 + delta*)/(L_we/2)`. Speeds as for balls.
+    fn of_rollers(b: &Bearing, r: &RollerBearing) -> Limits {
+        use crate::contact::lamina::{line_hertz, roller_constant};
+        let per_len = |rr: f64, e: f64| (P_CONTACT_MAX / line_hertz(1.0, rr, e).1).powi(2);
+        let q_len = per_len(r.reduced_radius_inner(), r.e_prime_inner())
+            .min(per_len(r.reduced_radius_outer(), r.e_prime_outer()));
+        let q = q_len * r.lwe;
+        let g = r.line_geometry();
+        let approach = (q / roller_constant(g.lwe, g.e_prime)).powf(0.9);
+        let radial = 0.5 * r.pd + approach;
+        let rim = (SIGMA_RING_MAX / b.inner_material.density).sqrt();
+        let force = b.z as f64 * q;
+        Limits {
+            ball_load: q,
+            approach,
+            radial,
+            axial: 0.5 * r.lwe,
+            tilt: radial / (0.5 * r.lwe),
+            speed: rim,
+            omega: rim / (0.5 * (b.dm - b.d)),
+            force,
+            moment: force * 0.5 * b.dm,
         }
     }
 

@@ -8,7 +8,8 @@ use super::fields::{
 pub use super::levels::Level;
 use super::variables::{self, Causality};
 use crate::error::{Error, Result};
-use crate::geometry::{presets, Bearing, BearingSpec};
+use crate::geometry::roller::RollerBearingSpec;
+use crate::geometry::{presets, roller_catalogue, Bearing, BearingSpec};
 pub use crate::models::full::spec::FullSpec;
 pub use crate::models::linear::spec::OperatingPoint;
 pub use crate::models::quasi_static::RaceControl;
@@ -243,6 +244,42 @@ impl BearingRef {
     )
     .named("preset")];
 
+    /// The roller bearing this names, when it names one: a roller designation of the
+    /// catalogue (`NU206`, `30206`), alone or as the `preset` of a table whose other keys
+    /// override the roller file's fields; `None` for a ball bearing.
+    pub fn roller_spec(&self) -> Result<Option<RollerBearingSpec>> {
+        let (name, overrides) = match self {
+            BearingRef::Preset(name) => (name.as_str(), None),
+            BearingRef::Table(t) => match t.get("preset") {
+                Some(toml::Value::String(name)) => (name.as_str(), Some(t)),
+                _ => return Ok(None),
+            },
+        };
+        if presets::preset(name).is_ok() {
+            return Ok(None);
+        }
+        let Some(base) = roller_catalogue::lookup(name) else {
+            return Ok(None);
+        };
+        let Some(t) = overrides else {
+            return Ok(Some(base));
+        };
+        let mut merged = toml::Table::try_from(&base).map_err(|e| Error::Parse {
+            what: "preset".into(),
+            message: e.to_string(),
+        })?;
+        for (k, v) in t.iter().filter(|(k, _)| k.as_str() != "preset") {
+            merged.insert(k.clone(), v.clone());
+        }
+        toml::Value::Table(merged)
+            .try_into::<RollerBearingSpec>()
+            .map(Some)
+            .map_err(|e| Error::Parse {
+                what: "scene [bearing] (a roller bearing)".into(),
+                message: super::schema::user_words(&e.to_string()),
+            })
+    }
+
     /// Resolve to a spec (preset plus overrides).
     pub fn spec(&self) -> Result<BearingSpec> {
         match self {
@@ -422,7 +459,10 @@ impl Scene {
 
     /// Resolve and validate the bearing.
     pub fn build_bearing(&self) -> Result<Bearing> {
-        self.bearing.spec()?.build()
+        match self.bearing.roller_spec()? {
+            Some(r) => Bearing::from_roller(r.build()?),
+            None => self.bearing.spec()?.build(),
+        }
     }
 
     /// Validate everything; each refusal names the field, the value and the allowed range.

@@ -511,13 +511,66 @@ impl BearingSpec {
 }
 
 impl Bearing {
+    /// The common description of a roller bearing, its rollers as the element. A cylindrical
+    /// roller bearing is radial (`kind` deep-groove, contact angle 0); the envelope is the
+    /// roller file's; ring masses follow the ball rule (annuli to the raceways, 90 % full)
+    /// and the cage the ball defaults with the roller diameter (docs/physics.md §1).
+    pub fn from_roller(r: super::roller::RollerBearing) -> Result<Bearing> {
+        let (d, dm) = (r.dwe, r.dpw);
+        let width = r.width;
+        let inner_ring_mass = 0.9 * r.inner_material.density * PI / 4.0
+            * ((dm - d).powi(2) - r.bore * r.bore).max(0.0)
+            * width;
+        let outer_ring_mass = 0.9 * r.outer_material.density * PI / 4.0
+            * (r.outer_diameter.powi(2) - (dm + d).powi(2)).max(0.0)
+            * width;
+        let cage_material = Material::by_name("steel")?;
+        let (cid, cod, cw) = (dm - 0.35 * d, dm + 0.35 * d, 0.8 * r.lw);
+        let ring = PI / 4.0 * (cod * cod - cid * cid) * cw;
+        let pockets = r.z as f64 * d * r.lw * (cod - cid) / 2.0;
+        let cmass = cage_material.density * (ring - pockets).max(0.2 * ring);
+        Ok(Bearing {
+            name: r.name.clone(),
+            kind: if r.alpha > 0.0 {
+                BearingKind::AngularContact
+            } else {
+                BearingKind::DeepGroove
+            },
+            d,
+            dm,
+            z: r.z,
+            alpha0: r.alpha,
+            pd: r.pd,
+            bore: r.bore,
+            outer_diameter: r.outer_diameter,
+            width,
+            inner_ring_mass,
+            outer_ring_mass,
+            cage: Cage {
+                inner_diameter: cid,
+                outer_diameter: cod,
+                width: cw,
+                mass: cmass,
+                inertia: cmass * (cod * cod + cid * cid) / 8.0,
+                pocket_clearance: 0.02 * d,
+                guide_clearance: 0.005 * dm,
+                guidance: Guidance::OuterRing,
+            },
+            ball_material: r.roller_material.clone(),
+            inner_material: r.inner_material.clone(),
+            outer_material: r.outer_material.clone(),
+            cage_material,
+            element: Element::Roller(Box::new(r)),
+        })
+    }
+
     /// The groove of a ball bearing, for the ball-only geometry below. A roller bearing
     /// has none; the level registry keeps it from every ball-only model, and here it reads
     /// as the conformity limit `f = 0.5` (`A = 0`), so nothing past the registry's refusal
     /// can turn it into a NaN.
     fn ball_groove(&self) -> Groove {
-        match self.element {
-            Element::Ball(g) => g,
+        match &self.element {
+            Element::Ball(g) => *g,
             Element::Roller(_) => Groove { fi: 0.5, fo: 0.5 },
         }
     }

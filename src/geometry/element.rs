@@ -1,7 +1,7 @@
 //! The rolling element a bearing carries. A bearing description ([`super::Bearing`]) is what
 //! every bearing has in common (rings, clearance, pitch diameter, count, materials, cage)
 //! plus one [`Element`]: a ball with the groove curvatures it runs in, or a roller with its
-//! effective length. The level registry says which [`ElementKind`]s each level accepts and
+//! length, profile and flanges ([`super::roller::RollerBearing`]). The level registry says which [`ElementKind`]s each level accepts and
 //! refuses a pair it cannot model with a message naming both; the contact law of an element
 //! sits behind [`crate::seam::element::ElementLaw`].
 
@@ -56,24 +56,14 @@ impl Groove {
     }
 }
 
-/// A roller as the element of a bearing: what line contact needs beyond the common
-/// description (the roller diameter is the bearing's element diameter `D`). Scenes and
-/// bearing files do not describe rollers yet (the roller bearing issue adds its fields,
-/// profile and flanges); code can build one.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub struct Roller {
-    /// Effective length `L_we` (the length that carries load), m.
-    pub effective_length: f64,
-}
-
 /// The rolling element of a bearing.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Element {
     /// A ball in its grooves.
     Ball(Groove),
-    /// A roller.
-    Roller(Roller),
+    /// A roller, with everything line contact needs (its bearing's roller data, SI).
+    Roller(Box<super::roller::RollerBearing>),
 }
 
 impl Element {
@@ -91,7 +81,7 @@ impl Element {
         match self {
             Element::Ball(g) => Ok(g),
             Element::Roller(_) => Err(Error::invalid(
-                "bearing.roller",
+                "bearing",
                 "a roller bearing",
                 format!("a ball bearing: {what} is written for balls"),
             )),

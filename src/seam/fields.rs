@@ -47,7 +47,10 @@ impl Names {
     pub fn contains(self, name: &str) -> bool {
         use crate::geometry::{presets, Material};
         match self {
-            Names::BearingPreset => presets::preset(name).is_ok(),
+            Names::BearingPreset => {
+                presets::preset(name).is_ok()
+                    || crate::geometry::roller_catalogue::lookup(name).is_some()
+            }
             Names::Material => Material::by_name(name).is_ok(),
             _ => self.list().iter().any(|n| n == name),
         }

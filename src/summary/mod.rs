@@ -196,12 +196,13 @@ fn scene_lines(c: &Ctx, s: &mut Summary) {
         sc.model.causality
     ));
     s.line(format!(
-        "bearing: {}, d x D x B {:.3} x {:.3} x {:.3} mm; Z {} balls of Dw {:.3} mm on dm {:.3} mm; diametral clearance Pd {:.2} µm",
+        "bearing: {}, d x D x B {:.3} x {:.3} x {:.3} mm; Z {} {}s of Dw {:.3} mm on dm {:.3} mm; diametral clearance Pd {:.2} µm",
         b.name,
         b.bore * 1e3,
         b.outer_diameter * 1e3,
         b.width * 1e3,
         b.z,
+        b.element(),
         b.d * 1e3,
         b.dm * 1e3,
         b.pd * 1e6

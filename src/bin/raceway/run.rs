@@ -443,6 +443,7 @@ fn spectrum_plot(
 /// levels' ball model).
 fn ball_loads_plot(out: &Path, c: &Ctx) -> Result<()> {
     let b = c.comp.bearing();
+    b.groove("the ball-load plot (a Jones–Harris solve)")?;
     let level = c.scene.model.level.name();
     let (deg, qi, qo, title) = if let Some(l) = c.comp.ball_loads() {
         let mut l: Vec<(f64, f64, f64)> = l

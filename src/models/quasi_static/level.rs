@@ -11,6 +11,7 @@
 //! level: `c d(delta)/dt` along each loaded ball's contact line (the ring level's massless
 //! ball geometry), blended in over the first 0.1 µm of approach; off (no cost) at 0.
 
+use crate::contact::roller_law::CylindricalRollerLaw;
 use crate::error::{Error, Result};
 use crate::geometry::element::{Element, ElementKind};
 use crate::geometry::kinematics::nominal_cage_speed as cage_speed;
@@ -23,24 +24,14 @@ use std::f64::consts::PI;
 
 /// The element kinds this level takes: those [`element_law`] has a law for (the level
 /// registry reads it).
-pub const ELEMENTS: &[ElementKind] = &[ElementKind::Ball];
+pub const ELEMENTS: &[ElementKind] = &[ElementKind::Ball, ElementKind::Roller];
 
 /// The contact law of the bearing's element at this level.
 pub fn element_law(a: &LevelArgs, opts: Options) -> Result<Box<dyn ElementLaw>> {
-    match a.bearing.element {
+    match &a.bearing.element {
         Element::Ball(_) => Ok(Box::new(QuasiStatic::new(a.bearing, opts)?)),
-        Element::Roller(_) => Err(no_law("roller")),
+        Element::Roller(r) => Ok(Box::new(CylindricalRollerLaw::new(r.as_ref())?)),
     }
-}
-
-/// The refusal of an element kind without a contact law at this level (the registry
-/// refuses it first, naming the level).
-fn no_law(kind: &str) -> Error {
-    Error::invalid(
-        "bearing",
-        format!("a {kind} bearing"),
-        format!("a ball bearing: the quasi-static level has no {kind} contact law"),
-    )
 }
 
 /// The level.

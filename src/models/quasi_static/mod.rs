@@ -223,6 +223,7 @@ fn norm(v: &[f64]) -> f64 {
 impl QuasiStatic {
     /// Precompute the model for `bearing`.
     pub fn new(bearing: &Bearing, opts: Options) -> Result<Self> {
+        bearing.groove("the Jones–Harris quasi-static ball model")?;
         let pos = |f: &str, v: f64| {
             if v.is_finite() && v > 0.0 {
                 Ok(())

@@ -1,0 +1,120 @@
+//! Cylindrical roller bearings through the component (what the C ABI, the FMUs, the
+//! command line and Python all drive): a catalogue designation in a scene runs at the
+//! quasi-static level, its force is the sum of the ISO/TS 16281 roller loads, and the
+//! levels without a roller law refuse it naming both.
+
+use raceway::component::{variables, Component};
+use raceway::contact::lamina::roller_constant;
+use raceway::geometry::roller_catalogue;
+
+fn vr(name: &str) -> u32 {
+    variables::by_name(name).unwrap().vr
+}
+
+fn scene(level: &str, bearing: &str) -> String {
+    format!(
+        r#"
+bearing = {bearing}
+[model]
+level = "{level}"
+[inputs]
+initial = {{ "shaft.x" = 0.0, "shaft.y" = -20e-6, "shaft.z" = 0.0, "shaft.rx" = 0.0, "shaft.ry" = 0.0,
+            "shaft.vx" = 0.0, "shaft.vy" = 0.0, "shaft.vz" = 0.0, "shaft.wx" = 0.0, "shaft.wy" = 0.0,
+            "shaft.omega" = 100.0 }}
+"#
+    )
+}
+
+/// Straight rollers at zero clearance: each roller at azimuth `psi` (cage angle 0 at the
+/// first step) carries `Q = c_L (y cos(psi - 3pi/2))^(10/9)` (ISO/TS 16281's load law, the
+/// laminae summing to it for a uniform approach), and the force on the shaft is their sum,
+/// computed here by hand from the catalogue geometry.
+#[test]
+fn straight_rollers_give_the_sum_of_the_roller_loads() {
+    let bearing = r#"{ preset = "NU206", clearance_um = 0.0, profile = { type = "none" } }"#;
+    let mut c = Component::from_text(&scene("quasi_static", bearing)).unwrap();
+    c.do_step(0.0, 1e-6).unwrap();
+    let fy = c.get_real(vr("force.y")).unwrap();
+    let fx = c.get_real(vr("force.x")).unwrap();
+
+    let spec = roller_catalogue::lookup("NU206").unwrap();
+    let rb = spec.build().unwrap();
+    let g = rb.line_geometry();
+    let cl = roller_constant(g.lwe, g.e_prime);
+    let y = 20e-6;
+    // The cage turns during the step: at the step's end the cage angle is the kinematic
+    // cage speed times 1 µs (its effect on the sum is below 1e-6 relative).
+    let (mut sx, mut sy) = (0.0, 0.0);
+    for j in 0..rb.z {
+        let psi = 2.0 * std::f64::consts::PI * j as f64 / rb.z as f64;
+        let delta = -y * psi.sin(); // the ring moves down: rollers below are compressed
+        if delta > 0.0 {
+            let q = cl * delta.powf(10.0 / 9.0);
+            sx -= q * psi.cos();
+            sy -= q * psi.sin();
+        }
+    }
+    assert!(
+        (fy / sy - 1.0).abs() < 1e-4,
+        "force.y {fy} N, hand sum {sy} N"
+    );
+    assert!(
+        (fx - sx).abs() < 1e-4 * sy.abs(),
+        "force.x {fx} N, hand sum {sx} N"
+    );
+    // The outputs a host reads beside the force: the ISO 281 life of the roller bearing
+    // ((Cr/P)^(10/3), P = Fr for a cylindrical roller bearing) and the loaded rollers.
+    let cr = raceway::ratings::roller::roller_ratings(&rb).unwrap().cr;
+    let l10 = c.get_real(vr("life.L10")).unwrap();
+    let want = (cr / fx.hypot(fy)).powf(10.0 / 3.0);
+    assert!((l10 / want - 1.0).abs() < 1e-9, "L10 {l10} vs {want}");
+    // Six rollers below the horizontal carry load (the two on it touch at zero approach).
+    let loaded = c.get_real(vr("balls.loaded")).unwrap();
+    assert!((6.0..=8.0).contains(&loaded), "{loaded}");
+}
+
+/// The roller profile relieves the roller ends: the crowned (ISO/TS 16281 logarithmic,
+/// the default) bearing is softer than the straight one at the same displacement.
+#[test]
+fn the_default_log_profile_is_softer_than_straight_rollers() {
+    let force = |bearing: &str| {
+        let mut c = Component::from_text(&scene("quasi_static", bearing)).unwrap();
+        c.do_step(0.0, 1e-6).unwrap();
+        c.get_real(vr("force.y")).unwrap()
+    };
+    let straight =
+        force(r#"{ preset = "NU206", clearance_um = 0.0, profile = { type = "none" } }"#);
+    let logp = force(r#"{ preset = "NU206", clearance_um = 0.0 }"#);
+    assert!(
+        logp > 0.0 && logp < straight,
+        "log {logp} N, straight {straight} N"
+    );
+}
+
+/// A level without a roller law refuses a roller bearing naming the level and the element
+/// kind; a tapered bearing is refused at the quasi-static level naming `bearing.kind`.
+#[test]
+fn levels_without_a_roller_law_refuse_naming_both() {
+    for level in ["ring", "skidding", "full", "linear"] {
+        let e = Component::from_text(&scene(level, "\"NU206\""))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains(level) && e.contains("roller"), "{level}: {e}");
+    }
+    let e = Component::from_text(&scene("quasi_static", "\"30206\""))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("bearing.kind") && e.contains("tapered"), "{e}");
+}
+
+/// Plausibility limits come from the line contact: a displacement beyond the elastic
+/// range of the rollers is refused naming the input.
+#[test]
+fn roller_limits_refuse_an_impossible_displacement() {
+    let mut c = Component::from_text(&scene("quasi_static", "\"NU206\"")).unwrap();
+    let e = c.set_real(vr("shaft.y"), -1e-3).unwrap_err().to_string();
+    assert!(e.contains("shaft.y"), "{e}");
+    // ... and the state is unchanged: a step still gives the scene's force.
+    c.do_step(0.0, 1e-6).unwrap();
+    assert!(c.get_real(vr("force.y")).unwrap() > 0.0);
+}
