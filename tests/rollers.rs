@@ -118,3 +118,24 @@ fn roller_limits_refuse_an_impossible_displacement() {
     c.do_step(0.0, 1e-6).unwrap();
     assert!(c.get_real(vr("force.y")).unwrap() > 0.0);
 }
+
+/// `raceway bearings NU206 --json` gives the catalogue's roller data and the ISO 281/76
+/// roller ratings the library computes.
+#[test]
+fn the_command_line_lists_a_roller_designation_with_its_ratings() {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_raceway"))
+        .args(["bearings", "NU206", "--json"])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let rb = roller_catalogue::lookup("NU206").unwrap().build().unwrap();
+    let r = raceway::ratings::roller::roller_ratings(&rb).unwrap();
+    assert_eq!(v["element"], "roller");
+    assert_eq!(v["ratings"]["c_n"].as_f64().unwrap(), r.cr);
+    assert_eq!(v["spec"]["roller_count"].as_u64().unwrap(), rb.z as u64);
+}

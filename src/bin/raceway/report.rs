@@ -79,6 +79,11 @@ pub fn quasi_static_json(
 
 /// `raceway bearings NAME`: one bearing, its data, ratings and provenance.
 pub fn bearing_detail(name: &str, as_json: bool) -> Result<String> {
+    if preset(name).is_err() {
+        if let Some(r) = raceway::geometry::roller_catalogue::lookup(name) {
+            return roller_detail(&r, as_json);
+        }
+    }
     let spec = preset(name)?;
     let b = spec.build()?;
     let d = reports::bearing_detail(name)?;
@@ -222,4 +227,69 @@ pub fn quasi_static_text(
         Err(e) => s += &format!("ISO ratings and life: not available ({e})\n"),
     }
     s
+}
+
+/// `raceway bearings NAME` for a roller designation: the roller file's data, the derived
+/// geometry and the ISO 281/76 ratings for roller bearings.
+fn roller_detail(
+    spec: &raceway::geometry::roller::RollerBearingSpec,
+    as_json: bool,
+) -> Result<String> {
+    let b = spec.build()?;
+    let r = raceway::ratings::roller::roller_ratings(&b)?;
+    if as_json {
+        return json(&serde_json::json!({
+            "spec": spec,
+            "element": "roller",
+            "ratings": { "gamma": r.gamma, "fc": r.fc, "c_n": r.cr, "c0_n": r.c0r },
+        }));
+    }
+    let mut s = String::new();
+    let _ = writeln!(s, "{} ({:?} roller bearing)", b.name, b.kind);
+    let _ = writeln!(
+        s,
+        "envelope d x D x B/T:      {:.0} x {:.0} x {:.0} mm",
+        b.bore * 1e3,
+        b.outer_diameter * 1e3,
+        b.width * 1e3
+    );
+    let _ = writeln!(
+        s,
+        "roller diameter Dwe:       {:.3} mm (estimated)",
+        b.dwe * 1e3
+    );
+    let _ = writeln!(
+        s,
+        "effective length Lwe:      {:.3} mm (estimated)",
+        b.lwe * 1e3
+    );
+    let _ = writeln!(
+        s,
+        "pitch diameter Dpw:        {:.3} mm (estimated)",
+        b.dpw * 1e3
+    );
+    let _ = writeln!(s, "roller count Z:            {} (estimated)", b.z);
+    let _ = writeln!(
+        s,
+        "contact angle (cup):       {:.2} deg",
+        b.alpha.to_degrees()
+    );
+    let _ = writeln!(s, "diametral clearance Pd:    {:.2} µm", b.pd * 1e6);
+    let _ = writeln!(
+        s,
+        "profile:                   {:?}, {} laminae",
+        spec.profile, b.laminae
+    );
+    let _ = writeln!(
+        s,
+        "ISO 281/76 ratings:        Cr {:.0} N  C0r {:.0} N  (Dwe cos a/Dpw {:.4}, fc {:.2})",
+        r.cr, r.c0r, r.gamma, r.fc
+    );
+    let _ = writeln!(s, "source: {}", spec.source);
+    let _ = writeln!(
+        s,
+        "The internal geometry is ESTIMATED from the envelope (docs/catalogue.md); give the maker's data for a real design check. Scenes take it as bearing = \"{}\" (quasi-static level; cylindrical types).",
+        b.name
+    );
+    Ok(s)
 }
