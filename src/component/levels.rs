@@ -87,7 +87,8 @@ pub const LEVELS: &[LevelEntry] = &[
     LevelEntry::new("linear",       false, false,   crate::models::linear::level::build),
     LevelEntry::new("quasi_static", false, false,   crate::models::quasi_static::level::build)
         .with_elements(crate::models::quasi_static::level::ELEMENTS),
-    LevelEntry::new("ring",         false, true,    crate::models::ring::level::build),
+    LevelEntry::new("ring",         false, true,    crate::models::ring::level::build)
+        .with_elements(crate::models::ring::level::ELEMENTS),
     LevelEntry::new("skidding",     true,  false,   crate::models::skidding::level::build)
         .with_check(crate::models::skidding::level::check),
     LevelEntry::new("full",         true,  false,   crate::models::full::level::build),
@@ -316,13 +317,13 @@ mod tests {
     }
 
     /// The registry says which element kinds each level takes: every level takes balls, the
-    /// quasi-static level rollers too, and a bearing of a kind a level does not take is
+    /// quasi-static and ring levels rollers too, and a bearing of a kind a level does not take is
     /// refused naming the level, the kind and the levels that do take it.
     #[test]
     fn a_level_refuses_an_element_kind_it_does_not_take_naming_both() {
         for l in Level::ALL {
             assert!(l.accepts(ElementKind::Ball).is_ok(), "{}", l.name());
-            if l == Level::QuasiStatic {
+            if l == Level::QuasiStatic || l == Level::Ring {
                 assert!(l.accepts(ElementKind::Roller).is_ok());
                 continue;
             }
@@ -331,7 +332,7 @@ mod tests {
                 e.contains("model.level")
                     && e.contains(&format!("level `{}`", l.name()))
                     && e.contains("roller")
-                    && e.contains("levels that take rollers: quasi_static"),
+                    && e.contains("levels that take rollers: quasi_static, ring"),
                 "{e}"
             );
         }

@@ -79,11 +79,13 @@ impl ElementLaw for CylindricalRollerLaw {
         _state: &mut [f64],
         want: Want,
     ) -> Result<ElementReaction> {
-        let r = self.laminae.evaluate(u.radial - self.half_pd, u.tilt);
+        let approach = u.radial - self.half_pd;
+        let r = self.laminae.evaluate(approach, u.tilt);
         let t = u.tilt.tan();
         let sec2 = 1.0 + t * t;
         let mut out = ElementReaction {
             f: [0.0, -r.force, sec2 * r.moment],
+            approach,
             ..Default::default()
         };
         if want.stiffness {

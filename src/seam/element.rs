@@ -74,6 +74,10 @@ pub struct ElementReaction {
     pub load: [f64; 2],
     /// Inner and outer peak contact pressures, Pa (with [`Want::report`]).
     pub pressure: [f64; 2],
+    /// The element's approach along its contact line (both contacts; a roller's at its
+    /// mid-length), m; negative: a gap. What contact damping ramps in with (the ball law
+    /// fills it when the stiffness or the report is wanted).
+    pub approach: f64,
 }
 
 /// The contact law of one kind of rolling element.

@@ -71,6 +71,7 @@ impl ElementLaw for QuasiStatic {
             ..Default::default()
         };
         if let Some(e) = &sol.full {
+            r.approach = e.di + e.do_;
             if want.stiffness {
                 r.df = self.ball_df(e);
             }

@@ -25,6 +25,7 @@
 
 use crate::contact::{Curvature, PointContact, Race};
 use crate::error::Result;
+use crate::geometry::element::ElementKind;
 use crate::geometry::kinematics::nominal_cage_speed as cage_speed;
 use crate::geometry::Bearing;
 use crate::lubrication::entrainment_speed;
@@ -526,6 +527,10 @@ fn profile_max(fx: &RingEffects) -> f64 {
         .sum()
 }
 
+/// The element kinds the ring level takes: balls (its own Hertz loop) and every kind the
+/// quasi-static level has a contact law for ([`super::elements::LawRingLevel`]).
+pub const ELEMENTS: &[ElementKind] = crate::models::quasi_static::level::ELEMENTS;
+
 /// The registry's constructor (the level registry, `LEVELS` in `component/levels.rs`): 2 or 5 ring
 /// coordinates (`model.ring_dof`), contact damping and the scene's effects.
 pub fn build(a: &LevelArgs) -> Result<Box<dyn LevelModel>> {
@@ -534,6 +539,15 @@ pub fn build(a: &LevelArgs) -> Result<Box<dyn LevelModel>> {
     } else {
         RingDof::Two
     };
+    if a.bearing.element() != ElementKind::Ball {
+        // Any other element through its contact law (the quasi-static level's laws).
+        let opts = crate::models::quasi_static::Options {
+            race_control: a.race_control,
+            ..Default::default()
+        };
+        let law = crate::models::quasi_static::level::element_law(a, opts)?;
+        return Ok(Box::new(super::elements::LawRingLevel::new(a, law, dof)?));
+    }
     Ok(Box::new(RingLevel::with_effects(
         a.bearing,
         dof,

@@ -28,6 +28,7 @@
 //! (`crate::lubrication`: film in series with Hertz, squeeze damping in parallel, the
 //! damping blended in over `DAMPING_RAMP` of Hertz approach like the contact damping).
 
+pub mod elements;
 pub mod level;
 #[cfg(test)]
 mod tests;

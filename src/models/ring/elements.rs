@@ -1,0 +1,164 @@
+//! The ring level for a rolling element with its own contact law (rollers, through
+//! [`crate::seam::element::ElementLaw`]): rigid rings on massless elements at the cage's
+//! kinematic positions, summed by [`assemble`], with contact damping `c d(delta)/dt` per
+//! loaded element along its radial line (the element's approach rate from the ring's radial
+//! motion at the element, including the element's travel with the cage), blended in over
+//! the first [`DAMPING_RAMP`] of approach as for balls (docs/physics.md §5.1). The ball
+//! bearing's ring level keeps its own inlined Hertz loop (`RingModel`): the same law,
+//! specialised for the speed rows of the straight-through and coupling jobs.
+//!
+//! Not modelled here yet: the effects (defects, waviness, spacing, film, wear, thermal),
+//! refused by name; damping of the tilt and axial motion (rollers carry no axial load).
+
+use super::{RingDof, DAMPING_RAMP};
+use crate::error::{Error, Result};
+use crate::geometry::kinematics::nominal_cage_speed as cage_speed;
+use crate::models::effects::Effects;
+use crate::models::LevelArgs;
+use crate::seam::element::{assemble, ElementLaw, Want};
+use crate::seam::{LevelModel, LevelOutputs, Point};
+use std::f64::consts::PI;
+
+/// The stiffness and damping matrices an evaluation fills.
+type Matrices<'a> = (&'a mut [[f64; 5]; 5], &'a mut [[f64; 5]; 5]);
+
+/// The level.
+#[derive(Debug)]
+pub struct LawRingLevel {
+    law: Box<dyn ElementLaw>,
+    dof: RingDof,
+    damping: f64,
+    cage_ratio: f64,
+    psi: Vec<f64>,
+}
+
+impl LawRingLevel {
+    /// The ring level of `a`'s bearing with the element law `law`; refuses effects naming
+    /// them.
+    pub fn new(a: &LevelArgs, law: Box<dyn ElementLaw>, dof: RingDof) -> Result<Self> {
+        if *a.effects != Effects::default() {
+            return Err(Error::invalid(
+                "effects",
+                format!("effects on a {} bearing", law.name()),
+                format!(
+                    "none: the ring level models effects for ball bearings only (a {} bearing runs without them)",
+                    law.name()
+                ),
+            ));
+        }
+        Ok(LawRingLevel {
+            law,
+            dof,
+            damping: a.contact_damping,
+            cage_ratio: cage_speed(a.bearing, 1.0),
+            psi: vec![0.0; a.bearing.z],
+        })
+    }
+
+    /// Wrench on the shaft at `p` (and with `kc` the stiffness and damping matrices).
+    fn evaluate(
+        &mut self,
+        p: Point<'_>,
+        mut kc: Option<Matrices<'_>>,
+        report: &mut (usize, f64, f64),
+    ) -> Result<[f64; 5]> {
+        let Point { m, x, .. } = p;
+        let z = self.psi.len();
+        for (j, psi) in self.psi.iter_mut().enumerate() {
+            *psi = x[0] + 2.0 * PI * j as f64 / z as f64;
+        }
+        let wc = self.cage_ratio * m.omega;
+        let want = Want {
+            stiffness: kc.is_some(),
+            report: kc.is_some(),
+        };
+        let (law, c0) = (&self.law, self.damping);
+        let mut cmat = [[0.0; 5]; 5];
+        let mut w = assemble(
+            &m.q,
+            &self.psi,
+            kc.as_mut().map(|(k, _)| &mut **k),
+            |_, at, u| {
+                let mut r = law.react(at, u, m.omega, &mut [], want)?;
+                if r.load[0] > 0.0 || r.f[1] < 0.0 {
+                    report.0 += 1;
+                    report.1 = report.1.max(r.load[0]).max(r.load[1]);
+                    report.2 = report.2.max(r.pressure[0]).max(r.pressure[1]);
+                }
+                if c0 > 0.0 && r.f[1] < 0.0 && r.approach > 0.0 {
+                    let (s, c) = at.psi.sin_cos();
+                    let (q, v) = (&m.q, &m.v);
+                    let rate = v[0] * c + v[1] * s + wc * (-q[0] * s + q[1] * c);
+                    let cd = c0 * (r.approach / DAMPING_RAMP).min(1.0);
+                    r.f[1] -= cd * rate;
+                    let g = [c, s];
+                    for (a, ga) in g.iter().enumerate() {
+                        for (b, gb) in g.iter().enumerate() {
+                            cmat[a][b] += cd * ga * gb;
+                        }
+                    }
+                }
+                Ok(r)
+            },
+        )?;
+        if self.dof == RingDof::Two {
+            w[2..].fill(0.0);
+        }
+        if let Some((k, c)) = kc {
+            if self.dof == RingDof::Two {
+                for (i, row) in k.iter_mut().enumerate() {
+                    for (j, v) in row.iter_mut().enumerate() {
+                        if i >= 2 || j >= 2 {
+                            *v = 0.0;
+                        }
+                    }
+                }
+            }
+            *c = cmat;
+        }
+        Ok(w)
+    }
+}
+
+impl LevelModel for LawRingLevel {
+    fn n_states(&self) -> usize {
+        1
+    }
+    fn states_are_quadrature(&self) -> bool {
+        true
+    }
+    fn ring_dofs(&self) -> &'static [usize] {
+        match self.dof {
+            RingDof::Two => &[0, 1],
+            RingDof::Five => &[0, 1, 2, 3, 4],
+        }
+    }
+    fn init(&mut self, _m: &crate::seam::Motion, x: &mut [f64], _aux: &mut [f64]) -> Result<()> {
+        x[0] = 0.0;
+        Ok(())
+    }
+    fn rhs(&mut self, p: Point<'_>, dx: &mut [f64], wrench: Option<&mut [f64; 5]>) -> Result<()> {
+        dx[0] = self.cage_ratio * p.m.omega;
+        if let Some(w) = wrench {
+            *w = self.evaluate(p, None, &mut (0, 0.0, 0.0))?;
+        }
+        Ok(())
+    }
+    fn outputs(&mut self, p: Point<'_>, out: &mut LevelOutputs) -> Result<()> {
+        let omega = p.m.omega;
+        let (mut k, mut c) = ([[0.0; 5]; 5], [[0.0; 5]; 5]);
+        let mut report = (0, 0.0, 0.0);
+        let wrench = self.evaluate(p, Some((&mut k, &mut c)), &mut report)?;
+        *out = LevelOutputs {
+            wrench,
+            k,
+            c,
+            cage_omega: self.cage_ratio * omega,
+            balls_loaded: report.0 as f64,
+            max_load: report.1,
+            max_pressure: report.2,
+            ..LevelOutputs::default()
+        };
+        Ok(())
+    }
+}
