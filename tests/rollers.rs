@@ -189,3 +189,44 @@ initial = { "load.x" = 0.0, "load.y" = -3000.0, "load.z" = 0.0, "load.mx" = 0.0,
     );
     assert!(y < -16.25e-6, "beyond half the clearance: {y}");
 }
+
+/// The C ABI takes a roller scene unchanged: the same variables, the same force as the Rust
+/// component gives.
+#[test]
+fn the_c_abi_runs_a_roller_scene_with_the_same_variables() {
+    use raceway::capi::*;
+    use std::ffi::CString;
+    let text = scene("quasi_static", "\"NU206\"");
+    let mut err = [0 as std::ffi::c_char; 512];
+    let cs = CString::new(text.clone()).unwrap();
+    let c = unsafe { raceway_create(cs.as_ptr(), err.as_mut_ptr(), err.len()) };
+    assert!(!c.is_null());
+    let mut fy = 0.0;
+    unsafe {
+        assert_eq!(raceway_do_step(c, 0.0, 1e-6), RacewayStatus::Ok);
+        assert_eq!(
+            raceway_get_real(c, RACEWAY_VR_FORCE_Y, &mut fy),
+            RacewayStatus::Ok
+        );
+        raceway_free(c);
+    }
+    let mut r = Component::from_text(&text).unwrap();
+    r.do_step(0.0, 1e-6).unwrap();
+    assert_eq!(fy, r.get_real(vr("force.y")).unwrap());
+    assert!(fy > 0.0);
+}
+
+/// `raceway quasi-static --bearing NU206` says where a roller bearing runs instead.
+#[test]
+fn the_ball_load_table_points_a_roller_bearing_to_its_faces() {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_raceway"))
+        .args(["quasi-static", "--bearing", "NU206", "--fy", "1000"])
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    let e = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        e.contains("--bearing") && e.contains("raceway bearings NAME"),
+        "{e}"
+    );
+}

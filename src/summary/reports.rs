@@ -149,6 +149,12 @@ pub fn load_bearing(arg: &str) -> Result<Bearing> {
                     other => other,
                 })?;
                 spec.build()
+            } else if crate::geometry::roller_catalogue::lookup(arg).is_some() {
+                Err(Error::invalid(
+                    "--bearing",
+                    arg,
+                    "a ball bearing: the quasi-static load table solves balls; a roller bearing runs in a scene at the quasi-static or ring level (bearing = \"NAME\" in `raceway run`), and `raceway bearings NAME` lists its data and ratings",
+                ))
             } else {
                 Err(unknown)
             }
