@@ -47,6 +47,12 @@ pub struct Base {
     /// the inputs are set after the component is built (the ring and quasi-static bases:
     /// a load-driven ring falls from rest through its clearance).
     pub initial_inputs: bool,
+    /// A roller bearing (the preset is a roller designation): the material axis sets the
+    /// rollers' material and the 4 GPa load is the line contact's.
+    pub roller: bool,
+    /// The external moment `load.mx` as this arm times the radial load, m (tilts a 5-DOF
+    /// ring: edge loading of rollers).
+    pub moment_arm: f64,
 }
 
 /// `[model]` lines of a load-driven base of the cheap levels: the level's own lines, then
@@ -73,6 +79,8 @@ const CHEAP: Base = Base {
     max_window: f64::INFINITY,
     full_product: true,
     initial_inputs: false,
+    roller: false,
+    moment_arm: 0.0,
 };
 
 /// What the bases of the dynamic levels (skidding, full) share beyond [`CHEAP`]: a
@@ -135,6 +143,29 @@ pub const BASES: &[Base] = &[
         name: "quasi_static/motion",
         model: "level = \"quasi_static\"\ncausality = \"motion\"\n",
         load_driven: false,
+        ..CHEAP
+    },
+    Base {
+        name: "ring-2dof/load NU206",
+        preset: "NU206",
+        model: load_driven!("level = \"ring\"\nring_dof = 2\n"),
+        roller: true,
+        ..CHEAP
+    },
+    Base {
+        name: "ring-5dof/load NU206 tilted",
+        preset: "NU206",
+        model: load_driven!("level = \"ring\"\nring_dof = 5\n"),
+        roller: true,
+        // A moment of 5 mm times the radial load tilts the ring: the rollers edge-load.
+        moment_arm: 0.005,
+        ..CHEAP
+    },
+    Base {
+        name: "quasi_static/load NU206",
+        preset: "NU206",
+        model: load_driven!("level = \"quasi_static\"\n"),
+        roller: true,
         ..CHEAP
     },
     Base {
@@ -389,6 +420,18 @@ pub fn nominal(base: &'static Base) -> Cell {
 /// `Q` with `p_max(Q) = 4 GPa` (Hertz, inner contact) times `Z / 4.37` (Stribeck, Harris &
 /// Kotzalas §7.2, zero clearance).
 pub fn load_for_pressure(preset_name: &str, p: f64) -> Result<f64> {
+    if let Some(r) = crate::geometry::roller_catalogue::lookup(preset_name) {
+        // Line contact: the roller load whose line-Hertz peak on the inner race is `p`
+        // (`p0 ∝ sqrt(Q)`), times `Z / 4.08` (Stribeck's number for line contact).
+        let r = r.build()?;
+        let p1 = crate::contact::lamina::line_hertz(
+            1.0 / r.lwe,
+            r.reduced_radius_inner(),
+            r.e_prime_inner(),
+        )
+        .1;
+        return Ok((p / p1).powi(2) * r.z as f64 / 4.08);
+    }
     let b = preset(preset_name)?.build()?;
     let a = b.nominal_contact_angle();
     let c = PointContact::new(
@@ -454,14 +497,18 @@ impl Cell {
         } else {
             String::new()
         };
+        let material = if self.base.roller {
+            format!("roller_material = \"{}\"", self.ball)
+        } else {
+            format!("materials = {{ ball = \"{}\" }}", self.ball)
+        };
         format!(
             "title = \"stability cell\"\n\
-             bearing = {{ preset = \"{}\", {clearance}materials = {{ ball = \"{}\" }} }}\n\
+             bearing = {{ preset = \"{}\", {clearance}{material} }}\n\
              [model]\n{}\
              [solver]\nrtol = {:e}\natol_m = {:e}\nmax_substeps = 200000\n\
              [inputs]\nrule = \"{rule}\"\n",
             self.base.preset,
-            self.ball,
             self.base.model,
             rtol,
             1e-4 * rtol,
@@ -494,7 +541,7 @@ impl Cell {
                 ("load.x", 0.0),
                 ("load.y", -f),
                 ("load.z", self.base.axial_share * f),
-                ("load.mx", 0.0),
+                ("load.mx", self.base.moment_arm * f),
                 ("load.my", 0.0),
             ]);
             step("load.y", -f - 1000.0);

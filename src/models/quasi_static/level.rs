@@ -16,6 +16,7 @@ use crate::error::{Error, Result};
 use crate::geometry::element::{Element, ElementKind};
 use crate::geometry::kinematics::nominal_cage_speed as cage_speed;
 use crate::models::quasi_static::{Options, QuasiStatic};
+use crate::models::ring::elements::LawRingLevel;
 use crate::models::ring::{RingAt, RingDof, RingEval, RingModel};
 use crate::models::LevelArgs;
 use crate::seam::element::{assemble, ElementLaw, Want};
@@ -133,7 +134,19 @@ impl QuasiStaticLevel {
 }
 
 /// The registry's constructor (the level registry, `LEVELS` in `component/levels.rs`).
+/// A bearing whose element is not a ball runs as the 5-DOF ring on massless elements
+/// ([`crate::models::ring::elements::LawRingLevel`]): without the element's own inertia in
+/// its law (a roller's centrifugal force is not modelled yet) the quasi-static and ring
+/// models of it are the same, contact damping included.
 pub fn build(a: &LevelArgs) -> Result<Box<dyn LevelModel>> {
+    if a.bearing.element() != ElementKind::Ball {
+        let opts = Options {
+            race_control: a.race_control,
+            ..Options::default()
+        };
+        let law = element_law(a, opts)?;
+        return Ok(Box::new(LawRingLevel::new(a, law, RingDof::Five)?));
+    }
     Ok(Box::new(QuasiStaticLevel::new(a)?))
 }
 
