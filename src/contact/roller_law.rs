@@ -134,7 +134,10 @@ mod tests {
             stiffness: k.is_some(),
             report: false,
         };
-        assemble(q, psi, k, |_, at, u| l.react(at, u, 0.0, &mut [], want)).unwrap()
+        assemble(q, psi, l.moment_arm(), k, |_, at, u| {
+            l.react(at, u, 0.0, &mut [], want)
+        })
+        .unwrap()
     }
 
     #[test]
@@ -192,6 +195,7 @@ mod tests {
         let at = ElementAt {
             index: 0,
             psi: 0.0,
+            sc: (0.0, 1.0),
             q: &[0.0; 5],
         };
         let u = ElementDisplacement {

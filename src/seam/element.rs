@@ -40,14 +40,17 @@ impl ElementDisplacement {
     }
 }
 
-/// Where an element is asked: its index, azimuth (rad) and the ring displacement, for the
-/// messages of a refusal.
+/// Where an element is asked: its index, azimuth (rad) with its sine and cosine, and the
+/// ring displacement (for the messages of a refusal, and for a law that forms its own
+/// displacement from them).
 #[derive(Debug, Clone, Copy)]
 pub struct ElementAt<'a> {
     /// Element index.
     pub index: usize,
     /// Azimuth, rad.
     pub psi: f64,
+    /// `(sin psi, cos psi)`.
+    pub sc: (f64, f64),
     /// Ring displacement `(x, y, z, rx, ry)`, m and rad.
     pub q: &'a [f64; 5],
 }
@@ -84,6 +87,13 @@ pub struct ElementReaction {
 pub trait ElementLaw: std::fmt::Debug + Send {
     /// The element kind's name, as scenes spell it (`ball`, `roller`).
     fn name(&self) -> &'static str;
+    /// The radius (m) at which the element's axial force acts on the inner ring, when the
+    /// law folds the ring's tilt into its axial displacement: `axial = z + arm tilt` (a
+    /// ball: the radius of the inner groove-centre circle). 0 (the default): the law
+    /// takes the tilt as its own input and answers the moment conjugate to it.
+    fn moment_arm(&self) -> f64 {
+        0.0
+    }
     /// Memory per element (warm starts), in numbers; the caller keeps it between calls.
     fn state_len(&self) -> usize;
     /// The element's reaction to the displacement `u` at shaft speed `omega` (rad/s),
@@ -100,11 +110,14 @@ pub trait ElementLaw: std::fmt::Debug + Send {
 
 /// Sum elements at azimuths `psi` into the forces and moments on the shaft
 /// `(Fx, Fy, Fz, Mx, My)` and, with `stiffness`, `K = -dF/dq` (module docs). `react(j, at,
-/// u)` answers element `j`. Refuses a non-finite `q` or azimuth naming it, and non-finite
-/// sums as a failed evaluation.
+/// u)` answers element `j`; `arm` is the laws' [`ElementLaw::moment_arm`] (the axial
+/// displacement then carries `arm tilt`, and the moment `arm F_a`, the law's own moment
+/// adding to it). Refuses a non-finite `q` or azimuth naming it, and non-finite sums as a
+/// failed evaluation.
 pub fn assemble(
     q: &[f64; 5],
     psi: &[f64],
+    arm: f64,
     mut stiffness: Option<&mut [[f64; 5]; 5]>,
     mut react: impl FnMut(usize, ElementAt<'_>, ElementDisplacement) -> Result<ElementReaction>,
 ) -> Result<[f64; 5]> {
@@ -121,9 +134,14 @@ pub fn assemble(
         let at = ElementAt {
             index: j,
             psi: p,
+            sc: (s, c),
             q,
         };
-        let r = react(j, at, ElementDisplacement::at(q, s, c))?;
+        let mut u = ElementDisplacement::at(q, s, c);
+        if arm != 0.0 {
+            u.axial += arm * u.tilt;
+        }
+        let r = react(j, at, u)?;
         let [fa, fr, m] = r.f;
         f[0] += fr * c;
         f[1] += fr * s;
@@ -132,7 +150,7 @@ pub fn assemble(
         f[4] -= m * c;
         if let Some(k) = stiffness.as_deref_mut() {
             // K = -J^T df J with J the rows of d(axial, radial, tilt)/dq.
-            let ja = [0.0, 0.0, 1.0, 0.0, 0.0];
+            let ja = [0.0, 0.0, 1.0, arm * s, -arm * c];
             let jr = [c, s, 0.0, 0.0, 0.0];
             let jt = [0.0, 0.0, 0.0, s, -c];
             let [da, dr, dm] = r.df;
@@ -193,7 +211,14 @@ mod tests {
             .map(|j| 0.3 + 2.0 * std::f64::consts::PI * j as f64 / z as f64)
             .collect();
         let mut kk = [[0.0; 5]; 5];
-        let f = assemble(&[1e-6, 0.0, 0.0, 0.0, 0.0], &psi, Some(&mut kk), spring(k)).unwrap();
+        let f = assemble(
+            &[1e-6, 0.0, 0.0, 0.0, 0.0],
+            &psi,
+            0.0,
+            Some(&mut kk),
+            spring(k),
+        )
+        .unwrap();
         let want = z as f64 * k / 2.0;
         assert!((kk[0][0] / want - 1.0).abs() < 1e-12, "{}", kk[0][0]);
         assert!((kk[1][1] / want - 1.0).abs() < 1e-12);
@@ -225,30 +250,32 @@ mod tests {
         };
         let psi: Vec<f64> = (0..7).map(|j| 0.1 + 0.9 * j as f64).collect();
         let q = [2e-6, -1e-6, 3e-6, 1e-4, -2e-4];
-        let mut kk = [[0.0; 5]; 5];
-        assemble(&q, &psi, Some(&mut kk), law).unwrap();
-        for col in 0..5 {
-            let h = if col < 3 { 1e-9 } else { 1e-7 };
-            let (mut qp, mut qm) = (q, q);
-            qp[col] += h;
-            qm[col] -= h;
-            let fp = assemble(&qp, &psi, None, law).unwrap();
-            let fm = assemble(&qm, &psi, None, law).unwrap();
-            for row in 0..5 {
-                let fd = -(fp[row] - fm[row]) / (2.0 * h);
-                let scale = kk[row][col].abs().max(1e3);
-                assert!(
-                    (kk[row][col] - fd).abs() < 1e-6 * scale,
-                    "K[{row}][{col}] {} vs {fd}",
-                    kk[row][col]
-                );
+        for arm in [0.0, 0.02] {
+            let mut kk = [[0.0; 5]; 5];
+            assemble(&q, &psi, arm, Some(&mut kk), law).unwrap();
+            for col in 0..5 {
+                let h = if col < 3 { 1e-9 } else { 1e-7 };
+                let (mut qp, mut qm) = (q, q);
+                qp[col] += h;
+                qm[col] -= h;
+                let fp = assemble(&qp, &psi, arm, None, law).unwrap();
+                let fm = assemble(&qm, &psi, arm, None, law).unwrap();
+                for row in 0..5 {
+                    let fd = -(fp[row] - fm[row]) / (2.0 * h);
+                    let scale = kk[row][col].abs().max(1e3);
+                    assert!(
+                        (kk[row][col] - fd).abs() < 1e-6 * scale,
+                        "arm {arm}: K[{row}][{col}] {} vs {fd}",
+                        kk[row][col]
+                    );
+                }
             }
         }
     }
 
     #[test]
     fn a_non_finite_azimuth_is_refused_by_name() {
-        let e = assemble(&[0.0; 5], &[0.0, f64::NAN], None, spring(1.0)).unwrap_err();
+        let e = assemble(&[0.0; 5], &[0.0, f64::NAN], 0.0, None, spring(1.0)).unwrap_err();
         assert!(e.to_string().contains("psi[1]"), "{e}");
     }
 }

@@ -46,10 +46,17 @@ impl ElementLaw for QuasiStatic {
         BALL_STATE_LEN
     }
 
+    /// The inner groove-centre radius `Ri`: a ball's axial force acts on the ring there,
+    /// and a tilt moves its groove offset axially by `Ri` times the tilt (module docs of
+    /// the quasi-static model).
+    fn moment_arm(&self) -> f64 {
+        self.ri
+    }
+
     fn react(
         &self,
         at: ElementAt<'_>,
-        u: ElementDisplacement,
+        _u: ElementDisplacement,
         omega: f64,
         state: &mut [f64],
         want: Want,
@@ -62,7 +69,7 @@ impl ElementLaw for QuasiStatic {
             ));
         }
         let mut st = BallState::from_slice(state);
-        let sol = self.solve_ball(at, u, omega, &mut st, want.stiffness || want.report);
+        let sol = self.solve_ball(at, omega, &mut st, want.stiffness || want.report);
         // A failed solve may still have moved the warm start (a valid one).
         st.to_slice(state);
         let sol = sol?;
@@ -120,18 +127,19 @@ mod tests {
             report: true,
         };
         let mut loads = vec![[0.0; 2]; b.z];
-        let f1 = crate::seam::element::assemble(&q, &psi, Some(&mut k1), |j, at, u| {
-            let r = qs.react(
-                at,
-                u,
-                omega,
-                &mut mem[BALL_STATE_LEN * j..BALL_STATE_LEN * (j + 1)],
-                want,
-            )?;
-            loads[j] = r.load;
-            Ok(r)
-        })
-        .unwrap();
+        let f1 =
+            crate::seam::element::assemble(&q, &psi, qs.moment_arm(), Some(&mut k1), |j, at, u| {
+                let r = qs.react(
+                    at,
+                    u,
+                    omega,
+                    &mut mem[BALL_STATE_LEN * j..BALL_STATE_LEN * (j + 1)],
+                    want,
+                )?;
+                loads[j] = r.load;
+                Ok(r)
+            })
+            .unwrap();
         for i in 0..5 {
             assert!(
                 (f0[i] - f1[i]).abs() <= 1e-9 * f0.iter().map(|x| x.abs()).fold(0.0, f64::max),

@@ -172,7 +172,7 @@ impl LevelModel for QuasiStaticLevel {
         if let Some(w) = wrench {
             self.place(x[0]);
             let (law, n) = (&self.law, self.law.state_len());
-            *w = assemble(&m.q, &self.psi, None, |j, at, u| {
+            *w = assemble(&m.q, &self.psi, law.moment_arm(), None, |j, at, u| {
                 law.react(
                     at,
                     u,
@@ -197,15 +197,21 @@ impl LevelModel for QuasiStaticLevel {
             stiffness: true,
             report: true,
         };
-        let mut wrench = assemble(&m.q, &self.psi, Some(&mut k), |j, at, u| {
-            let r = law.react(at, u, m.omega, &mut aux[n * j..n * (j + 1)], want)?;
-            if r.load[0] > 0.0 {
-                loaded += 1;
-            }
-            max_load = max_load.max(r.load[0]).max(r.load[1]);
-            max_p = max_p.max(r.pressure[0]).max(r.pressure[1]);
-            Ok(r)
-        })?;
+        let mut wrench = assemble(
+            &m.q,
+            &self.psi,
+            law.moment_arm(),
+            Some(&mut k),
+            |j, at, u| {
+                let r = law.react(at, u, m.omega, &mut aux[n * j..n * (j + 1)], want)?;
+                if r.load[0] > 0.0 {
+                    loaded += 1;
+                }
+                max_load = max_load.max(r.load[0]).max(r.load[1]);
+                max_p = max_p.max(r.pressure[0]).max(r.pressure[1]);
+                Ok(r)
+            },
+        )?;
         let mut c = [[0.0; 5]; 5];
         self.add_damping(x[0], m, &mut wrench, Some(&mut c));
         *out = LevelOutputs {

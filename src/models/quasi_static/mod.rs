@@ -56,7 +56,7 @@ pub use ball::BallState;
 use crate::contact::{ContactTable, Race};
 use crate::error::{Error, Result};
 use crate::geometry::Bearing;
-use crate::seam::element::{self, ElementAt, ElementDisplacement, ElementReaction};
+use crate::seam::element::{self, ElementAt, ElementReaction};
 use crate::solver::newton;
 use ball::{Eval, Geo};
 use kc::KcTable;
@@ -390,9 +390,9 @@ impl QuasiStatic {
         // are wanted (else the forces alone, `ball.rs`).
         let want_k = stiffness.is_some();
         let full = want_k || balls.is_some();
-        element::assemble(q, psi, stiffness, |j, at, u| {
+        element::assemble(q, psi, self.ri, stiffness, |j, at, _| {
             let st = &mut state[j];
-            let sol = self.solve_ball(at, u, omega, st, full)?;
+            let sol = self.solve_ball(at, omega, st, full)?;
             let mut r = ElementReaction {
                 f: sol.f,
                 ..Default::default()
@@ -409,41 +409,33 @@ impl QuasiStatic {
         })
     }
 
-    /// The groove offset `(A1, A2)` of a ball with displacement `u` at its place: the
-    /// reference offset moved axially by `u.axial` and by the tilt at the inner groove
-    /// centre radius, radially by `u.radial`.
-    fn groove_offset_of(&self, u: ElementDisplacement) -> [f64; 2] {
-        [
-            self.a_ref[0] + u.axial + self.ri * u.tilt,
-            self.a_ref[1] + u.radial,
-        ]
-    }
-
-    /// One ball's equilibrium at displacement `u` (module docs), after the geometry
-    /// check that names the ring displacement when it is impossible.
+    /// One ball's equilibrium at its place `at` (module docs: the groove offset from the
+    /// ring displacement and the azimuth), after the geometry check that names the ring
+    /// displacement when it is impossible.
     fn solve_ball(
         &self,
         at: ElementAt<'_>,
-        u: ElementDisplacement,
         omega: f64,
         st: &mut BallState,
         full: bool,
     ) -> Result<ball::Solved> {
-        let a = self.groove_offset_of(u);
+        let (s, c) = at.sc;
+        let a = self.groove_offset_sc(at.q, s, c);
         self.check_geometry(at.q, at.index, at.psi, a)?;
         self.geo.solve(omega, a, st, full)
     }
 
     /// A ball's `d (F_a, F_r, m) / d (axial, radial, tilt)` at its root (implicit-function
-    /// theorem on the ball equations: `dX/dA = -(dg/dX)^-1 dg/dA`; the tilt moves the
-    /// groove offset axially at radius `Ri`).
+    /// theorem on the ball equations: `dX/dA = -(dg/dX)^-1 dg/dA`). The tilt enters through
+    /// the axial displacement at the moment arm `Ri` ([`ElementLaw::moment_arm`]), so its
+    /// own column is zero.
     fn ball_df(&self, e: &Eval<4>) -> [[f64; 3]; 3] {
         let dxda = ball::sensitivity(e); // dxda[r][col] = dX_r / dA_col
         let total = |o: &dual::D4| -> [f64; 3] {
             let ox = [o.d[0] - o.d[2], o.d[1] - o.d[3]];
             let da1 = o.d[2] + ox[0] * dxda[0][0] + ox[1] * dxda[1][0];
             let da2 = o.d[3] + ox[0] * dxda[0][1] + ox[1] * dxda[1][1];
-            [da1, da2, self.ri * da1]
+            [da1, da2, 0.0]
         };
         [total(&e.fa), total(&e.fr), total(&e.m)]
     }

@@ -77,6 +77,7 @@ impl LawRingLevel {
         let mut w = assemble(
             &m.q,
             &self.psi,
+            law.moment_arm(),
             kc.as_mut().map(|(k, _)| &mut **k),
             |_, at, u| {
                 let mut r = law.react(at, u, m.omega, &mut [], want)?;
