@@ -327,6 +327,9 @@ pub struct Laminae {
     pub drop2: Vec<f64>,
     /// Lamina constant `c_s = c_L/ns`, N/m^(10/9).
     pub cs: f64,
+    /// `(max |x_k|, min 2P(x_k))`: a lamina's approach is at most `delta + max|x| |tan psi|
+    /// - min 2P`, so at or below zero no lamina is loaded (the early exit of `eval`).
+    reach: (f64, f64),
 }
 
 impl Laminae {
@@ -353,11 +356,16 @@ impl Laminae {
         let x: Vec<f64> = (0..ns)
             .map(|k| (k as f64 + 0.5) * w - 0.5 * g.lwe)
             .collect();
-        let drop2 = x.iter().map(|&xk| 2.0 * profile.drop(xk, g)).collect();
+        let drop2: Vec<f64> = x.iter().map(|&xk| 2.0 * profile.drop(xk, g)).collect();
+        let reach = (
+            x.iter().fold(0.0f64, |m, v| m.max(v.abs())),
+            drop2.iter().fold(f64::INFINITY, |m, &v| m.min(v)),
+        );
         Ok(Laminae {
             lwe: g.lwe,
             x,
             drop2,
+            reach,
             cs: roller_constant(g.lwe, g.e_prime) / ns as f64,
         })
     }
@@ -396,8 +404,13 @@ impl Laminae {
     }
 
     fn eval(&self, delta: f64, psi: f64, mut loads: Option<&mut [f64]>) -> RollerLoad {
-        let (tan_psi, sec2) = (psi.tan(), 1.0 + psi.tan().powi(2));
+        let tan_psi = psi.tan();
+        let sec2 = 1.0 + tan_psi * tan_psi;
         let mut r = RollerLoad::default();
+        // No lamina can touch: nothing to evaluate (the loop would give the same zeros).
+        if loads.is_none() && delta + self.reach.0 * tan_psi.abs() - self.reach.1 <= 0.0 {
+            return r;
+        }
         for k in 0..self.len() {
             let d = self.approach(k, delta, tan_psi);
             let (q, dq) = if d > 0.0 {
