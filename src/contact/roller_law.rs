@@ -67,6 +67,10 @@ impl ElementLaw for CylindricalRollerLaw {
         "roller"
     }
 
+    fn tilt_damping_arm2(&self) -> f64 {
+        self.laminae.lwe * self.laminae.lwe / 12.0
+    }
+
     fn state_len(&self) -> usize {
         0
     }

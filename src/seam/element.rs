@@ -94,6 +94,13 @@ pub trait ElementLaw: std::fmt::Debug + Send {
     fn moment_arm(&self) -> f64 {
         0.0
     }
+    /// For contact damping of the tilt: the second moment of the element's contact line
+    /// about its centre per unit of it, m² (a line of length `L` with the damping spread
+    /// evenly: `L²/12`, so a tilt rate `w` meets the moment `-c L²/12 w`). 0 (the default):
+    /// a point contact, whose tilt carries no damping of its own.
+    fn tilt_damping_arm2(&self) -> f64 {
+        0.0
+    }
     /// Memory per element (warm starts), in numbers; the caller keeps it between calls.
     fn state_len(&self) -> usize;
     /// The element's reaction to the displacement `u` at shaft speed `omega` (rad/s),

@@ -7,8 +7,11 @@
 //! bearing's ring level keeps its own inlined Hertz loop (`RingModel`): the same law,
 //! specialised for the speed rows of the straight-through and coupling jobs.
 //!
+//! With 5 DOF the damping spreads evenly along a roller's contact line, so the tilt rate
+//! `w` at the element meets the moment `-c L²/12 w` ([`ElementLaw::tilt_damping_arm2`]).
+//!
 //! Not modelled here yet: the effects (defects, waviness, spacing, film, wear, thermal),
-//! refused by name; damping of the tilt and axial motion (rollers carry no axial load).
+//! refused by name; damping of the axial motion (cylindrical rollers carry no axial load).
 
 use super::{RingDof, DAMPING_RAMP};
 use crate::error::{Error, Result};
@@ -73,6 +76,11 @@ impl LawRingLevel {
             report: kc.is_some(),
         };
         let (law, c0) = (&self.law, self.damping);
+        let arm2 = if self.dof == RingDof::Five {
+            law.tilt_damping_arm2()
+        } else {
+            0.0
+        };
         let mut cmat = [[0.0; 5]; 5];
         let mut w = assemble(
             &m.q,
@@ -96,6 +104,19 @@ impl LawRingLevel {
                     for (a, ga) in g.iter().enumerate() {
                         for (b, gb) in g.iter().enumerate() {
                             cmat[a][b] += cd * ga * gb;
+                        }
+                    }
+                    if arm2 > 0.0 {
+                        // The tilt about the element's tangential axis, `rx s - ry c`, and its
+                        // rate as the element travels with the cage.
+                        let wt = v[3] * s - v[4] * c + wc * (q[3] * c + q[4] * s);
+                        let ct = cd * arm2;
+                        r.f[2] -= ct * wt;
+                        let g = [s, -c];
+                        for (a, ga) in g.iter().enumerate() {
+                            for (b, gb) in g.iter().enumerate() {
+                                cmat[3 + a][3 + b] += ct * ga * gb;
+                            }
                         }
                     }
                 }
