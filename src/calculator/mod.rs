@@ -2,4 +2,5 @@
 //! subsurface stress below each contact, friction moment, and the like. Plain data in, plain
 //! data out; SI units inside.
 
+pub mod friction;
 pub mod subsurface;
