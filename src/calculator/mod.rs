@@ -3,4 +3,6 @@
 //! data out; SI units inside.
 
 pub mod friction;
+pub mod lubricant;
 pub mod subsurface;
+pub mod vi_table;
