@@ -288,7 +288,10 @@ mod tests {
     #[test]
     fn d2270_procedure_a_example() {
         let (l, h) = reference_oils(8.86).unwrap();
-        assert!((l - 119.94).abs() < 0.005 && (h - 69.48).abs() < 0.005, "{l} {h}");
+        assert!(
+            (l - 119.94).abs() < 0.005 && (h - 69.48).abs() < 0.005,
+            "{l} {h}"
+        );
         let vi = viscosity_index(73.30, 8.86).unwrap();
         assert!((vi - 92.43).abs() < 0.01, "{vi}");
     }
@@ -302,7 +305,10 @@ mod tests {
         let n = (28.975f64 / 22.83).log10() / 5.05f64.log10();
         let want = (10f64.powf(n) - 1.0) / 0.00715 + 100.0;
         let vi = viscosity_index(22.83, 5.05).unwrap();
-        assert!((vi - want).abs() < 1e-9 && (vi - 156.42).abs() < 0.01, "{vi} {want}");
+        assert!(
+            (vi - want).abs() < 1e-9 && (vi - 156.42).abs() < 0.01,
+            "{vi} {want}"
+        );
         // The two procedures meet at U = H (VI 100) and the table meets the Y > 70 equations.
         assert!((viscosity_index(h, 5.05).unwrap() - 100.0).abs() < 1e-9);
         let (l70, h70) = reference_oils(70.0).unwrap();
