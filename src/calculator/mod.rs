@@ -3,6 +3,7 @@
 //! data out; SI units inside.
 
 pub mod clearance;
+pub mod duty;
 pub mod friction;
 pub mod lubricant;
 pub mod subsurface;
