@@ -71,7 +71,7 @@ pub struct FrictionInputs {
 }
 
 /// The friction moment, each part labelled (N·m) and the power loss (W).
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct Palmgren {
     /// Load-independent (viscous) moment `M0`.
     pub m0: f64,

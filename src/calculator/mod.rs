@@ -2,6 +2,7 @@
 //! subsurface stress below each contact, friction moment, and the like. Plain data in, plain
 //! data out; SI units inside.
 
+pub mod check;
 pub mod clearance;
 pub mod duty;
 pub mod friction;

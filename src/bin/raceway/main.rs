@@ -115,6 +115,31 @@ struct QsArgs {
     /// Contamination factor eC of ISO 281 (0..1; with --kappa gives a_ISO).
     #[arg(long)]
     contamination: Option<f64>,
+    /// Oil by ISO VG grade (VG2 .. VG3200): viscosity at --oil-temp-c, kappa (unless --kappa
+    /// is given) and Palmgren's friction moment in the design check.
+    #[arg(long)]
+    oil: Option<String>,
+    /// Viscosity index of --oil (ASTM D2270; default 95).
+    #[arg(long, allow_hyphen_values = true)]
+    oil_vi: Option<f64>,
+    /// Oil operating temperature, °C (default 70).
+    #[arg(long, allow_hyphen_values = true)]
+    oil_temp_c: Option<f64>,
+    /// Palmgren's lubrication factor f0 (default 2, oil bath).
+    #[arg(long)]
+    f0: Option<f64>,
+    /// Diametral interference of the inner ring on a solid steel shaft, µm (operating clearance).
+    #[arg(long, allow_hyphen_values = true)]
+    shaft_interference_um: Option<f64>,
+    /// Diametral interference of the outer ring in an unbounded steel housing, µm.
+    #[arg(long, allow_hyphen_values = true)]
+    housing_interference_um: Option<f64>,
+    /// Inner-ring temperature, °C, for the operating clearance (default 20).
+    #[arg(long, allow_hyphen_values = true)]
+    inner_ring_temp_c: Option<f64>,
+    /// Outer-ring temperature, °C, for the operating clearance (default 20).
+    #[arg(long, allow_hyphen_values = true)]
+    outer_ring_temp_c: Option<f64>,
     /// Machine-readable output (SI units).
     #[arg(long)]
     json: bool,
@@ -192,9 +217,49 @@ fn problem(a: &QsArgs) -> Result<QsProblem> {
     )
 }
 
+/// The design check's inputs from the flags.
+fn calc_inputs(a: &QsArgs, speed_rpm: f64) -> Result<raceway::calculator::check::CalcInputs> {
+    use raceway::calculator::{check::CalcInputs, clearance::ClearanceInputs};
+    let mut c = CalcInputs::default();
+    if let Some(name) = &a.oil {
+        c.oil = Some(raceway::calculator::lubricant::Oil::by_name(
+            name, a.oil_vi,
+        )?);
+    } else if let Some(vi) = a.oil_vi {
+        return Err(raceway::Error::invalid("--oil-vi", vi, "given with --oil"));
+    }
+    if let Some(t) = a.oil_temp_c {
+        c.temperature_c = t;
+    }
+    if let Some(f0) = a.f0 {
+        c.f0 = f0;
+    }
+    let fits = [
+        a.shaft_interference_um,
+        a.housing_interference_um,
+        a.inner_ring_temp_c,
+        a.outer_ring_temp_c,
+    ];
+    if fits.iter().any(Option::is_some) {
+        let d = ClearanceInputs::default();
+        c.clearance = Some(ClearanceInputs {
+            shaft_interference: a.shaft_interference_um.unwrap_or(0.0) * 1e-6,
+            housing_interference: a.housing_interference_um.unwrap_or(0.0) * 1e-6,
+            inner_c: a.inner_ring_temp_c.unwrap_or(d.inner_c),
+            outer_c: a.outer_ring_temp_c.unwrap_or(d.outer_c),
+            speed_rpm,
+            ..d
+        });
+    }
+    Ok(c)
+}
+
 fn quasi_static(a: QsArgs) -> Result<String> {
-    let p = problem(&a)?;
+    let mut p = problem(&a)?;
+    p.calc = calc_inputs(&a, p.speed_rpm)?;
     let (sol, rating) = p.solve()?;
+    // Bad design-check input (fits, oil temperature) is an error, not a missing line.
+    p.design_check(&sol, &rating)?;
     if a.json {
         report::quasi_static_json(&p, &sol, &rating)
     } else {
