@@ -148,7 +148,7 @@ pub fn operating_clearance(b: &Bearing, x: &ClearanceInputs) -> Result<Operating
         ));
     }
     if let Some(dh) = x.housing_outer_diameter {
-        if !(dh > dd) {
+        if dh.is_nan() || dh <= dd {
             return Err(Error::invalid(
                 "clearance.housing_outer_diameter",
                 dh,

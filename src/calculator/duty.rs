@@ -76,7 +76,7 @@ pub fn duty_life(c: f64, p: f64, rows: &[DutyRow]) -> Result<DutyLife> {
         ));
     }
     let revs: f64 = rows.iter().map(|r| r.speed_rpm * r.time_share).sum();
-    if !(revs > 0.0) {
+    if revs.is_nan() || revs <= 0.0 {
         return Err(Error::invalid(
             "duty.speed_rpm",
             0.0,

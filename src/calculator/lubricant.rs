@@ -57,7 +57,7 @@ pub const DEFAULT_VI: f64 = 95.0;
 
 /// `L` and `H` of ASTM D2270 for a 100 °C viscosity `y` (mm²/s), `None` below 2 mm²/s.
 pub fn reference_oils(y: f64) -> Option<(f64, f64)> {
-    if !(y >= 2.0) {
+    if y.is_nan() || y < 2.0 {
         return None;
     }
     if y > 70.0 {
@@ -171,7 +171,7 @@ impl Oil {
 
     /// An oil from its measured viscosities at 40 and 100 °C (mm²/s).
     pub fn measured(name: &str, nu40_mm2s: f64, nu100_mm2s: f64) -> Result<Oil> {
-        if !(nu100_mm2s < nu40_mm2s) {
+        if nu100_mm2s.is_nan() || nu100_mm2s >= nu40_mm2s {
             return Err(Error::invalid(
                 "oil.nu100_mm2s",
                 nu100_mm2s,
