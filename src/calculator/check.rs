@@ -37,6 +37,65 @@ impl Default for CalcInputs {
     }
 }
 
+/// The design check's inputs as a user types them (units in the names; `None`: not given).
+/// The command line's flags and Python's keywords carry the same names.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct CalcOptions {
+    /// ISO VG grade name, e.g. `VG68`.
+    pub oil: Option<String>,
+    /// Viscosity index of the oil (default [`super::lubricant::DEFAULT_VI`]).
+    pub oil_vi: Option<f64>,
+    /// Oil operating temperature, °C (default 70).
+    pub oil_temp_c: Option<f64>,
+    /// Palmgren's `f0` (default 2).
+    pub f0: Option<f64>,
+    /// Shaft-fit diametral interference, µm.
+    pub shaft_interference_um: Option<f64>,
+    /// Housing-fit diametral interference, µm.
+    pub housing_interference_um: Option<f64>,
+    /// Inner-ring temperature, °C.
+    pub inner_ring_temp_c: Option<f64>,
+    /// Outer-ring temperature, °C.
+    pub outer_ring_temp_c: Option<f64>,
+}
+
+impl CalcInputs {
+    /// From the typed options at a shaft speed; `oil_vi` without `oil` is refused, naming
+    /// `vi_name`.
+    pub fn from_options(o: &CalcOptions, speed_rpm: f64, vi_name: &str) -> Result<CalcInputs> {
+        let mut c = CalcInputs::default();
+        if let Some(name) = &o.oil {
+            c.oil = Some(Oil::by_name(name, o.oil_vi)?);
+        } else if let Some(vi) = o.oil_vi {
+            return Err(crate::Error::invalid(vi_name, vi, "given with the oil"));
+        }
+        if let Some(t) = o.oil_temp_c {
+            c.temperature_c = t;
+        }
+        if let Some(f0) = o.f0 {
+            c.f0 = f0;
+        }
+        let fits = [
+            o.shaft_interference_um,
+            o.housing_interference_um,
+            o.inner_ring_temp_c,
+            o.outer_ring_temp_c,
+        ];
+        if fits.iter().any(Option::is_some) {
+            let d = ClearanceInputs::default();
+            c.clearance = Some(ClearanceInputs {
+                shaft_interference: o.shaft_interference_um.unwrap_or(0.0) * 1e-6,
+                housing_interference: o.housing_interference_um.unwrap_or(0.0) * 1e-6,
+                inner_c: o.inner_ring_temp_c.unwrap_or(d.inner_c),
+                outer_c: o.outer_ring_temp_c.unwrap_or(d.outer_c),
+                speed_rpm,
+                ..d
+            });
+        }
+        Ok(c)
+    }
+}
+
 /// Subsurface stresses below the most loaded ball's contacts.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct ContactStress {

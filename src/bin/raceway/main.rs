@@ -219,39 +219,18 @@ fn problem(a: &QsArgs) -> Result<QsProblem> {
 
 /// The design check's inputs from the flags.
 fn calc_inputs(a: &QsArgs, speed_rpm: f64) -> Result<raceway::calculator::check::CalcInputs> {
-    use raceway::calculator::{check::CalcInputs, clearance::ClearanceInputs};
-    let mut c = CalcInputs::default();
-    if let Some(name) = &a.oil {
-        c.oil = Some(raceway::calculator::lubricant::Oil::by_name(
-            name, a.oil_vi,
-        )?);
-    } else if let Some(vi) = a.oil_vi {
-        return Err(raceway::Error::invalid("--oil-vi", vi, "given with --oil"));
-    }
-    if let Some(t) = a.oil_temp_c {
-        c.temperature_c = t;
-    }
-    if let Some(f0) = a.f0 {
-        c.f0 = f0;
-    }
-    let fits = [
-        a.shaft_interference_um,
-        a.housing_interference_um,
-        a.inner_ring_temp_c,
-        a.outer_ring_temp_c,
-    ];
-    if fits.iter().any(Option::is_some) {
-        let d = ClearanceInputs::default();
-        c.clearance = Some(ClearanceInputs {
-            shaft_interference: a.shaft_interference_um.unwrap_or(0.0) * 1e-6,
-            housing_interference: a.housing_interference_um.unwrap_or(0.0) * 1e-6,
-            inner_c: a.inner_ring_temp_c.unwrap_or(d.inner_c),
-            outer_c: a.outer_ring_temp_c.unwrap_or(d.outer_c),
-            speed_rpm,
-            ..d
-        });
-    }
-    Ok(c)
+    use raceway::calculator::check::{CalcInputs, CalcOptions};
+    let o = CalcOptions {
+        oil: a.oil.clone(),
+        oil_vi: a.oil_vi,
+        oil_temp_c: a.oil_temp_c,
+        f0: a.f0,
+        shaft_interference_um: a.shaft_interference_um,
+        housing_interference_um: a.housing_interference_um,
+        inner_ring_temp_c: a.inner_ring_temp_c,
+        outer_ring_temp_c: a.outer_ring_temp_c,
+    };
+    CalcInputs::from_options(&o, speed_rpm, "--oil-vi")
 }
 
 fn quasi_static(a: QsArgs) -> Result<String> {
