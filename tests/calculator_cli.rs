@@ -74,3 +74,27 @@ fn bad_input_names_the_field() {
     assert!(stderr_of(&["--oil", "VG68", "--oil-vi", "900"]).contains("oil.viscosity_index"));
     assert!(stderr_of(&["--shaft-interference-um", "500"]).contains("shaft_interference"));
 }
+
+#[test]
+fn duty_cycle_from_a_spectrum_file() {
+    let dir = std::env::temp_dir().join(format!("raceway-duty-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let good = dir.join("good.csv");
+    std::fs::write(
+        &good,
+        "fr_n,fa_n,speed_rpm,time_share\n2000,0,1000,0.5\n4000,0,2000,0.5\n",
+    )
+    .unwrap();
+    let r = qs_json(&["--duty", good.to_str().unwrap()]);
+    let d = &r["calculator"]["duty"];
+    // Mean load by hand: (2000³/3 + 2·4000³/3)^(1/3) = 3565.65 N; mean speed 1500 rpm.
+    assert!(
+        (d["mean_load"].as_f64().unwrap() - 3565.65).abs() < 0.01,
+        "{d}"
+    );
+    assert_eq!(d["mean_speed_rpm"].as_f64().unwrap(), 1500.0);
+    let bad = dir.join("bad.csv");
+    std::fs::write(&bad, "2000,0,1000,0.5\n4000,0,2000,0.4\n").unwrap();
+    assert!(stderr_of(&["--duty", bad.to_str().unwrap()]).contains("duty.time_share"));
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -3,6 +3,7 @@
 //! contacts, and the operating clearance when fits or temperatures are given.
 
 use super::clearance::{operating_clearance, ClearanceInputs, OperatingClearance};
+use super::duty::{spectrum_life, DutyLife, SpectrumRow};
 use super::friction::{palmgren, FrictionInputs, Palmgren, PalmgrenType};
 use super::lubricant::{lubrication, Lubrication, Oil};
 use super::subsurface::{subsurface, Subsurface};
@@ -24,6 +25,10 @@ pub struct CalcInputs {
     pub f0: f64,
     /// Fits and ring temperatures (`None`: no operating clearance).
     pub clearance: Option<ClearanceInputs>,
+    /// A load spectrum (`None`: no duty-cycle life).
+    pub duty: Option<Vec<SpectrumRow>>,
+    /// ISO 281 contamination factor for the spectrum rows' `a_ISO` (with the oil).
+    pub contamination: Option<f64>,
 }
 
 impl Default for CalcInputs {
@@ -33,6 +38,8 @@ impl Default for CalcInputs {
             temperature_c: 70.0,
             f0: 2.0,
             clearance: None,
+            duty: None,
+            contamination: None,
         }
     }
 }
@@ -123,6 +130,8 @@ pub struct DesignCheck {
     pub subsurface: Option<ContactStress>,
     /// The operating clearance chain, when fits or temperatures are given.
     pub clearance: Option<OperatingClearance>,
+    /// The life under the load spectrum, when one is given.
+    pub duty: Option<DutyLife>,
 }
 
 /// The check of `b` at the solution `sol` (its ISO assessment, when there is one).
@@ -177,6 +186,24 @@ pub fn design_check(
         Some(c) => Some(operating_clearance(b, c)?),
         None => None,
     };
+    let duty = match (&x.duty, rating) {
+        (Some(rows), Some(a)) => {
+            let kappa_at = |rpm: f64| match &x.oil {
+                Some(o) => lubrication(o, x.temperature_c, b.dm, rpm)
+                    .ok()
+                    .and_then(|l| l.kappa),
+                None => None,
+            };
+            Some(spectrum_life(
+                b,
+                &a.ratings,
+                rows,
+                &kappa_at,
+                x.contamination,
+            )?)
+        }
+        _ => None,
+    };
     Ok(DesignCheck {
         oil: x.oil.clone(),
         lubrication: lub,
@@ -184,6 +211,7 @@ pub fn design_check(
         friction,
         subsurface,
         clearance,
+        duty,
     })
 }
 
@@ -243,6 +271,13 @@ pub fn text(c: &DesignCheck) -> String {
                 q.z_von_mises * 1e6
             );
         }
+    }
+    if let Some(d) = &c.duty {
+        let _ = writeln!(
+            s,
+            "  duty cycle (ISO 281, Miner):    P_m {:.1} N at n_m {:.1} rpm: L10 {:.1} Mrev; with each row's a_ISO {:.1} Mrev = {:.0} h",
+            d.mean_load, d.mean_speed_rpm, d.l10_mrev, d.miner_mrev, d.miner_hours
+        );
     }
     if let Some(k) = &c.clearance {
         let _ = writeln!(

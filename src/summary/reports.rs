@@ -301,12 +301,16 @@ impl QsProblem {
         sol: &Solution,
         rating: &std::result::Result<Assessment, String>,
     ) -> Result<crate::calculator::check::DesignCheck> {
+        let calc = crate::calculator::check::CalcInputs {
+            contamination: self.life.contamination,
+            ..self.calc.clone()
+        };
         crate::calculator::check::design_check(
             &self.bearing,
             sol,
             self.speed_rpm,
             rating.as_ref().ok(),
-            &self.calc,
+            &calc,
         )
     }
 }

@@ -140,6 +140,10 @@ struct QsArgs {
     /// Outer-ring temperature, °C, for the operating clearance (default 20).
     #[arg(long, allow_hyphen_values = true)]
     outer_ring_temp_c: Option<f64>,
+    /// Load spectrum file, one row per line `fr_n, fa_n, speed_rpm, time_share`: ISO 281 life
+    /// under the duty cycle (with --oil and --contamination, each row's a_ISO).
+    #[arg(long)]
+    duty: Option<std::path::PathBuf>,
     /// Machine-readable output (SI units).
     #[arg(long)]
     json: bool,
@@ -230,7 +234,18 @@ fn calc_inputs(a: &QsArgs, speed_rpm: f64) -> Result<raceway::calculator::check:
         inner_ring_temp_c: a.inner_ring_temp_c,
         outer_ring_temp_c: a.outer_ring_temp_c,
     };
-    CalcInputs::from_options(&o, speed_rpm, "--oil-vi")
+    let mut c = CalcInputs::from_options(&o, speed_rpm, "--oil-vi")?;
+    if let Some(path) = &a.duty {
+        let text = std::fs::read_to_string(path).map_err(|e| raceway::Error::Parse {
+            what: format!("--duty {}", path.display()),
+            message: e.to_string(),
+        })?;
+        c.duty = Some(raceway::calculator::duty::parse_spectrum(
+            &text,
+            &format!("--duty {}", path.display()),
+        )?);
+    }
+    Ok(c)
 }
 
 fn quasi_static(a: QsArgs) -> Result<String> {
