@@ -473,8 +473,8 @@ fn run(
 
 /// `raceway quasi-static --json` as text, plus (ball columns with units, their values).
 #[pyfunction]
-#[pyo3(signature = (bearing, speed_rpm, load, race_control, kappa, contamination))]
-#[allow(clippy::type_complexity)]
+#[pyo3(signature = (bearing, speed_rpm, load, race_control, kappa, contamination, oil=None, oil_vi=None, oil_temp_c=None, f0=None, shaft_interference_um=None, housing_interference_um=None, inner_ring_temp_c=None, outer_ring_temp_c=None))]
+#[allow(clippy::type_complexity, clippy::too_many_arguments)]
 fn quasi_static(
     py: Python<'_>,
     bearing: Option<String>,
@@ -483,7 +483,25 @@ fn quasi_static(
     race_control: Option<String>,
     kappa: Option<f64>,
     contamination: Option<f64>,
+    oil: Option<String>,
+    oil_vi: Option<f64>,
+    oil_temp_c: Option<f64>,
+    f0: Option<f64>,
+    shaft_interference_um: Option<f64>,
+    housing_interference_um: Option<f64>,
+    inner_ring_temp_c: Option<f64>,
+    outer_ring_temp_c: Option<f64>,
 ) -> PyResult<(String, Vec<String>, Vec<Vec<f64>>)> {
+    let options = raceway::calculator::check::CalcOptions {
+        oil,
+        oil_vi,
+        oil_temp_c,
+        f0,
+        shaft_interference_um,
+        housing_interference_um,
+        inner_ring_temp_c,
+        outer_ring_temp_c,
+    };
     compute(py, || {
         let scene = raceway::Scene::default_scene();
         let bearing = match bearing.as_deref() {
@@ -502,7 +520,7 @@ fn quasi_static(
                 ))
             }
         };
-        let problem = reports::QsProblem::new(
+        let mut problem = reports::QsProblem::new(
             bearing,
             speed_rpm,
             load,
@@ -511,7 +529,10 @@ fn quasi_static(
             contamination,
             &reports::PYTHON_NAMES,
         )?;
+        problem.calc =
+            raceway::calculator::check::CalcInputs::from_options(&options, speed_rpm, "oil_vi")?;
         let (sol, rating) = problem.solve()?;
+        problem.design_check(&sol, &rating)?;
         let json = serde_json::to_string(&reports::quasi_static_report(&problem, &sol, &rating))
             .expect("the report serialises");
         let (names, columns) = reports::ball_columns(&sol);

@@ -64,3 +64,18 @@ def test_bearings_are_the_command_lines(cli):
     pd.testing.assert_frame_equal(df, ref)
     assert int(df.set_index("name").loc["7008ce", "ball_count"]) == 16
     assert raceway.bearing("6206") == cli.json("bearings", "6206", "--json")
+
+
+def test_design_check_from_an_oil_and_a_fit():
+    thin = raceway.quasi_static("6205", 3000.0, fy=2000.0, oil="VG32")
+    thick = raceway.quasi_static(
+        "6205", 3000.0, fy=2000.0, oil="VG100", shaft_interference_um=10.0
+    )
+    k = lambda r: r.data["calculator"]["lubrication"]["kappa"]
+    m = lambda r: r.data["calculator"]["friction"]["total"]
+    assert k(thick) > k(thin) and m(thick) > m(thin)
+    c = thick.data["calculator"]["clearance"]
+    assert c["operating"] < c["unmounted"]
+    with pytest.raises(raceway.Error) as e:
+        raceway.quasi_static("6205", 3000.0, oil="castor")
+    assert "castor" in e.value.message

@@ -2,4 +2,10 @@
 //! subsurface stress below each contact, friction moment, and the like. Plain data in, plain
 //! data out; SI units inside.
 
+pub mod check;
+pub mod clearance;
+pub mod duty;
+pub mod friction;
+pub mod lubricant;
 pub mod subsurface;
+pub mod vi_table;

@@ -26,7 +26,7 @@
 use crate::error::{Error, Result};
 
 /// Peak stresses below one contact, with their depths below the surface.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct Subsurface {
     /// Maximum 45° shear `(σ1 - σ3)/2` on the axis (Pa).
     pub tau_max: f64,

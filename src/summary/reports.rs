@@ -206,6 +206,8 @@ pub struct QsProblem {
     pub race_control: RaceControl,
     /// What the life needs beyond the loads.
     pub life: LifeInputs,
+    /// The design check's inputs (oil, fits); set after [`QsProblem::new`].
+    pub calc: crate::calculator::check::CalcInputs,
 }
 
 fn finite(field: &str, v: f64) -> Result<f64> {
@@ -270,6 +272,7 @@ impl QsProblem {
                     .map(|e| in_range(names.contamination, e, 0.0, 1.0))
                     .transpose()?,
             },
+            calc: Default::default(),
         })
     }
 
@@ -283,8 +286,38 @@ impl QsProblem {
         };
         let model = QuasiStatic::new(&self.bearing, opts)?;
         let sol = model.solve(&self.load, rpm_to_rad_s(self.speed_rpm))?;
-        let rating = assess(&self.bearing, &sol, &self.life).map_err(|e| e.to_string());
+        // An oil without a typed kappa: kappa from the oil at the operating temperature.
+        let mut life = self.life;
+        if let (None, Some(oil)) = (life.kappa, &self.calc.oil) {
+            life.kappa = crate::calculator::lubricant::lubrication(
+                oil,
+                self.calc.temperature_c,
+                self.bearing.dm,
+                self.speed_rpm,
+            )?
+            .kappa;
+        }
+        let rating = assess(&self.bearing, &sol, &life).map_err(|e| e.to_string());
         Ok((sol, rating))
+    }
+
+    /// The design check at a solution of this problem (see [`crate::calculator::check`]).
+    pub fn design_check(
+        &self,
+        sol: &Solution,
+        rating: &std::result::Result<Assessment, String>,
+    ) -> Result<crate::calculator::check::DesignCheck> {
+        let calc = crate::calculator::check::CalcInputs {
+            contamination: self.life.contamination,
+            ..self.calc.clone()
+        };
+        crate::calculator::check::design_check(
+            &self.bearing,
+            sol,
+            self.speed_rpm,
+            rating.as_ref().ok(),
+            &calc,
+        )
     }
 }
 
@@ -317,6 +350,13 @@ pub struct QsReport<'a> {
     pub rating_error: Option<&'a str>,
     /// Warnings as sentences (the same list, typed, is `rating.warnings`).
     pub warnings: Vec<String>,
+    /// The design check: oil viscosity and kappa, Palmgren friction and power loss,
+    /// subsurface stresses below the most loaded ball, operating clearance (null when it
+    /// failed; then `calculator_error` says why).
+    pub calculator: Option<crate::calculator::check::DesignCheck>,
+    /// Why there is no design check.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub calculator_error: Option<String>,
 }
 
 /// `raceway quasi-static --json`'s document.
@@ -325,6 +365,7 @@ pub fn quasi_static_report<'a>(
     sol: &'a Solution,
     rating: &'a std::result::Result<Assessment, String>,
 ) -> QsReport<'a> {
+    let check = p.design_check(sol, rating).map_err(|e| e.to_string());
     QsReport {
         bearing: &p.bearing.name,
         speed_rpm: p.speed_rpm,
@@ -336,6 +377,8 @@ pub fn quasi_static_report<'a>(
             .as_ref()
             .map(|a| a.warning_texts())
             .unwrap_or_default(),
+        calculator: check.as_ref().ok().cloned(),
+        calculator_error: check.err(),
     }
 }
 

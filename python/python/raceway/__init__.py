@@ -75,8 +75,20 @@ def quasi_static(
     race_control: Optional[str] = None,
     kappa: Optional[float] = None,
     contamination: Optional[float] = None,
+    oil: Optional[str] = None,
+    oil_vi: Optional[float] = None,
+    oil_temp_c: Optional[float] = None,
+    f0: Optional[float] = None,
+    shaft_interference_um: Optional[float] = None,
+    housing_interference_um: Optional[float] = None,
+    inner_ring_temp_c: Optional[float] = None,
+    outer_ring_temp_c: Optional[float] = None,
 ) -> QuasiStaticResult:
-    """The Jones–Harris quasi-static equilibrium, as ``raceway quasi-static`` solves it."""
+    """The Jones–Harris quasi-static equilibrium, as ``raceway quasi-static`` solves it.
+
+    The design check (oil viscosity and kappa, Palmgren friction, subsurface stresses,
+    operating clearance; docs/calculator.md) is ``result.data["calculator"]``.
+    """
     text, names, columns = _raceway.quasi_static(
         None if bearing is None else os.fspath(bearing),
         float(speed_rpm),
@@ -84,6 +96,14 @@ def quasi_static(
         race_control,
         kappa,
         contamination,
+        oil,
+        oil_vi,
+        oil_temp_c,
+        f0,
+        shaft_interference_um,
+        housing_interference_um,
+        inner_ring_temp_c,
+        outer_ring_temp_c,
     )
     data = json.loads(text)
     sol = data["solution"]

@@ -180,6 +180,14 @@ def quasi_static(
     race_control: Optional[str] = None,
     kappa: Optional[float] = None,
     contamination: Optional[float] = None,
+    oil: Optional[str] = None,
+    oil_vi: Optional[float] = None,
+    oil_temp_c: Optional[float] = None,
+    f0: Optional[float] = None,
+    shaft_interference_um: Optional[float] = None,
+    housing_interference_um: Optional[float] = None,
+    inner_ring_temp_c: Optional[float] = None,
+    outer_ring_temp_c: Optional[float] = None,
 ) -> QuasiStaticResult:
     """The Jones–Harris quasi-static equilibrium under an external load on the inner ring
     (the outer ring fixed), as ``raceway quasi-static`` solves it.
@@ -189,6 +197,12 @@ def quasi_static(
     ``speed_rpm`` >= 0; loads ``fx, fy, fz`` in N and moments ``mx, my`` in N m;
     ``race_control``: ``"outer"`` or ``"none"`` (``None``: the default scene's, outer);
     ``kappa`` (viscosity ratio) and ``contamination`` (ISO 281 eC, 0..1) for a_ISO.
+    The design check (docs/calculator.md) is ``result.data["calculator"]`` (SI): ``oil`` an ISO
+    VG grade (``"VG68"``) with ``oil_vi`` (default 95) at ``oil_temp_c`` (default 70) gives the
+    viscosity, kappa (used for a_ISO when ``kappa`` is not given) and Palmgren's friction
+    moment and power loss (``f0`` default 2); the subsurface stresses below the most loaded
+    ball are always there; ``shaft_interference_um``, ``housing_interference_um``,
+    ``inner_ring_temp_c``, ``outer_ring_temp_c`` give the operating clearance.
     """
 
 def bearings() -> pd.DataFrame:

@@ -115,6 +115,35 @@ struct QsArgs {
     /// Contamination factor eC of ISO 281 (0..1; with --kappa gives a_ISO).
     #[arg(long)]
     contamination: Option<f64>,
+    /// Oil by ISO VG grade (VG2 .. VG3200): viscosity at --oil-temp-c, kappa (unless --kappa
+    /// is given) and Palmgren's friction moment in the design check.
+    #[arg(long)]
+    oil: Option<String>,
+    /// Viscosity index of --oil (ASTM D2270; default 95).
+    #[arg(long, allow_hyphen_values = true)]
+    oil_vi: Option<f64>,
+    /// Oil operating temperature, °C (default 70).
+    #[arg(long, allow_hyphen_values = true)]
+    oil_temp_c: Option<f64>,
+    /// Palmgren's lubrication factor f0 (default 2, oil bath).
+    #[arg(long)]
+    f0: Option<f64>,
+    /// Diametral interference of the inner ring on a solid steel shaft, µm (operating clearance).
+    #[arg(long, allow_hyphen_values = true)]
+    shaft_interference_um: Option<f64>,
+    /// Diametral interference of the outer ring in an unbounded steel housing, µm.
+    #[arg(long, allow_hyphen_values = true)]
+    housing_interference_um: Option<f64>,
+    /// Inner-ring temperature, °C, for the operating clearance (default 20).
+    #[arg(long, allow_hyphen_values = true)]
+    inner_ring_temp_c: Option<f64>,
+    /// Outer-ring temperature, °C, for the operating clearance (default 20).
+    #[arg(long, allow_hyphen_values = true)]
+    outer_ring_temp_c: Option<f64>,
+    /// Load spectrum file, one row per line `fr_n, fa_n, speed_rpm, time_share`: ISO 281 life
+    /// under the duty cycle (with --oil and --contamination, each row's a_ISO).
+    #[arg(long)]
+    duty: Option<std::path::PathBuf>,
     /// Machine-readable output (SI units).
     #[arg(long)]
     json: bool,
@@ -192,9 +221,39 @@ fn problem(a: &QsArgs) -> Result<QsProblem> {
     )
 }
 
+/// The design check's inputs from the flags.
+fn calc_inputs(a: &QsArgs, speed_rpm: f64) -> Result<raceway::calculator::check::CalcInputs> {
+    use raceway::calculator::check::{CalcInputs, CalcOptions};
+    let o = CalcOptions {
+        oil: a.oil.clone(),
+        oil_vi: a.oil_vi,
+        oil_temp_c: a.oil_temp_c,
+        f0: a.f0,
+        shaft_interference_um: a.shaft_interference_um,
+        housing_interference_um: a.housing_interference_um,
+        inner_ring_temp_c: a.inner_ring_temp_c,
+        outer_ring_temp_c: a.outer_ring_temp_c,
+    };
+    let mut c = CalcInputs::from_options(&o, speed_rpm, "--oil-vi")?;
+    if let Some(path) = &a.duty {
+        let text = std::fs::read_to_string(path).map_err(|e| raceway::Error::Parse {
+            what: format!("--duty {}", path.display()),
+            message: e.to_string(),
+        })?;
+        c.duty = Some(raceway::calculator::duty::parse_spectrum(
+            &text,
+            &format!("--duty {}", path.display()),
+        )?);
+    }
+    Ok(c)
+}
+
 fn quasi_static(a: QsArgs) -> Result<String> {
-    let p = problem(&a)?;
+    let mut p = problem(&a)?;
+    p.calc = calc_inputs(&a, p.speed_rpm)?;
     let (sol, rating) = p.solve()?;
+    // Bad design-check input (fits, oil temperature) is an error, not a missing line.
+    p.design_check(&sol, &rating)?;
     if a.json {
         report::quasi_static_json(&p, &sol, &rating)
     } else {

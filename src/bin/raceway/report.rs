@@ -226,6 +226,11 @@ pub fn quasi_static_text(
         Ok(a) => s += &a.text(),
         Err(e) => s += &format!("ISO ratings and life: not available ({e})\n"),
     }
+    let _ = writeln!(s);
+    match p.design_check(sol, rating) {
+        Ok(c) => s += &raceway::calculator::check::text(&c),
+        Err(e) => s += &format!("Design check: not available ({e})\n"),
+    }
     s
 }
 

@@ -1,0 +1,302 @@
+//! One bearing's design check beside a quasi-static solution: the oil's viscosity and κ,
+//! Palmgren's friction moment and power loss, the subsurface stresses below the most loaded
+//! contacts, and the operating clearance when fits or temperatures are given.
+
+use super::clearance::{operating_clearance, ClearanceInputs, OperatingClearance};
+use super::duty::{spectrum_life, DutyLife, SpectrumRow};
+use super::friction::{palmgren, FrictionInputs, Palmgren, PalmgrenType};
+use super::lubricant::{lubrication, Lubrication, Oil};
+use super::subsurface::{subsurface, Subsurface};
+use crate::error::Result;
+use crate::geometry::{Bearing, BearingKind};
+use crate::models::quasi_static::Solution;
+use crate::ratings::Assessment;
+use serde::Serialize;
+
+/// What the check needs beyond the bearing and its load.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CalcInputs {
+    /// The oil (`None`: no viscosity, κ or friction).
+    pub oil: Option<Oil>,
+    /// Oil (bearing) operating temperature, °C.
+    pub temperature_c: f64,
+    /// Palmgren's lubrication factor `f0` (2: oil bath, the sources' value for deep-groove
+    /// ball bearings).
+    pub f0: f64,
+    /// Fits and ring temperatures (`None`: no operating clearance).
+    pub clearance: Option<ClearanceInputs>,
+    /// A load spectrum (`None`: no duty-cycle life).
+    pub duty: Option<Vec<SpectrumRow>>,
+    /// ISO 281 contamination factor for the spectrum rows' `a_ISO` (with the oil).
+    pub contamination: Option<f64>,
+}
+
+impl Default for CalcInputs {
+    fn default() -> Self {
+        CalcInputs {
+            oil: None,
+            temperature_c: 70.0,
+            f0: 2.0,
+            clearance: None,
+            duty: None,
+            contamination: None,
+        }
+    }
+}
+
+/// The design check's inputs as a user types them (units in the names; `None`: not given).
+/// The command line's flags and Python's keywords carry the same names.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct CalcOptions {
+    /// ISO VG grade name, e.g. `VG68`.
+    pub oil: Option<String>,
+    /// Viscosity index of the oil (default [`super::lubricant::DEFAULT_VI`]).
+    pub oil_vi: Option<f64>,
+    /// Oil operating temperature, °C (default 70).
+    pub oil_temp_c: Option<f64>,
+    /// Palmgren's `f0` (default 2).
+    pub f0: Option<f64>,
+    /// Shaft-fit diametral interference, µm.
+    pub shaft_interference_um: Option<f64>,
+    /// Housing-fit diametral interference, µm.
+    pub housing_interference_um: Option<f64>,
+    /// Inner-ring temperature, °C.
+    pub inner_ring_temp_c: Option<f64>,
+    /// Outer-ring temperature, °C.
+    pub outer_ring_temp_c: Option<f64>,
+}
+
+impl CalcInputs {
+    /// From the typed options at a shaft speed; `oil_vi` without `oil` is refused, naming
+    /// `vi_name`.
+    pub fn from_options(o: &CalcOptions, speed_rpm: f64, vi_name: &str) -> Result<CalcInputs> {
+        let mut c = CalcInputs::default();
+        if let Some(name) = &o.oil {
+            c.oil = Some(Oil::by_name(name, o.oil_vi)?);
+        } else if let Some(vi) = o.oil_vi {
+            return Err(crate::Error::invalid(vi_name, vi, "given with the oil"));
+        }
+        if let Some(t) = o.oil_temp_c {
+            c.temperature_c = t;
+        }
+        if let Some(f0) = o.f0 {
+            c.f0 = f0;
+        }
+        let fits = [
+            o.shaft_interference_um,
+            o.housing_interference_um,
+            o.inner_ring_temp_c,
+            o.outer_ring_temp_c,
+        ];
+        if fits.iter().any(Option::is_some) {
+            let d = ClearanceInputs::default();
+            c.clearance = Some(ClearanceInputs {
+                shaft_interference: o.shaft_interference_um.unwrap_or(0.0) * 1e-6,
+                housing_interference: o.housing_interference_um.unwrap_or(0.0) * 1e-6,
+                inner_c: o.inner_ring_temp_c.unwrap_or(d.inner_c),
+                outer_c: o.outer_ring_temp_c.unwrap_or(d.outer_c),
+                speed_rpm,
+                ..d
+            });
+        }
+        Ok(c)
+    }
+}
+
+/// Subsurface stresses below the most loaded ball's contacts.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct ContactStress {
+    /// Index of the ball.
+    pub ball: usize,
+    /// Inner contact.
+    pub inner: Subsurface,
+    /// Outer contact.
+    pub outer: Subsurface,
+}
+
+/// The design check (SI).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct DesignCheck {
+    /// The oil, when given.
+    pub oil: Option<Oil>,
+    /// Its viscosity, ν1 and κ at the operating temperature.
+    pub lubrication: Option<Lubrication>,
+    /// Which friction model: `palmgren` (ISO/TR 14179-2's); the SKF four-term model is not
+    /// implemented.
+    pub friction_model: &'static str,
+    /// Palmgren's moment (N m) and power loss (W), when the oil and the ratings are known.
+    pub friction: Option<Palmgren>,
+    /// Below the most loaded ball (`None` when no ball is loaded).
+    pub subsurface: Option<ContactStress>,
+    /// The operating clearance chain, when fits or temperatures are given.
+    pub clearance: Option<OperatingClearance>,
+    /// The life under the load spectrum, when one is given.
+    pub duty: Option<DutyLife>,
+}
+
+/// The check of `b` at the solution `sol` (its ISO assessment, when there is one).
+pub fn design_check(
+    b: &Bearing,
+    sol: &Solution,
+    speed_rpm: f64,
+    rating: Option<&Assessment>,
+    x: &CalcInputs,
+) -> Result<DesignCheck> {
+    let lub = match &x.oil {
+        Some(o) => Some(lubrication(o, x.temperature_c, b.dm, speed_rpm)?),
+        None => None,
+    };
+    let friction = match (lub, rating) {
+        (Some(l), Some(a)) => {
+            let t = match b.kind {
+                BearingKind::DeepGroove => PalmgrenType::DEEP_GROOVE,
+                BearingKind::AngularContact => PalmgrenType::ANGULAR_CONTACT,
+            };
+            Some(palmgren(
+                t,
+                &FrictionInputs {
+                    dm: b.dm,
+                    speed_rpm,
+                    nu: l.nu,
+                    fr: a.radial_load,
+                    fa: a.axial_load,
+                    p0: a.p0,
+                    c0: a.ratings.c0,
+                    f0: x.f0,
+                },
+            )?)
+        }
+        _ => None,
+    };
+    let most = sol
+        .balls
+        .iter()
+        .enumerate()
+        .filter(|(_, r)| r.q_i > 0.0 && r.q_o > 0.0 && r.p_i > 0.0 && r.p_o > 0.0)
+        .max_by(|a, b| a.1.p_i.max(a.1.p_o).total_cmp(&b.1.p_i.max(b.1.p_o)));
+    let subsurface = match most {
+        Some((j, r)) => Some(ContactStress {
+            ball: j,
+            inner: subsurface(r.a_i, r.b_i, r.p_i, b.inner_material.poisson_ratio)?,
+            outer: subsurface(r.a_o, r.b_o, r.p_o, b.outer_material.poisson_ratio)?,
+        }),
+        None => None,
+    };
+    let clearance = match &x.clearance {
+        Some(c) => Some(operating_clearance(b, c)?),
+        None => None,
+    };
+    let duty = match (&x.duty, rating) {
+        (Some(rows), Some(a)) => {
+            let kappa_at = |rpm: f64| match &x.oil {
+                Some(o) => lubrication(o, x.temperature_c, b.dm, rpm)
+                    .ok()
+                    .and_then(|l| l.kappa),
+                None => None,
+            };
+            Some(spectrum_life(
+                b,
+                &a.ratings,
+                rows,
+                &kappa_at,
+                x.contamination,
+            )?)
+        }
+        _ => None,
+    };
+    Ok(DesignCheck {
+        oil: x.oil.clone(),
+        lubrication: lub,
+        friction_model: "palmgren",
+        friction,
+        subsurface,
+        clearance,
+        duty,
+    })
+}
+
+/// The check as text lines for `raceway quasi-static` (units at the edge).
+pub fn text(c: &DesignCheck) -> String {
+    use std::fmt::Write;
+    let mut s = String::from("Design check:\n");
+    match (&c.oil, &c.lubrication) {
+        (Some(o), Some(l)) => {
+            let _ = writeln!(
+                s,
+                "  oil:                            {} (VI {:.0}; 40 °C {:.2} mm²/s, 100 °C {:.2} mm²/s) at {:.1} °C: nu {:.2} mm²/s",
+                o.name,
+                o.viscosity_index,
+                o.nu40 * 1e6,
+                o.nu100 * 1e6,
+                l.temperature_c,
+                l.nu * 1e6
+            );
+            match (l.nu1, l.kappa) {
+                (Some(n1), Some(k)) => {
+                    let _ = writeln!(
+                        s,
+                        "  kappa = nu/nu1 (ISO 281):       {k:.3} (nu1 {:.2} mm²/s)",
+                        n1 * 1e6
+                    );
+                }
+                _ => s += "  kappa = nu/nu1 (ISO 281):       not defined at standstill\n",
+            }
+        }
+        _ => s += "  oil:                            not given (--oil VG68 --oil-temp-c 70 gives viscosity, kappa and friction)\n",
+    }
+    match &c.friction {
+        Some(f) => {
+            let _ = writeln!(
+                s,
+                "  friction (Palmgren):            M {:.2} N mm = M0 {:.2} (viscous) + M1 {:.2} (load); power loss {:.2} W",
+                f.total * 1e3,
+                f.m0 * 1e3,
+                f.m1 * 1e3,
+                f.power
+            );
+        }
+        None => s += "  friction (Palmgren):            needs the oil and the ISO ratings\n",
+    }
+    if let Some(st) = &c.subsurface {
+        for (name, q) in [("inner", &st.inner), ("outer", &st.outer)] {
+            let _ = writeln!(
+                s,
+                "  subsurface, ball {} {name}:       tau45 {:.0} MPa at {:.1} µm, tau0 {:.0} MPa at {:.1} µm, von Mises {:.0} MPa at {:.1} µm",
+                st.ball,
+                q.tau_max * 1e-6,
+                q.z_tau_max * 1e6,
+                q.tau_orth * 1e-6,
+                q.z_tau_orth * 1e6,
+                q.von_mises * 1e-6,
+                q.z_von_mises * 1e6
+            );
+        }
+    }
+    if let Some(d) = &c.duty {
+        let _ = writeln!(
+            s,
+            "  duty cycle (ISO 281, Miner):    P_m {:.1} N at n_m {:.1} rpm: L10 {:.1} Mrev; with each row's a_ISO {:.1} Mrev = {:.0} h",
+            d.mean_load, d.mean_speed_rpm, d.l10_mrev, d.miner_mrev, d.miner_hours
+        );
+    }
+    if let Some(k) = &c.clearance {
+        let _ = writeln!(
+            s,
+            "  operating clearance:            Pd {:.2} µm = {:.2} unmounted {:+.2} shaft fit {:+.2} housing fit {:+.2} temperatures {:+.2} speed",
+            k.operating * 1e6,
+            k.unmounted * 1e6,
+            k.from_shaft_fit * 1e6,
+            k.from_housing_fit * 1e6,
+            k.from_temperatures * 1e6,
+            k.from_speed * 1e6
+        );
+        let _ = writeln!(
+            s,
+            "  fit pressures:                  shaft {:.1} MPa, housing {:.1} MPa; hoop stress at the bore {:.1} MPa",
+            k.shaft_pressure * 1e-6,
+            k.housing_pressure * 1e-6,
+            k.inner_bore_hoop_stress * 1e-6
+        );
+    }
+    s
+}

@@ -1,0 +1,100 @@
+//! `raceway quasi-static`'s design check (docs/calculator.md): the oil's kappa feeds the ISO
+//! life, the friction moment rises with viscosity, a shaft fit takes clearance away, and bad
+//! input is refused naming the flag or field.
+
+use std::process::Command;
+
+fn qs_json(extra: &[&str]) -> serde_json::Value {
+    let mut args = vec![
+        "quasi-static",
+        "--bearing",
+        "6205",
+        "--speed-rpm",
+        "3000",
+        "--fy",
+        "2000",
+        "--json",
+    ];
+    args.extend_from_slice(extra);
+    let out = Command::new(env!("CARGO_BIN_EXE_raceway"))
+        .args(&args)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).unwrap()
+}
+
+fn stderr_of(extra: &[&str]) -> String {
+    let mut args = vec!["quasi-static", "--bearing", "6205", "--speed-rpm", "3000"];
+    args.extend_from_slice(extra);
+    let out = Command::new(env!("CARGO_BIN_EXE_raceway"))
+        .args(&args)
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    String::from_utf8_lossy(&out.stderr).into_owned()
+}
+
+#[test]
+fn oil_gives_kappa_and_friction() {
+    let thin = qs_json(&["--oil", "VG32", "--contamination", "0.5"]);
+    let thick = qs_json(&["--oil", "VG100", "--contamination", "0.5"]);
+    let k = |v: &serde_json::Value| v["calculator"]["lubrication"]["kappa"].as_f64().unwrap();
+    let m = |v: &serde_json::Value| v["calculator"]["friction"]["total"].as_f64().unwrap();
+    assert!(k(&thick) > k(&thin) && m(&thick) > m(&thin));
+    // The kappa from the oil is the one the ISO life used (a_ISO rises with kappa).
+    let a = |v: &serde_json::Value| v["rating"]["a_iso"].as_f64().unwrap();
+    assert!(a(&thick) > a(&thin));
+    // The subsurface stresses are always there; no oil, no friction.
+    let none = qs_json(&[]);
+    assert!(none["calculator"]["friction"].is_null());
+    let tau = none["calculator"]["subsurface"]["inner"]["tau_max"]
+        .as_f64()
+        .unwrap();
+    let p = none["rating"]["peak_pressure"].as_f64().unwrap();
+    assert!(tau > 0.25 * p && tau < 0.33 * p, "{tau} {p}");
+}
+
+#[test]
+fn fits_reduce_clearance() {
+    let r = qs_json(&["--shaft-interference-um", "10"]);
+    let c = &r["calculator"]["clearance"];
+    assert!(c["operating"].as_f64().unwrap() < c["unmounted"].as_f64().unwrap());
+    assert!(qs_json(&[])["calculator"]["clearance"].is_null());
+}
+
+#[test]
+fn bad_input_names_the_field() {
+    assert!(stderr_of(&["--oil", "castor"]).contains("castor"));
+    assert!(stderr_of(&["--oil-vi", "100"]).contains("--oil-vi"));
+    assert!(stderr_of(&["--oil", "VG68", "--oil-vi", "900"]).contains("oil.viscosity_index"));
+    assert!(stderr_of(&["--shaft-interference-um", "500"]).contains("shaft_interference"));
+}
+
+#[test]
+fn duty_cycle_from_a_spectrum_file() {
+    let dir = std::env::temp_dir().join(format!("raceway-duty-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let good = dir.join("good.csv");
+    std::fs::write(
+        &good,
+        "fr_n,fa_n,speed_rpm,time_share\n2000,0,1000,0.5\n4000,0,2000,0.5\n",
+    )
+    .unwrap();
+    let r = qs_json(&["--duty", good.to_str().unwrap()]);
+    let d = &r["calculator"]["duty"];
+    // Mean load by hand: (2000³/3 + 2·4000³/3)^(1/3) = 3565.65 N; mean speed 1500 rpm.
+    assert!(
+        (d["mean_load"].as_f64().unwrap() - 3565.65).abs() < 0.01,
+        "{d}"
+    );
+    assert_eq!(d["mean_speed_rpm"].as_f64().unwrap(), 1500.0);
+    let bad = dir.join("bad.csv");
+    std::fs::write(&bad, "2000,0,1000,0.5\n4000,0,2000,0.4\n").unwrap();
+    assert!(stderr_of(&["--duty", bad.to_str().unwrap()]).contains("duty.time_share"));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
