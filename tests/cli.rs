@@ -602,6 +602,31 @@ fn a_plot_that_cannot_be_made_is_skipped_with_a_warning() {
 /// and 1e6 rpm are refused naming `--speed-rpm` and the limit (before: 350 000 rpm gave a
 /// result and 1e6 rpm failed in the line search naming nothing; 100 000 rpm still solves); a load past the plastic
 /// limit is refused naming its flag.
+/// Issue #38 item 5 through the command line: 4e4 N at 1750 rpm pushes the 6205's ring
+/// 163 µm, where the ball opposite the load lies beyond its inner groove's centre; that
+/// failed with "quasi-static ball equilibrium did not converge in 0 iterations (residual
+/// inf)". Both signs.
+#[test]
+fn quasi_static_solves_a_heavy_load_that_leaves_balls_beyond_their_groove_centre() {
+    for fy in ["-4e4", "4e4"] {
+        let out = run(&[
+            "quasi-static",
+            "--bearing",
+            "6205",
+            "--speed-rpm",
+            "1750",
+            "--fy",
+            fy,
+        ]);
+        let text = String::from_utf8_lossy(&out.stdout);
+        assert!(
+            out.status.success() && text.contains("163.33"),
+            "{fy}: {text}{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
+}
+
 #[test]
 fn quasi_static_enforces_the_components_limits() {
     for rpm in ["350000", "1e6"] {
