@@ -145,6 +145,7 @@ pub fn check_toml(text: &str, max: usize) -> Result<(), TooDeep> {
     let mut dots = 0usize; // dotted-key parts of the current statement
     let mut in_key = true; // reading a key (line start at top level, after `{` or `,` in a table)
     let mut line_start = true;
+    let mut prev = b'\n'; // the last byte read that is not a blank
     let mut i = 0;
     let depth = |open: &Vec<u8>, header: usize, dots: usize| open.len() + header + dots;
     while i < b.len() {
@@ -156,6 +157,7 @@ pub fn check_toml(text: &str, max: usize) -> Result<(), TooDeep> {
                     in_key = true;
                 }
                 line_start = true;
+                prev = c;
                 i += 1;
                 continue;
             }
@@ -169,8 +171,19 @@ pub fn check_toml(text: &str, max: usize) -> Result<(), TooDeep> {
                 }
                 continue;
             }
+            b'"' | b'\'' if prev.is_ascii_alphanumeric() || prev == b'_' || prev == b'-' => {
+                // A quote right after a bare key or a value (`cau"ality = { ...`) starts no
+                // string for the parser, which recovers and reads the brackets after it
+                // (found by the fuzzer: they overflowed a 64 KiB stack when a later quote
+                // closed this "string" over them): only the quote is skipped.
+                prev = c;
+                line_start = false;
+                i += 1;
+                continue;
+            }
             b'"' | b'\'' => {
                 i = skip_toml_string(b, i);
+                prev = c;
                 line_start = false;
                 continue;
             }
@@ -201,6 +214,7 @@ pub fn check_toml(text: &str, max: usize) -> Result<(), TooDeep> {
                     j += 1;
                 }
                 i = j;
+                prev = b']';
                 line_start = false;
                 in_key = true;
                 continue;
@@ -226,6 +240,7 @@ pub fn check_toml(text: &str, max: usize) -> Result<(), TooDeep> {
             }
             _ => {}
         }
+        prev = c;
         line_start = false;
         i += 1;
     }
@@ -251,6 +266,13 @@ mod tests {
         );
         let e = check_toml(&t, MAX_NESTING).unwrap_err();
         assert_eq!((e.depth, e.line), (MAX_NESTING + 1, 2));
+        // Nor does a quote inside a key that a later quote closes (fuzzer, again).
+        let t = format!(
+            "[model]\ncau\"ality = {}\"motion\"{}\n",
+            "{ x = ".repeat(300),
+            " }".repeat(300)
+        );
+        assert_eq!(check_toml(&t, MAX_NESTING).unwrap_err().line, 2);
         // A closed string still hides what is in it.
         assert!(check_toml(&format!("a = \"{}\"\n", "{".repeat(300)), MAX_NESTING).is_ok());
     }

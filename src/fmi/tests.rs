@@ -369,7 +369,7 @@ fn a_panic_poisons_its_instance_and_freed_handles_are_refused() {
 fn a_start_time_no_step_could_leave_is_refused_at_set_up_by_name() {
     // Issue #38 item 9: startTime = 1e300 was accepted, then every step was refused.
     let mut a = instance();
-    let e = a.setup(None, 1e300, None).err().expect("1e300 refused");
+    let e = a.setup(None, 1e300, None).expect_err("1e300 refused");
     assert!(
         e.msg.contains("startTime") && e.msg.contains("[-5e8, 5e8] s"),
         "{}",
