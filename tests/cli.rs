@@ -602,6 +602,31 @@ fn a_plot_that_cannot_be_made_is_skipped_with_a_warning() {
 /// and 1e6 rpm are refused naming `--speed-rpm` and the limit (before: 350 000 rpm gave a
 /// result and 1e6 rpm failed in the line search naming nothing; 100 000 rpm still solves); a load past the plastic
 /// limit is refused naming its flag.
+/// Issue #38 item 5 through the command line: 4e4 N at 1750 rpm pushes the 6205's ring
+/// 163 µm, where the ball opposite the load lies beyond its inner groove's centre; that
+/// failed with "quasi-static ball equilibrium did not converge in 0 iterations (residual
+/// inf)". Both signs.
+#[test]
+fn quasi_static_solves_a_heavy_load_that_leaves_balls_beyond_their_groove_centre() {
+    for fy in ["-4e4", "4e4"] {
+        let out = run(&[
+            "quasi-static",
+            "--bearing",
+            "6205",
+            "--speed-rpm",
+            "1750",
+            "--fy",
+            fy,
+        ]);
+        let text = String::from_utf8_lossy(&out.stdout);
+        assert!(
+            out.status.success() && text.contains("163.33"),
+            "{fy}: {text}{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
+}
+
 #[test]
 fn quasi_static_enforces_the_components_limits() {
     for rpm in ["350000", "1e6"] {
@@ -728,6 +753,64 @@ fn sigint_stops_a_run_promptly_and_writes_nothing() {
         std::fs::read_dir(&dir).unwrap().count(),
         0,
         "a staged folder stayed"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Issue #38, Ctrl-C everywhere: SIGINT stops `raceway sweep` within 0.2 s with exit status
+/// 130; the points it finished keep their rows (and `sweep.csv` lists them), the point
+/// running has none, so the sweep resumes from there.
+#[test]
+fn sigint_stops_a_sweep_promptly_and_keeps_its_finished_points() {
+    let dir = std::env::temp_dir().join(format!("raceway-cli-sweep-int-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let scene = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("examples/scenes/7008ce-skidding-24000.toml");
+    let sweep = dir.join("s.toml");
+    std::fs::write(
+        &sweep,
+        format!(
+            "scene = {:?}\n[[axis]]\nkey = \"run.duration_s\"\nvalues = [0.0005, 0.001, 20.0]\n",
+            scene.to_str().unwrap()
+        ),
+    )
+    .unwrap();
+    let out_dir = dir.join("out");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_raceway"))
+        .args(["sweep", sweep.to_str().unwrap(), "--jobs", "1", "--out"])
+        .arg(&out_dir)
+        .stderr(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    // Until the two short points have their rows (the third runs 20 s).
+    let rows = out_dir.join("rows");
+    let t0 = std::time::Instant::now();
+    while std::fs::read_dir(&rows).map_or(0, |d| d.count()) < 2 {
+        assert!(
+            t0.elapsed().as_secs() < 60,
+            "the short points did not finish"
+        );
+        assert!(child.try_wait().unwrap().is_none(), "the sweep ended early");
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    std::thread::sleep(std::time::Duration::from_millis(500));
+    let sent = std::time::Instant::now();
+    unsafe { libc::kill(child.id() as libc::pid_t, libc::SIGINT) };
+    let status = child.wait().unwrap();
+    let took = sent.elapsed();
+    let mut err = String::new();
+    std::io::Read::read_to_string(&mut child.stderr.take().unwrap(), &mut err).unwrap();
+    assert_eq!(status.code(), Some(130), "{err}");
+    assert!(took.as_secs_f64() < 0.2, "stopped {took:?} after SIGINT");
+    assert!(err.contains("stopped: interrupted"), "{err}");
+    assert_eq!(std::fs::read_dir(&rows).unwrap().count(), 2, "rows kept");
+    let csv = std::fs::read_to_string(out_dir.join("sweep.csv")).unwrap();
+    assert_eq!(
+        csv.lines().count(),
+        3,
+        "header and the two finished rows:\n{csv}"
     );
     let _ = std::fs::remove_dir_all(&dir);
 }

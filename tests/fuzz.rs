@@ -28,6 +28,22 @@ use std::time::{Duration, Instant};
 /// A case taking more thread CPU time than this counts as a hang.
 const HANG_SECONDS: f64 = 5.0;
 
+/// The thread stack every campaign runs on: the 64 KiB an instance is promised to need
+/// at most (docs/reliability.md), so a deep parse or schema walk shows as a crash here.
+const STACK: usize = 64 * 1024;
+
+/// `f` on a fresh thread of [`STACK`] bytes (a stack overflow aborts the test process:
+/// the campaign then reports no tally, which `scripts/fuzz` counts as a crash).
+fn on_small_stack(f: fn()) {
+    std::thread::Builder::new()
+        .name("fuzz-64k".into())
+        .stack_size(STACK)
+        .spawn(f)
+        .expect("spawn a 64 KiB thread")
+        .join()
+        .unwrap_or_else(|e| std::panic::resume_unwind(e));
+}
+
 struct Rng(u64);
 
 impl Rng {
@@ -141,7 +157,8 @@ const SCENES: [&str; 4] = [
 ];
 
 /// Mutate scene text: replace a number, delete a line, duplicate a line, flip a byte,
-/// swap a value for an array or a table.
+/// nest a value deeply (or write a header of many dotted parts), swap a value for an
+/// array or a table.
 fn mutate(rng: &mut Rng, text: &str) -> String {
     let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
     for _ in 0..1 + rng.below(3) {
@@ -149,7 +166,7 @@ fn mutate(rng: &mut Rng, text: &str) -> String {
             break;
         }
         let i = rng.below(lines.len());
-        match rng.below(6) {
+        match rng.below(7) {
             0 | 1 => {
                 // A number replaced (the first run of digits on the line).
                 let l = &lines[i];
@@ -183,6 +200,28 @@ fn mutate(rng: &mut Rng, text: &str) -> String {
                 }
                 lines[i] = String::from_utf8_lossy(&b).into_owned();
             }
+            5 => {
+                // Deep nesting (issue #38 item 1): a value inside up to 400 arrays or
+                // inline tables, or a header of up to 100 000 dotted parts.
+                let depth = 1 + rng.below(400);
+                if let Some(eq) = lines[i].find('=') {
+                    let v = lines[i][eq + 1..].trim().to_string();
+                    let (open, close) = if rng.chance(0.5) {
+                        ("[", "]")
+                    } else {
+                        ("{ x = ", " }")
+                    };
+                    lines[i] = format!(
+                        "{}= {}{v}{}",
+                        &lines[i][..eq],
+                        open.repeat(depth),
+                        close.repeat(depth)
+                    );
+                } else {
+                    let parts = 1 + rng.below(100_000);
+                    lines[i] = format!("[{}]", vec!["a"; parts].join("."));
+                }
+            }
             _ => {
                 if let Some(eq) = lines[i].find('=') {
                     let v = lines[i][eq + 1..].trim().to_string();
@@ -201,6 +240,10 @@ fn mutate(rng: &mut Rng, text: &str) -> String {
 
 #[test]
 fn fuzz_scenes_through_the_component() {
+    on_small_stack(scenes_campaign);
+}
+
+fn scenes_campaign() {
     let seed0 = seed();
     let mut rng = Rng(seed0 | 1);
     let mut tally = Tally::default();
@@ -210,6 +253,9 @@ fn fuzz_scenes_through_the_component() {
         tally.cases += 1;
         let base = SCENES[rng.below(SCENES.len())];
         let text = mutate(&mut rng, base);
+        if std::env::var_os("RACEWAY_FUZZ_TRACE").is_some() {
+            eprintln!("case {case}:\n{text}");
+        }
         let t0 = thread_cpu();
         let r = std::panic::catch_unwind(|| {
             let mut c = match raceway::component::Component::from_text(&text) {
@@ -280,6 +326,10 @@ struct Pool {
 
 #[test]
 fn fuzz_c_abi_call_sequences() {
+    on_small_stack(c_abi_campaign);
+}
+
+fn c_abi_campaign() {
     let seed0 = seed() ^ 0xc0ffee;
     let mut rng = Rng(seed0 | 1);
     let mut tally = Tally::default();

@@ -62,6 +62,42 @@ fn create(text: &str) -> Result<*mut RacewayComponent, String> {
     }
 }
 
+/// The deepest nesting the check lets through, at the places a parser walks deepest, is
+/// refused or accepted on 56 KiB: the promised stack less 8 KiB for the host's own frames.
+/// Found by the fuzzer (issue #38): `bearing` as 31 inline tables (the limit was 32) took
+/// 60 KiB and overflowed its 64 KiB thread.
+#[test]
+fn the_deepest_nesting_allowed_fits_the_promised_stack() {
+    let n = raceway::nesting::MAX_NESTING;
+    let base = raceway::component::scene::DEFAULT_SCENE;
+    let nest = |v: &str| format!("{}{v}{}", "{ x = ".repeat(n), " }".repeat(n));
+    let texts = [
+        base.replacen(
+            "bearing = \"6205\"",
+            &format!("bearing = {}", nest("\"6205\"")),
+            1,
+        ),
+        base.replacen("bearing = \"6205\"", &format!("bearing = {}", nest("1")), 1),
+        format!(
+            "{base}\n[run]\nstep_s = {}\n",
+            nest("1e-4").replacen("{ x = ", "", 1).replacen(" }", "", 1)
+        ),
+        format!(
+            "{base}\n[model]\nx = {}1{}\n",
+            "[".repeat(n - 1),
+            "]".repeat(n - 1)
+        ),
+    ];
+    for text in texts {
+        let deeper = format!("a = {}1{}\n{text}", "[".repeat(n + 1), "]".repeat(n + 1));
+        let msg = on_stack(PROMISED_KIB - 8, move || create(&text).err());
+        let msg = msg.expect("a scene with an unknown nested field is refused");
+        assert!(!msg.contains("nested"), "{msg}");
+        let msg = on_stack(PARSE_KIB, move || create(&deeper).err()).unwrap();
+        assert!(msg.contains("nested 17 levels deep at line 1"), "{msg}");
+    }
+}
+
 #[test]
 fn nested_scenes_are_refused_on_a_small_stack_with_their_place() {
     for (what, text) in nested_texts() {

@@ -14,6 +14,7 @@ use raceway::component::scene::RaceControl;
 use raceway::component::{schema, variables, Component as Inner, State as InnerState};
 use raceway::summary::reports;
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Mutex;
 
 create_exception!(
@@ -71,6 +72,44 @@ fn compute<T: Send>(py: Python<'_>, f: impl FnOnce() -> raceway::Result<T> + Sen
                 None,
             ))
         }
+    }
+}
+
+/// [`compute`] for work that runs on other threads (a sweep's workers), where Python's
+/// signal handlers never run: `f` works on a helper thread, given a stop flag, while this
+/// (the calling, usually main) thread sleeps with the GIL released and every 50 ms of wall
+/// time takes it back for `py.check_signals()`. A KeyboardInterrupt (or any exception a
+/// signal handler raises) sets the flag, `f` winds down (its points running give no row)
+/// and the exception is raised as itself.
+fn compute_interruptible<T: Send>(
+    py: Python<'_>,
+    f: impl FnOnce(&AtomicBool) -> raceway::Result<T> + Send,
+) -> PyResult<T> {
+    let stop = AtomicBool::new(false);
+    let mut interrupt: Option<PyErr> = None;
+    let r = compute(py, || {
+        std::thread::scope(|s| {
+            let worker = s.spawn(|| f(&stop));
+            let mut last = std::time::Instant::now();
+            while !worker.is_finished() {
+                std::thread::sleep(std::time::Duration::from_millis(5));
+                if interrupt.is_none() && last.elapsed() >= std::time::Duration::from_millis(50) {
+                    last = std::time::Instant::now();
+                    if let Err(e) = Python::attach(|py| py.check_signals()) {
+                        interrupt = Some(e);
+                        stop.store(true, Ordering::Relaxed);
+                    }
+                }
+            }
+            match worker.join() {
+                Ok(r) => r,
+                Err(p) => std::panic::resume_unwind(p),
+            }
+        })
+    });
+    match interrupt {
+        Some(e) => Err(e),
+        None => r,
     }
 }
 
@@ -137,10 +176,19 @@ fn text_of(py: Python<'_>, obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Sourc
         return read(p);
     }
     if obj.cast::<PyDict>().is_ok() || obj.hasattr("keys")? {
+        check_scene_value(py, obj, &mut String::new(), 0)?;
         let json: String = py
             .import("json")?
-            .call_method1("dumps", (obj,))?
-            .extract()?;
+            .call_method1("dumps", (obj,))
+            .and_then(|j| j.extract())
+            .map_err(|e| {
+                py_error(
+                    py,
+                    format!("{what}: the mapping cannot be written as JSON: {e}"),
+                    "invalid",
+                    Some(what.to_string()),
+                )
+            })?;
         return Ok(Source {
             text: json,
             dir: cwd,
@@ -156,6 +204,117 @@ fn text_of(py: Python<'_>, obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Sourc
         "invalid",
         Some(what.to_string()),
     ))
+}
+
+/// The (name, value) pairs of `Component.set`'s first argument when it is not a name: a
+/// mapping or a sequence of pairs. Anything else, or an item that is not a (str, float)
+/// pair, is a `raceway.Error` naming the argument (it was an AttributeError or TypeError).
+fn input_pairs(py: Python<'_>, arg: &Bound<'_, PyAny>) -> PyResult<Vec<(String, f64)>> {
+    let refuse = |what: String| {
+        py_error(
+            py,
+            format!(
+                "set: {what}: expected a variable name (str) and a value, a dict of names to \
+                 values, or a sequence of (name, value) pairs"
+            ),
+            "invalid",
+            Some("name".into()),
+        )
+    };
+    let kind = |o: &Bound<'_, PyAny>| {
+        o.get_type()
+            .name()
+            .map_or_else(|_| "?".to_string(), |n| n.to_string())
+    };
+    let items = if arg.hasattr("items").unwrap_or(false) {
+        arg.call_method0("items")
+            .map_err(|_| refuse(format!("{}.items() failed", kind(arg))))?
+    } else if arg.cast::<PyList>().is_ok() || arg.cast::<PyTuple>().is_ok() {
+        arg.clone()
+    } else {
+        return Err(refuse(format!("found {}", kind(arg))));
+    };
+    let iter = items
+        .try_iter()
+        .map_err(|_| refuse(format!("found {}", kind(arg))))?;
+    let mut out = Vec::new();
+    for (i, item) in iter.enumerate() {
+        let item = item.map_err(|_| refuse(format!("item {i} could not be read")))?;
+        let pair = item.extract::<(String, f64)>().map_err(|_| {
+            let shown = item
+                .repr()
+                .map_or_else(|_| "?".to_string(), |r| r.to_string());
+            refuse(format!("item {i} = {shown} is not a (name, number) pair"))
+        })?;
+        out.push(pair);
+    }
+    Ok(out)
+}
+
+/// A scene given as a dict, checked before it becomes JSON: a number that is not finite is
+/// refused naming its field (JSON has no NaN: it was reported as a syntax error without
+/// one), and nesting deeper than the scene limit is refused naming where (a deeply nested
+/// or self-containing dict raised RecursionError or ValueError). `path` is the dotted
+/// field of `obj`.
+fn check_scene_value(
+    py: Python<'_>,
+    obj: &Bound<'_, PyAny>,
+    path: &mut String,
+    depth: usize,
+) -> PyResult<()> {
+    let max = raceway::nesting::MAX_NESTING;
+    let field = |path: &str| {
+        if path.is_empty() {
+            "scene".to_string()
+        } else {
+            path.to_string()
+        }
+    };
+    if depth > max {
+        return Err(py_error(
+            py,
+            format!(
+                "scene: `{}` nests deeper than {max} levels (tables and arrays together): a \
+                 scene may nest at most {max}",
+                field(path)
+            ),
+            "invalid",
+            Some(field(path)),
+        ));
+    }
+    let descend = |key: String, v: &Bound<'_, PyAny>, path: &mut String| -> PyResult<()> {
+        let len = path.len();
+        path.push_str(&key);
+        let r = check_scene_value(py, v, path, depth + 1);
+        path.truncate(len);
+        r
+    };
+    if let Ok(d) = obj.cast::<PyDict>() {
+        for (k, v) in d.iter() {
+            let k = k.str().map_or_else(|_| "?".to_string(), |k| k.to_string());
+            let key = if path.is_empty() { k } else { format!(".{k}") };
+            descend(key, &v, path)?;
+        }
+    } else if obj.cast::<PyList>().is_ok() || obj.cast::<PyTuple>().is_ok() {
+        for (i, v) in obj.try_iter()?.enumerate() {
+            descend(format!("[{i}]"), &v?, path)?;
+        }
+    } else if obj.cast::<pyo3::types::PyFloat>().is_ok() {
+        let x: f64 = obj.extract()?;
+        if !x.is_finite() {
+            return Err(py_error(
+                py,
+                format!(
+                    "scene: `{}` = {x}: must be a finite number (see `raceway scene --schema` \
+                     for its range)",
+                    field(path)
+                ),
+                "invalid",
+                Some(field(path)),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// The text and name of an optional scene argument (None: the embedded default scene,
@@ -298,12 +457,7 @@ impl Component {
             })?;
             vec![(n, v)]
         } else {
-            let d = name.call_method0("items")?;
-            let mut out = Vec::new();
-            for item in d.try_iter()? {
-                out.push(item?.extract::<(String, f64)>()?);
-            }
-            out
+            input_pairs(py, name)?
         };
         let mut vrs = Vec::with_capacity(pairs.len());
         for (n, _) in &pairs {
@@ -663,18 +817,22 @@ impl Sweep {
             self.index(py, i)?;
         }
         let sw = &self.inner;
-        Ok(py.detach(|| {
-            indices
-                .iter()
-                .map(|&i| {
-                    let series = series_dir
-                        .as_ref()
-                        .filter(|_| sw.series)
-                        .map(|d| d.join(format!("{i:08}.csv")));
-                    row_json(&sw.run_point(i, series.as_deref()))
-                })
-                .collect()
-        }))
+        // Ctrl-C: KeyboardInterrupt within 0.2 s (the point running is abandoned).
+        compute_interruptible(py, |stop| {
+            let stopped = || stop.load(Ordering::Relaxed);
+            let mut rows = Vec::with_capacity(indices.len());
+            for &i in &indices {
+                let series = series_dir
+                    .as_ref()
+                    .filter(|_| sw.series)
+                    .map(|d| d.join(format!("{i:08}.csv")));
+                match sw.run_point_until(i, series.as_deref(), &stopped) {
+                    Some(row) => rows.push(row_json(&row)),
+                    None => return Err(raceway::Error::Interrupted { at_s: 0.0 }),
+                }
+            }
+            Ok(rows)
+        })
     }
 
     fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyTuple>> {
@@ -732,8 +890,12 @@ fn sweep_execute(
         shard: shard.unwrap_or((0, 1)),
     };
     let sw = &sweep.inner;
-    compute(py, || {
-        raceway::sweep::execute(sw, &out, exec, &|_, _, _| {})
+    // Ctrl-C: KeyboardInterrupt within 0.2 s; the finished points keep their rows (the
+    // sweep resumes from them), the running ones have none.
+    compute_interruptible(py, |stop| {
+        raceway::sweep::execute_until(sw, &out, exec, &|_, _, _| {}, &|| {
+            stop.load(Ordering::Relaxed)
+        })
     })
     .map(|_| ())
 }

@@ -115,3 +115,31 @@ def test_outputs_are_the_variable_table_outputs():
     assert set(outs) <= set(got)
     assert all(math.isfinite(v) for v in got.values())
     assert got["K.y.y"] == c.get("K.y.y") and got["K.y.y"] > 1e7
+
+
+def test_misuse_raises_raceway_error_naming_the_argument():
+    # Issue #38 item 9: these were AttributeError (set(None, 1.0), set of a list), a JSON
+    # syntax error without a field (NaN in a scene dict) and RecursionError (a scene dict
+    # nested 2000 deep, or containing itself).
+    c = raceway.Component()
+    for bad in [(None, 1.0), (5,), ([("shaft.y",)],), ([1, 2],)]:
+        with pytest.raises(raceway.Error) as e:
+            c.set(*bad)
+        assert e.value.field == "name" and "(name, value) pairs" in e.value.message
+    # A sequence of pairs is a way to set several inputs, as a dict is.
+    c.set([("shaft.y", -1e-5), ("shaft.omega", 100.0)])
+    assert c.get("shaft.y") == -1e-5 and c.get("shaft.omega") == 100.0
+    with pytest.raises(raceway.Error) as e:
+        raceway.Component({"bearing": "6205", "run": {"duration_s": float("nan")}})
+    assert e.value.field == "run.duration_s" and "finite" in e.value.message
+    deep = {}
+    inner = deep
+    for _ in range(2000):
+        inner["a"] = {}
+        inner = inner["a"]
+    itself = {}
+    itself["r"] = itself
+    for scene in (deep, itself):
+        with pytest.raises(raceway.Error) as e:
+            raceway.Component(scene)
+        assert "nests deeper than 16 levels" in e.value.message

@@ -87,6 +87,16 @@ fn fmu_state_bytes_restore_in_another_process_bit_for_bit() {
 /// guard turns panics into `fmi2Error`), no NaN or infinity read after `fmi2OK`.
 #[test]
 fn fuzz_fmi2_call_sequences() {
+    // On the 64 KiB stack an instance is promised to need (docs/reliability.md).
+    std::thread::Builder::new()
+        .stack_size(64 * 1024)
+        .spawn(fmi2_campaign)
+        .expect("spawn a 64 KiB thread")
+        .join()
+        .unwrap_or_else(|e| std::panic::resume_unwind(e));
+}
+
+fn fmi2_campaign() {
     use super::fmi2::*;
     use super::instance::Status;
     use std::cell::Cell;

@@ -364,3 +364,23 @@ fn a_panic_poisons_its_instance_and_freed_handles_are_refused() {
     );
     Instance::free(b);
 }
+
+#[test]
+fn a_start_time_no_step_could_leave_is_refused_at_set_up_by_name() {
+    // Issue #38 item 9: startTime = 1e300 was accepted, then every step was refused.
+    let mut a = instance();
+    let e = a.setup(None, 1e300, None).expect_err("1e300 refused");
+    assert!(
+        e.msg.contains("startTime") && e.msg.contains("[-5e8, 5e8] s"),
+        "{}",
+        e.msg
+    );
+    assert_eq!(a.start_time, 0.0, "the refusal keeps the old start");
+    // The far end of the range that message gives can be met: set up there and step.
+    a.setup(None, -5e8, None).unwrap();
+    a.set_real(2, -1e-5).unwrap();
+    a.set_real(11, 183.26).unwrap();
+    a.exit_initialization().unwrap();
+    a.do_step(-5e8, 0.2).map_err(|(_, f)| f.msg).unwrap();
+    assert!((a.time - (-5e8 + 0.2)).abs() < 1e-6);
+}

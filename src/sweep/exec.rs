@@ -32,6 +32,20 @@ pub fn execute(
     exec: Exec,
     progress: &(dyn Fn(usize, usize, usize) + Sync),
 ) -> Result<Outcome> {
+    execute_until(sweep, dir, exec, progress, &|| false)
+}
+
+/// [`execute`], asking `stop` (from every worker, between the steps of its run) whether to
+/// stop: when it says so, the points running are abandoned (no row: they run again when
+/// the sweep resumes), `dir/sweep.csv` is written from the rows finished so far and the
+/// sweep ends with [`Error::Interrupted`] (Ctrl-C in the command line and in Python).
+pub fn execute_until(
+    sweep: &Sweep,
+    dir: &Path,
+    exec: Exec,
+    progress: &(dyn Fn(usize, usize, usize) + Sync),
+    stop: &(dyn Fn() -> bool + Sync),
+) -> Result<Outcome> {
     let (k, n) = exec.shard;
     if n == 0 || k >= n {
         return Err(Error::invalid(
@@ -55,6 +69,14 @@ pub fn execute(
     let failed = AtomicUsize::new(0);
     let cpu = Mutex::new(0.0f64);
     let first_error: Mutex<Option<Error>> = Mutex::new(None);
+    let interrupted = std::sync::atomic::AtomicBool::new(false);
+    let stopped = || {
+        if interrupted.load(Ordering::Relaxed) || stop() {
+            interrupted.store(true, Ordering::Relaxed);
+            return true;
+        }
+        false
+    };
     let jobs = exec.jobs.max(1).min(todo.len().max(1));
     std::thread::scope(|s| {
         for _ in 0..jobs {
@@ -63,13 +85,15 @@ pub fn execute(
                 loop {
                     let w = next.fetch_add(1, Ordering::Relaxed);
                     let Some(&i) = todo.get(w) else { break };
-                    if first_error.lock().map(|e| e.is_some()).unwrap_or(true) {
+                    if first_error.lock().map(|e| e.is_some()).unwrap_or(true) || stopped() {
                         break;
                     }
                     let series = sweep
                         .series
                         .then(|| dir.join("series").join(format!("{i:08}.csv")));
-                    let row = sweep.run_point(i, series.as_deref());
+                    let Some(row) = sweep.run_point_until(i, series.as_deref(), &stopped) else {
+                        break;
+                    };
                     if row.error.is_some() {
                         failed.fetch_add(1, Ordering::Relaxed);
                     }
@@ -94,6 +118,9 @@ pub fn execute(
     }
     let rows = read_rows(dir);
     write_atomic(&dir.join("sweep.csv"), csv(&rows).as_bytes())?;
+    if interrupted.into_inner() {
+        return Err(Error::Interrupted { at_s: 0.0 });
+    }
     Ok(Outcome {
         total,
         in_shard: shard.len(),
@@ -168,6 +195,18 @@ impl Sweep {
     /// row. Never fails: an error (or a panic) becomes the row's
     /// `error`. With `series`, the run's series is written there (atomically).
     pub fn run_point(&self, index: usize, series: Option<&Path>) -> Row {
+        self.run_point_until(index, series, &|| false)
+            .expect("a run that is never asked to stop is not interrupted")
+    }
+
+    /// [`Sweep::run_point`], asking `stop` between the steps of the run: `None` when it
+    /// said stop (the point has no row; it runs again when the sweep resumes).
+    pub fn run_point_until(
+        &self,
+        index: usize,
+        series: Option<&Path>,
+        stop: &(dyn Fn() -> bool + Sync),
+    ) -> Option<Row> {
         let axes: Vec<(String, Json)> = self
             .axes
             .iter()
@@ -177,7 +216,13 @@ impl Sweep {
         let attempt = || -> Result<Vec<(String, Json)>> {
             let scene = self.scene(index)?;
             let c0 = thread_cpu_s();
-            let (run, comp) = runner::run(&scene, &mut |_| {})?;
+            let (run, comp) = runner::run_until(
+                &scene,
+                runner::Record::default(),
+                false,
+                &mut |_| {},
+                &mut || stop(),
+            )?;
             let cpu = thread_cpu_s() - c0;
             if let Some(p) = series {
                 write_atomic(p, run.to_csv().as_bytes())?;
@@ -190,6 +235,7 @@ impl Sweep {
         let (error, summary) = match std::panic::catch_unwind(std::panic::AssertUnwindSafe(attempt))
         {
             Ok(Ok(cols)) => (None, cols),
+            Ok(Err(Error::Interrupted { .. })) => return None,
             // One line per row: a multi-line message is joined.
             Ok(Err(e)) => (
                 Some(
@@ -205,11 +251,11 @@ impl Sweep {
                 (Some(format!("panic: {what}")), Vec::new())
             }
         };
-        Row {
+        Some(Row {
             index,
             axes,
             error,
             summary,
-        }
+        })
     }
 }

@@ -168,7 +168,10 @@ fn main() -> ExitCode {
             ExitCode::SUCCESS
         }
         Err(e @ raceway::Error::Interrupted { .. }) => {
-            eprintln!("stopped: {e}; nothing was written and the output folder is as before");
+            eprintln!(
+                "stopped: {e}; a run writes nothing and leaves its output folder as before, \
+                 a sweep keeps the rows it finished (run it again to resume)"
+            );
             ExitCode::from(130)
         }
         Err(e) => {

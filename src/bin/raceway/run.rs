@@ -40,15 +40,16 @@ pub struct RunArgs {
 }
 
 /// Set by SIGINT or SIGTERM: the run stops before its next step and its staged folder is
-/// removed (the previous output folder is left as it was).
-static STOP: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+/// removed (the previous output folder is left as it was); a sweep abandons the points
+/// running and keeps the rows it finished.
+pub(crate) static STOP: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
 
 extern "C" fn on_signal(_: libc::c_int) {
     STOP.store(true, std::sync::atomic::Ordering::Relaxed);
 }
 
 /// Ctrl-C and SIGTERM ask the run to stop instead of killing the process mid-write.
-fn catch_stop_signals() {
+pub(crate) fn catch_stop_signals() {
     let handler = on_signal as extern "C" fn(libc::c_int) as libc::sighandler_t;
     // SAFETY: the handler only stores to an atomic, which is async-signal-safe.
     unsafe {

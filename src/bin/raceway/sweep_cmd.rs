@@ -118,7 +118,11 @@ pub fn sweep(a: SweepArgs) -> Result<String> {
         );
         let _ = std::io::stderr().flush();
     };
-    let o = sweep::execute(&sw, &out, exec, &progress)?;
+    // Ctrl-C and SIGTERM: the points running stop at their next step and have no row;
+    // finished rows stay (the sweep resumes from them).
+    crate::run::catch_stop_signals();
+    let stop = || crate::run::STOP.load(std::sync::atomic::Ordering::Relaxed);
+    let o = sweep::execute_until(&sw, &out, exec, &progress, &stop)?;
     if bar_on {
         eprintln!();
     }

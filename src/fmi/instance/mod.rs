@@ -489,8 +489,16 @@ impl Instance {
         start: f64,
         stop: Option<f64>,
     ) -> Outcome {
-        if !start.is_finite() {
-            return Err(Fail::from(format!("startTime = {start}: must be finite")));
+        // The component steps only while |t| + h <= `T_MAX`: a start beyond it was
+        // accepted here and then every step refused. Half of it leaves room for steps up
+        // to T_MAX / 2 (each at least 2.2e-10 |t| long, to be resolved by a double).
+        let t_max = 0.5 * crate::component::T_MAX;
+        if !(start.is_finite() && start.abs() <= t_max) {
+            return Err(Fail::from(format!(
+                "startTime = {start:e} s: allowed a finite time in [{:e}, {t_max:e}] s \
+                 (steps from t must be at least 2.2e-10 |t| s long)",
+                -t_max
+            )));
         }
         // A tolerance outside the solver's range is ignored when the component is built
         // (`params::scene`), but a non-finite one would be kept in the FMU state, whose

@@ -259,10 +259,23 @@ impl Geo {
         let li_safe = if li.v > 0.0 { li } else { Dual::cst(1e-300) };
         let so = uo1 / lo_safe;
         let co = uo2 / lo_safe;
-        let si = ui1 / li_safe;
-        let ci = ui2 / li_safe;
+        let mut si = ui1 / li_safe;
+        let mut ci = ui2 / li_safe;
         let dlo = lo - self.ro_free;
-        let dli = li - self.ri_free;
+        let mut dli = li - self.ri_free;
+        // A loose ball whose centre lies beyond its inner groove's centre (the ring moved
+        // more than `ri_free` away from it: default 6205, `shaft.y` past -1.6e-4 m, the ball
+        // at the top resting on the outer race) faces the inner raceway across that centre:
+        // the raceway is on the shaft side of the groove centre, so the contact normal is
+        // the mirrored one and the gap is `li + ri_free`. Taken as it was (`ci < 0`), the
+        // rolling kinematics divided by `p_i c_o + p_o c_i = 0` (rm = inf, fc = inf: the
+        // solve failed at its start with residual inf, issue #38 item 5). Unloaded either
+        // way: no force changes.
+        if ci.v < 0.0 && dli.v <= 0.0 {
+            si = -si;
+            ci = -ci;
+            dli = -li - self.ri_free;
+        }
         let kco = {
             let (k, dk) = self.kc_o.eval(co.v);
             co.chain(k, dk)
