@@ -780,3 +780,38 @@ fn defect_scenes_find_the_lines_they_promise_at_their_default_duration() {
         let _ = std::fs::remove_dir_all(&dir);
     }
 }
+
+/// Width and height of a PNG, from its IHDR chunk.
+fn png_size(path: &std::path::Path) -> (u32, u32) {
+    let b = std::fs::read(path).unwrap();
+    let be = |i: usize| u32::from_be_bytes([b[i], b[i + 1], b[i + 2], b[i + 3]]);
+    (be(16), be(20))
+}
+
+/// Issue #40, plots: figures 1000 px wide; the force plot of a 2-DOF ring scene has
+/// two panels (Fx, Fy: 44 + 2 x 300 px), no empty Fz panel.
+#[test]
+fn force_plot_has_only_the_panels_the_level_has() {
+    let dir = std::env::temp_dir().join(format!("raceway-panels-{}", std::process::id()));
+    let path = format!(
+        "{}/examples/scenes/6205-outer-spall.toml",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let out = run(&[
+        "run",
+        &path,
+        "--quiet",
+        "--duration",
+        "0.05",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert_eq!(png_size(&dir.join("force.png")), (1000, 44 + 2 * 300));
+    assert_eq!(png_size(&dir.join("orbit.png")), (1000, 625));
+    let _ = std::fs::remove_dir_all(&dir);
+}
