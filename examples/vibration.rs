@@ -11,7 +11,7 @@
 
 use raceway::analysis::{
     amplitude_spectrum, characteristic_marks, envelope_spectrum, find_peaks, Verdict, Window,
-    FOUND_OVER_FLOOR,
+    FOUND_OVER_FLOOR, LINE_TOLERANCE,
 };
 use raceway::component::variables;
 use raceway::geometry::kinematics;
@@ -102,12 +102,15 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         2.0 * kin.bsf
     );
     let marks = characteristic_marks(&kin, shaft_hz, 3, 1);
-    let tol = 2.0 * spec.resolution();
+    let tol = LINE_TOLERANCE;
     // One rule for "found" (raceway::analysis::find_peaks, shared with `raceway run`): a
-    // local maximum within ±2 bins at least FOUND_OVER_FLOOR times the median floor, and
-    // the line resolved from its neighbours at this record length.
+    // local maximum (interpolated) within ±min(1 bin, 2 % of the line) at least
+    // FOUND_OVER_FLOOR times the median floor, and the line resolved from its neighbours
+    // at this record length.
     println!(
-        "found: a peak within ±{tol:.2} Hz at least {FOUND_OVER_FLOOR} x the floor (median in [f/2, 2f]); record {:.3} s",
+        "found: a peak within ±min({:.2} Hz, {:.0} % of f) at least {FOUND_OVER_FLOOR} x the floor (median in [f/2, 2f]); record {:.3} s",
+        spec.resolution(),
+        100.0 * tol,
         1.0 / spec.resolution()
     );
     println!(
@@ -117,6 +120,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let shown = |p: &raceway::analysis::FoundPeak| match p.verdict {
         Verdict::Found => format!("{:.2}", p.found),
         Verdict::BelowFloor => "-".to_string(),
+        Verdict::OffLine => format!("off ({:.2})", p.found),
         Verdict::Unresolved { .. } => "unresolved".to_string(),
     };
     for (a, b) in find_peaks(&spec, &marks, tol)

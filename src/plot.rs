@@ -245,7 +245,7 @@ const LABEL_ROW: i32 = 15;
 
 type Area<'a> = DrawingArea<BitMapBackend<'a>, plotters::coord::Shift>;
 
-/// Draw `series` (and `markers`) into a PNG at `path` (800 x 500 px). Point series are
+/// Draw `series` (and `markers`) into a PNG at `path` (1000 x 625 px). Point series are
 /// drawn with distinct shapes (filled circle, cross, hollow triangle, ...); the legend goes
 /// into a corner free of data (with headroom added above the data when none is);
 /// marker labels are stacked in rows above the plot so that none overlaps another.
@@ -253,19 +253,19 @@ pub fn plot(path: &Path, axes: &Axes<'_>, series: &[Series<'_>], markers: &[Mark
     register_font();
     // Under a temporary name, then renamed: never half-written.
     crate::fsutil::write_atomic_with(path, |tmp| {
-        let root = BitMapBackend::new(tmp, (800, 500)).into_drawing_area();
+        let root = BitMapBackend::new(tmp, (1000, 625)).into_drawing_area();
         draw_area(&root, axes, series, markers)?;
         root.present().map_err(io)
     })
 }
 
-/// Panels stacked vertically in one PNG (800 x 250 px per panel) under one `title`, each
+/// Panels stacked vertically in one PNG (1000 x 300 px per panel) under one `title`, each
 /// with its own y axis (e.g. Fx, Fy, Fz, so that each ripple shows at its own scale).
 pub fn plot_stack(path: &Path, title: &str, panels: &[(Axes<'_>, Vec<Series<'_>>)]) -> Result<()> {
     register_font();
-    let h = 40 + 250 * panels.len().max(1) as u32;
+    let h = 44 + 300 * panels.len().max(1) as u32;
     crate::fsutil::write_atomic_with(path, |tmp| {
-        let root = BitMapBackend::new(tmp, (800, h)).into_drawing_area();
+        let root = BitMapBackend::new(tmp, (1000, h)).into_drawing_area();
         root.fill(&WHITE).map_err(io)?;
         let body = root.titled(title, ("sans-serif", 20)).map_err(io)?;
         for (area, (axes, series)) in body
@@ -310,8 +310,8 @@ fn draw_area(
         let half = 0.5 * (x1 - x0).max(y1 - y0) * 1.6;
         (x0, x1, y0, y1) = (cx - half, cx + half, cy - 0.625 * half, cy + 0.625 * half);
     }
-    let font: TextStyle<'_> = ("sans-serif", 13).into();
-    let label_font: TextStyle<'_> = ("sans-serif", 12).into();
+    let font: TextStyle<'_> = ("sans-serif", 16).into();
+    let label_font: TextStyle<'_> = ("sans-serif", 14).into();
     // The shape of each point series: its rank among the point series.
     let shape: Vec<usize> = series
         .iter()
@@ -380,19 +380,24 @@ fn draw_area(
         let title_h = if axes.title.is_empty() { 0 } else { 30 };
         if title_h > 0 {
             let w = area.dim_in_pixel().0 as i32;
-            let style: TextStyle<'_> = ("sans-serif", 20).into();
-            let tw = area
-                .estimate_text_size(axes.title, &style)
-                .map(|(w, _)| w as i32)
-                .unwrap_or(0);
+            let width = |size: f64| {
+                area.estimate_text_size(axes.title, &("sans-serif", size).into())
+                    .map(|(w, _)| w as i32)
+                    .unwrap_or(0)
+            };
+            // 20 px, smaller when a long title (scene, bearing, operating point) would
+            // not fit the width.
+            let fit = 20.0 * ((w - 16) as f64 / width(20.0).max(1) as f64).min(1.0);
+            let style: TextStyle<'_> = ("sans-serif", fit.max(11.0)).into();
+            let tw = width(fit.max(11.0));
             area.draw(&Text::new(axes.title, ((w - tw) / 2, 8), style))
                 .map_err(io)?;
         }
         let mut b = ChartBuilder::on(area);
         b.margin(12)
             .margin_top(12 + title_h + LABEL_ROW * rows_reserved as i32)
-            .x_label_area_size(40)
-            .y_label_area_size(70);
+            .x_label_area_size(48)
+            .y_label_area_size(86);
         let base = area.get_base_pixel();
         let rel = |p: (i32, i32)| ((p.0 - base.0) as f64, (p.1 - base.1) as f64);
         // What the pass found: the legend's place (if any labels) and the label rows.
@@ -419,7 +424,8 @@ fn draw_area(
                     .y_desc(axes.y_label)
                     .x_label_formatter(&fx)
                     .y_label_formatter(&fy)
-                    .label_style(("sans-serif", 13))
+                    .label_style(("sans-serif", 16))
+                    .axis_desc_style(("sans-serif", 17))
                     .draw()
                     .map_err(io)?;
                 let (xr, yr) = chart.plotting_area().get_pixel_range();

@@ -107,8 +107,8 @@ fn envelope(f: &[f64]) -> Spectrum {
     envelope_spectrum(f, FS, Some((800.0, 4500.0)))
 }
 
-/// The largest local maximum near `f` (within 1.5 bins) and its height over the median
-/// floor of the octave around it.
+/// The largest local maximum near `f` (within one bin beyond a tolerance of one bin) and
+/// its height over the median floor of the octave around it.
 fn line(s: &Spectrum, label: &str, f: f64) -> (f64, f64) {
     let p = &find_peaks(
         s,
@@ -116,7 +116,7 @@ fn line(s: &Spectrum, label: &str, f: f64) -> (f64, f64) {
             label: label.into(),
             freq: f,
         }],
-        1.5 * s.resolution(),
+        1.0,
     )[0];
     println!(
         "{label}: expected {:.2} Hz, found {:.2} Hz, amplitude {:.3e}, {:.1} x floor",

@@ -80,7 +80,11 @@ impl Spectrum {
     }
 
     /// The largest local maximum within `[lo, hi]` Hz: `(frequency, amplitude)`, with the
-    /// frequency refined by a parabola through the three bins around it.
+    /// frequency refined by a parabola through the logarithms of the three bins around it
+    /// (Gaussian interpolation: for a Hann-windowed sine it places the peak within a few
+    /// hundredths of a bin, where a parabola on the magnitudes is off by up to a tenth;
+    /// Gasior & Gonzalez, CERN-AB-2004-023). A maximum whose neighbours are zero is
+    /// interpolated on the magnitudes.
     pub fn peak_in(&self, lo: f64, hi: f64) -> Option<(f64, f64)> {
         let n = self.amp.len();
         let mut best: Option<usize> = None;
@@ -96,14 +100,19 @@ impl Spectrum {
             }
         }
         best.map(|i| {
-            let (y0, y1, y2) = (self.amp[i - 1], self.amp[i], self.amp[i + 1]);
+            let (a0, a1, a2) = (self.amp[i - 1], self.amp[i], self.amp[i + 1]);
+            let (y0, y1, y2) = if a0 > 0.0 && a1 > 0.0 && a2 > 0.0 {
+                (a0.ln(), a1.ln(), a2.ln())
+            } else {
+                (a0, a1, a2)
+            };
             let den = y0 - 2.0 * y1 + y2;
             let p = if den.abs() > 0.0 {
                 0.5 * (y0 - y2) / den
             } else {
                 0.0
             };
-            (self.freq[i] + p.clamp(-0.5, 0.5) * self.resolution(), y1)
+            (self.freq[i] + p.clamp(-0.5, 0.5) * self.resolution(), a1)
         })
     }
 
@@ -257,11 +266,30 @@ pub fn characteristic_marks(
 /// Amplitude over the noise floor a peak needs to count as found. The floor is the
 /// spectrum's median in `[f/2, 2 f]`; for Gaussian noise the amplitude of a bin follows a
 /// Rayleigh law whose median is `σ √(2 ln 2)`, so a noise bin exceeds `k` × the median
-/// with probability `2^-(k²)`: for `k = 4` (12 dB) `1.5e-5`, about `1e-4` over the 5 bins
-/// of a ±2-bin search (at `k = 3` it would be 1 % per line, several per summary of a
-/// noisy run): a line reported as found is, at that level, not noise (Randall & Antoni 2011, §3; Bendat &
-/// Piersol, *Random Data*, 4th ed., §4.2.2 for the Rayleigh law).
+/// with probability `2^-(k²)`: for `k = 4` (12 dB) `1.5e-5`, about `5e-5` over the 3 bins
+/// a search of ±1 bin can pick (at `k = 3` it would be 1 % per line, several per summary
+/// of a noisy run): a line reported as found is, at that level, not noise (Randall &
+/// Antoni 2011, §3; Bendat & Piersol, *Random Data*, 4th ed., §4.2.2 for the Rayleigh law).
 pub const FOUND_OVER_FLOOR: f64 = 4.0;
+
+/// Relative tolerance of a characteristic line: 2 % of its frequency. The kinematic
+/// frequencies (docs/physics.md §9) assume rolling without slip at the nominal contact
+/// angle and pitch diameter; the load's change of contact angle and a few per cent of
+/// cage slip move FTF, BSF, BPFO and BPFI by about that much (Randall & Antoni 2011, §2,
+/// give 1–2 % as typical), so a peak farther away is another line, not this one. The tolerance used is
+/// the tighter of this and one bin ([`line_tolerance`]).
+pub const LINE_TOLERANCE: f64 = 0.02;
+
+/// Bins two lines must be apart to be told apart: the Hann window's main lobe spans ±2
+/// bins, so closer lines leak into each other's peak.
+pub const RESOLVE_BINS: f64 = 4.0;
+
+/// The tolerance of a line expected at `expected` Hz in a spectrum of bin spacing `df`:
+/// `min(df, rel × expected)`, Hz. A peak (interpolated between bins) counts for the line
+/// only within ± this.
+pub fn line_tolerance(expected: f64, df: f64, rel: f64) -> f64 {
+    df.min(rel * expected.abs())
+}
 
 /// What became of a characteristic line.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -271,9 +299,12 @@ pub enum Verdict {
     Found,
     /// The line is resolved but nothing within the tolerance clears the floor.
     BelowFloor,
+    /// The nearest peak clears the floor but lies outside the tolerance (another line, or
+    /// this one moved by more than the level allows).
+    OffLine,
     /// The record is too short to tell this line from zero frequency or from another
-    /// line of the list: the search windows (± tolerance) overlap. `needs_s` is the record
-    /// length that separates them (infinite when two lines coincide).
+    /// line of the list: they are under [`RESOLVE_BINS`] bins apart. `needs_s` is the
+    /// record length that separates them (infinite when two lines coincide).
     Unresolved {
         /// Record length needed, s.
         needs_s: f64,
@@ -287,14 +318,18 @@ pub struct FoundPeak {
     pub label: String,
     /// Expected frequency, Hz.
     pub expected: f64,
-    /// Frequency of the largest local maximum within the tolerance, Hz (NaN if none).
+    /// Tolerance, Hz ([`line_tolerance`]): a peak counts for the line within ± this.
+    pub tol_hz: f64,
+    /// Frequency (interpolated between bins) of the largest local maximum within one bin
+    /// beyond the tolerance; when that is not the line, of the largest one above the floor
+    /// within two bins beyond it (NaN if none), Hz.
     pub found: f64,
     /// Its amplitude (0 if none).
     pub amplitude: f64,
     /// Its amplitude over the spectrum's median in `[expected/2, 2 expected]` (the
     /// significance; infinite when the floor is exactly zero).
     pub over_floor: f64,
-    /// Found, below the floor, or not resolved at this record length.
+    /// Found, off the line, below the floor, or not resolved at this record length.
     pub verdict: Verdict,
 }
 
@@ -304,19 +339,36 @@ impl FoundPeak {
         self.verdict == Verdict::Found
     }
 
-    /// One-phrase verdict, e.g. `found, 12.3 x the floor`, `not found (1.4 x the floor <
-    /// 4)`, `not resolved at this duration (needs >= 0.25 s)`; `record_scale` converts the
-    /// record length the spectrum needs into the length a user sets (e.g. 2 when only the
-    /// second half of a run is analysed).
+    /// Found minus expected frequency, Hz (NaN if no peak).
+    pub fn deviation(&self) -> f64 {
+        self.found - self.expected
+    }
+
+    /// One-phrase verdict, e.g. `found, +0.42 Hz off (tolerance ±2.09 Hz), 12.3 x the
+    /// floor`, `not found (1.4 x the floor < 4)`, `not found (nearest peak 599.8 Hz is
+    /// -61.1 Hz off, tolerance ±13.2 Hz)`, `not resolved at this duration (needs >= 0.25
+    /// s)`; `record_scale` converts the record length the spectrum needs into the length a
+    /// user sets (e.g. 2 when only the second half of a run is analysed).
     pub fn verdict_text(&self, record_scale: f64) -> String {
         match self.verdict {
-            Verdict::Found => format!("found, {:.1} x the floor", self.over_floor),
+            Verdict::Found => format!(
+                "found, {:+.2} Hz off (tolerance ±{:.2} Hz), {:.1} x the floor",
+                self.deviation(),
+                self.tol_hz,
+                self.over_floor
+            ),
             Verdict::BelowFloor if !self.found.is_finite() => {
-                "not found (no local maximum within the tolerance)".into()
+                format!("not found (no local maximum within ±{:.2} Hz)", self.tol_hz)
             }
             Verdict::BelowFloor => format!(
                 "not found ({:.1} x the floor < {FOUND_OVER_FLOOR})",
                 self.over_floor
+            ),
+            Verdict::OffLine => format!(
+                "not found (nearest peak {:.2} Hz is {:+.2} Hz off, tolerance ±{:.2} Hz)",
+                self.found,
+                self.deviation(),
+                self.tol_hz
             ),
             Verdict::Unresolved { needs_s } if needs_s.is_finite() => format!(
                 "not resolved at this duration (needs >= {:.3} s)",
@@ -327,47 +379,72 @@ impl FoundPeak {
     }
 }
 
-/// For each mark, the largest local maximum within `tol` Hz, and the verdict: a mark whose
-/// distance to 0 Hz or to any other mark of `marks` is under `2 tol` is not resolved
-/// (the windows overlap, so a peak there may belong to the neighbour; the record needed
-/// follows from the bin spacing `1/T`); a resolved mark is found when its peak stands at
-/// least [`FOUND_OVER_FLOOR`] times above the median floor.
-pub fn find_peaks(s: &Spectrum, marks: &[Mark], tol: f64) -> Vec<FoundPeak> {
+/// For each mark, the largest local maximum within one bin beyond the tolerance
+/// `line_tolerance(f, df, rel)` (when it is not the line, the largest above the floor
+/// within two bins beyond, which tells why), its frequency interpolated
+/// ([`Spectrum::peak_in`]), and the verdict: a mark closer than [`RESOLVE_BINS`] bins to 0 Hz or to any other mark of
+/// `marks` is not resolved (the record needed follows from the bin spacing `1/T`); a
+/// resolved mark is found when its peak lies within the tolerance and stands at least
+/// [`FOUND_OVER_FLOOR`] times above the median floor; a peak that clears the floor
+/// outside the tolerance is off the line.
+pub fn find_peaks(s: &Spectrum, marks: &[Mark], rel: f64) -> Vec<FoundPeak> {
     let df = s.resolution();
     marks
         .iter()
         .map(|m| {
+            let tol = line_tolerance(m.freq, df, rel);
             let floor = s.median_in(0.5 * m.freq, 2.0 * m.freq);
-            let (found, amplitude) = s
-                .peak_in(m.freq - tol, m.freq + tol)
-                .unwrap_or((f64::NAN, 0.0));
-            let over_floor = if floor > 0.0 {
-                amplitude / floor
-            } else if amplitude > 0.0 {
-                f64::INFINITY
-            } else {
-                0.0
+            let over = |a: f64| {
+                if floor > 0.0 {
+                    a / floor
+                } else if a > 0.0 {
+                    f64::INFINITY
+                } else {
+                    0.0
+                }
             };
+            let near = s.peak_in(m.freq - tol - df, m.freq + tol + df);
+            let hit = |p: &Option<(f64, f64)>| {
+                p.is_some_and(|(f, a)| (f - m.freq).abs() <= tol && over(a) >= FOUND_OVER_FLOOR)
+            };
+            // Not found within the tolerance: the strongest peak in the Hann main lobe
+            // around the line (± 2 bins beyond it) tells why.
+            let (found, amplitude) = if hit(&near) {
+                near
+            } else {
+                s.peak_in(m.freq - tol - 2.0 * df, m.freq + tol + 2.0 * df)
+                    .filter(|(_, a)| over(*a) >= FOUND_OVER_FLOOR)
+                    .or(near)
+            }
+            .unwrap_or((f64::NAN, 0.0));
+            let over_floor = over(amplitude);
             // Nearest neighbour: 0 Hz or another mark at a different place in the list.
             let gap = marks
                 .iter()
                 .filter(|o| !std::ptr::eq(*o, m))
                 .map(|o| (o.freq - m.freq).abs())
                 .fold(m.freq.abs(), f64::min);
-            let verdict = if gap < 2.0 * tol || df <= 0.0 {
-                // The window is 2 tol wide in bins of df: a record of T' has bins df T/T'.
-                let bins = if df > 0.0 { 2.0 * tol / df } else { 4.0 };
+            let verdict = if gap < RESOLVE_BINS * df || df <= 0.0 {
+                // Bins of a record T' are 1/T' wide: RESOLVE_BINS of them fit in the gap
+                // from T' = RESOLVE_BINS / gap.
                 Verdict::Unresolved {
-                    needs_s: if gap > 0.0 { bins / gap } else { f64::INFINITY },
+                    needs_s: if gap > 0.0 {
+                        RESOLVE_BINS / gap
+                    } else {
+                        f64::INFINITY
+                    },
                 }
-            } else if found.is_finite() && over_floor >= FOUND_OVER_FLOOR {
+            } else if !found.is_finite() || over_floor < FOUND_OVER_FLOOR {
+                Verdict::BelowFloor
+            } else if (found - m.freq).abs() <= tol {
                 Verdict::Found
             } else {
-                Verdict::BelowFloor
+                Verdict::OffLine
             };
             FoundPeak {
                 label: m.label.clone(),
                 expected: m.freq,
+                tol_hz: tol,
                 found,
                 amplitude,
                 over_floor,
@@ -655,7 +732,7 @@ mod tests {
             .map(|(a, b)| a + b)
             .collect();
         let s = amplitude_spectrum(&with, fs, Window::Hann);
-        let tol = 2.0 * s.resolution();
+        let tol = LINE_TOLERANCE;
         let p = &find_peaks(&s, &marks(&[("L", 123.4), ("far", 400.0)]), tol)[0];
         assert_eq!(p.verdict, Verdict::Found, "{p:?}");
         assert!(
@@ -688,20 +765,66 @@ mod tests {
         };
         let pair = marks(&[("A", 100.0), ("B", 103.0)]);
         let short = amplitude_spectrum(&two(1000), fs, Window::Hann);
-        let ps = find_peaks(&short, &pair, 2.0 * short.resolution());
+        let ps = find_peaks(&short, &pair, LINE_TOLERANCE);
         let needs = match ps[0].verdict {
             Verdict::Unresolved { needs_s } => needs_s,
             v => panic!("resolved on a 0.5 s record: {v:?}"),
         };
-        // ±2 bins on each side: 4 bins of 1/T must fit in 3 Hz, T = 4/3 s.
+        // RESOLVE_BINS = 4 bins of 1/T must fit in 3 Hz, T = 4/3 s.
         assert!((needs - 4.0 / 3.0).abs() < 1e-9, "{needs}");
         assert!(ps[0].verdict_text(1.0).contains("1.333 s"));
         let n_long = (needs * 1.05 * fs).ceil() as usize;
         let long = amplitude_spectrum(&two(n_long), fs, Window::Hann);
-        for p in find_peaks(&long, &pair, 2.0 * long.resolution()) {
+        for p in find_peaks(&long, &pair, LINE_TOLERANCE) {
             assert_eq!(p.verdict, Verdict::Found, "{p:?}");
             assert!((p.found - p.expected).abs() < long.resolution());
         }
+    }
+
+    /// Honest found-lines (issue #40): on 40 Hz bins a strong line at 599.8 Hz is not
+    /// reported as BSF expected at 660.9 Hz (it was, within the old ±2 bins): it is off
+    /// the line, the verdict names the peak and its deviation; a line at 661.7 Hz is found,
+    /// its frequency interpolated to within 1 Hz (a fortieth of a bin) and its deviation
+    /// reported against a tolerance of min(1 bin, 2 %) = 13.2 Hz.
+    #[test]
+    fn found_means_within_the_stated_tolerance_and_interpolated() {
+        let fs = 8000.0;
+        let n = 200; // 25 ms, 40 Hz bins
+        let sig = |f: f64| -> Vec<f64> {
+            (0..n)
+                .map(|i| (2.0 * PI * f * i as f64 / fs).sin())
+                .zip(noise(n, 11))
+                .map(|(a, z)| a + 1e-3 * z)
+                .collect()
+        };
+        let bsf = marks(&[("BSF", 660.9)]);
+        let s = amplitude_spectrum(&sig(599.8), fs, Window::Hann);
+        assert!((s.resolution() - 40.0).abs() < 1e-9);
+        let p = &find_peaks(&s, &bsf, LINE_TOLERANCE)[0];
+        assert!((p.tol_hz - 0.02 * 660.9).abs() < 1e-9, "{p:?}");
+        assert_eq!(p.verdict, Verdict::OffLine, "{p:?}");
+        assert!(!p.is_found());
+        assert!((p.found - 599.8).abs() < 1.0, "{p:?}");
+        let text = p.verdict_text(1.0);
+        assert!(
+            text.contains("not found") && text.contains("Hz off"),
+            "{text}"
+        );
+        let s = amplitude_spectrum(&sig(661.7), fs, Window::Hann);
+        let p = &find_peaks(&s, &bsf, LINE_TOLERANCE)[0];
+        assert_eq!(p.verdict, Verdict::Found, "{p:?}");
+        assert!((p.found - 661.7).abs() < 1.0, "interpolated {p:?}");
+        assert!((p.deviation() - (p.found - 660.9)).abs() < 1e-12, "{p:?}");
+        let text = p.verdict_text(1.0);
+        assert!(
+            text.contains(&format!(
+                "{:+.2} Hz off (tolerance ±13.22 Hz)",
+                p.deviation()
+            )),
+            "{text}"
+        );
+        // One bin is the tighter bound at high frequency: 40 Hz bins, 2 % of 3 kHz = 60 Hz.
+        assert_eq!(line_tolerance(3000.0, 40.0, LINE_TOLERANCE), 40.0);
     }
 
     /// A steady circular whirl has sigma 0; speeds alternating between 1 and 3 have mean 2

@@ -10,10 +10,11 @@ pub mod reports;
 
 use crate::analysis::{
     amplitude_spectrum, characteristic_marks, envelope_spectrum, find_peaks, whirl_index,
-    FoundPeak, Spectrum, Verdict, Window, FOUND_OVER_FLOOR,
+    FoundPeak, Spectrum, Verdict, Window, FOUND_OVER_FLOOR, LINE_TOLERANCE,
 };
 use crate::component::{Causality, Scene};
 use crate::geometry::kinematics;
+use crate::models::effects::Element;
 use crate::runner::Series;
 
 /// The sections of the summary, in order.
@@ -129,8 +130,7 @@ impl<'a> Ctx<'a> {
             .filter(|m| MAIN.contains(&m.label.as_str()))
             .cloned()
             .collect();
-        let tol = 2.0 * spec.resolution();
-        let found = find_peaks(&spec, &main, tol);
+        let found = find_peaks(&spec, &main, LINE_TOLERANCE);
         // Defects: the envelope spectrum (Randall & Antoni 2011, §4), band-passed above the
         // third multiple of the highest defect frequency (the impacts excite the band, the
         // envelope keeps their repetition rate) up to 0.8 of the Nyquist frequency.
@@ -139,12 +139,27 @@ impl<'a> Ctx<'a> {
             let nyq = 0.5 / dt;
             let band = (3.0 * top < 0.8 * nyq).then_some((3.0 * top, 0.8 * nyq));
             let env = envelope_spectrum(sig, 1.0 / dt, band);
+            // Harmonics up to 3x of the defect's own line; an inner-race defect passes
+            // through the load zone once per shaft turn, so its BPFI lines carry
+            // sidebands at the shaft frequency, a ball's 2BSF lines at FTF (docs/physics.md
+            // §5.3-5.4).
+            let on = |e: Element| scene.effects.defects.iter().any(|d| d.race == e);
+            let mut want: Vec<&str> = vec!["fs", "FTF", "1xBPFO", "1xBPFI", "1x2BSF"];
+            if on(Element::Outer) {
+                want.extend(["2xBPFO", "3xBPFO"]);
+            }
+            if on(Element::Inner) {
+                want.extend(["2xBPFI", "1xBPFI+1fs", "1xBPFI-1fs"]);
+            }
+            if on(Element::Ball) {
+                want.extend(["2x2BSF", "1x2BSF+1FTF", "1x2BSF-1FTF"]);
+            }
             let lines: Vec<_> = marks
                 .iter()
-                .filter(|m| ["fs", "FTF", "1xBPFO", "1xBPFI", "1x2BSF"].contains(&m.label.as_str()))
+                .filter(|m| want.contains(&m.label.as_str()))
                 .cloned()
                 .collect();
-            let f = find_peaks(&env, &lines, 2.0 * env.resolution());
+            let f = find_peaks(&env, &lines, LINE_TOLERANCE);
             (env, band, f)
         });
         Ctx {
@@ -323,7 +338,7 @@ fn line_table(s: &mut Summary, found: &[FoundPeak], scale: f64) -> serde_json::V
             "-".to_string()
         };
         s.line(format!(
-            "  {:<8} {:>10.3} Hz  {:>10} Hz  {}",
+            "  {:<11} {:>10.3} Hz  {:>10} Hz  {}",
             p.label,
             p.expected,
             f,
@@ -338,10 +353,13 @@ fn line_table(s: &mut Summary, found: &[FoundPeak], scale: f64) -> serde_json::V
                 let (verdict, needs) = match p.verdict {
                     Verdict::Found => ("found", None),
                     Verdict::BelowFloor => ("below floor", None),
+                    Verdict::OffLine => ("off line", None),
                     Verdict::Unresolved { needs_s } => ("not resolved", finite(needs_s * scale)),
                 };
                 serde_json::json!({"label": p.label, "expected_hz": p.expected,
                     "found_hz": if p.is_found() { finite(p.found) } else { None },
+                    "tolerance_hz": finite(p.tol_hz),
+                    "nearest_peak_hz": finite(p.found), "deviation_hz": finite(p.deviation()),
                     "over_floor": finite(p.over_floor), "verdict": verdict, "needs_duration_s": needs})
             })
             .collect(),
@@ -352,15 +370,16 @@ fn frequency_lines(c: &Ctx, s: &mut Summary) {
     let scale = c.record_scale();
     s.line(format!(
         "shaft {:.2} Hz; characteristic frequencies in the {} spectrum ({}, second half of the run: {:.4} s, bins {:.3} Hz); \
-         found = a peak within ±2 bins at least {FOUND_OVER_FLOOR} x the median floor in [f/2, 2f]:",
+         found = a peak (interpolated between bins) within ±min(1 bin, {:.0} % of f) at least {FOUND_OVER_FLOOR} x the median floor in [f/2, 2f]:",
         c.shaft_hz,
         c.signal.0,
         c.signal.1,
         1.0 / c.spec.resolution().max(1e-300),
-        c.spec.resolution()
+        c.spec.resolution(),
+        100.0 * LINE_TOLERANCE
     ));
     s.line(format!(
-        "  {:<8} {:>13}  {:>13}",
+        "  {:<11} {:>13}  {:>13}",
         "line", "expected", "found"
     ));
     let v = line_table(s, &c.found, scale);

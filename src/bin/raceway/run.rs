@@ -275,7 +275,7 @@ fn write_plots(out: &Path, c: &Ctx) -> (Vec<String>, Vec<String>) {
             "force orbit",
         )
     };
-    let title = format!("{what}, t >= {t_half:.3} s (start transient left out)");
+    let title = headed(c, &format!("{what}, t >= {t_half:.3} s"));
     let made = plot(
         &out.join("orbit.png"),
         &Axes {
@@ -294,15 +294,24 @@ fn write_plots(out: &Path, c: &Ctx) -> (Vec<String>, Vec<String>) {
         &[],
     );
     keep("orbit.png", made, &mut written, &mut skipped);
-    let f = [all("force.x"), all("force.y"), all("force.z")];
-    let panels: Vec<(Axes, Vec<Series>)> = ["Fx (N)", "Fy (N)", "Fz (N)"]
+    // Only the force components the level has (no Fz panel on 2-DOF scenes).
+    let f: Vec<(&str, Vec<f64>)> = [
+        ("Fx (N)", "force.x"),
+        ("Fy (N)", "force.y"),
+        ("Fz (N)", "force.z"),
+    ]
+    .into_iter()
+    .map(|(l, n)| (l, all(n)))
+    .filter(|(_, v)| v.iter().any(|x| *x != 0.0))
+    .collect();
+    let last = f.len().saturating_sub(1);
+    let panels: Vec<(Axes, Vec<Series>)> = f
         .iter()
-        .zip(&f)
         .enumerate()
         .map(|(k, (l, y))| {
             (
                 Axes {
-                    x_label: if k == 2 { "t (s)" } else { "" },
+                    x_label: if k == last { "t (s)" } else { "" },
                     y_label: l,
                     ..Axes::default()
                 },
@@ -317,7 +326,7 @@ fn write_plots(out: &Path, c: &Ctx) -> (Vec<String>, Vec<String>) {
         .collect();
     let made = plot_stack(
         &out.join("force.png"),
-        "force of the bearing on the shaft",
+        &headed(c, "force of the bearing on the shaft"),
         &panels,
     );
     keep("force.png", made, &mut written, &mut skipped);
@@ -349,7 +358,7 @@ fn write_plots(out: &Path, c: &Ctx) -> (Vec<String>, Vec<String>) {
         let made = plot(
             &out.join("cage-slip.png"),
             &Axes {
-                title: "cage slip",
+                title: &headed(c, "cage slip"),
                 x_label: "t (s)",
                 y_label: "1 - omega_c / omega_c,kin (-)",
                 ..Axes::default()
@@ -365,7 +374,7 @@ fn write_plots(out: &Path, c: &Ctx) -> (Vec<String>, Vec<String>) {
         keep("cage-slip.png", made, &mut written, &mut skipped);
     }
     if scene.model.level.name() == "full" {
-        match write_cage_plots(out, series) {
+        match write_cage_plots(out, series, &headed(c, "")) {
             Ok(()) => {
                 written.push("cage-orbit.png".to_string());
                 written.push("speeds.png".to_string());
@@ -396,26 +405,32 @@ fn spectrum_plot(
         .collect();
     let sf: Vec<f64> = keep.iter().map(|&i| spec.freq[i]).collect();
     let sa: Vec<f64> = keep.iter().map(|&i| spec.amp[i].max(1e-30)).collect();
-    let mk: Vec<Marker> = c
-        .marks
+    // The lines this spectrum's summary table reports: a found line is marked with its
+    // label (harmonics included), one that is not with "?" (the summary says why).
+    let lines = match &c.envelope {
+        Some((_, _, f)) if file == "envelope.png" => f,
+        _ => &c.found,
+    };
+    let mk: Vec<Marker> = lines
         .iter()
-        .filter(|m| {
-            [
-                "FTF", "1xBPFO", "1xBPFI", "1x2BSF", "2xBPFO", "2xBPFI", "fs",
-            ]
-            .contains(&m.label.as_str())
-        })
-        .map(|m| Marker {
-            x: m.freq,
-            label: m.label.trim_start_matches("1x").to_string(),
+        .map(|p| Marker {
+            x: if p.is_found() { p.found } else { p.expected },
+            label: format!(
+                "{}{}",
+                p.label.trim_start_matches("1x"),
+                if p.is_found() { "" } else { "?" }
+            ),
         })
         .collect();
     let ylab = format!("amplitude of {} ({})", c.signal.0, c.signal.1);
-    let title = format!(
-        "{what} of {}, t >= {:.3} s (Hann window, bins {:.2} Hz)",
-        c.signal.0,
-        c.series.t.get(c.start).copied().unwrap_or(0.0),
-        spec.resolution()
+    let title = headed(
+        c,
+        &format!(
+            "{what} of {}, t >= {:.3} s (Hann, bins {:.2} Hz)",
+            c.signal.0,
+            c.series.t.get(c.start).copied().unwrap_or(0.0),
+            spec.resolution()
+        ),
     );
     plot(
         &out.join(file),
@@ -488,7 +503,7 @@ fn ball_loads_plot(out: &Path, c: &Ctx) -> Result<()> {
     plot(
         &out.join("ball-loads.png"),
         &Axes {
-            title: &title,
+            title: &headed(c, &title),
             x_label: "azimuth (deg)",
             y_label: "contact load (N)",
             ..Axes::default()
@@ -513,7 +528,7 @@ fn ball_loads_plot(out: &Path, c: &Ctx) -> Result<()> {
 
 /// The full level's cage plots: the cage-centre orbit in units of the guide clearance
 /// (with the clearance circle) and the speed histories (shaft, cage, kinematic cage).
-fn write_cage_plots(out: &Path, series: &Run) -> Result<()> {
+fn write_cage_plots(out: &Path, series: &Run, who: &str) -> Result<()> {
     let col = |n: &str| series.column(n).unwrap_or(&[]).to_vec();
     let t = &series.t;
     let (cx, cy) = (col("cage.x"), col("cage.y"));
@@ -525,7 +540,7 @@ fn write_cage_plots(out: &Path, series: &Run) -> Result<()> {
     plot(
         &out.join("cage-orbit.png"),
         &Axes {
-            title: "cage-centre orbit (units of the guide clearance)",
+            title: &format!("{who}cage-centre orbit (units of the guide clearance)"),
             x_label: "x / Cg",
             y_label: "y / Cg",
             equal: true,
@@ -560,34 +575,38 @@ fn write_cage_plots(out: &Path, series: &Run) -> Result<()> {
         .zip(&ratio)
         .map(|(c, r)| if *r != 0.0 { c / r } else { 0.0 })
         .collect();
-    plot(
+    // The cage on its own axis: against the shaft's scale its slip would not show.
+    let line = |label, y| Series {
+        label,
+        x: t,
+        y,
+        points: false,
+    };
+    plot_stack(
         &out.join("speeds.png"),
-        &Axes {
-            title: "speed histories",
-            x_label: "t (s)",
-            y_label: "speed (rpm)",
-            ..Axes::default()
-        },
+        &format!("{who}speed histories"),
         &[
-            Series {
-                label: "shaft",
-                x: t,
-                y: &shaft,
-                points: false,
-            },
-            Series {
-                label: "cage",
-                x: t,
-                y: &cage,
-                points: false,
-            },
-            Series {
-                label: "cage, kinematic",
-                x: t,
-                y: &kin,
-                points: false,
-            },
+            (
+                Axes {
+                    y_label: "shaft speed (rpm)",
+                    ..Axes::default()
+                },
+                vec![line("shaft", &shaft)],
+            ),
+            (
+                Axes {
+                    x_label: "t (s)",
+                    y_label: "cage speed (rpm)",
+                    ..Axes::default()
+                },
+                vec![line("cage", &cage), line("cage, kinematic", &kin)],
+            ),
         ],
-        &[],
     )
+}
+
+/// The plot title `what`, prefixed with the scene's name and its title (bearing and
+/// operating point), so that an exported figure can be identified.
+fn headed(c: &Ctx, what: &str) -> String {
+    format!("{} ({}): {what}", c.name, c.scene.title)
 }
