@@ -812,6 +812,8 @@ fn sigint_stops_a_sweep_promptly_and_keeps_its_finished_points() {
         3,
         "header and the two finished rows:\n{csv}"
     );
+    let _ = std::fs::remove_dir_all(&dir);
+}
 
 /// Issue #40: each shipped defect scene, run at its default duration, resolves and finds
 /// the lines its title and README row promise in the envelope spectrum (outer spall:
