@@ -15,8 +15,11 @@ t0=$SECONDS
 "$py" -m pip install --quiet --disable-pip-version-check "maturin>=1.8,<2"
 rm -rf "$wheels"
 # --target-dir: its own folder, so the release wheel does not churn the usual release build.
-(cd python && "../$venv/bin/maturin" build --quiet --release --out "../$wheels" \
-  --target-dir "../$target/wheel-build")
+root=$PWD
+case "$target" in /*) tdir="$target" ;; *) tdir="$root/$target" ;; esac
+case "$venv" in /*) vdir="$venv" ;; *) vdir="$root/$venv" ;; esac
+(cd python && "$vdir/bin/maturin" build --quiet --release --out "$tdir/wheels" \
+  --target-dir "$tdir/wheel-build")
 wheel=$(ls "$wheels"/raceway_bearing-*-abi3-manylinux*.whl)
 t1=$SECONDS
 "$py" python/tests/wheel_contents.py "$wheel"
