@@ -1,5 +1,6 @@
 """The README's Python examples run as written (from the repository root), so the README
-cannot drift from the package. The Slurm example needs a cluster: it is only compiled."""
+cannot drift from the package. A Slurm example needs a cluster: it is only compiled (the
+README links to docs/python.md for Slurm)."""
 
 import os
 import re
@@ -14,7 +15,7 @@ BLOCKS = re.findall(r"```python\n(.*?)```", (ROOT / "README.md").read_text(), re
 
 
 def test_the_readme_has_python_examples():
-    # The quickstart, the Dask LocalCluster example and the Slurm example.
+    # The FMU quickstart with fmpy, the package quickstart and the Dask LocalCluster example.
     assert len(BLOCKS) >= 3
 
 

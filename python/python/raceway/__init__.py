@@ -1,8 +1,14 @@
-"""raceway: rolling-element (ball) bearing simulation from Python.
+"""raceway: rolling-element bearing simulation from Python.
 
-The API with its documentation is in ``__init__.pyi`` (what editors show); this module adds
-pandas and numpy around the native module ``raceway._raceway`` (PyO3), which does all the
-work with the GIL released.
+The Rust library behind the ``raceway`` command line, the C ABI and the FMUs, bound with
+PyO3. SI units everywhere (m, N, Pa, s, rad, rad/s) except where a name says otherwise
+(``speed_rpm``). Every call that computes releases the GIL, so threads run in parallel;
+every failure raises :class:`raceway.Error` carrying the library's message.
+
+Functions: :func:`run`, :func:`quasi_static`, :func:`sweep`, :func:`bearings`,
+:func:`bearing`, :func:`variables`; classes: :class:`Component`, :class:`State`,
+:class:`Sweep`, :class:`Error`; :mod:`raceway.dask` for Dask clusters. ``help()`` of each
+shows its parameters, returns, errors and an example.
 """
 
 from __future__ import annotations
@@ -39,14 +45,61 @@ __all__ = [
 
 
 def variables() -> pd.DataFrame:
-    """The variable table (name, vr, unit, role, description)."""
+    """The variable table of the component, the C ABI and the FMUs.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per variable, columns ``name``, ``vr`` (value reference of the C ABI and
+        the FMUs), ``unit`` (SI), ``role`` and ``description``.
+
+    Examples
+    --------
+    >>> import raceway
+    >>> v = raceway.variables()
+    >>> v.set_index("name").loc["force.y", "unit"]
+    'N'
+    """
     return pd.DataFrame(
         _raceway.variable_table(), columns=["name", "vr", "unit", "role", "description"]
     )
 
 
 def run(scene: Any = None, duration: Optional[float] = None, *, kc: bool = False):
-    """Run a scene as ``raceway run`` does: (series DataFrame, summary dict)."""
+    """Run a scene stand-alone, as ``raceway run`` does, without writing files or plots.
+
+    Parameters
+    ----------
+    scene : str, os.PathLike or dict, optional
+        TOML (or JSON) text, the path of a scene file, or a dict of the same tables.
+        ``None``: the embedded default scene.
+    duration : float, optional
+        Run time in s; overrides the scene's ``run.duration_s``.
+    kc : bool, default False
+        Add the stiffness and damping columns ``K.i.j`` and ``C.i.j``.
+
+    Returns
+    -------
+    series : pandas.DataFrame
+        One row per communication point, the columns of ``series.csv`` (``"t [s]"``,
+        ``"force.y [N]"``, ``"shaft.y [m]"``, ...: every variable with its SI unit).
+    summary : dict
+        What ``raceway run`` writes to ``summary.json``: peak loads and pressures,
+        characteristic frequencies found, ISO ratings, ``cpu_s`` (thread CPU time),
+        ``load_average``; ``scene`` is the file's stem (``"default"`` for the default).
+
+    Raises
+    ------
+    raceway.Error
+        For a bad scene (every problem at once) or a failed step.
+
+    Examples
+    --------
+    >>> import raceway
+    >>> series, summary = raceway.run("examples/scenes/default.toml", duration=0.01)
+    >>> bool(series["force.y [N]"].iloc[-1] > 0)
+    True
+    """
     names, columns, summary = _raceway.run(scene, duration, kc)
     series = pd.DataFrame(dict(zip(names, (np.asarray(c) for c in columns))))
     return series, json.loads(summary)
@@ -54,7 +107,24 @@ def run(scene: Any = None, duration: Optional[float] = None, *, kc: bool = False
 
 @dataclass
 class QuasiStaticResult:
-    """The Jones–Harris quasi-static equilibrium of :func:`quasi_static`."""
+    """The Jones–Harris quasi-static equilibrium of :func:`quasi_static`.
+
+    Attributes
+    ----------
+    balls : pandas.DataFrame
+        One row per ball: azimuth ``psi [rad]``, contact loads ``q_i [N]``, ``q_o [N]``,
+        contact angles, approaches, semi-axes, peak pressures ``p_i [Pa]``, ``p_o [Pa]``,
+        centrifugal force, gyroscopic moment, orbital and spin speeds, spin-to-roll ratios.
+    K : numpy.ndarray
+        Stiffness ``K = -dF/dq``, 5×5, order ``(x, y, z, rx, ry)``; N/m, N/rad, N m/m, N m/rad.
+    displacement : numpy.ndarray
+        Inner-ring displacement ``(x, y, z, rx, ry)``, m and rad.
+    forces : numpy.ndarray
+        Forces and moments of the bearing on the shaft ``(Fx, Fy, Fz, Mx, My)`` (= -load).
+    data : dict
+        Everything, as ``raceway quasi-static --json`` prints it: ``solution``, ``rating``
+        (ISO 281/76 C, C0, P, L10, a_ISO, S0, peak pressure), ``warnings``.
+    """
 
     balls: pd.DataFrame
     K: np.ndarray
@@ -84,10 +154,60 @@ def quasi_static(
     inner_ring_temp_c: Optional[float] = None,
     outer_ring_temp_c: Optional[float] = None,
 ) -> QuasiStaticResult:
-    """The Jones–Harris quasi-static equilibrium, as ``raceway quasi-static`` solves it.
+    """The Jones–Harris quasi-static equilibrium under a load on the inner ring.
 
-    The design check (oil viscosity and kappa, Palmgren friction, subsurface stresses,
-    operating clearance; docs/calculator.md) is ``result.data["calculator"]``.
+    The outer ring is fixed; solved as ``raceway quasi-static`` solves it.
+
+    Parameters
+    ----------
+    bearing : str, optional
+        A preset or catalogue designation (``"6205"``, ``"7008ce"``, see :func:`bearings`)
+        or the path of a TOML bearing file. ``None``: the default scene's bearing (6205).
+    speed_rpm : float, default 0
+        Shaft speed in rpm, >= 0.
+    fx, fy, fz : float, default 0
+        Loads on the inner ring, N.
+    mx, my : float, default 0
+        Moments on the inner ring, N m.
+    race_control : {"outer", "none"}, optional
+        Ball race control (``None``: the default scene's, outer).
+    kappa : float, optional
+        Viscosity ratio for a_ISO.
+    contamination : float, optional
+        ISO 281 contamination factor eC, 0..1, for a_ISO.
+    oil : str, optional
+        An ISO VG grade (``"VG68"``): its viscosity at ``oil_temp_c`` gives kappa when
+        ``kappa`` is absent (docs/calculator.md).
+    oil_vi : float, optional
+        The oil's viscosity index (default 95).
+    oil_temp_c : float, optional
+        Operating oil temperature, °C (default 70).
+    f0 : float, optional
+        Palmgren's lubrication factor for the viscous friction moment (default 2).
+    shaft_interference_um, housing_interference_um : float, optional
+        Diametral interference of the inner ring on the shaft and of the outer ring in the
+        housing, µm: the operating clearance.
+    inner_ring_temp_c, outer_ring_temp_c : float, optional
+        Ring temperatures, °C, for the operating clearance.
+
+    Returns
+    -------
+    QuasiStaticResult
+        Per-ball table, 5×5 stiffness, displacement, forces and the ratings; the design
+        check (oil viscosity and kappa, Palmgren friction, subsurface stresses, operating
+        clearance) is ``result.data["calculator"]``.
+
+    Raises
+    ------
+    raceway.Error
+        For an unknown bearing, a bad argument (named in ``field``) or no equilibrium.
+
+    Examples
+    --------
+    >>> import raceway
+    >>> qs = raceway.quasi_static("7008ce", speed_rpm=20000, fy=100, fz=300)
+    >>> qs.K.shape
+    (5, 5)
     """
     text, names, columns = _raceway.quasi_static(
         None if bearing is None else os.fspath(bearing),
@@ -119,12 +239,48 @@ def quasi_static(
 
 
 def bearings() -> pd.DataFrame:
-    """The bearing presets as ``raceway bearings --json`` lists them."""
+    """The bearing presets, as ``raceway bearings --json`` lists them.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per preset (mm, µm, degrees, kg; ``dynamic_rating_n`` and
+        ``static_rating_n`` the ISO 281/76 ratings in N). Catalogue designations
+        (60/62/63, 70/72/73 C/AC/B) are reached one at a time with :func:`bearing`.
+
+    Examples
+    --------
+    >>> import raceway
+    >>> "name" in raceway.bearings().columns
+    True
+    """
     return pd.DataFrame(json.loads(_raceway.bearings_json()))
 
 
 def bearing(name: str) -> dict:
-    """One preset or catalogue designation, as ``raceway bearings NAME --json``."""
+    """One preset or catalogue designation, as ``raceway bearings NAME --json`` prints it.
+
+    Parameters
+    ----------
+    name : str
+        ``"6206"``, ``"7205b"``, ...
+
+    Returns
+    -------
+    dict
+        Its data, ISO ratings and where each number comes from.
+
+    Raises
+    ------
+    raceway.Error
+        For an unknown designation, with the nearest names.
+
+    Examples
+    --------
+    >>> import raceway
+    >>> isinstance(raceway.bearing("6206"), dict)
+    True
+    """
     return json.loads(_raceway.bearing_json(name))
 
 
@@ -134,7 +290,47 @@ def _table(csv_text: str) -> pd.DataFrame:
 
 
 class Sweep:
-    """A parsed and checked sweep (see ``__init__.pyi``)."""
+    """A parsed and checked sweep: a base scene and axes.
+
+    Every point is a pure function index → scene → summary row, the same as
+    ``raceway sweep`` computes. A ``Sweep`` pickles (it carries its base scene), so it can
+    be shipped to Dask workers on other machines.
+
+    Parameters
+    ----------
+    sweep : str, os.PathLike or dict
+        The sweep file's path, its TOML text, or a dict of the same tables
+        (``{"scene": {...}, "axis": [{"key": ..., "values": [...]}]}``).
+
+    Raises
+    ------
+    raceway.Error
+        With every problem of the sweep at once, each with its line:column.
+
+    Attributes
+    ----------
+    columns : list of str
+        The axes' column names (units in the names).
+
+    Methods
+    -------
+    point(index)
+        The axes' values at point ``index``, by column name.
+    scene_text(index)
+        The scene (TOML) of point ``index``.
+    run_point(index), run_points(indices)
+        Run points (GIL released); each row has ``index``, ``axes``, ``summary`` and
+        ``error`` (a failed run is a row, never an exception).
+    table(rows)
+        The rows as the DataFrame ``pd.read_csv("DIR/sweep.csv")`` gives for them.
+
+    Examples
+    --------
+    >>> import raceway
+    >>> sw = raceway.Sweep("examples/sweeps/6205-speed-displacement.toml")
+    >>> len(sw) > 0
+    True
+    """
 
     def __init__(self, sweep: Any) -> None:
         if isinstance(sweep, Sweep):
@@ -183,7 +379,35 @@ def sweep(
     jobs: Optional[int] = None,
     shard: Optional[Tuple[int, int]] = None,
 ) -> pd.DataFrame:
-    """Run a sweep as ``raceway sweep`` does and return its sweep.csv as a DataFrame."""
+    """Run a sweep on this machine's threads, exactly as ``raceway sweep`` does.
+
+    Parameters
+    ----------
+    sweep : str, os.PathLike, dict or Sweep
+        The sweep file's path, its TOML text, a dict of the same tables, or a :class:`Sweep`.
+    out : str or os.PathLike, optional
+        The output folder (``rows/``, ``series/``, ``sweep.csv``; resumable: finished rows
+        are skipped). ``None``: a temporary folder, removed afterwards.
+    jobs : int, optional
+        Threads (``None``: every core).
+    shard : tuple of (int, int), optional
+        ``(k, n)``: only the indices ``i % n == k``.
+
+    Returns
+    -------
+    pandas.DataFrame
+        ``sweep.csv`` loaded with pandas: the axis values and the run summary per point.
+
+    Raises
+    ------
+    raceway.Error
+        For a bad sweep file; a failed point is a row with its error, not an exception.
+
+    Examples
+    --------
+    >>> import raceway
+    >>> table = raceway.sweep("examples/sweeps/6205-speed-displacement.toml")  # doctest: +SKIP
+    """
     sw = Sweep(sweep)
     folder = tempfile.mkdtemp(prefix="raceway-sweep-") if out is None else os.fspath(out)
     try:
@@ -196,5 +420,9 @@ def sweep(
         if out is None:
             shutil.rmtree(folder, ignore_errors=True)
 
+
+from . import _docs  # noqa: E402
+
+_docs.apply(Component, State, Error)
 
 from . import dask  # noqa: E402  (the submodule needs the names above)

@@ -30,7 +30,38 @@ def sweep(
     out: Optional[Union[str, "os.PathLike[str]"]] = None,
     batch: Optional[int] = None,
 ) -> pd.DataFrame:
-    """Map the sweep's points over a ``distributed.Client``; the table as a DataFrame."""
+    """Map the sweep's points over a Dask ``distributed.Client``.
+
+    Parameters
+    ----------
+    sweep : str, os.PathLike, dict or raceway.Sweep
+        The sweep file's path, its TOML text, a dict of the same tables, or a Sweep.
+    client : distributed.Client
+        Any client: a ``LocalCluster``, or ``dask_jobqueue.SLURMCluster`` on a cluster.
+    out : str or os.PathLike, optional
+        Also write the rows into this folder as ``raceway sweep --out`` does; finished rows
+        there are skipped (resume), and it merges with ``raceway sweep --merge``.
+    batch : int, optional
+        Points per Dask task (``None``: about four tasks per worker thread).
+
+    Returns
+    -------
+    pandas.DataFrame
+        The DataFrame ``pd.read_csv`` gives for the serial ``raceway sweep``'s
+        ``sweep.csv``, bit for bit in every column but ``cpu_s`` and ``load_average``.
+
+    Raises
+    ------
+    raceway.Error
+        For a bad sweep file.
+
+    Examples
+    --------
+    >>> from distributed import Client, LocalCluster  # doctest: +SKIP
+    >>> import raceway.dask  # doctest: +SKIP
+    >>> with Client(LocalCluster(n_workers=2)) as client:  # doctest: +SKIP
+    ...     table = raceway.dask.sweep("examples/sweeps/6205-speed-displacement.toml", client)
+    """
     from distributed import as_completed  # optional dependency: only here
 
     native = Sweep(sweep)._native
