@@ -41,6 +41,10 @@ pub struct QuasiStaticLevel {
     law: Box<dyn ElementLaw>,
     cage_ratio: f64,
     psi: Vec<f64>,
+    /// The elements' memory while an evaluation runs: it reaches the component's `aux`
+    /// only when the whole evaluation succeeds (a failed one leaves the warm starts as
+    /// they were, as a refused step leaves everything).
+    mem: Vec<f64>,
     /// Contact damping: the ring model with and without damping (their difference is the
     /// damping force); `None` when the scene has none.
     damping: Option<(RingModel, RingModel, RingEval, RingEval)>,
@@ -69,6 +73,7 @@ impl QuasiStaticLevel {
             law,
             cage_ratio: cage_speed(b, 1.0),
             psi: vec![0.0; b.z],
+            mem: Vec::new(),
             damping: (a.contact_damping > 0.0).then(|| {
                 (
                     RingModel::new(b, RingDof::Five, a.contact_damping),
@@ -171,16 +176,19 @@ impl LevelModel for QuasiStaticLevel {
         dx[0] = self.cage_ratio * m.omega;
         if let Some(w) = wrench {
             self.place(x[0]);
-            let (law, n) = (&self.law, self.law.state_len());
+            self.mem.clear();
+            self.mem.extend_from_slice(aux);
+            let (law, n, mem) = (&self.law, self.law.state_len(), &mut self.mem);
             *w = assemble(&m.q, &self.psi, law.moment_arm(), None, |j, at, u| {
                 law.react(
                     at,
                     u,
                     m.omega,
-                    &mut aux[n * j..n * (j + 1)],
+                    &mut mem[n * j..n * (j + 1)],
                     Want::default(),
                 )
             })?;
+            aux.copy_from_slice(&self.mem);
             self.add_damping(x[0], m, w, None);
         }
         Ok(())
@@ -192,7 +200,9 @@ impl LevelModel for QuasiStaticLevel {
         // Loaded elements, largest load and pressure: all the outputs read of the
         // elements.
         let (mut loaded, mut max_load, mut max_p) = (0usize, 0.0f64, 0.0f64);
-        let (law, n) = (&self.law, self.law.state_len());
+        self.mem.clear();
+        self.mem.extend_from_slice(aux);
+        let (law, n, mem) = (&self.law, self.law.state_len(), &mut self.mem);
         let want = Want {
             stiffness: true,
             report: true,
@@ -203,7 +213,7 @@ impl LevelModel for QuasiStaticLevel {
             law.moment_arm(),
             Some(&mut k),
             |j, at, u| {
-                let r = law.react(at, u, m.omega, &mut aux[n * j..n * (j + 1)], want)?;
+                let r = law.react(at, u, m.omega, &mut mem[n * j..n * (j + 1)], want)?;
                 if r.load[0] > 0.0 {
                     loaded += 1;
                 }
@@ -212,6 +222,7 @@ impl LevelModel for QuasiStaticLevel {
                 Ok(r)
             },
         )?;
+        aux.copy_from_slice(&self.mem);
         let mut c = [[0.0; 5]; 5];
         self.add_damping(x[0], m, &mut wrench, Some(&mut c));
         *out = LevelOutputs {
