@@ -340,14 +340,10 @@ impl BearingSpec {
             .resolve("bearing.materials.outer_ring")?;
         let cage_material = self.materials.cage.resolve("bearing.materials.cage")?;
 
-        // Ring masses: annuli from the bore to the race bottom and from the race bottom to
-        // the outside diameter, 90 % full (shoulders and grooves), when not given.
-        let inner_ring_mass = self.inner_ring_mass_kg.unwrap_or_else(|| {
-            0.9 * inner_material.density * PI / 4.0 * ((dm - d).powi(2) - bore * bore) * width
-        });
-        let outer_ring_mass = self.outer_ring_mass_kg.unwrap_or_else(|| {
-            0.9 * outer_material.density * PI / 4.0 * (od * od - (dm + d).powi(2)) * width
-        });
+        let (inner_est, outer_est) =
+            estimated_ring_masses(&inner_material, &outer_material, dm, d, (bore, od, width));
+        let inner_ring_mass = self.inner_ring_mass_kg.unwrap_or(inner_est);
+        let outer_ring_mass = self.outer_ring_mass_kg.unwrap_or(outer_est);
 
         let c = &self.cage;
         let cid = c.inner_diameter_mm.map(mm).unwrap_or(dm - 0.35 * d);
@@ -510,6 +506,25 @@ impl BearingSpec {
     }
 }
 
+/// Ring masses when a file does not give them, kg: annuli from the bore to the raceway and
+/// from the raceway to the outside diameter (`envelope` = bore, outside diameter, width, m),
+/// 90 % full (shoulders and grooves), for element diameter `d` on pitch diameter `dm`.
+fn estimated_ring_masses(
+    inner: &Material,
+    outer: &Material,
+    dm: f64,
+    d: f64,
+    (bore, od, width): (f64, f64, f64),
+) -> (f64, f64) {
+    let annulus = |rho: f64, outside: f64, inside: f64| {
+        0.9 * rho * PI / 4.0 * (outside * outside - inside * inside).max(0.0) * width
+    };
+    (
+        annulus(inner.density, dm - d, bore),
+        annulus(outer.density, od, dm + d),
+    )
+}
+
 impl Bearing {
     /// The common description of a roller bearing, its rollers as the element. A cylindrical
     /// roller bearing is radial (`kind` deep-groove, contact angle 0); the envelope is the
@@ -518,12 +533,13 @@ impl Bearing {
     pub fn from_roller(r: super::roller::RollerBearing) -> Result<Bearing> {
         let (d, dm) = (r.dwe, r.dpw);
         let width = r.width;
-        let inner_ring_mass = 0.9 * r.inner_material.density * PI / 4.0
-            * ((dm - d).powi(2) - r.bore * r.bore).max(0.0)
-            * width;
-        let outer_ring_mass = 0.9 * r.outer_material.density * PI / 4.0
-            * (r.outer_diameter.powi(2) - (dm + d).powi(2)).max(0.0)
-            * width;
+        let (inner_ring_mass, outer_ring_mass) = estimated_ring_masses(
+            &r.inner_material,
+            &r.outer_material,
+            dm,
+            d,
+            (r.bore, r.outer_diameter, width),
+        );
         let cage_material = Material::by_name("steel")?;
         let (cid, cod, cw) = (dm - 0.35 * d, dm + 0.35 * d, 0.8 * r.lw);
         let ring = PI / 4.0 * (cod * cod - cid * cid) * cw;

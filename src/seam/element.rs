@@ -115,6 +115,15 @@ pub trait ElementLaw: std::fmt::Debug + Send {
     ) -> Result<ElementReaction>;
 }
 
+/// The azimuths of `psi.len()` evenly spaced elements, the first at `theta` (rad): what the
+/// levels that carry elements at the cage's kinematic positions place them at.
+pub fn place_evenly(psi: &mut [f64], theta: f64) {
+    let z = psi.len() as f64;
+    for (j, p) in psi.iter_mut().enumerate() {
+        *p = theta + 2.0 * std::f64::consts::PI * j as f64 / z;
+    }
+}
+
 /// Sum elements at azimuths `psi` into the forces and moments on the shaft
 /// `(Fx, Fy, Fz, Mx, My)` and, with `stiffness`, `K = -dF/dq` (module docs). `react(j, at,
 /// u)` answers element `j`; `arm` is the laws' [`ElementLaw::moment_arm`] (the axial

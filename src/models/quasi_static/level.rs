@@ -12,16 +12,15 @@
 //! ball geometry), blended in over the first 0.1 µm of approach; off (no cost) at 0.
 
 use crate::contact::roller_law::CylindricalRollerLaw;
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::geometry::element::{Element, ElementKind};
 use crate::geometry::kinematics::nominal_cage_speed as cage_speed;
 use crate::models::quasi_static::{Options, QuasiStatic};
 use crate::models::ring::elements::LawRingLevel;
 use crate::models::ring::{RingAt, RingDof, RingEval, RingModel};
 use crate::models::LevelArgs;
-use crate::seam::element::{assemble, ElementLaw, Want};
+use crate::seam::element::{assemble, place_evenly, ElementLaw, Want};
 use crate::seam::{LevelModel, LevelOutputs, Motion, Point};
-use std::f64::consts::PI;
 
 /// The element kinds this level takes: those [`element_law`] has a law for (the level
 /// registry reads it).
@@ -35,7 +34,8 @@ pub fn element_law(a: &LevelArgs, opts: Options) -> Result<Box<dyn ElementLaw>> 
     }
 }
 
-/// The level.
+/// The level (ball bearings; [`build`] runs other elements on the ring of massless
+/// elements).
 #[derive(Debug)]
 pub struct QuasiStaticLevel {
     law: Box<dyn ElementLaw>,
@@ -58,19 +58,8 @@ impl QuasiStaticLevel {
             race_control: a.race_control,
             ..Options::default()
         };
-        let law = element_law(a, opts)?;
-        if a.contact_damping > 0.0 && law.name() != "ball" {
-            return Err(Error::invalid(
-                "model.contact_damping",
-                a.contact_damping,
-                format!(
-                    "0 for a {} bearing (contact damping is modelled for balls)",
-                    law.name()
-                ),
-            ));
-        }
         Ok(QuasiStaticLevel {
-            law,
+            law: element_law(a, opts)?,
             cage_ratio: cage_speed(b, 1.0),
             psi: vec![0.0; b.z],
             mem: Vec::new(),
@@ -85,14 +74,6 @@ impl QuasiStaticLevel {
         })
     }
 
-    /// The elements' azimuths at cage angle `theta`.
-    fn place(&mut self, theta: f64) {
-        let z = self.psi.len();
-        for (j, p) in self.psi.iter_mut().enumerate() {
-            *p = theta + 2.0 * PI * j as f64 / z as f64;
-        }
-    }
-
     /// Add the contact-damping force (and, with `c`, its matrix) at cage angle `theta`.
     fn add_damping(
         &mut self,
@@ -102,32 +83,15 @@ impl QuasiStaticLevel {
         c: Option<&mut [[f64; 5]; 5]>,
     ) {
         if let Some((with, without, e1, e0)) = &mut self.damping {
-            let wc = self.cage_ratio * m.omega;
-            let jac = c.is_some();
-            with.eval(
-                RingAt {
-                    theta_c: theta,
-                    omega_c: wc,
-                    q: &m.q,
-                    v: &m.v,
-                    t: 0.0,
-                },
-                None,
-                jac,
-                e1,
-            );
-            without.eval(
-                RingAt {
-                    theta_c: theta,
-                    omega_c: wc,
-                    q: &m.q,
-                    v: &m.v,
-                    t: 0.0,
-                },
-                None,
-                false,
-                e0,
-            );
+            let at = RingAt {
+                theta_c: theta,
+                omega_c: self.cage_ratio * m.omega,
+                q: &m.q,
+                v: &m.v,
+                t: 0.0,
+            };
+            with.eval(at, None, c.is_some(), e1);
+            without.eval(at, None, false, e0);
             for ((w, a), b) in w.iter_mut().zip(e1.wrench).zip(e0.wrench) {
                 *w += a - b;
             }
@@ -175,7 +139,7 @@ impl LevelModel for QuasiStaticLevel {
         let Point { m, x, aux, .. } = p;
         dx[0] = self.cage_ratio * m.omega;
         if let Some(w) = wrench {
-            self.place(x[0]);
+            place_evenly(&mut self.psi, x[0]);
             self.mem.clear();
             self.mem.extend_from_slice(aux);
             let (law, n, mem) = (&self.law, self.law.state_len(), &mut self.mem);
@@ -195,7 +159,7 @@ impl LevelModel for QuasiStaticLevel {
     }
     fn outputs(&mut self, p: Point<'_>, out: &mut LevelOutputs) -> Result<()> {
         let Point { m, x, aux, .. } = p;
-        self.place(x[0]);
+        place_evenly(&mut self.psi, x[0]);
         let mut k = [[0.0; 5]; 5];
         // Loaded elements, largest load and pressure: all the outputs read of the
         // elements.

@@ -18,9 +18,8 @@ use crate::error::{Error, Result};
 use crate::geometry::kinematics::nominal_cage_speed as cage_speed;
 use crate::models::effects::Effects;
 use crate::models::LevelArgs;
-use crate::seam::element::{assemble, ElementLaw, Want};
+use crate::seam::element::{assemble, place_evenly, ElementLaw, Want};
 use crate::seam::{LevelModel, LevelOutputs, Point};
-use std::f64::consts::PI;
 
 /// The stiffness and damping matrices an evaluation fills.
 type Matrices<'a> = (&'a mut [[f64; 5]; 5], &'a mut [[f64; 5]; 5]);
@@ -66,16 +65,13 @@ impl LawRingLevel {
         report: &mut (usize, f64, f64),
     ) -> Result<[f64; 5]> {
         let Point { m, x, .. } = p;
-        let z = self.psi.len();
-        for (j, psi) in self.psi.iter_mut().enumerate() {
-            *psi = x[0] + 2.0 * PI * j as f64 / z as f64;
-        }
+        place_evenly(&mut self.psi, x[0]);
         let wc = self.cage_ratio * m.omega;
         let want = Want {
             stiffness: kc.is_some(),
             report: kc.is_some(),
         };
-        let (law, c0) = (&self.law, self.damping);
+        let (law, c0, jac) = (&self.law, self.damping, kc.is_some());
         let arm2 = if self.dof == RingDof::Five {
             law.tilt_damping_arm2()
         } else {
@@ -89,22 +85,19 @@ impl LawRingLevel {
             kc.as_mut().map(|(k, _)| &mut **k),
             |_, at, u| {
                 let mut r = law.react(at, u, m.omega, &mut [], want)?;
-                if r.load[0] > 0.0 || r.f[1] < 0.0 {
+                if r.f[1] < 0.0 {
                     report.0 += 1;
                     report.1 = report.1.max(r.load[0]).max(r.load[1]);
                     report.2 = report.2.max(r.pressure[0]).max(r.pressure[1]);
                 }
                 if c0 > 0.0 && r.f[1] < 0.0 && r.approach > 0.0 {
-                    let (s, c) = at.psi.sin_cos();
+                    let (s, c) = at.sc;
                     let (q, v) = (&m.q, &m.v);
                     let rate = v[0] * c + v[1] * s + wc * (-q[0] * s + q[1] * c);
                     let cd = c0 * (r.approach / DAMPING_RAMP).min(1.0);
                     r.f[1] -= cd * rate;
-                    let g = [c, s];
-                    for (a, ga) in g.iter().enumerate() {
-                        for (b, gb) in g.iter().enumerate() {
-                            cmat[a][b] += cd * ga * gb;
-                        }
+                    if jac {
+                        add_outer(&mut cmat, 0, [c, s], cd);
                     }
                     if arm2 > 0.0 {
                         // The tilt about the element's tangential axis, `rx s - ry c`, and its
@@ -112,11 +105,8 @@ impl LawRingLevel {
                         let wt = v[3] * s - v[4] * c + wc * (q[3] * c + q[4] * s);
                         let ct = cd * arm2;
                         r.f[2] -= ct * wt;
-                        let g = [s, -c];
-                        for (a, ga) in g.iter().enumerate() {
-                            for (b, gb) in g.iter().enumerate() {
-                                cmat[3 + a][3 + b] += ct * ga * gb;
-                            }
+                        if jac {
+                            add_outer(&mut cmat, 3, [s, -c], ct);
                         }
                     }
                 }
@@ -139,6 +129,16 @@ impl LawRingLevel {
             *c = cmat;
         }
         Ok(w)
+    }
+}
+
+/// `m[o + a][o + b] += k g_a g_b`: a damper `k` along the unit direction `g` of the two
+/// coordinates from `o` (x, y or rx, ry).
+fn add_outer(m: &mut [[f64; 5]; 5], o: usize, g: [f64; 2], k: f64) {
+    for (a, ga) in g.iter().enumerate() {
+        for (b, gb) in g.iter().enumerate() {
+            m[o + a][o + b] += k * ga * gb;
+        }
     }
 }
 
