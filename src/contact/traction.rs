@@ -14,6 +14,22 @@
 //!   odd-extended: `mu(s) = tanh(s / s_reg) [(A + B|s|) exp(-C|s|) + D]`, so it passes
 //!   through 0 continuously even when `A + D != 0`. `s` uses a regularised rolling speed
 //!   `sqrt(u² + u_min²)` so it stays finite at rest.
+//! - **The 4109 fit** (`fitted_4109`, [`Fit4109`]): the same curve with A–D computed at each
+//!   contact from its load, rolling speed and the oil temperature, the power laws Wang, Yang,
+//!   Wang and Zheng's group fitted for the aviation oil 4109, the sister of the 4106 whose
+//!   fit study \[0\] uses (that one was not found). **A substitute for 4106, coefficients
+//!   from public code** (two MATLAB repositories of one author, `oil_coe_model.m`; medium
+//!   confidence): with `W = Q/(E' R²)`, `U = eta0 u/(E' R)`, `Tb = T sqrt(K eta0 beta)/(E' R)`,
+//!   the critical load `WF = 7.956015e12 Tb² + 5553.09 Tb + 1.758455e-6`, `e = |WF/W - 1|`:
+//!   `A = -4.793526e-8 W^(0.0068361 e) U^-0.4047492 Tb^-0.1833848`,
+//!   `B = 8.37449e-15 W^(0.01409715 e) U^-0.5868325 Tb^-0.8173636`,
+//!   `C = 1.180823e-4 W^(0.006321 e) U^-0.20617 Tb^-0.3631740`, `D = -A`. Open questions
+//!   (stated in `scene --explain` and docs/physics.md §5.2): whether `T` is in °C (as coded,
+//!   used here) or K; which radius `R` is (the contact's rolling-direction `Rx` here; one script
+//!   uses a 10 mm test ball); whether `eta0` follows the inlet temperature (here: as given,
+//!   or MIL-L-7808's at `T` with `oil = "mil_l_7808"`). `form = "constant"` is instead the
+//!   fixed set `A = -0.0196, B = 0.39873, C = 39.002, D = 0.01984` of a legacy program in public
+//!   code (conditions not stated; within a few per cent of the power laws at 25 °C and 30 m/s).
 //! - **Mixed EHL** (study \[2\]'s eq. (7), after Masjedi & Khonsari): the load is shared
 //!   between the asperities (`La` per cent) and the film. Asperity share
 //!   `f_a = f_c Q (La/100) tanh(dv/v_s)` (boundary friction coefficient `f_c`, made
@@ -40,7 +56,7 @@
 //!   by Newton's method (one root, as `f_f` falls with `dT`), so the law stays a
 //!   continuous function of the slip.
 
-use crate::seam::fields::{choice, closed, ge, gt, number, table, ANY};
+use crate::seam::fields::{between, choice, closed, ge, gt, number, table, ANY};
 use std::f64::consts::PI;
 /// Smallest regularising slip speed of a traction or pocket friction law, m/s. A law
 /// `mu(dv) = mu_max tanh(dv/v_s)` with `v_s` below it is a step no integrator resolves:
@@ -343,6 +359,129 @@ impl MixedEhl {
     }
 }
 
+/// Which A–D the 4109 law uses (module notes).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Form4109 {
+    /// A–D from load, speed and temperature (the power laws).
+    #[default]
+    PowerLaw,
+    /// The fixed set of the legacy program.
+    Constant,
+}
+
+/// Where the 4109 law's oil data (`eta0`, `beta`, `K`) come from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Oil4109 {
+    /// The values coded beside the fit: 0.033 Pa s, 0.0215 1/K, 0.0966 W/(m K).
+    #[default]
+    Code,
+    /// MIL-L-7808 at `temperature_c` ([`crate::lubrication::oils`]).
+    #[serde(rename = "mil_l_7808")]
+    MilL7808,
+}
+
+/// The 4109 fit (module notes): "4109 substitute for 4106, coefficients from public code".
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Fit4109 {
+    /// Power laws or the constant set.
+    pub form: Form4109,
+    /// Oil temperature `T` of the fit's temperature group, °C (as coded; open question).
+    pub temperature_c: Option<f64>,
+    /// Source of `eta0`, `beta`, `K`.
+    pub oil: Oil4109,
+    /// Override of `eta0`, Pa s.
+    pub viscosity: Option<f64>,
+    /// Override of the viscosity–temperature coefficient `beta`, 1/K.
+    pub beta: Option<f64>,
+    /// Override of the oil conductivity `K`, W/(m K).
+    pub conductivity: Option<f64>,
+    /// Regularising slide-to-roll ratio.
+    pub s_reg: f64,
+    /// Smallest rolling speed in `s` and in `U`, m/s.
+    pub u_min: f64,
+}
+
+impl Default for Fit4109 {
+    fn default() -> Self {
+        Fit4109 {
+            form: Form4109::PowerLaw,
+            temperature_c: None,
+            oil: Oil4109::Code,
+            viscosity: None,
+            beta: None,
+            conductivity: None,
+            s_reg: 1e-3,
+            u_min: 0.1,
+        }
+    }
+}
+
+/// Label of the 4109 presets (scene notes, docs, reports).
+pub const FIT_4109_LABEL: &str =
+    "4109 substitute for 4106, coefficients from public code (medium confidence)";
+
+/// The legacy program's constant set `[A, B, C, D]` (public code; conditions not stated).
+pub const CONSTANT_4109: [f64; 4] = [-0.0196, 0.39873, 39.002, 0.01984];
+
+/// `eta0` (Pa s), `beta` (1/K) and `K` (W/(m K)) coded beside the 4109 fit.
+pub const OIL_4109_CODE: [f64; 3] = [0.033, 0.0215, 0.0966];
+
+impl Fit4109 {
+    /// `eta0`, `beta`, `K` the fit uses (module notes); `field` names the temperature in an
+    /// error (MIL-L-7808 outside its tables).
+    pub fn oil_data(&self, field: &str) -> crate::error::Result<[f64; 3]> {
+        let mut p = OIL_4109_CODE;
+        if self.oil == Oil4109::MilL7808 {
+            let t = self.temperature_c.unwrap_or(f64::NAN);
+            let o = crate::lubrication::oils::mil_l_7808(t + 273.15, field)?;
+            p = [o.viscosity, o.viscosity_temperature, o.conductivity];
+        }
+        for (slot, v) in p
+            .iter_mut()
+            .zip([self.viscosity, self.beta, self.conductivity])
+        {
+            if let Some(v) = v {
+                *slot = v;
+            }
+        }
+        Ok(p)
+    }
+
+    /// `[A, B, C, D]` at load `q` (N), rolling speed `u` (m/s, floored as in the law by
+    /// `u_min`), radius `rx` (m) and modulus `e_eff` (Pa) with the oil data `[eta0, beta, K]`.
+    pub fn coefficients(&self, q: f64, u: f64, rx: f64, e_eff: f64, oil: [f64; 3]) -> [f64; 4] {
+        if self.form == Form4109::Constant {
+            return CONSTANT_4109;
+        }
+        let [eta0, beta, k] = oil;
+        let t = self.temperature_c.unwrap_or(f64::NAN);
+        let er = e_eff * rx;
+        let w = q / (er * rx);
+        let uu = eta0 * (u * u + self.u_min * self.u_min).sqrt() / er;
+        let tb = t * (k * eta0 * beta).sqrt() / er;
+        let wf = 7.956015e12 * tb * tb + 5553.09 * tb + 1.758455e-6;
+        let e = (wf / w - 1.0).abs();
+        let (lw, lu, lt) = (w.ln(), uu.ln(), tb.ln());
+        let term =
+            |c0: f64, ew: f64, eu: f64, et: f64| c0 * (ew * e * lw + eu * lu + et * lt).exp();
+        let a = -term(4.793526e-8, 0.0068361, -0.4047492, -0.1833848);
+        let b = term(8.37449e-15, 0.01409715, -0.5868325, -0.8173636);
+        let c = term(1.180823e-4, 0.006321, -0.20617, -0.3631740);
+        [a, b, c, -a]
+    }
+
+    /// Traction coefficient `tanh(s/s_reg) [(A + B|s|) exp(-C|s|) + D]` at slide-to-roll
+    /// ratio `s` with the coefficients `abcd`.
+    pub fn mu(&self, s: f64, abcd: [f64; 4]) -> f64 {
+        let [a, b, c, d] = abcd;
+        let sa = s.abs();
+        tanh(s / self.s_reg) * ((a + b * sa) * (-c * sa).exp() + d)
+    }
+}
+
 /// A traction law (a scene choice).
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(tag = "law", rename_all = "snake_case", deny_unknown_fields)]
@@ -371,11 +510,14 @@ pub enum TractionLaw {
     },
     /// Mixed-EHL asperity + film law.
     MixedEhl(MixedEhl),
+    /// The fitted curve with the 4109 A–D (module notes; a substitute for study \[0\]'s 4106).
+    #[serde(rename = "fitted_4109")]
+    Fitted4109(Fit4109),
 }
 
 crate::declare_fields!(TractionLaw {
-    law => choice(&["coulomb", "fitted", "mixed_ehl"], "traction law at the race contacts")
-        .note("the other traction fields belong to one law each"),
+    law => choice(&["coulomb", "fitted", "mixed_ehl", "fitted_4109"], "traction law at the race contacts")
+        .note("the other traction fields belong to one law each; fitted_4109: mu = (A + B s) exp(-C s) + D of the slide-to-roll ratio s with A-D of the aviation oil 4109, a 4109 substitute for 4106 (study [0]'s oil fit, not found), coefficients from public code, medium confidence"),
     mu_max => number("-", closed(0.0, 2.0), "largest traction coefficient of mu = mu_max tanh(dv/v_s)")
         .note("law = \"coulomb\", required there")
         .why("a traction coefficient; dry steel on steel stays below 1 (the one-hour fuzz run found 5e298 passing the check and failing the static start with no field named)"),
@@ -388,11 +530,21 @@ crate::declare_fields!(TractionLaw {
     c => number("-", closed(0.0, 1e6), "C of the fitted law").note("law = \"fitted\", required there"),
     d => number("-", ANY, "D of the fitted law").note("law = \"fitted\", required there"),
     s_reg => number("-", gt(0.0), "regularising slide-to-roll ratio")
-        .note("law = \"fitted\", required there"),
+        .note("law = \"fitted\" (required) or \"fitted_4109\" (default 0.001)"),
     u_min => number("m/s", gt(0.0), "smallest rolling speed in the slide-to-roll ratio")
-        .note("law = \"fitted\", required there"),
-    viscosity => number("Pa s", gt(0.0), "inlet viscosity of the mixed-EHL law")
-        .note("law = \"mixed_ehl\" (default 0.04667)"),
+        .note("law = \"fitted\" (required) or \"fitted_4109\" (default 0.1, also in its speed group U)"),
+    viscosity => number("Pa s", gt(0.0), "inlet viscosity of the mixed-EHL law, or eta0 of the 4109 fit")
+        .note("law = \"mixed_ehl\" (default 0.04667) or \"fitted_4109\" (default 0.033, the value coded beside the fit, or MIL-L-7808's at temperature_c with oil = \"mil_l_7808\"; open question: whether eta0 follows the inlet temperature)"),
+    form => choice(&["power_law", "constant"], "4109 fit: A-D from load, speed and temperature (power_law) or the fixed set A -0.0196, B 0.39873, C 39.002, D 0.01984 (constant)")
+        .note("law = \"fitted_4109\" (default power_law); both: 4109 substitute for 4106, coefficients from public code, medium confidence"),
+    temperature_c => number("°C", between(0.0, false, 300.0, true), "4109 fit: oil temperature T of the group Tb = T sqrt(K eta0 beta)/(E' R), R the contact's rolling-direction radius Rx")
+        .note("law = \"fitted_4109\", required with form = \"power_law\" or oil = \"mil_l_7808\" (then in [37.85, 204.85]); open questions: the public code puts T in °C, as here, not K (in K the coefficients change several-fold); R is Rx here, a 10 mm test ball in one script"),
+    oil => choice(&["code", "mil_l_7808"], "4109 fit: eta0, beta and K as coded beside the fit (0.033 Pa s, 0.0215 1/K, 0.0966 W/(m K)) or MIL-L-7808's at temperature_c")
+        .note("law = \"fitted_4109\" (default code); viscosity, beta, conductivity override either"),
+    beta => number("1/K", gt(0.0), "4109 fit: viscosity-temperature coefficient beta")
+        .note("law = \"fitted_4109\" (default: from oil)"),
+    conductivity => number("W/(m K)", gt(0.0), "4109 fit: oil thermal conductivity K")
+        .note("law = \"fitted_4109\" (default: from oil)"),
     alpha_p => number("1/Pa", closed(0.0, 1e-6), "pressure-viscosity coefficient")
         .note("law = \"mixed_ehl\" (default 2.1e-8)"),
     lambda_lim => number("-", gt(0.0), "limiting-shear coefficient")
@@ -435,12 +587,28 @@ impl TractionLaw {
         if let TractionLaw::MixedEhl(m) = self {
             check(&format!("{field}.fit"), AsperityFit::FIELDS, &m.fit)?;
         }
+        if let TractionLaw::Fitted4109(f) = self {
+            let t = format!("{field}.temperature_c");
+            let needs_t = f.form == Form4109::PowerLaw || f.oil == Oil4109::MilL7808;
+            if needs_t && f.temperature_c.is_none() {
+                return Err(crate::Error::invalid(
+                    t,
+                    "absent",
+                    "given (°C) with form = \"power_law\" or oil = \"mil_l_7808\"",
+                ));
+            }
+            f.oil_data(&t)?;
+        }
         Ok(())
     }
 
     /// Does the law use the contact's semi-axes, radius and modulus (or only the load)?
     pub fn needs_contact(&self) -> bool {
-        matches!(self, TractionLaw::MixedEhl(_))
+        match self {
+            TractionLaw::MixedEhl(_) => true,
+            TractionLaw::Fitted4109(f) => f.form == Form4109::PowerLaw,
+            _ => false,
+        }
     }
 
     /// Tangential force, N, for slip `dv` (m/s), rolling speed `u` (m/s) and contact `c`.
@@ -464,6 +632,19 @@ impl TractionLaw {
                 (s / s_reg).tanh() * ((a + b * sa) * (-cc * sa).exp() + d) * c.q
             }
             TractionLaw::MixedEhl(m) => m.evaluate(dv, u, c).force,
+            TractionLaw::Fitted4109(f) => {
+                // Validated laws have their oil data; a law that was not falls back to the
+                // coded values rather than failing inside the dynamics.
+                let oil = f.oil_data("temperature_c").unwrap_or(OIL_4109_CODE);
+                let abcd = f.coefficients(c.q, u, c.rx, c.e_eff, oil);
+                let s = dv / (u * u + f.u_min * f.u_min).sqrt();
+                let mu = f.mu(s, abcd);
+                if mu.is_finite() {
+                    mu * c.q
+                } else {
+                    0.0
+                }
+            }
         }
     }
 }
@@ -520,6 +701,14 @@ mod tests {
                 u_min: 0.01,
             },
             TractionLaw::MixedEhl(MixedEhl::default()),
+            TractionLaw::Fitted4109(Fit4109 {
+                temperature_c: Some(60.0),
+                ..Default::default()
+            }),
+            TractionLaw::Fitted4109(Fit4109 {
+                form: Form4109::Constant,
+                ..Default::default()
+            }),
         ];
         for law in laws {
             for dv in [1e-3, 0.1, 2.0] {
@@ -659,5 +848,127 @@ mod tests {
             a,
             crate::lubrication::asperity::asperity_share(&g, shared.reading)
         );
+    }
+
+    /// The brief's derived check of the 4109 power laws (Q 29 N, R 10 mm, u 30 m/s, E'
+    /// 2.26e11 Pa, the coded oil data): at 25 °C A = -0.0189, B = 0.356, C = 41.4, D = 0.0189
+    /// to the printed digits, and the limiting coefficient D falls to 0.011 at 125 °C.
+    #[test]
+    fn fit_4109_reproduces_the_derived_check() {
+        let at = |t: f64| {
+            Fit4109 {
+                temperature_c: Some(t),
+                ..Default::default()
+            }
+            .coefficients(29.0, 30.0, 0.01, 2.26e11, OIL_4109_CODE)
+        };
+        let [a, b, c, d] = at(25.0);
+        // u_min 0.1 m/s in sqrt(u² + u_min²) moves U by 6e-6 relative: below the digits.
+        assert!((a + 0.0189).abs() < 0.00005, "{a}");
+        assert!((b - 0.356).abs() < 0.0005, "{b}");
+        assert!((c - 41.4).abs() < 0.05, "{c}");
+        assert_eq!(d, -a);
+        let d125 = at(125.0)[3];
+        assert!((d125 - 0.011).abs() < 0.0005, "{d125}");
+    }
+
+    /// The curve's limits: `A + D` as `s -> 0` beyond the regularisation (0 for the power
+    /// laws, whose `D = -A`), `D` as `s -> inf`, its only maximum at `s* = 1/C - A/B`, odd in
+    /// `s` and continuous (no step larger than the slope allows on a fine grid). The constant
+    /// set peaks near 0.020 at s about 0.075 and tends to 0.0198, as the brief says.
+    #[test]
+    fn fit_4109_limits_continuity_and_sign() {
+        let f = Fit4109 {
+            temperature_c: Some(25.0),
+            s_reg: 1e-9,
+            ..Default::default()
+        };
+        for abcd in [
+            f.coefficients(29.0, 30.0, 0.01, 2.26e11, OIL_4109_CODE),
+            CONSTANT_4109,
+        ] {
+            let [a, b, c, d] = abcd;
+            let near0 = f.mu(1e-7, abcd);
+            assert!(
+                (near0 - (a + d)).abs() < 1e-6 * b.abs().max(1.0),
+                "{near0} {}",
+                a + d
+            );
+            assert!((f.mu(1e3 / c, abcd) - d).abs() < 1e-12);
+            let s_star = 1.0 / c - a / b;
+            let peak = f.mu(s_star, abcd);
+            for k in 1..=2000 {
+                let s = 1e-4 * k as f64;
+                let m = f.mu(s, abcd);
+                assert!(m <= peak + 1e-15, "s {s}: {m} above the peak {peak}");
+                assert_eq!(f.mu(-s, abcd), -m, "odd");
+                let step = (f.mu(s + 1e-7, abcd) - m).abs();
+                assert!(step < 1e-7 * (b + a.abs() * c + 1.0), "continuous at {s}");
+            }
+        }
+        let [a, b, c, d] = CONSTANT_4109;
+        let s_star = 1.0 / c - a / b;
+        assert!((s_star - 0.075).abs() < 0.005, "{s_star}");
+        let peak = f.mu(s_star, CONSTANT_4109);
+        assert!((peak - 0.020).abs() < 0.0005, "{peak}");
+        assert!((a + d).abs() < 3e-4 && d > 0.0198);
+        // The law through force(): the coefficient times the load, odd in the slip.
+        let law = TractionLaw::Fitted4109(f);
+        let cs = ContactState {
+            q: 29.0,
+            rx: 0.01,
+            e_eff: 2.26e11,
+            ..contact()
+        };
+        let s = 0.05;
+        let fp = law.force(s * 30.0, 30.0, &cs);
+        let abcd = f.coefficients(29.0, 30.0, 0.01, 2.26e11, OIL_4109_CODE);
+        assert!((fp / 29.0 - f.mu(s * 30.0 / (900.0f64 + 0.01).sqrt(), abcd)).abs() < 1e-15);
+        assert_eq!(law.force(-s * 30.0, 30.0, &cs), -fp);
+    }
+
+    /// The 4109 law's scene checks: the power laws need the temperature; MIL-L-7808 data
+    /// only within its tables; explicit oil data override the preset's; only the power laws
+    /// need the contact's radius and modulus; finite down to rest.
+    #[test]
+    fn fit_4109_checks_and_oil_data() {
+        let bare = TractionLaw::Fitted4109(Fit4109::default());
+        let e = bare
+            .validate("model.full.traction")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("model.full.traction.temperature_c"), "{e}");
+        let constant = Fit4109 {
+            form: Form4109::Constant,
+            ..Default::default()
+        };
+        assert!(TractionLaw::Fitted4109(constant).validate("t").is_ok());
+        assert!(!TractionLaw::Fitted4109(constant).needs_contact());
+        let cold = Fit4109 {
+            temperature_c: Some(20.0),
+            oil: Oil4109::MilL7808,
+            ..Default::default()
+        };
+        assert!(TractionLaw::Fitted4109(cold).validate("t").is_err());
+        let warm = Fit4109 {
+            temperature_c: Some(100.0),
+            ..cold
+        };
+        let law = TractionLaw::Fitted4109(warm);
+        assert!(law.validate("t").is_ok() && law.needs_contact());
+        let [eta, beta, k] = warm.oil_data("t").unwrap();
+        assert!((eta - 2.87e-3).abs() < 0.01e-3 && beta > 0.0 && (k - 0.1336).abs() < 1e-3);
+        let over = Fit4109 {
+            viscosity: Some(0.02),
+            ..warm
+        };
+        assert_eq!(over.oil_data("t").unwrap()[0], 0.02);
+        let cs = contact();
+        for u in [0.0, 1e-9, 1e-3, 1.0, 100.0] {
+            for dv in [-1.0, 0.0, 1e-6, 0.3] {
+                let f = law.force(dv, u, &cs);
+                assert!(f.is_finite(), "u {u} dv {dv}");
+            }
+        }
     }
 }

@@ -35,6 +35,7 @@
 pub mod asperity;
 pub mod drag;
 pub mod guide_land;
+pub mod oils;
 pub mod pocket;
 
 pub use drag::{disk_moment, sphere_drag_force, sphere_spin_moment, Fluid};
@@ -79,6 +80,27 @@ impl Lubricant {
             viscosity_temperature: 0.04,
             roughness: 0.2e-6,
         }
+    }
+}
+
+/// The lubricant presets a scene may name (`effects.lubrication.lubricant`).
+pub const LUBRICANT_PRESETS: [&str; 2] = ["study2", "mil_l_7808"];
+
+impl Lubricant {
+    /// MIL-L-7808 at `temperature` (K; [`oils::mil_l_7808`], public code, medium
+    /// confidence): viscosity, pressure–viscosity, density and the viscosity–temperature
+    /// coefficient from the correlations. Roughness is not an oil property and no study
+    /// gives one for this oil: zero (set `roughness` for a film parameter). Refused outside
+    /// 311–478 K naming `field`.
+    pub fn mil_l_7808(temperature: f64, field: &str) -> crate::error::Result<Self> {
+        let o = oils::mil_l_7808(temperature, field)?;
+        Ok(Lubricant {
+            viscosity: o.viscosity,
+            pressure_viscosity: o.pressure_viscosity,
+            density: o.density,
+            viscosity_temperature: o.viscosity_temperature,
+            roughness: 0.0,
+        })
     }
 }
 

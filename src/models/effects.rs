@@ -140,6 +140,9 @@ pub struct LubricationSpec {
     /// Composite rms roughness of ball and race, µm.
     #[serde(default)]
     pub roughness_um: Option<f64>,
+    /// Bulk oil temperature of a temperature-dependent preset (`mil_l_7808`), °C.
+    #[serde(default)]
+    pub temperature_c: Option<f64>,
 }
 
 crate::declare_fields!(LubricationSpec {
@@ -151,7 +154,9 @@ crate::declare_fields!(LubricationSpec {
     density_kg_m3 => number("kg/m³", between(0.0, false, 1e5, true), "lubricant density")
         .note("absent: the preset's"),
     roughness_um => number("µm", closed(0.0, 100.0), "composite rms roughness of ball and race")
-        .note("absent: the preset's"),
+        .note("absent: the preset's (mil_l_7808: 0, no source gives one)"),
+    temperature_c => number("°C", closed(37.85, 204.85), "bulk oil temperature at which a temperature-dependent preset is evaluated")
+        .note("lubricant = \"mil_l_7808\", required there: viscosity, pressure-viscosity, density and viscosity-temperature coefficient from the MIL-L-7808 correlations of a public ADORE-style lubricant library (public code, medium confidence; the span of its tables, 311-478 K)"),
 });
 
 fn default_lubricant() -> String {
@@ -291,13 +296,32 @@ crate::declare_fields!(ThermalSpec {
 impl LubricationSpec {
     /// The lubricant: preset plus overrides.
     pub fn lubricant(&self) -> Result<Lubricant> {
-        let mut l = match self.lubricant.as_str() {
-            "study2" => Lubricant::study2(),
-            other => {
+        const T: &str = "effects.lubrication.temperature_c";
+        let mut l = match (self.lubricant.as_str(), self.temperature_c) {
+            ("study2", None) => Lubricant::study2(),
+            ("study2", Some(t)) => {
+                return Err(Error::invalid(
+                    T,
+                    t,
+                    "absent with lubricant = \"study2\" (its data are at one temperature)",
+                ))
+            }
+            ("mil_l_7808", Some(t)) => Lubricant::mil_l_7808(t + 273.15, T)?,
+            ("mil_l_7808", None) => {
+                return Err(Error::invalid(
+                    T,
+                    "absent",
+                    "given with lubricant = \"mil_l_7808\", in [37.85, 204.85] °C",
+                ))
+            }
+            (other, _) => {
                 return Err(Error::Unknown {
                     what: "lubricant preset (effects.lubrication.lubricant)",
                     name: other.into(),
-                    known: vec!["study2".into()],
+                    known: crate::lubrication::LUBRICANT_PRESETS
+                        .iter()
+                        .map(|s| s.to_string())
+                        .collect(),
                 })
             }
         };

@@ -39,7 +39,10 @@ impl Names {
         match self {
             Names::BearingPreset => presets::presets().into_iter().map(|p| p.name).collect(),
             Names::Material => Material::presets().into_iter().map(|m| m.name).collect(),
-            Names::Lubricant => vec!["study2".into()],
+            Names::Lubricant => crate::lubrication::LUBRICANT_PRESETS
+                .iter()
+                .map(|s| s.to_string())
+                .collect(),
         }
     }
 

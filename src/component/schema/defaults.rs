@@ -103,6 +103,7 @@ pub(super) fn full_scene(bearing: BearingRef, traction: TractionLaw) -> Scene {
                 pressure_viscosity_m2_per_n: Some(2e-8),
                 density_kg_m3: Some(870.0),
                 roughness_um: Some(0.1),
+                temperature_c: None,
             }),
             wear: Some(crate::models::effects::WearSpec::default()),
             thermal: Some(crate::models::effects::ThermalSpec {
@@ -158,6 +159,28 @@ pub fn full_scenes() -> Vec<Scene> {
                 ..Default::default()
             }),
         ),
+        {
+            // The 4109 law with every optional field, on MIL-L-7808 (the temperature-dependent
+            // lubricant preset), so their rows are walked.
+            use crate::contact::traction::{Fit4109, Oil4109};
+            let mut s = full_scene(
+                BearingRef::Preset("7004".into()),
+                TractionLaw::Fitted4109(Fit4109 {
+                    temperature_c: Some(80.0),
+                    oil: Oil4109::MilL7808,
+                    viscosity: Some(0.01),
+                    beta: Some(0.02),
+                    conductivity: Some(0.13),
+                    ..Default::default()
+                }),
+            );
+            if let Some(l) = s.effects.lubrication.as_mut() {
+                l.lubricant = "mil_l_7808".into();
+                l.temperature_c = Some(80.0);
+                l.viscosity_pa_s = None;
+            }
+            s
+        },
     ]
 }
 
