@@ -10,7 +10,7 @@ use serde::{Deserialize, Serialize};
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct SkiddingSpec {
-    /// Traction law at the race contacts (`law = "coulomb" | "fitted" | "mixed_ehl"`).
+    /// Traction law at the race contacts (`law = "coulomb" | "fitted" | "mixed_ehl" | "fitted_4109"`).
     pub traction: crate::contact::traction::TractionLaw,
     /// Pocket clearance per side, mm (default: the bearing's cage pocket clearance).
     pub pocket_clearance_mm: Option<f64>,
