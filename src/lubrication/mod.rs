@@ -37,6 +37,7 @@ pub mod drag;
 pub mod guide_land;
 pub mod oils;
 pub mod pocket;
+pub mod rough_film;
 
 pub use drag::{disk_moment, sphere_drag_force, sphere_spin_moment, Fluid};
 pub use guide_land::{GuideForce, GuideLand};
