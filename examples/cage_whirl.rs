@@ -15,7 +15,11 @@
 //! `--windows N` (equal windows over which sigma is computed, the convergence check),
 //! `--step S` (communication step = sampling of the cage-centre speed), `--unbalance-um U`
 //! (cage mass unbalance, `model.full.cage_unbalance_um`), `--startup-ms MS`, `--config TAG`
-//! (one of `outer-radial`, `outer-diametral`, `inner-radial`, `inner-diametral`; default all).
+//! (one of `outer-radial`, `outer-diametral`, `inner-radial`, `inner-diametral`; default all),
+//! `--oil-temp-c T` (study \[0\]'s oil: MIL-L-7808 at T °C for the level's viscosity and the
+//! `fitted_4109` traction law at T with MIL-L-7808's data, instead of the scenes' Coulomb
+//! traction and 0.003 Pa s; docs/physics.md §5.2, §6.2), `--constant-4109` (with it: the
+//! 4109 constant set instead of the power laws).
 //!
 //! Per run: sigma = std(|v|)/mean(|v|) of the level's `cage.speed` (3-D cage-centre speed)
 //! over each of `N` equal windows of the run (the last is the settled value, the change
@@ -81,6 +85,34 @@ struct Opts {
     startup_ms: f64,
     /// Only this configuration (its tag).
     config: Option<String>,
+    /// Study [0]'s oil: MIL-L-7808 at this bulk temperature (°C) for the level's viscosity,
+    /// and the 4109 traction fit at it, instead of the scenes' Coulomb traction and 0.003 Pa s.
+    oil_temp_c: Option<f64>,
+    /// With `oil_temp_c`: the 4109 constant set instead of the power laws.
+    constant_4109: bool,
+}
+
+/// The scene's oil and traction replaced by MIL-L-7808 at `o.oil_temp_c` with the 4109 fit
+/// ("4109 substitute for 4106, coefficients from public code").
+fn apply_oil(s: &mut Scene, o: &Opts) -> Result<(), Box<dyn std::error::Error>> {
+    use raceway::contact::traction::{Fit4109, Form4109, Oil4109, TractionLaw};
+    if let Some(t) = o.oil_temp_c {
+        let oil = raceway::lubrication::oils::mil_l_7808(t + 273.15, "--oil-temp-c")?;
+        s.model.full.viscosity = oil.viscosity;
+        let law = TractionLaw::Fitted4109(Fit4109 {
+            form: if o.constant_4109 {
+                Form4109::Constant
+            } else {
+                Form4109::PowerLaw
+            },
+            temperature_c: Some(t),
+            oil: Oil4109::MilL7808,
+            ..Default::default()
+        });
+        law.validate("model.full.traction")?;
+        s.model.full.traction = law;
+    }
+    Ok(())
 }
 
 /// What one recorded run gives.
@@ -227,6 +259,7 @@ fn scene_for(rpm: f64, cfg: Config, o: &Opts) -> Result<Scene, Box<dyn std::erro
     s.run.step_s = o.step;
     s.model.full.guidance = Some(cfg.guidance);
     s.model.full.cage_unbalance_um = o.unbalance_um;
+    apply_oil(&mut s, o)?;
     if cfg.diametral {
         let mut spec = preset("7004")?;
         spec.cage.guide_clearance_mm = Some(0.125);
@@ -401,9 +434,10 @@ fn count_impacts(p: &[f64], threshold: f64) -> usize {
     n
 }
 
-fn startup(ms: f64, step: f64) -> Result<Startup, Box<dyn std::error::Error>> {
+fn startup(ms: f64, step: f64, o: &Opts) -> Result<Startup, Box<dyn std::error::Error>> {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/scenes/7004-startup.toml");
     let mut s = Scene::from_text(&std::fs::read_to_string(&path)?)?;
+    apply_oil(&mut s, o)?;
     s.run.duration_s = ms * 1e-3;
     s.run.step_s = step;
     let b = s.build_bearing()?;
@@ -452,6 +486,8 @@ fn parse() -> Result<(Opts, bool, bool), Box<dyn std::error::Error>> {
         unbalance_um: 0.0,
         startup_ms: 10.0,
         config: None,
+        oil_temp_c: None,
+        constant_4109: false,
     };
     let (mut quick, mut docs) = (false, false);
     let mut i = 0;
@@ -469,6 +505,8 @@ fn parse() -> Result<(Opts, bool, bool), Box<dyn std::error::Error>> {
             "--step" => o.step = val()?,
             "--unbalance-um" => o.unbalance_um = val()?,
             "--startup-ms" => o.startup_ms = val()?,
+            "--oil-temp-c" => o.oil_temp_c = Some(val()?),
+            "--constant-4109" => o.constant_4109 = true,
             "--config" => {
                 i += 1;
                 let t = args.get(i).ok_or("--config needs a tag")?;
@@ -525,12 +563,20 @@ const CONFIGS: [Config; 4] = [
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let (o, quick, docs) = parse()?;
     println!(
-        "cage whirl, 7004, Fa 2000 N, Fr 400 N: {} s per speed in {} windows, communication step {} s, cage unbalance {} µm{}",
+        "cage whirl, 7004, Fa 2000 N, Fr 400 N: {} s per speed in {} windows, communication step {} s, cage unbalance {} µm{}{}",
         o.duration,
         o.windows,
         o.step,
         o.unbalance_um,
-        if quick { " (quick)" } else { "" }
+        if quick { " (quick)" } else { "" },
+        match o.oil_temp_c {
+            Some(t) => format!(
+                "; MIL-L-7808 at {t} °C with the 4109 traction fit ({}; {})",
+                if o.constant_4109 { "constant set" } else { "power laws" },
+                raceway::contact::traction::FIT_4109_LABEL
+            ),
+            None => String::new(),
+        }
     );
     let configs: Vec<Config> = match (&o.config, quick) {
         (_, true) => CONFIGS[..1].to_vec(),
@@ -551,7 +597,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }
         all.push((cfg, rows, main, conv, energy));
     }
-    let st = startup(o.startup_ms, if quick { 2e-5 } else { 5e-6 })?;
+    let st = startup(o.startup_ms, if quick { 2e-5 } else { 5e-6 }, &o)?;
     println!(
         "start-up from rest, first {} ms: {} ball–pocket impacts (pocket force rising through {:.2} N), per ball {:?}; {} through {:.2} N; largest pocket force {:.3} N; cage speed ratio at the end {:.3}",
         o.startup_ms,
@@ -566,6 +612,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     if docs {
         if o.config.is_some() {
             return Err("--write-docs runs every configuration (drop --config)".into());
+        }
+        if o.oil_temp_c.is_some() {
+            return Err("--write-docs writes the page of the scenes' own oil and traction (drop --oil-temp-c)".into());
         }
         write_docs(&o, &all, &st)?;
     }
