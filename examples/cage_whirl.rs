@@ -19,7 +19,9 @@
 //! `--oil-temp-c T` (study \[0\]'s oil: MIL-L-7808 at T °C for the level's viscosity and the
 //! `fitted_4109` traction law at T with MIL-L-7808's data, instead of the scenes' Coulomb
 //! traction and 0.003 Pa s; docs/physics.md §5.2, §6.2), `--constant-4109` (with it: the
-//! 4109 constant set instead of the power laws).
+//! 4109 constant set instead of the power laws), `--with-oil` (with `--write-docs`: the page
+//! gains a part that repeats every configuration on MIL-L-7808 at 100 and 60 °C with the 4109
+//! fit, with a computed verdict on the trend; three times the CPU).
 //!
 //! Per run: sigma = std(|v|)/mean(|v|) of the level's `cage.speed` (3-D cage-centre speed)
 //! over each of `N` equal windows of the run (the last is the settled value, the change
@@ -90,6 +92,9 @@ struct Opts {
     oil_temp_c: Option<f64>,
     /// With `oil_temp_c`: the 4109 constant set instead of the power laws.
     constant_4109: bool,
+    /// With `--write-docs`: add the page's part on study [0]'s oil (every configuration at
+    /// [`OIL_TEMPS_C`]).
+    with_oil: bool,
 }
 
 /// The scene's oil and traction replaced by MIL-L-7808 at `o.oil_temp_c` with the 4109 fit
@@ -488,6 +493,7 @@ fn parse() -> Result<(Opts, bool, bool), Box<dyn std::error::Error>> {
         config: None,
         oil_temp_c: None,
         constant_4109: false,
+        with_oil: false,
     };
     let (mut quick, mut docs) = (false, false);
     let mut i = 0;
@@ -507,6 +513,7 @@ fn parse() -> Result<(Opts, bool, bool), Box<dyn std::error::Error>> {
             "--startup-ms" => o.startup_ms = val()?,
             "--oil-temp-c" => o.oil_temp_c = Some(val()?),
             "--constant-4109" => o.constant_4109 = true,
+            "--with-oil" => o.with_oil = true,
             "--config" => {
                 i += 1;
                 let t = args.get(i).ok_or("--config needs a tag")?;
@@ -598,6 +605,27 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         all.push((cfg, rows, main, conv, energy));
     }
     let st = startup(o.startup_ms, if quick { 2e-5 } else { 5e-6 }, &o)?;
+    // The page's second part: study [0]'s oil at two bulk temperatures, every configuration.
+    let mut oils = Vec::new();
+    if docs && o.with_oil && o.oil_temp_c.is_none() {
+        for t in OIL_TEMPS_C {
+            let ot = Opts {
+                oil_temp_c: Some(t),
+                ..o.clone()
+            };
+            let mut sets = Vec::new();
+            for &cfg in &configs {
+                let (rows, main, conv, energy) = study(cfg, &ot)?;
+                println!(
+                    "\nMIL-L-7808 at {t} °C, 4109 fit: {}\n\n{main}\n{conv}\n{energy}",
+                    cfg.label()
+                );
+                sets.push((cfg, rows, main, conv, energy));
+            }
+            let st_oil = startup(o.startup_ms, 5e-6, &ot)?;
+            oils.push((t, sets, st_oil));
+        }
+    }
     println!(
         "start-up from rest, first {} ms: {} ball–pocket impacts (pocket force rising through {:.2} N), per ball {:?}; {} through {:.2} N; largest pocket force {:.3} N; cage speed ratio at the end {:.3}",
         o.startup_ms,
@@ -616,14 +644,123 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         if o.oil_temp_c.is_some() {
             return Err("--write-docs writes the page of the scenes' own oil and traction (drop --oil-temp-c)".into());
         }
-        write_docs(&o, &all, &st)?;
+        write_docs(&o, &all, &st, &oils)?;
     }
     Ok(())
 }
 
 type Study = (Config, Vec<Row>, String, String, String);
 
-fn write_docs(o: &Opts, all: &[Study], st: &Startup) -> Result<(), Box<dyn std::error::Error>> {
+/// Bulk oil temperatures of the page's MIL-L-7808 part, °C: 100 (stated: MIL-L-7808 has
+/// 2.87 mPa s there, the scenes' 0.003 Pa s, so the traction law is what changes) and 60.
+const OIL_TEMPS_C: [f64; 2] = [100.0, 60.0];
+
+/// One temperature's runs: the temperature, each configuration, the start-up.
+type OilSet = (f64, Vec<Study>, Startup);
+
+/// The page's MIL-L-7808 part: tables per temperature and configuration, and the plain
+/// verdict on the trend computed from them.
+fn oil_section(
+    o: &Opts,
+    coulomb: &[Study],
+    oils: &[OilSet],
+) -> Result<String, Box<dyn std::error::Error>> {
+    let mut md = String::new();
+    writeln!(
+        md,
+        "\n## Study [0]'s oil: MIL-L-7808 with the 4109 traction fit\n\n\
+         The same runs (same scenes, speeds, durations, windows) with the study's oil: the level's viscosity \
+         (drag, pockets, guide land) is MIL-L-7808's at the bulk temperature T (docs/physics.md §6.2: public code, \
+         medium confidence), and the race traction is the `fitted_4109` law at T with MIL-L-7808's data \
+         (`--oil-temp-c T`; docs/physics.md §5.2): **{}**. The study gives no bulk temperature: T = 100 °C is the \
+         one stated here (MIL-L-7808 has 2.87 mPa s there, close to the scenes' 0.003 Pa s, so what changes is the \
+         traction law), and 60 °C (6.56 mPa s) the second. Open questions of the fit, which these runs cannot \
+         settle: whether its T is in °C (as coded, used here) or K; which radius R it means (the contact's Rx here); \
+         whether its eta0 follows the temperature (here: MIL-L-7808's at T).\n",
+        raceway::contact::traction::FIT_4109_LABEL
+    )?;
+    let first_last = |rows: &[Row]| (rows[0].sigma(), rows[rows.len() - 1].sigma());
+    let mut falls = 0;
+    let mut total = 0;
+    writeln!(md, "| bulk T | configuration | sigma, {} rpm | whirl / cage frequency, same speeds | sigma at the top speed / at the lowest |\n|---|---|---|---|---|",
+        o.speeds.iter().map(|s| format!("{s:.0}")).collect::<Vec<_>>().join(" → "))?;
+    let row_line = |md: &mut String, t: &str, cfg: &Config, rows: &[Row]| -> std::fmt::Result {
+        let (a, b) = first_last(rows);
+        writeln!(
+            md,
+            "| {t} | {} | {} | {} | {:.2} |",
+            cfg.label(),
+            rows.iter()
+                .map(|r| format!("{:.4}", r.sigma()))
+                .collect::<Vec<_>>()
+                .join(" → "),
+            rows.iter()
+                .map(|r| format!("{:.3}", r.f_whirl / r.f_cage))
+                .collect::<Vec<_>>()
+                .join(" → "),
+            b / a
+        )
+    };
+    for (cfg, rows, ..) in coulomb {
+        row_line(&mut md, "Coulomb, 0.003 Pa s", cfg, rows)?;
+    }
+    for (t, sets, _) in oils {
+        for (cfg, rows, ..) in sets {
+            row_line(&mut md, &format!("{t:.0} °C"), cfg, rows)?;
+            let (a, b) = first_last(rows);
+            total += 1;
+            if b < a {
+                falls += 1;
+            }
+        }
+    }
+    let outer_falls = oils
+        .iter()
+        .flat_map(|(_, sets, _)| sets.iter())
+        .filter(|(c, r, ..)| c.guidance == Guidance::OuterRing && first_last(r).1 < first_last(r).0)
+        .count();
+    writeln!(
+        md,
+        "\n**Does the trend now fall?** {} Sigma at the top speed is below sigma at the lowest in {falls} of the {total} \
+         runs with the study's oil ({outer_falls} of them on the outer-ring land, the study's guidance); the last column \
+         of the table above is the evidence, the convergence tables below the check that the windows are settled.\n",
+        if falls == total {
+            "Yes."
+        } else if falls == 0 {
+            "No: the trend is still reversed."
+        } else {
+            "Only in part."
+        }
+    )?;
+    for (t, sets, st) in oils {
+        for (cfg, _, main, conv, energy) in sets {
+            writeln!(
+                md,
+                "### {t:.0} °C, {}\n\n{main}\nSigma over successive windows:\n\n{conv}\n\
+                 Cage energy per cage revolution over the last window:\n\n{energy}",
+                cfg.label()
+            )?;
+        }
+        writeln!(
+            md,
+            "Start-up from rest at {t:.0} °C, first {} ms: **{} ball–pocket impacts** (threshold {:.2} N); {} through a tenth of it; \
+             largest pocket force {:.3} N.\n",
+            o.startup_ms,
+            st.impacts,
+            st.threshold,
+            st.impacts_low,
+            st.pocket_max.iter().fold(0.0f64, |m, v| m.max(*v)),
+        )?;
+    }
+    Ok(md)
+}
+
+fn write_docs(
+    o: &Opts,
+    all: &[Study],
+    st: &Startup,
+    oils: &[OilSet],
+) -> Result<(), Box<dyn std::error::Error>> {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("docs");
     std::fs::create_dir_all(&dir)?;
     #[cfg(feature = "plot")]
@@ -672,6 +809,9 @@ fn write_docs(o: &Opts, all: &[Study], st: &Startup) -> Result<(), Box<dyn std::
         st.ratio.last().unwrap_or(&f64::NAN)
     )?;
     md += &std::fs::read_to_string(here.join("cage_whirl_tail.md"))?;
+    if !oils.is_empty() {
+        md += &oil_section(o, all, oils)?;
+    }
     std::fs::write(dir.join("cage-whirl.md"), md)?;
     Ok(())
 }
