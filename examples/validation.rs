@@ -712,7 +712,7 @@ fn study_rows(rows: &mut Vec<Row>, root: &Path) -> Res<()> {
             Band::Finding,
             cmd,
         );
-        r.note = "docs/cage-whirl.md, 'What the runs show' and 'What remains different': the level's cage is forced harder by the balls as the speed rises; the runs use Coulomb traction and a 0.003 Pa s oil, not the study's fitted traction and MIL-L-7808.";
+        r.note = "docs/cage-whirl.md, 'What the runs show' and 'What remains different': the level's cage is forced harder by the balls as the speed rises; the page's runs use Coulomb traction and a 0.003 Pa s oil; a reduced run on the study's MIL-L-7808 with the 4109 traction fit (docs/history.md, 2026-11-29) still rises, by 2 to 6 times instead of 66.";
         r.published_text = Some("falls".into());
         r.raceway_text = Some(format!("{lo} → {hi}"));
         rows.push(r);
@@ -731,7 +731,7 @@ fn study_rows(rows: &mut Vec<Row>, root: &Path) -> Res<()> {
     );
     let mut r = Row::new("study0-whirl-crosses", "study [0]", "whirl frequency moves from above to below the cage frequency as the speed rises (Fig. 11; outer-ring land, radial)", 1.0, if lo > 1.0 && hi < 1.0 { 1.0 } else { 0.0 }, Band::Finding, cmd);
     r.note =
-        "The level's whirl is synchronous with the cage from 60 000 rpm on (docs/cage-whirl.md).";
+        "With the page's Coulomb traction the level's whirl is synchronous with the cage from 60 000 rpm on (docs/cage-whirl.md); the reduced run on MIL-L-7808 with the 4109 fit (docs/history.md) does move it from above to below the cage frequency on the outer-ring land (1.01 to 0.68-0.93).";
     r.published_text = Some("above → below".into());
     r.raceway_text = Some(format!("{lo} → {hi}"));
     rows.push(r);
@@ -754,7 +754,7 @@ fn study_rows(rows: &mut Vec<Row>, root: &Path) -> Res<()> {
         Band::Finding,
         cmd,
     );
-    r.note = "With Fa/Fr = 5 every ball is loaded and the Coulomb traction locks the balls to rolling from the first revolution (docs/cage-whirl.md, start-up).";
+    r.note = "With Fa/Fr = 5 every ball is loaded and the Coulomb traction locks the balls to rolling from the first revolution (docs/cage-whirl.md, start-up); with the 4109 fit there is still none (docs/history.md).";
     r.published_text = Some("many".into());
     r.raceway_text = Some(format!("{impacts}"));
     rows.push(r);
