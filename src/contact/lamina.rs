@@ -293,6 +293,16 @@ impl Profile {
     }
 }
 
+/// `tan(psi)`, with an aligned roller's (`psi = ±0`) without the call: `tan(±0) = ±0`.
+#[inline]
+pub(crate) fn tan0(psi: f64) -> f64 {
+    if psi == 0.0 {
+        psi
+    } else {
+        psi.tan()
+    }
+}
+
 /// Roller force, tilting moment and their derivatives from one evaluation of the laminae.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
 pub struct RollerLoad {
@@ -394,17 +404,22 @@ impl Laminae {
     /// Roller force, moment and derivatives at approach `delta` (m, both contacts, at
     /// mid-length) and tilt `psi` (rad). Zero (never NaN) when no lamina is in contact.
     pub fn evaluate(&self, delta: f64, psi: f64) -> RollerLoad {
-        self.eval(delta, psi, None)
+        self.eval(delta, tan0(psi), None)
+    }
+
+    /// As [`Laminae::evaluate`] with the tilt given by its tangent `tan_psi` (a caller that
+    /// needs the tangent itself forms it once).
+    pub(crate) fn evaluate_tan(&self, delta: f64, tan_psi: f64) -> RollerLoad {
+        self.eval(delta, tan_psi, None)
     }
 
     /// As [`Laminae::evaluate`], writing each lamina's load (N) into `loads` (length `ns`).
     pub fn evaluate_into(&self, delta: f64, psi: f64, loads: &mut [f64]) -> RollerLoad {
         assert_eq!(loads.len(), self.len(), "one load per lamina");
-        self.eval(delta, psi, Some(loads))
+        self.eval(delta, tan0(psi), Some(loads))
     }
 
-    fn eval(&self, delta: f64, psi: f64, mut loads: Option<&mut [f64]>) -> RollerLoad {
-        let tan_psi = psi.tan();
+    fn eval(&self, delta: f64, tan_psi: f64, mut loads: Option<&mut [f64]>) -> RollerLoad {
         let sec2 = 1.0 + tan_psi * tan_psi;
         let mut r = RollerLoad::default();
         // No lamina can touch: nothing to evaluate (the loop would give the same zeros).

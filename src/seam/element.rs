@@ -164,7 +164,8 @@ pub fn assemble(
         f[2] += fa;
         f[3] += m * s;
         f[4] -= m * c;
-        if let Some(k) = stiffness.as_deref_mut() {
+        // An unloaded element adds nothing to K (skipped: most of a ring's elements).
+        if let Some(k) = stiffness.as_deref_mut().filter(|_| r.df != [[0.0; 3]; 3]) {
             // K = -J^T df J with J the rows of d(axial, radial, tilt)/dq.
             let ja = [0.0, 0.0, 1.0, arm * s, -arm * c];
             let jr = [c, s, 0.0, 0.0, 0.0];
