@@ -257,7 +257,7 @@ fn qs_roller_solve(n: usize, reps: usize) -> (f64, usize) {
         .collect();
     let c_l = roller_constant(b.lwe, b.e_prime_roller());
     let load = [0.0, -8000.0, 0.0, 0.0, 0.0];
-    let once = || roller_qs::solve(&law, &psi, load, b.pd, c_l, b.lwe).expect("solve");
+    let once = || roller_qs::solve(&law, &psi, load, b.pd, c_l, b.lwe, None).expect("solve");
     let s = once();
     assert!(s.residual < 1e-12, "converged: {s:?}");
     let f = roller_qs::forces(&law, &psi, &s.q, None);

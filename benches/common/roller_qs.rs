@@ -40,7 +40,9 @@ pub fn forces(
 }
 
 /// Solve `F(q) + load = 0` for rollers at azimuths `psi` (rad); `pd` the diametral
-/// clearance (m) and `c_l` the roller constant (N/m^(10/9)) for the start.
+/// clearance (m) and `c_l` the roller constant (N/m^(10/9)) for the start. With `tilt =
+/// Some((rx, ry))` the ring's tilt is imposed (a misalignment) and only `(x, y)` are solved
+/// (the moments then are the reaction, not balanced).
 pub fn solve(
     law: &CylindricalRollerLaw,
     psi: &[f64],
@@ -48,6 +50,7 @@ pub fn solve(
     pd: f64,
     c_l: f64,
     lwe: f64,
+    tilt: Option<(f64, f64)>,
 ) -> Result<Solved, String> {
     let fr = load[0].hypot(load[1]);
     if fr <= 0.0 {
@@ -57,8 +60,10 @@ pub fn solve(
     // load by half the clearance plus that roller's approach.
     let qmax = 4.08 * fr / psi.len() as f64;
     let d = 0.5 * pd + (qmax / c_l).powf(0.9);
-    let mut q = [load[0] / fr * d, load[1] / fr * d, 0.0, 0.0, 0.0];
-    let dofs = [0usize, 1, 3, 4];
+    let (rx, ry) = tilt.unwrap_or((0.0, 0.0));
+    let mut q = [load[0] / fr * d, load[1] / fr * d, 0.0, rx, ry];
+    let dofs: &[usize] = if tilt.is_some() { &[0, 1] } else { &[0, 1, 3, 4] };
+    let n = dofs.len();
     let scale = [fr, fr, fr, fr * lwe, fr * lwe];
     let norm = |f: &[f64; 5]| -> f64 {
         dofs.iter()
@@ -76,7 +81,7 @@ pub fn solve(
                 residual: res,
             });
         }
-        // (K + mu I) dq = F + load on the four loaded directions.
+        // (K + mu I) dq = F + load on the solved directions.
         let mut a = [[0.0; 5]; 4];
         let diag = dofs.iter().map(|&i| k[i][i].abs()).fold(0.0, f64::max);
         for (r, &i) in dofs.iter().enumerate() {
@@ -84,9 +89,9 @@ pub fn solve(
                 a[r][c] = k[i][j];
             }
             a[r][r] += 1e-12 * diag.max(1.0);
-            a[r][4] = f[i] + load[i];
+            a[r][n] = f[i] + load[i];
         }
-        let dq = gauss4(a).ok_or("singular stiffness")?;
+        let dq = gauss(a, n).ok_or("singular stiffness")?;
         // Back-tracking line search on the scaled residual.
         let mut step = 1.0;
         loop {
@@ -108,26 +113,26 @@ pub fn solve(
     Err(format!("no convergence (residual {res:e})"))
 }
 
-/// Gaussian elimination with partial pivoting on a 4×4 system with its right-hand side in
-/// column 4.
-fn gauss4(mut a: [[f64; 5]; 4]) -> Option<[f64; 4]> {
-    for c in 0..4 {
-        let p = (c..4).max_by(|&x, &y| a[x][c].abs().total_cmp(&a[y][c].abs()))?;
+/// Gaussian elimination with partial pivoting on an `n`×`n` system (`n` ≤ 4) with its
+/// right-hand side in column `n`.
+fn gauss(mut a: [[f64; 5]; 4], n: usize) -> Option<[f64; 4]> {
+    for c in 0..n {
+        let p = (c..n).max_by(|&x, &y| a[x][c].abs().total_cmp(&a[y][c].abs()))?;
         if a[p][c] == 0.0 {
             return None;
         }
         a.swap(c, p);
-        for r in c + 1..4 {
+        for r in c + 1..n {
             let m = a[r][c] / a[c][c];
-            for j in c..5 {
+            for j in c..=n {
                 a[r][j] -= m * a[c][j];
             }
         }
     }
     let mut x = [0.0; 4];
-    for r in (0..4).rev() {
-        let s: f64 = (r + 1..4).map(|j| a[r][j] * x[j]).sum();
-        x[r] = (a[r][4] - s) / a[r][r];
+    for r in (0..n).rev() {
+        let s: f64 = (r + 1..n).map(|j| a[r][j] * x[j]).sum();
+        x[r] = (a[r][n] - s) / a[r][r];
     }
     Some(x)
 }

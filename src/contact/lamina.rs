@@ -555,7 +555,7 @@ impl Laminae {
     fn eval_aligned(&self, delta: f64) -> RollerLoad {
         let (cs, dcs) = (self.cs, 10.0 / 9.0 * self.cs);
         let mut r = RollerLoad::default();
-        let mut one = |r: &mut RollerLoad, x: f64, d: f64, n: usize| {
+        let one = |r: &mut RollerLoad, x: f64, d: f64, n: usize| {
             if d > 0.0 {
                 let p = ninth_root(d);
                 let (q, dq) = (cs * d * p, dcs * p);
