@@ -62,7 +62,11 @@ pub fn solve(
     let d = 0.5 * pd + (qmax / c_l).powf(0.9);
     let (rx, ry) = tilt.unwrap_or((0.0, 0.0));
     let mut q = [load[0] / fr * d, load[1] / fr * d, 0.0, rx, ry];
-    let dofs: &[usize] = if tilt.is_some() { &[0, 1] } else { &[0, 1, 3, 4] };
+    let dofs: &[usize] = if tilt.is_some() {
+        &[0, 1]
+    } else {
+        &[0, 1, 3, 4]
+    };
     let n = dofs.len();
     let scale = [fr, fr, fr, fr * lwe, fr * lwe];
     let norm = |f: &[f64; 5]| -> f64 {
@@ -124,8 +128,9 @@ fn gauss(mut a: [[f64; 5]; 4], n: usize) -> Option<[f64; 4]> {
         a.swap(c, p);
         for r in c + 1..n {
             let m = a[r][c] / a[c][c];
-            for j in c..=n {
-                a[r][j] -= m * a[c][j];
+            let (top, rest) = a.split_at_mut(r);
+            for (x, y) in rest[0][c..=n].iter_mut().zip(&top[c][c..=n]) {
+                *x -= m * y;
             }
         }
     }

@@ -85,7 +85,9 @@
 //! integrates exactly); its edge-lamina pressure converges as `1/ns` (the centre sits `w/2`
 //! from the edge); the logarithmic profile's load about as `ln(ns)/ns` (its drop is integrably
 //! infinite at the ends). Ten laminae keep every entry within 2.3 %, 30 within 0.75 %, at 30
-//! `powf` calls per roller and evaluation: 30 is the default.
+//! roots `d^(1/9)` per loaded roller and evaluation (15 for an aligned one, whose mirrored
+//! laminae pair): 30 is the default. `docs/rollers.md` (`cargo run --release --example
+//! rollers_page`) writes the study out with a plot.
 
 use crate::error::{Error, Result};
 use serde::{Deserialize, Serialize};
@@ -364,7 +366,7 @@ const BINOMIAL: [f64; 7] = {
 /// `powf`.
 #[inline]
 fn ninth_root(d: f64) -> f64 {
-    if !(d >= f64::MIN_POSITIVE && d < f64::INFINITY) {
+    if !(f64::MIN_POSITIVE..f64::INFINITY).contains(&d) {
         return d.powf(1.0 / 9.0);
     }
     let bits = d.to_bits();
