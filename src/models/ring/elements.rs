@@ -1,6 +1,6 @@
 //! The ring level for a rolling element with its own contact law (rollers, through
 //! [`crate::seam::element::ElementLaw`]): rigid rings on massless elements at the cage's
-//! kinematic positions, summed by [`assemble_sc`](crate::seam::element::assemble_sc), with contact damping `c d(delta)/dt` per
+//! kinematic positions, summed by [`assemble_sc`], with contact damping `c d(delta)/dt` per
 //! loaded element along its radial line (the element's approach rate from the ring's radial
 //! motion at the element, including the element's travel with the cage), blended in over
 //! the first [`DAMPING_RAMP`] of approach as for balls (docs/physics.md §5.1). The ball
