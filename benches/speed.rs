@@ -3,8 +3,8 @@
 //! the cost against ball count (9, 16, 32) and against the communication step, written to
 //! `docs/speed.md`. Run: `cargo bench --bench speed` (about two minutes on one core;
 //! `-- --quick` for a shorter look that still writes the page, `-- --no-peer` without the
-//! SciPy peer, `-- --only SECTION` one section printed and nothing written (ring, scenes, qs, skidding,
-//! full, peer), `-- --out DIR` for another folder).
+//! SciPy peer, `-- --only SECTION` one section printed and nothing written (ring, rollers, scenes, qs,
+//! skidding, full, peer), `-- --out DIR` for another folder).
 //!
 //! Clocks: every time is the measuring thread's CPU time
 //! ([`raceway::report::thread_cpu_s`], `CLOCK_THREAD_CPUTIME_ID`), the load average is
@@ -33,6 +33,9 @@ use std::sync::atomic::{AtomicU64, Ordering};
 
 #[path = "common/runup_6000.rs"]
 mod runup_6000;
+
+#[path = "common/roller_qs.rs"]
+mod roller_qs;
 
 /// The system allocator, counting allocations (`alloc`, `alloc_zeroed`, `realloc`).
 struct Counting;
@@ -235,6 +238,39 @@ fn rust_loop(scene: &Scene, h: f64, t_end: f64) -> (f64, Samples, f64) {
     }
     let cpu = (thread_cpu_s() - c0) / n as f64;
     (cpu, s, c.stats().rhs as f64 / n as f64)
+}
+
+/// The quasi-static roller solve of the goals table: NU206 (14 rollers, 30 laminae) under
+/// 8 kN radial, solved `n` times from a cold start per timed block, `reps` blocks; returns the
+/// median CPU per solve (µs) and the Newton iterations of one solve.
+fn qs_roller_solve(n: usize, reps: usize) -> (f64, usize) {
+    use raceway::contact::lamina::roller_constant;
+    use raceway::contact::roller_law::CylindricalRollerLaw;
+    let b = raceway::geometry::roller_catalogue::lookup("NU206")
+        .expect("NU206")
+        .build()
+        .expect("NU206 builds");
+    assert_eq!((b.z, b.laminae), (14, 30), "the goal's bearing");
+    let law = CylindricalRollerLaw::new(&b).expect("law");
+    let psi: Vec<f64> = (0..b.z)
+        .map(|j| 2.0 * std::f64::consts::PI * j as f64 / b.z as f64)
+        .collect();
+    let c_l = roller_constant(b.lwe, b.e_prime_roller());
+    let load = [0.0, -8000.0, 0.0, 0.0, 0.0];
+    let once = || roller_qs::solve(&law, &psi, load, b.pd, c_l, b.lwe, None).expect("solve");
+    let s = once();
+    assert!(s.residual < 1e-12, "converged: {s:?}");
+    let f = roller_qs::forces(&law, &psi, &s.q, None);
+    assert!((f[1] + load[1]).abs() < 1e-6 * 8000.0, "equilibrium: {f:?}");
+    let mut times = Vec::with_capacity(reps);
+    for _ in 0..reps {
+        let c0 = thread_cpu_s();
+        for _ in 0..n {
+            std::hint::black_box(once());
+        }
+        times.push((thread_cpu_s() - c0) / n as f64);
+    }
+    (median(&mut times) * 1e6, s.iterations)
 }
 
 /// One row of the goals table.
@@ -537,6 +573,43 @@ fn main() {
         ring5_allocs = l.allocs;
     }
 
+    let mut crb_allocs = f64::NAN;
+    if want("rollers") {
+        // --- Cylindrical roller bearing NU206 (14 rollers × 30 laminae, the ISO/TS 16281
+        // logarithmic profile), ring level, 2 DOF, motion-driven at 10 kHz, C ABI: the
+        // shaft held 30 µm down (about 3 kN on the rollers) at 1500 rpm, the 1 µm orbit on top.
+        let crb = motion_scene("ring", "\"NU206\"", 2, -30e-6, 0.0, 1500.0);
+        let l = capi_loop(&crb, 1e-4, warm, n, reps);
+        println!(
+            "ring NU206 motion C ABI: {:.2} µs/step, {:.0}x real time, {:.2} allocations/step",
+            l.step_s * 1e6,
+            l.rtf(),
+            l.allocs
+        );
+        crb_allocs = l.allocs;
+        goals.push(Goal {
+            case: "CRB ring NU206, 14 rollers × 30 laminae, 2 DOF, motion-driven, 10 kHz, C ABI"
+                .into(),
+            goal: "≥ 100× real time".into(),
+            measured: format!("{:.0}× ({:.2} µs per step)", l.rtf(), l.step_s * 1e6),
+            met: Some(l.rtf() >= 100.0),
+            note: "1500 rpm, shaft 30 µm down (about 3 kN radial) with the 1 µm orbit".into(),
+        });
+        // --- A quasi-static roller solve: NU206 under 8 kN radial, 30 laminae, from a cold
+        // start (benches/common/roller_qs.rs), best-of and median of many solves.
+        let (us, it) = qs_roller_solve(if quick { 200 } else { 2000 }, reps);
+        println!(
+            "quasi-static NU206 8 kN, 30 laminae: {us:.1} µs per solve ({it} Newton iterations)"
+        );
+        goals.push(Goal {
+            case: "quasi-static roller solve, NU206, 8 kN radial, 14 rollers × 30 laminae".into(),
+            goal: "≤ 50 µs".into(),
+            measured: format!("{us:.1} µs per solve"),
+            met: Some(us <= 50.0),
+            note: format!("cold start, Newton on (x, y, rx, ry) with the laminae's exact stiffness, {it} iterations to a residual of 1e-12 of the load"),
+        });
+    }
+
     // --- Every shipped ring scene: as shipped, and uncapped at 1, 1/10 and 1/100 of its
     // tolerances, each against a tight reference; the scenes' documented accuracy is
     // SCENE_FORCE_ERROR (docs/speed.md says why).
@@ -723,8 +796,8 @@ fn main() {
     goals.push(Goal {
         case: "C ABI calls in the loop (set_reals, do_step, get_reals)".into(),
         goal: "0 heap allocations".into(),
-        measured: format!("{ring_allocs:.1} per step (6205 ring), {ring5_allocs:.1} (7008CE ring)"),
-        met: Some(ring_allocs == 0.0 && ring5_allocs == 0.0),
+        measured: format!("{ring_allocs:.1} per step (6205 ring), {ring5_allocs:.1} (7008CE ring), {crb_allocs:.1} (NU206 ring)"),
+        met: Some(ring_allocs == 0.0 && ring5_allocs == 0.0 && crb_allocs == 0.0),
         note: "counted by a global allocator in this benchmark".into(),
     });
 

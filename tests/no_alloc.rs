@@ -1,7 +1,8 @@
 //! No heap allocation once running (a counting global allocator): `Component::do_step` on
 //! every level, and the C coupling loop a host runs (issue #17): `raceway_set_reals`,
 //! `raceway_do_step`, `raceway_get_reals`, `raceway_get_real` and `raceway_last_error`
-//! after a clean call, at 10 kHz on the ring level reading 8 outputs each step.
+//! after a clean call, at 10 kHz on the ring level reading 8 outputs each step; a roller
+//! bearing's ring level (laminae) among the levels.
 
 use raceway::capi::*;
 use raceway::component::Component;
@@ -139,6 +140,10 @@ fn do_step_and_the_c_loop_do_not_allocate() {
         // Jacobian), and with waviness its dense fallback (differenced Jacobian).
         "bearing = \"6205\"\n[model]\nlevel = \"ring\"\ncausality = \"load\"\ncontact_damping = 3000.0\n[solver]\nmethod = \"rosenbrock\"\n[inputs]\ninitial = { \"load.x\" = 0.0, \"load.y\" = -1000.0, \"load.z\" = 0.0, \"load.mx\" = 0.0, \"load.my\" = 0.0, \"shaft.omega\" = 183.26 }\n",
         "bearing = \"6205\"\n[model]\nlevel = \"ring\"\ncausality = \"load\"\ncontact_damping = 3000.0\n[solver]\nmethod = \"rosenbrock\"\n[inputs]\ninitial = { \"load.x\" = 0.0, \"load.y\" = -1000.0, \"load.z\" = 0.0, \"load.mx\" = 0.0, \"load.my\" = 0.0, \"shaft.omega\" = 183.26 }\n[effects]\nwaviness = [{ race = \"outer\", order = 12, amplitude_um = 0.3, phase_deg = 0.0 }]\n",
+        // Cylindrical roller bearing NU206 (14 rollers x 30 laminae): the speed bench's
+        // motion-driven 2-DOF ring, and a load-driven tilted 5-DOF ring with contact damping.
+        "bearing = \"NU206\"\n[model]\nlevel = \"ring\"\nring_dof = 2\n[inputs]\ninitial = { \"shaft.x\" = 0.0, \"shaft.y\" = -30e-6, \"shaft.z\" = 0.0, \"shaft.rx\" = 0.0, \"shaft.ry\" = 0.0, \"shaft.vx\" = 0.0, \"shaft.vy\" = 1e-4, \"shaft.vz\" = 0.0, \"shaft.wx\" = 0.0, \"shaft.wy\" = 0.0, \"shaft.omega\" = 157.08 }\n",
+        "bearing = \"NU206\"\n[model]\nlevel = \"ring\"\nring_dof = 5\ncausality = \"load\"\ncontact_damping = 200.0\nattached_mass_kg = 1.0\n[inputs]\ninitial = { \"load.x\" = 0.0, \"load.y\" = -4000.0, \"load.z\" = 0.0, \"load.mx\" = 20.0, \"load.my\" = 0.0, \"shaft.omega\" = 157.08 }\n",
         "bearing = \"7004\"\n[model]\nlevel = \"full\"\n[inputs]\ninitial = { \"shaft.x\" = 0.0, \"shaft.y\" = -2.96568e-6, \"shaft.z\" = 4.364864e-5, \"shaft.rx\" = 0.0, \"shaft.ry\" = 0.0, \"shaft.vx\" = 0.0, \"shaft.vy\" = 0.0, \"shaft.vz\" = 0.0, \"shaft.wx\" = 0.0, \"shaft.wy\" = 0.0, \"shaft.omega\" = 3141.59 }\n",
     ] {
         assert_eq!(allocations_in_steps(scene, 1e-4), 0, "{scene}");

@@ -85,7 +85,9 @@
 //! integrates exactly); its edge-lamina pressure converges as `1/ns` (the centre sits `w/2`
 //! from the edge); the logarithmic profile's load about as `ln(ns)/ns` (its drop is integrably
 //! infinite at the ends). Ten laminae keep every entry within 2.3 %, 30 within 0.75 %, at 30
-//! `powf` calls per roller and evaluation: 30 is the default.
+//! roots `d^(1/9)` per loaded roller and evaluation (15 for an aligned one, whose mirrored
+//! laminae pair): 30 is the default. `docs/rollers.md` (`cargo run --release --example
+//! rollers_page`) writes the study out with a plot.
 
 use crate::error::{Error, Result};
 use serde::{Deserialize, Serialize};
@@ -293,6 +295,104 @@ impl Profile {
     }
 }
 
+/// `y^(1/9)` of `y >= 1` at compile time (Newton on `x^9 = y` from above, run to a fixed
+/// point; only the arithmetic a `const fn` may do).
+const fn const_ninth_root(y: f64) -> f64 {
+    let mut x = if y > 2.0 {
+        y / 9.0 + 1.0
+    } else {
+        1.0 + (y - 1.0) / 9.0 + 1e-3
+    };
+    let mut k = 0;
+    while k < 200 {
+        let x2 = x * x;
+        let x4 = x2 * x2;
+        let x8 = x4 * x4;
+        let next = (8.0 * x + y / x8) / 9.0;
+        if next >= x {
+            break;
+        }
+        x = next;
+        k += 1;
+    }
+    x
+}
+
+/// Cells of the mantissa in [`ninth_root`]: 64, so `|t| < 1/128`.
+const CELLS: usize = 64;
+
+/// `(c_i, c_i^(1/9), 1/c_i)` for the cell centres `c_i = 1 + (i + 1/2)/64` of `[1, 2)`.
+const CELL_ROOT: [(f64, f64, f64); CELLS] = {
+    let mut t = [(0.0, 0.0, 0.0); CELLS];
+    let mut i = 0;
+    while i < CELLS {
+        let c = 1.0 + (i as f64 + 0.5) / CELLS as f64;
+        t[i] = (c, const_ninth_root(c), 1.0 / c);
+        i += 1;
+    }
+    t
+};
+
+/// `2^(r/9)`, `r = 0..8`.
+const TWO_NINTHS: [f64; 9] = {
+    let mut t = [0.0; 9];
+    let mut r = 0;
+    let mut p = 1.0;
+    while r < 9 {
+        t[r] = const_ninth_root(p);
+        p *= 2.0;
+        r += 1;
+    }
+    t
+};
+
+/// Binomial coefficients of `(1 + t)^(1/9)`, `a_n = C(1/9, n)`, `n = 0..6`.
+const BINOMIAL: [f64; 7] = {
+    let mut a = [0.0; 7];
+    a[0] = 1.0;
+    let mut n = 1;
+    while n < 7 {
+        a[n] = a[n - 1] * (1.0 / 9.0 - (n - 1) as f64) / n as f64;
+        n += 1;
+    }
+    a
+};
+
+/// `d^(1/9)` for `d > 0`, the lamina law's root, in about 25 instructions against `powf`'s
+/// hundred: with `d = 2^(9q + r) m`, `m` in `[1, 2)` near the cell centre `c_i`,
+/// `d^(1/9) = 2^q 2^(r/9) c_i^(1/9) (1 + t)^(1/9)`, `t = (m - c_i)/c_i` (`|t| < 1/128`; the
+/// binomial series to `t^6` leaves under `3e-17`); within a few units in the last place of
+/// `powf(d, 1/9)` (`ninth_root_matches_powf`). Zero, subnormal, infinite or NaN `d` take
+/// `powf`.
+#[inline]
+fn ninth_root(d: f64) -> f64 {
+    if !(f64::MIN_POSITIVE..f64::INFINITY).contains(&d) {
+        return d.powf(1.0 / 9.0);
+    }
+    let bits = d.to_bits();
+    let m = f64::from_bits((bits & 0x000f_ffff_ffff_ffff) | 0x3ff0_0000_0000_0000);
+    let (c, ci9, inv_c) = CELL_ROOT[((bits >> 46) & (CELLS as u64 - 1)) as usize];
+    let t = (m - c) * inv_c;
+    let a = &BINOMIAL;
+    let poly = a[0] + t * (a[1] + t * (a[2] + t * (a[3] + t * (a[4] + t * (a[5] + t * a[6])))));
+    // The biased exponent E (1..=2046, d > 0 and normal): E - 1023 = 9 (n - 114) + r with
+    // E + 3 = 9 n + r, so 2^q has the biased exponent n - 114 + 1023.
+    let e3 = (bits >> 52) + 3;
+    let (n, r) = (e3 / 9, e3 % 9);
+    let two_q = f64::from_bits((n + 909) << 52);
+    two_q * (TWO_NINTHS[r as usize] * ci9) * poly
+}
+
+/// `tan(psi)`, with an aligned roller's (`psi = ±0`) without the call: `tan(±0) = ±0`.
+#[inline]
+pub(crate) fn tan0(psi: f64) -> f64 {
+    if psi == 0.0 {
+        psi
+    } else {
+        psi.tan()
+    }
+}
+
 /// Roller force, tilting moment and their derivatives from one evaluation of the laminae.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
 pub struct RollerLoad {
@@ -353,9 +453,17 @@ impl Laminae {
         }
         profile.validate("roller.profile", g)?;
         let w = g.lwe / ns as f64;
-        let x: Vec<f64> = (0..ns)
+        let mut x: Vec<f64> = (0..ns)
             .map(|k| (k as f64 + 0.5) * w - 0.5 * g.lwe)
             .collect();
+        // The centres mirrored exactly about the mid-plane (`x_(ns-1-k) = -x_k`; the formula
+        // above can differ in the last bit), which `eval_aligned` pairs.
+        for k in 0..ns / 2 {
+            x[ns - 1 - k] = -x[k];
+        }
+        if ns % 2 == 1 {
+            x[ns / 2] = 0.0;
+        }
         let drop2: Vec<f64> = x.iter().map(|&xk| 2.0 * profile.drop(xk, g)).collect();
         let reach = (
             x.iter().fold(0.0f64, |m, v| m.max(v.abs())),
@@ -385,37 +493,40 @@ impl Laminae {
         self.lwe / self.len() as f64
     }
 
-    /// Approach of lamina `k` at mid-length approach `delta` (m) and tilt `tan_psi`.
-    #[inline]
-    fn approach(&self, k: usize, delta: f64, tan_psi: f64) -> f64 {
-        delta - self.x[k] * tan_psi - self.drop2[k]
-    }
-
     /// Roller force, moment and derivatives at approach `delta` (m, both contacts, at
     /// mid-length) and tilt `psi` (rad). Zero (never NaN) when no lamina is in contact.
     pub fn evaluate(&self, delta: f64, psi: f64) -> RollerLoad {
-        self.eval(delta, psi, None)
+        self.eval(delta, tan0(psi), None)
+    }
+
+    /// As [`Laminae::evaluate`] with the tilt given by its tangent `tan_psi` (a caller that
+    /// needs the tangent itself forms it once).
+    pub(crate) fn evaluate_tan(&self, delta: f64, tan_psi: f64) -> RollerLoad {
+        self.eval(delta, tan_psi, None)
     }
 
     /// As [`Laminae::evaluate`], writing each lamina's load (N) into `loads` (length `ns`).
     pub fn evaluate_into(&self, delta: f64, psi: f64, loads: &mut [f64]) -> RollerLoad {
         assert_eq!(loads.len(), self.len(), "one load per lamina");
-        self.eval(delta, psi, Some(loads))
+        self.eval(delta, tan0(psi), Some(loads))
     }
 
-    fn eval(&self, delta: f64, psi: f64, mut loads: Option<&mut [f64]>) -> RollerLoad {
-        let tan_psi = psi.tan();
+    fn eval(&self, delta: f64, tan_psi: f64, mut loads: Option<&mut [f64]>) -> RollerLoad {
         let sec2 = 1.0 + tan_psi * tan_psi;
         let mut r = RollerLoad::default();
         // No lamina can touch: nothing to evaluate (the loop would give the same zeros).
         if loads.is_none() && delta + self.reach.0 * tan_psi.abs() - self.reach.1 <= 0.0 {
             return r;
         }
-        for k in 0..self.len() {
-            let d = self.approach(k, delta, tan_psi);
+        if tan_psi == 0.0 && loads.is_none() {
+            return self.eval_aligned(delta);
+        }
+        let (cs, dcs) = (self.cs, 10.0 / 9.0 * self.cs);
+        for (k, (&x, &d2)) in self.x.iter().zip(&self.drop2).enumerate() {
+            let d = delta - x * tan_psi - d2;
             let (q, dq) = if d > 0.0 {
-                let p = d.powf(1.0 / 9.0);
-                (self.cs * d * p, 10.0 / 9.0 * self.cs * p)
+                let p = ninth_root(d);
+                (cs * d * p, dcs * p)
             } else {
                 (0.0, 0.0)
             };
@@ -423,9 +534,10 @@ impl Laminae {
                 l[k] = q;
             }
             if q > 0.0 {
-                let x = self.x[k];
                 r.loaded += 1;
-                r.max_lamina = r.max_lamina.max(q);
+                if q > r.max_lamina {
+                    r.max_lamina = q;
+                }
                 r.force += q;
                 r.moment += q * x;
                 r.dforce_ddelta += dq;
@@ -433,6 +545,52 @@ impl Laminae {
                 r.dmoment_ddelta += dq * x;
                 r.dmoment_dtilt -= dq * x * x * sec2;
             }
+        }
+        r
+    }
+
+    /// [`Laminae::eval`] of an aligned roller (`tan psi = 0`): laminae `k` and `ns - 1 - k`
+    /// at `x` and `-x` (exactly: `new` mirrors the centres) with equal profile drops (every
+    /// [`Profile`] is even in `x`; checked pair by pair) carry the same load, so each such pair
+    /// takes one root, and their moments and the moment's cross derivatives cancel exactly
+    /// (summed as zeros, not as rounding noise).
+    fn eval_aligned(&self, delta: f64) -> RollerLoad {
+        let (cs, dcs) = (self.cs, 10.0 / 9.0 * self.cs);
+        let mut r = RollerLoad::default();
+        let one = |r: &mut RollerLoad, x: f64, d: f64, n: usize| {
+            if d > 0.0 {
+                let p = ninth_root(d);
+                let (q, dq) = (cs * d * p, dcs * p);
+                if q > 0.0 {
+                    let w = n as f64;
+                    r.loaded += n;
+                    if q > r.max_lamina {
+                        r.max_lamina = q;
+                    }
+                    r.force += w * q;
+                    r.dforce_ddelta += w * dq;
+                    r.dmoment_dtilt -= w * dq * x * x;
+                    if n == 1 {
+                        r.moment += q * x;
+                        r.dforce_dtilt -= dq * x;
+                        r.dmoment_ddelta += dq * x;
+                    }
+                }
+            }
+        };
+        let ns = self.len();
+        let (x, d2) = (&self.x[..ns], &self.drop2[..ns]);
+        for k in 0..ns / 2 {
+            let m = ns - 1 - k;
+            if d2[k] == d2[m] && x[k] == -x[m] {
+                one(&mut r, x[k], delta - d2[k], 2);
+            } else {
+                one(&mut r, x[k], delta - d2[k], 1);
+                one(&mut r, x[m], delta - d2[m], 1);
+            }
+        }
+        if ns % 2 == 1 {
+            one(&mut r, x[ns / 2], delta - d2[ns / 2], 1);
         }
         r
     }
@@ -495,6 +653,56 @@ mod tests {
         let ratio = roller_constant(0.01, effective_modulus(&n, &s))
             / roller_constant(0.01, E_PRIME_REFERENCE);
         assert!((ratio - 1.185).abs() < 0.005, "{ratio}");
+    }
+
+    #[test]
+    fn ninth_root_matches_powf() {
+        // Approaches from 1e-12 m to 1 m and every mantissa cell, and the fallbacks.
+        let mut worst = 0.0f64;
+        let mut d = 1e-12;
+        while d < 1.0 {
+            for k in 0..7 {
+                let x = d * (1.0 + 0.1377 * k as f64);
+                let (a, b) = (ninth_root(x), x.powf(1.0 / 9.0));
+                worst = worst.max((a / b - 1.0).abs());
+            }
+            d *= 1.0 + 1.0 / 37.0;
+        }
+        assert!(
+            worst < 4.0 * f64::EPSILON,
+            "largest relative difference {worst:e}"
+        );
+        assert_eq!(ninth_root(512.0), 2.0);
+        assert_eq!(ninth_root(1.0), 1.0);
+        for x in [0.0, 1e-310, f64::INFINITY] {
+            assert_eq!(ninth_root(x), x.powf(1.0 / 9.0));
+        }
+        assert!(ninth_root(f64::NAN).is_nan());
+    }
+
+    #[test]
+    fn aligned_pairs_agree_with_the_lamina_loop() {
+        // evaluate (paired laminae at zero tilt) against evaluate_into (every lamina).
+        let g = geom(0.012, 0.01);
+        for p in profiles(&g) {
+            for ns in [1, 2, 30, 31] {
+                let l = Laminae::new(&g, &p, ns).unwrap();
+                for d in [2e-6, 1e-5, 4e-5] {
+                    let a = l.evaluate(d, 0.0);
+                    let b = l.evaluate_into(d, 0.0, &mut vec![0.0; ns]);
+                    assert_eq!((a.loaded, a.max_lamina), (b.loaded, b.max_lamina), "{p:?}");
+                    let close = |u: f64, v: f64, s: f64| (u - v).abs() <= 1e-14 * s;
+                    let m = b.force * g.lwe;
+                    assert!(close(a.force, b.force, b.force), "{p:?} {ns}");
+                    assert!(close(a.dforce_ddelta, b.dforce_ddelta, b.dforce_ddelta));
+                    assert!(close(a.dmoment_dtilt, b.dmoment_dtilt, -b.dmoment_dtilt));
+                    let k = b.dforce_ddelta * g.lwe;
+                    assert!(close(a.moment, b.moment, m), "{p:?} {ns}");
+                    assert!(close(a.dforce_dtilt, b.dforce_dtilt, k), "{p:?} {ns}");
+                    assert!(close(a.dmoment_ddelta, b.dmoment_ddelta, k), "{p:?} {ns}");
+                }
+            }
+        }
     }
 
     #[test]

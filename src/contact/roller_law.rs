@@ -20,7 +20,7 @@
 //! roller is in equilibrium between cup, cone and back flange (`geometry::roller`), which this
 //! law refuses.
 
-use crate::contact::lamina::{line_hertz, Laminae};
+use crate::contact::lamina::{line_hertz, tan0, Laminae};
 use crate::error::{Error, Result};
 use crate::geometry::roller::RollerBearing;
 use crate::seam::element::{ElementAt, ElementDisplacement, ElementLaw, ElementReaction, Want};
@@ -84,8 +84,8 @@ impl ElementLaw for CylindricalRollerLaw {
         want: Want,
     ) -> Result<ElementReaction> {
         let approach = u.radial - self.half_pd;
-        let r = self.laminae.evaluate(approach, u.tilt);
-        let t = u.tilt.tan();
+        let t = tan0(u.tilt);
+        let r = self.laminae.evaluate_tan(approach, t);
         let sec2 = 1.0 + t * t;
         let mut out = ElementReaction {
             f: [0.0, -r.force, sec2 * r.moment],

@@ -134,6 +134,50 @@ pub fn assemble(
     q: &[f64; 5],
     psi: &[f64],
     arm: f64,
+    stiffness: Option<&mut [[f64; 5]; 5]>,
+    react: impl FnMut(usize, ElementAt<'_>, ElementDisplacement) -> Result<ElementReaction>,
+) -> Result<[f64; 5]> {
+    sum(q, psi, |_, p| p.sin_cos(), arm, stiffness, react)
+}
+
+/// The `(sin, cos)` of evenly spaced azimuths `2 pi j/Z` (`Z = base.len()`), for
+/// [`place_evenly_sc`].
+pub fn even_base(z: usize) -> Vec<(f64, f64)> {
+    (0..z)
+        .map(|j| (2.0 * std::f64::consts::PI * j as f64 / z as f64).sin_cos())
+        .collect()
+}
+
+/// [`place_evenly`] with each azimuth's `(sin, cos)` into `sc`, by rotating `base`
+/// ([`even_base`]) through `theta`: one `sin_cos` for the whole ring (the sums of angles
+/// agree with `sin_cos` of the azimuth to a few units in the last place).
+pub fn place_evenly_sc(psi: &mut [f64], sc: &mut [(f64, f64)], base: &[(f64, f64)], theta: f64) {
+    place_evenly(psi, theta);
+    let (st, ct) = theta.sin_cos();
+    for (o, &(sb, cb)) in sc.iter_mut().zip(base) {
+        *o = (st * cb + ct * sb, ct * cb - st * sb);
+    }
+}
+
+/// [`assemble`] with the azimuths' `(sin, cos)` given (`sc`, one per azimuth; from
+/// [`place_evenly_sc`]).
+pub fn assemble_sc(
+    q: &[f64; 5],
+    psi: &[f64],
+    sc: &[(f64, f64)],
+    arm: f64,
+    stiffness: Option<&mut [[f64; 5]; 5]>,
+    react: impl FnMut(usize, ElementAt<'_>, ElementDisplacement) -> Result<ElementReaction>,
+) -> Result<[f64; 5]> {
+    assert_eq!(sc.len(), psi.len(), "one (sin, cos) per azimuth");
+    sum(q, psi, |j, _| sc[j], arm, stiffness, react)
+}
+
+fn sum(
+    q: &[f64; 5],
+    psi: &[f64],
+    sin_cos: impl Fn(usize, f64) -> (f64, f64),
+    arm: f64,
     mut stiffness: Option<&mut [[f64; 5]; 5]>,
     mut react: impl FnMut(usize, ElementAt<'_>, ElementDisplacement) -> Result<ElementReaction>,
 ) -> Result<[f64; 5]> {
@@ -146,7 +190,7 @@ pub fn assemble(
         if !p.is_finite() {
             return Err(Error::invalid(format!("psi[{j}]"), p, "a finite number"));
         }
-        let (s, c) = p.sin_cos();
+        let (s, c) = sin_cos(j, p);
         let at = ElementAt {
             index: j,
             psi: p,
@@ -164,7 +208,8 @@ pub fn assemble(
         f[2] += fa;
         f[3] += m * s;
         f[4] -= m * c;
-        if let Some(k) = stiffness.as_deref_mut() {
+        // An unloaded element adds nothing to K (skipped: most of a ring's elements).
+        if let Some(k) = stiffness.as_deref_mut().filter(|_| r.df != [[0.0; 3]; 3]) {
             // K = -J^T df J with J the rows of d(axial, radial, tilt)/dq.
             let ja = [0.0, 0.0, 1.0, arm * s, -arm * c];
             let jr = [c, s, 0.0, 0.0, 0.0];
@@ -215,6 +260,22 @@ mod tests {
                 df: [[0.0; 3], [0.0, -k, 0.0], [0.0; 3]],
                 ..Default::default()
             })
+        }
+    }
+
+    #[test]
+    fn rotated_azimuths_agree_with_sin_cos() {
+        let z = 14;
+        let base = even_base(z);
+        let (mut psi, mut sc) = (vec![0.0; z], vec![(0.0, 0.0); z]);
+        for theta in [0.0, 0.3, -2.0, 45.0, 1.0e3] {
+            place_evenly_sc(&mut psi, &mut sc, &base, theta);
+            for (p, &(s, c)) in psi.iter().zip(&sc) {
+                let (s0, c0) = p.sin_cos();
+                // The azimuth itself carries theta's rounding, ~1e-16 theta.
+                let tol = 4e-16 * (1.0 + theta.abs());
+                assert!((s - s0).abs() < tol && (c - c0).abs() < tol, "{theta} {p}");
+            }
         }
     }
 

@@ -1,6 +1,6 @@
 //! The ring level for a rolling element with its own contact law (rollers, through
 //! [`crate::seam::element::ElementLaw`]): rigid rings on massless elements at the cage's
-//! kinematic positions, summed by [`assemble`], with contact damping `c d(delta)/dt` per
+//! kinematic positions, summed by [`assemble_sc`], with contact damping `c d(delta)/dt` per
 //! loaded element along its radial line (the element's approach rate from the ring's radial
 //! motion at the element, including the element's travel with the cage), blended in over
 //! the first [`DAMPING_RAMP`] of approach as for balls (docs/physics.md §5.1). The ball
@@ -18,7 +18,7 @@ use crate::error::{Error, Result};
 use crate::geometry::kinematics::nominal_cage_speed as cage_speed;
 use crate::models::effects::Effects;
 use crate::models::LevelArgs;
-use crate::seam::element::{assemble, place_evenly, ElementLaw, Want};
+use crate::seam::element::{assemble_sc, even_base, place_evenly_sc, ElementLaw, Want};
 use crate::seam::{LevelModel, LevelOutputs, Point};
 
 /// The stiffness and damping matrices an evaluation fills.
@@ -32,6 +32,9 @@ pub struct LawRingLevel {
     damping: f64,
     cage_ratio: f64,
     psi: Vec<f64>,
+    /// `(sin, cos)` of `psi`, and of the element spacing (`even_base`).
+    sc: Vec<(f64, f64)>,
+    base: Vec<(f64, f64)>,
 }
 
 impl LawRingLevel {
@@ -54,6 +57,8 @@ impl LawRingLevel {
             damping: a.contact_damping,
             cage_ratio: cage_speed(a.bearing, 1.0),
             psi: vec![0.0; a.bearing.z],
+            sc: vec![(0.0, 1.0); a.bearing.z],
+            base: even_base(a.bearing.z),
         })
     }
 
@@ -65,7 +70,7 @@ impl LawRingLevel {
         report: &mut (usize, f64, f64),
     ) -> Result<[f64; 5]> {
         let Point { m, x, .. } = p;
-        place_evenly(&mut self.psi, x[0]);
+        place_evenly_sc(&mut self.psi, &mut self.sc, &self.base, x[0]);
         let wc = self.cage_ratio * m.omega;
         let want = Want {
             stiffness: kc.is_some(),
@@ -78,9 +83,10 @@ impl LawRingLevel {
             0.0
         };
         let mut cmat = [[0.0; 5]; 5];
-        let mut w = assemble(
+        let mut w = assemble_sc(
             &m.q,
             &self.psi,
+            &self.sc,
             law.moment_arm(),
             kc.as_mut().map(|(k, _)| &mut **k),
             |_, at, u| {
