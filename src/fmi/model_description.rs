@@ -749,7 +749,11 @@ const HEADER: [&str; 10] = [
 ];
 
 fn platform_line() -> String {
-    let list: Vec<String> = PLATFORMS
+    platform_line_on(PLATFORMS)
+}
+
+fn platform_line_on(platforms: &[(&str, &str)]) -> String {
+    let list: Vec<String> = platforms
         .iter()
         .map(|(a, b)| format!("{a} (FMI 2) / {b} (FMI 3)"))
         .collect();
@@ -810,6 +814,12 @@ const fn usage(c: Causality) -> &'static str {
 /// `documentation/index.html` of the FMU of causality `c`: what it is, its platforms and
 /// the variable table, generated like the model descriptions.
 pub fn documentation_html(c: Causality) -> String {
+    documentation_html_on(c, PLATFORMS)
+}
+
+/// [`documentation_html`] for an FMU carrying binaries for `platforms` (FMI 2 folder, FMI 3
+/// tuple), e.g. `linux64` and `win64` when `scripts/build-fmu --win64` packs both.
+pub fn documentation_html_on(c: Causality, platforms: &[(&str, &str)]) -> String {
     let mut h = String::new();
     let _ = write!(
         h,
@@ -823,7 +833,7 @@ pub fn documentation_html(c: Causality) -> String {
          <a href=\"licenses/license.txt\">licenses/license.txt</a>.</p>\n<table>\n<tr>",
         esc(description(c)),
         usage(c),
-        esc(&platform_line()),
+        esc(&platform_line_on(platforms)),
         guid(c),
         name = model_name(c),
         ver = env!("CARGO_PKG_VERSION")

@@ -3,14 +3,17 @@
 //! instantiates with tells it which variant it is.
 //!
 //! ```text
-//! raceway-fmu-pack --lib <libraceway_fmu.so> --out <dir> [--scene <scene.toml>]
-//!                  [--update-doc <docs/fmi.md>] [--check-doc <docs/fmi.md>]
+//! raceway-fmu-pack --lib <libraceway_fmu.so> --out <dir> [--lib-win64 <raceway_fmu.dll>]
+//!                  [--scene <scene.toml>] [--update-doc <docs/fmi.md>] [--check-doc <docs/fmi.md>]
 //! ```
 //!
 //! Writes `<dir>/stage/<name>/` for each archive name (`raceway-fmi2`, `raceway-fmi3`,
 //! `raceway-load-fmi2`, `raceway-load-fmi3`: modelDescription.xml, binaries/<platform>/
-//! raceway.so, documentation/index.html, documentation/licenses/ (license.txt, the two licence
-//! texts and the third-party notices),
+//! raceway.so (`--lib`, this machine's platform) and, with `--lib-win64`, the Windows x86_64
+//! library cross-built by `scripts/build-windows` as binaries/win64/raceway.dll (FMI 2) or
+//! binaries/x86_64-windows/raceway.dll (FMI 3), documentation/index.html (listing the
+//! platforms packed), documentation/licenses/ (license.txt, the two licence texts and the
+//! third-party notices),
 //! resources/scene.toml when `--scene` is given, in the two archives of the scene's
 //! causality), zips each into `<dir>/<name>.fmu` and writes `<dir>/variables.md`.
 
@@ -29,14 +32,21 @@ const LICENSE_FILES: [(&str, &str); 3] = [
     ),
 ];
 
-fn platforms() -> Result<(&'static str, &'static str, &'static str), String> {
-    // (FMI 2 folder, FMI 3 platform tuple, library extension); spec2 2_3, spec3 2_5.
+/// (FMI 2 folder, FMI 3 platform tuple, library extension) of one platform.
+type Platform = (&'static str, &'static str, &'static str);
+
+/// Windows x86_64: FMI 2.0.4 §2.3 names the folder `win64`, FMI 3.0 §2.5 the platform tuple
+/// `x86_64-windows`; the library is `<modelIdentifier>.dll` in both.
+const WIN64: Platform = ("win64", "x86_64-windows", "dll");
+
+/// This machine's platform (the one `--lib` was built for); spec2 2_3, spec3 2_5.
+fn platforms() -> Result<Platform, String> {
     match (std::env::consts::ARCH, std::env::consts::OS) {
         ("x86_64", "linux") => Ok(("linux64", "x86_64-linux", "so")),
         ("aarch64", "linux") => Ok(("aarch64-linux", "aarch64-linux", "so")),
         ("x86_64", "macos") => Ok(("darwin64", "x86_64-darwin", "dylib")),
         ("aarch64", "macos") => Ok(("aarch64-darwin", "aarch64-darwin", "dylib")),
-        ("x86_64", "windows") => Ok(("win64", "x86_64-windows", "dll")),
+        ("x86_64", "windows") => Ok(WIN64),
         (a, o) => Err(format!("no FMI platform name for {a}-{o}")),
     }
 }
@@ -99,6 +109,7 @@ fn zip_folder(root: &Path, fmu: &Path) -> Result<(), String> {
 fn run() -> Result<(), String> {
     let mut args = std::env::args().skip(1);
     let (mut lib, mut out, mut scene, mut update, mut check) = (None, None, None, None, None);
+    let mut lib_win64 = None;
     while let Some(a) = args.next() {
         let mut val = || {
             args.next()
@@ -107,6 +118,7 @@ fn run() -> Result<(), String> {
         };
         match a.as_str() {
             "--lib" => lib = Some(val()?),
+            "--lib-win64" => lib_win64 = Some(val()?),
             "--out" => out = Some(val()?),
             "--scene" => scene = Some(val()?),
             "--update-doc" => update = Some(val()?),
@@ -117,8 +129,24 @@ fn run() -> Result<(), String> {
     let out = out.ok_or("--out is required")?;
     let table = md::markdown_table();
     write(&out.join("variables.md"), table.as_bytes())?;
+    if lib.is_none() && lib_win64.is_some() {
+        return Err("--lib-win64 needs --lib (this machine's library) beside it".into());
+    }
     if let Some(lib) = lib {
-        let so = std::fs::read(&lib).map_err(|e| format!("{}: {e}", lib.display()))?;
+        let read = |p: &Path| std::fs::read(p).map_err(|e| format!("{}: {e}", p.display()));
+        // (platform, library bytes) for every platform packed, this machine's first
+        let mut libs = vec![(platforms()?, read(&lib)?)];
+        if let Some(dll) = &lib_win64 {
+            let bytes = read(dll)?;
+            // a PE image starts with "MZ": catches a Linux .so passed by mistake
+            if !bytes.starts_with(b"MZ") {
+                return Err(format!("{}: not a Windows DLL", dll.display()));
+            }
+            if libs[0].0 != WIN64 {
+                libs.push((WIN64, bytes));
+            }
+        }
+        let names: Vec<(&str, &str)> = libs.iter().map(|((p2, p3, _), _)| (*p2, *p3)).collect();
         let scene_text = match &scene {
             Some(s) => {
                 let t = std::fs::read_to_string(s).map_err(|e| format!("{}: {e}", s.display()))?;
@@ -129,22 +157,24 @@ fn run() -> Result<(), String> {
             }
             None => None,
         };
-        let (p2, p3, ext) = platforms()?;
-        let file = format!("{}.{ext}", md::MODEL_IDENTIFIER);
         let stage = out.join("stage");
         if stage.exists() {
             std::fs::remove_dir_all(&stage).map_err(|e| format!("{}: {e}", stage.display()))?;
         }
         for c in md::VARIANTS {
-            for (version, xml, platform) in [("fmi2", md::fmi2(c), p2), ("fmi3", md::fmi3(c), p3)] {
+            for (version, xml) in [("fmi2", md::fmi2(c)), ("fmi3", md::fmi3(c))] {
                 let name = md::archive_name(c, version);
                 let root = stage.join(name.trim_end_matches(".fmu"));
                 write(&root.join("modelDescription.xml"), xml.as_bytes())?;
-                write(&root.join("binaries").join(platform).join(&file), &so)?;
+                for ((p2, p3, ext), bytes) in &libs {
+                    let folder = if version == "fmi2" { p2 } else { p3 };
+                    let file = format!("{}.{ext}", md::MODEL_IDENTIFIER);
+                    write(&root.join("binaries").join(folder).join(file), bytes)?;
+                }
                 let docs = root.join("documentation");
                 write(
                     &docs.join("index.html"),
-                    md::documentation_html(c).as_bytes(),
+                    md::documentation_html_on(c, &names).as_bytes(),
                 )?;
                 write(
                     &docs.join("licenses").join("license.txt"),
