@@ -596,7 +596,9 @@ fn run(
                 }
             }
         };
-        let (series, comp) = raceway::runner::run_until(
+        let mut series = raceway::runner::Series::default();
+        let mut digest = raceway::summary::digest_for(&scene);
+        let comp = raceway::runner::run_into(
             &scene,
             raceway::runner::Record {
                 stiffness_damping: kc,
@@ -604,13 +606,12 @@ fn run(
             false,
             &mut |_| {},
             &mut stop,
+            &mut raceway::runner::Tee(&mut series, &mut digest),
         )?;
         let cpu = raceway::report::thread_cpu_s() - c0;
-        let summary = raceway::summary::summarize(&scene, &name, &series, &comp, cpu);
-        let mut names = vec!["t [s]".to_string()];
-        for (n, u) in series.names.iter().zip(&series.units) {
-            names.push(format!("{n} [{u}]"));
-        }
+        let summary = raceway::summary::summarize(&scene, &name, &digest, &comp, cpu);
+        // The columns of series.csv's header (`t [s]`, `<name> [unit]`), from one place.
+        let names = series.header();
         let mut columns = vec![series.t];
         columns.extend(series.columns);
         Ok((

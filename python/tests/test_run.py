@@ -44,3 +44,20 @@ def test_duration_is_checked_like_the_scene_field():
     with pytest.raises(raceway.Error) as e:
         raceway.run(None, duration=-1.0)
     assert "run.duration_s" in e.value.message and "-1" in e.value.message
+
+
+def test_columns_are_the_outputs_the_level_and_effects_set(cli, root, tmp_path):
+    """issue #40 item 4: no cage, guide or wear columns on the linear level; a wear scene
+    keeps its wear and film columns; the DataFrame's columns are series.csv's header."""
+    linear = str(root / "examples/scenes/6205-linear.toml")
+    series, _ = raceway.run(linear, duration=0.002)
+    cli("run", linear, "--quiet", "--duration", "0.002", "--out", str(tmp_path / "lin"))
+    header = (tmp_path / "lin" / "series.csv").read_text().splitlines()[0].split(",")
+    assert list(series.columns) == header
+    names = {c[: c.index(" [")] for c in series.columns}
+    for gone in ("cage.slip", "cage.x", "cage.speed", "guide.force", "pocket.max_force",
+                 "wear.max_depth", "film.min_thickness", "power.loss"):
+        assert gone not in names, gone
+    wear, _ = raceway.run(str(root / "examples/scenes/6012-wear.toml"), duration=0.002)
+    assert "wear.max_depth [m]" in wear.columns and "film.min_thickness [m]" in wear.columns
+    assert "guide.force [N]" not in wear.columns

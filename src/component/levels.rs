@@ -7,6 +7,7 @@
 
 use super::level::LevelModel;
 use super::scene::Scene;
+use super::variables::Sets;
 use crate::error::{Error, Result};
 use crate::geometry::{Bearing, ElementKind};
 use crate::models::LevelArgs;
@@ -33,6 +34,10 @@ pub struct LevelEntry {
     pub elements: &'static [ElementKind],
     /// Checks of the level's own options at scene validation (before anything is built).
     pub check: Check,
+    /// The groups of outputs the level sets itself beyond those every level sets (the
+    /// variable table tags each output with its group); the effects add theirs
+    /// ([`outputs_set`]).
+    pub sets: Sets,
 }
 
 /// Checks a level's own options (one signature for every level).
@@ -55,7 +60,14 @@ impl LevelEntry {
             build,
             elements: BALLS,
             check: no_check,
+            sets: Sets::EVERY_LEVEL,
         }
+    }
+
+    /// The groups of outputs the level sets beyond those every level sets.
+    const fn with_sets(mut self, sets: Sets) -> Self {
+        self.sets = sets;
+        self
     }
 
     const fn with_check(mut self, check: Check) -> Self {
@@ -90,9 +102,32 @@ pub const LEVELS: &[LevelEntry] = &[
     LevelEntry::new("ring",         false, true,    crate::models::ring::level::build)
         .with_elements(crate::models::ring::level::ELEMENTS),
     LevelEntry::new("skidding",     true,  false,   crate::models::skidding::level::build)
-        .with_check(crate::models::skidding::level::check),
-    LevelEntry::new("full",         true,  false,   crate::models::full::level::build),
+        .with_check(crate::models::skidding::level::check)
+        .with_sets(Sets::CAGE_SLIP.with(Sets::POCKET).with(Sets::FRICTION)),
+    LevelEntry::new("full",         true,  false,   crate::models::full::level::build)
+        .with_sets(Sets::CAGE_SLIP.with(Sets::POCKET).with(Sets::FRICTION).with(Sets::CAGE_WHIRL)),
 ];
+
+/// The groups of outputs a run of `scene` sets: its level's own, and those of its effects
+/// when the level takes effects (an EHL film sets `film.min_thickness`, wear
+/// `wear.max_depth`, the thermal effect the friction torque and power).
+pub fn outputs_set(scene: &Scene) -> Sets {
+    let entry = scene.model.level.entry();
+    let mut sets = entry.sets;
+    if entry.effects {
+        let e = &scene.effects;
+        let on = |b: bool, g: Sets| if b { g } else { Sets::EVERY_LEVEL };
+        let film = e
+            .lubrication
+            .as_ref()
+            .is_some_and(|l| l.film == crate::models::effects::FilmKind::Ehl);
+        sets = sets
+            .with(on(film, Sets::FILM))
+            .with(on(e.wear.is_some(), Sets::WEAR))
+            .with(on(e.thermal.is_some(), Sets::FRICTION));
+    }
+    sets
+}
 
 /// Number of levels.
 const N: usize = LEVELS.len();

@@ -38,6 +38,56 @@ pub(super) fn static_start(
         next: ([0.0; 5], [[0.0; 5]; 5]),
         fresh: false,
     };
+    let full = staged(&mut sys, *loads, scale);
+    let last = match full {
+        Ok(q) => return Ok(q),
+        Err(r) => r,
+    };
+    // No equilibrium under the whole load: the largest fraction of it (to 1/64) with one,
+    // so that the refusal names the loads and a magnitude that can be met.
+    let (mut lo, mut hi) = (0.0, 1.0);
+    for _ in 0..6 {
+        let mid = 0.5 * (lo + hi);
+        let part: [f64; 5] = std::array::from_fn(|d| mid * loads[d]);
+        if staged(&mut sys, part, scale).is_ok() {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    // Light loads can fail where heavier ones in the same direction succeed (a contact
+    // barely engaged): the smallest multiple of the loads (up to 2^20) with an
+    // equilibrium, refined by bisection, bounds the range from above.
+    let mut above = None;
+    let mut m = 2.0;
+    while m <= 1048576.0 {
+        let part: [f64; 5] = std::array::from_fn(|d| m * loads[d]);
+        if staged(&mut sys, part, scale).is_ok() {
+            let (mut lo, mut hi) = (0.5 * m, m);
+            for _ in 0..6 {
+                let mid = 0.5 * (lo + hi);
+                let part: [f64; 5] = std::array::from_fn(|d| mid * loads[d]);
+                if staged(&mut sys, part, scale).is_ok() {
+                    hi = mid;
+                } else {
+                    lo = mid;
+                }
+            }
+            above = Some(hi);
+            break;
+        }
+        m *= 2.0;
+    }
+    Err(refusal(dofs, loads, lo, above, last))
+}
+
+/// The equilibrium under `loads` from the centre: the whole load at once, else in 4 and
+/// then 16 equal stages (continuation); the last residual when none converges.
+fn staged(
+    sys: &mut StaticSystem,
+    loads: [f64; 5],
+    scale: f64,
+) -> std::result::Result<[f64; 5], f64> {
     let mut last = f64::INFINITY;
     for stages in [1usize, 4, 16] {
         let mut q = [0.0; 5];
@@ -45,7 +95,7 @@ pub(super) fn static_start(
         for k in 1..=stages {
             let f = k as f64 / stages as f64;
             let part: [f64; 5] = std::array::from_fn(|d| f * loads[d]);
-            match newton_static(&mut sys, part, &mut q) {
+            match newton_static(sys, part, &mut q) {
                 Ok(r) if r <= 1e-6 * scale => last = r,
                 Ok(r) => {
                     last = r;
@@ -62,11 +112,92 @@ pub(super) fn static_start(
             return Ok(q);
         }
     }
-    Err(Error::NotConverged {
-        what: "static start of the load-driven inner ring (try model.start = \"rest\")",
-        iterations: 100,
-        residual: last,
-    })
+    Err(last)
+}
+
+/// Scene names of the initial loads, in the order of the ring coordinates.
+const LOAD_FIELDS: [(&str, &str); 5] = [
+    ("inputs.initial.load.x", "N"),
+    ("inputs.initial.load.y", "N"),
+    ("inputs.initial.load.z", "N"),
+    ("inputs.initial.load.mx", "N.m"),
+    ("inputs.initial.load.my", "N.m"),
+];
+
+/// The static start's refusal: the initial loads the ring resolves, named with the
+/// fraction `reached` of them under which an equilibrium was found (a range that can be
+/// met), or, when none was, `model.start` with `"rest"`.
+fn refusal(
+    dofs: &[usize],
+    loads: &[f64; 5],
+    reached: f64,
+    above: Option<f64>,
+    residual: f64,
+) -> Error {
+    let on: Vec<usize> = dofs.iter().copied().filter(|&d| loads[d] != 0.0).collect();
+    let why = format!(
+        "no static equilibrium of the load-driven inner ring under the initial loads (residual {residual:.3e} N)"
+    );
+    if (reached <= 0.0 && above.is_none()) || on.is_empty() {
+        return Error::invalid(
+            "model.start",
+            "equilibrium",
+            format!(
+                "\"rest\" (the inner ring starting at zero displacement): {why}, nor under 1/64 of them"
+            ),
+        );
+    }
+    let field = on
+        .iter()
+        .map(|&d| LOAD_FIELDS[d].0)
+        .collect::<Vec<_>>()
+        .join(", ");
+    let value = on
+        .iter()
+        .map(|&d| format!("{:e}", loads[d]))
+        .collect::<Vec<_>>()
+        .join(", ");
+    let force = on
+        .iter()
+        .filter(|&&d| d < 3)
+        .map(|&d| loads[d] * loads[d])
+        .sum::<f64>()
+        .sqrt();
+    let moment = on
+        .iter()
+        .filter(|&&d| d >= 3)
+        .map(|&d| loads[d] * loads[d])
+        .sum::<f64>()
+        .sqrt();
+    let range = |f: f64, op: &str| {
+        let mut parts = Vec::new();
+        if force > 0.0 {
+            parts.push(format!("|load| {op} {:.4e} N", f * force));
+        }
+        if moment > 0.0 {
+            parts.push(format!("|moment| {op} {:.4e} N.m", f * moment));
+        }
+        parts.join(" and ")
+    };
+    let mut ranges = Vec::new();
+    let mut found = Vec::new();
+    if reached > 0.0 {
+        ranges.push(range(reached, "<="));
+        found.push(format!("under {reached} of these loads"));
+    }
+    if let Some(a) = above {
+        ranges.push(range(a, ">="));
+        found.push(format!("under {a} times them"));
+    }
+    let limit = ranges.join(", or ");
+    Error::invalid(
+        field,
+        value,
+        format!(
+            "loads in this direction the static start carries: {limit} (an equilibrium is found {}; {why}), or model.start = \"rest\"",
+            found.join(" and ")
+        ),
+    )
 }
 
 /// Newton iterations from `q` towards `F(q) + loads = 0`, `sys` started afresh with these

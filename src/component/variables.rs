@@ -53,6 +53,44 @@ pub struct Variable {
     pub description: &'static str,
     /// Value type.
     pub ty: VarType,
+    /// Outputs: which levels and effects set it ([`Sets::EVERY_LEVEL`]: every level).
+    /// A recorded run (series.csv, Python's DataFrame) carries only the outputs its level
+    /// and effects set ([`crate::component::levels::LevelEntry::sets`]).
+    pub set_by: Sets,
+}
+
+/// Groups of outputs that only some levels or effects set, as bits: a level's registry
+/// entry names the groups it sets, an effect adds its own. Outputs outside every group are
+/// set by every level.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Sets(pub u8);
+
+impl Sets {
+    /// Set by every level.
+    pub const EVERY_LEVEL: Sets = Sets(0);
+    /// The cage's own speed against the kinematic one (`cage.slip`, `cage.speed_ratio`):
+    /// levels that integrate the cage (elsewhere the cage runs at its kinematic speed).
+    pub const CAGE_SLIP: Sets = Sets(1);
+    /// The cage centre and its guide (`cage.x`, `cage.y`, `cage.speed`, `guide.force`).
+    pub const CAGE_WHIRL: Sets = Sets(2);
+    /// Ball-pocket forces (`pocket.max_force`).
+    pub const POCKET: Sets = Sets(4);
+    /// Friction torque and power (`torque.z`, `power.loss`): levels with traction, or the
+    /// thermal effect.
+    pub const FRICTION: Sets = Sets(8);
+    /// The EHL film (`film.min_thickness`): the lubrication effect with an EHL film.
+    pub const FILM: Sets = Sets(16);
+    /// Race wear (`wear.max_depth`): the wear effect.
+    pub const WEAR: Sets = Sets(32);
+
+    /// Both groups.
+    pub const fn with(self, other: Sets) -> Sets {
+        Sets(self.0 | other.0)
+    }
+    /// Does `self` include every group of `group`?
+    pub const fn covers(self, group: Sets) -> bool {
+        self.0 & group.0 == group.0
+    }
 }
 
 impl Variable {
@@ -69,6 +107,11 @@ impl Variable {
             (self.role, causality),
             (Role::Output, _) | (Role::Motion, Causality::Load)
         )
+    }
+    /// Is this an output under `causality` that a run setting the groups `sets` sets
+    /// (`crate::component::levels::outputs_set`)?
+    pub fn is_set(&self, causality: Causality, sets: Sets) -> bool {
+        self.is_output(causality) && sets.covers(self.set_by)
     }
 }
 
@@ -89,6 +132,17 @@ const fn v(
         role,
         description,
         ty: VarType::Real,
+        set_by: Sets::EVERY_LEVEL,
+    }
+}
+
+impl Variable {
+    /// The variable set only by the levels and effects of `group`.
+    const fn only(self, group: Sets) -> Variable {
+        Variable {
+            set_by: group,
+            ..self
+        }
     }
 }
 
@@ -232,7 +286,8 @@ pub const SCALARS: &[Variable] = &[
         "N.m",
         Output,
         "friction (drag) torque on the shaft about z",
-    ),
+    )
+    .only(Sets::FRICTION),
     v("cage.omega", 107, "rad/s", Output, "cage speed"),
     v(
         "cage.slip",
@@ -240,7 +295,8 @@ pub const SCALARS: &[Variable] = &[
         "1",
         Output,
         "cage slip ratio 1 - omega_c/omega_c,kinematic",
-    ),
+    )
+    .only(Sets::CAGE_SLIP),
     count("balls.loaded", 109, Output, "number of balls in contact"),
     v(
         "contact.max_load",
@@ -262,57 +318,66 @@ pub const SCALARS: &[Variable] = &[
         "m",
         Output,
         "thinnest EHL film (0 when lubrication is off)",
-    ),
-    v("power.loss", 113, "W", Output, "friction power"),
+    )
+    .only(Sets::FILM),
+    v("power.loss", 113, "W", Output, "friction power")
+    .only(Sets::FRICTION),
     v(
         "wear.max_depth",
         114,
         "m",
         Output,
         "deepest wear on any race",
-    ),
+    )
+    .only(Sets::WEAR),
     v(
         "cage.x",
         115,
         "1",
         Output,
         "cage-centre displacement x in units of the guide clearance (full level)",
-    ),
+    )
+    .only(Sets::CAGE_WHIRL),
     v(
         "cage.y",
         116,
         "1",
         Output,
         "cage-centre displacement y in units of the guide clearance (full level)",
-    ),
+    )
+    .only(Sets::CAGE_WHIRL),
     v(
         "cage.speed",
         117,
         "m/s",
         Output,
         "speed |v| of the cage centre (full level; its std/mean is the whirl index sigma)",
-    ),
+    )
+    .only(Sets::CAGE_WHIRL),
     v(
         "cage.speed_ratio",
         118,
         "1",
         Output,
         "cage speed over its kinematic speed, 1 - cage.slip",
-    ),
+    )
+    .only(Sets::CAGE_SLIP),
     v(
         "pocket.max_force",
         119,
         "N",
         Output,
         "largest ball-pocket force (skidding and full levels)",
-    ),
+    )
+    .only(Sets::POCKET),
     v(
         "guide.force",
         120,
         "N",
         Output,
         "cage guide-land force (full level)",
-    ),
+    )
+    .only(Sets::CAGE_WHIRL),
     v(
         "safety.S0",
         121,

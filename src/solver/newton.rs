@@ -68,6 +68,8 @@ pub struct Options<const N: usize> {
     /// clearance before the contacts rise), the band where the residual starts to fall lies
     /// between this step and the last one that overshot, narrower than a halving: it is
     /// bisected (residual unchanged: further, larger: back) and the line search ends there.
+    /// When the full step itself ends in the dead zone, the step is doubled (as many times)
+    /// until the residual changes, then bisected the same way.
     pub dead_zone_bisections: usize,
     /// Reuse the Jacobian after a well-contracting full step (modified Newton).
     pub reuse_jacobian: bool,
@@ -238,7 +240,29 @@ pub fn solve<const N: usize, S: NewtonSystem<N> + ?Sized>(
                 // From a non-finite start (`r0 = inf`) a non-finite trial is no decrease
                 // (`inf <= inf`); from a finite one nothing below changes.
                 if opts.dead_zone_bisections > 0 && c.norm == r0 && r0.is_finite() {
-                    if let Some(mut hi) = over {
+                    // The full step ends inside the dead zone (nothing overshot yet: a
+                    // small residual's step shorter than the clearance): the band lies
+                    // beyond it. Double the step until the residual changes: lower is
+                    // accepted, higher (or refused) is the overshoot the bisection needs.
+                    if over.is_none() {
+                        for _ in 0..opts.dead_zone_bisections {
+                            let far = 2.0 * t;
+                            let trial = trial_at(far);
+                            rep.residuals += 1;
+                            match sys.residual(&trial) {
+                                Ok(c) if c.norm < r0 => {
+                                    accepted = Some((trial, c, far));
+                                    break;
+                                }
+                                Ok(c) if c.norm == r0 => t = far,
+                                _ => {
+                                    over = Some(far);
+                                    break;
+                                }
+                            }
+                        }
+                    }
+                    if let (None, Some(mut hi)) = (accepted, over) {
                         let mut lo = t;
                         for _ in 0..opts.dead_zone_bisections {
                             let mid = 0.5 * (lo + hi);

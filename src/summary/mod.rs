@@ -15,7 +15,7 @@ use crate::analysis::{
 use crate::component::{Causality, Scene};
 use crate::geometry::kinematics;
 use crate::models::effects::Element;
-use crate::runner::Series;
+use crate::runner::{Digest, Series};
 
 /// The sections of the summary, in order.
 pub fn summary_of(ctx: &Ctx) -> Summary {
@@ -29,15 +29,34 @@ pub fn summary_of(ctx: &Ctx) -> Summary {
 }
 
 /// The summary of a finished run (`cpu_s`: its thread CPU time), as `raceway run` writes it
-/// to summary.txt and summary.json; what `raceway sweep` flattens into a row.
+/// to summary.txt and summary.json; what `raceway sweep` flattens into a row. `run`: the
+/// run's [`Digest`] as [`digest_for`] makes it.
 pub fn summarize(
     scene: &Scene,
     name: &str,
-    series: &Series,
+    run: &Digest,
     comp: &crate::Component,
     cpu_s: f64,
 ) -> Summary {
-    summary_of(&Ctx::new(scene, name, series, comp, cpu_s))
+    summary_of(&Ctx::new(scene, name, run, comp, cpu_s))
+}
+
+/// The name and unit of the signal whose spectrum tells the frequencies: ring motion when
+/// load-driven, the force when motion-driven (over the second half of the run, past the
+/// start transient).
+pub fn signal_of(scene: &Scene) -> (&'static str, &'static str) {
+    if scene.model.causality == Causality::Load {
+        ("shaft.y", "m")
+    } else {
+        ("force.y", "N")
+    }
+}
+
+/// The run's digest the summary reads, to be fed the run's rows
+/// ([`crate::runner::run_into`]): the spectrum's signal and the cage speed (whirl index)
+/// kept at full rate over the second half, the cage orbit's peak.
+pub fn digest_for(scene: &Scene) -> Digest {
+    Digest::new(&[signal_of(scene).0, "cage.speed"], &[("cage.x", "cage.y")])
 }
 
 /// The summary: text lines and the same facts as JSON. A section is a function
@@ -69,15 +88,21 @@ pub struct Ctx<'a> {
     pub scene: &'a Scene,
     /// Scene name (file stem).
     pub name: &'a str,
-    /// The recorded run.
+    /// The run's history for plots: every row up to [`crate::runner::HISTORY_ROWS`] rows,
+    /// else every `run.stride`-th and the last (the summary reads `run`, exact over every
+    /// row).
     pub series: &'a Series,
+    /// The run's digest: peaks, last values, second-half means and the analysed signals
+    /// over every row.
+    pub run: &'a Digest,
     /// The component after the run.
     pub comp: &'a crate::Component,
     /// CPU time of the run, s.
     pub cpu_s: f64,
     /// Shaft frequency at the end, Hz.
     pub shaft_hz: f64,
-    /// Index of the first sample analysed (the second half of the run).
+    /// Index in `series` of the first row of the second half of the run (the part
+    /// analysed).
     pub start: usize,
     /// Name and unit of the signal whose spectrum is analysed.
     pub signal: (&'static str, &'static str),
@@ -103,25 +128,18 @@ impl<'a> Ctx<'a> {
     pub fn new(
         scene: &'a Scene,
         name: &'a str,
-        series: &'a Series,
+        run: &'a Digest,
         comp: &'a crate::Component,
         cpu_s: f64,
     ) -> Ctx<'a> {
-        let col = |n: &str| series.column(n).unwrap_or(&[]);
-        let omega = col("shaft.omega").last().copied().unwrap_or(0.0);
+        let series = &run.history;
+        let omega = run.last("shaft.omega");
         let kin = kinematics(comp.bearing(), omega);
         let shaft_hz = omega / (2.0 * std::f64::consts::PI);
-        // The signal whose spectrum tells the frequencies: ring motion when load-driven,
-        // the force when motion-driven; over the second half of the run (past the start
-        // transient).
-        let signal = if scene.model.causality == Causality::Load {
-            ("shaft.y", "m")
-        } else {
-            ("force.y", "N")
-        };
-        let n = series.t.len();
-        let start = n / 2;
-        let sig = &col(signal.0)[start.min(n)..];
+        let signal = signal_of(scene);
+        let n = run.rows;
+        let start = run.start.div_ceil(run.stride.max(1)).min(series.t.len());
+        let sig = run.second_half(signal.0);
         let dt = scene.run.duration_s / (n - 1).max(1) as f64;
         let spec = amplitude_spectrum(sig, 1.0 / dt, Window::Hann);
         let marks = characteristic_marks(&kin, shaft_hz, 3, 1);
@@ -166,6 +184,7 @@ impl<'a> Ctx<'a> {
             scene,
             name,
             series,
+            run,
             comp,
             cpu_s,
             shaft_hz,
@@ -178,14 +197,19 @@ impl<'a> Ctx<'a> {
         }
     }
 
-    /// The recorded column of a variable (empty when absent).
+    /// The history's column of a variable (empty when absent), for plots.
     pub fn col(&self, n: &str) -> &[f64] {
         self.series.column(n).unwrap_or(&[])
     }
 
-    /// The largest magnitude of a recorded column.
+    /// The largest magnitude of a recorded variable over every row (0 when absent).
     pub fn peak(&self, n: &str) -> f64 {
-        self.col(n).iter().fold(0.0f64, |m, v| m.max(v.abs()))
+        self.run.peak(n)
+    }
+
+    /// The last value of a recorded variable (0 when absent).
+    pub fn last(&self, n: &str) -> f64 {
+        self.run.last(n)
     }
 
     /// Whether the level integrates the cage (its slip is otherwise 0 by construction).
@@ -195,8 +219,8 @@ impl<'a> Ctx<'a> {
 
     /// The run length over the length analysed.
     pub fn record_scale(&self) -> f64 {
-        let n = self.series.t.len().max(2);
-        (n - 1) as f64 / (n - 1 - self.start.min(n - 2)) as f64
+        let n = self.run.rows.max(2);
+        (n - 1) as f64 / (n - 1 - self.run.start.min(n - 2)) as f64
     }
 }
 
@@ -222,7 +246,7 @@ fn scene_lines(c: &Ctx, s: &mut Summary) {
         b.dm * 1e3,
         b.pd * 1e6
     ));
-    let n = c.series.t.len();
+    let n = c.run.rows;
     let load = crate::report::load_average();
     s.line(format!(
         "simulated {:.4} s in {} steps, {:.3} s of thread CPU ({:.2}x real time; load average {load})",
@@ -260,7 +284,7 @@ fn load_lines(c: &Ctx, s: &mut Summary) {
 }
 
 fn cage_lines(c: &Ctx, s: &mut Summary) {
-    let slip = c.col("cage.slip").last().copied().unwrap_or(0.0);
+    let slip = c.last("cage.slip");
     if c.cage_dynamics() {
         s.line(format!("cage slip: final {slip:.4}"));
         s.set("final_cage_slip", slip.into());
@@ -275,12 +299,8 @@ fn cage_lines(c: &Ctx, s: &mut Summary) {
     if c.scene.model.level.name() != "full" {
         return;
     }
-    let sigma = whirl_index(&c.col("cage.speed")[c.start.min(c.col("cage.speed").len())..]);
-    let orbit_max = c
-        .col("cage.x")
-        .iter()
-        .zip(c.col("cage.y"))
-        .fold(0.0f64, |m, (x, y)| m.max(x.hypot(*y)));
+    let sigma = whirl_index(c.run.second_half("cage.speed"));
+    let orbit_max = c.run.pair_peak("cage.x", "cage.y");
     s.line(format!(
         "cage: whirl index sigma {} (second half), largest orbit {:.3} guide clearances, \
          peak pocket force {:.2} N, peak guide force {:.2} N, final speed ratio {:.4}",
@@ -288,7 +308,7 @@ fn cage_lines(c: &Ctx, s: &mut Summary) {
         orbit_max,
         c.peak("pocket.max_force"),
         c.peak("guide.force"),
-        c.col("cage.speed_ratio").last().copied().unwrap_or(0.0)
+        c.last("cage.speed_ratio")
     ));
     s.set("cage_whirl_sigma", serde_json::json!(sigma));
     s.set("cage_orbit_max", orbit_max.into());
@@ -299,17 +319,9 @@ fn cage_lines(c: &Ctx, s: &mut Summary) {
 /// ISO ratings, life, static safety and warnings at the run's mean load over the second
 /// half (crate::ratings).
 fn rating_lines(c: &Ctx, s: &mut Summary) {
-    let mean = |n: &str| -> f64 {
-        let col = c.series.column(n).unwrap_or(&[]);
-        let col = &col[c.start.min(col.len())..];
-        col.iter().sum::<f64>() / col.len().max(1) as f64
-    };
-    let load = ["force.x", "force.y", "force.z", "moment.x", "moment.y"].map(|n| -mean(n));
-    let omega = c
-        .series
-        .column("shaft.omega")
-        .and_then(|col| col.last().copied())
-        .unwrap_or(0.0);
+    let load = ["force.x", "force.y", "force.z", "moment.x", "moment.y"]
+        .map(|n| -c.run.mean_second_half(n));
+    let omega = c.last("shaft.omega");
     let rating = crate::ratings::assess_run(c.comp.bearing(), &load, omega);
     match &rating {
         Ok(a) => s.text += &format!("at the mean load of the second half:\n{}", a.text()),

@@ -216,17 +216,29 @@ impl Sweep {
         let attempt = || -> Result<Vec<(String, Json)>> {
             let scene = self.scene(index)?;
             let c0 = thread_cpu_s();
-            let (run, comp) = runner::run_until(
-                &scene,
-                runner::Record::default(),
-                false,
-                &mut |_| {},
-                &mut || stop(),
-            )?;
+            // The point's rows go into its digest (bounded memory) and, when asked, its
+            // series file as they are made (a temporary name renamed when complete).
+            let mut run = crate::summary::digest_for(&scene);
+            let go = |sink: &mut dyn runner::Sink| {
+                runner::run_into(
+                    &scene,
+                    runner::Record::default(),
+                    false,
+                    &mut |_| {},
+                    &mut || stop(),
+                    sink,
+                )
+            };
+            let comp = match series {
+                Some(p) => crate::fsutil::write_atomic_with(p, |tmp| {
+                    let mut csv = runner::CsvSink::create(tmp)?;
+                    let comp = go(&mut runner::Tee(&mut csv, &mut run))?;
+                    csv.finish()?;
+                    Ok::<_, Error>(comp)
+                })?,
+                None => go(&mut run)?,
+            };
             let cpu = thread_cpu_s() - c0;
-            if let Some(p) = series {
-                write_atomic(p, run.to_csv().as_bytes())?;
-            }
             let mut cols = Vec::new();
             let summary = crate::summary::summarize(&scene, "sweep point", &run, &comp, cpu);
             flatten("", &Json::Object(summary.json), &mut cols);

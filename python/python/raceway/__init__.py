@@ -82,7 +82,9 @@ def run(scene: Any = None, duration: Optional[float] = None, *, kc: bool = False
     -------
     series : pandas.DataFrame
         One row per communication point, the columns of ``series.csv`` (``"t [s]"``,
-        ``"force.y [N]"``, ``"shaft.y [m]"``, ...: every variable with its SI unit).
+        ``"force.y [N]"``, ``"shaft.y [m]"``, ...: the inputs and the outputs the scene's
+        level and effects set, each with its SI unit; no ``wear.max_depth`` without wear,
+        no cage or guide columns on levels that do not integrate the cage).
     summary : dict
         What ``raceway run`` writes to ``summary.json``: peak loads and pressures,
         characteristic frequencies found, ISO ratings, ``cpu_s`` (thread CPU time),

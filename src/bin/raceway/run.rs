@@ -187,7 +187,11 @@ fn write_run(a: &RunArgs, scene: &Scene, name: &str, out: &Path, shown: &Path) -
             let _ = std::io::stderr().flush();
         }
     };
-    let (series, comp) = runner::run_until(
+    // series.csv is written while the run goes (into the staging folder); only the
+    // run's digest stays in memory, bounded whatever the duration (docs/reliability.md).
+    let mut csv = runner::CsvSink::create(&out.join("series.csv"))?;
+    let mut digest = raceway::summary::digest_for(scene);
+    let comp = runner::run_into(
         scene,
         Record {
             stiffness_damping: a.kc,
@@ -195,16 +199,15 @@ fn write_run(a: &RunArgs, scene: &Scene, name: &str, out: &Path, shown: &Path) -
         a.through,
         &mut progress,
         &mut || STOP.load(std::sync::atomic::Ordering::Relaxed),
+        &mut runner::Tee(&mut csv, &mut digest),
     )?;
+    csv.finish()?;
     if bar_on {
         eprintln!();
     }
     let cpu = raceway::report::thread_cpu_s() - cpu0;
 
-    let csv = out.join("series.csv");
-    raceway::fsutil::write_atomic(&csv, series.to_csv()).map_err(|e| io(&csv, e))?;
-
-    let ctx = Ctx::new(scene, name, &series, &comp, cpu);
+    let ctx = Ctx::new(scene, name, &digest, &comp, cpu);
     let sm = summary_of(&ctx);
     let summary = out.join("summary.txt");
     raceway::fsutil::write_atomic(&summary, &sm.text).map_err(|e| io(&summary, e))?;
