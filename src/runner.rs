@@ -185,17 +185,23 @@ impl<W: std::io::Write> Sink for CsvSink<W> {
 /// (and its last), so the history stays under this whatever the duration.
 pub const HISTORY_ROWS: usize = 20_000;
 
+/// Most rows of a column analysed at full rate (the spectra's signal, the whirl index's cage
+/// speed): the last `min(second half, ANALYSED_ROWS)` rows, 2^20 (105 s at 10 kHz, a
+/// spectrum's bin 0.01 Hz there), so a run's memory has a bound whatever its duration.
+pub const ANALYSED_ROWS: usize = 1 << 20;
+
 /// What a run keeps in memory for its summary and plots, fed row by row ([`Sink`]):
 /// - per column over every row: the largest magnitude, the last value and the sum over
 ///   the second half (from row [`Digest::start`]), accumulated in row order so they equal
 ///   the same folds over the whole column bit for bit;
 /// - the history for plots, at most [`HISTORY_ROWS`] + 1 rows ([`Digest::history`]);
 /// - the columns analysed at full rate (the spectra's signal, the whirl index's cage
-///   speed), over the second half only: 8 bytes per row per column analysed;
+///   speed), over the last `min(second half, ANALYSED_ROWS)` rows (from row
+///   [`Digest::analysed_from`]): 8 bytes per row per column analysed;
 /// - the peak distance `hypot(x, y)` of the column pairs asked for (the cage orbit).
 ///
-/// So a run keeps at most about `HISTORY_ROWS x (columns + 1) x 8` bytes plus 4 bytes per
-/// row per analysed column (docs/reliability.md, "Memory").
+/// So a run keeps at most about `HISTORY_ROWS x (columns + 1) x 8` bytes plus
+/// `ANALYSED_ROWS x 8` bytes per analysed column (docs/reliability.md, "Memory").
 #[derive(Debug, Clone, Default)]
 pub struct Digest {
     /// The history for plots: every row when the run has at most [`HISTORY_ROWS`] rows,
@@ -207,6 +213,10 @@ pub struct Digest {
     pub rows: usize,
     /// First row of the second half, `rows / 2`.
     pub start: usize,
+    /// First row of the analysed columns: `start`, or `rows - cap` when the second half is
+    /// longer than the cap ([`ANALYSED_ROWS`] unless set by [`Digest::with_cap`]).
+    pub analysed_from: usize,
+    cap: usize,
     /// Rows received so far.
     pub seen: usize,
     peak: Vec<f64>,
@@ -228,8 +238,15 @@ impl Digest {
             analysed_names: analysed.to_vec(),
             pair_names: pairs.to_vec(),
             stride: 1,
+            cap: ANALYSED_ROWS,
             ..Digest::default()
         }
+    }
+
+    /// The same digest analysing at most the last `cap` rows (at least 1).
+    pub fn with_cap(mut self, cap: usize) -> Digest {
+        self.cap = cap.max(1);
+        self
     }
 
     fn index(&self, name: &str) -> Option<usize> {
@@ -253,7 +270,8 @@ impl Digest {
             .map_or(0.0, |k| self.sum_half[k] / n as f64)
     }
 
-    /// An analysed column at full rate over the second half (empty when absent).
+    /// An analysed column at full rate over the second half, or its last
+    /// [`ANALYSED_ROWS`] rows when longer (from row `analysed_from`; empty when absent).
     pub fn second_half(&self, name: &str) -> &[f64] {
         self.index(name)
             .and_then(|k| self.analysed.iter().find(|(i, _)| *i == k))
@@ -274,7 +292,7 @@ impl Digest {
 
     /// Values held in memory: the history's (time included) and the analysed columns'.
     /// The history's part is bounded whatever the run's length; the analysed part grows by
-    /// one value per analysed column per row of the second half.
+    /// one value per analysed column per row of the second half up to its cap.
     pub fn values_kept(&self) -> usize {
         self.history.t.len() * (self.history.columns.len() + 1)
             + self.analysed.iter().map(|(_, v)| v.len()).sum::<usize>()
@@ -305,6 +323,7 @@ impl Sink for Digest {
         self.history = Series::with_columns(names, units);
         self.rows = rows;
         self.start = rows / 2;
+        self.analysed_from = self.start.max(rows.saturating_sub(self.cap.max(1)));
         self.seen = 0;
         self.stride = rows.div_ceil(HISTORY_ROWS).max(1);
         self.peak = vec![0.0; n];
@@ -312,7 +331,7 @@ impl Sink for Digest {
         // -0.0: the neutral element of `Iterator::sum` for floats, so the sum is the
         // same bits as summing the column.
         self.sum_half = vec![-0.0; n];
-        let keep = rows - self.start;
+        let keep = rows - self.analysed_from;
         self.analysed = self
             .analysed_names
             .iter()
@@ -339,6 +358,8 @@ impl Sink for Digest {
             for (s, v) in self.sum_half.iter_mut().zip(values) {
                 *s += v;
             }
+        }
+        if i >= self.analysed_from {
             for (k, col) in &mut self.analysed {
                 col.push(values[*k]);
             }
@@ -734,6 +755,35 @@ mod tests {
         let kept = |d: &Digest| d.values_kept() - d.second_half("b").len();
         // Every row of the long run would be 2.4e6 values: the history keeps under 1/25.
         assert!(kept(&short) <= kept(&long) && kept(&long) * 25 < long.rows * 4);
+    }
+
+    /// With a cap on the analysed rows, a run 10 times longer keeps exactly the same number
+    /// of values (history and analysed column), the analysed column holds the run's last
+    /// `cap` values bit for bit, and the second-half mean still folds every row of the
+    /// second half.
+    #[test]
+    fn a_capped_digest_keeps_the_same_values_whatever_the_duration() {
+        let cap = 1_000;
+        let feed = |rows: usize| {
+            let mut d = Digest::new(&["b"], &[]).with_cap(cap);
+            d.begin(&["a", "b"], &["m", "N"], rows).unwrap();
+            for i in 0..rows {
+                let x = i as f64;
+                d.row(1e-4 * x, &[x.cos(), x]).unwrap();
+            }
+            d
+        };
+        let (short, long) = (feed(60 * HISTORY_ROWS), feed(600 * HISTORY_ROWS));
+        assert!(short.values_kept().abs_diff(long.values_kept()) <= 2 * 3);
+        for d in [&short, &long] {
+            let b = d.second_half("b");
+            assert_eq!(b.len(), cap);
+            assert_eq!(d.analysed_from, d.rows - cap);
+            assert!(b.iter().zip(d.analysed_from..).all(|(v, i)| *v == i as f64));
+            let mean: f64 =
+                (d.start..d.rows).map(|i| i as f64).sum::<f64>() / (d.rows - d.start) as f64;
+            assert_eq!(d.mean_second_half("b").to_bits(), mean.to_bits());
+        }
     }
 
     /// A run records the inputs of its causality and only the outputs its level and

@@ -220,7 +220,7 @@ impl<'a> Ctx<'a> {
     /// The run length over the length analysed.
     pub fn record_scale(&self) -> f64 {
         let n = self.run.rows.max(2);
-        (n - 1) as f64 / (n - 1 - self.run.start.min(n - 2)) as f64
+        (n - 1) as f64 / (n - 1 - self.run.analysed_from.min(n - 2)) as f64
     }
 }
 
