@@ -92,7 +92,7 @@ fn the_default_log_profile_is_softer_than_straight_rollers() {
 }
 
 /// A level without a roller law refuses a roller bearing naming the level and the element
-/// kind; a tapered bearing is refused at the quasi-static level naming `bearing.kind`.
+/// kind.
 #[test]
 fn levels_without_a_roller_law_refuse_naming_both() {
     for level in ["skidding", "full", "linear"] {
@@ -101,10 +101,6 @@ fn levels_without_a_roller_law_refuse_naming_both() {
             .to_string();
         assert!(e.contains(level) && e.contains("roller"), "{level}: {e}");
     }
-    let e = Component::from_text(&scene("quasi_static", "\"30206\""))
-        .unwrap_err()
-        .to_string();
-    assert!(e.contains("bearing.kind") && e.contains("tapered"), "{e}");
 }
 
 /// Plausibility limits come from the line contact: a displacement beyond the elastic
