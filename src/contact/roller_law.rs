@@ -69,6 +69,14 @@ impl CylindricalRollerLaw {
         })
     }
 
+    /// Each lamina's load (N) into `loads` (length of the laminae) at `u`; returns the roller's
+    /// load.
+    pub fn lamina_loads(&self, u: ElementDisplacement, loads: &mut [f64]) -> f64 {
+        self.laminae
+            .evaluate_into(u.radial - self.half_pd, u.tilt, loads)
+            .force
+    }
+
     /// The flange contact's series constant `K_f` (N/m^1.5): the axial load of an NJ/NUP roller
     /// is `K_f delta_f^1.5`; `None` for NU, N and flat roller ends.
     pub fn flange_constant(&self) -> Option<f64> {
