@@ -202,13 +202,7 @@ pub fn solve(
         stiffness: false,
         report: true,
     };
-    let (ri, ro, ei, eo) = (
-        b.reduced_radius_inner(),
-        b.reduced_radius_outer(),
-        b.e_prime_inner(),
-        b.e_prime_outer(),
-    );
-    let _ = (ro, eo);
+    let (ri, ei) = (b.reduced_radius_inner(), b.e_prime_inner());
     for (j, &p) in psi.iter().enumerate() {
         let (s, c) = p.sin_cos();
         let at = ElementAt {
@@ -331,7 +325,10 @@ mod tests {
         let load = [0.0, -4000.0, 3000.0, 0.0, 0.0];
         let sol = solve(&b, load, 0.0, NAMES).unwrap();
         for i in 0..5 {
-            assert!((sol.rollers_force[i] + load[i]).abs() < 1e-5, "{i}: {sol:?}");
+            assert!(
+                (sol.rollers_force[i] + load[i]).abs() < 1e-5,
+                "{i}: {sol:?}"
+            );
         }
         let fa: f64 = sol.rollers.iter().map(|r| r.load[1]).sum::<f64>() * b.alpha.sin();
         assert!((fa - 3000.0).abs() < 1e-4, "{fa}");
