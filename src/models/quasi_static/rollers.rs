@@ -324,11 +324,8 @@ mod tests {
         let b = lookup("30206").unwrap().build().unwrap();
         let load = [0.0, -4000.0, 3000.0, 0.0, 0.0];
         let sol = solve(&b, load, 0.0, NAMES).unwrap();
-        for i in 0..5 {
-            assert!(
-                (sol.rollers_force[i] + load[i]).abs() < 1e-5,
-                "{i}: {sol:?}"
-            );
+        for (f, l) in sol.rollers_force.iter().zip(load) {
+            assert!((f + l).abs() < 1e-5, "{sol:?}");
         }
         let fa: f64 = sol.rollers.iter().map(|r| r.load[1]).sum::<f64>() * b.alpha.sin();
         assert!((fa - 3000.0).abs() < 1e-4, "{fa}");
