@@ -5,6 +5,7 @@ pub mod elliptic;
 pub mod hertz;
 pub mod lamina;
 pub mod roller_law;
+pub mod tapered_law;
 pub mod traction;
 
 pub use hertz::{

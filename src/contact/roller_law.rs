@@ -14,15 +14,24 @@
 //! `m = sec²(tilt) Σ q_k x_k`. The derivatives follow from the laminae's Jacobian; `K` is
 //! symmetric (a potential exists).
 //!
-//! What it leaves out, for the levels to add: the axial load of NJ/NUP flanges (the law carries
-//! none: correct for NU and N), the roller's centrifugal force at speed (the laminae carry the
-//! same load at both contacts, the massless-roller assumption) and tapered rollers, whose
-//! roller is in equilibrium between cup, cone and back flange (`geometry::roller`), which this
-//! law refuses.
+//! Flanges (docs/physics.md §R8): NU and N carry no axial load (their axial stiffness is zero,
+//! an exact 0 in `K`, never a NaN). An NJ (and an NUP, both ways) whose roller ends are
+//! spherical (`bearing.flange.roller_end_radius_mm`) carries an axial displacement through the
+//! inner flange, the roller and the opposite outer flange: two Hertz point contacts in series
+//! (`contact::hertz`, curvatures from `RollerBearing::flange_curvature`), with the approach
+//! `delta_f = s (axial + r_f tilt)` (`s = +1` for the NJ's one direction, `sign(axial)` for an
+//! NUP; `r_f` the inner flange contact radius, zero axial play) and the force on the shaft
+//! `F_a = -s Q_f`, moment `-s r_f Q_f`. Flat roller ends meet the flange on the chamfer's edge,
+//! which this law does not model: such an NJ carries no axial load, as an NU.
+//!
+//! What it leaves out: the roller's centrifugal force at speed (the laminae carry the same load
+//! at both contacts, the massless-roller assumption), the flange contact's moment on the roller,
+//! and tapered rollers (`contact::tapered_law`), which this law refuses.
 
+use crate::contact::hertz::{hertz_load_and_stiffness, series_constant, PointContact};
 use crate::contact::lamina::{line_hertz, tan0, Laminae};
 use crate::error::{Error, Result};
-use crate::geometry::roller::RollerBearing;
+use crate::geometry::roller::{FlangeRing, RollerBearing};
 use crate::seam::element::{ElementAt, ElementDisplacement, ElementLaw, ElementReaction, Want};
 
 /// A cylindrical roller's line contact, by laminae (module docs).
@@ -34,6 +43,9 @@ pub struct CylindricalRollerLaw {
     r_outer: f64,
     e_inner: f64,
     e_outer: f64,
+    /// The flange contact: series Hertz constant (N/m^1.5), inner flange contact radius (m),
+    /// both directions (NUP) or `+z` only (NJ).
+    flange: Option<(f64, f64, bool)>,
 }
 
 impl CylindricalRollerLaw {
@@ -53,13 +65,44 @@ impl CylindricalRollerLaw {
             r_outer: b.reduced_radius_outer(),
             e_inner: b.e_prime_inner(),
             e_outer: b.e_prime_outer(),
+            flange: flange_contact(b)?,
         })
+    }
+
+    /// Each lamina's load (N) into `loads` (length of the laminae) at `u`; returns the roller's
+    /// load.
+    pub fn lamina_loads(&self, u: ElementDisplacement, loads: &mut [f64]) -> f64 {
+        self.laminae
+            .evaluate_into(u.radial - self.half_pd, u.tilt, loads)
+            .force
+    }
+
+    /// The flange contact's series constant `K_f` (N/m^1.5): the axial load of an NJ/NUP roller
+    /// is `K_f delta_f^1.5`; `None` for NU, N and flat roller ends.
+    pub fn flange_constant(&self) -> Option<f64> {
+        self.flange.map(|f| f.0)
     }
 
     /// The laminae it evaluates.
     pub fn laminae(&self) -> &Laminae {
         &self.laminae
     }
+}
+
+/// The NJ/NUP flange contact of module docs: `(K_f, r_f, both ways)`, `None` without one.
+fn flange_contact(b: &RollerBearing) -> Result<Option<(f64, f64, bool)>> {
+    let has_end = b.flange.is_some_and(|f| f.roller_end_radius.is_some());
+    if !b.kind.has_flange_contact() || !has_end {
+        return Ok(None);
+    }
+    let ki = PointContact::try_new(b.flange_curvature(FlangeRing::Inner)?, b.e_prime_inner())?.kc;
+    let ko = PointContact::try_new(b.flange_curvature(FlangeRing::Outer)?, b.e_prime_outer())?.kc;
+    let rf = b.flange_contact_radius(FlangeRing::Inner).unwrap_or(0.0);
+    Ok(Some((
+        series_constant(ki, ko),
+        rf,
+        b.kind.axial_directions() == 2,
+    )))
 }
 
 impl ElementLaw for CylindricalRollerLaw {
@@ -102,6 +145,20 @@ impl ElementLaw for CylindricalRollerLaw {
                     sec2 * r.dmoment_dtilt + 2.0 * t * sec2 * r.moment,
                 ],
             ];
+        }
+        if let Some((kf, rf, both)) = self.flange {
+            let a = u.axial + rf * u.tilt;
+            let sgn = if both && a < 0.0 { -1.0 } else { 1.0 };
+            let (qf, kq) = hertz_load_and_stiffness(kf, sgn * a);
+            out.f[0] -= sgn * qf;
+            out.f[2] -= sgn * rf * qf;
+            if want.stiffness {
+                // d(sgn a)/d(axial, radial, tilt) = sgn (1, 0, rf); sgn² = 1.
+                out.df[0][0] -= kq;
+                out.df[0][2] -= kq * rf;
+                out.df[2][0] -= kq * rf;
+                out.df[2][2] -= kq * rf * rf;
+            }
         }
         if want.report {
             let w = self.laminae.width();
@@ -227,5 +284,81 @@ mod tests {
         let b = lookup("30206").unwrap().build().unwrap();
         let e = CylindricalRollerLaw::new(&b).unwrap_err().to_string();
         assert!(e.contains("bearing.kind") && e.contains("tapered"), "{e}");
+    }
+
+    fn with_ends(name: &str) -> RollerBearing {
+        let mut s = lookup(name).unwrap();
+        s.flange.roller_end_radius_mm = Some(4.0 * s.roller_diameter_mm);
+        s.build().unwrap()
+    }
+
+    /// NJ: an axial displacement `z` toward the flange loads every roller's flange contact
+    /// with `K_f z^1.5`, `K_f` the series Hertz constant of the inner and outer flange point
+    /// contacts (computed here from `contact::hertz`); the other way nothing. NUP: both ways.
+    /// NU: no axial force and an exact zero axial stiffness, finite everywhere.
+    #[test]
+    fn nj_and_nup_flanges_carry_the_axial_load() {
+        let z: f64 = 5e-6;
+        let q = |z: f64| [0.0, 0.0, z, 0.0, 0.0];
+        for (name, both) in [("NJ206", false), ("NUP206", true)] {
+            let b = with_ends(name);
+            let l = CylindricalRollerLaw::new(&b).unwrap();
+            let psi: Vec<f64> = (0..b.z).map(|j| 2.0 * PI * j as f64 / b.z as f64).collect();
+            let ki = PointContact::new(
+                b.flange_curvature(FlangeRing::Inner).unwrap(),
+                b.e_prime_inner(),
+            )
+            .kc;
+            let ko = PointContact::new(
+                b.flange_curvature(FlangeRing::Outer).unwrap(),
+                b.e_prime_outer(),
+            )
+            .kc;
+            let kf = (ki.powf(-2.0 / 3.0) + ko.powf(-2.0 / 3.0)).powf(-1.5);
+            assert!((l.flange_constant().unwrap() / kf - 1.0).abs() < 1e-12);
+            let want = b.z as f64 * kf * z.powf(1.5);
+            let mut k = [[0.0; 5]; 5];
+            let f = sum(&l, &psi, &q(z), Some(&mut k));
+            assert!(
+                (f[2] + want).abs() < 1e-9 * want,
+                "{name}: {} vs {want}",
+                f[2]
+            );
+            assert!((k[2][2] - 1.5 * want / z).abs() < 1e-9 * k[2][2], "{name}");
+            let back = sum(&l, &psi, &q(-z), None)[2];
+            if both {
+                assert!((back - want).abs() < 1e-9 * want, "{name}: {back}");
+            } else {
+                assert_eq!(back, 0.0, "{name}");
+            }
+            // The flange's moment arm: K by central differences in z and the tilts.
+            let q0 = [20e-6, 0.0, z, 1e-4, -5e-5];
+            let mut k = [[0.0; 5]; 5];
+            sum(&l, &psi, &q0, Some(&mut k));
+            for col in [2, 3, 4] {
+                let h = if col < 3 { 1e-10 } else { 1e-8 };
+                let (mut qp, mut qm) = (q0, q0);
+                qp[col] += h;
+                qm[col] -= h;
+                let (fp, fm) = (sum(&l, &psi, &qp, None), sum(&l, &psi, &qm, None));
+                for row in [2, 3, 4] {
+                    let fd = -(fp[row] - fm[row]) / (2.0 * h);
+                    let scale = k[2][2].abs() * if row > 2 || col > 2 { 1e-3 } else { 1.0 };
+                    assert!(
+                        (k[row][col] - fd).abs() < 1e-5 * scale,
+                        "{name} K[{row}][{col}]"
+                    );
+                }
+            }
+        }
+        let (l, psi) = law("NU206");
+        let mut k = [[0.0; 5]; 5];
+        let f = sum(&l, &psi, &[30e-6, 0.0, 1e-3, 0.0, 0.0], Some(&mut k));
+        assert!(f.iter().all(|v| v.is_finite()) && f[2] == 0.0 && k[2][2] == 0.0);
+        assert!(l.flange_constant().is_none());
+        // An NJ with flat roller ends carries no axial load (no point contact to model).
+        let nj_flat =
+            CylindricalRollerLaw::new(&lookup("NJ206").unwrap().build().unwrap()).unwrap();
+        assert!(nj_flat.flange_constant().is_none());
     }
 }

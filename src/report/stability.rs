@@ -169,6 +169,25 @@ pub const BASES: &[Base] = &[
         ..CHEAP
     },
     Base {
+        name: "quasi_static/load 30206",
+        preset: "30206",
+        model: load_driven!("level = \"quasi_static\"\n"),
+        roller: true,
+        // A single tapered bearing is seated by an axial load above its induced thrust
+        // (1.26 Fr tan(alpha) = 0.31 Fr for the 30206).
+        axial_share: 0.5,
+        ..CHEAP
+    },
+    Base {
+        name: "ring-5dof/load 30206 tilted",
+        preset: "30206",
+        model: load_driven!("level = \"ring\"\nring_dof = 5\n"),
+        roller: true,
+        axial_share: 0.5,
+        moment_arm: 0.005,
+        ..CHEAP
+    },
+    Base {
         name: "linear/load",
         model: load_driven!("level = \"linear\"\n"),
         ..CHEAP

@@ -7,6 +7,7 @@
 //! run (and in the envelope spectrum for defect scenes), ISO ratings and life.
 
 pub mod reports;
+pub mod rollers;
 
 use crate::analysis::{
     amplitude_spectrum, characteristic_marks, envelope_spectrum, find_peaks, whirl_index,

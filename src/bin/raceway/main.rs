@@ -28,6 +28,7 @@ mod sweep_cmd;
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use raceway::component::scene::{RaceControl, Scene};
 use raceway::summary::reports::{self, QsProblem};
+use raceway::summary::rollers;
 use raceway::units::rad_s_to_rpm;
 use raceway::Result;
 use std::process::ExitCode;
@@ -252,6 +253,16 @@ fn calc_inputs(a: &QsArgs, speed_rpm: f64) -> Result<raceway::calculator::check:
 }
 
 fn quasi_static(a: QsArgs) -> Result<String> {
+    if let Some(b) = a.bearing.as_deref().and_then(rollers::roller_bearing) {
+        let l = [a.fx, a.fy, a.fz, a.mx, a.my].map(|v| v.unwrap_or(0.0));
+        let n = &reports::CLI_NAMES;
+        let r = rollers::report(&b?, a.speed_rpm.unwrap_or(0.0), l, (n.load, n.speed_rpm))?;
+        return if a.json {
+            report::json(&r)
+        } else {
+            Ok(rollers::text(&r))
+        };
+    }
     let mut p = problem(&a)?;
     p.calc = calc_inputs(&a, p.speed_rpm)?;
     let (sol, rating) = p.solve()?;

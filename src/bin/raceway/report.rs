@@ -10,7 +10,7 @@ use raceway::{Error, Result};
 use serde::Serialize;
 use std::fmt::Write;
 
-fn json<T: Serialize>(v: &T) -> Result<String> {
+pub fn json<T: Serialize>(v: &T) -> Result<String> {
     serde_json::to_string_pretty(v)
         .map(|s| s + "\n")
         .map_err(|e| Error::Io(format!("cannot write JSON: {e}")))

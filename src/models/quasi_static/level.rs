@@ -12,6 +12,7 @@
 //! ball geometry), blended in over the first 0.1 µm of approach; off (no cost) at 0.
 
 use crate::contact::roller_law::CylindricalRollerLaw;
+use crate::contact::tapered_law::TaperedRollerLaw;
 use crate::error::Result;
 use crate::geometry::element::{Element, ElementKind};
 use crate::geometry::kinematics::nominal_cage_speed as cage_speed;
@@ -30,6 +31,9 @@ pub const ELEMENTS: &[ElementKind] = &[ElementKind::Ball, ElementKind::Roller];
 pub fn element_law(a: &LevelArgs, opts: Options) -> Result<Box<dyn ElementLaw>> {
     match &a.bearing.element {
         Element::Ball(_) => Ok(Box::new(QuasiStatic::new(a.bearing, opts)?)),
+        Element::Roller(r) if r.kind.is_tapered() => {
+            Ok(Box::new(TaperedRollerLaw::new(r.as_ref())?))
+        }
         Element::Roller(r) => Ok(Box::new(CylindricalRollerLaw::new(r.as_ref())?)),
     }
 }

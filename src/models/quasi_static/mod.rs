@@ -50,6 +50,7 @@ mod dual;
 mod kc;
 pub mod law;
 pub mod level;
+pub mod rollers;
 
 pub use ball::BallState;
 

@@ -1,0 +1,334 @@
+//! The contact law of a tapered roller for the levels that sum elements
+//! ([`crate::seam::element::ElementLaw`]): each massless roller in equilibrium between the cup
+//! (outer raceway, angle `alpha_o`), the cone (inner raceway, `alpha_i`) and the cone back
+//! flange (`alpha_f`), its line contacts carried by the laminae of `contact::lamina`
+//! (docs/physics.md §R7).
+//!
+//! Orientation: the taper's apex lies on the `+z` side of the roller, so a displacement of the
+//! inner ring toward `+z` (the shaft pushed along `+z`) loads the bearing, as for a single-row
+//! angular contact ball bearing at a positive contact angle. The cup's contact normal (from the
+//! roller toward the cup) is `n_o = (sin alpha_o, cos alpha_o)` in `(axial, radial)`.
+//!
+//! Roller equilibrium (the flange taken as a rigid seat, the roller at rest): the cup pushes
+//! the roller with `-Q_o n_o`, the cone with `Q_i n_i` and the flange with `Q_f n_f`; their
+//! sum is zero, which gives `Q_i/Q_o` and `Q_f/Q_o` from the three angles alone
+//! ([`RollerBearing::tapered_load_ratios`], [Harris & Kotzalas 2007] vol. 1 ch. 7), and the
+//! roller puts on the inner ring (cone and flange together) exactly `-Q_o n_o`: the force on
+//! the shaft is `F_a = -Q_o sin alpha_o`, `F_r = -Q_o cos alpha_o`.
+//!
+//! Compatibility, reduced to the cup normal: the inner ring's displacement at the roller,
+//! `(axial, radial, tilt)`, moves the point of the roller axis at `x` from the roller's
+//! mid-point (toward the large end) by `(axial + r_P tilt, radial - z_P tilt)`; along `n_o`
+//! that is the lamina approach
+//! `delta_k = sin(alpha_o) axial + cos(alpha_o) (radial - Pd/2) + tilt (a + x_k cos beta) - 2 P(x_k)`
+//! with `a = (Dpw/2) sin alpha_o` (the projection of the roller's mid-point on the cup
+//! generatrix, measured from the bearing's mid-plane) and `beta` the roller's half taper
+//! angle (`x_k cos beta` is the lamina's position projected on the cup generatrix). This is
+//! the laminae's `evaluate(delta, psi)` with `delta = sin(alpha_o) axial + cos(alpha_o)
+//! (radial - Pd/2) + a tilt` and `tan(psi) = -tilt cos(beta)`. `Pd` is the radial play at zero
+//! axial shift, so the gap along the cup normal is `cos(alpha_o) Pd/2`.
+//!
+//! The two line contacts in series carry different loads (the cone `Q_i = rho Q_o`): with the
+//! Palmgren approach `∝ q^0.9` of each and the laminae's constant `c_s` written for equal loads
+//! (each contact half of the approach), the cup-normal approach is `(1 + rho^0.9)/2` times that
+//! of equal loads, so the laminae here use `c_s (2/(1 + rho^0.9))^(10/9)`. Left out (each a
+//! few per mille for catalogue tapers, documented in docs/physics.md §R7): the angle `2 beta`
+//! between the two normals, the flange's own compliance (a rigid seat), and the roller's
+//! centrifugal force and gyroscopic moment at speed.
+//!
+//! By virtual work through `d delta_k` the forces on the shaft are `F_a = -sin(alpha_o) Q`,
+//! `F_r = -cos(alpha_o) Q`, `m = -a Q - cos(beta) M` with `Q = Σ q_k`, `M = Σ q_k x_k`; the
+//! derivatives follow from the laminae's Jacobian and `K` is symmetric.
+
+use crate::contact::lamina::{line_hertz, Laminae};
+use crate::error::{Error, Result};
+use crate::geometry::roller::RollerBearing;
+use crate::seam::element::{ElementAt, ElementDisplacement, ElementLaw, ElementReaction, Want};
+
+/// A tapered roller between cup, cone and cone back flange, by laminae (module docs).
+#[derive(Debug, Clone)]
+pub struct TaperedRollerLaw {
+    laminae: Laminae,
+    sin_o: f64,
+    cos_o: f64,
+    cos_beta: f64,
+    /// `(Dpw/2) sin alpha_o`, m.
+    arm: f64,
+    half_pd: f64,
+    /// `Q_i/Q_o`, `Q_f/Q_o`.
+    rho_inner: f64,
+    rho_flange: f64,
+    r_inner: f64,
+    r_outer: f64,
+    e_inner: f64,
+    e_outer: f64,
+}
+
+impl TaperedRollerLaw {
+    /// The law of the rollers of the tapered bearing `b`; refuses a cylindrical one naming
+    /// `bearing.kind`, and a bearing without the cone back flange naming `bearing.flange`.
+    pub fn new(b: &RollerBearing) -> Result<Self> {
+        if !b.kind.is_tapered() {
+            return Err(Error::invalid(
+                "bearing.kind",
+                "cylindrical",
+                "tapered (the tapered roller law; nu, n, nj and nup run on the cylindrical one)",
+            ));
+        }
+        let f = b.flange.ok_or_else(|| {
+            Error::invalid(
+                "bearing.flange",
+                "missing",
+                "a cone back flange (a tapered roller bearing carries the roller's axial reaction on it)",
+            )
+        })?;
+        let (rho_inner, rho_flange) = b.tapered_load_ratios();
+        let (ao, ai, af) = (b.alpha, b.alpha_cone, f.angle);
+        if !(rho_inner.is_finite() && rho_inner > 0.0 && rho_flange > 0.0 && (ai + af).sin() > 0.0)
+        {
+            return Err(Error::invalid(
+                "bearing.flange.angle_deg",
+                af.to_degrees(),
+                format!(
+                    "an angle that closes the roller's force triangle with cup {:.2}° and cone {:.2}° (in (0, {:.1}) degrees)",
+                    ao.to_degrees(),
+                    ai.to_degrees(),
+                    180.0 - ao.to_degrees()
+                ),
+            ));
+        }
+        let mut laminae = b.laminae()?;
+        laminae.cs *= (2.0 / (1.0 + rho_inner.powf(0.9))).powf(10.0 / 9.0);
+        Ok(TaperedRollerLaw {
+            laminae,
+            sin_o: ao.sin(),
+            cos_o: ao.cos(),
+            cos_beta: b.beta.cos(),
+            arm: 0.5 * b.dpw * ao.sin(),
+            half_pd: 0.5 * b.pd,
+            rho_inner,
+            rho_flange,
+            r_inner: b.reduced_radius_inner(),
+            r_outer: b.reduced_radius_outer(),
+            e_inner: b.e_prime_inner(),
+            e_outer: b.e_prime_outer(),
+        })
+    }
+
+    /// The laminae it evaluates (their constant is the series one of module docs).
+    pub fn laminae(&self) -> &Laminae {
+        &self.laminae
+    }
+
+    /// `(Q_i/Q_o, Q_f/Q_o)`: the cone and flange loads per unit cup load.
+    pub fn load_ratios(&self) -> (f64, f64) {
+        (self.rho_inner, self.rho_flange)
+    }
+
+    /// The approach at the roller's mid-point along the cup normal and `tan(psi)` of the
+    /// laminae, for the displacement `u` (module docs).
+    pub fn lamina_inputs(&self, u: ElementDisplacement) -> (f64, f64) {
+        (
+            self.sin_o * u.axial + self.cos_o * (u.radial - self.half_pd) + self.arm * u.tilt,
+            -self.cos_beta * u.tilt,
+        )
+    }
+
+    /// Each lamina's cup load (N) into `loads` (length of the laminae) at `u`; returns the
+    /// cup load `Q_o` (the cone's is `rho_i` times, the flange's `rho_f` times it).
+    pub fn lamina_loads(&self, u: ElementDisplacement, loads: &mut [f64]) -> f64 {
+        let (d, t) = self.lamina_inputs(u);
+        self.laminae.evaluate_into(d, t.atan(), loads).force
+    }
+}
+
+impl ElementLaw for TaperedRollerLaw {
+    fn name(&self) -> &'static str {
+        "tapered roller"
+    }
+
+    fn tilt_damping_arm2(&self) -> f64 {
+        self.laminae.lwe * self.laminae.lwe / 12.0
+    }
+
+    fn state_len(&self) -> usize {
+        0
+    }
+
+    fn react(
+        &self,
+        _at: ElementAt<'_>,
+        u: ElementDisplacement,
+        _omega: f64,
+        _state: &mut [f64],
+        want: Want,
+    ) -> Result<ElementReaction> {
+        let (delta, tau) = self.lamina_inputs(u);
+        let r = self.laminae.evaluate(delta, tau.atan());
+        let (q, m) = (r.force, r.moment);
+        let mut out = ElementReaction {
+            f: [
+                -self.sin_o * q,
+                -self.cos_o * q,
+                -self.arm * q - self.cos_beta * m,
+            ],
+            approach: delta,
+            ..Default::default()
+        };
+        if want.stiffness {
+            // d/d(tan psi) = d/d psi / sec²(psi); tan psi = -cos(beta) tilt.
+            let sec2 = 1.0 + tau * tau;
+            let g = [self.sin_o, self.cos_o, self.arm];
+            let (qd, qt) = (r.dforce_ddelta, r.dforce_dtilt / sec2);
+            let (md, mt) = (r.dmoment_ddelta, r.dmoment_dtilt / sec2);
+            let dq = [qd * g[0], qd * g[1], qd * g[2] - qt * self.cos_beta];
+            let dm = [md * g[0], md * g[1], md * g[2] - mt * self.cos_beta];
+            for k in 0..3 {
+                let (a, b) = (dq[k], dm[k]);
+                out.df[0][k] = -self.sin_o * a;
+                out.df[1][k] = -self.cos_o * a;
+                out.df[2][k] = -self.arm * a - self.cos_beta * b;
+            }
+        }
+        if want.report {
+            let w = self.laminae.width();
+            out.load = [self.rho_inner * q, q];
+            out.pressure = [
+                line_hertz(
+                    self.rho_inner * r.max_lamina / w,
+                    self.r_inner,
+                    self.e_inner,
+                )
+                .1,
+                line_hertz(r.max_lamina / w, self.r_outer, self.e_outer).1,
+            ];
+        }
+        Ok(out)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::roller_catalogue::lookup;
+    use crate::seam::element::assemble;
+    use std::f64::consts::PI;
+
+    fn law(name: &str) -> (TaperedRollerLaw, RollerBearing, Vec<f64>) {
+        let b = lookup(name).unwrap().build().unwrap();
+        let psi = (0..b.z).map(|j| 2.0 * PI * j as f64 / b.z as f64).collect();
+        (TaperedRollerLaw::new(&b).unwrap(), b, psi)
+    }
+
+    fn sum(
+        l: &TaperedRollerLaw,
+        psi: &[f64],
+        q: &[f64; 5],
+        k: Option<&mut [[f64; 5]; 5]>,
+    ) -> [f64; 5] {
+        let want = Want {
+            stiffness: k.is_some(),
+            report: false,
+        };
+        assemble(q, psi, l.moment_arm(), k, |_, at, u| {
+            l.react(at, u, 0.0, &mut [], want)
+        })
+        .unwrap()
+    }
+
+    /// `K = -dF/dq` by central differences in every direction, and symmetric.
+    #[test]
+    fn ring_stiffness_is_minus_the_derivative_and_symmetric() {
+        let (l, _, psi) = law("30206");
+        let q = [15e-6, -10e-6, 20e-6, 3e-4, -2e-4];
+        let mut k = [[0.0; 5]; 5];
+        let f = sum(&l, &psi, &q, Some(&mut k));
+        assert!(
+            f[2] < 0.0 && f[0] < 0.0,
+            "the rollers push the shaft back: {f:?}"
+        );
+        for col in 0..5 {
+            let h = if col < 3 { 1e-10 } else { 1e-8 };
+            let (mut qp, mut qm) = (q, q);
+            qp[col] += h;
+            qm[col] -= h;
+            let (fp, fm) = (sum(&l, &psi, &qp, None), sum(&l, &psi, &qm, None));
+            for row in 0..5 {
+                let fd = -(fp[row] - fm[row]) / (2.0 * h);
+                let scale = k[2][2].abs() * if row > 2 || col > 2 { 1e-3 } else { 1.0 };
+                assert!(
+                    (k[row][col] - fd).abs() < 1e-5 * scale,
+                    "K[{row}][{col}] {} vs {fd}",
+                    k[row][col]
+                );
+            }
+        }
+        for i in 0..5 {
+            for j in 0..5 {
+                let scale = (k[i][i].abs() * k[j][j].abs()).sqrt().max(1.0);
+                assert!((k[i][j] - k[j][i]).abs() < 1e-9 * scale, "K[{i}][{j}]");
+            }
+        }
+    }
+
+    /// A pure axial displacement loads every roller alike: the axial force is `Z Q sin(alpha)`
+    /// and the radial forces cancel; the flange carries `Q_f = rho_f Q_o`, which closes the
+    /// roller's force triangle (checked as vectors).
+    #[test]
+    fn axial_displacement_loads_all_rollers_and_the_flange_closes_the_triangle() {
+        let (l, b, psi) = law("30206");
+        let f = sum(&l, &psi, &[0.0, 0.0, 10e-6, 0.0, 0.0], None);
+        assert!(f[0].abs() < 1e-9 * f[2].abs() && f[1].abs() < 1e-9 * f[2].abs());
+        let u = ElementDisplacement {
+            axial: 10e-6,
+            radial: 0.0,
+            tilt: 0.0,
+        };
+        let at = ElementAt {
+            index: 0,
+            psi: 0.0,
+            sc: (0.0, 1.0),
+            q: &[0.0; 5],
+        };
+        let want = Want {
+            stiffness: false,
+            report: true,
+        };
+        let r = l.react(at, u, 0.0, &mut [], want).unwrap();
+        let qo = r.load[1];
+        assert!((f[2] + b.z as f64 * qo * b.alpha.sin()).abs() < 1e-9 * f[2].abs());
+        // Forces on the roller: cup -Q_o n_o, cone +Q_i n_i, flange Q_f n_f with the flange's
+        // normal from the flange toward the roller, toward the apex: (sin alpha_f,
+        // -cos alpha_f) in the (axial, radial) frame of module docs.
+        let (ri, rf) = l.load_ratios();
+        let (ao, ai, af) = (b.alpha, b.alpha_cone, b.flange.unwrap().angle);
+        let n = |a: f64| [a.sin(), a.cos()];
+        let (no, ni) = (n(ao), n(ai));
+        let nf = [af.sin(), -af.cos()];
+        for c in 0..2 {
+            let s = -qo * no[c] + ri * qo * ni[c] + rf * qo * nf[c];
+            assert!(s.abs() < 1e-9 * qo, "component {c}: {s}");
+        }
+        assert!((r.load[0] / qo - ri).abs() < 1e-12 && rf > 0.0);
+        assert!(r.pressure[0] > r.pressure[1] && r.pressure[1] > 0.0);
+    }
+
+    /// The laminae's series constant: a straight roller at a uniform approach `delta` carries
+    /// `c_s (2 delta/(1 + rho^0.9))^(10/9)` with `c_s` the equal-load constant.
+    #[test]
+    fn unequal_cone_and_cup_loads_soften_the_roller() {
+        let (l, b, _) = law("30206");
+        let base = b.laminae().unwrap();
+        let (rho, _) = l.load_ratios();
+        let ratio = l.laminae().cs / base.cs;
+        assert!((ratio - (2.0 / (1.0 + rho.powf(0.9))).powf(10.0 / 9.0)).abs() < 1e-15);
+        assert!(ratio <= 1.0 + 1e-15 && ratio > 0.9, "{ratio}");
+    }
+
+    #[test]
+    fn a_cylindrical_bearing_is_refused_naming_the_kind() {
+        let b = lookup("NU206").unwrap().build().unwrap();
+        let e = TaperedRollerLaw::new(&b).unwrap_err().to_string();
+        assert!(e.contains("bearing.kind"), "{e}");
+    }
+}

@@ -1,0 +1,196 @@
+//! `raceway quasi-static --bearing NAME` for a roller designation (and the Python
+//! `quasi_static(bearing=...)` through the same functions): the roller equilibrium of
+//! [`crate::models::quasi_static::rollers`], as the ball table is shaped (load, displacement,
+//! force, stiffness, one row per element), plus each roller's lamina loads and pressures and
+//! the edge stress, the 5×5 stiffness and the ISO 281/76 ratings.
+
+use crate::error::{Error, Result};
+use crate::geometry::roller::RollerBearing;
+use crate::geometry::roller_catalogue;
+use crate::models::quasi_static::rollers::{solve, RollerSolution};
+use crate::ratings::roller::{
+    equivalent_dynamic_load, equivalent_static_load, l10_roller, roller_ratings,
+};
+use crate::units::rpm_to_rad_s;
+use serde::Serialize;
+use std::fmt::Write as _;
+
+/// The JSON document.
+#[derive(Debug, Serialize)]
+pub struct RollerQsReport {
+    /// Bearing designation.
+    pub bearing: String,
+    /// `roller`.
+    pub element: &'static str,
+    /// Shaft speed, rpm.
+    pub speed_rpm: f64,
+    /// External load `(Fx, Fy, Fz, Mx, My)` on the shaft, N and N m.
+    pub load: [f64; 5],
+    /// The equilibrium (SI): displacement, forces, `K`, every roller and lamina.
+    pub solution: RollerSolution,
+    /// ISO 281 `Cr`, ISO 76 `C0r`, N.
+    pub cr: f64,
+    /// ISO 76 `C0r`, N.
+    pub c0r: f64,
+    /// ISO 281 equivalent dynamic load `P`, N.
+    pub p: f64,
+    /// ISO 76 equivalent static load `P0`, N.
+    pub p0: f64,
+    /// `L10 = (Cr/P)^(10/3)`, million revolutions.
+    pub l10_mrev: Option<f64>,
+    /// Largest lamina pressure (inner contact), Pa.
+    pub max_pressure: f64,
+    /// Largest edge (end-lamina) pressure, Pa.
+    pub max_edge_pressure: f64,
+}
+
+/// The roller bearing of a designation, `None` when `name` is not one.
+pub fn roller_bearing(name: &str) -> Option<Result<RollerBearing>> {
+    roller_catalogue::lookup(name).map(|s| s.build())
+}
+
+/// Solve and report (names of the five loads and the speed for refusals).
+pub fn report(
+    b: &RollerBearing,
+    speed_rpm: f64,
+    load: [f64; 5],
+    names: ([&str; 5], &str),
+) -> Result<RollerQsReport> {
+    if !(speed_rpm.is_finite() && speed_rpm >= 0.0) {
+        return Err(Error::invalid(names.1, speed_rpm, "a finite number >= 0"));
+    }
+    for (v, n) in load.iter().zip(names.0) {
+        if !v.is_finite() {
+            return Err(Error::invalid(n, v, "a finite number"));
+        }
+    }
+    let sol = solve(b, load, rpm_to_rad_s(speed_rpm), names.0)?;
+    let r = roller_ratings(b)?;
+    let (fr, fa) = (load[0].hypot(load[1]), load[2]);
+    let (p, ..) = equivalent_dynamic_load(b, fr, fa);
+    let p0 = equivalent_static_load(b, fr, fa);
+    let l10 = l10_roller(r.cr, p);
+    let max_pressure = sol
+        .rollers
+        .iter()
+        .flat_map(|x| x.lamina_pressure.iter())
+        .fold(0.0, |a: f64, &v| a.max(v));
+    let max_edge_pressure = sol
+        .rollers
+        .iter()
+        .fold(0.0, |a: f64, x| a.max(x.edge_pressure));
+    Ok(RollerQsReport {
+        bearing: b.name.clone(),
+        element: "roller",
+        speed_rpm,
+        load,
+        solution: sol,
+        cr: r.cr,
+        c0r: r.c0r,
+        p,
+        p0,
+        l10_mrev: l10.is_finite().then_some(l10),
+        max_pressure,
+        max_edge_pressure,
+    })
+}
+
+/// The text table.
+pub fn text(r: &RollerQsReport) -> String {
+    let mut s = String::new();
+    let sol = &r.solution;
+    let _ = writeln!(
+        s,
+        "Roller quasi-static equilibrium (massless rollers, ISO/TS 16281 laminae): bearing {} ({} rollers), {:.3} rpm",
+        r.bearing,
+        sol.rollers.len(),
+        r.speed_rpm
+    );
+    let w = |s: &mut String, label: &str, v: &[f64; 5]| {
+        let _ = writeln!(
+            s,
+            "{label:<34}Fx {:.3} N  Fy {:.3} N  Fz {:.3} N  Mx {:.4} N m  My {:.4} N m",
+            v[0], v[1], v[2], v[3], v[4]
+        );
+    };
+    w(&mut s, "external load on the inner ring:", &r.load);
+    let q = sol.q;
+    let _ = writeln!(
+        s,
+        "ring displacement:                x {:.4} µm  y {:.4} µm  z {:.4} µm  rx {:.5} mrad  ry {:.5} mrad",
+        q[0] * 1e6,
+        q[1] * 1e6,
+        q[2] * 1e6,
+        q[3] * 1e3,
+        q[4] * 1e3
+    );
+    w(&mut s, "bearing force on the shaft:", &sol.rollers_force);
+    let _ = writeln!(
+        s,
+        "stiffness K (SI: N/m, N/rad, N m/m, N m/rad), rows x y z rx ry:"
+    );
+    for row in &sol.k {
+        let _ = writeln!(
+            s,
+            "  {:>12.4e} {:>12.4e} {:>12.4e} {:>12.4e} {:>12.4e}",
+            row[0], row[1], row[2], row[3], row[4]
+        );
+    }
+    let _ = writeln!(s);
+    let _ = writeln!(
+        s,
+        "{:>3} {:>7} {:>9} {:>9} {:>9} {:>6} {:>6} {:>8} {:>8}  lamina loads N (first .. last)",
+        "j", "psi deg", "Qi N", "Qo N", "Qf N", "pi GPa", "po GPa", "edge GPa", "laminae"
+    );
+    for (j, x) in sol.rollers.iter().enumerate() {
+        let loaded = x.lamina_load.iter().filter(|v| **v > 0.0).count();
+        let n = x.lamina_load.len();
+        let lam = if n > 0 {
+            format!(
+                "{:.1} {:.1} .. {:.1} .. {:.1} {:.1}",
+                x.lamina_load[0],
+                x.lamina_load[1.min(n - 1)],
+                x.lamina_load[n / 2],
+                x.lamina_load[n.saturating_sub(2)],
+                x.lamina_load[n - 1]
+            )
+        } else {
+            String::new()
+        };
+        let _ = writeln!(
+            s,
+            "{:>3} {:>7.2} {:>9.2} {:>9.2} {:>9.2} {:>6.3} {:>6.3} {:>8.3} {:>3}/{:<4}  {lam}",
+            j,
+            x.psi.to_degrees(),
+            x.load[0],
+            x.load[1],
+            x.flange_load,
+            x.pressure[0] * 1e-9,
+            x.pressure[1] * 1e-9,
+            x.edge_pressure * 1e-9,
+            loaded,
+            n
+        );
+    }
+    let _ = writeln!(
+        s,
+        "\nForces and moments act on the shaft; Qi/Qo inner/outer (cone/cup) contact loads, Qf the flange's; \
+         p: peak line-Hertz pressure of the most loaded lamina; edge: the end laminae's inner-contact pressure; \
+         every lamina's load and pressure are in --json."
+    );
+    let _ = writeln!(
+        s,
+        "ISO 281: Cr {:.0} N, P {:.1} N, L10 {} million revolutions; ISO 76: C0r {:.0} N, P0 {:.1} N, s0 {:.2}; \
+         largest lamina pressure {:.3} GPa (static limit 4.000 GPa)",
+        r.cr,
+        r.p,
+        r.l10_mrev
+            .map(|v| format!("{v:.4e}"))
+            .unwrap_or_else(|| "infinite".into()),
+        r.c0r,
+        r.p0,
+        if r.p0 > 0.0 { r.c0r / r.p0 } else { f64::INFINITY },
+        r.max_pressure * 1e-9
+    );
+    s
+}
