@@ -208,6 +208,9 @@ pub struct QsProblem {
     pub life: LifeInputs,
     /// The design check's inputs (oil, fits); set after [`QsProblem::new`].
     pub calc: crate::calculator::check::CalcInputs,
+    /// Coordinates held at a value (default: none, the free equilibrium); set after
+    /// [`QsProblem::new`].
+    pub hold: crate::models::quasi_static::hold::HoldSpec,
 }
 
 fn finite(field: &str, v: f64) -> Result<f64> {
@@ -273,6 +276,7 @@ impl QsProblem {
                     .transpose()?,
             },
             calc: Default::default(),
+            hold: Default::default(),
         })
     }
 
@@ -285,7 +289,11 @@ impl QsProblem {
             ..Options::default()
         };
         let model = QuasiStatic::new(&self.bearing, opts)?;
-        let sol = model.solve(&self.load, rpm_to_rad_s(self.speed_rpm))?;
+        let sol = model.solve_held(
+            &self.load,
+            rpm_to_rad_s(self.speed_rpm),
+            &self.hold.to_si("hold")?,
+        )?;
         // An oil without a typed kappa: kappa from the oil at the operating temperature.
         let mut life = self.life;
         if let (None, Some(oil)) = (life.kappa, &self.calc.oil) {

@@ -153,6 +153,7 @@ def quasi_static(
     housing_interference_um: Optional[float] = None,
     inner_ring_temp_c: Optional[float] = None,
     outer_ring_temp_c: Optional[float] = None,
+    hold: Optional[dict[str, float]] = None,
 ) -> QuasiStaticResult:
     """The Jones–Harris quasi-static equilibrium under a load on the inner ring.
 
@@ -189,6 +190,11 @@ def quasi_static(
         housing, µm: the operating clearance.
     inner_ring_temp_c, outer_ring_temp_c : float, optional
         Ring temperatures, °C, for the operating clearance.
+    hold : dict, optional
+        Ring coordinates held at a value while the others are solved, e.g.
+        ``{"rx_mrad": 0, "ry_mrad": 0}`` (keys ``x_um``, ``y_um``, ``z_um``, ``rx_mrad``,
+        ``ry_mrad``); the reaction on each is ``result.data["solution"]["reaction"]`` (SI)
+        and ``result.data["solution"]["held"]`` says which were held.
 
     Returns
     -------
@@ -224,6 +230,7 @@ def quasi_static(
         housing_interference_um,
         inner_ring_temp_c,
         outer_ring_temp_c,
+        None if hold is None else {str(k): float(v) for k, v in hold.items()},
     )
     data = json.loads(text)
     sol = data["solution"]

@@ -13,7 +13,8 @@
 //!   Otherwise values not given are zero and the bearing defaults to the scene's. The race
 //!   control defaults to the scene's `model.race_control`. The answer carries the ISO
 //!   ratings, lives, static safety and warnings (`raceway::ratings`); `--kappa` and
-//!   `--contamination` add ISO 281's `a_ISO`.
+//!   `--contamination` add ISO 281's `a_ISO`. `--hold rx_mrad=0,ry_mrad=0` holds ring
+//!   coordinates at a value and reports the reaction on each.
 //!
 //! Every value is checked: non-finite numbers, a negative speed, an unknown preset or a
 //! malformed bearing file are refused with a message naming the cause and exit status 1
@@ -144,6 +145,11 @@ struct QsArgs {
     /// under the duty cycle (with --oil and --contamination, each row's a_ISO).
     #[arg(long)]
     duty: Option<std::path::PathBuf>,
+    /// Hold ring coordinates at a value while solving the others, e.g. `rx_mrad=0,ry_mrad=0`
+    /// (names x_um, y_um, z_um, rx_mrad, ry_mrad or x, y, z, rx, ry; a bare name holds at 0);
+    /// the reaction on each held coordinate is reported.
+    #[arg(long, allow_hyphen_values = true)]
+    hold: Option<String>,
     /// Machine-readable output (SI units).
     #[arg(long)]
     json: bool,
@@ -254,6 +260,9 @@ fn calc_inputs(a: &QsArgs, speed_rpm: f64) -> Result<raceway::calculator::check:
 fn quasi_static(a: QsArgs) -> Result<String> {
     let mut p = problem(&a)?;
     p.calc = calc_inputs(&a, p.speed_rpm)?;
+    if let Some(h) = &a.hold {
+        p.hold = raceway::models::quasi_static::hold::HoldSpec::parse(h, "--hold")?;
+    }
     let (sol, rating) = p.solve()?;
     // Bad design-check input (fits, oil temperature) is an error, not a missing line.
     p.design_check(&sol, &rating)?;
