@@ -98,3 +98,30 @@ fn duty_cycle_from_a_spectrum_file() {
     assert!(stderr_of(&["--duty", bad.to_str().unwrap()]).contains("duty.time_share"));
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn thermal_speeds_from_the_oil() {
+    // qs_json's load is Fy 2000 N; adding Fx 2000 N lowers the safe speed, not the reference.
+    let light = qs_json(&["--oil", "VG68", "--oil-temp-c", "60"]);
+    let heavy = qs_json(&["--oil", "VG68", "--oil-temp-c", "60", "--fx", "2000"]);
+    let t = |v: &serde_json::Value, k: &str| v["calculator"]["thermal_speed"][k].as_f64().unwrap();
+    assert_eq!(
+        t(&light, "reference_speed_rpm"),
+        t(&heavy, "reference_speed_rpm")
+    );
+    assert!(t(&heavy, "safe_speed_rpm") < t(&light, "safe_speed_rpm"));
+    // A warmer ambient leaves less temperature rise: a lower safe speed.
+    let warm = qs_json(&[
+        "--oil",
+        "VG68",
+        "--oil-temp-c",
+        "60",
+        "--ambient-temp-c",
+        "40",
+    ]);
+    assert!(t(&warm, "safe_speed_rpm") < t(&light, "safe_speed_rpm"));
+    assert!(light["calculator"]["thermal_speed"]["unsourced"]
+        .as_str()
+        .unwrap()
+        .contains("q_r"));
+}

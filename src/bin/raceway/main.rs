@@ -141,6 +141,10 @@ struct QsArgs {
     /// Outer-ring temperature, °C, for the operating clearance (default 20).
     #[arg(long, allow_hyphen_values = true)]
     outer_ring_temp_c: Option<f64>,
+    /// Ambient temperature, °C, of the thermally safe speed's heat balance (default 20; the
+    /// bearing is at --oil-temp-c).
+    #[arg(long, allow_hyphen_values = true)]
+    ambient_temp_c: Option<f64>,
     /// Load spectrum file, one row per line `fr_n, fa_n, speed_rpm, time_share`: ISO 281 life
     /// under the duty cycle (with --oil and --contamination, each row's a_ISO).
     #[arg(long)]
@@ -242,6 +246,7 @@ fn calc_inputs(a: &QsArgs, speed_rpm: f64) -> Result<raceway::calculator::check:
         housing_interference_um: a.housing_interference_um,
         inner_ring_temp_c: a.inner_ring_temp_c,
         outer_ring_temp_c: a.outer_ring_temp_c,
+        ambient_temp_c: a.ambient_temp_c,
     };
     let mut c = CalcInputs::from_options(&o, speed_rpm, "--oil-vi")?;
     if let Some(path) = &a.duty {
