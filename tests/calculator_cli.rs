@@ -64,7 +64,52 @@ fn fits_reduce_clearance() {
     let r = qs_json(&["--shaft-interference-um", "10"]);
     let c = &r["calculator"]["clearance"];
     assert!(c["operating"].as_f64().unwrap() < c["unmounted"].as_f64().unwrap());
-    assert!(qs_json(&[])["calculator"]["clearance"].is_null());
+    let free = qs_json(&[]);
+    assert!(free["calculator"]["clearance"].is_null());
+    // The equilibrium is solved in the operating clearance: preloaded by the fit, the ring
+    // moves less under the same load, and the check says which clearance it used.
+    let y = |v: &serde_json::Value| v["solution"]["q"][1].as_f64().unwrap();
+    assert!(y(&r) < 0.9 * y(&free), "{} vs {}", y(&r), y(&free));
+    assert_eq!(
+        r["calculator"]["equilibrium_clearance"][0].as_f64(),
+        c["operating"].as_f64()
+    );
+}
+
+/// The fed-back equilibrium is the equilibrium of the bearing with that clearance.
+#[test]
+fn fed_back_clearance_is_the_bearing_with_that_clearance() {
+    use raceway::calculator::check::{CalcInputs, CalcOptions};
+    use raceway::calculator::clearance::{operating_clearance, with_clearance};
+    use raceway::summary::reports::{load_bearing, QsProblem, CLI_NAMES};
+    let b = load_bearing("6205").unwrap();
+    let mk = |b| {
+        QsProblem::new(
+            b,
+            3000.0,
+            [0.0, 2000.0, 0.0, 0.0, 0.0],
+            Default::default(),
+            None,
+            None,
+            &CLI_NAMES,
+        )
+        .unwrap()
+    };
+    let mut fitted = mk(b.clone());
+    let o = CalcOptions {
+        shaft_interference_um: Some(10.0),
+        ..Default::default()
+    };
+    fitted.calc = CalcInputs::from_options(&o, 3000.0, "--oil-vi").unwrap();
+    let op = operating_clearance(&b, fitted.calc.clearance.as_ref().unwrap()).unwrap();
+    let direct = mk(with_clearance(&b, op.operating).unwrap());
+    let (a, _) = fitted.solve().unwrap();
+    let (d, _) = direct.solve().unwrap();
+    assert_eq!(a.q, d.q);
+    assert!(
+        op.operating < 0.0,
+        "a 10 µm fit preloads the zero-clearance 6205"
+    );
 }
 
 #[test]

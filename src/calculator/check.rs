@@ -2,7 +2,7 @@
 //! Palmgren's friction moment and power loss, the subsurface stresses below the most loaded
 //! contacts, and the operating clearance when fits or temperatures are given.
 
-use super::clearance::{operating_clearance, ClearanceInputs, OperatingClearance};
+use super::clearance::{operating_clearance, with_clearance, ClearanceInputs, OperatingClearance};
 use super::duty::{spectrum_life, DutyLife, SpectrumRow};
 use super::friction::{palmgren, FrictionInputs, Palmgren, PalmgrenType};
 use super::lubricant::{lubrication, Lubrication, Oil};
@@ -147,6 +147,9 @@ pub struct DesignCheck {
     pub subsurface: Option<ContactStress>,
     /// The operating clearance chain, when fits or temperatures are given.
     pub clearance: Option<OperatingClearance>,
+    /// The clearance (m) and free contact angle (rad) the equilibrium was solved with when
+    /// the operating clearance was derived (it replaces the bearing's own).
+    pub equilibrium_clearance: Option<(f64, f64)>,
     /// The life under the load spectrum, when one is given.
     pub duty: Option<DutyLife>,
     /// ISO 15312's thermal reference speed and the thermally safe speed at the oil's
@@ -206,6 +209,13 @@ pub fn design_check(
         Some(c) => Some(operating_clearance(b, c)?),
         None => None,
     };
+    let equilibrium_clearance = match &clearance {
+        Some(k) => {
+            let solved = with_clearance(b, k.operating)?;
+            Some((solved.pd, solved.alpha0))
+        }
+        None => None,
+    };
     let duty = match (&x.duty, rating) {
         (Some(rows), Some(a)) => {
             let kappa_at = |rpm: f64| match &x.oil {
@@ -254,6 +264,7 @@ pub fn design_check(
         friction,
         subsurface,
         clearance,
+        equilibrium_clearance,
         duty,
         thermal_speed,
     })
@@ -364,6 +375,14 @@ pub fn text(c: &DesignCheck) -> String {
             k.housing_pressure * 1e-6,
             k.inner_bore_hoop_stress * 1e-6
         );
+        if let Some((pd, a0)) = c.equilibrium_clearance {
+            let _ = writeln!(
+                s,
+                "  equilibrium solved with:        Pd {:.2} µm operating clearance, free contact angle {:.2} deg (the load table above)",
+                pd * 1e6,
+                a0.to_degrees()
+            );
+        }
     }
     s
 }

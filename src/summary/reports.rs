@@ -288,7 +288,7 @@ impl QsProblem {
             race_control: self.race_control,
             ..Options::default()
         };
-        let model = QuasiStatic::new(&self.bearing, opts)?;
+        let model = QuasiStatic::new(&self.solved_bearing()?, opts)?;
         let sol = model.solve_held(
             &self.load,
             rpm_to_rad_s(self.speed_rpm),
@@ -307,6 +307,20 @@ impl QsProblem {
         }
         let rating = assess(&self.bearing, &sol, &life).map_err(|e| e.to_string());
         Ok((sol, rating))
+    }
+
+    /// The bearing the equilibrium is solved with: with fits or ring temperatures given
+    /// (`calc.clearance`), its clearance is the operating clearance they leave
+    /// ([`crate::calculator::clearance::with_clearance`]); otherwise the bearing as given.
+    /// The ISO ratings stay the bearing's own.
+    pub fn solved_bearing(&self) -> Result<Bearing> {
+        match &self.calc.clearance {
+            Some(c) => {
+                let op = crate::calculator::clearance::operating_clearance(&self.bearing, c)?;
+                crate::calculator::clearance::with_clearance(&self.bearing, op.operating)
+            }
+            None => Ok(self.bearing.clone()),
+        }
     }
 
     /// The design check at a solution of this problem (see [`crate::calculator::check`]).
