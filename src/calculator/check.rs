@@ -166,7 +166,12 @@ pub fn design_check(
     x: &CalcInputs,
 ) -> Result<DesignCheck> {
     let lub = match &x.oil {
-        Some(o) => Some(lubrication(o, x.temperature_c, b.dm, speed_rpm)?),
+        Some(o) => Some(lubrication(
+            o,
+            x.temperature_c,
+            super::lubricant::mean_diameter(b),
+            speed_rpm,
+        )?),
         None => None,
     };
     let friction = match (lub, rating) {
@@ -219,7 +224,7 @@ pub fn design_check(
     let duty = match (&x.duty, rating) {
         (Some(rows), Some(a)) => {
             let kappa_at = |rpm: f64| match &x.oil {
-                Some(o) => lubrication(o, x.temperature_c, b.dm, rpm)
+                Some(o) => lubrication(o, x.temperature_c, super::lubricant::mean_diameter(b), rpm)
                     .ok()
                     .and_then(|l| l.kappa),
                 None => None,

@@ -300,7 +300,7 @@ impl QsProblem {
             life.kappa = crate::calculator::lubricant::lubrication(
                 oil,
                 self.calc.temperature_c,
-                self.bearing.dm,
+                crate::calculator::lubricant::mean_diameter(&self.bearing),
                 self.speed_rpm,
             )?
             .kappa;
