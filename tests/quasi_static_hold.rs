@@ -4,6 +4,8 @@
 //! answer's values gives its forces with no reaction; a held coordinate's force is the
 //! motion-driven evaluation's at that displacement.
 
+#![allow(clippy::needless_range_loop)] // five coordinates indexed side by side
+
 use raceway::geometry::preset;
 use raceway::models::quasi_static::{azimuths, BallState, Options, QuasiStatic};
 use std::process::Command;

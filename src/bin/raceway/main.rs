@@ -66,7 +66,7 @@ enum Cmd {
     ///
     /// Without --bearing, --speed-rpm and load flags it solves the embedded default scene's
     /// operating point; otherwise what is not given is zero (bearing: the scene's).
-    QuasiStatic(QsArgs),
+    QuasiStatic(Box<QsArgs>),
     /// Scene files: document every field (--explain [--json]) or check one (--check FILE).
     Scene(scene_cmd::SceneArgs),
     /// Parameter sweep: a base scene and axes (lists, ranges, grids, random or Latin-hypercube
@@ -166,7 +166,7 @@ fn main() -> ExitCode {
             Some(n) => report::bearing_detail(&n, json),
             None => report::bearings(json),
         },
-        Cmd::QuasiStatic(a) => quasi_static(a),
+        Cmd::QuasiStatic(a) => quasi_static(*a),
         Cmd::Run(a) => run::run(a),
         Cmd::Bench(a) => bench::bench(a),
         Cmd::Scene(a) => scene_cmd::scene(a),

@@ -941,9 +941,9 @@ impl newton::NewtonSystem<5> for RingSystem<'_> {
                 .fold(0.0, f64::max);
             let one = if dmax > 0.0 { dmax } else { 1.0 };
             for i in (0..5).filter(|&i| held[i]) {
-                for j in 0..5 {
-                    ks[i][j] = 0.0;
-                    ks[j][i] = 0.0;
+                ks[i] = [0.0; 5];
+                for row in ks.iter_mut() {
+                    row[i] = 0.0;
                 }
                 ks[i][i] = one;
             }
