@@ -64,7 +64,52 @@ fn fits_reduce_clearance() {
     let r = qs_json(&["--shaft-interference-um", "10"]);
     let c = &r["calculator"]["clearance"];
     assert!(c["operating"].as_f64().unwrap() < c["unmounted"].as_f64().unwrap());
-    assert!(qs_json(&[])["calculator"]["clearance"].is_null());
+    let free = qs_json(&[]);
+    assert!(free["calculator"]["clearance"].is_null());
+    // The equilibrium is solved in the operating clearance: preloaded by the fit, the ring
+    // moves less under the same load, and the check says which clearance it used.
+    let y = |v: &serde_json::Value| v["solution"]["q"][1].as_f64().unwrap();
+    assert!(y(&r) < 0.9 * y(&free), "{} vs {}", y(&r), y(&free));
+    assert_eq!(
+        r["calculator"]["equilibrium_clearance"][0].as_f64(),
+        c["operating"].as_f64()
+    );
+}
+
+/// The fed-back equilibrium is the equilibrium of the bearing with that clearance.
+#[test]
+fn fed_back_clearance_is_the_bearing_with_that_clearance() {
+    use raceway::calculator::check::{CalcInputs, CalcOptions};
+    use raceway::calculator::clearance::{operating_clearance, with_clearance};
+    use raceway::summary::reports::{load_bearing, QsProblem, CLI_NAMES};
+    let b = load_bearing("6205").unwrap();
+    let mk = |b| {
+        QsProblem::new(
+            b,
+            3000.0,
+            [0.0, 2000.0, 0.0, 0.0, 0.0],
+            Default::default(),
+            None,
+            None,
+            &CLI_NAMES,
+        )
+        .unwrap()
+    };
+    let mut fitted = mk(b.clone());
+    let o = CalcOptions {
+        shaft_interference_um: Some(10.0),
+        ..Default::default()
+    };
+    fitted.calc = CalcInputs::from_options(&o, 3000.0, "--oil-vi").unwrap();
+    let op = operating_clearance(&b, fitted.calc.clearance.as_ref().unwrap()).unwrap();
+    let direct = mk(with_clearance(&b, op.operating).unwrap());
+    let (a, _) = fitted.solve().unwrap();
+    let (d, _) = direct.solve().unwrap();
+    assert_eq!(a.q, d.q);
+    assert!(
+        op.operating < 0.0,
+        "a 10 µm fit preloads the zero-clearance 6205"
+    );
 }
 
 #[test]
@@ -97,4 +142,31 @@ fn duty_cycle_from_a_spectrum_file() {
     std::fs::write(&bad, "2000,0,1000,0.5\n4000,0,2000,0.4\n").unwrap();
     assert!(stderr_of(&["--duty", bad.to_str().unwrap()]).contains("duty.time_share"));
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn thermal_speeds_from_the_oil() {
+    // qs_json's load is Fy 2000 N; adding Fx 2000 N lowers the safe speed, not the reference.
+    let light = qs_json(&["--oil", "VG68", "--oil-temp-c", "60"]);
+    let heavy = qs_json(&["--oil", "VG68", "--oil-temp-c", "60", "--fx", "2000"]);
+    let t = |v: &serde_json::Value, k: &str| v["calculator"]["thermal_speed"][k].as_f64().unwrap();
+    assert_eq!(
+        t(&light, "reference_speed_rpm"),
+        t(&heavy, "reference_speed_rpm")
+    );
+    assert!(t(&heavy, "safe_speed_rpm") < t(&light, "safe_speed_rpm"));
+    // A warmer ambient leaves less temperature rise: a lower safe speed.
+    let warm = qs_json(&[
+        "--oil",
+        "VG68",
+        "--oil-temp-c",
+        "60",
+        "--ambient-temp-c",
+        "40",
+    ]);
+    assert!(t(&warm, "safe_speed_rpm") < t(&light, "safe_speed_rpm"));
+    assert!(light["calculator"]["thermal_speed"]["unsourced"]
+        .as_str()
+        .unwrap()
+        .contains("q_r"));
 }

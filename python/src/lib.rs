@@ -628,7 +628,7 @@ fn run(
 
 /// `raceway quasi-static --json` as text, plus (ball columns with units, their values).
 #[pyfunction]
-#[pyo3(signature = (bearing, speed_rpm, load, race_control, kappa, contamination, oil=None, oil_vi=None, oil_temp_c=None, f0=None, shaft_interference_um=None, housing_interference_um=None, inner_ring_temp_c=None, outer_ring_temp_c=None))]
+#[pyo3(signature = (bearing, speed_rpm, load, race_control, kappa, contamination, oil=None, oil_vi=None, oil_temp_c=None, f0=None, shaft_interference_um=None, housing_interference_um=None, inner_ring_temp_c=None, outer_ring_temp_c=None, hold=None, ambient_temp_c=None))]
 #[allow(clippy::type_complexity, clippy::too_many_arguments)]
 fn quasi_static(
     py: Python<'_>,
@@ -646,6 +646,8 @@ fn quasi_static(
     housing_interference_um: Option<f64>,
     inner_ring_temp_c: Option<f64>,
     outer_ring_temp_c: Option<f64>,
+    hold: Option<std::collections::BTreeMap<String, f64>>,
+    ambient_temp_c: Option<f64>,
 ) -> PyResult<(String, Vec<String>, Vec<Vec<f64>>)> {
     let options = raceway::calculator::check::CalcOptions {
         oil,
@@ -656,6 +658,7 @@ fn quasi_static(
         housing_interference_um,
         inner_ring_temp_c,
         outer_ring_temp_c,
+        ambient_temp_c,
     };
     compute(py, || {
         let scene = raceway::Scene::default_scene();
@@ -686,6 +689,15 @@ fn quasi_static(
         )?;
         problem.calc =
             raceway::calculator::check::CalcInputs::from_options(&options, speed_rpm, "oil_vi")?;
+        if let Some(h) = &hold {
+            // One parser for the command line and Python: `name=value` pairs.
+            let text = h
+                .iter()
+                .map(|(k, v)| format!("{k}={v:?}"))
+                .collect::<Vec<_>>()
+                .join(",");
+            problem.hold = raceway::models::quasi_static::hold::HoldSpec::parse(&text, "hold")?;
+        }
         let (sol, rating) = problem.solve()?;
         problem.design_check(&sol, &rating)?;
         let json = serde_json::to_string(&reports::quasi_static_report(&problem, &sol, &rating))

@@ -1,6 +1,8 @@
 """raceway.quasi_static and raceway.bearings against the command line: the same equilibrium,
 K symmetric and positive definite where it must be, the same bearing tables."""
 
+import json
+
 import numpy as np
 import pandas as pd
 import pytest
@@ -79,3 +81,18 @@ def test_design_check_from_an_oil_and_a_fit():
     with pytest.raises(raceway.Error) as e:
         raceway.quasi_static("6205", 3000.0, oil="castor")
     assert "castor" in e.value.message
+
+
+def test_held_tilts_take_a_moment_and_match_the_command_line(cli):
+    free = raceway.quasi_static("7205B", fy=1000, fz=2000)
+    held = raceway.quasi_static("7205B", fy=1000, fz=2000, hold={"rx_mrad": 0, "ry_mrad": 0})
+    sol = held.data["solution"]
+    assert sol["held"] == [False, False, False, True, True]
+    assert abs(sol["reaction"][3]) > 1.0
+    assert np.hypot(*held.displacement[:2]) < 0.5 * np.hypot(*free.displacement[:2])
+    doc = json.loads(cli("quasi-static", "--bearing", "7205B", "--fy", "1000", "--fz", "2000",
+                         "--hold", "rx_mrad=0,ry_mrad=0", "--json"))
+    assert np.allclose(doc["solution"]["reaction"], sol["reaction"], rtol=1e-12, atol=1e-12)
+    with pytest.raises(raceway.Error) as e:
+        raceway.quasi_static("7205B", fy=1000, hold={"tilt": 0})
+    assert e.value.field == "hold"

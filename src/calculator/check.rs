@@ -2,11 +2,12 @@
 //! Palmgren's friction moment and power loss, the subsurface stresses below the most loaded
 //! contacts, and the operating clearance when fits or temperatures are given.
 
-use super::clearance::{operating_clearance, ClearanceInputs, OperatingClearance};
+use super::clearance::{operating_clearance, with_clearance, ClearanceInputs, OperatingClearance};
 use super::duty::{spectrum_life, DutyLife, SpectrumRow};
 use super::friction::{palmgren, FrictionInputs, Palmgren, PalmgrenType};
 use super::lubricant::{lubrication, Lubrication, Oil};
 use super::subsurface::{subsurface, Subsurface};
+use super::thermal_speed::{thermal_speeds, ThermalInputs, ThermalSpeed};
 use crate::error::Result;
 use crate::geometry::{Bearing, BearingKind};
 use crate::models::quasi_static::Solution;
@@ -29,6 +30,9 @@ pub struct CalcInputs {
     pub duty: Option<Vec<SpectrumRow>>,
     /// ISO 281 contamination factor for the spectrum rows' `a_ISO` (with the oil).
     pub contamination: Option<f64>,
+    /// Ambient temperature of the thermally safe speed's heat balance, °C (default 20,
+    /// ISO 15312's reference ambient).
+    pub ambient_c: f64,
 }
 
 impl Default for CalcInputs {
@@ -40,6 +44,7 @@ impl Default for CalcInputs {
             clearance: None,
             duty: None,
             contamination: None,
+            ambient_c: super::thermal_speed::T_AMBIENT_REF_C,
         }
     }
 }
@@ -64,6 +69,8 @@ pub struct CalcOptions {
     pub inner_ring_temp_c: Option<f64>,
     /// Outer-ring temperature, °C.
     pub outer_ring_temp_c: Option<f64>,
+    /// Ambient temperature of the thermally safe speed, °C (default 20).
+    pub ambient_temp_c: Option<f64>,
 }
 
 impl CalcInputs {
@@ -81,6 +88,16 @@ impl CalcInputs {
         }
         if let Some(f0) = o.f0 {
             c.f0 = f0;
+        }
+        if let Some(t) = o.ambient_temp_c {
+            if !t.is_finite() || !(-60.0..=200.0).contains(&t) {
+                return Err(crate::Error::invalid(
+                    "ambient_temp_c",
+                    t,
+                    "a finite temperature in [-60, 200] °C",
+                ));
+            }
+            c.ambient_c = t;
         }
         let fits = [
             o.shaft_interference_um,
@@ -130,8 +147,14 @@ pub struct DesignCheck {
     pub subsurface: Option<ContactStress>,
     /// The operating clearance chain, when fits or temperatures are given.
     pub clearance: Option<OperatingClearance>,
+    /// The clearance (m) and free contact angle (rad) the equilibrium was solved with when
+    /// the operating clearance was derived (it replaces the bearing's own).
+    pub equilibrium_clearance: Option<(f64, f64)>,
     /// The life under the load spectrum, when one is given.
     pub duty: Option<DutyLife>,
+    /// ISO 15312's thermal reference speed and the thermally safe speed at the oil's
+    /// temperature (with the oil, the ratings and the bearing's envelope).
+    pub thermal_speed: Option<ThermalSpeed>,
 }
 
 /// The check of `b` at the solution `sol` (its ISO assessment, when there is one).
@@ -143,7 +166,12 @@ pub fn design_check(
     x: &CalcInputs,
 ) -> Result<DesignCheck> {
     let lub = match &x.oil {
-        Some(o) => Some(lubrication(o, x.temperature_c, b.dm, speed_rpm)?),
+        Some(o) => Some(lubrication(
+            o,
+            x.temperature_c,
+            super::lubricant::mean_diameter(b),
+            speed_rpm,
+        )?),
         None => None,
     };
     let friction = match (lub, rating) {
@@ -186,10 +214,17 @@ pub fn design_check(
         Some(c) => Some(operating_clearance(b, c)?),
         None => None,
     };
+    let equilibrium_clearance = match &clearance {
+        Some(k) => {
+            let solved = with_clearance(b, k.operating)?;
+            Some((solved.pd, solved.alpha0))
+        }
+        None => None,
+    };
     let duty = match (&x.duty, rating) {
         (Some(rows), Some(a)) => {
             let kappa_at = |rpm: f64| match &x.oil {
-                Some(o) => lubrication(o, x.temperature_c, b.dm, rpm)
+                Some(o) => lubrication(o, x.temperature_c, super::lubricant::mean_diameter(b), rpm)
                     .ok()
                     .and_then(|l| l.kappa),
                 None => None,
@@ -204,6 +239,29 @@ pub fn design_check(
         }
         _ => None,
     };
+    let thermal_speed = match (lub, rating) {
+        (Some(l), Some(a)) if b.width > 0.0 && b.bore > 0.0 && b.outer_diameter > b.bore => {
+            Some(thermal_speeds(&ThermalInputs {
+                bore: b.bore,
+                outer_diameter: b.outer_diameter,
+                width: b.width,
+                dm: b.dm,
+                c0: a.ratings.c0,
+                kind: match b.kind {
+                    BearingKind::DeepGroove => PalmgrenType::DEEP_GROOVE,
+                    BearingKind::AngularContact => PalmgrenType::ANGULAR_CONTACT,
+                },
+                fr: a.radial_load,
+                fa: a.axial_load,
+                p0: a.p0,
+                nu: l.nu,
+                f0: x.f0,
+                bearing_c: x.temperature_c,
+                ambient_c: x.ambient_c,
+            })?)
+        }
+        _ => None,
+    };
     Ok(DesignCheck {
         oil: x.oil.clone(),
         lubrication: lub,
@@ -211,7 +269,9 @@ pub fn design_check(
         friction,
         subsurface,
         clearance,
+        equilibrium_clearance,
         duty,
+        thermal_speed,
     })
 }
 
@@ -279,6 +339,29 @@ pub fn text(c: &DesignCheck) -> String {
             d.mean_load, d.mean_speed_rpm, d.l10_mrev, d.miner_mrev, d.miner_hours
         );
     }
+    if let Some(t) = &c.thermal_speed {
+        let _ = writeln!(
+            s,
+            "  thermal reference speed:        {:.0} rpm (ISO 15312 conditions: 0.05 C0 = {:.0} N radial, 12 mm²/s, ring 70 °C, ambient 20 °C; A_r {:.0} mm², q_r {:.4} W/mm², {:.1} W)",
+            t.reference_speed_rpm,
+            t.reference_load,
+            t.surface * 1e6,
+            t.heat_flow_density * 1e-6,
+            t.heat_flow
+        );
+        match t.safe_speed_rpm {
+            Some(n) => {
+                let _ = writeln!(
+                    s,
+                    "  thermally safe speed:           {n:.0} rpm at this load and oil, bearing {:.0} °C, ambient {:.0} °C (the seats' reference heat transfer; no oil-flow cooling)",
+                    t.safe_temperatures_c.0, t.safe_temperatures_c.1
+                );
+            }
+            None => s += "  thermally safe speed:           none (the oil temperature is not above the ambient)
+",
+        }
+        let _ = writeln!(s, "  UNSOURCED in these two lines:   {}", t.unsourced);
+    }
     if let Some(k) = &c.clearance {
         let _ = writeln!(
             s,
@@ -297,6 +380,14 @@ pub fn text(c: &DesignCheck) -> String {
             k.housing_pressure * 1e-6,
             k.inner_bore_hoop_stress * 1e-6
         );
+        if let Some((pd, a0)) = c.equilibrium_clearance {
+            let _ = writeln!(
+                s,
+                "  equilibrium solved with:        Pd {:.2} µm operating clearance, free contact angle {:.2} deg (the load table above)",
+                pd * 1e6,
+                a0.to_degrees()
+            );
+        }
     }
     s
 }

@@ -119,6 +119,44 @@ fn check(field: &str, v: f64, diameter: f64) -> Result<f64> {
     Ok(v)
 }
 
+/// The bearing `b` with its diametral clearance replaced by `pd` (m; negative: a radial
+/// preload), its free contact angle following from the groove geometry as the bearing file's
+/// does: `cos a0 = 1 − Pd/(2A)` for `Pd > 0`, and 0 at or below zero clearance (a deep-groove
+/// bearing). The quasi-static equilibrium then runs in the operating clearance.
+///
+/// Errors: a clearance the grooves cannot take (at or above `2A`, or below −0.1 `D`), and
+/// an angular-contact bearing left without clearance (no free contact angle: a single
+/// angular-contact bearing cannot be preloaded radially by its fits), naming
+/// `operating clearance`.
+pub fn with_clearance(b: &Bearing, pd: f64) -> Result<Bearing> {
+    let a = b.a();
+    if !pd.is_finite() || pd >= 2.0 * a || pd <= -0.1 * b.d {
+        return Err(Error::invalid(
+            "operating clearance",
+            format!("{:.3} µm", pd * 1e6),
+            format!(
+                "in ({:.3}, {:.3}) µm, what the grooves take (change the fits or temperatures)",
+                -0.1e6 * b.d,
+                2e6 * a
+            ),
+        ));
+    }
+    let mut out = b.clone();
+    out.pd = pd;
+    out.alpha0 = if pd > 0.0 {
+        (1.0 - pd / (2.0 * a)).acos()
+    } else if b.kind == crate::geometry::BearingKind::AngularContact {
+        return Err(Error::invalid(
+            "operating clearance",
+            format!("{:.3} µm", pd * 1e6),
+            "> 0 for a single angular-contact bearing (at zero clearance it has no free contact angle; looser fits or a smaller ring temperature difference)",
+        ));
+    } else {
+        0.0
+    };
+    Ok(out)
+}
+
 /// The operating clearance of `b` under `x`.
 pub fn operating_clearance(b: &Bearing, x: &ClearanceInputs) -> Result<OperatingClearance> {
     let (d, dd) = (b.bore, b.outer_diameter);

@@ -8,4 +8,5 @@ pub mod duty;
 pub mod friction;
 pub mod lubricant;
 pub mod subsurface;
+pub mod thermal_speed;
 pub mod vi_table;

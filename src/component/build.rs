@@ -17,6 +17,34 @@ use crate::solver::{Integrator, Options};
 /// The scene's integrator and its options. `Auto` picks RODAS4 for a level its registry
 /// entry marks stiff (traction slopes), DOPRI5 for the others (a massless-ball ring is a
 /// few-kHz oscillator, docs/physics.md §N1.2).
+/// The coordinates `model.start_hold` holds in the load-driven static start (`dofs`: the
+/// ring's coordinates; none for a motion-driven scene, and `model.start = "rest"` has no
+/// static start: then nothing is held, as `attached_mass_kg` is ignored there). A
+/// coordinate the ring does not have (z, rx, ry of the 2-DOF ring) is refused naming the
+/// field, as is a non-finite value in any scene.
+fn check_start_hold(scene: &Scene, dofs: Option<&[usize]>) -> Result<[bool; 5]> {
+    use crate::models::quasi_static::hold::NAMES;
+    scene.model.start_hold.to_si("model.start_hold")?;
+    let edge = scene.model.start_hold.edge();
+    let held: [bool; 5] = std::array::from_fn(|i| edge[i].is_some());
+    let Some(dofs) = dofs else {
+        return Ok([false; 5]);
+    };
+    if scene.model.start != super::scene::Start::Equilibrium {
+        return Ok([false; 5]);
+    }
+    for i in (0..5).filter(|&i| held[i]) {
+        if !dofs.contains(&i) {
+            return Err(crate::error::Error::invalid(
+                format!("model.start_hold.{}", NAMES[i]),
+                edge[i].unwrap_or(0.0),
+                "absent: the ring has no such coordinate (model.ring_dof = 5 has z, rx, ry)",
+            ));
+        }
+    }
+    Ok(held)
+}
+
 fn make_integrator(
     scene: &Scene,
     b: &Bearing,
@@ -134,11 +162,27 @@ impl Component {
             &mut state.x[..n_level],
             &mut state.aux[..n_level_aux],
         )?;
+        let hold = &scene.model.start_hold;
+        let mut start_held = (
+            check_start_hold(&scene, ring.as_ref().map(|r| r.dofs))?,
+            [0.0; 5],
+        );
         if let (Some(r), scene::Start::Equilibrium) = (&ring, scene.model.start) {
             let loads: [f64; 5] = std::array::from_fn(|k| state.inputs[I_LOAD + k]);
-            let q = static_start(
+            let held = hold.to_si("model.start_hold")?;
+            let q0 = held.map(|h| h.unwrap_or(0.0));
+            let held: [Option<f64>; 5] =
+                std::array::from_fn(|d| held[d].filter(|_| start_held.0[d]));
+            let free: Vec<usize> = r
+                .dofs
+                .iter()
+                .copied()
+                .filter(|&d| held[d].is_none())
+                .collect();
+            let (q, wrench) = static_start(
                 level.as_mut(),
-                r.dofs,
+                &free,
+                q0,
                 &loads,
                 motion.omega,
                 0.5 * bearing.dm,
@@ -147,6 +191,9 @@ impl Component {
             )?;
             for (k, &d) in r.dofs.iter().enumerate() {
                 state.x[n_level + k] = q[d];
+            }
+            for d in (0..5).filter(|&d| start_held.0[d]) {
+                start_held.1[d] = -(wrench[d] + loads[d]);
             }
         }
         let dim = state.x.len();
@@ -171,6 +218,7 @@ impl Component {
             stages: super::Stages::default(),
             budget_gap: 1,
             state_shared: false.into(),
+            start_held,
             required_inputs: SCALARS
                 .iter()
                 .enumerate()

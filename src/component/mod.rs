@@ -122,9 +122,19 @@ pub struct Component {
     ///
     /// [`OdeSystem::carries_jacobian`]: crate::solver::OdeSystem::carries_jacobian
     state_shared: std::sync::atomic::AtomicBool,
+    /// The coordinates the static start held (`model.start_hold`) and the reaction the
+    /// support added on each there (N, N m; zero elsewhere).
+    start_held: ([bool; 5], [f64; 5]),
 }
 
 impl Component {
+    /// The coordinates the load-driven static start held (`model.start_hold`, order
+    /// `(x, y, z, rx, ry)`) and the reaction on each at the start, N and N m (what the
+    /// support adds on the inner ring: `load + bearing force + reaction = 0`); all false
+    /// when nothing was held.
+    pub fn start_held(&self) -> ([bool; 5], [f64; 5]) {
+        self.start_held
+    }
     /// The scene.
     pub fn scene(&self) -> &Scene {
         &self.scene

@@ -77,6 +77,9 @@ pub struct ModelSpec {
     pub full: FullSpec,
     /// Load-driven: where the inner ring starts.
     pub start: Start,
+    /// Load-driven static start: ring coordinates held at a value while the others are
+    /// solved (the run then integrates every coordinate from there).
+    pub start_hold: crate::models::quasi_static::hold::HoldSpec,
 }
 
 crate::declare_fields!(ModelSpec {
@@ -91,6 +94,7 @@ crate::declare_fields!(ModelSpec {
     skidding: SkiddingSpec::default() => table(),
     full: FullSpec::default() => table(),
     start: Start::default() => choice(&["equilibrium", "rest"], "load-driven: the inner ring starts at rest in static equilibrium under the initial loads (equilibrium) or at zero displacement (rest)"),
+    start_hold: crate::models::quasi_static::hold::HoldSpec::default() => table(),
 });
 
 /// Integrator choice.

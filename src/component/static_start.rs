@@ -8,16 +8,20 @@ use crate::error::{Error, Result};
 /// level's stiffness, moments weighed as forces at the lever `lever` (m); directions with
 /// no stiffness yet (inside a clearance, an unloaded tilt) are regularised. When the full
 /// load fails from the centre, the load is applied in stages (continuation). Refuses with
-/// the residual when it finds no equilibrium.
+/// the residual when it finds no equilibrium. `q0`: the start of every coordinate (the
+/// held ones, outside `dofs`, keep it). Returns the displacement and the level's wrench
+/// there (the held coordinates' reaction is `-(wrench + loads)`).
+#[allow(clippy::too_many_arguments)]
 pub(super) fn static_start(
     level: &mut dyn LevelModel,
     dofs: &[usize],
+    q0: [f64; 5],
     loads: &[f64; 5],
     omega: f64,
     lever: f64,
     x: &[f64],
     aux: &mut [f64],
-) -> Result<[f64; 5]> {
+) -> Result<([f64; 5], [f64; 5])> {
     let scale = loads
         .iter()
         .enumerate()
@@ -90,7 +94,7 @@ fn staged(
 ) -> std::result::Result<[f64; 5], f64> {
     let mut last = f64::INFINITY;
     for stages in [1usize, 4, 16] {
-        let mut q = [0.0; 5];
+        let mut q = q0;
         let mut ok = true;
         for k in 1..=stages {
             let f = k as f64 / stages as f64;
@@ -109,7 +113,8 @@ fn staged(
             }
         }
         if ok {
-            return Ok(q);
+            let wrench = sys.eval(&q)?.0;
+            return Ok((q, wrench));
         }
     }
     Err(last)

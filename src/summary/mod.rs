@@ -23,6 +23,7 @@ pub fn summary_of(ctx: &Ctx) -> Summary {
     let mut sm = Summary::default();
     scene_lines(ctx, &mut sm);
     load_lines(ctx, &mut sm);
+    start_hold_lines(ctx, &mut sm);
     cage_lines(ctx, &mut sm);
     frequency_lines(ctx, &mut sm);
     rating_lines(ctx, &mut sm);
@@ -282,6 +283,26 @@ fn load_lines(c: &Ctx, s: &mut Summary) {
     s.set("peak_force_n", serde_json::json!([fx, fy, fz]));
     s.set("peak_contact_load_n", c.peak("contact.max_load").into());
     s.set("peak_pressure_pa", c.peak("contact.max_pressure").into());
+}
+
+/// `model.start_hold`: which coordinates the static start held and the reaction on each.
+fn start_hold_lines(c: &Ctx, s: &mut Summary) {
+    let (held, reaction) = c.comp.start_held();
+    if !held.iter().any(|&h| h) {
+        return;
+    }
+    let names = crate::models::quasi_static::hold::held_names(&held);
+    let units = ["N", "N", "N", "N m", "N m"];
+    let r: Vec<String> = (0..5)
+        .filter(|&i| held[i])
+        .map(|i| format!("{:.4} {}", reaction[i], units[i]))
+        .collect();
+    s.line(format!(
+        "static start held {names} (model.start_hold); reaction there {}",
+        r.join(", ")
+    ));
+    s.set("start_held", serde_json::json!(held));
+    s.set("start_reaction", serde_json::json!(reaction));
 }
 
 fn cage_lines(c: &Ctx, s: &mut Summary) {

@@ -208,6 +208,9 @@ pub struct QsProblem {
     pub life: LifeInputs,
     /// The design check's inputs (oil, fits); set after [`QsProblem::new`].
     pub calc: crate::calculator::check::CalcInputs,
+    /// Coordinates held at a value (default: none, the free equilibrium); set after
+    /// [`QsProblem::new`].
+    pub hold: crate::models::quasi_static::hold::HoldSpec,
 }
 
 fn finite(field: &str, v: f64) -> Result<f64> {
@@ -273,6 +276,7 @@ impl QsProblem {
                     .transpose()?,
             },
             calc: Default::default(),
+            hold: Default::default(),
         })
     }
 
@@ -284,21 +288,39 @@ impl QsProblem {
             race_control: self.race_control,
             ..Options::default()
         };
-        let model = QuasiStatic::new(&self.bearing, opts)?;
-        let sol = model.solve(&self.load, rpm_to_rad_s(self.speed_rpm))?;
+        let model = QuasiStatic::new(&self.solved_bearing()?, opts)?;
+        let sol = model.solve_held(
+            &self.load,
+            rpm_to_rad_s(self.speed_rpm),
+            &self.hold.to_si("hold")?,
+        )?;
         // An oil without a typed kappa: kappa from the oil at the operating temperature.
         let mut life = self.life;
         if let (None, Some(oil)) = (life.kappa, &self.calc.oil) {
             life.kappa = crate::calculator::lubricant::lubrication(
                 oil,
                 self.calc.temperature_c,
-                self.bearing.dm,
+                crate::calculator::lubricant::mean_diameter(&self.bearing),
                 self.speed_rpm,
             )?
             .kappa;
         }
         let rating = assess(&self.bearing, &sol, &life).map_err(|e| e.to_string());
         Ok((sol, rating))
+    }
+
+    /// The bearing the equilibrium is solved with: with fits or ring temperatures given
+    /// (`calc.clearance`), its clearance is the operating clearance they leave
+    /// ([`crate::calculator::clearance::with_clearance`]); otherwise the bearing as given.
+    /// The ISO ratings stay the bearing's own.
+    pub fn solved_bearing(&self) -> Result<Bearing> {
+        match &self.calc.clearance {
+            Some(c) => {
+                let op = crate::calculator::clearance::operating_clearance(&self.bearing, c)?;
+                crate::calculator::clearance::with_clearance(&self.bearing, op.operating)
+            }
+            None => Ok(self.bearing.clone()),
+        }
     }
 
     /// The design check at a solution of this problem (see [`crate::calculator::check`]).

@@ -155,6 +155,8 @@ def quasi_static(
     housing_interference_um: Optional[float] = None,
     inner_ring_temp_c: Optional[float] = None,
     outer_ring_temp_c: Optional[float] = None,
+    hold: Optional[dict[str, float]] = None,
+    ambient_temp_c: Optional[float] = None,
 ) -> QuasiStaticResult:
     """The Jones–Harris quasi-static equilibrium under a load on the inner ring.
 
@@ -191,6 +193,15 @@ def quasi_static(
         housing, µm: the operating clearance.
     inner_ring_temp_c, outer_ring_temp_c : float, optional
         Ring temperatures, °C, for the operating clearance.
+    ambient_temp_c : float, optional
+        Ambient temperature, °C, of the thermally safe speed (default 20); with ``oil`` the
+        design check carries ISO 15312's thermal reference speed and the thermally safe
+        speed at ``oil_temp_c`` (``data["calculator"]["thermal_speed"]``).
+    hold : dict, optional
+        Ring coordinates held at a value while the others are solved, e.g.
+        ``{"rx_mrad": 0, "ry_mrad": 0}`` (keys ``x_um``, ``y_um``, ``z_um``, ``rx_mrad``,
+        ``ry_mrad``); the reaction on each is ``result.data["solution"]["reaction"]`` (SI)
+        and ``result.data["solution"]["held"]`` says which were held.
 
     Returns
     -------
@@ -226,6 +237,8 @@ def quasi_static(
         housing_interference_um,
         inner_ring_temp_c,
         outer_ring_temp_c,
+        None if hold is None else {str(k): float(v) for k, v in hold.items()},
+        ambient_temp_c,
     )
     data = json.loads(text)
     sol = data["solution"]

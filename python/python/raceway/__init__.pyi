@@ -188,6 +188,8 @@ def quasi_static(
     housing_interference_um: Optional[float] = None,
     inner_ring_temp_c: Optional[float] = None,
     outer_ring_temp_c: Optional[float] = None,
+    hold: Optional[dict[str, float]] = None,
+    ambient_temp_c: Optional[float] = None,
 ) -> QuasiStaticResult:
     """The Jones–Harris quasi-static equilibrium under an external load on the inner ring
     (the outer ring fixed), as ``raceway quasi-static`` solves it.
@@ -203,6 +205,11 @@ def quasi_static(
     moment and power loss (``f0`` default 2); the subsurface stresses below the most loaded
     ball are always there; ``shaft_interference_um``, ``housing_interference_um``,
     ``inner_ring_temp_c``, ``outer_ring_temp_c`` give the operating clearance.
+    ``ambient_temp_c`` (default 20 °C): the ambient of the thermally safe speed
+    (``data["calculator"]["thermal_speed"]``, with ISO 15312's reference speed).
+    ``hold``: ring coordinates held at a value while the others are solved
+    (``{"rx_mrad": 0, "ry_mrad": 0}``; keys ``x_um``, ``y_um``, ``z_um``, ``rx_mrad``,
+    ``ry_mrad``), the reaction on each in ``result.data["solution"]["reaction"]``.
     """
 
 def bearings() -> pd.DataFrame:

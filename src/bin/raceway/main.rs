@@ -13,7 +13,8 @@
 //!   Otherwise values not given are zero and the bearing defaults to the scene's. The race
 //!   control defaults to the scene's `model.race_control`. The answer carries the ISO
 //!   ratings, lives, static safety and warnings (`raceway::ratings`); `--kappa` and
-//!   `--contamination` add ISO 281's `a_ISO`.
+//!   `--contamination` add ISO 281's `a_ISO`. `--hold rx_mrad=0,ry_mrad=0` holds ring
+//!   coordinates at a value and reports the reaction on each.
 //!
 //! Every value is checked: non-finite numbers, a negative speed, an unknown preset or a
 //! malformed bearing file are refused with a message naming the cause and exit status 1
@@ -66,7 +67,7 @@ enum Cmd {
     ///
     /// Without --bearing, --speed-rpm and load flags it solves the embedded default scene's
     /// operating point; otherwise what is not given is zero (bearing: the scene's).
-    QuasiStatic(QsArgs),
+    QuasiStatic(Box<QsArgs>),
     /// Scene files: document every field (--explain [--json]) or check one (--check FILE).
     Scene(scene_cmd::SceneArgs),
     /// Parameter sweep: a base scene and axes (lists, ranges, grids, random or Latin-hypercube
@@ -141,10 +142,19 @@ struct QsArgs {
     /// Outer-ring temperature, °C, for the operating clearance (default 20).
     #[arg(long, allow_hyphen_values = true)]
     outer_ring_temp_c: Option<f64>,
+    /// Ambient temperature, °C, of the thermally safe speed's heat balance (default 20; the
+    /// bearing is at --oil-temp-c).
+    #[arg(long, allow_hyphen_values = true)]
+    ambient_temp_c: Option<f64>,
     /// Load spectrum file, one row per line `fr_n, fa_n, speed_rpm, time_share`: ISO 281 life
     /// under the duty cycle (with --oil and --contamination, each row's a_ISO).
     #[arg(long)]
     duty: Option<std::path::PathBuf>,
+    /// Hold ring coordinates at a value while solving the others, e.g. `rx_mrad=0,ry_mrad=0`
+    /// (names x_um, y_um, z_um, rx_mrad, ry_mrad or x, y, z, rx, ry; a bare name holds at 0);
+    /// the reaction on each held coordinate is reported.
+    #[arg(long, allow_hyphen_values = true)]
+    hold: Option<String>,
     /// Machine-readable output (SI units).
     #[arg(long)]
     json: bool,
@@ -157,7 +167,7 @@ fn main() -> ExitCode {
             Some(n) => report::bearing_detail(&n, json),
             None => report::bearings(json),
         },
-        Cmd::QuasiStatic(a) => quasi_static(a),
+        Cmd::QuasiStatic(a) => quasi_static(*a),
         Cmd::Run(a) => run::run(a),
         Cmd::Bench(a) => bench::bench(a),
         Cmd::Scene(a) => scene_cmd::scene(a),
@@ -237,6 +247,7 @@ fn calc_inputs(a: &QsArgs, speed_rpm: f64) -> Result<raceway::calculator::check:
         housing_interference_um: a.housing_interference_um,
         inner_ring_temp_c: a.inner_ring_temp_c,
         outer_ring_temp_c: a.outer_ring_temp_c,
+        ambient_temp_c: a.ambient_temp_c,
     };
     let mut c = CalcInputs::from_options(&o, speed_rpm, "--oil-vi")?;
     if let Some(path) = &a.duty {
@@ -265,6 +276,9 @@ fn quasi_static(a: QsArgs) -> Result<String> {
     }
     let mut p = problem(&a)?;
     p.calc = calc_inputs(&a, p.speed_rpm)?;
+    if let Some(h) = &a.hold {
+        p.hold = raceway::models::quasi_static::hold::HoldSpec::parse(h, "--hold")?;
+    }
     let (sol, rating) = p.solve()?;
     // Bad design-check input (fits, oil temperature) is an error, not a missing line.
     p.design_check(&sol, &rating)?;

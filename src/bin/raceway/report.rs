@@ -173,6 +173,19 @@ pub fn quasi_static_text(
         q[4] * 1e3
     );
     wrench_line(&mut s, "bearing force on the shaft:", &sol.forces);
+    if sol.held.iter().any(|&h| h) {
+        let names = raceway::models::quasi_static::hold::held_names(&sol.held);
+        let _ = writeln!(
+            s,
+            "held coordinates:                 {names} (at the displacement above; the others solved)"
+        );
+        wrench_line(&mut s, "reaction holding them:", &sol.reaction);
+    } else {
+        let _ = writeln!(
+            s,
+            "held coordinates:                 none (all five solved; --hold to hold some)"
+        );
+    }
     let k = sol.stiffness;
     let _ = writeln!(
         s,

@@ -70,6 +70,7 @@ pub(super) fn full_scene(bearing: BearingRef, traction: TractionLaw) -> Scene {
                 cage_unbalance_um: 2.0,
                 ..Default::default()
             },
+            start_hold: crate::models::quasi_static::hold::HoldSpec::from_edge([Some(0.0); 5]),
             ..Default::default()
         },
         solver: SolverSpec::default(),

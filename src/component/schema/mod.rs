@@ -71,6 +71,10 @@ pub const MOUNTS: &[(&str, &[FieldDecl])] = &[
     ("bearing.materials.<body>", Material::FIELDS),
     ("model", ModelSpec::FIELDS),
     ("model.operating_point", OperatingPoint::FIELDS),
+    (
+        "model.start_hold",
+        crate::models::quasi_static::hold::HoldSpec::FIELDS,
+    ),
     ("model.skidding", SkiddingSpec::FIELDS),
     ("model.skidding.traction", TractionLaw::FIELDS),
     ("model.skidding.traction.fit", AsperityFit::FIELDS),

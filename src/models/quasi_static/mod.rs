@@ -47,6 +47,7 @@
 
 mod ball;
 mod dual;
+pub mod hold;
 mod kc;
 pub mod law;
 pub mod level;
@@ -183,7 +184,21 @@ pub struct Solution {
     pub states: Vec<BallState>,
     /// Ring Newton iterations (all stages).
     pub iterations: usize,
+    /// The coordinates held at a given value (`(x, y, z, rx, ry)`, [`Hold`]); the others
+    /// were solved. All false for the free (load-driven) equilibrium.
+    #[serde(default)]
+    pub held: [bool; 5],
+    /// What the support must add on the shaft to hold each held coordinate,
+    /// `-(forces + load)` there (N, N m), so that `load + forces + reaction = 0` in every
+    /// coordinate; zero in the solved ones.
+    #[serde(default)]
+    pub reaction: [f64; 5],
 }
+
+/// Coordinates of the inner ring held at a given value while the others are solved:
+/// `Some(v)` holds `(x, y, z, rx, ry)[i]` at `v` (m or rad). `[None; 5]` is the free
+/// equilibrium.
+pub type Hold = [Option<f64>; 5];
 
 /// The quasi-static model of one bearing, with everything that can be precomputed.
 #[derive(Debug, Clone)]
@@ -577,7 +592,38 @@ impl QuasiStatic {
     /// contact angle beyond [`Options::max_contact_angle`] or a deflection beyond
     /// [`Options::max_deflection_ratio`] `D` is refused as [`Error::Invalid`].
     pub fn solve_at(&self, load: &[f64; 5], omega: f64, psi: &[f64]) -> Result<Solution> {
+        self.solve_held_at(load, omega, psi, &[None; 5])
+    }
+
+    /// Equilibrium with some coordinates held ([`Hold`]): the held ones stay at their given
+    /// value, the others are solved from `F(q) + load = 0` as [`QuasiStatic::solve_at`]
+    /// does; [`Solution::reaction`] holds what the support adds on each held coordinate.
+    /// Holding all five is the motion-driven evaluation at that displacement.
+    pub fn solve_held(&self, load: &[f64; 5], omega: f64, hold: &Hold) -> Result<Solution> {
+        self.solve_held_at(load, omega, &azimuths(self.bearing.z, 0.0), hold)
+    }
+
+    /// [`QuasiStatic::solve_held`] with the balls at `psi`.
+    pub fn solve_held_at(
+        &self,
+        load: &[f64; 5],
+        omega: f64,
+        psi: &[f64],
+        hold: &Hold,
+    ) -> Result<Solution> {
         check_finite("load", load)?;
+        for (k, h) in hold.iter().enumerate() {
+            if let Some(v) = h {
+                if !v.is_finite() {
+                    return Err(Error::invalid(
+                        format!("hold[{k}]"),
+                        v,
+                        "a finite displacement (m) or tilt (rad)",
+                    ));
+                }
+            }
+        }
+        let held: [bool; 5] = std::array::from_fn(|i| hold[i].is_some());
         check_finite("psi", psi)?;
         if !omega.is_finite() {
             return Err(Error::invalid("omega", omega, "a finite number"));
@@ -585,8 +631,9 @@ impl QuasiStatic {
         let n = psi.len();
         let mut state = vec![BallState::default(); n];
         let mut trial = vec![BallState::default(); n];
-        let mut q = self.static_start(load, psi, &mut state)?;
-        let mut iterations = self.ring_newton(load, 0.0, psi, &mut q, &mut state, &mut trial)?;
+        let mut q = self.static_start(load, psi, hold, &mut state)?;
+        let mut iterations =
+            self.ring_newton(load, 0.0, psi, held, &mut q, &mut state, &mut trial)?;
         if omega != 0.0 {
             let q_static = q;
             let s_static = state.clone();
@@ -598,7 +645,7 @@ impl QuasiStatic {
                 let mut ok = true;
                 for k in 1..=steps {
                     let w = omega * k as f64 / steps as f64;
-                    match self.ring_newton(load, w, psi, &mut q, &mut state, &mut trial) {
+                    match self.ring_newton(load, w, psi, held, &mut q, &mut state, &mut trial) {
                         Ok(it) => iterations += it,
                         Err(e) => {
                             last_err = Some(e);
@@ -624,6 +671,7 @@ impl QuasiStatic {
         let mut balls = vec![BallResult::default(); n];
         let forces = self.evaluate(&q, omega, psi, &mut state, Some(&mut k), Some(&mut balls))?;
         self.check_validity(load, &balls)?;
+        let reaction = std::array::from_fn(|i| if held[i] { -(forces[i] + load[i]) } else { 0.0 });
         Ok(Solution {
             omega,
             load: *load,
@@ -634,6 +682,8 @@ impl QuasiStatic {
             balls,
             states: state,
             iterations,
+            held,
+            reaction,
         })
     }
 
@@ -683,20 +733,26 @@ impl QuasiStatic {
         norm(&ls) + 1e-9
     }
 
-    /// Zero-speed start: bracket and bisect along the load direction.
+    /// Zero-speed start: bracket and bisect along the load direction (its free part, from
+    /// the held coordinates' values).
     fn static_start(
         &self,
         load: &[f64; 5],
         psi: &[f64],
+        hold: &Hold,
         state: &mut [BallState],
     ) -> Result<[f64; 5]> {
-        let ls: [f64; 5] = std::array::from_fn(|i| load[i] / self.t[i]);
+        let q0: [f64; 5] = std::array::from_fn(|i| hold[i].unwrap_or(0.0));
+        let ls: [f64; 5] = std::array::from_fn(|i| match hold[i] {
+            Some(_) => 0.0,
+            None => load[i] / self.t[i],
+        });
         let lmag = norm(&ls);
         if lmag == 0.0 {
-            return Ok([0.0; 5]);
+            return Ok(q0);
         }
         let u: [f64; 5] = std::array::from_fn(|i| ls[i] / lmag);
-        let q_of = |t: f64| -> [f64; 5] { std::array::from_fn(|i| t * u[i] / self.t[i]) };
+        let q_of = |t: f64| -> [f64; 5] { std::array::from_fn(|i| q0[i] + t * u[i] / self.t[i]) };
         let too_big = || {
             Error::invalid(
                 "load",
@@ -744,13 +800,16 @@ impl QuasiStatic {
         Ok(q_of(hi))
     }
 
-    /// Damped, regularised Newton on `F(q) + load = 0` at speed `omega`; `q` and `state`
-    /// are updated in place (to the answer on success). Returns the iterations used.
+    /// Damped, regularised Newton on `F(q) + load = 0` at speed `omega` in the coordinates
+    /// not `held` (those keep their value in `q`); `q` and `state` are updated in place (to
+    /// the answer on success). Returns the iterations used.
+    #[allow(clippy::too_many_arguments)]
     fn ring_newton(
         &self,
         load: &[f64; 5],
         omega: f64,
         psi: &[f64],
+        held: [bool; 5],
         q: &mut [f64; 5],
         state: &mut [BallState],
         trial: &mut [BallState],
@@ -770,6 +829,7 @@ impl QuasiStatic {
                 omega,
                 psi,
                 tol,
+                held,
             },
             state,
             trial,
@@ -824,6 +884,8 @@ struct RingEquations<'a> {
     omega: f64,
     psi: &'a [f64],
     tol: f64,
+    /// Held coordinates: no residual, no step.
+    held: [bool; 5],
 }
 
 impl RingEquations<'_> {
@@ -833,6 +895,11 @@ impl RingEquations<'_> {
             .model
             .evaluate(q, self.omega, self.psi, balls, Some(&mut p.k), None)?;
         p.r = self.model.residual(&f, self.load);
+        for (r, &h) in p.r.iter_mut().zip(&self.held) {
+            if h {
+                *r = 0.0;
+            }
+        }
         let c = newton::Check {
             norm: norm(&p.r),
             tol: self.tol,
@@ -864,8 +931,24 @@ impl newton::NewtonSystem<5> for RingSystem<'_> {
 
     fn step(&mut self, dx: &mut [f64; 5]) -> bool {
         let t = &self.eq.model.t;
-        let ks: [[f64; 5]; 5] =
+        let held = self.eq.held;
+        let mut ks: [[f64; 5]; 5] =
             std::array::from_fn(|i| std::array::from_fn(|j| self.now.k[i][j] / (t[i] * t[j])));
+        // A held coordinate: an identity row and column (its residual is zero), no step.
+        if held.iter().any(|&h| h) {
+            let dmax = (0..5)
+                .filter(|&i| !held[i])
+                .map(|i| ks[i][i].abs())
+                .fold(0.0, f64::max);
+            let one = if dmax > 0.0 { dmax } else { 1.0 };
+            for i in (0..5).filter(|&i| held[i]) {
+                ks[i] = [0.0; 5];
+                for row in ks.iter_mut() {
+                    row[i] = 0.0;
+                }
+                ks[i][i] = one;
+            }
+        }
         match newton::solve_regularised(&ks, &self.now.r, 1e-12, 8) {
             Some(d) => {
                 *dx = d;
