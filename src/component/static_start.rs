@@ -42,7 +42,7 @@ pub(super) fn static_start(
         next: ([0.0; 5], [[0.0; 5]; 5]),
         fresh: false,
     };
-    let full = staged(&mut sys, *loads, scale);
+    let full = staged(&mut sys, q0, *loads, scale);
     let last = match full {
         Ok(q) => return Ok(q),
         Err(r) => r,
@@ -53,7 +53,7 @@ pub(super) fn static_start(
     for _ in 0..6 {
         let mid = 0.5 * (lo + hi);
         let part: [f64; 5] = std::array::from_fn(|d| mid * loads[d]);
-        if staged(&mut sys, part, scale).is_ok() {
+        if staged(&mut sys, q0, part, scale).is_ok() {
             lo = mid;
         } else {
             hi = mid;
@@ -66,12 +66,12 @@ pub(super) fn static_start(
     let mut m = 2.0;
     while m <= 1048576.0 {
         let part: [f64; 5] = std::array::from_fn(|d| m * loads[d]);
-        if staged(&mut sys, part, scale).is_ok() {
+        if staged(&mut sys, q0, part, scale).is_ok() {
             let (mut lo, mut hi) = (0.5 * m, m);
             for _ in 0..6 {
                 let mid = 0.5 * (lo + hi);
                 let part: [f64; 5] = std::array::from_fn(|d| mid * loads[d]);
-                if staged(&mut sys, part, scale).is_ok() {
+                if staged(&mut sys, q0, part, scale).is_ok() {
                     hi = mid;
                 } else {
                     lo = mid;
@@ -85,13 +85,11 @@ pub(super) fn static_start(
     Err(refusal(dofs, loads, lo, above, last))
 }
 
-/// The equilibrium under `loads` from the centre: the whole load at once, else in 4 and
-/// then 16 equal stages (continuation); the last residual when none converges.
-fn staged(
-    sys: &mut StaticSystem,
-    loads: [f64; 5],
-    scale: f64,
-) -> std::result::Result<[f64; 5], f64> {
+/// The equilibrium under `loads` from `q0`: the whole load at once, else in 4 and then 16
+/// equal stages (continuation); the displacement and the level's wrench there, or the last
+/// residual when none converges.
+type Staged = std::result::Result<([f64; 5], [f64; 5]), f64>;
+fn staged(sys: &mut StaticSystem, q0: [f64; 5], loads: [f64; 5], scale: f64) -> Staged {
     let mut last = f64::INFINITY;
     for stages in [1usize, 4, 16] {
         let mut q = q0;
@@ -113,7 +111,7 @@ fn staged(
             }
         }
         if ok {
-            let wrench = sys.eval(&q)?.0;
+            let wrench = sys.eval(&q).map_err(|_| last)?.0;
             return Ok((q, wrench));
         }
     }
