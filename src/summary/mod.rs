@@ -6,6 +6,7 @@
 //! full level), the characteristic frequencies found in the spectrum of the second half of the
 //! run (and in the envelope spectrum for defect scenes), ISO ratings and life.
 
+pub mod html;
 pub mod reports;
 
 use crate::analysis::{
