@@ -119,7 +119,25 @@ fn key_label(k: &str) -> String {
         .iter()
         .find(|(n, _)| *n == k)
         .map(|(_, l)| l.to_string())
-        .unwrap_or_else(|| k.replace('_', " "))
+        .unwrap_or_else(|| {
+            // The unit suffixes of the summary's keys, written out.
+            let units = [
+                ("_n", "N"),
+                ("_pa", "Pa"),
+                ("_mm", "mm"),
+                ("_um", "µm"),
+                ("_s", "s"),
+                ("_w", "W"),
+                ("_nm", "N m"),
+                ("_c", "°C"),
+                ("_rpm", "rpm"),
+                ("_hz", "Hz"),
+            ];
+            match units.iter().find_map(|(s, u)| k.strip_suffix(s).map(|b| (b, u))) {
+                Some((b, u)) => format!("{} ({u})", b.replace('_', " ")),
+                None => k.replace('_', " "),
+            }
+        })
 }
 
 /// Key–value rows.
