@@ -133,7 +133,10 @@ fn key_label(k: &str) -> String {
                 ("_rpm", "rpm"),
                 ("_hz", "Hz"),
             ];
-            match units.iter().find_map(|(s, u)| k.strip_suffix(s).map(|b| (b, u))) {
+            match units
+                .iter()
+                .find_map(|(s, u)| k.strip_suffix(s).map(|b| (b, u)))
+            {
                 Some((b, u)) => format!("{} ({u})", b.replace('_', " ")),
                 None => k.replace('_', " "),
             }

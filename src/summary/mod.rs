@@ -23,6 +23,7 @@ pub fn summary_of(ctx: &Ctx) -> Summary {
     let mut sm = Summary::default();
     scene_lines(ctx, &mut sm);
     load_lines(ctx, &mut sm);
+    effect_lines(ctx, &mut sm);
     cage_lines(ctx, &mut sm);
     frequency_lines(ctx, &mut sm);
     rating_lines(ctx, &mut sm);
@@ -258,6 +259,47 @@ fn load_lines(c: &Ctx, s: &mut Summary) {
     s.set("peak_force_n", serde_json::json!([fx, fy, fz]));
     s.set("peak_contact_load_n", c.peak("contact.max_load").into());
     s.set("peak_pressure_pa", c.peak("contact.max_pressure").into());
+}
+
+/// What the effects compute, when the level sets it: friction torque and power loss
+/// (thermal effect), the minimum film thickness (EHL film); means over the second half of
+/// the run and the final value. Outputs the level leaves at zero are not reported.
+fn effect_lines(c: &Ctx, s: &mut Summary) {
+    let half = |n: &str| -> &[f64] {
+        let col = c.col(n);
+        &col[c.start.min(col.len())..]
+    };
+    let set = |n: &str| c.col(n).iter().any(|v| *v != 0.0);
+    let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len().max(1) as f64;
+    let last = |n: &str| c.col(n).last().copied().unwrap_or(0.0);
+    if set("torque.z") || set("power.loss") {
+        let (tq, pw) = (mean(half("torque.z")), mean(half("power.loss")));
+        s.line(format!(
+            "friction: torque on the shaft mean {tq:.4} N m (final {:.4} N m), power loss mean {pw:.3} W (final {:.3} W), second half",
+            last("torque.z"),
+            last("power.loss")
+        ));
+        s.set(
+            "friction",
+            serde_json::json!({"mean_torque_nm": tq, "final_torque_nm": last("torque.z"),
+                "mean_power_loss_w": pw, "final_power_loss_w": last("power.loss")}),
+        );
+    }
+    if set("film.min_thickness") {
+        let h = half("film.min_thickness");
+        let lo = h.iter().copied().fold(f64::INFINITY, f64::min);
+        s.line(format!(
+            "film: minimum thickness over the contacts {:.4} µm at its smallest, mean {:.4} µm (final {:.4} µm), second half",
+            lo * 1e6,
+            mean(h) * 1e6,
+            last("film.min_thickness") * 1e6
+        ));
+        s.set(
+            "film",
+            serde_json::json!({"smallest_min_thickness_um": lo * 1e6, "mean_min_thickness_um": mean(h) * 1e6,
+                "final_min_thickness_um": last("film.min_thickness") * 1e6}),
+        );
+    }
 }
 
 fn cage_lines(c: &Ctx, s: &mut Summary) {
