@@ -234,22 +234,22 @@ overflow-x:auto;font-size:.85em}.prov td,.prov th{font-size:.95em}";
 pub fn report_html(c: &Ctx, sm: &Summary, figures: &[Figure], prov: &Provenance) -> String {
     let mut h = String::new();
     let title = format!("raceway run: {} ({})", c.name, c.scene.title);
-    let _ = write!(
+    let _ = writeln!(
         h,
         "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\
          <meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\
-         <title>{}</title><style>{STYLE}</style></head><body>\n<h1>{}</h1>\n",
+         <title>{}</title><style>{STYLE}</style></head><body>\n<h1>{}</h1>",
         esc(&title),
         esc(&title)
     );
     // Provenance.
-    let _ = write!(
+    let _ = writeln!(
         h,
         "<table class=\"kv prov\"><tr><th>program</th><td>raceway {}</td></tr>\
          <tr><th>scene file</th><td>{}</td></tr><tr><th>scene hash (FNV-1a of the scene as run)</th><td><code>{}</code></td></tr>\
          <tr><th>command</th><td><code>{}</code></td></tr>\
          <tr><th>thread CPU of the run</th><td>{} s</td></tr><tr><th>load average (1, 5, 15 min)</th><td>{}</td></tr>\
-         <tr><th>level, driven by</th><td>{}, {:?}</td></tr></table>\n",
+         <tr><th>level, driven by</th><td>{}, {:?}</td></tr></table>",
         esc(&prov.version),
         esc(&prov.scene_file),
         scene_hash(c.scene),
@@ -307,11 +307,11 @@ pub fn report_html(c: &Ctx, sm: &Summary, figures: &[Figure], prov: &Provenance)
     }
     // Lines with their evidence.
     let scale = c.record_scale();
-    let _ = write!(
+    let _ = writeln!(
         h,
         "<h2>Characteristic lines</h2>\n<p>Spectrum of <code>{}</code> ({}) over the second half of the run \
          (Hann window, bins {} Hz). A line is found when a peak (interpolated between bins) lies within the \
-         tolerance of the expected frequency and stands at least {} times above the median floor in [f/2, 2f].</p>\n",
+         tolerance of the expected frequency and stands at least {} times above the median floor in [f/2, 2f].</p>",
         esc(c.signal.0),
         esc(c.signal.1),
         num(c.spec.resolution()),
@@ -319,9 +319,9 @@ pub fn report_html(c: &Ctx, sm: &Summary, figures: &[Figure], prov: &Provenance)
     );
     h += &lines_table(&c.found, scale);
     if let Some((_, band, found)) = &c.envelope {
-        let _ = write!(
+        let _ = writeln!(
             h,
-            "<h3>Envelope spectrum (defect scene; band {})</h3>\n",
+            "<h3>Envelope spectrum (defect scene; band {})</h3>",
             band.map_or("whole signal".to_string(), |(lo, hi)| format!(
                 "{lo:.0}–{hi:.0} Hz"
             ))
@@ -336,9 +336,9 @@ pub fn report_html(c: &Ctx, sm: &Summary, figures: &[Figure], prov: &Provenance)
     for f in figures {
         // The SVG's own XML prologue (if any) is dropped: inline SVG starts at <svg.
         let svg = f.svg.find("<svg").map_or(f.svg.as_str(), |i| &f.svg[i..]);
-        let _ = write!(
+        let _ = writeln!(
             h,
-            "<figure id=\"{}\">{svg}<figcaption>{} (also <a href=\"{}\">PNG</a>)</figcaption></figure>\n",
+            "<figure id=\"{}\">{svg}<figcaption>{} (also <a href=\"{}\">PNG</a>)</figcaption></figure>",
             esc(f.file.trim_end_matches(".png")),
             esc(&f.file),
             esc(&f.file)
@@ -346,9 +346,9 @@ pub fn report_html(c: &Ctx, sm: &Summary, figures: &[Figure], prov: &Provenance)
     }
     // The scene as run and the text summary.
     let toml = toml::to_string_pretty(c.scene).unwrap_or_else(|e| format!("(not shown: {e})"));
-    let _ = write!(
+    let _ = writeln!(
         h,
-        "<h2>Scene as run</h2>\n<pre>{}</pre>\n<h2>Text summary</h2>\n<pre>{}</pre>\n</body></html>\n",
+        "<h2>Scene as run</h2>\n<pre>{}</pre>\n<h2>Text summary</h2>\n<pre>{}</pre>\n</body></html>",
         esc(&toml),
         esc(&sm.text)
     );

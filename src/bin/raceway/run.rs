@@ -414,13 +414,14 @@ fn write_plots(out: &Path, c: &Ctx) -> (Vec<String>, Vec<String>) {
         &mut skipped,
     );
     if c.cage_dynamics() {
-        let slip = all("cage.slip");
+        // Per cent of the kinematic cage speed: the slip's size reads off the axis.
+        let slip: Vec<f64> = all("cage.slip").into_iter().map(|v| 100.0 * v).collect();
         let made = plot(
             &out.join("cage-slip.png"),
             &Axes {
                 title: &headed(c, "cage slip"),
                 x_label: "t (s)",
-                y_label: "1 - omega_c / omega_c,kin (-)",
+                y_label: "cage slip 1 - ωc/ωc,kin (%)",
                 ..Axes::default()
             },
             &[Series {
