@@ -389,7 +389,9 @@ fn run_summarises_what_the_effects_compute() {
     let text = std::fs::read_to_string(dir.join("summary.txt")).unwrap();
     assert!(text.contains("power loss mean") && text.contains("film: minimum thickness"));
     let page = std::fs::read_to_string(dir.join("report.html")).unwrap();
-    assert!(page.contains("<h3>Friction and power</h3>") && page.contains("<h3>Film and κ</h3>"));
+    assert!(
+        page.contains("<h3>Friction and power</h3>") && page.contains("<h3>Lubricant film</h3>")
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }
 

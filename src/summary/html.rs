@@ -170,7 +170,7 @@ const SECTIONS: [(&str, &[&str]); 9] = [
         "Loads and pressures",
         &["peak_force_n", "peak_contact_load_n", "peak_pressure_pa"],
     ),
-    ("Film and κ", &["film"]),
+    ("Lubricant film", &["film"]),
     ("Friction and power", &["friction"]),
     ("Temperatures and clearance", &["thermal"]),
     (
