@@ -288,7 +288,7 @@ fn open_report(page: &Path) -> String {
         format!("opened {}\n", page.display())
     } else {
         format!(
-            "report: {} (no xdg-open here: open it in a browser)\n",
+            "report: {} (xdg-open could not open it: open it in a browser)\n",
             page.display()
         )
     }
