@@ -1,4 +1,4 @@
-//! PNG plots for reports and the command line (feature `plot`): line plots with optional
+//! PNG and SVG plots for reports and the command line (feature `plot`): line plots with optional
 //! log axes and vertical frequency markers, and equal-aspect orbit plots. Text is drawn
 //! with the bundled DejaVu Sans font (assets/), so no system fonts are needed.
 
@@ -243,41 +243,102 @@ pub fn label_rows(spans: &[(f64, f64)], gap: f64) -> Vec<usize> {
 /// Height of one row of marker labels above the plot, pixels.
 const LABEL_ROW: i32 = 15;
 
-type Area<'a> = DrawingArea<BitMapBackend<'a>, plotters::coord::Shift>;
-
 /// Draw `series` (and `markers`) into a PNG at `path` (1000 x 625 px). Point series are
 /// drawn with distinct shapes (filled circle, cross, hollow triangle, ...); the legend goes
-/// into a corner free of data (with headroom added above the data when none is);
-/// marker labels are stacked in rows above the plot so that none overlaps another.
+/// into a corner free of data (with headroom added above the data when none is); marker
+/// labels are stacked in rows above the plot so that none overlaps another.
 pub fn plot(path: &Path, axes: &Axes<'_>, series: &[Series<'_>], markers: &[Marker]) -> Result<()> {
     register_font();
     // Under a temporary name, then renamed: never half-written.
     crate::fsutil::write_atomic_with(path, |tmp| {
-        let root = BitMapBackend::new(tmp, (1000, 625)).into_drawing_area();
+        let root = BitMapBackend::new(tmp, PLOT_PX).into_drawing_area();
         draw_area(&root, axes, series, markers)?;
         root.present().map_err(io)
     })
+}
+
+/// Size of a [`plot`], pixels.
+const PLOT_PX: (u32, u32) = (1000, 625);
+
+/// The drawing of [`plot`] as SVG text (text as `<text>` elements in the reader's
+/// sans-serif font).
+pub fn plot_svg(axes: &Axes<'_>, series: &[Series<'_>], markers: &[Marker]) -> Result<String> {
+    register_font();
+    let mut buf = String::new();
+    {
+        let root = SVGBackend::with_string(&mut buf, PLOT_PX).into_drawing_area();
+        draw_area(&root, axes, series, markers)?;
+        root.present().map_err(io)?;
+    }
+    Ok(buf)
+}
+
+/// [`plot`] into the PNG at `path` and [`plot_svg`] beside it (`path` with the extension
+/// `svg`).
+pub fn plot_pair(
+    path: &Path,
+    axes: &Axes<'_>,
+    series: &[Series<'_>],
+    markers: &[Marker],
+) -> Result<()> {
+    plot(path, axes, series, markers)?;
+    let svg = plot_svg(axes, series, markers)?;
+    crate::fsutil::write_atomic(&path.with_extension("svg"), svg).map_err(io)
 }
 
 /// Panels stacked vertically in one PNG (1000 x 300 px per panel) under one `title`, each
 /// with its own y axis (e.g. Fx, Fy, Fz, so that each ripple shows at its own scale).
 pub fn plot_stack(path: &Path, title: &str, panels: &[(Axes<'_>, Vec<Series<'_>>)]) -> Result<()> {
     register_font();
-    let h = 44 + 300 * panels.len().max(1) as u32;
     crate::fsutil::write_atomic_with(path, |tmp| {
-        let root = BitMapBackend::new(tmp, (1000, h)).into_drawing_area();
-        root.fill(&WHITE).map_err(io)?;
-        let body = root.titled(title, ("sans-serif", 20)).map_err(io)?;
-        for (area, (axes, series)) in body
-            .split_evenly((panels.len().max(1), 1))
-            .iter()
-            .zip(panels)
-        {
-            draw_area(area, axes, series, &[])?;
-        }
+        let root = BitMapBackend::new(tmp, stack_px(panels.len())).into_drawing_area();
+        draw_stack(&root, title, panels)?;
         root.present().map_err(io)
     })
 }
+
+/// Size of a [`plot_stack`] of `n` panels, pixels.
+fn stack_px(n: usize) -> (u32, u32) {
+    (1000, 44 + 300 * n.max(1) as u32)
+}
+
+/// The drawing of [`plot_stack`] as SVG text.
+pub fn stack_svg(title: &str, panels: &[(Axes<'_>, Vec<Series<'_>>)]) -> Result<String> {
+    register_font();
+    let mut buf = String::new();
+    {
+        let root = SVGBackend::with_string(&mut buf, stack_px(panels.len())).into_drawing_area();
+        draw_stack(&root, title, panels)?;
+        root.present().map_err(io)?;
+    }
+    Ok(buf)
+}
+
+/// [`plot_stack`] into the PNG at `path` and [`stack_svg`] beside it.
+pub fn stack_pair(path: &Path, title: &str, panels: &[(Axes<'_>, Vec<Series<'_>>)]) -> Result<()> {
+    plot_stack(path, title, panels)?;
+    let svg = stack_svg(title, panels)?;
+    crate::fsutil::write_atomic(&path.with_extension("svg"), svg).map_err(io)
+}
+
+fn draw_stack<DB: DrawingBackend>(
+    root: &Area<DB>,
+    title: &str,
+    panels: &[(Axes<'_>, Vec<Series<'_>>)],
+) -> Result<()> {
+    root.fill(&WHITE).map_err(io)?;
+    let body = root.titled(title, ("sans-serif", 20)).map_err(io)?;
+    for (area, (axes, series)) in body
+        .split_evenly((panels.len().max(1), 1))
+        .iter()
+        .zip(panels)
+    {
+        draw_area(area, axes, series, &[])?;
+    }
+    Ok(())
+}
+
+type Area<DB> = DrawingArea<DB, plotters::coord::Shift>;
 
 /// Shape of the `k`-th point series.
 fn draw_point<DB: DrawingBackend, CT: plotters::coord::CoordTranslate>(
@@ -296,8 +357,8 @@ where
     }
 }
 
-fn draw_area(
-    area: &Area<'_>,
+fn draw_area<DB: DrawingBackend>(
+    area: &Area<DB>,
     axes: &Axes<'_>,
     series: &[Series<'_>],
     markers: &[Marker],
@@ -470,6 +531,13 @@ fn draw_area(
                                     && (!axes.log_y || *y > 0.0)
                             })
                             .collect();
+                    // Long histories: one column of pixels draws the same with its
+                    // first, lowest, highest and last point (keeps the SVG small).
+                    let pts = if s.points {
+                        pts
+                    } else {
+                        thin(pts, |p| chart.backend_coord(p))
+                    };
                     if s.points {
                         for p in &pts {
                             draw_point(chart.plotting_area(), shape[i], *p, c).map_err(io)?;
@@ -533,10 +601,46 @@ fn draw_area(
     Ok(())
 }
 
+/// The points of a polyline that draw the same picture at the pixel grid: of each run of
+/// consecutive points in one pixel column, the first, the lowest, the highest and the last,
+/// in their order (the segments between them cover the same pixels).
+fn thin(pts: Vec<(f64, f64)>, px: impl Fn(&(f64, f64)) -> (i32, i32)) -> Vec<(f64, f64)> {
+    if pts.len() < 4000 {
+        return pts;
+    }
+    let mut out = Vec::with_capacity(4 * 1000);
+    let mut i = 0;
+    while i < pts.len() {
+        let col = px(&pts[i]).0;
+        let mut j = i + 1;
+        let (mut lo, mut hi) = (i, i);
+        while j < pts.len() && px(&pts[j]).0 == col {
+            if pts[j].1 < pts[lo].1 {
+                lo = j;
+            }
+            if pts[j].1 > pts[hi].1 {
+                hi = j;
+            }
+            j += 1;
+        }
+        let mut keep = [i, lo, hi, j - 1];
+        keep.sort_unstable();
+        let mut last = usize::MAX;
+        for k in keep {
+            if k != last {
+                out.push(pts[k]);
+                last = k;
+            }
+        }
+        i = j;
+    }
+    out
+}
+
 /// The legend box at `r` (pixels relative to `area`): a line or the point shape of each
 /// labelled series, then its label.
-fn draw_legend(
-    area: &Area<'_>,
+fn draw_legend<DB: DrawingBackend>(
+    area: &Area<DB>,
     r: Rect,
     labelled: &[(usize, usize, &Series<'_>)],
     font: &TextStyle<'_>,
@@ -708,6 +812,33 @@ mod tests {
     }
 
     #[test]
+    fn thinning_keeps_each_pixel_columns_extremes_and_ends() {
+        // 100 000 points of a fast sine over 1000 columns: every column keeps its first,
+        // lowest, highest and last point, so the drawn band is unchanged.
+        let n = 100_000;
+        let pts: Vec<(f64, f64)> = (0..n)
+            .map(|k| (k as f64, (k as f64 * 0.37).sin() + 1e-6 * k as f64))
+            .collect();
+        let px = |p: &(f64, f64)| ((p.0 / 100.0) as i32, 0);
+        let t = thin(pts.clone(), px);
+        assert!(t.len() <= 4 * 1000 && t.len() >= 2 * 1000, "{}", t.len());
+        assert_eq!(t.first(), pts.first());
+        assert_eq!(t.last(), pts.last());
+        for c in 0..1000 {
+            let col = |v: &[(f64, f64)]| -> (f64, f64) {
+                v.iter()
+                    .filter(|p| px(p).0 == c)
+                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+                        (a.min(p.1), b.max(p.1))
+                    })
+            };
+            assert_eq!(col(&t), col(&pts), "column {c}");
+        }
+        // Order kept: x never decreases along the thinned line.
+        assert!(t.windows(2).all(|w| w[1].0 > w[0].0));
+    }
+
+    #[test]
     fn writes_a_png_of_the_data() {
         let dir = std::env::temp_dir().join(format!("raceway-plot-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
@@ -720,7 +851,7 @@ mod tests {
             y_label: "y",
             ..Axes::default()
         };
-        plot(
+        plot_pair(
             &p,
             &axes,
             &[Series {
@@ -742,6 +873,12 @@ mod tests {
             "a drawn plot, not an empty image: {} bytes",
             bytes.len()
         );
+        // The SVG beside it: the title and the marker label as text, the curve as a
+        // polyline.
+        let svg = std::fs::read_to_string(p.with_extension("svg")).unwrap();
+        assert!(svg.starts_with("<svg"), "{}", &svg[..40.min(svg.len())]);
+        assert!(svg.contains(">\nsine\n</text>") && svg.contains(">\n1 s\n</text>"));
+        assert!(svg.contains("<polyline"));
         let p2 = dir.join("loglog.png");
         let axes = Axes {
             log_x: true,

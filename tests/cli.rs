@@ -310,6 +310,88 @@ fn run_writes_series_summary_and_plots_from_the_data() {
         assert_eq!(&b[1..4], b"PNG", "{png}");
         assert!(b.len() > 10_000, "{png} is only {} bytes", b.len());
     }
+    // report.html: self-contained (no script, no link out of the page other than the PNGs
+    // beside it), every plot inline as SVG, one row per line the summary reports.
+    let page = std::fs::read_to_string(dir.join("report.html")).unwrap();
+    for png in ["orbit.png", "force.png", "spectrum.png", "ball-loads.png"] {
+        let svg = std::fs::read_to_string(dir.join(png).with_extension("svg")).unwrap();
+        let body = &svg[svg.find("<svg").unwrap()..];
+        assert!(
+            page.contains(body),
+            "{png}'s SVG is not inline in report.html"
+        );
+    }
+    // (The SVG namespace is a name, not an address fetched.)
+    let bare = page.replace("xmlns=\"http://www.w3.org/2000/svg\"", "");
+    assert!(!bare.contains("<script") && !bare.contains("http://") && !bare.contains("https://"));
+    assert!(!page.contains("<link") && !page.contains("src=\""));
+    let rows = summary["frequencies"].as_array().unwrap().len();
+    let table = &page[page.find("<table class=\"lines\">").unwrap()..];
+    let table = &table[..table.find("</table>").unwrap()];
+    assert_eq!(table.matches("<tr class=").count(), rows);
+    assert!(table.contains(&format!("{:.1}", bpfo["expected_hz"].as_f64().unwrap())));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn run_summarises_what_the_effects_compute() {
+    // 7008ce-thermal (friction heating, EHL film): the friction torque and power loss and
+    // the film thickness in the summary are the series' own over the second half.
+    let dir = std::env::temp_dir().join(format!("raceway-effects-{}", std::process::id()));
+    let out = run(&[
+        "run",
+        "examples/scenes/7008ce-thermal.toml",
+        "--quiet",
+        "--duration",
+        "0.1",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let csv = std::fs::read_to_string(dir.join("series.csv")).unwrap();
+    let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    let col = |name: &str| -> Vec<f64> {
+        let k = header.iter().position(|h| h.starts_with(name)).unwrap();
+        csv.lines()
+            .skip(1)
+            .map(|l| l.split(',').nth(k).unwrap().parse::<f64>().unwrap())
+            .collect()
+    };
+    let second_half_mean = |v: Vec<f64>| {
+        let h = &v[v.len() / 2..];
+        h.iter().sum::<f64>() / h.len() as f64
+    };
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
+    let p = second_half_mean(col("power.loss"));
+    let t = second_half_mean(col("torque.z"));
+    assert!(p > 1.0, "power loss {p} W");
+    assert!(close(
+        f(&summary["friction"]["mean_power_loss_w"]),
+        p,
+        1e-12
+    ));
+    assert!(close(f(&summary["friction"]["mean_torque_nm"]), t, 1e-12));
+    let h = col("film.min_thickness");
+    let lo = h[h.len() / 2..]
+        .iter()
+        .copied()
+        .fold(f64::INFINITY, f64::min);
+    assert!(close(
+        f(&summary["film"]["smallest_min_thickness_um"]),
+        lo * 1e6,
+        1e-12
+    ));
+    let text = std::fs::read_to_string(dir.join("summary.txt")).unwrap();
+    assert!(text.contains("power loss mean") && text.contains("film: minimum thickness"));
+    let page = std::fs::read_to_string(dir.join("report.html")).unwrap();
+    assert!(
+        page.contains("<h3>Friction and power</h3>") && page.contains("<h3>Lubricant film</h3>")
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }
 

@@ -6,6 +6,7 @@
 //! full level), the characteristic frequencies found in the spectrum of the second half of the
 //! run (and in the envelope spectrum for defect scenes), ISO ratings and life.
 
+pub mod html;
 pub mod reports;
 pub mod rollers;
 
@@ -24,6 +25,7 @@ pub fn summary_of(ctx: &Ctx) -> Summary {
     scene_lines(ctx, &mut sm);
     load_lines(ctx, &mut sm);
     start_hold_lines(ctx, &mut sm);
+    effect_lines(ctx, &mut sm);
     cage_lines(ctx, &mut sm);
     frequency_lines(ctx, &mut sm);
     rating_lines(ctx, &mut sm);
@@ -303,6 +305,50 @@ fn start_hold_lines(c: &Ctx, s: &mut Summary) {
     ));
     s.set("start_held", serde_json::json!(held));
     s.set("start_reaction", serde_json::json!(reaction));
+}
+
+/// What the effects compute, when the level sets it: friction torque and power loss
+/// (thermal effect), the minimum film thickness (EHL film); means over the second half of
+/// the run and the final value. Outputs the level leaves at zero are not reported.
+fn effect_lines(c: &Ctx, s: &mut Summary) {
+    // Means and final values from the run's digest (every row); the smallest film from the
+    // plot history (every row up to runner::HISTORY_ROWS, else every k-th).
+    let half = |n: &str| -> &[f64] {
+        let col = c.col(n);
+        &col[c.start.min(col.len())..]
+    };
+    let set = |n: &str| c.run.peak(n) != 0.0;
+    let mean = |n: &str| c.run.mean_second_half(n);
+    let last = |n: &str| c.run.last(n);
+    if set("torque.z") || set("power.loss") {
+        let (tq, pw) = (mean("torque.z"), mean("power.loss"));
+        s.line(format!(
+            "friction: torque on the shaft mean {tq:.4} N m (final {:.4} N m), power loss mean {pw:.3} W (final {:.3} W), second half",
+            last("torque.z"),
+            last("power.loss")
+        ));
+        s.set(
+            "friction",
+            serde_json::json!({"mean_torque_nm": tq, "final_torque_nm": last("torque.z"),
+                "mean_power_loss_w": pw, "final_power_loss_w": last("power.loss")}),
+        );
+    }
+    if set("film.min_thickness") {
+        let h = half("film.min_thickness");
+        let lo = h.iter().copied().fold(f64::INFINITY, f64::min);
+        let mean_h = mean("film.min_thickness");
+        s.line(format!(
+            "film: minimum thickness over the contacts {:.4} µm at its smallest, mean {:.4} µm (final {:.4} µm), second half",
+            lo * 1e6,
+            mean_h * 1e6,
+            last("film.min_thickness") * 1e6
+        ));
+        s.set(
+            "film",
+            serde_json::json!({"smallest_min_thickness_um": lo * 1e6, "mean_min_thickness_um": mean_h * 1e6,
+                "final_min_thickness_um": last("film.min_thickness") * 1e6}),
+        );
+    }
 }
 
 fn cage_lines(c: &Ctx, s: &mut Summary) {

@@ -1,12 +1,13 @@
 //! `raceway run [scene.toml] [--out DIR] [--quiet]`: run a scene stand-alone, write the time
-//! series, a summary and plots.
+//! series, a summary, plots (PNG and SVG) and report.html.
 
 use raceway::analysis::Spectrum;
 use raceway::component::scene::DEFAULT_SCENE;
 use raceway::component::{schema, Causality, Scene};
 use raceway::models::quasi_static::{azimuths, BallResult, BallState, Options, QuasiStatic};
-use raceway::plot::{plot, plot_stack, Axes, Marker, Series};
+use raceway::plot::{plot_pair as plot, stack_pair as plot_stack, Axes, Marker, Series};
 use raceway::runner::{self, Record, Series as Run};
+use raceway::summary::html::{report_html, Figure, Provenance};
 use raceway::summary::{summary_of, Ctx};
 use raceway::{Error, Result};
 use std::fmt::Write as _;
@@ -37,6 +38,9 @@ pub struct RunArgs {
     /// and for levels with memory updated at each point (warm starts, wear, thermal).
     #[arg(long)]
     pub through: bool,
+    /// Open report.html when the run is done (xdg-open; without it, the path is printed).
+    #[arg(long)]
+    pub open: bool,
 }
 
 /// Set by SIGINT or SIGTERM: the run stops before its next step and its staged folder is
@@ -98,8 +102,11 @@ pub fn run(a: RunArgs) -> Result<String> {
     // run is the `.<name>.partial-<pid>` folder, removed by the next run into `out`).
     let staging = Staging::new(&out)?;
     match write_run(&a, &scene, &name, &staging.dir, &out) {
-        Ok(text) => {
+        Ok(mut text) => {
             staging.publish()?;
+            if a.open {
+                text += &open_report(&out.join("report.html"));
+            }
             Ok(text)
         }
         Err(e) => {
@@ -214,7 +221,7 @@ fn write_run(a: &RunArgs, scene: &Scene, name: &str, out: &Path, shown: &Path) -
     let sj = out.join("summary.json");
     raceway::fsutil::write_atomic(
         &sj,
-        serde_json::to_string_pretty(&serde_json::Value::Object(sm.json)).unwrap_or_default(),
+        serde_json::to_string_pretty(&sm.json).unwrap_or_default(),
     )
     .map_err(|e| io(&sj, e))?;
 
@@ -222,19 +229,72 @@ fn write_run(a: &RunArgs, scene: &Scene, name: &str, out: &Path, shown: &Path) -
     for w in &skipped {
         eprintln!("warning: {w}");
     }
+    let figures: Vec<Figure> = pngs
+        .iter()
+        .filter_map(|f| {
+            let svg = std::fs::read_to_string(out.join(f).with_extension("svg")).ok()?;
+            Some(Figure {
+                file: f.clone(),
+                svg,
+            })
+        })
+        .collect();
+    let prov = Provenance {
+        version: env!("CARGO_PKG_VERSION").to_string(),
+        command: command_line(),
+        scene_file: a
+            .scene
+            .as_ref()
+            .map_or("default (embedded)".into(), |p| p.display().to_string()),
+    };
+    let page = out.join("report.html");
+    raceway::fsutil::write_atomic(&page, report_html(&ctx, &sm, &figures, &prov))
+        .map_err(|e| io(&page, e))?;
     if quiet {
         return Ok(String::new());
     }
     let mut s = sm.text;
     writeln!(
         s,
-        "results in {}/ (series.csv{}, summary.txt, summary.json, {})",
+        "results in {}/ (report.html, series.csv{}, summary.txt, summary.json, {} and SVGs)",
         shown.display(),
         if a.kc { " with K and C" } else { "" },
         pngs.join(", ")
     )
     .ok();
     Ok(s)
+}
+
+/// The command line as typed (arguments with spaces or quotes in single quotes).
+fn command_line() -> String {
+    std::env::args()
+        .map(|a| {
+            if a.is_empty() || a.contains(|c: char| c.is_whitespace() || "'\"$\\".contains(c)) {
+                format!("'{}'", a.replace('\'', "'\\''"))
+            } else {
+                a
+            }
+        })
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+/// `--open`: hand the page to the desktop's opener, or say where it is.
+fn open_report(page: &Path) -> String {
+    let opened = std::process::Command::new("xdg-open")
+        .arg(page)
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .status()
+        .is_ok_and(|s| s.success());
+    if opened {
+        format!("opened {}\n", page.display())
+    } else {
+        format!(
+            "report: {} (xdg-open could not open it: open it in a browser)\n",
+            page.display()
+        )
+    }
 }
 
 /// Record a plot: written, or skipped with its reason.
@@ -357,13 +417,14 @@ fn write_plots(out: &Path, c: &Ctx) -> (Vec<String>, Vec<String>) {
         &mut skipped,
     );
     if c.cage_dynamics() {
-        let slip = all("cage.slip");
+        // Per cent of the kinematic cage speed: the slip's size reads off the axis.
+        let slip: Vec<f64> = all("cage.slip").into_iter().map(|v| 100.0 * v).collect();
         let made = plot(
             &out.join("cage-slip.png"),
             &Axes {
                 title: &headed(c, "cage slip"),
                 x_label: "t (s)",
-                y_label: "1 - omega_c / omega_c,kin (-)",
+                y_label: "cage slip 1 - ωc/ωc,kin (%)",
                 ..Axes::default()
             },
             &[Series {
