@@ -6,6 +6,7 @@ pub mod full;
 pub mod linear;
 pub mod quasi_static;
 pub mod ring;
+pub mod set;
 pub mod skidding;
 pub mod thermal;
 pub mod waviness;
