@@ -7,6 +7,7 @@ pub mod linear;
 pub mod quasi_static;
 pub mod ring;
 pub mod set;
+pub mod shaft;
 pub mod skidding;
 pub mod thermal;
 pub mod waviness;

@@ -52,6 +52,7 @@ mod tests;
 
 pub use life::{system_life, weibull_slope};
 pub use row::RowReport;
+pub(crate) use solve::newton5 as newton5_shared;
 pub use solve::{Set, SetEval, SetSolution};
 
 use crate::error::{Error, Result};
