@@ -8,6 +8,7 @@ pub mod quasi_static;
 pub mod ring;
 pub mod set;
 pub mod shaft;
+pub mod shaft_file;
 pub mod skidding;
 pub mod thermal;
 pub mod waviness;
