@@ -16,6 +16,11 @@
 //!   `--contamination` add ISO 281's `a_ISO`. `--hold rx_mrad=0,ry_mrad=0` holds ring
 //!   coordinates at a value and reports the reaction on each.
 //!
+//! - `raceway shaft SHAFT.toml [--json]`: a rigid shaft on bearing locations (single
+//!   bearings or sets such as a preloaded DB pair) under loads at axial positions: its
+//!   5-DOF equilibrium, each location's loads, lives and static safety, the system
+//!   stiffness (`shaft_cmd.rs` has the file format).
+//!
 //! Every value is checked: non-finite numbers, a negative speed, an unknown preset or a
 //! malformed bearing file are refused with a message naming the cause and exit status 1
 //! (clap's own usage errors exit with 2).
@@ -24,6 +29,7 @@ mod bench;
 mod report;
 mod run;
 mod scene_cmd;
+mod shaft_cmd;
 mod sweep_cmd;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
@@ -70,6 +76,8 @@ enum Cmd {
     QuasiStatic(Box<QsArgs>),
     /// Scene files: document every field (--explain [--json]) or check one (--check FILE).
     Scene(scene_cmd::SceneArgs),
+    /// A rigid shaft on bearing locations (single bearings or preloaded sets): equilibrium, loads, lives, stiffness
+    Shaft(shaft_cmd::ShaftArgs),
     /// Parameter sweep: a base scene and axes (lists, ranges, grids, random or Latin-hypercube
     /// samples); one summary row per point in <out>/sweep.csv, all cores, resumable,
     /// shardable (--shard k/n, then --merge).
@@ -171,6 +179,7 @@ fn main() -> ExitCode {
         Cmd::Run(a) => run::run(a),
         Cmd::Bench(a) => bench::bench(a),
         Cmd::Scene(a) => scene_cmd::scene(a),
+        Cmd::Shaft(a) => shaft_cmd::shaft(a),
         Cmd::Sweep(a) => sweep_cmd::sweep(a),
     };
     match out {
