@@ -8,6 +8,18 @@ pub mod roller_law;
 pub mod tapered_law;
 pub mod traction;
 
+/// The contact law of a roller bearing's elements: tapered or cylindrical (the one place a
+/// roller kind picks its law).
+pub fn roller_law(
+    r: &crate::geometry::roller::RollerBearing,
+) -> crate::error::Result<Box<dyn crate::seam::element::ElementLaw>> {
+    Ok(if r.kind.is_tapered() {
+        Box::new(tapered_law::TaperedRollerLaw::new(r)?)
+    } else {
+        Box::new(roller_law::CylindricalRollerLaw::new(r)?)
+    })
+}
+
 pub use hertz::{
     ellipse_fit, ellipse_fit_hb83, hertz_load_and_stiffness, series_constant, BallRaceContacts,
     ContactCoefficients, ContactTable, Curvature, Ellipse, EllipseSensitivity, LineContact,

@@ -11,8 +11,6 @@
 //! level: `c d(delta)/dt` along each loaded ball's contact line (the ring level's massless
 //! ball geometry), blended in over the first 0.1 µm of approach; off (no cost) at 0.
 
-use crate::contact::roller_law::CylindricalRollerLaw;
-use crate::contact::tapered_law::TaperedRollerLaw;
 use crate::error::Result;
 use crate::geometry::element::{Element, ElementKind};
 use crate::geometry::kinematics::nominal_cage_speed as cage_speed;
@@ -31,10 +29,7 @@ pub const ELEMENTS: &[ElementKind] = &[ElementKind::Ball, ElementKind::Roller];
 pub fn element_law(a: &LevelArgs, opts: Options) -> Result<Box<dyn ElementLaw>> {
     match &a.bearing.element {
         Element::Ball(_) => Ok(Box::new(QuasiStatic::new(a.bearing, opts)?)),
-        Element::Roller(r) if r.kind.is_tapered() => {
-            Ok(Box::new(TaperedRollerLaw::new(r.as_ref())?))
-        }
-        Element::Roller(r) => Ok(Box::new(CylindricalRollerLaw::new(r.as_ref())?)),
+        Element::Roller(r) => crate::contact::roller_law(r),
     }
 }
 

@@ -1,7 +1,6 @@
 //! One row of a set: its bearing's quasi-static law, the map from the shaft's motion at the
 //! reference point to the row's own displacement, and the row's report.
 
-use crate::contact::roller_law::CylindricalRollerLaw;
 use crate::error::Result;
 use crate::geometry::element::Element;
 use crate::geometry::Bearing;
@@ -41,7 +40,7 @@ fn build_law(b: &Bearing) -> Result<Law> {
             vec![BallState::default(); b.z],
         ),
         Element::Roller(r) => {
-            let l: Box<dyn ElementLaw> = Box::new(CylindricalRollerLaw::new(r.as_ref())?);
+            let l: Box<dyn ElementLaw> = crate::contact::roller_law(r)?;
             let n = l.state_len() * b.z;
             Law::Other(l, vec![0.0; n])
         }

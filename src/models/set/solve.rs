@@ -512,6 +512,8 @@ fn row_report(r: &RowModel, e: &RowEval, omega: f64, speed_rpm: f64) -> Result<R
                 balls: e.balls.clone(),
                 states: Vec::new(),
                 iterations: 0,
+                held: [false; 5],
+                reaction: [0.0; 5],
             };
             let a = ratings::assess(
                 b,
