@@ -191,7 +191,7 @@ impl Shaft {
             return Err(Error::invalid(
                 "location",
                 "no location carries axial load",
-                "a statically determined shaft: at least one location with axial support (a ball bearing)",
+                "a statically determined shaft: at least one location with axial support (a ball, tapered roller or flanged NJ/NUP bearing)",
             ));
         }
         Ok(())
@@ -426,5 +426,40 @@ mod tests {
             e.contains("statically determined") && e.contains("tilt"),
             "{e}"
         );
+    }
+
+    /// Two tapered roller bearings in indirect mounting (30206, rows facing each other's
+    /// thrust) under a central radial load and a thrust: the axial reactions balance the
+    /// thrust exactly, and the bearing that does not take the thrust still carries an axial
+    /// load (the thrust its own inclined contacts induce under its radial load), so the
+    /// other carries more than the applied thrust; the radial load splits by symmetry.
+    #[test]
+    fn a_tapered_pair_carries_its_induced_thrust() {
+        let trb = |name: &str, z: f64, o: i32| Location {
+            name: name.into(),
+            position: z,
+            set: SetSpec {
+                rows: vec![Row {
+                    bearing: bearing_by_name("30206", "b").unwrap(),
+                    position: 0.0,
+                    orientation: o,
+                }],
+                preload: Preload::None,
+            },
+        };
+        let shaft = Shaft {
+            locations: vec![trb("A", 0.0, 1), trb("B", 0.2, -1)],
+            loads: vec![ShaftLoad {
+                position: 0.1,
+                force: [0.0, -6000.0, 2000.0],
+                moment: [0.0, 0.0],
+            }],
+            omega: 0.0,
+        };
+        let s = shaft.solve().unwrap();
+        let (a, b) = (&s.locations[0].set.force, &s.locations[1].set.force);
+        assert!((a[2] + b[2] + 2000.0).abs() < 1e-6 * 2000.0, "{a:?} {b:?}");
+        assert!(b[2] > 100.0 && -a[2] > 2000.0 + 100.0, "{a:?} {b:?}");
+        assert!((a[1] + b[1] - 6000.0).abs() < 1e-6 * 6000.0, "{a:?} {b:?}");
     }
 }

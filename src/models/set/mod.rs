@@ -56,7 +56,6 @@ pub(crate) use solve::newton5 as newton5_shared;
 pub use solve::{Set, SetEval, SetSolution};
 
 use crate::error::{Error, Result};
-use crate::geometry::element::ElementKind;
 use crate::geometry::Bearing;
 use serde::{Deserialize, Serialize};
 
@@ -245,8 +244,8 @@ impl SetSpec {
             return Err(Error::invalid(
                 "set.rows",
                 "no row carries axial load",
-                "at least one row with axial support (a ball bearing; the set's roller rows \
-                 are cylindrical, with free axial float)",
+                "at least one row with axial support (a ball bearing, a tapered roller bearing \
+                 or an NJ/NUP with spherical roller ends; NU and N rows float axially)",
             ));
         }
         let both = self.rows.iter().any(|r| r.orientation == 1)
@@ -306,7 +305,17 @@ impl SetSpec {
 /// Whether a bearing's rows carry axial load (ball bearings do; the cylindrical roller
 /// bearings of the roller levels float axially).
 pub fn carries_axial(b: &Bearing) -> bool {
-    b.element() == ElementKind::Ball
+    match &b.element {
+        crate::geometry::element::Element::Ball(_) => true,
+        // A tapered roller, or a flanged cylindrical one (NJ, NUP) whose roller ends are
+        // spherical: the flange contact the law carries (flat ends carry none, §R8).
+        crate::geometry::element::Element::Roller(r) => {
+            r.kind.is_tapered()
+                || r.flange
+                    .as_ref()
+                    .is_some_and(|f| f.roller_end_radius.is_some())
+        }
+    }
 }
 
 /// A bearing by name: a ball preset or catalogue designation, else a roller catalogue
