@@ -628,7 +628,7 @@ fn run(
 
 /// `raceway quasi-static --json` as text, plus (ball columns with units, their values).
 #[pyfunction]
-#[pyo3(signature = (bearing, speed_rpm, load, race_control, kappa, contamination, oil=None, oil_vi=None, oil_temp_c=None, f0=None, shaft_interference_um=None, housing_interference_um=None, inner_ring_temp_c=None, outer_ring_temp_c=None, hold=None, ambient_temp_c=None))]
+#[pyo3(signature = (bearing, speed_rpm, load, race_control, kappa, contamination, oil=None, oil_vi=None, oil_temp_c=None, f0=None, shaft_interference_um=None, housing_interference_um=None, inner_ring_temp_c=None, outer_ring_temp_c=None, hold=None, ambient_temp_c=None, duty=None))]
 #[allow(clippy::type_complexity, clippy::too_many_arguments)]
 fn quasi_static(
     py: Python<'_>,
@@ -648,7 +648,52 @@ fn quasi_static(
     outer_ring_temp_c: Option<f64>,
     hold: Option<std::collections::BTreeMap<String, f64>>,
     ambient_temp_c: Option<f64>,
+    duty: Option<String>,
 ) -> PyResult<(String, Vec<String>, Vec<Vec<f64>>)> {
+    // A roller designation: the roller equilibrium and its report, the one
+    // `raceway quasi-static --bearing NU206 --json` prints (same function, same shape).
+    if let Some(b) = bearing
+        .as_deref()
+        .and_then(raceway::summary::rollers::roller_bearing)
+    {
+        // The ball-only options have no meaning here: refused by name, not ignored.
+        let given = [
+            ("race_control", race_control.is_some()),
+            ("kappa", kappa.is_some()),
+            ("contamination", contamination.is_some()),
+            ("oil", oil.is_some()),
+            ("oil_vi", oil_vi.is_some()),
+            ("oil_temp_c", oil_temp_c.is_some()),
+            ("f0", f0.is_some()),
+            ("shaft_interference_um", shaft_interference_um.is_some()),
+            ("housing_interference_um", housing_interference_um.is_some()),
+            ("inner_ring_temp_c", inner_ring_temp_c.is_some()),
+            ("outer_ring_temp_c", outer_ring_temp_c.is_some()),
+            ("hold", hold.is_some()),
+            ("ambient_temp_c", ambient_temp_c.is_some()),
+            ("duty", duty.is_some()),
+        ];
+        if let Some((name, _)) = given.iter().find(|(_, g)| *g) {
+            return Err(to_py(
+                py,
+                raceway::Error::invalid(
+                    *name,
+                    "given",
+                    "None for a roller bearing (its quasi-static report has the loads, \
+                     laminae, stiffness and ISO 281/76 ratings only)",
+                ),
+            ));
+        }
+        return compute(py, || {
+            let n = &reports::PYTHON_NAMES;
+            let r = raceway::summary::rollers::report(&b?, speed_rpm, load, (n.load, n.speed_rpm))?;
+            Ok((
+                serde_json::to_string(&r).expect("the report serialises"),
+                Vec::new(),
+                Vec::new(),
+            ))
+        });
+    }
     let options = raceway::calculator::check::CalcOptions {
         oil,
         oil_vi,
@@ -689,6 +734,10 @@ fn quasi_static(
         )?;
         problem.calc =
             raceway::calculator::check::CalcInputs::from_options(&options, speed_rpm, "oil_vi")?;
+        if let Some(text) = &duty {
+            // The spectrum's text (the package reads a file or writes a list's rows).
+            problem.calc.duty = Some(raceway::calculator::duty::parse_spectrum(text, "duty")?);
+        }
         if let Some(h) = &hold {
             // One parser for the command line and Python: `name=value` pairs.
             let text = h
@@ -704,6 +753,16 @@ fn quasi_static(
             .expect("the report serialises");
         let (names, columns) = reports::ball_columns(&sol);
         Ok((json, names, columns))
+    })
+}
+
+/// `raceway shaft FILE --json` as text: the shaft file's text (TOML) solved.
+#[pyfunction]
+fn shaft_json(py: Python<'_>, shaft: &Bound<'_, PyAny>) -> PyResult<String> {
+    let src = text_of(py, shaft, "shaft")?;
+    compute(py, || {
+        let sol = raceway::models::shaft_file::from_toml(&src.text)?.solve()?;
+        Ok(serde_json::to_string(&sol).expect("the solution serialises"))
     })
 }
 
@@ -944,6 +1003,7 @@ fn _raceway(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(variable_table, m)?)?;
     m.add_function(wrap_pyfunction!(run, m)?)?;
     m.add_function(wrap_pyfunction!(quasi_static, m)?)?;
+    m.add_function(wrap_pyfunction!(shaft_json, m)?)?;
     m.add_function(wrap_pyfunction!(bearings_json, m)?)?;
     m.add_function(wrap_pyfunction!(bearing_json, m)?)?;
     m.add_function(wrap_pyfunction!(sweep_csv, m)?)?;

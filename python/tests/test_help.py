@@ -25,6 +25,8 @@ DOCUMENTED = [
     (raceway.Error, ["Attributes", "Examples"]),
     (raceway.Sweep, ["Parameters", "Raises", "Attributes", "Methods", "Examples"]),
     (raceway.QuasiStaticResult, ["Attributes"]),
+    (raceway.RollerQuasiStaticResult, ["Attributes"]),
+    (raceway.shaft, ["Parameters", "Returns", "Raises", "Examples"]),
 ]
 
 

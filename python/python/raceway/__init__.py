@@ -5,9 +5,9 @@ PyO3. SI units everywhere (m, N, Pa, s, rad, rad/s) except where a name says oth
 (``speed_rpm``). Every call that computes releases the GIL, so threads run in parallel;
 every failure raises :class:`raceway.Error` carrying the library's message.
 
-Functions: :func:`run`, :func:`quasi_static`, :func:`sweep`, :func:`bearings`,
-:func:`bearing`, :func:`variables`; classes: :class:`Component`, :class:`State`,
-:class:`Sweep`, :class:`Error`; :mod:`raceway.dask` for Dask clusters. ``help()`` of each
+Functions: :func:`run`, :func:`quasi_static`, :func:`shaft`, :func:`sweep`,
+:func:`bearings`, :func:`bearing`, :func:`variables`; classes: :class:`Component`,
+:class:`State`, :class:`Sweep`, :class:`Error`; :mod:`raceway.dask` for Dask clusters. ``help()`` of each
 shows its parameters, returns, errors and an example.
 """
 
@@ -33,12 +33,14 @@ __all__ = [
     "Component",
     "Error",
     "QuasiStaticResult",
+    "RollerQuasiStaticResult",
     "State",
     "Sweep",
     "bearing",
     "bearings",
     "quasi_static",
     "run",
+    "shaft",
     "sweep",
     "variables",
 ]
@@ -135,6 +137,103 @@ class QuasiStaticResult:
     data: dict
 
 
+@dataclass
+class RollerQuasiStaticResult:
+    """The quasi-static equilibrium of a roller bearing (:func:`quasi_static` with a
+    cylindrical or tapered roller designation such as ``"NU206"`` or ``"30206"``).
+
+    Attributes
+    ----------
+    rollers : pandas.DataFrame
+        One row per roller: azimuth ``psi [rad]``, inner (cone) and outer (cup) contact
+        loads ``q_i [N]``, ``q_o [N]``, their peak pressures ``p_i [Pa]``, ``p_o [Pa]``,
+        the flange load ``flange [N]`` (tapered: the cone back flange; zero otherwise) and
+        the edge stress ``edge_p [Pa]`` (the larger inner pressure of the two end laminae).
+    lamina_load : numpy.ndarray
+        Outer-contact load of each lamina, N, one row per roller (small end first).
+    lamina_pressure : numpy.ndarray
+        Inner-contact peak pressure of each lamina, Pa, one row per roller.
+    K : numpy.ndarray
+        Stiffness ``K = -dF/dq``, 5×5, order ``(x, y, z, rx, ry)``; N/m, N/rad, N m/m, N m/rad.
+    displacement : numpy.ndarray
+        Shaft displacement ``(x, y, z, rx, ry)``, m and rad.
+    forces : numpy.ndarray
+        Forces and moments of the rollers on the shaft ``(Fx, Fy, Fz, Mx, My)`` (= -load).
+    data : dict
+        Everything, as ``raceway quasi-static --bearing NAME --json`` prints it:
+        ``solution`` (``q``, ``rollers_force``, ``k``, ``iterations``, ``rollers``), the ISO
+        281/76 ratings ``cr``, ``c0r``, ``p``, ``p0``, ``l10_mrev``, and ``max_pressure``,
+        ``max_edge_pressure`` (Pa).
+    """
+
+    rollers: pd.DataFrame
+    lamina_load: np.ndarray
+    lamina_pressure: np.ndarray
+    K: np.ndarray
+    displacement: np.ndarray
+    forces: np.ndarray
+    data: dict
+
+
+def _roller_result(data: dict) -> RollerQuasiStaticResult:
+    sol = data["solution"]
+    rows = sol["rollers"]
+    col = lambda f: np.array([f(r) for r in rows], dtype=float)  # noqa: E731
+    rollers = pd.DataFrame(
+        {
+            "psi [rad]": col(lambda r: r["psi"]),
+            "q_i [N]": col(lambda r: r["load"][0]),
+            "q_o [N]": col(lambda r: r["load"][1]),
+            "p_i [Pa]": col(lambda r: r["pressure"][0]),
+            "p_o [Pa]": col(lambda r: r["pressure"][1]),
+            "flange [N]": col(lambda r: r["flange_load"]),
+            "edge_p [Pa]": col(lambda r: r["edge_pressure"]),
+        }
+    )
+    rollers.index.name = "roller"
+    return RollerQuasiStaticResult(
+        rollers=rollers,
+        lamina_load=np.array([r["lamina_load"] for r in rows], dtype=float),
+        lamina_pressure=np.array([r["lamina_pressure"] for r in rows], dtype=float),
+        K=np.array(sol["k"], dtype=float).reshape(5, 5),
+        displacement=np.array(sol["q"], dtype=float),
+        forces=np.array(sol["rollers_force"], dtype=float),
+        data=data,
+    )
+
+
+def _error(message: str, kind: str, field: Optional[str]) -> Error:
+    """A :class:`raceway.Error` raised on the Python side, with the library's attributes."""
+    e = Error(message)
+    e.message, e.kind, e.field = message, kind, field
+    return e
+
+
+def _duty_text(duty: Any) -> Optional[str]:
+    """The load spectrum's text: a file's (path), the text itself (a ``str`` with a line
+    break), or the rows of a sequence of ``(fr_n, fa_n, speed_rpm, time_share)``."""
+    if duty is None:
+        return None
+    if isinstance(duty, os.PathLike) or (isinstance(duty, str) and "\n" not in duty):
+        path = os.fspath(duty)
+        try:
+            with open(path, encoding="utf-8") as f:
+                return f.read()
+        except OSError as e:
+            raise _error(f"cannot read duty `{path}`: {e}", "io", "duty") from None
+    if isinstance(duty, str):
+        return duty
+    try:
+        return "\n".join(", ".join(repr(float(v)) for v in row) for row in duty) + "\n"
+    except (TypeError, ValueError) as e:
+        raise _error(
+            f"duty: expected a path, the spectrum's text or rows of 4 numbers "
+            f"(fr_n, fa_n, speed_rpm, time_share): {e}",
+            "invalid",
+            "duty",
+        ) from None
+
+
 def quasi_static(
     bearing: Optional[str] = None,
     speed_rpm: float = 0.0,
@@ -157,10 +256,15 @@ def quasi_static(
     outer_ring_temp_c: Optional[float] = None,
     hold: Optional[dict[str, float]] = None,
     ambient_temp_c: Optional[float] = None,
-) -> QuasiStaticResult:
+    duty: Any = None,
+) -> Union[QuasiStaticResult, RollerQuasiStaticResult]:
     """The Jones–Harris quasi-static equilibrium under a load on the inner ring.
 
-    The outer ring is fixed; solved as ``raceway quasi-static`` solves it.
+    The outer ring is fixed; solved as ``raceway quasi-static`` solves it. A cylindrical or
+    tapered roller designation (``"NU206"``, ``"30206"``) is solved by the roller
+    equilibrium with its laminae and gives a :class:`RollerQuasiStaticResult`, the content
+    of ``raceway quasi-static --bearing NU206 --json``; the options after ``my`` are for
+    ball bearings and refused (by name) for a roller bearing.
 
     Parameters
     ----------
@@ -202,13 +306,21 @@ def quasi_static(
         ``{"rx_mrad": 0, "ry_mrad": 0}`` (keys ``x_um``, ``y_um``, ``z_um``, ``rx_mrad``,
         ``ry_mrad``); the reaction on each is ``result.data["solution"]["reaction"]`` (SI)
         and ``result.data["solution"]["held"]`` says which were held.
+    duty : str, os.PathLike or sequence, optional
+        A load spectrum, as ``raceway quasi-static --duty FILE``: the path of a file (one
+        row per line ``fr_n, fa_n, speed_rpm, time_share``; ``#`` comments; a first line of
+        names is skipped), that text itself (a ``str`` with a line break), or a sequence of
+        ``(fr_n, fa_n, speed_rpm, time_share)`` rows. The ISO 281 life under the duty cycle
+        is ``result.data["calculator"]["duty"]`` (with ``oil`` and ``contamination``, each
+        row's a_ISO).
 
     Returns
     -------
-    QuasiStaticResult
+    QuasiStaticResult or RollerQuasiStaticResult
         Per-ball table, 5×5 stiffness, displacement, forces and the ratings; the design
         check (oil viscosity and kappa, Palmgren friction, subsurface stresses, operating
-        clearance) is ``result.data["calculator"]``.
+        clearance) is ``result.data["calculator"]``. For a roller bearing: per-roller
+        table, lamina loads and pressures, 5×5 stiffness and the ISO 281/76 ratings.
 
     Raises
     ------
@@ -221,6 +333,9 @@ def quasi_static(
     >>> qs = raceway.quasi_static("7008ce", speed_rpm=20000, fy=100, fz=300)
     >>> qs.K.shape
     (5, 5)
+    >>> nu = raceway.quasi_static("NU206", fy=-8000)
+    >>> nu.lamina_load.shape  # 14 rollers, 30 laminae each
+    (14, 30)
     """
     text, names, columns = _raceway.quasi_static(
         None if bearing is None else os.fspath(bearing),
@@ -239,8 +354,11 @@ def quasi_static(
         outer_ring_temp_c,
         None if hold is None else {str(k): float(v) for k, v in hold.items()},
         ambient_temp_c,
+        _duty_text(duty),
     )
     data = json.loads(text)
+    if data.get("element") == "roller":
+        return _roller_result(data)
     sol = data["solution"]
     balls = pd.DataFrame(dict(zip(names, (np.asarray(c) for c in columns))))
     balls.index.name = "ball"
@@ -251,6 +369,51 @@ def quasi_static(
         forces=np.array(sol["forces"], dtype=float),
         data=data,
     )
+
+
+def shaft(shaft: Any) -> dict[str, Any]:
+    """A rigid shaft on bearing locations, solved as ``raceway shaft FILE --json`` solves it.
+
+    Loads at axial positions, bearing locations (single bearings or sets: ball, tapered or
+    flanged cylindrical rows) along the shaft; the 5-DOF equilibrium of the shaft, each
+    location's reaction and each row's loads, stiffness and life (docs/sets.md for the
+    file format).
+
+    Parameters
+    ----------
+    shaft : str or os.PathLike
+        The path of a shaft file (TOML; ``examples/shafts/spindle.toml``) or its text.
+
+    Returns
+    -------
+    dict
+        What ``raceway shaft FILE --json`` prints (SI): ``omega``, ``load`` at the origin,
+        the shaft displacement ``q``, the system ``stiffness`` (5×5), ``locations`` (each
+        with its set's ``force``, ``rows`` and ``life_mrev``), the system ``life_mrev``
+        and ``warnings``.
+
+    Raises
+    ------
+    raceway.Error
+        For an unreadable or bad file (the field at fault in ``field``) or no equilibrium.
+
+    Examples
+    --------
+    >>> import raceway
+    >>> s = raceway.shaft("examples/shafts/spindle.toml")
+    >>> [loc["name"] for loc in s["locations"]]
+    ['front DB pair', 'rear']
+    """
+    if isinstance(shaft, os.PathLike):
+        shaft = os.fspath(shaft)
+    if not isinstance(shaft, str):
+        raise _error(
+            f"shaft: expected the path of a shaft file or its TOML text, found "
+            f"{type(shaft).__name__}",
+            "invalid",
+            "shaft",
+        )
+    return json.loads(_raceway.shaft_json(shaft))
 
 
 def bearings() -> pd.DataFrame:

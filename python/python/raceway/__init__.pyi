@@ -168,6 +168,35 @@ class QuasiStaticResult:
     (ISO 281/76 C, C0, P, L10, a_ISO, S0, peak pressure; ``None`` outside the standards'
     range, then ``rating_error``), ``warnings``."""
 
+class RollerQuasiStaticResult:
+    """The quasi-static equilibrium of a roller bearing (:func:`quasi_static` with a
+    cylindrical or tapered roller designation such as ``"NU206"`` or ``"30206"``)."""
+
+    rollers: pd.DataFrame
+    """One row per roller: azimuth ``psi [rad]``, inner (cone) and outer (cup) contact loads
+    ``q_i [N]``, ``q_o [N]``, peak pressures ``p_i [Pa]``, ``p_o [Pa]``, the flange load
+    ``flange [N]`` (tapered: the cone back flange; zero otherwise) and the edge stress
+    ``edge_p [Pa]`` (the larger inner pressure of the two end laminae)."""
+    lamina_load: npt.NDArray[np.float64]
+    """Outer-contact load of each lamina, N, rollers × laminae (small end first)."""
+    lamina_pressure: npt.NDArray[np.float64]
+    """Inner-contact peak pressure of each lamina, Pa, rollers × laminae."""
+    K: npt.NDArray[np.float64]
+    """Stiffness ``K = -dF/dq``, 5×5, order ``(x, y, z, rx, ry)``; N/m, N/rad, N m/m, N m/rad."""
+    displacement: npt.NDArray[np.float64]
+    """Shaft displacement ``(x, y, z, rx, ry)``, m and rad."""
+    forces: npt.NDArray[np.float64]
+    """Forces and moments of the rollers on the shaft ``(Fx, Fy, Fz, Mx, My)`` (= −load)."""
+    data: dict[str, Any]
+    """Everything, as ``raceway quasi-static --bearing NAME --json`` prints it: ``solution``
+    (``q``, ``rollers_force``, ``k``, ``iterations``, ``rollers``), the ISO 281/76 ratings
+    ``cr``, ``c0r``, ``p``, ``p0``, ``l10_mrev`` and ``max_pressure``, ``max_edge_pressure``
+    (Pa)."""
+
+DutyLike = Union[str, "os.PathLike[str]", Sequence[Sequence[float]]]
+"""A load spectrum: the path of a file (one row per line ``fr_n, fa_n, speed_rpm,
+time_share``), that text (a ``str`` with a line break), or a sequence of such rows."""
+
 def quasi_static(
     bearing: Optional[str] = None,
     speed_rpm: float = 0.0,
@@ -190,7 +219,8 @@ def quasi_static(
     outer_ring_temp_c: Optional[float] = None,
     hold: Optional[dict[str, float]] = None,
     ambient_temp_c: Optional[float] = None,
-) -> QuasiStaticResult:
+    duty: Optional[DutyLike] = None,
+) -> Union[QuasiStaticResult, RollerQuasiStaticResult]:
     """The Jones–Harris quasi-static equilibrium under an external load on the inner ring
     (the outer ring fixed), as ``raceway quasi-static`` solves it.
 
@@ -210,7 +240,17 @@ def quasi_static(
     ``hold``: ring coordinates held at a value while the others are solved
     (``{"rx_mrad": 0, "ry_mrad": 0}``; keys ``x_um``, ``y_um``, ``z_um``, ``rx_mrad``,
     ``ry_mrad``), the reaction on each in ``result.data["solution"]["reaction"]``.
+    ``duty``: a load spectrum (``raceway quasi-static --duty FILE``), its ISO 281 life in
+    ``result.data["calculator"]["duty"]``.
+    A roller designation (``"NU206"``, ``"30206"``) gives a :class:`RollerQuasiStaticResult`
+    (``raceway quasi-static --bearing NU206 --json``); the ball-only options are refused.
     """
+
+def shaft(shaft: Union[str, "os.PathLike[str]"]) -> dict[str, Any]:
+    """A rigid shaft on bearing locations, solved as ``raceway shaft FILE --json`` solves
+    it: ``shaft`` is the path of a shaft file (TOML) or its text; the result is the JSON as
+    a dict (SI): ``omega``, ``load``, ``q``, ``stiffness``, ``locations``, ``life_mrev``,
+    ``warnings``."""
 
 def bearings() -> pd.DataFrame:
     """The bearing presets, one row each, as ``raceway bearings --json`` lists them (mm, µm,
