@@ -1,4 +1,4 @@
-"""raceway: rolling-element (ball) bearing simulation from Python.
+"""raceway: rolling-element bearing simulation from Python.
 
 The Rust library behind the `raceway` command line, the C ABI and the FMUs, bound with PyO3.
 SI units everywhere (m, N, Pa, s, rad, rad/s) except where a name says otherwise
