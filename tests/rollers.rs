@@ -267,4 +267,19 @@ fn the_quasi_static_command_solves_a_roller_bearing() {
     assert!(!out.status.success());
     let e = String::from_utf8_lossy(&out.stderr);
     assert!(e.contains("--fz"), "{e}");
+    // The ball bearings' design-check options are refused by name, not ignored.
+    for (flag, value) in [("--kappa", "2"), ("--oil", "VG68"), ("--hold", "rx")] {
+        let out = run(&[
+            "quasi-static",
+            "--bearing",
+            "NU206",
+            "--fy",
+            "-8000",
+            flag,
+            value,
+        ]);
+        assert!(!out.status.success());
+        let e = String::from_utf8_lossy(&out.stderr);
+        assert!(e.contains(&format!("`{flag}`")), "{e}");
+    }
 }

@@ -274,6 +274,34 @@ fn calc_inputs(a: &QsArgs, speed_rpm: f64) -> Result<raceway::calculator::check:
 
 fn quasi_static(a: QsArgs) -> Result<String> {
     if let Some(b) = a.bearing.as_deref().and_then(rollers::roller_bearing) {
+        // The ball bearings' options have no meaning here: refused by name, not ignored.
+        let given = [
+            ("--race-control", a.race_control.is_some()),
+            ("--kappa", a.kappa.is_some()),
+            ("--contamination", a.contamination.is_some()),
+            ("--oil", a.oil.is_some()),
+            ("--oil-vi", a.oil_vi.is_some()),
+            ("--oil-temp-c", a.oil_temp_c.is_some()),
+            ("--f0", a.f0.is_some()),
+            ("--shaft-interference-um", a.shaft_interference_um.is_some()),
+            (
+                "--housing-interference-um",
+                a.housing_interference_um.is_some(),
+            ),
+            ("--inner-ring-temp-c", a.inner_ring_temp_c.is_some()),
+            ("--outer-ring-temp-c", a.outer_ring_temp_c.is_some()),
+            ("--ambient-temp-c", a.ambient_temp_c.is_some()),
+            ("--duty", a.duty.is_some()),
+            ("--hold", a.hold.is_some()),
+        ];
+        if let Some((flag, _)) = given.iter().find(|(_, g)| *g) {
+            return Err(raceway::Error::invalid(
+                *flag,
+                "given",
+                "left out for a roller bearing (its quasi-static report has the loads, laminae, \
+                 stiffness and ISO 281/76 ratings only)",
+            ));
+        }
         let l = [a.fx, a.fy, a.fz, a.mx, a.my].map(|v| v.unwrap_or(0.0));
         let n = &reports::CLI_NAMES;
         let r = rollers::report(&b?, a.speed_rpm.unwrap_or(0.0), l, (n.load, n.speed_rpm))?;
