@@ -461,5 +461,17 @@ mod tests {
         assert!((a[2] + b[2] + 2000.0).abs() < 1e-6 * 2000.0, "{a:?} {b:?}");
         assert!(b[2] > 100.0 && -a[2] > 2000.0 + 100.0, "{a:?} {b:?}");
         assert!((a[1] + b[1] - 6000.0).abs() < 1e-6 * 6000.0, "{a:?} {b:?}");
+        // Each row's peak pressure against its static safety: C0r is the load of 4 000 MPa
+        // and a line contact's pressure goes as the square root of its load, so the peak
+        // lies near 4 000 MPa / sqrt(S0) (within the load zone's shape, a factor 2 here).
+        for l in &s.locations {
+            let r = &l.set.rows[0];
+            let expect = 4.0e9 / r.s0.unwrap().sqrt();
+            assert!(
+                (0.5 * expect..2.0 * expect).contains(&r.peak_pressure),
+                "{} vs {expect}",
+                r.peak_pressure
+            );
+        }
     }
 }

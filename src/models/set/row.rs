@@ -61,6 +61,8 @@ pub(crate) struct RowEval {
     pub balls: Vec<BallResult>,
     /// Per-element inner/outer loads (any row, when asked), N.
     pub loads: Vec<[f64; 2]>,
+    /// Largest contact pressure over the elements (rows other than ball rows, when asked), Pa.
+    pub peak_pressure: f64,
 }
 
 impl RowModel {
@@ -143,6 +145,7 @@ impl RowModel {
                 let n = law.state_len();
                 let mut trial = mem.clone();
                 let mut loads = vec![[0.0; 2]; z];
+                let mut peak = 0.0f64;
                 let want = Want {
                     stiffness: true,
                     report,
@@ -155,12 +158,14 @@ impl RowModel {
                     |j, at, u| {
                         let r = law.react(at, u, omega, &mut trial[n * j..n * (j + 1)], want)?;
                         loads[j] = r.load;
+                        peak = peak.max(r.pressure[0]).max(r.pressure[1]);
                         Ok(r)
                     },
                 )?;
                 *mem = trial;
                 if report {
                     e.loads = loads;
+                    e.peak_pressure = peak;
                 }
             }
         }

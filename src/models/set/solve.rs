@@ -533,7 +533,7 @@ fn row_report(r: &RowModel, e: &RowEval, omega: f64, speed_rpm: f64) -> Result<R
             (
                 l.is_finite().then_some(l),
                 (p0 > 0.0).then(|| rr.c0r / p0),
-                0.0,
+                e.peak_pressure,
             )
         }
     };
