@@ -217,7 +217,7 @@ pub fn solve(
         let mut ll = vec![0.0; lam.len()];
         let (flange_load, rho_i) = match &law {
             Law::Cyl(cl) => {
-                cl.lamina_loads(u, &mut ll);
+                cl.lamina_loads(u, omega, &mut ll);
                 (0.0, 1.0)
             }
             Law::Tap(tl) => {
