@@ -549,6 +549,84 @@ impl Laminae {
         r
     }
 
+    /// The inner contacts of the laminae when the roller presses on the outer raceway with
+    /// `f` (N) on every lamina (its centrifugal force split evenly, docs/physics.md §R9): at
+    /// approach `delta` (m, both contacts) and tilt `tan_psi`, the force, moment and
+    /// derivatives of the inner lamina loads `q_i,k`, each lamina's outer load being
+    /// `q_i,k + f`. Each contact of a lamina takes half the approach of ISO/TS 16281's law at
+    /// equal loads, `q = c_s (2 delta_c)^(10/9)`; with `u`, `v` twice the inner and outer
+    /// approaches, `u + v = 2 delta_k` and `c_s (v^(10/9) - u^(10/9)) = f`. The inner contact
+    /// is open while `2 delta_k <= (f/c_s)^0.9`. Newton from `u = delta_k` (where the residual
+    /// is `-f/c_s`) on the residual, concave and decreasing on `(0, delta_k]`, converges
+    /// monotonically from above. `dq_i/d delta_k = 2 (10/9) c_s u^(1/9) v^(1/9)/(u^(1/9) +
+    /// v^(1/9))` (implicit differentiation); at `f = 0` every quantity is [`Laminae::eval`]'s.
+    /// `max_lamina` is the largest inner lamina load. `loads` (length `ns`) receives the inner
+    /// lamina loads.
+    pub(crate) fn eval_pressed(
+        &self,
+        delta: f64,
+        tan_psi: f64,
+        f: f64,
+        mut loads: Option<&mut [f64]>,
+    ) -> RollerLoad {
+        const P: f64 = 10.0 / 9.0;
+        let sec2 = 1.0 + tan_psi * tan_psi;
+        let mut r = RollerLoad::default();
+        let cs = self.cs;
+        let phi = f.max(0.0) / cs;
+        // 2 delta_k at which the inner contact closes.
+        let v0 = phi.powf(0.9);
+        if let Some(l) = loads.as_deref_mut() {
+            l.fill(0.0);
+        }
+        if 2.0 * (delta + self.reach.0 * tan_psi.abs() - self.reach.1) <= v0 {
+            return r;
+        }
+        for (k, (&x, &d2)) in self.x.iter().zip(&self.drop2).enumerate() {
+            let dd = 2.0 * (delta - x * tan_psi - d2);
+            if dd <= v0 {
+                continue;
+            }
+            let mut u = 0.5 * dd;
+            for _ in 0..100 {
+                let v = dd - u;
+                let (ru, rv) = (ninth_root(u), ninth_root(v));
+                let g = v * rv - u * ru - phi;
+                let step = g / (P * (ru + rv));
+                // g <= 0 from above: u falls toward the root.
+                let next = (u + step).max(0.0);
+                let done = u - next <= 4.0 * f64::EPSILON * u;
+                u = next;
+                if done {
+                    break;
+                }
+            }
+            let (ru, rv) = (ninth_root(u), ninth_root(dd - u));
+            let q = cs * u * ru;
+            let dq = if ru + rv > 0.0 {
+                2.0 * P * cs * ru * rv / (ru + rv)
+            } else {
+                0.0
+            };
+            if let Some(l) = loads.as_deref_mut() {
+                l[k] = q;
+            }
+            if q > 0.0 {
+                r.loaded += 1;
+                if q > r.max_lamina {
+                    r.max_lamina = q;
+                }
+                r.force += q;
+                r.moment += q * x;
+                r.dforce_ddelta += dq;
+                r.dforce_dtilt -= dq * x * sec2;
+                r.dmoment_ddelta += dq * x;
+                r.dmoment_dtilt -= dq * x * x * sec2;
+            }
+        }
+        r
+    }
+
     /// [`Laminae::eval`] of an aligned roller (`tan psi = 0`): laminae `k` and `ns - 1 - k`
     /// at `x` and `-x` (exactly: `new` mirrors the centres) with equal profile drops (every
     /// [`Profile`] is even in `x`; checked pair by pair) carry the same load, so each such pair

@@ -24,12 +24,22 @@
 //! `F_a = -s Q_f`, moment `-s r_f Q_f`. Flat roller ends meet the flange on the chamfer's edge,
 //! which this law does not model: such an NJ carries no axial load, as an NU.
 //!
-//! What it leaves out: the roller's centrifugal force at speed (the laminae carry the same load
-//! at both contacts, the massless-roller assumption), the flange contact's moment on the roller,
+//! At speed (docs/physics.md §R9) the roller orbits with the kinematic cage speed
+//! `omega_c = omega (1 - gamma)/2` (outer ring fixed, `gamma = Dwe/Dpw`) and presses on the
+//! outer raceway with its centrifugal force `F_c = m (Dpw/2) omega_c²` ([Harris 2007] vol. 2,
+//! high-speed cylindrical roller bearings: `Q_o = Q_i + F_c`), split evenly over the laminae
+//! (the uniform split, the standard simplification: the outer raceway is not tilted and the
+//! roller's own tilt is not solved); each lamina then shares its approach between an inner
+//! contact `q_i,k` and an outer `q_i,k + F_c/ns` ([`Laminae`]'s `eval_pressed`). The force on
+//! the shaft is the inner contacts' `-Σ q_i,k`; the report gives `Q_o = Q_i + F_c`. At
+//! `omega == 0` the massless path runs unchanged, bit for bit.
+//!
+//! What it leaves out: the roller's own radial and tilt equilibrium as a rigid body (the
+//! laminae stay independent, as in ISO/TS 16281), the flange contact's moment on the roller,
 //! and tapered rollers (`contact::tapered_law`), which this law refuses.
 
 use crate::contact::hertz::{hertz_load_and_stiffness, series_constant, PointContact};
-use crate::contact::lamina::{line_hertz, tan0, Laminae};
+use crate::contact::lamina::{line_hertz, tan0, Laminae, RollerLoad};
 use crate::error::{Error, Result};
 use crate::geometry::roller::{FlangeRing, RollerBearing};
 use crate::seam::element::{ElementAt, ElementDisplacement, ElementLaw, ElementReaction, Want};
@@ -43,6 +53,8 @@ pub struct CylindricalRollerLaw {
     r_outer: f64,
     e_inner: f64,
     e_outer: f64,
+    /// `F_c/omega²` (kg m): the roller's centrifugal force per squared shaft speed.
+    fc_per_omega2: f64,
     /// The flange contact: series Hertz constant (N/m^1.5), inner flange contact radius (m),
     /// both directions (NUP) or `+z` only (NJ).
     flange: Option<(f64, f64, bool)>,
@@ -66,15 +78,40 @@ impl CylindricalRollerLaw {
             e_inner: b.e_prime_inner(),
             e_outer: b.e_prime_outer(),
             flange: flange_contact(b)?,
+            fc_per_omega2: centrifugal_per_omega2(b),
         })
     }
 
-    /// Each lamina's load (N) into `loads` (length of the laminae) at `u`; returns the roller's
-    /// load.
-    pub fn lamina_loads(&self, u: ElementDisplacement, loads: &mut [f64]) -> f64 {
-        self.laminae
-            .evaluate_into(u.radial - self.half_pd, u.tilt, loads)
-            .force
+    /// The roller's centrifugal force (N) at shaft speed `omega` (rad/s), outer ring fixed:
+    /// `m (Dpw/2) (omega (1 - gamma)/2)²` (module docs).
+    pub fn centrifugal_force(&self, omega: f64) -> f64 {
+        self.fc_per_omega2 * omega * omega
+    }
+
+    /// The inner contacts' laminae at approach `approach` and `tan(tilt)` `t`, at speed.
+    fn laminae_at(
+        &self,
+        approach: f64,
+        t: f64,
+        omega: f64,
+        loads: Option<&mut [f64]>,
+    ) -> RollerLoad {
+        let f = self.centrifugal_force(omega) / self.laminae.len() as f64;
+        self.laminae.eval_pressed(approach, t, f, loads)
+    }
+
+    /// Each lamina's inner contact load (N) into `loads` (length of the laminae) at `u` and
+    /// shaft speed `omega` (rad/s); returns the roller's inner load (the outer one adds
+    /// [`CylindricalRollerLaw::centrifugal_force`], evenly over the laminae).
+    pub fn lamina_loads(&self, u: ElementDisplacement, omega: f64, loads: &mut [f64]) -> f64 {
+        let approach = u.radial - self.half_pd;
+        if omega == 0.0 {
+            self.laminae.evaluate_into(approach, u.tilt, loads).force
+        } else {
+            assert_eq!(loads.len(), self.laminae.len(), "one load per lamina");
+            self.laminae_at(approach, tan0(u.tilt), omega, Some(loads))
+                .force
+        }
     }
 
     /// The flange contact's series constant `K_f` (N/m^1.5): the axial load of an NJ/NUP roller
@@ -87,6 +124,13 @@ impl CylindricalRollerLaw {
     pub fn laminae(&self) -> &Laminae {
         &self.laminae
     }
+}
+
+/// `m (Dpw/2) ((1 - gamma)/2)²`, kg m: the roller's centrifugal force per squared shaft
+/// speed, outer ring fixed (module docs).
+fn centrifugal_per_omega2(b: &RollerBearing) -> f64 {
+    let ratio = crate::geometry::kinematics::cage_speed(b.gamma(), 1.0, 0.0);
+    b.roller_mass() * 0.5 * b.dpw * ratio * ratio
 }
 
 /// The NJ/NUP flange contact of module docs: `(K_f, r_f, both ways)`, `None` without one.
@@ -122,13 +166,23 @@ impl ElementLaw for CylindricalRollerLaw {
         &self,
         _at: ElementAt<'_>,
         u: ElementDisplacement,
-        _omega: f64,
+        omega: f64,
         _state: &mut [f64],
         want: Want,
     ) -> Result<ElementReaction> {
         let approach = u.radial - self.half_pd;
         let t = tan0(u.tilt);
-        let r = self.laminae.evaluate_tan(approach, t);
+        let r = if omega == 0.0 {
+            self.laminae.evaluate_tan(approach, t)
+        } else if omega.is_finite() {
+            self.laminae_at(approach, t, omega, None)
+        } else {
+            return Err(Error::invalid(
+                "omega",
+                omega,
+                "a finite shaft speed (rad/s)",
+            ));
+        };
         let sec2 = 1.0 + t * t;
         let mut out = ElementReaction {
             f: [0.0, -r.force, sec2 * r.moment],
@@ -162,10 +216,17 @@ impl ElementLaw for CylindricalRollerLaw {
         }
         if want.report {
             let w = self.laminae.width();
-            out.load = [r.force, r.force];
+            // At speed every outer lamina carries F_c/ns more than its inner one.
+            let fc = if omega == 0.0 {
+                0.0
+            } else {
+                self.centrifugal_force(omega)
+            };
+            let fk = fc / self.laminae.len() as f64;
+            out.load = [r.force, r.force + fc];
             out.pressure = [
                 line_hertz(r.max_lamina / w, self.r_inner, self.e_inner).1,
-                line_hertz(r.max_lamina / w, self.r_outer, self.e_outer).1,
+                line_hertz((r.max_lamina + fk) / w, self.r_outer, self.e_outer).1,
             ];
         }
         Ok(out)
@@ -284,6 +345,167 @@ mod tests {
         let b = lookup("30206").unwrap().build().unwrap();
         let e = CylindricalRollerLaw::new(&b).unwrap_err().to_string();
         assert!(e.contains("bearing.kind") && e.contains("tapered"), "{e}");
+    }
+
+    fn rpm(n: f64) -> f64 {
+        n * PI / 30.0
+    }
+
+    fn at0() -> ElementAt<'static> {
+        ElementAt {
+            index: 0,
+            psi: 0.0,
+            sc: (0.0, 1.0),
+            q: &[0.0; 5],
+        }
+    }
+
+    const REPORT: Want = Want {
+        stiffness: true,
+        report: true,
+    };
+
+    /// At `omega == 0` (either sign of zero) the law is today's massless one, bit for bit: the
+    /// reaction is the laminae's own evaluation; and the loaded solve at a zero outer force
+    /// agrees with it to rounding (the Newton split lands on half the approach).
+    #[test]
+    fn at_rest_the_massless_law_is_unchanged() {
+        let (l, _) = law("NU206");
+        for (radial, tilt) in [(40e-6, 0.0), (35e-6, 3e-4), (10e-6, -1e-3), (0.0, 0.0)] {
+            let u = ElementDisplacement {
+                axial: 0.0,
+                radial,
+                tilt,
+            };
+            let lam = l.laminae();
+            let e = lam.evaluate(radial - l.half_pd, tilt);
+            let sec2 = 1.0 + tilt.tan() * tilt.tan();
+            for omega in [0.0, -0.0] {
+                let r = l.react(at0(), u, omega, &mut [], REPORT).unwrap();
+                assert_eq!(r.f[1].to_bits(), (-e.force).to_bits());
+                assert_eq!(r.f[2].to_bits(), (sec2 * e.moment).to_bits());
+                assert_eq!(r.df[1][1].to_bits(), (-e.dforce_ddelta).to_bits());
+                assert_eq!(r.load[0].to_bits(), r.load[1].to_bits());
+            }
+            let p = lam.eval_pressed(radial - l.half_pd, tilt.tan(), 0.0, None);
+            for (a, b) in [
+                (p.force, e.force),
+                (p.moment, e.moment),
+                (p.dforce_ddelta, e.dforce_ddelta),
+                (p.dmoment_dtilt, e.dmoment_dtilt),
+            ] {
+                // (An aligned roller's moment is an exact zero in `evaluate`, rounding here.)
+                let scale = b.abs() + e.force * lam.lwe;
+                assert!((a - b).abs() <= 1e-13 * scale, "{a} vs {b}");
+            }
+        }
+    }
+
+    /// NU206 (catalogue: Dwe = 8.5 mm, Lw = 10.45 mm, Dpw = 46 mm, steel 7 850 kg/m³) at
+    /// 10 000 rpm, by hand: m = 7850 π/4 (8.5e-3)² 10.45e-3 = 4.6549 g; gamma = 8.5/46 =
+    /// 0.184783, omega_c = 1047.198 (1 - gamma)/2 = 426.847 rad/s; F_c = m (Dpw/2) omega_c²
+    /// = 4.6549e-3 × 0.023 × 426.847² = 19.507 N. The outer contact carries the inner one's
+    /// load plus F_c, lamina by lamina, and each lamina's two approaches add up to its own.
+    #[test]
+    fn at_speed_the_outer_contact_carries_the_centrifugal_force() {
+        let b = lookup("NU206").unwrap().build().unwrap();
+        let l = CylindricalRollerLaw::new(&b).unwrap();
+        let omega = rpm(10_000.0);
+        let fc = l.centrifugal_force(omega);
+        assert!((fc / 19.507 - 1.0).abs() < 5e-5, "{fc}");
+        let u = ElementDisplacement {
+            axial: 0.0,
+            radial: 30e-6,
+            tilt: 5e-4,
+        };
+        let r0 = l.react(at0(), u, 0.0, &mut [], REPORT).unwrap();
+        let r = l.react(at0(), u, omega, &mut [], REPORT).unwrap();
+        assert!((r.load[1] - r.load[0] - fc).abs() < 1e-12 * r.load[1]);
+        assert_eq!(r.load[0], -r.f[1]);
+        // Pushed outward, the roller unloads its inner contact and loads its outer one.
+        assert!(
+            r.load[0] < r0.load[0] && r.load[1] > r0.load[1],
+            "{r:?} {r0:?}"
+        );
+        assert!(r.pressure[0] < r0.pressure[0] && r.pressure[1] > r0.pressure[1]);
+        let lam = l.laminae();
+        let mut q = vec![0.0; lam.len()];
+        let qi = l.lamina_loads(u, omega, &mut q);
+        assert!((qi - r.load[0]).abs() < 1e-12 * qi);
+        let fk = fc / lam.len() as f64;
+        let half = |q: f64| 0.5 * (q / lam.cs).powf(0.9);
+        for (k, &qk) in q.iter().enumerate() {
+            let dk = u.radial - l.half_pd - lam.x[k] * u.tilt.tan() - lam.drop2[k];
+            if qk > 0.0 {
+                let sum = half(qk) + half(qk + fk);
+                assert!((sum - dk).abs() < 1e-12 * dk, "lamina {k}: {sum} vs {dk}");
+            } else {
+                // Open inner contact: the approach does not reach the outer one's at F_c/ns.
+                assert!(dk <= 2.0 * half(fk) * (1.0 + 1e-12), "lamina {k}");
+            }
+        }
+    }
+
+    /// At speed the ring stiffness still is `-dF/dq` (central differences) and symmetric, and
+    /// at 20 000 rpm every answer is finite, loaded or not.
+    #[test]
+    fn at_speed_the_stiffness_is_the_derivative_and_all_is_finite() {
+        let (l, psi) = law("NU206");
+        let omega = rpm(10_000.0);
+        let want = Want {
+            stiffness: true,
+            report: false,
+        };
+        let sum_w = |q: &[f64; 5], w: f64, k: Option<&mut [[f64; 5]; 5]>| {
+            assemble(q, &psi, 0.0, k, |_, at, u| l.react(at, u, w, &mut [], want)).unwrap()
+        };
+        let q = [40e-6, -10e-6, 0.0, 4e-4, -2e-4];
+        let mut k = [[0.0; 5]; 5];
+        let f = sum_w(&q, omega, Some(&mut k));
+        let f0 = sum_w(&q, 0.0, None);
+        assert!(
+            f[0] < 0.0 && f[0] > f0[0],
+            "less load reaches the shaft: {f:?} {f0:?}"
+        );
+        for col in [0, 1, 3, 4] {
+            let h = if col < 3 { 1e-10 } else { 1e-8 };
+            let (mut qp, mut qm) = (q, q);
+            qp[col] += h;
+            qm[col] -= h;
+            let (fp, fm) = (sum_w(&qp, omega, None), sum_w(&qm, omega, None));
+            for row in [0, 1, 3, 4] {
+                let fd = -(fp[row] - fm[row]) / (2.0 * h);
+                let scale = k[0][0].abs() * if row > 2 || col > 2 { 1e-4 } else { 1.0 };
+                assert!(
+                    (k[row][col] - fd).abs() < 1e-5 * scale,
+                    "K[{row}][{col}] {} vs {fd}",
+                    k[row][col]
+                );
+            }
+        }
+        for i in 0..5 {
+            for j in 0..5 {
+                let scale = (k[i][i].abs() * k[j][j].abs()).sqrt().max(1.0);
+                assert!((k[i][j] - k[j][i]).abs() < 1e-9 * scale, "K[{i}][{j}]");
+            }
+        }
+        let fast = rpm(20_000.0);
+        for q in [
+            [0.0; 5],
+            [1e-6, 0.0, 0.0, 0.0, 0.0],
+            [80e-6, 20e-6, 0.0, 2e-3, -1e-3],
+        ] {
+            let mut k = [[0.0; 5]; 5];
+            let f = sum_w(&q, fast, Some(&mut k));
+            assert!(f.iter().chain(k.iter().flatten()).all(|v| v.is_finite()));
+        }
+        let u = ElementDisplacement::default();
+        let r = l.react(at0(), u, fast, &mut [], REPORT).unwrap();
+        assert_eq!(r.load[0], 0.0);
+        assert!((r.load[1] - l.centrifugal_force(fast)).abs() < 1e-12 * r.load[1]);
+        assert!(r.pressure[1] > 0.0 && r.pressure[1].is_finite());
+        let e = l.react(at0(), u, f64::NAN, &mut [], REPORT).unwrap_err();
+        assert!(e.to_string().contains("omega"), "{e}");
     }
 
     fn with_ends(name: &str) -> RollerBearing {

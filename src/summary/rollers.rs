@@ -101,7 +101,7 @@ pub fn text(r: &RollerQsReport) -> String {
     let sol = &r.solution;
     let _ = writeln!(
         s,
-        "Roller quasi-static equilibrium (massless rollers, ISO/TS 16281 laminae): bearing {} ({} rollers), {:.3} rpm",
+        "Roller quasi-static equilibrium (ISO/TS 16281 laminae; cylindrical rollers with their centrifugal force, tapered ones massless): bearing {} ({} rollers), {:.3} rpm",
         r.bearing,
         sol.rollers.len(),
         r.speed_rpm

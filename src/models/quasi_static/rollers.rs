@@ -215,18 +215,23 @@ pub fn solve(
         u.axial += l.moment_arm() * u.tilt;
         let rr: ElementReaction = l.react(at, u, omega, &mut [], want)?;
         let mut ll = vec![0.0; lam.len()];
-        let (flange_load, rho_i) = match &law {
+        let (flange_load, inner) = match &law {
             Law::Cyl(cl) => {
-                cl.lamina_loads(u, &mut ll);
-                (0.0, 1.0)
+                // The inner laminae; at speed each outer one carries F_c/ns more.
+                cl.lamina_loads(u, omega, &mut ll);
+                let inner = ll.clone();
+                if omega != 0.0 {
+                    let fk = cl.centrifugal_force(omega) / ll.len() as f64;
+                    ll.iter_mut().for_each(|v| *v += fk);
+                }
+                (0.0, inner)
             }
             Law::Tap(tl) => {
                 let qo = tl.lamina_loads(u, &mut ll);
                 let (ri_, rf) = tl.load_ratios();
-                (rf * qo, ri_)
+                (rf * qo, ll.iter().map(|v| v * ri_).collect::<Vec<f64>>())
             }
         };
-        let inner: Vec<f64> = ll.iter().map(|v| v * rho_i).collect();
         let mut lp = vec![0.0; lam.len()];
         lam.pressures(&inner, ri, ei, &mut lp);
         let edge_pressure = lp[0].max(lp[lp.len() - 1]);
@@ -315,6 +320,31 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(e.contains("fz"), "{e}");
+    }
+
+    /// NU206 under 8 kN at 15 000 rpm: the inner contacts still balance the load, every
+    /// roller's outer contact carries its inner load plus `F_c` (lamina by lamina too), the
+    /// shaft sits further out than at rest (the centrifugal force takes part of each lamina's
+    /// approach), and the unloaded rollers press on the outer ring with `F_c` alone.
+    #[test]
+    fn nu206_at_speed_carries_the_centrifugal_force_on_the_outer_ring() {
+        let b = lookup("NU206").unwrap().build().unwrap();
+        let omega = 15_000.0 * std::f64::consts::PI / 30.0;
+        let fc = CylindricalRollerLaw::new(&b)
+            .unwrap()
+            .centrifugal_force(omega);
+        let load = [0.0, -8000.0, 0.0, 0.0, 0.0];
+        let rest = solve(&b, load, 0.0, NAMES).unwrap();
+        let fast = solve(&b, load, omega, NAMES).unwrap();
+        assert!((fast.rollers_force[1] - 8000.0).abs() < 1e-5);
+        assert!(fast.q[1] < rest.q[1], "{:?} vs {:?}", fast.q, rest.q);
+        for r in &fast.rollers {
+            assert!((r.load[1] - r.load[0] - fc).abs() < 1e-9 * r.load[1]);
+            let s: f64 = r.lamina_load.iter().sum();
+            assert!((s - r.load[1]).abs() <= 1e-9 * r.load[1]);
+        }
+        let idle = fast.rollers.iter().filter(|r| r.load[0] == 0.0).count();
+        assert!(idle > 0, "a load zone, not all rollers loaded");
     }
 
     /// 30206 under a combined load: the rollers balance it and the flanges carry
