@@ -9,14 +9,18 @@ pub mod tapered_law;
 pub mod traction;
 
 /// The contact law of a roller bearing's elements: tapered or cylindrical (the one place a
-/// roller kind picks its law).
+/// roller kind picks its law); `inertia`: the cylindrical roller's centrifugal force at speed
+/// (false: massless rollers, as the ring level's elements are; the tapered law is massless).
 pub fn roller_law(
     r: &crate::geometry::roller::RollerBearing,
+    inertia: bool,
 ) -> crate::error::Result<Box<dyn crate::seam::element::ElementLaw>> {
     Ok(if r.kind.is_tapered() {
         Box::new(tapered_law::TaperedRollerLaw::new(r)?)
-    } else {
+    } else if inertia {
         Box::new(roller_law::CylindricalRollerLaw::new(r)?)
+    } else {
+        Box::new(roller_law::CylindricalRollerLaw::new(r)?.massless())
     })
 }
 

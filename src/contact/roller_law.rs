@@ -82,6 +82,13 @@ impl CylindricalRollerLaw {
         })
     }
 
+    /// The same law with massless rollers (no centrifugal force at any speed): the ring
+    /// level's elements, massless as its balls are (docs/physics.md §5.1, §R9).
+    pub fn massless(mut self) -> Self {
+        self.fc_per_omega2 = 0.0;
+        self
+    }
+
     /// The roller's centrifugal force (N) at shaft speed `omega` (rad/s), outer ring fixed:
     /// `m (Dpw/2) (omega (1 - gamma)/2)²` (module docs).
     pub fn centrifugal_force(&self, omega: f64) -> f64 {
@@ -105,7 +112,7 @@ impl CylindricalRollerLaw {
     /// [`CylindricalRollerLaw::centrifugal_force`], evenly over the laminae).
     pub fn lamina_loads(&self, u: ElementDisplacement, omega: f64, loads: &mut [f64]) -> f64 {
         let approach = u.radial - self.half_pd;
-        if omega == 0.0 {
+        if omega == 0.0 || self.fc_per_omega2 == 0.0 {
             self.laminae.evaluate_into(approach, u.tilt, loads).force
         } else {
             assert_eq!(loads.len(), self.laminae.len(), "one load per lamina");
@@ -172,7 +179,7 @@ impl ElementLaw for CylindricalRollerLaw {
     ) -> Result<ElementReaction> {
         let approach = u.radial - self.half_pd;
         let t = tan0(u.tilt);
-        let r = if omega == 0.0 {
+        let r = if omega == 0.0 || self.fc_per_omega2 == 0.0 {
             self.laminae.evaluate_tan(approach, t)
         } else if omega.is_finite() {
             self.laminae_at(approach, t, omega, None)
@@ -364,6 +371,28 @@ mod tests {
         stiffness: true,
         report: true,
     };
+
+    /// The ring level's massless rollers: at 20 000 rpm the reaction is the one at rest, bit
+    /// for bit (no centrifugal force), while the law with inertia differs by its `F_c`.
+    #[test]
+    fn massless_rollers_ignore_the_speed() {
+        let (l, _) = law("NU206");
+        let m = l.clone().massless();
+        let u = ElementDisplacement {
+            axial: 0.0,
+            radial: 40e-6,
+            tilt: 2e-4,
+        };
+        let omega = 20_000.0 * std::f64::consts::PI / 30.0;
+        let rest = l.react(at0(), u, 0.0, &mut [], REPORT).unwrap();
+        let fast = m.react(at0(), u, omega, &mut [], REPORT).unwrap();
+        assert_eq!(fast.f.map(f64::to_bits), rest.f.map(f64::to_bits));
+        assert_eq!(fast.load.map(f64::to_bits), rest.load.map(f64::to_bits));
+        let inertia = l.react(at0(), u, omega, &mut [], REPORT).unwrap();
+        let fc = l.centrifugal_force(omega);
+        assert!(fc > 70.0, "{fc}");
+        assert!((inertia.load[1] - inertia.load[0] - fc).abs() < 1e-9 * fc);
+    }
 
     /// At `omega == 0` (either sign of zero) the law is today's massless one, bit for bit: the
     /// reaction is the laminae's own evaluation; and the loaded solve at a zero outer force

@@ -26,10 +26,12 @@ use crate::seam::{LevelModel, LevelOutputs, Motion, Point};
 pub const ELEMENTS: &[ElementKind] = &[ElementKind::Ball, ElementKind::Roller];
 
 /// The contact law of the bearing's element at this level.
-pub fn element_law(a: &LevelArgs, opts: Options) -> Result<Box<dyn ElementLaw>> {
+/// The element's contact law; `inertia`: a cylindrical roller's centrifugal force at speed
+/// (the quasi-static level), or massless rollers (the ring level; balls: their own model).
+pub fn element_law(a: &LevelArgs, opts: Options, inertia: bool) -> Result<Box<dyn ElementLaw>> {
     match &a.bearing.element {
         Element::Ball(_) => Ok(Box::new(QuasiStatic::new(a.bearing, opts)?)),
-        Element::Roller(r) => crate::contact::roller_law(r),
+        Element::Roller(r) => crate::contact::roller_law(r, inertia),
     }
 }
 
@@ -58,7 +60,7 @@ impl QuasiStaticLevel {
             ..Options::default()
         };
         Ok(QuasiStaticLevel {
-            law: element_law(a, opts)?,
+            law: element_law(a, opts, true)?,
             cage_ratio: cage_speed(b, 1.0),
             psi: vec![0.0; b.z],
             mem: Vec::new(),
@@ -103,16 +105,16 @@ impl QuasiStaticLevel {
 
 /// The registry's constructor (the level registry, `LEVELS` in `component/levels.rs`).
 /// A bearing whose element is not a ball runs as the 5-DOF ring on massless elements
-/// ([`crate::models::ring::elements::LawRingLevel`]): without the element's own inertia in
-/// its law (a roller's centrifugal force is not modelled yet) the quasi-static and ring
-/// models of it are the same, contact damping included.
+/// ([`crate::models::ring::elements::LawRingLevel`]) with the element's law at speed (a
+/// cylindrical roller's centrifugal force, docs/physics.md §R9); the ring level runs the same
+/// elements massless.
 pub fn build(a: &LevelArgs) -> Result<Box<dyn LevelModel>> {
     if a.bearing.element() != ElementKind::Ball {
         let opts = Options {
             race_control: a.race_control,
             ..Options::default()
         };
-        let law = element_law(a, opts)?;
+        let law = element_law(a, opts, true)?;
         return Ok(Box::new(LawRingLevel::new(a, law, RingDof::Five)?));
     }
     Ok(Box::new(QuasiStaticLevel::new(a)?))

@@ -540,12 +540,13 @@ pub fn build(a: &LevelArgs) -> Result<Box<dyn LevelModel>> {
         RingDof::Two
     };
     if a.bearing.element() != ElementKind::Ball {
-        // Any other element through its contact law (the quasi-static level's laws).
+        // Any other element through its contact law (the quasi-static level's laws), massless
+        // as the ring level's balls are.
         let opts = crate::models::quasi_static::Options {
             race_control: a.race_control,
             ..Default::default()
         };
-        let law = crate::models::quasi_static::level::element_law(a, opts)?;
+        let law = crate::models::quasi_static::level::element_law(a, opts, false)?;
         return Ok(Box::new(super::elements::LawRingLevel::new(a, law, dof)?));
     }
     Ok(Box::new(RingLevel::with_effects(

@@ -40,7 +40,7 @@ fn build_law(b: &Bearing) -> Result<Law> {
             vec![BallState::default(); b.z],
         ),
         Element::Roller(r) => {
-            let l: Box<dyn ElementLaw> = crate::contact::roller_law(r)?;
+            let l: Box<dyn ElementLaw> = crate::contact::roller_law(r, true)?;
             let n = l.state_len() * b.z;
             Law::Other(l, vec![0.0; n])
         }
