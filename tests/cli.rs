@@ -1044,3 +1044,71 @@ fn run_memory_does_not_grow_with_the_duration() {
     assert!(per_row < 120.0, "{per_row:.1} bytes per row more");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// `--spectrum-unit` and `--dpi`: a motion-driven scene (the default: its spectrum is of the
+/// force) refuses a spectrum unit naming the flag, a dpi out of range is refused with the
+/// range, and neither writes anything; a load-driven scene draws its spectrum as
+/// velocity or acceleration with the unit on the axis, its PNGs at the dpi asked for.
+#[test]
+fn run_draws_the_spectrum_in_the_unit_and_the_pngs_at_the_dpi_asked_for() {
+    let dir = std::env::temp_dir().join(format!("raceway-look-{}", std::process::id()));
+    let o = dir.to_str().unwrap();
+    refused(
+        &["run", "-q", "--out", o, "--spectrum-unit", "velocity"],
+        &["--spectrum-unit", "load-driven", "force.y (N)"],
+    );
+    for bad in ["0", "49", "401"] {
+        refused(
+            &["run", "-q", "--out", o, "--dpi", bad],
+            &["--dpi", "50 to 400"],
+        );
+    }
+    assert!(!dir.exists(), "a refused run wrote {}", dir.display());
+    let scene = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/examples/scenes/6205-outer-spall.toml"
+    );
+    for (unit, dpi, label, px) in [
+        (
+            "displacement",
+            "100",
+            "amplitude of shaft.y (m)",
+            (1000, 625),
+        ),
+        ("velocity", "50", "velocity amplitude (m/s)", (500, 313)),
+        (
+            "acceleration",
+            "200",
+            "acceleration amplitude (m/s²)",
+            (2000, 1250),
+        ),
+    ] {
+        let args = [
+            "run",
+            scene,
+            "-q",
+            "--duration",
+            "0.05",
+            "--out",
+            o,
+            "--spectrum-unit",
+            unit,
+            "--dpi",
+            dpi,
+        ];
+        let out = run(&args);
+        assert!(
+            out.status.success(),
+            "{args:?}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        assert_eq!(png_size(&dir.join("spectrum.png")), px, "{unit}");
+        assert_eq!(png_size(&dir.join("orbit.png")), px, "{unit}");
+        let svg = std::fs::read_to_string(dir.join("spectrum.svg")).unwrap();
+        assert!(svg.contains(label), "{unit}: no `{label}` on the axis");
+        // The envelope spectrum stays in the signal's unit.
+        let env = std::fs::read_to_string(dir.join("envelope.svg")).unwrap();
+        assert!(env.contains("amplitude of shaft.y (m)"), "{unit}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
