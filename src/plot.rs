@@ -400,7 +400,17 @@ fn draw_stack<DB: DrawingBackend>(
     panels: &[(Axes<'_>, Vec<Series<'_>>)],
 ) -> Result<()> {
     root.fill(&WHITE).map_err(io)?;
-    let body = root.titled(title, ("sans-serif", 20.0 * s)).map_err(io)?;
+    // 20 px, smaller when a long title (scene, bearing, operating point, window) would
+    // not fit the width.
+    let w = root.dim_in_pixel().0 as f64;
+    let tw = root
+        .estimate_text_size(title, &("sans-serif", 20.0 * s).into())
+        .map(|(w, _)| w as f64)
+        .unwrap_or(0.0);
+    let size = 20.0 * s * ((w - 16.0 * s) / tw.max(1.0)).min(1.0);
+    let body = root
+        .titled(title, ("sans-serif", size.max(11.0 * s)))
+        .map_err(io)?;
     for (area, (axes, series)) in body
         .split_evenly((panels.len().max(1), 1))
         .iter()

@@ -1109,6 +1109,32 @@ fn run_draws_the_spectrum_in_the_unit_and_the_pngs_at_the_dpi_asked_for() {
         // The envelope spectrum stays in the signal's unit.
         let env = std::fs::read_to_string(dir.join("envelope.svg")).unwrap();
         assert!(env.contains("amplitude of shaft.y (m)"), "{unit}");
+        // 0.05 s is less than 4 windows of 5 ball passes: no zoom.
+        assert!(!dir.join("force-zoom.png").exists());
     }
+    // The scene's own 0.3 s: beside force.png, the last 5 ball passes (5/BPFO s), named
+    // in the title, with the force's two panels over that window only.
+    let out = run(&["run", scene, "-q", "--out", o]);
+    assert!(out.status.success());
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
+    let bpfo = summary["frequencies"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|f| f["label"] == "1xBPFO")
+        .unwrap()["expected_hz"]
+        .as_f64()
+        .unwrap();
+    let w = 5.0 / bpfo;
+    let svg = std::fs::read_to_string(dir.join("force-zoom.svg")).unwrap();
+    let name = format!(
+        "last 5 ball passes (5/BPFO = {:.1} ms): t = {:.4} to {:.4} s",
+        1e3 * w,
+        0.3 - w,
+        0.3
+    );
+    assert!(svg.contains(&name), "no `{name}` in the title");
+    assert_eq!(png_size(&dir.join("force-zoom.png")), (1000, 44 + 2 * 300));
     let _ = std::fs::remove_dir_all(&dir);
 }

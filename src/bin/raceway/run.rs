@@ -478,6 +478,39 @@ fn write_plots(out: &Path, c: &Ctx, look: &Look) -> (Vec<String>, Vec<String>) {
         &panels,
     );
     keep("force.png", made, &mut written, &mut skipped);
+    // A long history is a solid band: beside it, the last few ball passes.
+    if let Some((t0, t1, what)) = zoom_window(c) {
+        let i0 = t.partition_point(|&v| v < t0);
+        let tz = &t[i0..];
+        let zp: Vec<(Axes, Vec<Series>)> = f
+            .iter()
+            .enumerate()
+            .map(|(k, (l, y))| {
+                (
+                    Axes {
+                        x_label: if k == last { "t (s)" } else { "" },
+                        y_label: l,
+                        ..Axes::default()
+                    },
+                    vec![Series {
+                        label: "",
+                        x: tz,
+                        y: &y[i0.min(y.len())..],
+                        points: false,
+                    }],
+                )
+            })
+            .collect();
+        let made = plot_stack(
+            &out.join("force-zoom.png"),
+            &headed(
+                c,
+                &format!("force on the shaft, {what}: t = {t0:.4} to {t1:.4} s"),
+            ),
+            &zp,
+        );
+        keep("force-zoom.png", made, &mut written, &mut skipped);
+    }
     let made = spectrum_plot(
         out,
         look,
@@ -541,6 +574,29 @@ fn write_plots(out: &Path, c: &Ctx, look: &Look) -> (Vec<String>, Vec<String>) {
         }
     }
     (written, skipped)
+}
+
+/// Number of outer-race ball passes in the zoomed window of a history.
+const ZOOM_PASSES: f64 = 5.0;
+
+/// The zoomed window of a long history: the last [`ZOOM_PASSES`] ball passes over the
+/// outer race (`ZOOM_PASSES / BPFO` seconds) at the end of the run, with its name; none
+/// when the bearing does not turn or the run is not 4 windows long (the whole history
+/// then shows them already).
+fn zoom_window(c: &Ctx) -> Option<(f64, f64, String)> {
+    let bpfo = c.marks.iter().find(|m| m.label == "1xBPFO")?.freq;
+    let (&ts, &te) = (c.series.t.first()?, c.series.t.last()?);
+    let w = ZOOM_PASSES / bpfo;
+    (bpfo.is_finite() && bpfo > 0.0 && 4.0 * w <= te - ts).then(|| {
+        (
+            te - w,
+            te,
+            format!(
+                "last {ZOOM_PASSES} ball passes ({ZOOM_PASSES}/BPFO = {:.1} ms)",
+                1e3 * w
+            ),
+        )
+    })
 }
 
 fn spectrum_plot(
