@@ -1136,5 +1136,21 @@ fn run_draws_the_spectrum_in_the_unit_and_the_pngs_at_the_dpi_asked_for() {
     );
     assert!(svg.contains(&name), "no `{name}` in the title");
     assert_eq!(png_size(&dir.join("force-zoom.png")), (1000, 44 + 2 * 300));
+    // Harmonics up to 5x marked where present: the spall's 2x-5x BPFO stand out in both
+    // spectra; BPFI is absent (its table line marked "BPFI?"), so none of its harmonics is.
+    for f in ["spectrum.svg", "envelope.svg"] {
+        let svg = std::fs::read_to_string(dir.join(f)).unwrap();
+        let mark = |l: &str| svg.contains(&format!(">\n{l}\n</text>"));
+        for h in 2..=5 {
+            assert!(mark(&format!("{h}xBPFO")), "{f}: {h}xBPFO not marked");
+            assert!(!svg.contains(&format!("{h}xBPFI")), "{f}: {h}xBPFI marked");
+        }
+        assert!(!mark("6xBPFO"));
+    }
+    // A force spectrum keeps its unit (N) on the axis.
+    let out = run(&["run", "-q", "--duration", "0.3", "--out", o]);
+    assert!(out.status.success());
+    let svg = std::fs::read_to_string(dir.join("spectrum.svg")).unwrap();
+    assert!(svg.contains("amplitude of force.y (N)"));
     let _ = std::fs::remove_dir_all(&dir);
 }

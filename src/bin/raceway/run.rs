@@ -1,7 +1,7 @@
 //! `raceway run [scene.toml] [--out DIR] [--quiet]`: run a scene stand-alone, write the time
 //! series, a summary, plots (PNG and SVG) and report.html.
 
-use raceway::analysis::Spectrum;
+use raceway::analysis::{find_peaks, FoundPeak, Mark, Spectrum, LINE_TOLERANCE};
 use raceway::component::scene::DEFAULT_SCENE;
 use raceway::component::{schema, Causality, Scene};
 use raceway::models::quasi_static::{azimuths, BallResult, BallState, Options, QuasiStatic};
@@ -576,6 +576,48 @@ fn write_plots(out: &Path, c: &Ctx, look: &Look) -> (Vec<String>, Vec<String>) {
     (written, skipped)
 }
 
+/// Highest harmonic marked on a spectrum plot.
+const TOP_HARMONIC: usize = 5;
+
+/// The harmonics (2x to [`TOP_HARMONIC`]x) of the table's found lines BPFO, BPFI and 2BSF
+/// that are themselves found in `spec` by the summary's rule ([`find_peaks`] at
+/// [`LINE_TOLERANCE`], searched together with the table's lines, so that a harmonic
+/// closer than the resolution to another line is not resolved and not marked). Absent
+/// harmonics are left unmarked; the table's own lines keep their marks ("?" when absent).
+fn present_harmonics(spec: &Spectrum, lines: &[FoundPeak]) -> Vec<FoundPeak> {
+    let has = |l: &str| lines.iter().any(|p| p.label == l);
+    let mut marks: Vec<Mark> = lines
+        .iter()
+        .map(|p| Mark {
+            label: p.label.clone(),
+            freq: p.expected,
+        })
+        .collect();
+    let n0 = marks.len();
+    for p in lines.iter().filter(|p| p.is_found()) {
+        let Some(name) = p.label.strip_prefix("1x") else {
+            continue;
+        };
+        if !["BPFO", "BPFI", "2BSF"].contains(&name) {
+            continue;
+        }
+        for h in 2..=TOP_HARMONIC {
+            let label = format!("{h}x{name}");
+            if !has(&label) {
+                marks.push(Mark {
+                    label,
+                    freq: h as f64 * p.expected,
+                });
+            }
+        }
+    }
+    find_peaks(spec, &marks, LINE_TOLERANCE)
+        .into_iter()
+        .skip(n0)
+        .filter(|p| p.is_found())
+        .collect()
+}
+
 /// Number of outer-race ball passes in the zoomed window of a history.
 const ZOOM_PASSES: f64 = 5.0;
 
@@ -626,16 +668,17 @@ fn spectrum_plot(
     } else {
         look.unit.of()
     };
-    let spec = spec.derivative(n);
-    let sf: Vec<f64> = keep.iter().map(|&i| spec.freq[i]).collect();
-    let sa: Vec<f64> = keep.iter().map(|&i| spec.amp[i].max(1e-30)).collect();
+    let shown = spec.derivative(n);
+    let sf: Vec<f64> = keep.iter().map(|&i| shown.freq[i]).collect();
+    let sa: Vec<f64> = keep.iter().map(|&i| shown.amp[i].max(1e-30)).collect();
     // The lines this spectrum's summary table reports: a found line is marked with its
-    // label (harmonics included), one that is not with "?" (the summary says why).
+    // label, one that is not with "?" (the summary says why); then the harmonics up to 5x
+    // of the found lines, only those present.
     let lines = match &c.envelope {
         Some((_, _, f)) if envelope => f,
         _ => &c.found,
     };
-    let mk: Vec<Marker> = lines
+    let mut mk: Vec<Marker> = lines
         .iter()
         .map(|p| Marker {
             x: if p.is_found() { p.found } else { p.expected },
@@ -646,9 +689,14 @@ fn spectrum_plot(
             ),
         })
         .collect();
+    mk.extend(present_harmonics(spec, lines).into_iter().map(|p| Marker {
+        x: p.found,
+        label: p.label,
+    }));
     let (ylab, of) = match n {
         0 => (
-            format!("amplitude of {} ({unit})", c.signal.0),
+            // The signal's own unit (N for a force): no conversion.
+            format!("amplitude of {} ({})", c.signal.0, c.signal.1),
             c.signal.0.to_string(),
         ),
         _ => (
