@@ -1154,3 +1154,38 @@ fn run_draws_the_spectrum_in_the_unit_and_the_pngs_at_the_dpi_asked_for() {
     assert!(svg.contains("amplitude of force.y (N)"));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A level with cage dynamics: beside cage-slip.png, the last 5 ball passes of the slip,
+/// named in the title (5/BPFO s from the summary's BPFO).
+#[test]
+fn run_zooms_the_cage_slip_on_the_last_ball_passes() {
+    let dir = std::env::temp_dir().join(format!("raceway-slipzoom-{}", std::process::id()));
+    let scene = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/examples/scenes/6012-skidding.toml"
+    );
+    let out = run(&["run", scene, "-q", "--out", dir.to_str().unwrap()]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
+    let bpfo = summary["frequencies"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|f| f["label"] == "1xBPFO")
+        .unwrap()["expected_hz"]
+        .as_f64()
+        .unwrap();
+    let svg = std::fs::read_to_string(dir.join("cage-slip-zoom.svg")).unwrap();
+    let name = format!(
+        "cage slip, last 5 ball passes (5/BPFO = {:.1} ms)",
+        5e3 / bpfo
+    );
+    assert!(svg.contains(&name), "no `{name}` in the title");
+    assert_eq!(png_size(&dir.join("cage-slip-zoom.png")), (1000, 625));
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -563,6 +563,26 @@ fn write_plots(out: &Path, c: &Ctx, look: &Look) -> (Vec<String>, Vec<String>) {
             &[],
         );
         keep("cage-slip.png", made, &mut written, &mut skipped);
+        if let Some((t0, t1, what)) = zoom_window(c) {
+            let i0 = t.partition_point(|&v| v < t0).min(slip.len());
+            let made = plot(
+                &out.join("cage-slip-zoom.png"),
+                &Axes {
+                    title: &headed(c, &format!("cage slip, {what}: t = {t0:.4} to {t1:.4} s")),
+                    x_label: "t (s)",
+                    y_label: "cage slip 1 - ωc/ωc,kin (%)",
+                    ..Axes::default()
+                },
+                &[Series {
+                    label: "",
+                    x: &t[i0..],
+                    y: &slip[i0..],
+                    points: false,
+                }],
+                &[],
+            );
+            keep("cage-slip-zoom.png", made, &mut written, &mut skipped);
+        }
     }
     if scene.model.level.name() == "full" {
         match write_cage_plots(out, look.dpi, series, &headed(c, "")) {
