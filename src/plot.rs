@@ -248,11 +248,51 @@ const LABEL_ROW: i32 = 15;
 /// into a corner free of data (with headroom added above the data when none is); marker
 /// labels are stacked in rows above the plot so that none overlaps another.
 pub fn plot(path: &Path, axes: &Axes<'_>, series: &[Series<'_>], markers: &[Marker]) -> Result<()> {
+    plot_dpi(path, DEFAULT_DPI, axes, series, markers)
+}
+
+/// The resolution of a PNG: [`plot`] and [`plot_stack`] are drawn at this many dots per
+/// inch (a plot is 10 in wide: 1000 px at 100 dpi).
+pub const DEFAULT_DPI: u32 = 100;
+
+/// The resolutions a PNG can be drawn at, dots per inch (a 400 dpi plot is 4000 px wide).
+pub const DPI_RANGE: std::ops::RangeInclusive<u32> = 50..=400;
+
+/// The scale of every length of a drawing (pixel sizes, fonts, line widths) at `dpi`.
+fn dpi_scale(dpi: u32) -> Result<f64> {
+    if !DPI_RANGE.contains(&dpi) {
+        return Err(Error::invalid(
+            "dpi",
+            dpi,
+            format!("{} to {}", DPI_RANGE.start(), DPI_RANGE.end()),
+        ));
+    }
+    Ok(dpi as f64 / DEFAULT_DPI as f64)
+}
+
+/// `(w, h)` pixels times `s`, rounded.
+fn scaled(px: (u32, u32), s: f64) -> (u32, u32) {
+    (
+        (px.0 as f64 * s).round() as u32,
+        (px.1 as f64 * s).round() as u32,
+    )
+}
+
+/// [`plot`] at `dpi` dots per inch (in [`DPI_RANGE`]): the same drawing, every length
+/// (size, fonts, lines, markers) scaled by `dpi / 100`.
+pub fn plot_dpi(
+    path: &Path,
+    dpi: u32,
+    axes: &Axes<'_>,
+    series: &[Series<'_>],
+    markers: &[Marker],
+) -> Result<()> {
+    let s = dpi_scale(dpi)?;
     register_font();
     // Under a temporary name, then renamed: never half-written.
     crate::fsutil::write_atomic_with(path, |tmp| {
-        let root = BitMapBackend::new(tmp, PLOT_PX).into_drawing_area();
-        draw_area(&root, axes, series, markers)?;
+        let root = BitMapBackend::new(tmp, scaled(PLOT_PX, s)).into_drawing_area();
+        draw_area(&root, s, axes, series, markers)?;
         root.present().map_err(io)
     })
 }
@@ -267,7 +307,7 @@ pub fn plot_svg(axes: &Axes<'_>, series: &[Series<'_>], markers: &[Marker]) -> R
     let mut buf = String::new();
     {
         let root = SVGBackend::with_string(&mut buf, PLOT_PX).into_drawing_area();
-        draw_area(&root, axes, series, markers)?;
+        draw_area(&root, 1.0, axes, series, markers)?;
         root.present().map_err(io)?;
     }
     Ok(buf)
@@ -281,7 +321,18 @@ pub fn plot_pair(
     series: &[Series<'_>],
     markers: &[Marker],
 ) -> Result<()> {
-    plot(path, axes, series, markers)?;
+    plot_pair_dpi(path, DEFAULT_DPI, axes, series, markers)
+}
+
+/// [`plot_pair`] with the PNG at `dpi` (see [`plot_dpi`]); the SVG is the same at any dpi.
+pub fn plot_pair_dpi(
+    path: &Path,
+    dpi: u32,
+    axes: &Axes<'_>,
+    series: &[Series<'_>],
+    markers: &[Marker],
+) -> Result<()> {
+    plot_dpi(path, dpi, axes, series, markers)?;
     let svg = plot_svg(axes, series, markers)?;
     crate::fsutil::write_atomic(&path.with_extension("svg"), svg).map_err(io)
 }
@@ -289,10 +340,21 @@ pub fn plot_pair(
 /// Panels stacked vertically in one PNG (1000 x 300 px per panel) under one `title`, each
 /// with its own y axis (e.g. Fx, Fy, Fz, so that each ripple shows at its own scale).
 pub fn plot_stack(path: &Path, title: &str, panels: &[(Axes<'_>, Vec<Series<'_>>)]) -> Result<()> {
+    plot_stack_dpi(path, DEFAULT_DPI, title, panels)
+}
+
+/// [`plot_stack`] at `dpi` dots per inch (see [`plot_dpi`]).
+pub fn plot_stack_dpi(
+    path: &Path,
+    dpi: u32,
+    title: &str,
+    panels: &[(Axes<'_>, Vec<Series<'_>>)],
+) -> Result<()> {
+    let s = dpi_scale(dpi)?;
     register_font();
     crate::fsutil::write_atomic_with(path, |tmp| {
-        let root = BitMapBackend::new(tmp, stack_px(panels.len())).into_drawing_area();
-        draw_stack(&root, title, panels)?;
+        let root = BitMapBackend::new(tmp, scaled(stack_px(panels.len()), s)).into_drawing_area();
+        draw_stack(&root, s, title, panels)?;
         root.present().map_err(io)
     })
 }
@@ -308,7 +370,7 @@ pub fn stack_svg(title: &str, panels: &[(Axes<'_>, Vec<Series<'_>>)]) -> Result<
     let mut buf = String::new();
     {
         let root = SVGBackend::with_string(&mut buf, stack_px(panels.len())).into_drawing_area();
-        draw_stack(&root, title, panels)?;
+        draw_stack(&root, 1.0, title, panels)?;
         root.present().map_err(io)?;
     }
     Ok(buf)
@@ -316,24 +378,45 @@ pub fn stack_svg(title: &str, panels: &[(Axes<'_>, Vec<Series<'_>>)]) -> Result<
 
 /// [`plot_stack`] into the PNG at `path` and [`stack_svg`] beside it.
 pub fn stack_pair(path: &Path, title: &str, panels: &[(Axes<'_>, Vec<Series<'_>>)]) -> Result<()> {
-    plot_stack(path, title, panels)?;
+    stack_pair_dpi(path, DEFAULT_DPI, title, panels)
+}
+
+/// [`stack_pair`] with the PNG at `dpi` (see [`plot_dpi`]).
+pub fn stack_pair_dpi(
+    path: &Path,
+    dpi: u32,
+    title: &str,
+    panels: &[(Axes<'_>, Vec<Series<'_>>)],
+) -> Result<()> {
+    plot_stack_dpi(path, dpi, title, panels)?;
     let svg = stack_svg(title, panels)?;
     crate::fsutil::write_atomic(&path.with_extension("svg"), svg).map_err(io)
 }
 
 fn draw_stack<DB: DrawingBackend>(
     root: &Area<DB>,
+    s: f64,
     title: &str,
     panels: &[(Axes<'_>, Vec<Series<'_>>)],
 ) -> Result<()> {
     root.fill(&WHITE).map_err(io)?;
-    let body = root.titled(title, ("sans-serif", 20)).map_err(io)?;
+    // 20 px, smaller when a long title (scene, bearing, operating point, window) would
+    // not fit the width.
+    let w = root.dim_in_pixel().0 as f64;
+    let tw = root
+        .estimate_text_size(title, &("sans-serif", 20.0 * s).into())
+        .map(|(w, _)| w as f64)
+        .unwrap_or(0.0);
+    let size = 20.0 * s * ((w - 16.0 * s) / tw.max(1.0)).min(1.0);
+    let body = root
+        .titled(title, ("sans-serif", size.max(11.0 * s)))
+        .map_err(io)?;
     for (area, (axes, series)) in body
         .split_evenly((panels.len().max(1), 1))
         .iter()
         .zip(panels)
     {
-        draw_area(area, axes, series, &[])?;
+        draw_area(area, s, axes, series, &[])?;
     }
     Ok(())
 }
@@ -343,6 +426,7 @@ type Area<DB> = DrawingArea<DB, plotters::coord::Shift>;
 /// Shape of the `k`-th point series.
 fn draw_point<DB: DrawingBackend, CT: plotters::coord::CoordTranslate>(
     area: &DrawingArea<DB, CT>,
+    s: f64,
     k: usize,
     p: CT::From,
     c: RGBColor,
@@ -350,15 +434,22 @@ fn draw_point<DB: DrawingBackend, CT: plotters::coord::CoordTranslate>(
 where
     CT::From: Clone,
 {
+    let (px, w) = (|v: f64| (v * s).round() as i32, lw(2, s));
     match k % 3 {
-        0 => area.draw(&Circle::new(p, 4, c.filled())),
-        1 => area.draw(&Cross::new(p, 6, c.stroke_width(2))),
-        _ => area.draw(&TriangleMarker::new(p, 7, c.stroke_width(2))),
+        0 => area.draw(&Circle::new(p, px(4.0), c.filled())),
+        1 => area.draw(&Cross::new(p, px(6.0), c.stroke_width(w))),
+        _ => area.draw(&TriangleMarker::new(p, px(7.0), c.stroke_width(w))),
     }
+}
+
+/// A line `w` px wide at 100 dpi, at scale `s` (at least 1 px).
+fn lw(w: u32, s: f64) -> u32 {
+    ((w as f64 * s).round() as u32).max(1)
 }
 
 fn draw_area<DB: DrawingBackend>(
     area: &Area<DB>,
+    s: f64,
     axes: &Axes<'_>,
     series: &[Series<'_>],
     markers: &[Marker],
@@ -371,8 +462,12 @@ fn draw_area<DB: DrawingBackend>(
         let half = 0.5 * (x1 - x0).max(y1 - y0) * 1.6;
         (x0, x1, y0, y1) = (cx - half, cx + half, cy - 0.625 * half, cy + 0.625 * half);
     }
-    let font: TextStyle<'_> = ("sans-serif", 16).into();
-    let label_font: TextStyle<'_> = ("sans-serif", 14).into();
+    let font: TextStyle<'_> = ("sans-serif", 16.0 * s).into();
+    let label_font: TextStyle<'_> = ("sans-serif", 14.0 * s).into();
+    // Pixel lengths at 100 dpi, scaled.
+    let px = |v: f64| v * s;
+    let ipx = |v: f64| (v * s).round() as i32;
+    let label_row = ipx(LABEL_ROW as f64);
     // The shape of each point series: its rank among the point series.
     let shape: Vec<usize> = series
         .iter()
@@ -399,8 +494,8 @@ fn draw_area<DB: DrawingBackend>(
         .max()
         .unwrap_or(0) as f64;
     let legend_size = (
-        24.0 + 8.0 + text_w + 12.0,
-        18.0 * labelled.len() as f64 + 8.0,
+        px(24.0 + 8.0 + 12.0) + text_w,
+        px(18.0 * labelled.len() as f64 + 8.0),
     );
     // A legend taller than 45 % of the picture cannot find a free corner without squeezing
     // the data into a sliver (on a log axis the headroom spans decades): it goes beside the
@@ -410,20 +505,20 @@ fn draw_area<DB: DrawingBackend>(
         && legend_size.1 > 0.45 * h_px as f64
         && legend_size.0 < 0.4 * w_px as f64
     {
-        let split = w_px as i32 - legend_size.0 as i32 - 16;
+        let split = w_px as i32 - legend_size.0 as i32 - ipx(16.0);
         let (left, right) = area.split_horizontally(split);
         right.fill(&WHITE).map_err(io)?;
         let unlabelled: Vec<Series<'_>> =
             series.iter().map(|s| Series { label: "", ..*s }).collect();
-        draw_area(&left, axes, &unlabelled, markers)?;
-        let top = if axes.title.is_empty() { 12.0 } else { 42.0 };
+        draw_area(&left, s, axes, &unlabelled, markers)?;
+        let top = px(if axes.title.is_empty() { 12.0 } else { 42.0 });
         let r = Rect {
-            x0: 4.0,
+            x0: px(4.0),
             y0: top,
-            x1: 4.0 + legend_size.0,
+            x1: px(4.0) + legend_size.0,
             y1: top + legend_size.1,
         };
-        return draw_legend(&right, r, &labelled, &font);
+        return draw_legend(&right, s, r, &labelled, &font);
     }
     let visible: Vec<&Marker> = markers.iter().filter(|m| m.x >= x0 && m.x <= x1).collect();
     let mut rows_reserved = 0usize;
@@ -438,7 +533,7 @@ fn draw_area<DB: DrawingBackend>(
         };
         // The title drawn here (not as the chart's caption) so that the rows of marker
         // labels go between it and the plot.
-        let title_h = if axes.title.is_empty() { 0 } else { 30 };
+        let title_h = if axes.title.is_empty() { 0 } else { ipx(30.0) };
         if title_h > 0 {
             let w = area.dim_in_pixel().0 as i32;
             let width = |size: f64| {
@@ -448,17 +543,17 @@ fn draw_area<DB: DrawingBackend>(
             };
             // 20 px, smaller when a long title (scene, bearing, operating point) would
             // not fit the width.
-            let fit = 20.0 * ((w - 16) as f64 / width(20.0).max(1) as f64).min(1.0);
-            let style: TextStyle<'_> = ("sans-serif", fit.max(11.0)).into();
-            let tw = width(fit.max(11.0));
-            area.draw(&Text::new(axes.title, ((w - tw) / 2, 8), style))
+            let fit = px(20.0) * ((w - ipx(16.0)) as f64 / width(px(20.0)).max(1) as f64).min(1.0);
+            let style: TextStyle<'_> = ("sans-serif", fit.max(px(11.0))).into();
+            let tw = width(fit.max(px(11.0)));
+            area.draw(&Text::new(axes.title, ((w - tw) / 2, ipx(8.0)), style))
                 .map_err(io)?;
         }
         let mut b = ChartBuilder::on(area);
-        b.margin(12)
-            .margin_top(12 + title_h + LABEL_ROW * rows_reserved as i32)
-            .x_label_area_size(48)
-            .y_label_area_size(86);
+        b.margin(ipx(12.0))
+            .margin_top(ipx(12.0) + title_h + label_row * rows_reserved as i32)
+            .x_label_area_size(ipx(48.0))
+            .y_label_area_size(ipx(86.0));
         let base = area.get_base_pixel();
         let rel = |p: (i32, i32)| ((p.0 - base.0) as f64, (p.1 - base.1) as f64);
         // What the pass found: the legend's place (if any labels) and the label rows.
@@ -485,8 +580,8 @@ fn draw_area<DB: DrawingBackend>(
                     .y_desc(axes.y_label)
                     .x_label_formatter(&fx)
                     .y_label_formatter(&fy)
-                    .label_style(("sans-serif", 16))
-                    .axis_desc_style(("sans-serif", 17))
+                    .label_style(("sans-serif", px(16.0)))
+                    .axis_desc_style(("sans-serif", px(17.0)))
                     .draw()
                     .map_err(io)?;
                 let (xr, yr) = chart.plotting_area().get_pixel_range();
@@ -501,15 +596,15 @@ fn draw_area<DB: DrawingBackend>(
                         (rel(chart.backend_coord(&(m.x, y1h))).0, w as f64)
                     })
                     .collect();
-                rows = label_rows(&spans, 4.0);
+                rows = label_rows(&spans, px(4.0));
                 for (m, (sp, r)) in visible.iter().zip(spans.iter().zip(&rows)) {
                     chart
                         .draw_series(LineSeries::new(
                             vec![(m.x, y0), (m.x, y1h)],
-                            RGBColor(150, 150, 150).stroke_width(1),
+                            RGBColor(150, 150, 150).stroke_width(lw(1, s)),
                         ))
                         .map_err(io)?;
-                    let y = top - (*r as f64 + 1.0) * LABEL_ROW as f64 + 2.0;
+                    let y = top - (*r as f64 + 1.0) * label_row as f64 + px(2.0);
                     area.draw(&Text::new(
                         m.label.clone(),
                         ((sp.0 - 0.5 * sp.1) as i32, y as i32),
@@ -518,42 +613,43 @@ fn draw_area<DB: DrawingBackend>(
                     .map_err(io)?;
                 }
                 let mut drawn = Vec::new();
-                for (i, s) in series.iter().enumerate() {
+                for (i, ser) in series.iter().enumerate() {
                     let c = COLORS[i % COLORS.len()];
-                    let pts: Vec<(f64, f64)> =
-                        s.x.iter()
-                            .zip(s.y)
-                            .map(|(&x, &y)| (x, y))
-                            .filter(|(x, y)| {
-                                x.is_finite()
-                                    && y.is_finite()
-                                    && (!axes.log_x || *x > 0.0)
-                                    && (!axes.log_y || *y > 0.0)
-                            })
-                            .collect();
+                    let pts: Vec<(f64, f64)> = ser
+                        .x
+                        .iter()
+                        .zip(ser.y)
+                        .map(|(&x, &y)| (x, y))
+                        .filter(|(x, y)| {
+                            x.is_finite()
+                                && y.is_finite()
+                                && (!axes.log_x || *x > 0.0)
+                                && (!axes.log_y || *y > 0.0)
+                        })
+                        .collect();
                     // Long histories: one column of pixels draws the same with its
                     // first, lowest, highest and last point (keeps the SVG small).
-                    let pts = if s.points {
+                    let pts = if ser.points {
                         pts
                     } else {
                         thin(pts, |p| chart.backend_coord(p))
                     };
-                    if s.points {
+                    if ser.points {
                         for p in &pts {
-                            draw_point(chart.plotting_area(), shape[i], *p, c).map_err(io)?;
+                            draw_point(chart.plotting_area(), s, shape[i], *p, c).map_err(io)?;
                         }
                     } else {
                         // Thick polylines get mitred spikes at sharp reversals (plotters
                         // joins segments with mitres): dense data is drawn 1 px wide.
-                        let w = if pts.len() > 500 { 1 } else { 2 };
+                        let w = lw(if pts.len() > 500 { 1 } else { 2 }, s);
                         chart
                             .draw_series(LineSeries::new(pts.clone(), c.stroke_width(w)))
                             .map_err(io)?;
                     }
                     drawn.push(Drawn {
                         points: pts.iter().map(|p| rel(chart.backend_coord(p))).collect(),
-                        line: !s.points,
-                        radius: if s.points { 7.0 } else { 1.0 },
+                        line: !ser.points,
+                        radius: px(if ser.points { 7.0 } else { 1.0 }),
                     });
                 }
                 if !labelled.is_empty() {
@@ -563,7 +659,7 @@ fn draw_area<DB: DrawingBackend>(
                         x1: (xr.end - base.0) as f64,
                         y1: (yr.end - base.1) as f64,
                     };
-                    legend = Some(legend_place(plot_rect, legend_size, 8.0, &drawn));
+                    legend = Some(legend_place(plot_rect, legend_size, px(8.0), &drawn));
                 }
             }};
         }
@@ -586,15 +682,15 @@ fn draw_area<DB: DrawingBackend>(
             if !legend_ok {
                 // Room for the box and its padding above the data.
                 let h = area.dim_in_pixel().1 as f64
-                    - 52.0
-                    - (LABEL_ROW as usize * rows_reserved) as f64
-                    - 40.0;
-                headroom = ((legend_size.1 + 24.0) / h.max(1.0)).clamp(0.0, 0.6);
+                    - px(52.0)
+                    - (label_row as usize * rows_reserved) as f64
+                    - px(40.0);
+                headroom = ((legend_size.1 + px(24.0)) / h.max(1.0)).clamp(0.0, 0.6);
             }
             continue;
         }
         if let Some(Some(r)) = legend {
-            draw_legend(area, r, &labelled, &font)?;
+            draw_legend(area, s, r, &labelled, &font)?;
         }
         return Ok(());
     }
@@ -641,10 +737,12 @@ fn thin(pts: Vec<(f64, f64)>, px: impl Fn(&(f64, f64)) -> (i32, i32)) -> Vec<(f6
 /// labelled series, then its label.
 fn draw_legend<DB: DrawingBackend>(
     area: &Area<DB>,
+    s: f64,
     r: Rect,
     labelled: &[(usize, usize, &Series<'_>)],
     font: &TextStyle<'_>,
 ) -> Result<()> {
+    let ipx = |v: f64| (v * s).round() as i32;
     let (x0, y0) = (r.x0 as i32, r.y0 as i32);
     area.draw(&Rectangle::new(
         [(x0, y0), (r.x1 as i32, r.y1 as i32)],
@@ -653,24 +751,24 @@ fn draw_legend<DB: DrawingBackend>(
     .map_err(io)?;
     area.draw(&Rectangle::new(
         [(x0, y0), (r.x1 as i32, r.y1 as i32)],
-        BLACK.stroke_width(1),
+        BLACK.stroke_width(lw(1, s)),
     ))
     .map_err(io)?;
-    for (row, (i, k, s)) in labelled.iter().enumerate() {
+    for (row, (i, k, ser)) in labelled.iter().enumerate() {
         let c = COLORS[i % COLORS.len()];
-        let y = y0 + 4 + 18 * row as i32 + 9;
-        if s.points {
-            draw_point(area, *k, (x0 + 18, y), c).map_err(io)?;
+        let y = y0 + ipx(4.0 + 18.0 * row as f64 + 9.0);
+        if ser.points {
+            draw_point(area, s, *k, (x0 + ipx(18.0), y), c).map_err(io)?;
         } else {
             area.draw(&PathElement::new(
-                vec![(x0 + 6, y), (x0 + 30, y)],
-                c.stroke_width(2),
+                vec![(x0 + ipx(6.0), y), (x0 + ipx(30.0), y)],
+                c.stroke_width(lw(2, s)),
             ))
             .map_err(io)?;
         }
         area.draw(&Text::new(
-            s.label.to_string(),
-            (x0 + 38, y - 7),
+            ser.label.to_string(),
+            (x0 + ipx(38.0), y - ipx(7.0)),
             font.clone(),
         ))
         .map_err(io)?;
@@ -836,6 +934,63 @@ mod tests {
         }
         // Order kept: x never decreases along the thinned line.
         assert!(t.windows(2).all(|w| w[1].0 > w[0].0));
+    }
+
+    /// Width and height of a PNG (its IHDR chunk).
+    fn png_size(p: &Path) -> (u32, u32) {
+        let b = std::fs::read(p).unwrap();
+        assert_eq!(&b[1..4], b"PNG");
+        let be = |i: usize| u32::from_be_bytes([b[i], b[i + 1], b[i + 2], b[i + 3]]);
+        (be(16), be(20))
+    }
+
+    /// A PNG's pixel size is proportional to its dpi (1000 x 625 px at 100 dpi, a stack of
+    /// two panels 1000 x 644 px), the SVG beside it is the same at any dpi, and a dpi out
+    /// of range is refused naming the range, with nothing written.
+    #[test]
+    fn png_size_scales_with_dpi() {
+        let dir = std::env::temp_dir().join(format!("raceway-dpi-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let x: Vec<f64> = (0..300).map(|i| i as f64 * 0.01).collect();
+        let y: Vec<f64> = x.iter().map(|t| (7.0 * t).sin()).collect();
+        let axes = Axes {
+            title: "dpi",
+            x_label: "t (s)",
+            y_label: "y (m)",
+            ..Axes::default()
+        };
+        let ser = [Series {
+            label: "y",
+            x: &x,
+            y: &y,
+            points: false,
+        }];
+        let panels = vec![(axes.clone(), ser.to_vec()), (axes.clone(), ser.to_vec())];
+        let mut svgs = Vec::new();
+        for (dpi, w, h, hs) in [
+            (100, 1000, 625, 644),
+            (50, 500, 313, 322),
+            (200, 2000, 1250, 1288),
+            (300, 3000, 1875, 1932),
+        ] {
+            let p = dir.join(format!("p{dpi}.png"));
+            plot_pair_dpi(&p, dpi, &axes, &ser, &[]).unwrap();
+            assert_eq!(png_size(&p), (w, h), "{dpi} dpi");
+            svgs.push(std::fs::read_to_string(p.with_extension("svg")).unwrap());
+            let q = dir.join(format!("s{dpi}.png"));
+            stack_pair_dpi(&q, dpi, "stack", &panels).unwrap();
+            assert_eq!(png_size(&q), (w, hs), "{dpi} dpi stack");
+        }
+        assert!(svgs.windows(2).all(|w| w[0] == w[1]));
+        assert_eq!(png_size(&dir.join("p100.png")), PLOT_PX);
+        for dpi in [0, 49, 401] {
+            let p = dir.join(format!("bad{dpi}.png"));
+            let e = plot_pair_dpi(&p, dpi, &axes, &ser, &[])
+                .unwrap_err()
+                .to_string();
+            assert!(e.contains("dpi") && e.contains("50 to 400"), "{e}");
+            assert!(!p.exists() && !p.with_extension("svg").exists());
+        }
     }
 
     #[test]

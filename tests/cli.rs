@@ -1044,3 +1044,148 @@ fn run_memory_does_not_grow_with_the_duration() {
     assert!(per_row < 120.0, "{per_row:.1} bytes per row more");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// `--spectrum-unit` and `--dpi`: a motion-driven scene (the default: its spectrum is of the
+/// force) refuses a spectrum unit naming the flag, a dpi out of range is refused with the
+/// range, and neither writes anything; a load-driven scene draws its spectrum as
+/// velocity or acceleration with the unit on the axis, its PNGs at the dpi asked for.
+#[test]
+fn run_draws_the_spectrum_in_the_unit_and_the_pngs_at_the_dpi_asked_for() {
+    let dir = std::env::temp_dir().join(format!("raceway-look-{}", std::process::id()));
+    let o = dir.to_str().unwrap();
+    refused(
+        &["run", "-q", "--out", o, "--spectrum-unit", "velocity"],
+        &["--spectrum-unit", "load-driven", "force.y (N)"],
+    );
+    for bad in ["0", "49", "401"] {
+        refused(
+            &["run", "-q", "--out", o, "--dpi", bad],
+            &["--dpi", "50 to 400"],
+        );
+    }
+    assert!(!dir.exists(), "a refused run wrote {}", dir.display());
+    let scene = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/examples/scenes/6205-outer-spall.toml"
+    );
+    for (unit, dpi, label, px) in [
+        (
+            "displacement",
+            "100",
+            "amplitude of shaft.y (m)",
+            (1000, 625),
+        ),
+        ("velocity", "50", "velocity amplitude (m/s)", (500, 313)),
+        (
+            "acceleration",
+            "200",
+            "acceleration amplitude (m/s²)",
+            (2000, 1250),
+        ),
+    ] {
+        let args = [
+            "run",
+            scene,
+            "-q",
+            "--duration",
+            "0.05",
+            "--out",
+            o,
+            "--spectrum-unit",
+            unit,
+            "--dpi",
+            dpi,
+        ];
+        let out = run(&args);
+        assert!(
+            out.status.success(),
+            "{args:?}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        assert_eq!(png_size(&dir.join("spectrum.png")), px, "{unit}");
+        assert_eq!(png_size(&dir.join("orbit.png")), px, "{unit}");
+        let svg = std::fs::read_to_string(dir.join("spectrum.svg")).unwrap();
+        assert!(svg.contains(label), "{unit}: no `{label}` on the axis");
+        // The envelope spectrum stays in the signal's unit.
+        let env = std::fs::read_to_string(dir.join("envelope.svg")).unwrap();
+        assert!(env.contains("amplitude of shaft.y (m)"), "{unit}");
+        // 0.05 s is less than 4 windows of 5 ball passes: no zoom.
+        assert!(!dir.join("force-zoom.png").exists());
+    }
+    // The scene's own 0.3 s: beside force.png, the last 5 ball passes (5/BPFO s), named
+    // in the title, with the force's two panels over that window only.
+    let out = run(&["run", scene, "-q", "--out", o]);
+    assert!(out.status.success());
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
+    let bpfo = summary["frequencies"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|f| f["label"] == "1xBPFO")
+        .unwrap()["expected_hz"]
+        .as_f64()
+        .unwrap();
+    let w = 5.0 / bpfo;
+    let svg = std::fs::read_to_string(dir.join("force-zoom.svg")).unwrap();
+    let name = format!(
+        "last 5 ball passes (5/BPFO = {:.1} ms): t = {:.4} to {:.4} s",
+        1e3 * w,
+        0.3 - w,
+        0.3
+    );
+    assert!(svg.contains(&name), "no `{name}` in the title");
+    assert_eq!(png_size(&dir.join("force-zoom.png")), (1000, 44 + 2 * 300));
+    // Harmonics up to 5x marked where present: the spall's 2x-5x BPFO stand out in both
+    // spectra; BPFI is absent (its table line marked "BPFI?"), so none of its harmonics is.
+    for f in ["spectrum.svg", "envelope.svg"] {
+        let svg = std::fs::read_to_string(dir.join(f)).unwrap();
+        let mark = |l: &str| svg.contains(&format!(">\n{l}\n</text>"));
+        for h in 2..=5 {
+            assert!(mark(&format!("{h}xBPFO")), "{f}: {h}xBPFO not marked");
+            assert!(!svg.contains(&format!("{h}xBPFI")), "{f}: {h}xBPFI marked");
+        }
+        assert!(!mark("6xBPFO"));
+    }
+    // A force spectrum keeps its unit (N) on the axis.
+    let out = run(&["run", "-q", "--duration", "0.3", "--out", o]);
+    assert!(out.status.success());
+    let svg = std::fs::read_to_string(dir.join("spectrum.svg")).unwrap();
+    assert!(svg.contains("amplitude of force.y (N)"));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A level with cage dynamics: beside cage-slip.png, the last 5 ball passes of the slip,
+/// named in the title (5/BPFO s from the summary's BPFO).
+#[test]
+fn run_zooms_the_cage_slip_on_the_last_ball_passes() {
+    let dir = std::env::temp_dir().join(format!("raceway-slipzoom-{}", std::process::id()));
+    let scene = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/examples/scenes/6012-skidding.toml"
+    );
+    let out = run(&["run", scene, "-q", "--out", dir.to_str().unwrap()]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
+    let bpfo = summary["frequencies"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|f| f["label"] == "1xBPFO")
+        .unwrap()["expected_hz"]
+        .as_f64()
+        .unwrap();
+    let svg = std::fs::read_to_string(dir.join("cage-slip-zoom.svg")).unwrap();
+    let name = format!(
+        "cage slip, last 5 ball passes (5/BPFO = {:.1} ms)",
+        5e3 / bpfo
+    );
+    assert!(svg.contains(&name), "no `{name}` in the title");
+    assert_eq!(png_size(&dir.join("cage-slip-zoom.png")), (1000, 625));
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -69,6 +69,23 @@ impl Spectrum {
         }
     }
 
+    /// The spectrum of the signal's `n`-th time derivative: each amplitude times
+    /// `(2 pi f)^n` (a sine `A sin(2 pi f t)` has the derivative amplitude `2 pi f A`), so a
+    /// displacement spectrum (m) becomes velocity (`n = 1`, m/s) or acceleration (`n = 2`,
+    /// m/s²). Exact for each line: differentiation multiplies the Fourier coefficient at
+    /// `f` by `i 2 pi f`, whose modulus this applies bin by bin.
+    pub fn derivative(&self, n: u32) -> Spectrum {
+        Spectrum {
+            freq: self.freq.clone(),
+            amp: self
+                .freq
+                .iter()
+                .zip(&self.amp)
+                .map(|(f, a)| a * (2.0 * PI * f).powi(n as i32))
+                .collect(),
+        }
+    }
+
     /// Amplitude at the bin nearest `f`.
     pub fn at(&self, f: f64) -> f64 {
         let df = self.resolution();
@@ -663,6 +680,35 @@ mod tests {
         let (f, a) = s.peak_in(10.0, 400.0).unwrap();
         assert!((f - 50.0).abs() < 1e-9 && (a - 2.0).abs() < 1e-9, "{f} {a}");
         assert!(s.amp[0] < 1e-9, "mean removed");
+    }
+
+    /// A displacement sine `A sin(2 pi f t)` (f on a bin): its velocity spectrum peaks at
+    /// `2 pi f A`, its acceleration spectrum at `(2 pi f)^2 A`, the peak ratios between the
+    /// units are exactly `2 pi f` and `(2 pi f)^2`, and the velocity spectrum equals the
+    /// spectrum of the analytic derivative `2 pi f A cos(2 pi f t)` line for line.
+    #[test]
+    fn a_sines_peak_scales_by_2_pi_f_per_derivative() {
+        let (fs, n, f, a) = (2000.0, 2000, 123.0, 1.5e-6);
+        let w = 2.0 * PI * f;
+        let t = |i: usize| i as f64 / fs;
+        let x: Vec<f64> = (0..n).map(|i| a * (w * t(i)).sin()).collect();
+        let v: Vec<f64> = (0..n).map(|i| a * w * (w * t(i)).cos()).collect();
+        let d = amplitude_spectrum(&x, fs, Window::Hann);
+        let (dv1, da) = (d.derivative(1), d.derivative(2));
+        // The line's bin is the highest in each unit.
+        let top = |s: &Spectrum| (1..s.amp.len()).max_by(|&i, &j| s.amp[i].total_cmp(&s.amp[j]));
+        let k = top(&d).unwrap();
+        assert_eq!(d.freq[k], f);
+        assert_eq!((top(&dv1), top(&da)), (Some(k), Some(k)));
+        let (pd, pv, pa) = (d.amp[k], dv1.amp[k], da.amp[k]);
+        assert!((pd - a).abs() < 1e-12 * a, "{pd}");
+        assert!((pv / pd - w).abs() < 1e-12 * w, "{}", pv / pd);
+        assert!((pa / pd - w * w).abs() < 1e-12 * w * w, "{}", pa / pd);
+        assert!((pa / pv - w).abs() < 1e-12 * w);
+        let dv = amplitude_spectrum(&v, fs, Window::Hann);
+        assert!((pv - dv.amp[k]).abs() < 1e-9 * pv, "{pv} vs {}", dv.amp[k]);
+        // Zero-th derivative: unchanged.
+        assert_eq!(d.derivative(0), d);
     }
 
     /// The envelope of an amplitude-modulated carrier is the modulation.

@@ -1,11 +1,11 @@
 //! `raceway run [scene.toml] [--out DIR] [--quiet]`: run a scene stand-alone, write the time
 //! series, a summary, plots (PNG and SVG) and report.html.
 
-use raceway::analysis::Spectrum;
+use raceway::analysis::{find_peaks, FoundPeak, Mark, Spectrum, LINE_TOLERANCE};
 use raceway::component::scene::DEFAULT_SCENE;
 use raceway::component::{schema, Causality, Scene};
 use raceway::models::quasi_static::{azimuths, BallResult, BallState, Options, QuasiStatic};
-use raceway::plot::{plot_pair as plot, stack_pair as plot_stack, Axes, Marker, Series};
+use raceway::plot::{plot_pair_dpi, stack_pair_dpi, Axes, Marker, Series, DPI_RANGE};
 use raceway::runner::{self, Record, Series as Run};
 use raceway::summary::html::{report_html, Figure, Provenance};
 use raceway::summary::{summary_of, Ctx};
@@ -41,6 +41,77 @@ pub struct RunArgs {
     /// Open report.html when the run is done (xdg-open; without it, the path is printed).
     #[arg(long)]
     pub open: bool,
+    /// The spectrum plot as displacement (m), velocity (m/s: amplitude x 2 pi f) or
+    /// acceleration (m/s²: amplitude x (2 pi f)²). Load-driven scenes only (their spectrum
+    /// is the ring's displacement); the summary's lines and the envelope spectrum stay in
+    /// the signal's own unit.
+    #[arg(long, value_enum)]
+    pub spectrum_unit: Option<SpectrumUnit>,
+    /// Resolution of the PNG plots, dots per inch (50 to 400; 100 draws 1000 px wide; the
+    /// SVGs are the same at any dpi).
+    #[arg(long, default_value_t = raceway::plot::DEFAULT_DPI)]
+    pub dpi: u32,
+}
+
+/// The quantity of the spectrum plot (`--spectrum-unit`).
+#[derive(clap::ValueEnum, Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum SpectrumUnit {
+    /// The ring displacement, m.
+    #[default]
+    Displacement,
+    /// Its velocity, m/s.
+    Velocity,
+    /// Its acceleration, m/s².
+    Acceleration,
+}
+
+impl SpectrumUnit {
+    /// Time derivatives of the displacement, the quantity's name and unit.
+    fn of(self) -> (u32, &'static str, &'static str) {
+        match self {
+            SpectrumUnit::Displacement => (0, "displacement", "m"),
+            SpectrumUnit::Velocity => (1, "velocity", "m/s"),
+            SpectrumUnit::Acceleration => (2, "acceleration", "m/s²"),
+        }
+    }
+}
+
+/// How the plots are drawn: the spectrum's quantity and the PNGs' resolution.
+struct Look {
+    unit: SpectrumUnit,
+    dpi: u32,
+}
+
+/// The options of the plots checked before the run: a refused run writes nothing.
+fn check_look(a: &RunArgs, scene: &Scene) -> Result<Look> {
+    if !DPI_RANGE.contains(&a.dpi) {
+        return Err(Error::invalid(
+            "--dpi",
+            a.dpi,
+            format!("{} to {}", DPI_RANGE.start(), DPI_RANGE.end()),
+        ));
+    }
+    let (signal, unit) = raceway::summary::signal_of(scene);
+    if let Some(u) = a.spectrum_unit {
+        // A motion-driven scene's spectrum is of the force on the shaft: a force has no
+        // velocity or acceleration, and its time derivatives (N/s, N/s²) are not what the
+        // flag promises, so the flag is refused rather than given another meaning.
+        if unit != "m" {
+            return Err(Error::invalid(
+                "--spectrum-unit",
+                u.of().1,
+                format!(
+                    "only for load-driven scenes, whose spectrum is the ring displacement \
+                     (m); this scene is motion-driven and its spectrum is of the force \
+                     {signal} ({unit}): leave --spectrum-unit out"
+                ),
+            ));
+        }
+    }
+    Ok(Look {
+        unit: a.spectrum_unit.unwrap_or_default(),
+        dpi: a.dpi,
+    })
 }
 
 /// Set by SIGINT or SIGTERM: the run stops before its next step and its staged folder is
@@ -92,6 +163,7 @@ pub fn run(a: RunArgs) -> Result<String> {
     }
     let scene = schema::load(&text, &overrides)
         .map_err(|problems| crate::scene_cmd::problems_error(&file, &problems))?;
+    let look = check_look(&a, &scene)?;
     let out = a
         .out
         .clone()
@@ -101,7 +173,7 @@ pub fn run(a: RunArgs) -> Result<String> {
     // files with a previous run's (the previous folder stays as it was; an interrupted
     // run is the `.<name>.partial-<pid>` folder, removed by the next run into `out`).
     let staging = Staging::new(&out)?;
-    match write_run(&a, &scene, &name, &staging.dir, &out) {
+    match write_run(&a, &look, &scene, &name, &staging.dir, &out) {
         Ok(mut text) => {
             staging.publish()?;
             if a.open {
@@ -176,7 +248,14 @@ impl Staging {
 
 /// Run the scene and write everything into `out` (the staging folder); the text for
 /// standard output names `shown`, where the folder goes when complete.
-fn write_run(a: &RunArgs, scene: &Scene, name: &str, out: &Path, shown: &Path) -> Result<String> {
+fn write_run(
+    a: &RunArgs,
+    look: &Look,
+    scene: &Scene,
+    name: &str,
+    out: &Path,
+    shown: &Path,
+) -> Result<String> {
     let out = out.to_path_buf();
     let quiet = a.quiet;
     let bar_on = !quiet && std::io::IsTerminal::is_terminal(&std::io::stderr());
@@ -225,7 +304,7 @@ fn write_run(a: &RunArgs, scene: &Scene, name: &str, out: &Path, shown: &Path) -
     )
     .map_err(|e| io(&sj, e))?;
 
-    let (pngs, skipped) = write_plots(&out, &ctx);
+    let (pngs, skipped) = write_plots(&out, &ctx, look);
     for w in &skipped {
         eprintln!("warning: {w}");
     }
@@ -308,7 +387,13 @@ fn keep(name: &str, made: Result<()>, written: &mut Vec<String>, skipped: &mut V
 /// Write the plots; returns the file names written and, for each plot that could not be
 /// made, a warning naming it and why. A plot is an optional product: it never fails a run
 /// whose integration finished and whose series and summaries are written.
-fn write_plots(out: &Path, c: &Ctx) -> (Vec<String>, Vec<String>) {
+fn write_plots(out: &Path, c: &Ctx, look: &Look) -> (Vec<String>, Vec<String>) {
+    let plot = |p: &Path, axes: &Axes<'_>, series: &[Series<'_>], markers: &[Marker]| {
+        plot_pair_dpi(p, look.dpi, axes, series, markers)
+    };
+    let plot_stack = |p: &Path, title: &str, panels: &[(Axes<'_>, Vec<Series<'_>>)]| {
+        stack_pair_dpi(p, look.dpi, title, panels)
+    };
     let scene = c.scene;
     let series = c.series;
     let col = |n: &str| c.col(n)[c.start.min(c.col(n).len())..].to_vec();
@@ -393,13 +478,55 @@ fn write_plots(out: &Path, c: &Ctx) -> (Vec<String>, Vec<String>) {
         &panels,
     );
     keep("force.png", made, &mut written, &mut skipped);
-    let made = spectrum_plot(out, "spectrum.png", c, &c.spec, "spectrum", &mut written);
+    // A long history is a solid band: beside it, the last few ball passes.
+    if let Some((t0, t1, what)) = zoom_window(c) {
+        let i0 = t.partition_point(|&v| v < t0);
+        let tz = &t[i0..];
+        let zp: Vec<(Axes, Vec<Series>)> = f
+            .iter()
+            .enumerate()
+            .map(|(k, (l, y))| {
+                (
+                    Axes {
+                        x_label: if k == last { "t (s)" } else { "" },
+                        y_label: l,
+                        ..Axes::default()
+                    },
+                    vec![Series {
+                        label: "",
+                        x: tz,
+                        y: &y[i0.min(y.len())..],
+                        points: false,
+                    }],
+                )
+            })
+            .collect();
+        let made = plot_stack(
+            &out.join("force-zoom.png"),
+            &headed(
+                c,
+                &format!("force on the shaft, {what}: t = {t0:.4} to {t1:.4} s"),
+            ),
+            &zp,
+        );
+        keep("force-zoom.png", made, &mut written, &mut skipped);
+    }
+    let made = spectrum_plot(
+        out,
+        look,
+        "spectrum.png",
+        c,
+        &c.spec,
+        "spectrum",
+        &mut written,
+    );
     if let Err(e) = made {
         skipped.push(format!("spectrum.png skipped: {e}"));
     }
     if let Some((env, _, _)) = &c.envelope {
         let made = spectrum_plot(
             out,
+            look,
             "envelope.png",
             c,
             env,
@@ -412,7 +539,7 @@ fn write_plots(out: &Path, c: &Ctx) -> (Vec<String>, Vec<String>) {
     }
     keep(
         "ball-loads.png",
-        ball_loads_plot(out, c),
+        ball_loads_plot(out, look.dpi, c),
         &mut written,
         &mut skipped,
     );
@@ -436,9 +563,29 @@ fn write_plots(out: &Path, c: &Ctx) -> (Vec<String>, Vec<String>) {
             &[],
         );
         keep("cage-slip.png", made, &mut written, &mut skipped);
+        if let Some((t0, t1, what)) = zoom_window(c) {
+            let i0 = t.partition_point(|&v| v < t0).min(slip.len());
+            let made = plot(
+                &out.join("cage-slip-zoom.png"),
+                &Axes {
+                    title: &headed(c, &format!("cage slip, {what}: t = {t0:.4} to {t1:.4} s")),
+                    x_label: "t (s)",
+                    y_label: "cage slip 1 - ωc/ωc,kin (%)",
+                    ..Axes::default()
+                },
+                &[Series {
+                    label: "",
+                    x: &t[i0..],
+                    y: &slip[i0..],
+                    points: false,
+                }],
+                &[],
+            );
+            keep("cage-slip-zoom.png", made, &mut written, &mut skipped);
+        }
     }
     if scene.model.level.name() == "full" {
-        match write_cage_plots(out, series, &headed(c, "")) {
+        match write_cage_plots(out, look.dpi, series, &headed(c, "")) {
             Ok(()) => {
                 written.push("cage-orbit.png".to_string());
                 written.push("speeds.png".to_string());
@@ -449,8 +596,74 @@ fn write_plots(out: &Path, c: &Ctx) -> (Vec<String>, Vec<String>) {
     (written, skipped)
 }
 
+/// Highest harmonic marked on a spectrum plot.
+const TOP_HARMONIC: usize = 5;
+
+/// The harmonics (2x to [`TOP_HARMONIC`]x) of the table's found lines BPFO, BPFI and 2BSF
+/// that are themselves found in `spec` by the summary's rule ([`find_peaks`] at
+/// [`LINE_TOLERANCE`], searched together with the table's lines, so that a harmonic
+/// closer than the resolution to another line is not resolved and not marked). Absent
+/// harmonics are left unmarked; the table's own lines keep their marks ("?" when absent).
+fn present_harmonics(spec: &Spectrum, lines: &[FoundPeak]) -> Vec<FoundPeak> {
+    let has = |l: &str| lines.iter().any(|p| p.label == l);
+    let mut marks: Vec<Mark> = lines
+        .iter()
+        .map(|p| Mark {
+            label: p.label.clone(),
+            freq: p.expected,
+        })
+        .collect();
+    let n0 = marks.len();
+    for p in lines.iter().filter(|p| p.is_found()) {
+        let Some(name) = p.label.strip_prefix("1x") else {
+            continue;
+        };
+        if !["BPFO", "BPFI", "2BSF"].contains(&name) {
+            continue;
+        }
+        for h in 2..=TOP_HARMONIC {
+            let label = format!("{h}x{name}");
+            if !has(&label) {
+                marks.push(Mark {
+                    label,
+                    freq: h as f64 * p.expected,
+                });
+            }
+        }
+    }
+    find_peaks(spec, &marks, LINE_TOLERANCE)
+        .into_iter()
+        .skip(n0)
+        .filter(|p| p.is_found())
+        .collect()
+}
+
+/// Number of outer-race ball passes in the zoomed window of a history.
+const ZOOM_PASSES: f64 = 5.0;
+
+/// The zoomed window of a long history: the last [`ZOOM_PASSES`] ball passes over the
+/// outer race (`ZOOM_PASSES / BPFO` seconds) at the end of the run, with its name; none
+/// when the bearing does not turn or the run is not 4 windows long (the whole history
+/// then shows them already).
+fn zoom_window(c: &Ctx) -> Option<(f64, f64, String)> {
+    let bpfo = c.marks.iter().find(|m| m.label == "1xBPFO")?.freq;
+    let (&ts, &te) = (c.series.t.first()?, c.series.t.last()?);
+    let w = ZOOM_PASSES / bpfo;
+    (bpfo.is_finite() && bpfo > 0.0 && 4.0 * w <= te - ts).then(|| {
+        (
+            te - w,
+            te,
+            format!(
+                "last {ZOOM_PASSES} ball passes ({ZOOM_PASSES}/BPFO = {:.1} ms)",
+                1e3 * w
+            ),
+        )
+    })
+}
+
 fn spectrum_plot(
     out: &Path,
+    look: &Look,
     file: &str,
     c: &Ctx,
     spec: &Spectrum,
@@ -467,15 +680,25 @@ fn spectrum_plot(
     let keep: Vec<usize> = (1..spec.freq.len())
         .filter(|&i| spec.freq[i] <= fmax)
         .collect();
-    let sf: Vec<f64> = keep.iter().map(|&i| spec.freq[i]).collect();
-    let sa: Vec<f64> = keep.iter().map(|&i| spec.amp[i].max(1e-30)).collect();
+    // The spectrum (not the envelope spectrum: the envelope of a displacement is not a
+    // derivative's envelope) in the quantity asked for.
+    let envelope = file == "envelope.png";
+    let (n, quantity, unit) = if envelope {
+        (0, "", c.signal.1)
+    } else {
+        look.unit.of()
+    };
+    let shown = spec.derivative(n);
+    let sf: Vec<f64> = keep.iter().map(|&i| shown.freq[i]).collect();
+    let sa: Vec<f64> = keep.iter().map(|&i| shown.amp[i].max(1e-30)).collect();
     // The lines this spectrum's summary table reports: a found line is marked with its
-    // label (harmonics included), one that is not with "?" (the summary says why).
+    // label, one that is not with "?" (the summary says why); then the harmonics up to 5x
+    // of the found lines, only those present.
     let lines = match &c.envelope {
-        Some((_, _, f)) if file == "envelope.png" => f,
+        Some((_, _, f)) if envelope => f,
         _ => &c.found,
     };
-    let mk: Vec<Marker> = lines
+    let mut mk: Vec<Marker> = lines
         .iter()
         .map(|p| Marker {
             x: if p.is_found() { p.found } else { p.expected },
@@ -486,18 +709,36 @@ fn spectrum_plot(
             ),
         })
         .collect();
-    let ylab = format!("amplitude of {} ({})", c.signal.0, c.signal.1);
+    mk.extend(present_harmonics(spec, lines).into_iter().map(|p| Marker {
+        x: p.found,
+        label: p.label,
+    }));
+    let (ylab, of) = match n {
+        0 => (
+            // The signal's own unit (N for a force): no conversion.
+            format!("amplitude of {} ({})", c.signal.0, c.signal.1),
+            c.signal.0.to_string(),
+        ),
+        _ => (
+            format!("{quantity} amplitude ({unit})"),
+            format!(
+                "{} as {quantity} (amplitude x {})",
+                c.signal.0,
+                if n == 1 { "2πf" } else { "(2πf)²" }
+            ),
+        ),
+    };
     let title = headed(
         c,
         &format!(
-            "{what} of {}, t >= {:.3} s (Hann, bins {:.2} Hz)",
-            c.signal.0,
+            "{what} of {of}, t >= {:.3} s (Hann, bins {:.2} Hz)",
             c.series.t.get(c.start).copied().unwrap_or(0.0),
             spec.resolution()
         ),
     );
-    plot(
+    plot_pair_dpi(
         &out.join(file),
+        look.dpi,
         &Axes {
             title: &title,
             x_label: "f (Hz)",
@@ -521,7 +762,7 @@ fn spectrum_plot(
 /// it resolves the balls (skidding, full), else the Jones–Harris equilibrium at the final motion
 /// and speed with the balls at their reference azimuths (the quasi-static, ring and linear
 /// levels' ball model).
-fn ball_loads_plot(out: &Path, c: &Ctx) -> Result<()> {
+fn ball_loads_plot(out: &Path, dpi: u32, c: &Ctx) -> Result<()> {
     let b = c.comp.bearing();
     b.groove("the ball-load plot (a Jones–Harris solve)")?;
     let level = c.scene.model.level.name();
@@ -564,8 +805,9 @@ fn ball_loads_plot(out: &Path, c: &Ctx) -> Result<()> {
             title,
         )
     };
-    plot(
+    plot_pair_dpi(
         &out.join("ball-loads.png"),
+        dpi,
         &Axes {
             title: &headed(c, &title),
             x_label: "azimuth (deg)",
@@ -592,7 +834,7 @@ fn ball_loads_plot(out: &Path, c: &Ctx) -> Result<()> {
 
 /// The full level's cage plots: the cage-centre orbit in units of the guide clearance
 /// (with the clearance circle) and the speed histories (shaft, cage, kinematic cage).
-fn write_cage_plots(out: &Path, series: &Run, who: &str) -> Result<()> {
+fn write_cage_plots(out: &Path, dpi: u32, series: &Run, who: &str) -> Result<()> {
     let col = |n: &str| series.column(n).unwrap_or(&[]).to_vec();
     let t = &series.t;
     let (cx, cy) = (col("cage.x"), col("cage.y"));
@@ -601,8 +843,9 @@ fn write_cage_plots(out: &Path, series: &Run, who: &str) -> Result<()> {
         .map(|(s, c)| (c, s))
         .collect();
     let (ux, uy): (Vec<f64>, Vec<f64>) = circle.into_iter().unzip();
-    plot(
+    plot_pair_dpi(
         &out.join("cage-orbit.png"),
+        dpi,
         &Axes {
             title: &format!("{who}cage-centre orbit (units of the guide clearance)"),
             x_label: "x / Cg",
@@ -646,8 +889,9 @@ fn write_cage_plots(out: &Path, series: &Run, who: &str) -> Result<()> {
         y,
         points: false,
     };
-    plot_stack(
+    stack_pair_dpi(
         &out.join("speeds.png"),
+        dpi,
         &format!("{who}speed histories"),
         &[
             (
