@@ -185,6 +185,10 @@ impl<W: std::io::Write> Sink for CsvSink<W> {
 /// (and its last), so the history stays under this whatever the duration.
 pub const HISTORY_ROWS: usize = 20_000;
 
+/// Rows of a run's end kept at full rate beside a decimated history (for plots that zoom on
+/// the last few ball passes): at most this many, only when the history skips rows.
+pub const TAIL_ROWS: usize = 20_000;
+
 /// Most rows of a column analysed at full rate (the spectra's signal, the whirl index's cage
 /// speed): the last `min(second half, ANALYSED_ROWS)` rows, 2^20 (105 s at 10 kHz, a
 /// spectrum's bin 0.01 Hz there), so a run's memory has a bound whatever its duration.
@@ -209,6 +213,10 @@ pub struct Digest {
     pub history: Series,
     /// Rows of the run per history row.
     pub stride: usize,
+    /// The run's last rows at full rate ([`TAIL_ROWS`] at most) when the history skips rows
+    /// (`stride > 1`); empty otherwise (the history then holds every row).
+    pub tail: Series,
+    tail_from: usize,
     /// Rows of the complete run (steps and the start).
     pub rows: usize,
     /// First row of the second half, `rows / 2`.
@@ -294,7 +302,7 @@ impl Digest {
     /// The history's part is bounded whatever the run's length; the analysed part grows by
     /// one value per analysed column per row of the second half up to its cap.
     pub fn values_kept(&self) -> usize {
-        self.history.t.len() * (self.history.columns.len() + 1)
+        (self.history.t.len() + self.tail.t.len()) * (self.history.columns.len() + 1)
             + self.analysed.iter().map(|(_, v)| v.len()).sum::<usize>()
     }
 
@@ -326,6 +334,12 @@ impl Sink for Digest {
         self.analysed_from = self.start.max(rows.saturating_sub(self.cap.max(1)));
         self.seen = 0;
         self.stride = rows.div_ceil(HISTORY_ROWS).max(1);
+        self.tail = Series::with_columns(names, units);
+        self.tail_from = if self.stride > 1 {
+            rows.saturating_sub(TAIL_ROWS)
+        } else {
+            usize::MAX
+        };
         self.peak = vec![0.0; n];
         self.last = vec![0.0; n];
         // -0.0: the neutral element of `Iterator::sum` for floats, so the sum is the
@@ -369,6 +383,9 @@ impl Sink for Digest {
         }
         if i % self.stride == 0 || i + 1 == self.rows {
             self.history.row(t, values)?;
+        }
+        if i >= self.tail_from {
+            self.tail.row(t, values)?;
         }
         Ok(())
     }
@@ -749,12 +766,13 @@ mod tests {
             assert!(d.peak("a") >= 999.0);
             assert_eq!(d.last("c"), -((d.rows - 1) as f64));
             assert_eq!(d.second_half("b").len(), d.rows - d.rows / 2);
+            // History and full-rate tail (TAIL_ROWS) of the three columns and time.
             let history = d.values_kept() - d.second_half("b").len();
-            assert!(history <= (HISTORY_ROWS + 1) * 4, "{history}");
+            assert!(history <= (HISTORY_ROWS + 1 + TAIL_ROWS) * 4, "{history}");
         }
         let kept = |d: &Digest| d.values_kept() - d.second_half("b").len();
-        // Every row of the long run would be 2.4e6 values: the history keeps under 1/25.
-        assert!(kept(&short) <= kept(&long) && kept(&long) * 25 < long.rows * 4);
+        // Every row of the long run would be 2.4e6 values: history and tail keep under 1/12.
+        assert!(kept(&short) <= kept(&long) && kept(&long) * 12 < long.rows * 4);
     }
 
     /// With a cap on the analysed rows, a run 10 times longer keeps exactly the same number
@@ -774,6 +792,13 @@ mod tests {
             d
         };
         let (short, long) = (feed(60 * HISTORY_ROWS), feed(600 * HISTORY_ROWS));
+        // The tail: the last TAIL_ROWS rows at full rate, in order, whatever the duration.
+        for d in [&short, &long] {
+            let a = d.tail.column("a").unwrap();
+            assert_eq!(d.tail.t.len(), TAIL_ROWS);
+            let first = d.rows - TAIL_ROWS;
+            assert!(a.iter().zip(first..).all(|(v, i)| *v == (i as f64).cos()));
+        }
         assert!(short.values_kept().abs_diff(long.values_kept()) <= 2 * 3);
         for d in [&short, &long] {
             let b = d.second_half("b");

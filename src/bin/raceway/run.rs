@@ -443,15 +443,11 @@ fn write_plots(out: &Path, c: &Ctx, look: &Look) -> (Vec<String>, Vec<String>) {
     );
     keep("orbit.png", made, &mut written, &mut skipped);
     // Only the force components the level has (no Fz panel on 2-DOF scenes).
-    let f: Vec<(&str, Vec<f64>)> = [
-        ("Fx (N)", "force.x"),
-        ("Fy (N)", "force.y"),
-        ("Fz (N)", "force.z"),
-    ]
-    .into_iter()
-    .map(|(l, n)| (l, all(n)))
-    .filter(|(_, v)| v.iter().any(|x| *x != 0.0))
-    .collect();
+    let f: Vec<(&str, Vec<f64>)> = FORCE_PANELS
+        .into_iter()
+        .map(|(l, n)| (l, all(n)))
+        .filter(|(_, v)| v.iter().any(|x| *x != 0.0))
+        .collect();
     let last = f.len().saturating_sub(1);
     let panels: Vec<(Axes, Vec<Series>)> = f
         .iter()
@@ -480,6 +476,16 @@ fn write_plots(out: &Path, c: &Ctx, look: &Look) -> (Vec<String>, Vec<String>) {
     keep("force.png", made, &mut written, &mut skipped);
     // A long history is a solid band: beside it, the last few ball passes.
     if let Some((t0, t1, what)) = zoom_window(c) {
+        // The window from the run's full-rate tail when the history skips rows.
+        let src = zoom_source(c, t0);
+        let f: Vec<(&str, Vec<f64>)> = f
+            .iter()
+            .map(|(l, y)| {
+                let n = FORCE_PANELS.iter().find(|p| p.0 == *l).map_or("", |p| p.1);
+                (*l, src.column(n).map_or_else(|| y.clone(), <[f64]>::to_vec))
+            })
+            .collect();
+        let t = &src.t;
         let i0 = t.partition_point(|&v| v < t0);
         let tz = &t[i0..];
         let zp: Vec<(Axes, Vec<Series>)> = f
@@ -564,6 +570,11 @@ fn write_plots(out: &Path, c: &Ctx, look: &Look) -> (Vec<String>, Vec<String>) {
         );
         keep("cage-slip.png", made, &mut written, &mut skipped);
         if let Some((t0, t1, what)) = zoom_window(c) {
+            let src = zoom_source(c, t0);
+            let (t, slip) = match src.column("cage.slip") {
+                Some(s) => (&src.t, s.iter().map(|v| 100.0 * v).collect::<Vec<f64>>()),
+                None => (t, slip.clone()),
+            };
             let i0 = t.partition_point(|&v| v < t0).min(slip.len());
             let made = plot(
                 &out.join("cage-slip-zoom.png"),
@@ -645,6 +656,22 @@ const ZOOM_PASSES: f64 = 5.0;
 /// outer race (`ZOOM_PASSES / BPFO` seconds) at the end of the run, with its name; none
 /// when the bearing does not turn or the run is not 4 windows long (the whole history
 /// then shows them already).
+/// The force panels: axis label and output.
+const FORCE_PANELS: [(&str, &str); 3] = [
+    ("Fx (N)", "force.x"),
+    ("Fy (N)", "force.y"),
+    ("Fz (N)", "force.z"),
+];
+
+/// Where a zoom from `t0` reads its rows: the run's full-rate tail when the history skips
+/// rows and the tail reaches back to `t0`, else the history (every row).
+fn zoom_source<'a>(c: &'a Ctx, t0: f64) -> &'a raceway::runner::Series {
+    match c.run.tail.t.first() {
+        Some(&first) if first <= t0 => &c.run.tail,
+        _ => c.series,
+    }
+}
+
 fn zoom_window(c: &Ctx) -> Option<(f64, f64, String)> {
     let bpfo = c.marks.iter().find(|m| m.label == "1xBPFO")?.freq;
     let (&ts, &te) = (c.series.t.first()?, c.series.t.last()?);
