@@ -415,6 +415,26 @@ pub struct RollerLoad {
     pub max_lamina: f64,
 }
 
+impl RollerLoad {
+    /// Adds one lamina at `x` carrying `q` with `dq/d delta` = `dq` (`sec2 = sec² psi`, the
+    /// tilt's chain factor); an unloaded lamina adds nothing.
+    #[inline]
+    fn add(&mut self, q: f64, dq: f64, x: f64, sec2: f64) {
+        if q > 0.0 {
+            self.loaded += 1;
+            if q > self.max_lamina {
+                self.max_lamina = q;
+            }
+            self.force += q;
+            self.moment += q * x;
+            self.dforce_ddelta += dq;
+            self.dforce_dtilt -= dq * x * sec2;
+            self.dmoment_ddelta += dq * x;
+            self.dmoment_dtilt -= dq * x * x * sec2;
+        }
+    }
+}
+
 /// A roller's laminae, set up once (centres, profile drops, lamina constant); evaluating them
 /// allocates nothing.
 #[derive(Debug, Clone, PartialEq)]
@@ -533,18 +553,7 @@ impl Laminae {
             if let Some(l) = loads.as_deref_mut() {
                 l[k] = q;
             }
-            if q > 0.0 {
-                r.loaded += 1;
-                if q > r.max_lamina {
-                    r.max_lamina = q;
-                }
-                r.force += q;
-                r.moment += q * x;
-                r.dforce_ddelta += dq;
-                r.dforce_dtilt -= dq * x * sec2;
-                r.dmoment_ddelta += dq * x;
-                r.dmoment_dtilt -= dq * x * x * sec2;
-            }
+            r.add(q, dq, x, sec2);
         }
         r
     }
@@ -611,18 +620,7 @@ impl Laminae {
             if let Some(l) = loads.as_deref_mut() {
                 l[k] = q;
             }
-            if q > 0.0 {
-                r.loaded += 1;
-                if q > r.max_lamina {
-                    r.max_lamina = q;
-                }
-                r.force += q;
-                r.moment += q * x;
-                r.dforce_ddelta += dq;
-                r.dforce_dtilt -= dq * x * sec2;
-                r.dmoment_ddelta += dq * x;
-                r.dmoment_dtilt -= dq * x * x * sec2;
-            }
+            r.add(q, dq, x, sec2);
         }
         r
     }

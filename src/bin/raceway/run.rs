@@ -443,31 +443,13 @@ fn write_plots(out: &Path, c: &Ctx, look: &Look) -> (Vec<String>, Vec<String>) {
     );
     keep("orbit.png", made, &mut written, &mut skipped);
     // Only the force components the level has (no Fz panel on 2-DOF scenes).
-    let f: Vec<(&str, Vec<f64>)> = FORCE_PANELS
+    // (axis label, output, history column)
+    let f: Vec<(&str, &str, Vec<f64>)> = FORCE_PANELS
         .into_iter()
-        .map(|(l, n)| (l, all(n)))
-        .filter(|(_, v)| v.iter().any(|x| *x != 0.0))
+        .map(|(l, n)| (l, n, all(n)))
+        .filter(|(_, _, v)| v.iter().any(|x| *x != 0.0))
         .collect();
-    let last = f.len().saturating_sub(1);
-    let panels: Vec<(Axes, Vec<Series>)> = f
-        .iter()
-        .enumerate()
-        .map(|(k, (l, y))| {
-            (
-                Axes {
-                    x_label: if k == last { "t (s)" } else { "" },
-                    y_label: l,
-                    ..Axes::default()
-                },
-                vec![Series {
-                    label: "",
-                    x: t,
-                    y,
-                    points: false,
-                }],
-            )
-        })
-        .collect();
+    let panels = time_panels(t, f.iter().map(|(l, _, y)| (*l, y.as_slice())), 0);
     let made = plot_stack(
         &out.join("force.png"),
         &headed(c, "force of the bearing on the shaft"),
@@ -478,35 +460,11 @@ fn write_plots(out: &Path, c: &Ctx, look: &Look) -> (Vec<String>, Vec<String>) {
     if let Some((t0, t1, what)) = zoom_window(c) {
         // The window from the run's full-rate tail when the history skips rows.
         let src = zoom_source(c, t0);
-        let f: Vec<(&str, Vec<f64>)> = f
+        let i0 = src.t.partition_point(|&v| v < t0);
+        let cols = f
             .iter()
-            .map(|(l, y)| {
-                let n = FORCE_PANELS.iter().find(|p| p.0 == *l).map_or("", |p| p.1);
-                (*l, src.column(n).map_or_else(|| y.clone(), <[f64]>::to_vec))
-            })
-            .collect();
-        let t = &src.t;
-        let i0 = t.partition_point(|&v| v < t0);
-        let tz = &t[i0..];
-        let zp: Vec<(Axes, Vec<Series>)> = f
-            .iter()
-            .enumerate()
-            .map(|(k, (l, y))| {
-                (
-                    Axes {
-                        x_label: if k == last { "t (s)" } else { "" },
-                        y_label: l,
-                        ..Axes::default()
-                    },
-                    vec![Series {
-                        label: "",
-                        x: tz,
-                        y: &y[i0.min(y.len())..],
-                        points: false,
-                    }],
-                )
-            })
-            .collect();
+            .map(|(l, n, y)| (*l, src.column(n).unwrap_or(y.as_slice())));
+        let zp = time_panels(&src.t, cols, i0);
         let made = plot_stack(
             &out.join("force-zoom.png"),
             &headed(
@@ -656,6 +614,34 @@ const ZOOM_PASSES: f64 = 5.0;
 /// outer race (`ZOOM_PASSES / BPFO` seconds) at the end of the run, with its name; none
 /// when the bearing does not turn or the run is not 4 windows long (the whole history
 /// then shows them already).
+/// Stacked panels of columns against time `t` from row `i0` on, the time label on the last.
+fn time_panels<'a>(
+    t: &'a [f64],
+    cols: impl Iterator<Item = (&'a str, &'a [f64])>,
+    i0: usize,
+) -> Vec<(Axes<'a>, Vec<Series<'a>>)> {
+    let mut panels: Vec<(Axes, Vec<Series>)> = cols
+        .map(|(l, y)| {
+            (
+                Axes {
+                    y_label: l,
+                    ..Axes::default()
+                },
+                vec![Series {
+                    label: "",
+                    x: &t[i0.min(t.len())..],
+                    y: &y[i0.min(y.len())..],
+                    points: false,
+                }],
+            )
+        })
+        .collect();
+    if let Some(p) = panels.last_mut() {
+        p.0.x_label = "t (s)";
+    }
+    panels
+}
+
 /// The force panels: axis label and output.
 const FORCE_PANELS: [(&str, &str); 3] = [
     ("Fx (N)", "force.x"),
