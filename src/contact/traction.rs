@@ -105,6 +105,16 @@ pub struct ContactState {
     pub e_eff: f64,
 }
 
+/// `ca` of `a = ca Q^(1/3)` from a contact's state (0 unloaded: the line-contact reading of
+/// the asperity share is then 0, its own limit as the load vanishes).
+fn semi_axis_coefficient(c: &ContactState) -> f64 {
+    if c.q > 0.0 && c.a > 0.0 {
+        c.a / c.q.cbrt()
+    } else {
+        0.0
+    }
+}
+
 /// A user-set power law of the asperity load ratio (per cent), an override of
 /// [`crate::lubrication::asperity`]: `La = 100 (1 - exp(-La_fit/100))`,
 /// `La_fit = c kappa^e_kappa W^e_w U^e_u G^e_g (sigma/Rx)^e_sigma V^e_v`.
@@ -306,6 +316,11 @@ impl MixedEhl {
                 sigma: self.roughness,
                 h: self.hardness,
                 kappa: c.kappa,
+                ca: if self.reading == asperity::AsperityReading::LineContact {
+                    semi_axis_coefficient(c)
+                } else {
+                    0.0
+                },
             });
             return asperity::asperity_share(&g, self.reading);
         };
@@ -873,6 +888,7 @@ mod tests {
             sigma: shared.roughness,
             h: shared.hardness,
             kappa: c.kappa,
+            ca: semi_axis_coefficient(&c),
         });
         assert_eq!(
             a,

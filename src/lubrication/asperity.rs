@@ -42,6 +42,20 @@
 //! is `La = 100` exactly; zero roughness is `La = 0` exactly.
 //! The result is continuous in all arguments and monotone: rising with roughness, falling
 //! with speed.
+//!
+//! **A second reading: the line-contact ratio.** Masjedi & Khonsari's line-contact
+//! regression (J. Tribol. 134 (2012) 011503; the formula as coded in public code, medium
+//! confidence, docs/physics.md §7) gives, with `W1 = w/(E' Rx)` the load per unit length
+//! made dimensionless,
+//! `La = 0.005 W1^-0.408 U^-0.088 G^0.103 ln(1 + 4470 sigma_bar^6.015 V^1.168 W1^0.485 U^-3.741 G^-2.898)`
+//! per cent. Here it is applied to the central slice of the Hertz ellipse: the slice
+//! through the centre along the rolling direction carries `w = (pi b/2) p0 = 3Q/(4a)` per
+//! unit length (`a` the semi-axis across the rolling direction), so `W1 = 3Q/(4 a E' Rx)`,
+//! with `a = ca Q^(1/3)` from the Hertz solution ([`Groups::ha`]). That is an assumption of
+//! this project (the ball contact is not a line contact), named as a reading
+//! ([`AsperityReading::LineContact`]), not the study's formula. Its limits: `La -> 0` for
+//! smooth surfaces and as the load vanishes, rising with roughness, falling with speed (no
+//! turning point: both speed exponents are negative); capped at 100 %.
 
 /// Exponent of `sigma_bar` restored in the logarithm (`2.9/0.67`; module notes).
 pub const SIGMA_EXPONENT: f64 = 2.9 / 0.67;
@@ -54,14 +68,35 @@ pub enum AsperityReading {
     FilmParameter,
     /// `s = 4`: the `4` of the printed `1/4`.
     Quartic,
+    /// Masjedi & Khonsari's line-contact ratio on the ellipse's central slice (module
+    /// notes), not a reading of the printed point-contact form.
+    LineContact,
 }
 
 impl AsperityReading {
-    /// The roughness exponent `s`.
+    /// The roughness exponent `s` of the restored point-contact form (`6.015`, the
+    /// line-contact regression's own, for [`AsperityReading::LineContact`]).
     pub fn exponent(self) -> f64 {
         match self {
             AsperityReading::FilmParameter => SIGMA_EXPONENT,
             AsperityReading::Quartic => 4.0,
+            AsperityReading::LineContact => LINE_SIGMA,
+        }
+    }
+
+    /// Every reading, in the order the study page shows them.
+    pub const ALL: [AsperityReading; 3] = [
+        AsperityReading::FilmParameter,
+        AsperityReading::Quartic,
+        AsperityReading::LineContact,
+    ];
+
+    /// A short label for tables and file names.
+    pub fn label(self) -> &'static str {
+        match self {
+            AsperityReading::FilmParameter => "film-parameter",
+            AsperityReading::Quartic => "quartic",
+            AsperityReading::LineContact => "line-contact",
         }
     }
 }
@@ -81,6 +116,9 @@ pub struct Groups {
     pub sigma: f64,
     /// Hardness `H/E'`.
     pub v: f64,
+    /// Hertz semi-axis across the rolling direction over `Rx` at `W = 1`:
+    /// `a/Rx = ha W^(1/3)` (used by [`AsperityReading::LineContact`] only; 0 when unknown).
+    pub ha: f64,
 }
 
 /// One rough lubricated contact in SI units, what [`Groups::new`] makes dimensionless.
@@ -104,6 +142,10 @@ pub struct Contact {
     pub h: f64,
     /// Ellipticity `a/b`.
     pub kappa: f64,
+    /// Hertz coefficient `ca` of the semi-axis across the rolling direction, `a = ca Q^(1/3)`,
+    /// m/N^(1/3) ([`crate::contact::hertz::PointContact::semi_axis_coefficients`]; 0 when
+    /// unknown: the line-contact reading then gives 0).
+    pub ca: f64,
 }
 
 impl Groups {
@@ -119,6 +161,7 @@ impl Groups {
             sigma,
             h,
             kappa,
+            ca,
         } = *c;
         Groups {
             kappa,
@@ -127,6 +170,12 @@ impl Groups {
             g: alpha_p * e_eff,
             sigma: sigma / rx,
             v: h / e_eff,
+            // a/Rx = ca Q^(1/3)/Rx = ca (W E' Rx²)^(1/3)/Rx.
+            ha: if ca > 0.0 {
+                ca * (e_eff * rx * rx).cbrt() / rx
+            } else {
+                0.0
+            },
         }
     }
 }
@@ -134,6 +183,33 @@ impl Groups {
 /// Exponent of `U` in the prefactor and in the logarithm.
 const A_U: f64 = 0.143;
 const B_U: f64 = 2.9;
+
+/// Exponent of `sigma_bar` in the line-contact regression's logarithm.
+const LINE_SIGMA: f64 = 6.015;
+
+/// The line-contact reading (module notes) at load group `w` of groups `g`, per cent.
+fn line_share(g: &Groups, w: f64) -> f64 {
+    if g.ha <= 0.0 || w <= 0.0 || g.ha.is_nan() || w.is_nan() {
+        return 0.0;
+    }
+    // W1 = 3Q/(4 a E' Rx) = 3 W /(4 a/Rx) with a/Rx = ha W^(1/3).
+    let ln_w1 = (0.75 / g.ha).ln() + (2.0 / 3.0) * w.ln();
+    let (ln_u, ln_g) = (g.u.ln(), g.g.ln());
+    let ln_x = 4470f64.ln() + LINE_SIGMA * g.sigma.ln() + 1.168 * g.v.ln() + 0.485 * ln_w1
+        - 3.741 * ln_u
+        - 2.898 * ln_g;
+    let log_term = if ln_x > 30.0 {
+        ln_x
+    } else {
+        ln_x.exp().ln_1p()
+    };
+    let la = 0.005 * (-0.408 * ln_w1 - 0.088 * ln_u + 0.103 * ln_g).exp() * log_term;
+    if la.is_nan() {
+        100.0
+    } else {
+        la.clamp(0.0, 100.0)
+    }
+}
 
 /// `X*`: the logarithm's argument where the printed form of `La` is largest as `U`
 /// falls, the root of `(1 + X) ln(1 + X) / X = 2.9/0.143` (module notes).
@@ -161,6 +237,8 @@ pub fn asperity_share(g: &Groups, reading: AsperityReading) -> f64 {
 pub struct ShareAt {
     /// The share whatever the load: 0 without roughness, 100 without entrainment.
     fixed: Option<f64>,
+    /// The groups, for the line-contact reading (which has its own form).
+    line: Option<Groups>,
     /// `ln 0.689 + s ln sigma_bar + 0.509 ln V` (the leading terms of `ln X1`, summed in
     /// the formula's order).
     lead: f64,
@@ -178,9 +256,10 @@ impl ShareAt {
         } else {
             None
         };
-        if fixed.is_some() {
+        if fixed.is_some() || reading == AsperityReading::LineContact {
             return ShareAt {
                 fixed,
+                line: (reading == AsperityReading::LineContact).then_some(*g),
                 lead: 0.0,
                 ln_g: 0.0,
                 ln_u: 0.0,
@@ -188,6 +267,7 @@ impl ShareAt {
         }
         ShareAt {
             fixed,
+            line: None,
             lead: (0.689f64).ln() + reading.exponent() * g.sigma.ln() + 0.509 * g.v.ln(),
             ln_g: g.g.ln(),
             ln_u: g.u.ln(),
@@ -198,6 +278,9 @@ impl ShareAt {
     pub fn share(&self, w: f64) -> f64 {
         if let Some(la) = self.fixed {
             return la;
+        }
+        if let Some(g) = &self.line {
+            return line_share(g, w);
         }
         let ln_w = w.ln();
         // x1 = X U^2.9 (the speed-free part of the logarithm's argument).
@@ -253,7 +336,102 @@ mod tests {
             sigma,
             h: 2.39e9,
             kappa: 8.0,
+            ca: outer_contact().semi_axis_coefficients().0,
         })
+    }
+
+    /// The 6012's outer-race contact (groove 0.53 D), steel.
+    fn outer_contact() -> crate::contact::hertz::PointContact {
+        use crate::contact::hertz::{Curvature, PointContact, Race};
+        let c = Curvature::ball_race(10.45e-3, 77.6e-3, 0.0, 0.53, Race::Outer);
+        PointContact::new(c, 2.28e11)
+    }
+
+    /// The line-contact reading is the regression as written (powers, not logarithms) at
+    /// `W1 = 3Q/(4 a E' Rx)` of the ellipse's central slice, and keeps its limits.
+    #[test]
+    fn line_contact_reading() {
+        let line = AsperityReading::LineContact;
+        for sigma in [0.2e-6, 0.42e-6] {
+            let g = study(sigma);
+            let pc = outer_contact();
+            let q = 180.0;
+            let (a, _) = pc.semi_axes(q);
+            let w1 = 3.0 * q / (4.0 * a * 2.28e11 * pc.curvature.rx);
+            let rx = pc.curvature.rx;
+            // `study` builds its groups with its own Rx (the same formula): rescale.
+            let sb = sigma / rx;
+            let x = 4470.0
+                * sb.powf(6.015)
+                * g.v.powf(1.168)
+                * w1.powf(0.485)
+                * g.u.powf(-3.741)
+                * g.g.powf(-2.898);
+            let by_hand = 0.005 * w1.powf(-0.408) * g.u.powf(-0.088) * g.g.powf(0.103) * x.ln_1p();
+            let got = asperity_share(&g, line);
+            assert!(
+                (got - by_hand.min(100.0)).abs() < 1e-9 * by_hand.max(1.0),
+                "sigma {sigma:e}: {got} vs {by_hand}"
+            );
+            assert!(got > 0.0 && got < 100.0, "{got}");
+            eprintln!("sigma {sigma:e} line-contact: La {got}");
+        }
+        let g = study(0.2e-6);
+        assert_eq!(asperity_share(&Groups { sigma: 0.0, ..g }, line), 0.0);
+        assert!(
+            asperity_share(
+                &Groups {
+                    sigma: g.sigma * 1e-2,
+                    ..g
+                },
+                line
+            ) < 1e-6
+        );
+        // Vanishing load: La -> 0, slowly (as W1^0.077).
+        let at_study = asperity_share(&g, line);
+        let light = asperity_share(
+            &Groups {
+                w: g.w * 1e-15,
+                ..g
+            },
+            line,
+        );
+        let lighter = asperity_share(
+            &Groups {
+                w: g.w * 1e-30,
+                ..g
+            },
+            line,
+        );
+        assert!(
+            lighter < light && light < at_study,
+            "{lighter} {light} {at_study}"
+        );
+        assert!(lighter < 0.1 * at_study, "{lighter} {at_study}");
+        assert_eq!(asperity_share(&Groups { u: 0.0, ..g }, line), 100.0);
+        // Unknown semi-axis: the reading cannot be formed and gives 0, never NaN.
+        assert_eq!(asperity_share(&Groups { ha: 0.0, ..g }, line), 0.0);
+        // Monotone: rising with roughness, falling with speed, continuous.
+        let mut prev = 0.0;
+        for k in 0..400 {
+            let s = g.sigma * 10f64.powf(-2.0 + 4.0 * k as f64 / 400.0);
+            let l = asperity_share(&Groups { sigma: s, ..g }, line);
+            assert!(l >= prev, "sigma {s:e}: {l} < {prev}");
+            prev = l;
+        }
+        let mut prev = 100.0;
+        for k in 0..800 {
+            let u = g.u * 10f64.powf(-12.0 + 14.0 * k as f64 / 800.0);
+            let l = asperity_share(&Groups { u, ..g }, line);
+            assert!(l <= prev + 1e-12, "U {u:e}: {l} > {prev}");
+            assert!((prev - l) < 5.0, "continuous: {prev} -> {l}");
+            prev = l;
+        }
+        // ShareAt at another load equals the function with that load.
+        let at = ShareAt::new(&g, line);
+        for w in [g.w * 0.1, g.w, g.w * 7.0] {
+            assert_eq!(at.share(w), asperity_share(&Groups { w, ..g }, line));
+        }
     }
 
     #[test]

@@ -205,6 +205,12 @@ impl WearLaw {
                     sigma: l.roughness,
                     h: self.hardness,
                     kappa: c.ellipse.kappa,
+                    // Only the line-contact reading uses the semi-axis (a cube root saved).
+                    ca: if reading == AsperityReading::LineContact {
+                        c.semi_axis_coefficients().0
+                    } else {
+                        0.0
+                    },
                 });
                 let (rx, e_eff) = (c.curvature.rx, c.e_eff);
                 FilmFactorsAt {
@@ -519,6 +525,7 @@ mod tests {
                                     sigma: l.roughness,
                                     h: law.hardness,
                                     kappa: c.ellipse.kappa,
+                                    ca: c.semi_axis_coefficients().0,
                                 });
                                 let la = share(&g, reading.exponent());
                                 let psi = if us <= 0.0 {
