@@ -551,3 +551,28 @@ fn method_spellings_are_the_registrys() {
     assert_eq!(Method::Auto.resolve(false).name, "dopri5");
     assert!(!Method::Ros34pw2.resolve(false).dense_output);
 }
+
+/// A JSON `null` (what a NaN becomes when a scene dict is serialised) is refused by every
+/// face, naming the field: `--check` did, while `Component::from_text` (the C ABI's and the
+/// FMU's path) read it as an absent optional field and built the scene with its default
+/// (found by the property tests, seed 20261130).
+#[test]
+fn a_json_null_is_refused_by_every_face_naming_the_field() {
+    let text = r#"{"bearing": "6012", "model": {"level": "ring"}, "effects": {"lubrication":
+        {"film": "ehl", "lubricant": "study2", "roughness_um": null}}}"#;
+    let built = raceway::component::Component::from_text(text);
+    let e = built.err().expect("refused").to_string();
+    assert!(
+        e.contains("effects.lubrication.roughness_um") && e.contains("null"),
+        "{e}"
+    );
+    let p = write_tmp("null.json", text);
+    let out = raceway(&["scene", "--check", p.to_str().unwrap()]);
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("effects.lubrication.roughness_um"), "{err}");
+    // Without the null the same scene builds.
+    let ok = text.replace(r#", "roughness_um": null"#, "");
+    let built = raceway::component::Component::from_text(&ok);
+    assert!(built.is_ok(), "{:?}", built.err());
+}

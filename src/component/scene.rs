@@ -428,6 +428,11 @@ impl Scene {
             let table = toml::from_str::<toml::Table>(text).map_err(|e| parse(e.to_string()))?;
             serde_json::to_value(table).map_err(|e| parse(e.to_string()))?
         };
+        if let Some(path) = super::schema::null_at(&tree) {
+            return Err(parse(format!(
+                "`{path}`: found null, which is not a value (leave the field out for its default)"
+            )));
+        }
         if let Some((path, expected)) = super::schema::list_for_table(&tree) {
             return Err(parse(format!(
                 "`{path}` is a list; expected {expected} (`[{path}]` with its fields, or `{path} = {{ ... }}`)"

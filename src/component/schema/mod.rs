@@ -170,6 +170,32 @@ fn normalise_child(parent_norm: &str, key: &str) -> String {
     }
 }
 
+/// The path of the first JSON `null` in a scene tree, if any. JSON has `null` where TOML has
+/// nothing: serde would read it as an absent optional field (its default) while `scene
+/// --check` refuses it, so every face refuses it, naming the field (the tree's depth is
+/// bounded by [`crate::nesting`] before this runs).
+pub fn null_at(v: &serde_json::Value) -> Option<String> {
+    fn walk(v: &serde_json::Value, path: &str) -> Option<String> {
+        let join = |k: &str| {
+            if path.is_empty() {
+                k.to_string()
+            } else {
+                format!("{path}.{k}")
+            }
+        };
+        match v {
+            serde_json::Value::Null => Some(path.to_string()),
+            serde_json::Value::Array(items) => items
+                .iter()
+                .enumerate()
+                .find_map(|(i, x)| walk(x, &format!("{path}[{i}]"))),
+            serde_json::Value::Object(m) => m.iter().find_map(|(k, x)| walk(x, &join(k))),
+            _ => None,
+        }
+    }
+    walk(v, "")
+}
+
 /// The first place in a parsed scene where a list stands for a table (serde would read
 /// `model = ["ring", "load"]` by position), as `(path, expected)` with the path as the
 /// scene spells it; `None` when there is none.
