@@ -186,11 +186,13 @@ pub fn full_scenes() -> Vec<Scene> {
         },
         {
             // A roller bearing's defect with its axial extent (the ring level takes defects and
-            // waviness on roller bearings, nothing else), so its rows are walked.
+            // waviness on roller bearings, nothing else), so its rows are walked. On a roller
+            // (`race = "ball"`): the spellings' check reads the first full scene with a
+            // spelling as a ball bearing's spec.
             let mut s = full_scene(BearingRef::Preset("NU206".into()), TractionLaw::default());
             s.effects = Effects {
                 defects: vec![DefectSpec {
-                    race: Element::Outer,
+                    race: Element::Ball,
                     angle_deg: 270.0,
                     width_mm: 1.0,
                     depth_um: 10.0,
@@ -199,8 +201,8 @@ pub fn full_scenes() -> Vec<Scene> {
                     axial_position_mm: Some(-1.0),
                 }],
                 waviness: vec![WavinessSpec {
-                    race: Element::Inner,
-                    order: 3,
+                    race: Element::Ball,
+                    order: 2,
                     amplitude_um: 0.1,
                     phase_deg: 0.0,
                     ball: None,
