@@ -240,7 +240,9 @@ fn roller_cells_are_finite_or_clean_errors() {
     assert!(cells.len() >= 25, "{} cells", cells.len());
     let long = stability::matrix(true);
     assert!(cells.iter().all(|c| long.contains(c)));
-    let kinds: [(fn(&Cell) -> bool, &str); 4] = [
+    // Each kind of roller cell: what marks it, its name.
+    type Kind = (fn(&Cell) -> bool, &'static str);
+    let kinds: [Kind; 4] = [
         (
             |c: &Cell| c.clearance == Clearance::StiffPreload,
             "stiff preload",

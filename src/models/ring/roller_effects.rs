@@ -208,7 +208,7 @@ mod tests {
         assert!(f.offsets(3, 270f64.to_radians(), 0.7, &mut o));
         for (k, &v) in o.iter().enumerate() {
             if k < 15 {
-                assert!(v < -0.97e-5 && v >= -1e-5, "{k}: {v}");
+                assert!((-1e-5..-0.97e-5).contains(&v), "{k}: {v}");
             } else {
                 assert_eq!(v, 0.0, "{k}");
             }
