@@ -558,7 +558,7 @@ impl Laminae {
         r
     }
 
-    /// As [`Laminae::eval`] with each lamina's approach moved by `offsets[k]` (m, length `ns`;
+    /// As [`Laminae::evaluate`] with each lamina's approach moved by `offsets[k]` (m, length `ns`;
     /// waviness adds, a defect's depth loss subtracts: docs/physics.md §R10):
     /// `delta_k = delta - x_k tan(psi) - 2 P(x_k) + offsets[k]`. Every lamina through the
     /// general loop (an offset breaks the aligned roller's mirror pairs). `loads` (length
