@@ -1,7 +1,7 @@
 //! The rollers page, `docs/rollers.md` with its plots: the ISO/TS 16281 slicing on a worked
 //! case, the lamina convergence behind `DEFAULT_LAMINAE`, the pressure along a roller for each
 //! profile (aligned and tilted), life against tilt for each profile, and a cylindrical roller
-//! bearing's envelope spectrum at its BPFO.
+//! bearing's outer-race defect: its envelope spectrum at BPFO.
 //!
 //! ```text
 //! cargo run --release --example rollers_page              # docs/rollers.md and docs/rollers-*.png
@@ -9,7 +9,7 @@
 //! ```
 //!
 //! `--out DIR` writes elsewhere. The quick version takes a 1000-lamina reference instead of
-//! 4000, four tilts instead of thirteen and 0.2 s of the ring run instead of 0.7 s.
+//! 4000, four tilts instead of thirteen and 0.3 s of the defect scene's run instead of 0.8 s.
 
 use raceway::analysis::envelope_spectrum;
 use raceway::component::{variables, Component};
@@ -544,66 +544,94 @@ fn life_against_tilt(md: &mut String, out: &Path, b: &RollerBearing, qd: f64, qu
     md.push_str("\n![life against tilt](rollers-life-tilt.png)\n\n");
 }
 
-/// The NU206 ring scene: its force's envelope spectrum with BPFO marked.
-fn envelope(md: &mut String, out: &Path, quick: bool) {
-    let text = include_str!("scenes/nu206-ring2-radial.toml");
+/// The NU206 outer-race defect scene (`examples/scenes/nu206-outer-defect.toml`) and the same
+/// scene without its defect: `shaft.y` after `settle` s, `h` the step.
+fn shaft_y(text: &str, t_end: f64, settle: f64) -> (Vec<f64>, f64, f64) {
     let mut c = Component::from_text(text).expect("scene");
     let scene = raceway::Scene::from_text(text).expect("scene");
     let h = scene.run.step_s;
-    let t_end = if quick { 0.2 } else { scene.run.duration_s };
     let omega = scene.inputs.initial["shaft.omega"];
-    for name in [
-        "load.x",
-        "load.y",
-        "load.z",
-        "load.mx",
-        "load.my",
-        "shaft.omega",
-    ] {
-        let vr = variables::by_name(name).expect("variable").vr;
-        let v = scene.inputs.initial.get(name).copied().unwrap_or(0.0);
-        c.set_real(vr, v).expect("input");
-    }
-    let fy = variables::by_name("force.y").expect("force.y").vr;
+    let vy = variables::by_name("shaft.y").expect("shaft.y").vr;
     let n = (t_end / h).round() as usize;
+    let skip = ((settle / h) as usize).min(n / 2);
     let mut y = Vec::with_capacity(n);
     for i in 0..n {
         c.do_step(i as f64 * h, h).expect("step");
-        y.push(c.get_real(fy).expect("force.y"));
+        if i >= skip {
+            y.push(c.get_real(vy).expect("shaft.y"));
+        }
     }
-    // The first 0.1 s: the ring settling under the load it was released with.
-    let settle = ((0.1 / h) as usize).min(n / 2);
-    let sig = &y[settle..];
+    (y, h, omega)
+}
+
+/// The NU206 outer-race defect scene: the envelope spectrum of its `shaft.y` with BPFO and its
+/// harmonics marked, beside the healthy bearing's (the same scene without the defect).
+fn envelope(md: &mut String, out: &Path, quick: bool) {
+    let text = include_str!("scenes/nu206-outer-defect.toml");
+    let line = text
+        .lines()
+        .find(|l| l.starts_with("defects = "))
+        .expect("the scene has a defect");
+    let healthy_text = text.replace(line, "");
+    let scene = raceway::Scene::from_text(text).expect("scene");
+    let d = &scene.effects.defects[0];
+    // As `raceway run` analyses it: the second half of the run.
+    let t_end = if quick { 0.3 } else { scene.run.duration_s };
+    let (y, h, omega) = shaft_y(text, t_end, 0.5 * t_end);
+    let (y0, _, _) = shaft_y(&healthy_text, t_end, 0.5 * t_end);
     let b = lookup("NU206").expect("NU206").build().expect("builds");
     let fs_hz = omega / (2.0 * PI);
-    let bpfo = 0.5 * b.z as f64 * fs_hz * (1.0 - b.gamma());
-    let s = envelope_spectrum(sig, 1.0 / h, None);
+    let ftf = 0.5 * fs_hz * (1.0 - b.gamma());
+    let bpfo = b.z as f64 * ftf;
+    let bpfi = b.z as f64 * (fs_hz - ftf);
+    let bsf = b.dpw / (2.0 * b.dwe) * (1.0 - b.gamma() * b.gamma()) * fs_hz;
+    // The band of the run summary: above three times the highest defect frequency, to 0.8 of
+    // the Nyquist frequency (the impacts ring there; the envelope keeps their rate).
+    let top = bpfi.max(bpfo).max(2.0 * bsf);
+    let band = (3.0 * top, 0.8 * 0.5 / h);
+    let s = envelope_spectrum(&y, 1.0 / h, Some(band));
+    let s0 = envelope_spectrum(&y0, 1.0 / h, Some(band));
     let keep: Vec<usize> = (1..s.freq.len())
         .filter(|&k| s.freq[k] <= 4.5 * bpfo)
         .collect();
-    let (f, a): (Vec<f64>, Vec<f64>) = keep.iter().map(|&k| (s.freq[k], s.amp[k])).unzip();
-    let kmax = (0..f.len())
-        .max_by(|&i, &j| a[i].total_cmp(&a[j]))
-        .expect("bins");
+    let pick = |s: &raceway::analysis::Spectrum| -> (Vec<f64>, Vec<f64>) {
+        keep.iter().map(|&k| (s.freq[k], s.amp[k] * 1e9)).unzip()
+    };
+    let (f, a) = pick(&s);
+    let (_, a0) = pick(&s0);
+    let df = s.freq[1] - s.freq[0];
+    let (fp, ap) = s
+        .peak_in(bpfo - 2.0 * df, bpfo + 2.0 * df)
+        .expect("a line at BPFO");
+    let floor = s.median_in(0.5 * bpfo, 2.0 * bpfo);
+    let at0 = s0.at(bpfo);
     plot(
         &png(out, "envelope"),
         &Axes {
             title: &format!(
-                "nu206-ring2-radial: envelope spectrum of force.y, {:.0} rpm, Fr 4 kN, {:.2} s",
+                "nu206-outer-defect: envelope spectrum of shaft.y, {:.0} rpm, Fr 4 kN, {:.2} s analysed",
                 omega * 30.0 / PI,
-                sig.len() as f64 * h
+                y.len() as f64 * h
             ),
             x_label: "frequency (Hz)",
-            y_label: "envelope amplitude (N)",
+            y_label: "envelope amplitude of shaft.y (nm)",
             log_y: true,
             ..Axes::default()
         },
-        &[Series {
-            label: "envelope of force.y",
-            x: &f,
-            y: &a,
-            points: false,
-        }],
+        &[
+            Series {
+                label: "outer-race spall over half the raceway",
+                x: &f,
+                y: &a,
+                points: false,
+            },
+            Series {
+                label: "healthy (same scene, no defect)",
+                x: &f,
+                y: &a0,
+                points: false,
+            },
+        ],
         &[
             Marker {
                 x: bpfo,
@@ -617,27 +645,46 @@ fn envelope(md: &mut String, out: &Path, quick: bool) {
                 x: 3.0 * bpfo,
                 label: "3 BPFO".into(),
             },
+            Marker {
+                x: 2.0 * bsf,
+                label: "2 BSF".into(),
+            },
         ],
     )
     .expect("plot");
     let _ = write!(
         md,
-        "## A cylindrical roller bearing's envelope spectrum at BPFO\n\n\
-         The shipped scene `examples/scenes/nu206-ring2-radial.toml` (ring level, 2 DOF, \
-         load-driven, 4 kN at {:.0} rpm), its `force.y` at 10 kHz after 0.1 s of settling \
-         ({:.2} s analysed, {:.2} Hz bins), envelope spectrum (Hilbert, whole band). BPFO = \
-         `Z/2 fs (1 - γ)` = {bpfo:.2} Hz with the roller's γ = Dwe/Dpw = {:.4}; the largest \
-         line is at {:.2} Hz ({:+.2} % from BPFO). **What it shows is the roller passage**, the \
-         varying compliance of 14 rollers over the load zone: an outer-race defect cannot be \
-         put on a roller bearing yet (the law-driven ring level refuses effects until the \
-         laminae carry defects), so the defect variant of this section follows when they do; \
-         the defect's impacts will sit on the same BPFO lines.\n\n\
+        "## A cylindrical roller bearing's outer-race defect: envelope spectrum at BPFO\n\n\
+         The shipped scene `examples/scenes/nu206-outer-defect.toml` (ring level, 2 DOF, \
+         load-driven, 4 kN at {:.0} rpm, 1 kg on the inner ring): an outer-race spall at the \
+         bottom of the load zone, {} mm around the race and {} µm deep, over {} mm of the \
+         roller's {:.1} mm effective length centred {} mm from its mid-plane, so it takes \
+         material from half the laminae of each roller that crosses it and leaves the other \
+         half as they are (docs/physics.md §R10). `shaft.y` at 10 kHz, the second half of the \
+         run ({:.2} s, {:.2} Hz bins, as `raceway run` analyses it), band-passed over \
+         {:.0}–{:.0} Hz (above three times the highest characteristic frequency, where the \
+         impacts ring) and enveloped (Hilbert). BPFO = `Z/2 fs (1 - γ)` = {bpfo:.2} Hz with the \
+         roller's γ = Dwe/Dpw = {:.4}. The defect's line: {fp:.2} Hz ({:+.3} % from BPFO), \
+         {:.1} nm, {:.0} times the median floor over [BPFO/2, 2 BPFO]. The healthy bearing's \
+         envelope at BPFO, in the same band, is {:.3} nm, {:.0} times lower: the roller \
+         passage alone makes a weak line; the spall's impacts make the strong one and its \
+         harmonics.\n\n\
          ![envelope spectrum](rollers-envelope.png)\n",
         omega * 30.0 / PI,
-        sig.len() as f64 * h,
-        s.freq[1] - s.freq[0],
+        d.width_mm,
+        d.depth_um,
+        d.axial_width_mm.unwrap_or(b.lwe * 1e3),
+        b.lwe * 1e3,
+        d.axial_position_mm.unwrap_or(0.0),
+        y.len() as f64 * h,
+        df,
+        band.0,
+        band.1,
         b.gamma(),
-        f[kmax],
-        100.0 * (f[kmax] / bpfo - 1.0)
+        100.0 * (fp / bpfo - 1.0),
+        ap * 1e9,
+        ap / floor,
+        at0 * 1e9,
+        ap / at0,
     );
 }

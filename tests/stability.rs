@@ -230,3 +230,44 @@ rule = "velocity"
             .unwrap_or_else(|e| panic!("step {i}: {e}"));
     }
 }
+
+/// The roller cells (stiff preload, heavy tilt, edge loading, high speed; part of the long
+/// campaign): every one gives finite outputs that converge under refinement, or a clean error,
+/// over the CI window; the cells are those the campaign lists.
+#[test]
+fn roller_cells_are_finite_or_clean_errors() {
+    let cells = stability::roller_cells();
+    assert!(cells.len() >= 25, "{} cells", cells.len());
+    let long = stability::matrix(true);
+    assert!(cells.iter().all(|c| long.contains(c)));
+    // Each kind of roller cell: what marks it, its name.
+    type Kind = (fn(&Cell) -> bool, &'static str);
+    let kinds: [Kind; 4] = [
+        (
+            |c: &Cell| c.clearance == Clearance::StiffPreload,
+            "stiff preload",
+        ),
+        (|c: &Cell| c.base.moment_arm >= 0.05, "heavy tilt"),
+        (
+            |c: &Cell| c.base.bearing_extra.contains("none") && c.base.moment_arm > 0.0,
+            "edge loading",
+        ),
+        (|c: &Cell| c.speed == Speed::Max, "high speed"),
+    ];
+    for (want, what) in kinds {
+        assert!(cells.iter().any(want), "no {what} cell");
+    }
+    let res = stability::run(&cells, 0.002, false);
+    let failed: Vec<String> = res
+        .iter()
+        .filter(|(_, o)| !o.passed())
+        .map(|(c, o)| format!("{c:?}: {o:?}"))
+        .collect();
+    for (c, o) in &res {
+        println!(
+            "{} | {:?} | {:?} | {:?} -> {o:?}",
+            c.base.name, c.speed, c.load, c.clearance
+        );
+    }
+    assert!(failed.is_empty(), "failed cells:\n{}", failed.join("\n"));
+}

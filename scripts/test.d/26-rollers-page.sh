@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The rollers page, short version (1000-lamina reference, four tilts, 0.2 s of the ring run):
+# The rollers page, short version (1000-lamina reference, four tilts, 0.3 s of the defect scene's run):
 # the command runs and writes its page and plots (into out/rollers/, not docs/).
 set -euo pipefail
 cd "$(dirname "$0")/../.."

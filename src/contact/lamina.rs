@@ -558,6 +558,38 @@ impl Laminae {
         r
     }
 
+    /// As [`Laminae::evaluate`] with each lamina's approach moved by `offsets[k]` (m, length `ns`;
+    /// waviness adds, a defect's depth loss subtracts: docs/physics.md §R10):
+    /// `delta_k = delta - x_k tan(psi) - 2 P(x_k) + offsets[k]`. Every lamina through the
+    /// general loop (an offset breaks the aligned roller's mirror pairs). `loads` (length
+    /// `ns`) receives the lamina loads.
+    pub fn evaluate_offsets(
+        &self,
+        delta: f64,
+        tan_psi: f64,
+        offsets: &[f64],
+        mut loads: Option<&mut [f64]>,
+    ) -> RollerLoad {
+        assert_eq!(offsets.len(), self.len(), "one offset per lamina");
+        let sec2 = 1.0 + tan_psi * tan_psi;
+        let mut r = RollerLoad::default();
+        let (cs, dcs) = (self.cs, 10.0 / 9.0 * self.cs);
+        for (k, ((&x, &d2), &o)) in self.x.iter().zip(&self.drop2).zip(offsets).enumerate() {
+            let d = delta - x * tan_psi - d2 + o;
+            let (q, dq) = if d > 0.0 {
+                let p = ninth_root(d);
+                (cs * d * p, dcs * p)
+            } else {
+                (0.0, 0.0)
+            };
+            if let Some(l) = loads.as_deref_mut() {
+                l[k] = q;
+            }
+            r.add(q, dq, x, sec2);
+        }
+        r
+    }
+
     /// The inner contacts of the laminae when the roller presses on the outer raceway with
     /// `f` (N) on every lamina (its centrifugal force split evenly, docs/physics.md §R9): at
     /// approach `delta` (m, both contacts) and tilt `tan_psi`, the force, moment and

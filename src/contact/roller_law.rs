@@ -190,6 +190,43 @@ impl ElementLaw for CylindricalRollerLaw {
                 "a finite shaft speed (rad/s)",
             ));
         };
+        Ok(self.reaction(r, u, t, approach, omega, want))
+    }
+}
+
+impl CylindricalRollerLaw {
+    /// The reaction of a massless roller (the ring level's, [`CylindricalRollerLaw::massless`])
+    /// whose laminae's approaches are moved by `offsets` (m, one per lamina: a race's
+    /// waviness adds, a defect's depth loss subtracts; docs/physics.md §R10), with the lamina
+    /// loads into `loads` when given. With every offset zero it equals
+    /// [`ElementLaw::react`] to rounding (the aligned roller's mirrored pairs are summed
+    /// lamina by lamina here); the ring level calls it only for a roller with an offset.
+    pub fn react_offsets(
+        &self,
+        u: ElementDisplacement,
+        offsets: &[f64],
+        want: Want,
+        loads: Option<&mut [f64]>,
+    ) -> ElementReaction {
+        debug_assert!(self.fc_per_omega2 == 0.0, "massless rollers only");
+        let approach = u.radial - self.half_pd;
+        let t = tan0(u.tilt);
+        let r = self.laminae.evaluate_offsets(approach, t, offsets, loads);
+        self.reaction(r, u, t, approach, 0.0, want)
+    }
+
+    /// The element's reaction from the laminae's `r` at `u` (`t = tan(tilt)`, `approach` at
+    /// mid-length), with the flange contact and the report.
+    #[inline]
+    fn reaction(
+        &self,
+        r: RollerLoad,
+        u: ElementDisplacement,
+        t: f64,
+        approach: f64,
+        omega: f64,
+        want: Want,
+    ) -> ElementReaction {
         let sec2 = 1.0 + t * t;
         let mut out = ElementReaction {
             f: [0.0, -r.force, sec2 * r.moment],
@@ -236,7 +273,7 @@ impl ElementLaw for CylindricalRollerLaw {
                 line_hertz((r.max_lamina + fk) / w, self.r_outer, self.e_outer).1,
             ];
         }
-        Ok(out)
+        out
     }
 }
 

@@ -66,6 +66,10 @@ pub struct Defect {
 /// `k/4` below it otherwise.
 #[inline]
 fn smin(a: f64, b: f64, k: f64) -> f64 {
+    // A pit of zero depth has no corners to round (and `k = 0` would divide by zero).
+    if k <= 0.0 {
+        return a.min(b);
+    }
     let h = (k - (a - b).abs()).max(0.0) / k;
     a.min(b) - h * h * k * 0.25
 }

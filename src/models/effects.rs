@@ -50,6 +50,15 @@ pub struct DefectSpec {
     /// Ball carrying the defect (0-based; `race = "ball"` only).
     #[serde(default)]
     pub ball: Option<u32>,
+    /// Roller bearings: the defect's axial width on the raceway (or the roller), mm; absent:
+    /// the whole effective length `Lwe`. It removes material from the laminae whose centres
+    /// it spans (docs/physics.md §R10).
+    #[serde(default)]
+    pub axial_width_mm: Option<f64>,
+    /// Roller bearings: the axial position of the defect's centre from the roller's
+    /// mid-plane, along `+z`, mm; absent: 0.
+    #[serde(default)]
+    pub axial_position_mm: Option<f64>,
 }
 
 /// The spellings of [`Element`].
@@ -59,9 +68,13 @@ crate::declare_fields!(DefectSpec {
     race => choice(ELEMENTS, "element carrying the defect"),
     angle_deg => number("deg", ANY, "defect centre at t = 0: azimuth from +x on a race, spin angle on a ball"),
     width_mm => number("mm", gt(0.0), "circumferential width").note("< ball diameter"),
-    depth_um => number("µm", between(0.0, false, 5000.0, true), "depth"),
+    depth_um => number("µm", closed(0.0, 5000.0), "depth").note("0: no loss, the healthy run"),
     ball => integer(ge(0.0), "ball carrying the defect (0-based)")
         .note("< Z; race = \"ball\" only (absent: ball 0)"),
+    axial_width_mm => number("mm", gt(0.0), "axial width of a roller bearing's defect")
+        .note("roller bearings only, <= the roller's effective length Lwe (absent: Lwe, every lamina)"),
+    axial_position_mm => number("mm", ANY, "axial position of a roller bearing's defect centre from the roller's mid-plane, along +z")
+        .note("roller bearings only; the defect stays within the effective length: |position| <= (Lwe - axial width)/2 (absent: 0)"),
 });
 
 /// One waviness harmonic `A sin(k theta + beta)`.
@@ -420,6 +433,7 @@ impl Effects {
                     format!("a ball index in [0, {}]", b.z - 1),
                 ));
             }
+            axial_extent(i, d, b)?;
         }
         for (i, w) in self.waviness.iter().enumerate() {
             if let Some(j) = w.ball {
@@ -434,6 +448,52 @@ impl Effects {
         }
         Ok(())
     }
+}
+
+/// The axial extent `(centre, width)` (m) of defect `i` on bearing `b`: on a roller bearing
+/// within the roller's effective length `Lwe` (absent width: `Lwe`; absent position: 0),
+/// refused naming `effects.defects[i].axial_width_mm` or `.axial_position_mm` with the range
+/// that can be met; on a ball bearing `None`, and either field given is refused.
+pub fn axial_extent(i: usize, d: &DefectSpec, b: &Bearing) -> Result<Option<(f64, f64)>> {
+    let p = format!("effects.defects[{i}]");
+    let crate::geometry::element::Element::Roller(r) = &b.element else {
+        for (field, v) in [
+            ("axial_width_mm", d.axial_width_mm),
+            ("axial_position_mm", d.axial_position_mm),
+        ] {
+            if let Some(v) = v {
+                return Err(Error::invalid(
+                    format!("{p}.{field}"),
+                    v,
+                    "absent: a ball bearing's defect spans the whole contact (roller bearings only)",
+                ));
+            }
+        }
+        return Ok(None);
+    };
+    let lwe_mm = r.lwe * 1e3;
+    let w = d.axial_width_mm.unwrap_or(lwe_mm);
+    // The schema's own check (> 0) ran before; the roller's length bounds it above.
+    if w > lwe_mm * (1.0 + 1e-12) {
+        return Err(Error::invalid(
+            format!("{p}.axial_width_mm"),
+            w,
+            format!("> 0 and <= the roller's effective length Lwe = {lwe_mm} mm"),
+        ));
+    }
+    let w = w.min(lwe_mm);
+    let c = d.axial_position_mm.unwrap_or(0.0);
+    let reach = 0.5 * (lwe_mm - w);
+    if c.abs() > reach * (1.0 + 1e-12) + 1e-12 {
+        return Err(Error::invalid(
+            format!("{p}.axial_position_mm"),
+            c,
+            format!(
+                "in [-{reach}, {reach}] mm: the defect ({w} mm wide) within the roller's effective length Lwe = {lwe_mm} mm"
+            ),
+        ));
+    }
+    Ok(Some((c * 1e-3, w * 1e-3)))
 }
 
 /// The effects of a scene compiled for one bearing (SI), evaluated per ball.

@@ -53,6 +53,8 @@ pub struct Base {
     /// The external moment `load.mx` as this arm times the radial load, m (tilts a 5-DOF
     /// ring: edge loading of rollers).
     pub moment_arm: f64,
+    /// More fields of the scene's bearing table (e.g. a roller profile), or empty.
+    pub bearing_extra: &'static str,
 }
 
 /// `[model]` lines of a load-driven base of the cheap levels: the level's own lines, then
@@ -81,6 +83,7 @@ const CHEAP: Base = Base {
     initial_inputs: false,
     roller: false,
     moment_arm: 0.0,
+    bearing_extra: "",
 };
 
 /// What the bases of the dynamic levels (skidding, full) share beyond [`CHEAP`]: a
@@ -305,6 +308,9 @@ pub enum Clearance {
     Zero,
     /// 40 µm.
     Large,
+    /// -20 µm: a stiff preload, every roller loaded (the roller cells, [`roller_cells`]; not
+    /// in [`Clearance::ALL`]).
+    StiffPreload,
 }
 
 impl Clearance {
@@ -315,6 +321,7 @@ impl Clearance {
             Clearance::Preload => -5.0,
             Clearance::Zero => 0.0,
             Clearance::Large => 40.0,
+            Clearance::StiffPreload => -20.0,
         }
     }
 }
@@ -516,11 +523,14 @@ impl Cell {
         } else {
             String::new()
         };
-        let material = if self.base.roller {
+        let mut material = if self.base.roller {
             format!("roller_material = \"{}\"", self.ball)
         } else {
             format!("materials = {{ ball = \"{}\" }}", self.ball)
         };
+        if !self.base.bearing_extra.is_empty() {
+            material = format!("{material}, {}", self.base.bearing_extra);
+        }
         format!(
             "title = \"stability cell\"\n\
              bearing = {{ preset = \"{}\", {clearance}{material} }}\n\
@@ -908,6 +918,9 @@ pub fn matrix(long: bool) -> Vec<Cell> {
             });
         }
     }
+    if long {
+        v.extend(roller_cells());
+    }
     v.dedup();
     // Remove repeats (the nominal cell appears once per axis).
     let mut out: Vec<Cell> = Vec::new();
@@ -917,6 +930,89 @@ pub fn matrix(long: bool) -> Vec<Cell> {
         }
     }
     out
+}
+
+// ---------------------------------------------------------------------------------------
+// Roller cells: stiff preload, heavy tilt, edge loading, high speed.
+
+/// `[model]` lines of the 5-DOF load-driven ring of the roller cells.
+const RING5: &str = load_driven!("level = \"ring\"\nring_dof = 5\n");
+
+/// The roller bases beyond [`BASES`]' own: a heavy tilt (a moment of 50 mm times the radial
+/// load) on the NU206 and the 30206, and edge loading (a straight roller, ISO/TS 16281's
+/// worst case, tilted by 5 mm times the load) at the ring and quasi-static levels.
+pub const ROLLER_BASES: &[Base] = &[
+    Base {
+        name: "ring-5dof/load NU206 heavy tilt",
+        preset: "NU206",
+        model: RING5,
+        roller: true,
+        moment_arm: 0.05,
+        ..CHEAP
+    },
+    Base {
+        name: "ring-5dof/load NU206 straight, edge-loaded",
+        preset: "NU206",
+        model: RING5,
+        roller: true,
+        moment_arm: 0.005,
+        bearing_extra: "profile = { type = \"none\" }",
+        ..CHEAP
+    },
+    Base {
+        name: "quasi_static/load NU206 straight, edge-loaded",
+        preset: "NU206",
+        model: load_driven!("level = \"quasi_static\"\n"),
+        roller: true,
+        moment_arm: 0.005,
+        bearing_extra: "profile = { type = \"none\" }",
+        ..CHEAP
+    },
+    Base {
+        name: "ring-5dof/load 30206 heavy tilt",
+        preset: "30206",
+        model: RING5,
+        roller: true,
+        axial_share: 0.5,
+        moment_arm: 0.05,
+        ..CHEAP
+    },
+];
+
+/// The roller cells (part of the long campaign, [`matrix`]): on every roller base of
+/// [`BASES`] and [`ROLLER_BASES`], a stiff preload ([`Clearance::StiffPreload`]), the highest
+/// speed (120 000 rpm, far past a roller bearing's limiting speed: the massless and
+/// centrifugal laws must stay finite there) and their corner with the 4 GPa load; on the
+/// bases of [`ROLLER_BASES`] also their nominal and 4 GPa cells.
+pub fn roller_cells() -> Vec<Cell> {
+    let mut v = Vec::new();
+    let own = ROLLER_BASES.iter().map(|b| (b, true));
+    let shared = BASES.iter().filter(|b| b.roller).map(|b| (b, false));
+    for (base, new) in shared.chain(own) {
+        let n = nominal(base);
+        if new {
+            v.push(n);
+            v.push(Cell {
+                load: Load::Gpa4,
+                ..n
+            });
+        }
+        v.push(Cell {
+            clearance: Clearance::StiffPreload,
+            ..n
+        });
+        v.push(Cell {
+            speed: Speed::Max,
+            ..n
+        });
+        v.push(Cell {
+            speed: Speed::Max,
+            load: Load::Gpa4,
+            clearance: Clearance::StiffPreload,
+            ..n
+        });
+    }
+    v
 }
 
 /// Run `cells` over a base window `t_base` (s). Returns each cell with its outcome.
@@ -1026,13 +1122,17 @@ pub fn markdown(
          force over the second half agree within {STATISTICS_LIMIT} of the RMS force while \
          the trajectories separate: impacts in the clearance or chaotic cage motion, \
          docs/physics.md §N6.4), or failed.\n\n\
+         Roller cells (the long campaign, beside the roller bases' own product): a stiff \
+         preload of -20 µm, 120 000 rpm and their corner with the 4 GPa load on every roller \
+         base, plus bases with a heavy tilt (a moment of 50 mm times the radial load) and \
+         edge loading (straight rollers tilted by 5 mm times the load).\n\n\
          **{n} cells: {conv} converged, {stat} converged late or in statistics, {clean} clean \
          errors, {failed} failed.**\n",
         super::Machine::detect().describe()
     );
     s += "## Bases\n\n| base | preset | axial share | window (s) | product | cells | converged | late / statistics | clean errors | failed | CPU time (s) |\n\
           |---|---|---|---|---|---|---|---|---|---|---|\n";
-    for b in BASES {
+    for b in BASES.iter().chain(ROLLER_BASES) {
         let r: Vec<&(Cell, Outcome)> = results.iter().filter(|(c, _)| c.base == b).collect();
         if r.is_empty() {
             continue;
@@ -1076,7 +1176,7 @@ pub fn campaign(long: bool, dir: &std::path::Path, verbose: bool) -> Result<Vec<
     }
     let mut res = Vec::with_capacity(cells.len());
     let mut times = Vec::new();
-    for b in BASES {
+    for b in BASES.iter().chain(ROLLER_BASES) {
         let these: Vec<Cell> = cells.iter().filter(|c| c.base == b).copied().collect();
         let start = super::thread_cpu_s();
         res.extend(run(&these, t_base, verbose));

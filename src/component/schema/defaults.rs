@@ -85,6 +85,8 @@ pub(super) fn full_scene(bearing: BearingRef, traction: TractionLaw) -> Scene {
                 width_mm: 0.5,
                 depth_um: 10.0,
                 ball: Some(0),
+                axial_width_mm: None,
+                axial_position_mm: None,
             }],
             waviness: vec![WavinessSpec {
                 race: Element::Ball,
@@ -180,6 +182,33 @@ pub fn full_scenes() -> Vec<Scene> {
                 l.temperature_c = Some(80.0);
                 l.viscosity_pa_s = None;
             }
+            s
+        },
+        {
+            // A roller bearing's defect with its axial extent (the ring level takes defects and
+            // waviness on roller bearings, nothing else), so its rows are walked. On a roller
+            // (`race = "ball"`): the spellings' check reads the first full scene with a
+            // spelling as a ball bearing's spec.
+            let mut s = full_scene(BearingRef::Preset("NU206".into()), TractionLaw::default());
+            s.effects = Effects {
+                defects: vec![DefectSpec {
+                    race: Element::Ball,
+                    angle_deg: 270.0,
+                    width_mm: 1.0,
+                    depth_um: 10.0,
+                    ball: None,
+                    axial_width_mm: Some(4.0),
+                    axial_position_mm: Some(-1.0),
+                }],
+                waviness: vec![WavinessSpec {
+                    race: Element::Ball,
+                    order: 2,
+                    amplitude_um: 0.1,
+                    phase_deg: 0.0,
+                    ball: None,
+                }],
+                ..Effects::default()
+            };
             s
         },
     ]

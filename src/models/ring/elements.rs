@@ -10,11 +10,19 @@
 //! With 5 DOF the damping spreads evenly along a roller's contact line, so the tilt rate
 //! `w` at the element meets the moment `-c L²/12 w` ([`ElementLaw::tilt_damping_arm2`]).
 //!
-//! Not modelled here yet: the effects (defects, waviness, spacing, film, wear, thermal),
-//! refused by name; damping of the axial motion (cylindrical rollers carry no axial load).
+//! Defects and waviness on a cylindrical roller bearing act per lamina
+//! ([`super::roller_effects`], docs/physics.md §R10): a roller with an offset on some lamina
+//! runs [`CylindricalRollerLaw::react_offsets`], every other roller the plain law, so a scene
+//! whose effects add nothing (a defect of zero depth, say) runs the healthy arithmetic bit for
+//! bit. Not modelled here yet: the other effects (spacing, film, wear, thermal) and any effect
+//! on a tapered bearing, refused by name; damping of the axial motion (cylindrical rollers
+//! carry no axial load).
 
+use super::roller_effects::RollerEffects;
 use super::{RingDof, DAMPING_RAMP};
+use crate::contact::roller_law::CylindricalRollerLaw;
 use crate::error::{Error, Result};
+use crate::geometry::element::Element;
 use crate::geometry::kinematics::nominal_cage_speed as cage_speed;
 use crate::models::effects::Effects;
 use crate::models::LevelArgs;
@@ -35,22 +43,52 @@ pub struct LawRingLevel {
     /// `(sin, cos)` of `psi`, and of the element spacing (`even_base`).
     sc: Vec<(f64, f64)>,
     base: Vec<(f64, f64)>,
+    /// Defects and waviness (None: none, nothing evaluated).
+    profiled: Option<Profiled>,
+}
+
+/// A roller bearing's per-lamina effects: the massless cylindrical law that takes offsets, the
+/// compiled effects and one roller's offsets (set up once: an evaluation allocates nothing).
+#[derive(Debug)]
+struct Profiled {
+    law: CylindricalRollerLaw,
+    fx: RollerEffects,
+    offsets: Vec<f64>,
 }
 
 impl LawRingLevel {
-    /// The ring level of `a`'s bearing with the element law `law`; refuses effects naming
-    /// them.
+    /// The ring level of `a`'s bearing with the element law `law`: a cylindrical roller
+    /// bearing takes defects and waviness (module docs); other effects, and any on another
+    /// element, are refused naming them.
     pub fn new(a: &LevelArgs, law: Box<dyn ElementLaw>, dof: RingDof) -> Result<Self> {
-        if *a.effects != Effects::default() {
+        let profiled = if *a.effects == Effects::default() {
+            None
+        } else if let Element::Roller(r) = &a.bearing.element {
+            let fx;
+            let law = if r.kind.is_tapered() {
+                // Refused by name (a tapered bearing takes no effect yet).
+                fx = RollerEffects::new(a.effects, a.bearing, &[])?;
+                None
+            } else {
+                let law = CylindricalRollerLaw::new(r)?.massless();
+                fx = RollerEffects::new(a.effects, a.bearing, &law.laminae().x)?;
+                Some(law)
+            };
+            law.map(|law| Profiled {
+                offsets: vec![0.0; law.laminae().len()],
+                law,
+                fx,
+            })
+        } else {
             return Err(Error::invalid(
                 "effects",
                 format!("effects on a {} bearing", law.name()),
                 format!(
-                    "none: the ring level models effects for ball bearings only (a {} bearing runs without them)",
+                    "none: the ring level on massless {} elements models no effects",
                     law.name()
                 ),
             ));
-        }
+        };
         Ok(LawRingLevel {
             law,
             dof,
@@ -59,6 +97,7 @@ impl LawRingLevel {
             psi: vec![0.0; a.bearing.z],
             sc: vec![(0.0, 1.0); a.bearing.z],
             base: even_base(a.bearing.z),
+            profiled,
         })
     }
 
@@ -76,6 +115,9 @@ impl LawRingLevel {
             stiffness: kc.is_some(),
             report: kc.is_some(),
         };
+        // The shaft has turned by the cage angle over the cage ratio (both start at 0).
+        let theta_s = x[0] / self.cage_ratio;
+        let mut profiled = self.profiled.as_mut();
         let (law, c0, jac) = (&self.law, self.damping, kc.is_some());
         let arm2 = if self.dof == RingDof::Five {
             law.tilt_damping_arm2()
@@ -89,8 +131,15 @@ impl LawRingLevel {
             &self.sc,
             law.moment_arm(),
             kc.as_mut().map(|(k, _)| &mut **k),
-            |_, at, u| {
-                let mut r = law.react(at, u, m.omega, &mut [], want)?;
+            |j, at, u| {
+                let pf = profiled.as_deref_mut().and_then(|pf| {
+                    let any = pf.fx.offsets(j, at.psi, theta_s, &mut pf.offsets);
+                    any.then_some(&*pf)
+                });
+                let mut r = match pf {
+                    Some(pf) => pf.law.react_offsets(u, &pf.offsets, want, None),
+                    None => law.react(at, u, m.omega, &mut [], want)?,
+                };
                 if r.f[1] < 0.0 {
                     report.0 += 1;
                     report.1 = report.1.max(r.load[0]).max(r.load[1]);

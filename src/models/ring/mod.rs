@@ -30,6 +30,7 @@
 
 pub mod elements;
 pub mod level;
+pub mod roller_effects;
 #[cfg(test)]
 mod tests;
 
