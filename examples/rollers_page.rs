@@ -439,7 +439,8 @@ fn life_against_tilt(md: &mut String, out: &Path, b: &RollerBearing, qd: f64, qu
     let l10 = l10_roller(r.cr, FR);
     let g = b.line_geometry();
     // (label, lives with the edge factor, without, S0 per tilt)
-    let mut rows: Vec<(String, Vec<f64>, Vec<f64>, Vec<f64>)> = Vec::new();
+    type Row = (String, Vec<f64>, Vec<f64>, Vec<f64>);
+    let mut rows: Vec<Row> = Vec::new();
     for (label, p) in profiles(&g, qd) {
         let mut bb = b.clone();
         bb.profile = p;

@@ -419,7 +419,7 @@ impl RollerLoad {
     /// Adds one lamina at `x` carrying `q` with `dq/d delta` = `dq` (`sec2 = sec² psi`, the
     /// tilt's chain factor); an unloaded lamina adds nothing.
     #[inline]
-    fn add(&mut self, q: f64, dq: f64, x: f64, sec2: f64) {
+    pub(crate) fn add(&mut self, q: f64, dq: f64, x: f64, sec2: f64) {
         if q > 0.0 {
             self.loaded += 1;
             if q > self.max_lamina {

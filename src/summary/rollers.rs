@@ -133,7 +133,7 @@ pub fn text(r: &RollerQsReport) -> String {
     let sol = &r.solution;
     let _ = writeln!(
         s,
-        "Roller quasi-static equilibrium (ISO/TS 16281 laminae; cylindrical rollers with their centrifugal force, tapered ones massless): bearing {} ({} rollers), {:.3} rpm",
+        "Roller quasi-static equilibrium (ISO/TS 16281 laminae; rollers with their centrifugal force, tapered ones also with their gyroscopic moment): bearing {} ({} rollers), {:.3} rpm",
         r.bearing,
         sol.rollers.len(),
         r.speed_rpm

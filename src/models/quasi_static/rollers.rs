@@ -263,9 +263,9 @@ pub fn solve_with(
                 (0.0, inner)
             }
             Law::Tap(tl) => {
-                let qo = tl.lamina_loads(u, &mut ll);
-                let (ri_, rf) = tl.load_ratios();
-                (rf * qo, ll.iter().map(|v| v * ri_).collect::<Vec<f64>>())
+                let mut cone = vec![0.0; lam.len()];
+                let (_, qf) = tl.lamina_loads_at(u, omega, &mut ll, &mut cone);
+                (qf, cone)
             }
         };
         let mut lp = vec![0.0; lam.len()];
@@ -398,6 +398,28 @@ mod tests {
         let fa: f64 = sol.rollers.iter().map(|r| r.load[1]).sum::<f64>() * b.alpha.sin();
         assert!((fa - 3000.0).abs() < 1e-4, "{fa}");
         assert!(sol.rollers.iter().all(|r| r.flange_load >= 0.0));
+    }
+
+    /// 30206 under a combined load at 10 000 rpm: the rollers still balance it (the
+    /// centrifugal forces' axial parts reach the shaft through the flanges), every roller
+    /// presses the cup harder than at rest and its flange carries more.
+    #[test]
+    fn tapered_at_speed_balances_and_loads_cup_and_flange() {
+        let b = lookup("30206").unwrap().build().unwrap();
+        let load = [0.0, -4000.0, 3000.0, 0.0, 0.0];
+        let rest = solve(&b, load, 0.0, NAMES).unwrap();
+        let fast = solve(&b, load, 10_000.0 * std::f64::consts::PI / 30.0, NAMES).unwrap();
+        for (f, l) in fast.rollers_force.iter().zip(load) {
+            assert!((f + l).abs() < 1e-4, "{:?}", fast.rollers_force);
+        }
+        let sum =
+            |s: &RollerSolution, f: fn(&RollerRow) -> f64| s.rollers.iter().map(f).sum::<f64>();
+        assert!(sum(&fast, |r| r.load[1]) > sum(&rest, |r| r.load[1]));
+        assert!(sum(&fast, |r| r.flange_load) > sum(&rest, |r| r.flange_load));
+        assert!(
+            fast.rollers.iter().all(|r| r.load[1] > 0.0),
+            "F_c keeps every roller on the cup"
+        );
     }
 
     fn life(b: &RollerBearing, sol: &RollerSolution, o: LaminaLifeOptions) -> f64 {
