@@ -12,7 +12,7 @@
 //!   load distribution (`ε = 0.5`: `J_r` the radial load integral, `J_1` (exponent 4) the
 //!   rotating raceway's and `J_2` (exponent 9/2) the stationary raceway's equivalent-load
 //!   integral, tested by quadrature). These make the two raceway lives recombine
-//!   into ISO 281's `C` exactly at `P = C` (the consistency test below). A lamina of width
+//!   into ISO 281's `C` at `P = C` within their rounding, 1.6 % (the consistency test below). A lamina of width
 //!   `Lwe/ns` rates `q_c,k = Q_c ns^(-7/9)` (the `Lwe^(7/9)` of the roller rating).
 //! - **Equivalent lamina loads**, inner ring rotating: `q_ei,k = (Σ_j (f_k q_i,jk)^4 / Z)^(1/4)`
 //!   on the rotating inner raceway (each lamina track meets every roller), `q_ee,k = (Σ_j
