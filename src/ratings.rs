@@ -48,6 +48,7 @@
 //! beyond the static limit, a contact ellipse that runs over the groove shoulder, fewer
 //! than two loaded balls, κ < 1.
 
+pub mod lamina_life;
 pub mod roller;
 
 use crate::error::{Error, Result};

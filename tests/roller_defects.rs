@@ -1,5 +1,5 @@
 //! Defects and waviness on a cylindrical roller bearing at the ring level, per lamina
-//! (docs/physics.md §R10), and the characteristic frequencies of roller bearings.
+//! (docs/physics.md §R12), and the characteristic frequencies of roller bearings.
 
 use raceway::component::{variables, Component};
 use raceway::contact::roller_law::CylindricalRollerLaw;
@@ -185,7 +185,7 @@ fn characteristic_frequencies_take_the_rollers_gamma() {
     ] {
         let r = roller_catalogue::lookup(name).unwrap().build().unwrap();
         // Pure rolling at mid-length on the raceway radii Dpw/2 -+ (Dwe/2) cos(alpha_R)
-        // (docs/physics.md §R10): the roller axis angle's BPFO, within 0.2 % of the cup angle's.
+        // (docs/physics.md §R12): the roller axis angle's BPFO, within 0.2 % of the cup angle's.
         let g_r = r.dwe * r.alpha_roller.cos() / r.dpw;
         let bpfo_r = 14.0 * 25.0 * (1.0 - g_r) / 2.0;
         assert!(

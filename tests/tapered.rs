@@ -55,7 +55,8 @@ fn ja_over_jr(eps: f64) -> f64 {
 /// displacement that just unloads the roller opposite the load (`eps = 1`) `Fa/Fr` is
 /// `1.90 tan(alpha)`. ISO 281's `e = 1.5 tan(alpha)`, the `Fa/Fr` where its equivalent load
 /// leaves pure radial, lies between the two. The 17 discrete rollers meet the continuous
-/// integrals within 2 %. The ring level, on the same law, gives the same forces.
+/// integrals within 2 %. The ring level, on the same law with massless rollers, gives the
+/// same forces within the inertia terms.
 #[test]
 fn axial_radial_load_sharing_follows_the_load_zone_integrals() {
     let bearing = r#"{ preset = "30206", clearance_um = 0.0, profile = { type = "none" } }"#;
@@ -75,9 +76,12 @@ fn axial_radial_load_sharing_follows_the_load_zone_integrals() {
             (ratio / want - 1.0).abs() < 0.02,
             "eps {eps}: Fa/(Fr tan a) {ratio}, Sjövall {want}"
         );
+        // The ring level's rollers are massless; the quasi-static level's carry their
+        // centrifugal force and gyroscopic moment (docs/physics.md §R11): at 100 rad/s the
+        // two differ by a few parts in 10^5 of the load (a roller's F_c is about 0.2 N there).
         let g = forces("ring", bearing, y, z);
         for k in 0..3 {
-            assert!((g[k] - f[k]).abs() <= 1e-9 * f[1].abs(), "{g:?} vs {f:?}");
+            assert!((g[k] - f[k]).abs() <= 1e-4 * f[1].abs(), "{g:?} vs {f:?}");
         }
         ratios.push(ratio);
     }

@@ -33,6 +33,12 @@ def test_roller_bearing_is_the_command_lines(cli, name, loads, flags):
     # The largest lamina pressure is the report's and bounds each roller's peak pressure.
     assert r.lamina_pressure.max() == ref["max_pressure"]
     assert (r.rollers["p_i [Pa]"] <= ref["max_pressure"] * (1 + 1e-12)).all()
+    # ISO/TS 16281's lamina life and the lamina static safety come with the table; the
+    # edge-stress factor (>= 1 on every lamina) can only shorten the life.
+    assert ref["s0_lamina"] == pytest.approx((4000e6 / ref["max_pressure"]) ** 2, rel=1e-12)
+    with_edge = ref["lamina_life"]["l10r_mrev"]
+    assert 0 < with_edge <= ref["lamina_life_without_edge_factor"]["l10r_mrev"]
+    assert any("UNSOURCED" in n for n in ref["notes"])
 
 
 def test_cylindrical_roller_loads_add_up_to_the_radial_load():

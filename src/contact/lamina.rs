@@ -419,7 +419,7 @@ impl RollerLoad {
     /// Adds one lamina at `x` carrying `q` with `dq/d delta` = `dq` (`sec2 = sec² psi`, the
     /// tilt's chain factor); an unloaded lamina adds nothing.
     #[inline]
-    fn add(&mut self, q: f64, dq: f64, x: f64, sec2: f64) {
+    pub(crate) fn add(&mut self, q: f64, dq: f64, x: f64, sec2: f64) {
         if q > 0.0 {
             self.loaded += 1;
             if q > self.max_lamina {
@@ -559,7 +559,7 @@ impl Laminae {
     }
 
     /// As [`Laminae::evaluate`] with each lamina's approach moved by `offsets[k]` (m, length `ns`;
-    /// waviness adds, a defect's depth loss subtracts: docs/physics.md §R10):
+    /// waviness adds, a defect's depth loss subtracts: docs/physics.md §R12):
     /// `delta_k = delta - x_k tan(psi) - 2 P(x_k) + offsets[k]`. Every lamina through the
     /// general loop (an offset breaks the aligned roller's mirror pairs). `loads` (length
     /// `ns`) receives the lamina loads.

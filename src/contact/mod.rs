@@ -9,14 +9,15 @@ pub mod tapered_law;
 pub mod traction;
 
 /// The contact law of a roller bearing's elements: tapered or cylindrical (the one place a
-/// roller kind picks its law); `inertia`: the cylindrical roller's centrifugal force at speed
-/// (false: massless rollers, as the ring level's elements are; the tapered law is massless).
+/// roller kind picks its law); `inertia`: the rollers' centrifugal force (and a tapered roller's
+/// gyroscopic moment) at speed (false: massless rollers, as the ring level's elements are).
 pub fn roller_law(
     r: &crate::geometry::roller::RollerBearing,
     inertia: bool,
 ) -> crate::error::Result<Box<dyn crate::seam::element::ElementLaw>> {
     Ok(if r.kind.is_tapered() {
-        Box::new(tapered_law::TaperedRollerLaw::new(r)?)
+        let l = tapered_law::TaperedRollerLaw::new(r)?;
+        Box::new(if inertia { l } else { l.massless() })
     } else if inertia {
         Box::new(roller_law::CylindricalRollerLaw::new(r)?)
     } else {

@@ -197,7 +197,7 @@ impl ElementLaw for CylindricalRollerLaw {
 impl CylindricalRollerLaw {
     /// The reaction of a massless roller (the ring level's, [`CylindricalRollerLaw::massless`])
     /// whose laminae's approaches are moved by `offsets` (m, one per lamina: a race's
-    /// waviness adds, a defect's depth loss subtracts; docs/physics.md §R10), with the lamina
+    /// waviness adds, a defect's depth loss subtracts; docs/physics.md §R12), with the lamina
     /// loads into `loads` when given. With every offset zero it equals
     /// [`ElementLaw::react`] to rounding (the aligned roller's mirrored pairs are summed
     /// lamina by lamina here); the ring level calls it only for a roller with an offset.

@@ -33,14 +33,28 @@
 //! (each contact half of the approach), the cup-normal approach is `(1 + rho^0.9)/2` times that
 //! of equal loads, so the laminae here use `c_s (2/(1 + rho^0.9))^(10/9)`. Left out (each a
 //! few per mille for catalogue tapers, documented in docs/physics.md §R7): the angle `2 beta`
-//! between the two normals, the flange's own compliance (a rigid seat), and the roller's
-//! centrifugal force and gyroscopic moment at speed.
+//! between the two normals and the flange's own compliance (a rigid seat).
+//!
+//! At speed (docs/physics.md §R11; [Harris 2007] vol. 2, high-speed tapered roller bearings)
+//! the roller orbits at `omega_c = omega (1 - gamma)/2` and spins at `omega_R = omega (Dpw/(2
+//! Dwe)) (1 - gamma²)` (outer ring fixed), so it carries its centrifugal force `F_c = m (Dpw/2)
+//! omega_c²` outward and, its axis inclined `phi` (`alpha_roller`) to the bearing axis, the
+//! gyroscopic moment `M_g = J omega_R omega_c sin(phi)`, `J = m Dwe²/8`, which the races must
+//! supply about the roller's tangential axis (it presses the large end onto the cup; it is
+//! even in the speed: reversing the shaft reverses both spin and orbit). Both act lamina by
+//! lamina as a radial push `h_k = F_c/ns + M_g x_k/(cos(phi) Σ x_j²)` (the even split, as the
+//! cylindrical roller's; the linear part has no resultant and the moment `M_g`). Each lamina
+//! is then in equilibrium between cup `t_k`, cone `s_k` and flange: `s_k = rho_i t_k - kappa
+//! h_k`, `kappa = sin(alpha_f)/sin(alpha_i + alpha_f)`, and shares the cup-normal approach
+//! `delta_k = (t_k/c_1)^0.9 + (s_k/c_1)^0.9` (`c_1` one contact's lamina constant). The force on
+//! the inner ring is `-t_k n_o + h_k e_r` per lamina. Massless rollers ([`TaperedRollerLaw::
+//! massless`], the ring level) and `omega == 0` run the law above unchanged, bit for bit.
 //!
 //! By virtual work through `d delta_k` the forces on the shaft are `F_a = -sin(alpha_o) Q`,
 //! `F_r = -cos(alpha_o) Q`, `m = -a Q - cos(beta) M` with `Q = Σ q_k`, `M = Σ q_k x_k`; the
 //! derivatives follow from the laminae's Jacobian and `K` is symmetric.
 
-use crate::contact::lamina::{line_hertz, Laminae};
+use crate::contact::lamina::{line_hertz, Laminae, RollerLoad};
 use crate::error::{Error, Result};
 use crate::geometry::roller::RollerBearing;
 use crate::seam::element::{ElementAt, ElementDisplacement, ElementLaw, ElementReaction, Want};
@@ -62,6 +76,18 @@ pub struct TaperedRollerLaw {
     r_outer: f64,
     e_inner: f64,
     e_outer: f64,
+    /// `F_c/omega²`, kg m.
+    fc_per_omega2: f64,
+    /// `M_g/omega²`, kg m².
+    mg_per_omega2: f64,
+    /// `kappa = sin(alpha_f)/sin(alpha_i + alpha_f)`: cone load lost per unit radial push.
+    kappa: f64,
+    /// `sin(alpha_i)/sin(alpha_i + alpha_f)`: flange load gained per unit radial push.
+    kappa_flange: f64,
+    /// One contact's lamina constant `c_1`, N/m^(10/9).
+    c1: f64,
+    /// `cos(phi) Σ x_k²`, m².
+    x2_cos_phi: f64,
 }
 
 impl TaperedRollerLaw {
@@ -98,8 +124,20 @@ impl TaperedRollerLaw {
             ));
         }
         let mut laminae = b.laminae()?;
+        let c1 = laminae.cs * 2f64.powf(10.0 / 9.0);
         laminae.cs *= (2.0 / (1.0 + rho_inner.powf(0.9))).powf(10.0 / 9.0);
+        let cage = crate::geometry::kinematics::cage_speed(b.gamma(), 1.0, 0.0);
+        let spin = crate::geometry::kinematics::ball_spin_speed(b.dwe, b.dpw, b.gamma(), 1.0, 0.0);
+        let m = b.roller_mass();
+        let phi = b.alpha_roller;
+        let x2: f64 = laminae.x.iter().map(|x| x * x).sum();
         Ok(TaperedRollerLaw {
+            fc_per_omega2: m * 0.5 * b.dpw * cage * cage,
+            mg_per_omega2: m * b.dwe * b.dwe / 8.0 * spin * cage * phi.sin(),
+            kappa: af.sin() / (ai + af).sin(),
+            kappa_flange: ai.sin() / (ai + af).sin(),
+            c1,
+            x2_cos_phi: x2 * phi.cos(),
             laminae,
             sin_o: ao.sin(),
             cos_o: ao.cos(),
@@ -113,6 +151,121 @@ impl TaperedRollerLaw {
             e_inner: b.e_prime_inner(),
             e_outer: b.e_prime_outer(),
         })
+    }
+
+    /// The same law with massless rollers (no centrifugal force or gyroscopic moment at any
+    /// speed): the ring level's elements, as [`crate::contact::roller_law::CylindricalRollerLaw::massless`].
+    pub fn massless(mut self) -> Self {
+        self.fc_per_omega2 = 0.0;
+        self.mg_per_omega2 = 0.0;
+        self
+    }
+
+    /// The roller's centrifugal force `F_c` (N) and gyroscopic moment `M_g` (N m) at shaft
+    /// speed `omega` (rad/s), outer ring fixed (module docs).
+    pub fn inertia_loads(&self, omega: f64) -> (f64, f64) {
+        let w2 = omega * omega;
+        (self.fc_per_omega2 * w2, self.mg_per_omega2 * w2)
+    }
+
+    /// The radial push `h_k` (N) of lamina `k` at speed (module docs).
+    fn push(&self, k: usize, fc: f64, mg: f64) -> f64 {
+        fc / self.laminae.len() as f64 + mg * self.laminae.x[k] / self.x2_cos_phi
+    }
+
+    /// Whether the law feels the speed `omega`.
+    fn at_speed(&self, omega: f64) -> bool {
+        omega != 0.0 && (self.fc_per_omega2 != 0.0 || self.mg_per_omega2 != 0.0)
+    }
+
+    /// The cup lamina loads at speed: at approach `delta` (cup normal) and `tan psi` `tau`,
+    /// the cup loads' force, moment and derivatives; `cup`, `cone` (length `ns`) receive the
+    /// lamina loads when given (module docs).
+    fn pressed(
+        &self,
+        delta: f64,
+        tau: f64,
+        omega: f64,
+        mut cup: Option<&mut [f64]>,
+        mut cone: Option<&mut [f64]>,
+    ) -> RollerLoad {
+        let (fc, mg) = self.inertia_loads(omega);
+        let (rho, kap, c1) = (self.rho_inner, self.kappa, self.c1);
+        let sec2 = 1.0 + tau * tau;
+        let mut r = RollerLoad::default();
+        let l = &self.laminae;
+        for k in 0..l.len() {
+            let (x, d2) = (l.x[k], l.drop2[k]);
+            let h = self.push(k, fc, mg);
+            let dk = delta - x * tau - d2;
+            // The state with one contact open: the lamina held by the other and the flange.
+            let t_floor = (kap * h / rho).max(0.0);
+            let s_floor = rho * t_floor - kap * h;
+            let a = |q: f64| (q.max(0.0) / c1).powf(0.9);
+            let d_min = a(t_floor) + a(s_floor);
+            let (t, dt) = if dk <= d_min {
+                (t_floor, 0.0)
+            } else {
+                // G(t) = a(t) + a(rho t - kappa h) - dk: increasing and concave on
+                // (t_floor, inf); Newton kept inside the bracket, bisection when it leaves.
+                let g = |t: f64| a(t) + a(rho * t - kap * h) - dk;
+                let dg = |t: f64| {
+                    let s = rho * t - kap * h;
+                    0.9 / c1 * ((t / c1).powf(-0.1) + rho * (s / c1).powf(-0.1))
+                };
+                let (mut lo, mut hi) = (t_floor, (c1 * dk.powf(10.0 / 9.0)).max(t_floor));
+                let mut t = (c1 * (dk / (1.0 + rho.powf(0.9))).powf(10.0 / 9.0)).clamp(lo, hi);
+                for _ in 0..200 {
+                    let gt = g(t);
+                    if gt > 0.0 {
+                        hi = t;
+                    } else {
+                        lo = t;
+                    }
+                    let mut next = t - gt / dg(t);
+                    if !(next > lo && next < hi) {
+                        next = 0.5 * (lo + hi);
+                    }
+                    let done = (next - t).abs() <= 4.0 * f64::EPSILON * t
+                        || hi - lo <= 4.0 * f64::EPSILON * hi;
+                    t = next;
+                    if done {
+                        break;
+                    }
+                }
+                (t, 1.0 / dg(t))
+            };
+            if let Some(c) = cup.as_deref_mut() {
+                c[k] = t;
+            }
+            if let Some(c) = cone.as_deref_mut() {
+                c[k] = (rho * t - kap * h).max(0.0);
+            }
+            r.add(t, dt, x, sec2);
+        }
+        r
+    }
+
+    /// Each lamina's cup and cone loads (N) at `u` and shaft speed `omega`; returns the cup
+    /// load `Q_o` and the flange load `Q_f` (at rest the cone's is `rho_i` times the cup's).
+    pub fn lamina_loads_at(
+        &self,
+        u: ElementDisplacement,
+        omega: f64,
+        cup: &mut [f64],
+        cone: &mut [f64],
+    ) -> (f64, f64) {
+        if !self.at_speed(omega) {
+            let qo = self.lamina_loads(u, cup);
+            for (c, t) in cone.iter_mut().zip(cup.iter()) {
+                *c = t * self.rho_inner;
+            }
+            return (qo, self.rho_flange * qo);
+        }
+        let (d, tau) = self.lamina_inputs(u);
+        let r = self.pressed(d, tau, omega, Some(cup), Some(cone));
+        let (fc, _) = self.inertia_loads(omega);
+        (r.force, self.rho_flange * r.force + self.kappa_flange * fc)
     }
 
     /// The laminae it evaluates (their constant is the series one of module docs).
@@ -159,12 +312,17 @@ impl ElementLaw for TaperedRollerLaw {
         &self,
         _at: ElementAt<'_>,
         u: ElementDisplacement,
-        _omega: f64,
+        omega: f64,
         _state: &mut [f64],
         want: Want,
     ) -> Result<ElementReaction> {
         let (delta, tau) = self.lamina_inputs(u);
-        let r = self.laminae.evaluate(delta, tau.atan());
+        let fast = self.at_speed(omega);
+        let r = if fast {
+            self.pressed(delta, tau, omega, None, None)
+        } else {
+            self.laminae.evaluate(delta, tau.atan())
+        };
         let (q, m) = (r.force, r.moment);
         let mut out = ElementReaction {
             f: [
@@ -175,6 +333,13 @@ impl ElementLaw for TaperedRollerLaw {
             approach: delta,
             ..Default::default()
         };
+        if fast {
+            // The pushes reach the inner ring through cone and flange: radially their sum
+            // F_c, and on the tilt the moment Σ h_k x_k cos(phi) = M_g (module docs).
+            let (fc, mg) = self.inertia_loads(omega);
+            out.f[1] += fc;
+            out.f[2] += mg;
+        }
         if want.stiffness {
             // d/d(tan psi) = d/d psi / sec²(psi); tan psi = -cos(beta) tilt.
             let sec2 = 1.0 + tau * tau;
@@ -190,7 +355,18 @@ impl ElementLaw for TaperedRollerLaw {
                 out.df[2][k] = -self.arm * a - self.cos_beta * b;
             }
         }
-        if want.report {
+        if want.report && fast {
+            let w = self.laminae.width();
+            let ns = self.laminae.len();
+            let (mut cup, mut cone) = (vec![0.0; ns], vec![0.0; ns]);
+            self.pressed(delta, tau, omega, Some(&mut cup), Some(&mut cone));
+            let mx = |v: &[f64]| v.iter().copied().fold(0.0, f64::max);
+            out.load = [cone.iter().sum(), q];
+            out.pressure = [
+                line_hertz(mx(&cone) / w, self.r_inner, self.e_inner).1,
+                line_hertz(mx(&cup) / w, self.r_outer, self.e_outer).1,
+            ];
+        } else if want.report {
             let w = self.laminae.width();
             out.load = [self.rho_inner * q, q];
             out.pressure = [
@@ -330,5 +506,148 @@ mod tests {
         let b = lookup("NU206").unwrap().build().unwrap();
         let e = TaperedRollerLaw::new(&b).unwrap_err().to_string();
         assert!(e.contains("bearing.kind"), "{e}");
+    }
+
+    fn at(q: &[f64; 5]) -> ElementAt<'_> {
+        ElementAt {
+            index: 0,
+            psi: 0.0,
+            sc: (0.0, 1.0),
+            q,
+        }
+    }
+
+    const REPORT: Want = Want {
+        stiffness: true,
+        report: true,
+    };
+
+    /// At `omega == 0` the law with inertia is the massless one bit for bit, and the massless
+    /// law at 20 000 rpm is the law at rest bit for bit (the ring level's rollers).
+    #[test]
+    fn at_rest_and_massless_the_law_is_unchanged() {
+        let (l, _, _) = law("30206");
+        let m = l.clone().massless();
+        let u = ElementDisplacement {
+            axial: 12e-6,
+            radial: 3e-6,
+            tilt: 2e-4,
+        };
+        let q0 = [0.0; 5];
+        let rest = m.react(at(&q0), u, 0.0, &mut [], REPORT).unwrap();
+        for (law_, w) in [(&l, 0.0), (&l, -0.0), (&m, 2094.4)] {
+            let r = law_.react(at(&q0), u, w, &mut [], REPORT).unwrap();
+            assert_eq!(format!("{r:?}"), format!("{rest:?}"), "omega {w}");
+        }
+    }
+
+    /// One 30206 roller at 10 000 rpm, hand values: `m = rho pi Dwe² Lw/4`, `omega_c = omega
+    /// (1 - gamma)/2`, `omega_R = omega Dpw/(2 Dwe) (1 - gamma²)`, `F_c = m Dpw/2 omega_c²`,
+    /// `M_g = m Dwe²/8 omega_R omega_c sin(alpha_roller)`. At a fixed ring displacement the cup
+    /// load rises and the cone load falls, by `rho_i Q_o - Q_i = kappa F_c` (no lamina open),
+    /// the roller's force triangle with `F_c` closes, the shaft feels `F_c` radially, and the
+    /// gyroscopic moment loads the large end more than the small end. The result is the same
+    /// for either direction of the shaft (both terms are even in the speed).
+    #[test]
+    fn at_speed_the_cup_carries_the_centrifugal_force() {
+        let (l, b, _) = law("30206");
+        let omega = 10_000.0 * PI / 30.0;
+        let m = b.roller_material.density * PI / 4.0 * b.dwe * b.dwe * b.lw;
+        let g = b.dwe * b.alpha.cos() / b.dpw;
+        let (wc, wr) = (
+            omega * (1.0 - g) / 2.0,
+            omega * b.dpw / (2.0 * b.dwe) * (1.0 - g * g),
+        );
+        let fc = m * b.dpw / 2.0 * wc * wc;
+        let mg = m * b.dwe * b.dwe / 8.0 * wr * wc * b.alpha_roller.sin();
+        let (fc_l, mg_l) = l.inertia_loads(omega);
+        assert!((fc_l / fc - 1.0).abs() < 1e-12 && (mg_l / mg - 1.0).abs() < 1e-12);
+        assert!(fc > 1.0 && mg > 0.0, "F_c {fc} N, M_g {mg} N m");
+        let u = ElementDisplacement {
+            axial: 15e-6,
+            radial: 0.0,
+            tilt: 0.0,
+        };
+        let q0 = [0.0; 5];
+        let rest = l.react(at(&q0), u, 0.0, &mut [], REPORT).unwrap();
+        let fast = l.react(at(&q0), u, omega, &mut [], REPORT).unwrap();
+        let back = l.react(at(&q0), u, -omega, &mut [], REPORT).unwrap();
+        assert_eq!(format!("{fast:?}"), format!("{back:?}"));
+        let ((qi0, qo0), (qi, qo)) = ((rest.load[0], rest.load[1]), (fast.load[0], fast.load[1]));
+        assert!(
+            qo > qo0 && qi < qi0,
+            "cup {qo0} -> {qo}, cone {qi0} -> {qi}"
+        );
+        let (rho, _) = l.load_ratios();
+        let kappa = l.kappa;
+        assert!(
+            (rho * qo - qi - kappa * fc).abs() < 1e-9 * qo,
+            "{}",
+            rho * qo - qi
+        );
+        // The force triangle with F_c (per roller; flange as lamina_loads_at gives it).
+        let ns = l.laminae().len();
+        let (mut cup, mut cone) = (vec![0.0; ns], vec![0.0; ns]);
+        let (qo2, qf) = l.lamina_loads_at(u, omega, &mut cup, &mut cone);
+        assert!((qo2 - qo).abs() < 1e-9 * qo);
+        let (ao, ai, af) = (b.alpha, b.alpha_cone, b.flange.unwrap().angle);
+        let (no, ni, nf) = (
+            [ao.sin(), ao.cos()],
+            [ai.sin(), ai.cos()],
+            [af.sin(), -af.cos()],
+        );
+        for c in 0..2 {
+            let s = -qo * no[c] + qi * ni[c] + qf * nf[c] + fc * [0.0, 1.0][c];
+            assert!(s.abs() < 1e-9 * qo, "component {c}: {s}");
+        }
+        // The shaft: radially the cup's inward push less F_c.
+        assert!((fast.f[1] - (-b.alpha.cos() * qo + fc)).abs() < 1e-9 * qo);
+        // The gyroscopic moment presses the large end (last lamina) harder.
+        let mut cup0 = vec![0.0; ns];
+        l.lamina_loads(u, &mut cup0);
+        assert!(cup[ns - 1] - cup0[ns - 1] > cup[0] - cup0[0]);
+    }
+
+    /// At speed `K = -dF/dq` by central differences, and symmetric (the pushes are constant
+    /// forces: the roller slice keeps a potential).
+    #[test]
+    fn at_speed_the_stiffness_is_minus_the_derivative() {
+        let (l, _, psi) = law("30206");
+        let omega = 8000.0 * PI / 30.0;
+        let f = |q: &[f64; 5], k: Option<&mut [[f64; 5]; 5]>| {
+            let want = Want {
+                stiffness: k.is_some(),
+                report: false,
+            };
+            assemble(q, &psi, l.moment_arm(), k, |_, at, u| {
+                l.react(at, u, omega, &mut [], want)
+            })
+            .unwrap()
+        };
+        let q = [15e-6, -10e-6, 20e-6, 3e-4, -2e-4];
+        let mut k = [[0.0; 5]; 5];
+        f(&q, Some(&mut k));
+        for col in 0..5 {
+            let h = if col < 3 { 1e-10 } else { 1e-8 };
+            let (mut qp, mut qm) = (q, q);
+            qp[col] += h;
+            qm[col] -= h;
+            let (fp, fm) = (f(&qp, None), f(&qm, None));
+            for row in 0..5 {
+                let fd = -(fp[row] - fm[row]) / (2.0 * h);
+                let scale = k[2][2].abs() * if row > 2 || col > 2 { 1e-3 } else { 1.0 };
+                assert!(
+                    (k[row][col] - fd).abs() < 1e-5 * scale,
+                    "K[{row}][{col}] {} vs {fd}",
+                    k[row][col]
+                );
+            }
+        }
+        for i in 0..5 {
+            for j in 0..5 {
+                let scale = (k[i][i].abs() * k[j][j].abs()).sqrt().max(1.0);
+                assert!((k[i][j] - k[j][i]).abs() < 1e-8 * scale, "K[{i}][{j}]");
+            }
+        }
     }
 }

@@ -52,7 +52,7 @@ pub struct DefectSpec {
     pub ball: Option<u32>,
     /// Roller bearings: the defect's axial width on the raceway (or the roller), mm; absent:
     /// the whole effective length `Lwe`. It removes material from the laminae whose centres
-    /// it spans (docs/physics.md §R10).
+    /// it spans (docs/physics.md §R12).
     #[serde(default)]
     pub axial_width_mm: Option<f64>,
     /// Roller bearings: the axial position of the defect's centre from the roller's

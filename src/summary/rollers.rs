@@ -8,6 +8,9 @@ use crate::error::{Error, Result};
 use crate::geometry::roller::RollerBearing;
 use crate::geometry::roller_catalogue;
 use crate::models::quasi_static::rollers::{solve, RollerSolution};
+use crate::ratings::lamina_life::{
+    lamina_life, lamina_static_safety, LaminaLife, LaminaLifeOptions, EDGE_FACTOR_NOTE,
+};
 use crate::ratings::roller::{
     equivalent_dynamic_load, equivalent_static_load, l10_roller, roller_ratings,
 };
@@ -42,6 +45,15 @@ pub struct RollerQsReport {
     pub max_pressure: f64,
     /// Largest edge (end-lamina) pressure, Pa.
     pub max_edge_pressure: f64,
+    /// ISO/TS 16281 reference rating life from the lamina loads with the edge-stress factor
+    /// (`ratings::lamina_life`), inner ring rotating.
+    pub lamina_life: LaminaLife,
+    /// The same without the edge-stress factor (what the factor costs).
+    pub lamina_life_without_edge_factor: LaminaLife,
+    /// Static safety of the most loaded lamina, `(4000 MPa / max_pressure)²`.
+    pub s0_lamina: Option<f64>,
+    /// What in these figures is not sourced.
+    pub notes: Vec<&'static str>,
 }
 
 /// The roller bearing of a designation, `None` when `name` is not one.
@@ -79,6 +91,22 @@ pub fn report(
         .rollers
         .iter()
         .fold(0.0, |a: f64, x| a.max(x.edge_pressure));
+    let inner: Vec<Vec<f64>> = sol
+        .rollers
+        .iter()
+        .map(|x| x.lamina_load_inner.clone())
+        .collect();
+    let outer: Vec<Vec<f64>> = sol.rollers.iter().map(|x| x.lamina_load.clone()).collect();
+    let life = lamina_life(b, &inner, &outer, LaminaLifeOptions::default())?;
+    let life_plain = lamina_life(
+        b,
+        &inner,
+        &outer,
+        LaminaLifeOptions {
+            edge_factor: false,
+            ..LaminaLifeOptions::default()
+        },
+    )?;
     Ok(RollerQsReport {
         bearing: b.name.clone(),
         element: "roller",
@@ -92,6 +120,10 @@ pub fn report(
         l10_mrev: l10.is_finite().then_some(l10),
         max_pressure,
         max_edge_pressure,
+        lamina_life: life,
+        lamina_life_without_edge_factor: life_plain,
+        s0_lamina: lamina_static_safety(max_pressure),
+        notes: vec![EDGE_FACTOR_NOTE],
     })
 }
 
@@ -101,7 +133,7 @@ pub fn text(r: &RollerQsReport) -> String {
     let sol = &r.solution;
     let _ = writeln!(
         s,
-        "Roller quasi-static equilibrium (ISO/TS 16281 laminae; cylindrical rollers with their centrifugal force, tapered ones massless): bearing {} ({} rollers), {:.3} rpm",
+        "Roller quasi-static equilibrium (ISO/TS 16281 laminae; rollers with their centrifugal force, tapered ones also with their gyroscopic moment): bearing {} ({} rollers), {:.3} rpm",
         r.bearing,
         sol.rollers.len(),
         r.speed_rpm
@@ -192,5 +224,26 @@ pub fn text(r: &RollerQsReport) -> String {
         if r.p0 > 0.0 { r.c0r / r.p0 } else { f64::INFINITY },
         r.max_pressure * 1e-9
     );
+    let mrev = |v: Option<f64>| {
+        v.map(|v| format!("{v:.4e}"))
+            .unwrap_or_else(|| "infinite".into())
+    };
+    let _ = writeln!(
+        s,
+        "ISO/TS 16281 from the lamina loads (inner ring rotating): L10r {} million revolutions with the edge-stress factor \
+         (inner race {}, outer race {}), {} without it; P_ref {:.1} N. Static safety of the most loaded lamina \
+         (4000 MPa / p_max)^2: {}",
+        mrev(r.lamina_life.l10r_mrev),
+        mrev(r.lamina_life.inner_mrev),
+        mrev(r.lamina_life.outer_mrev),
+        mrev(r.lamina_life_without_edge_factor.l10r_mrev),
+        r.lamina_life.p_ref,
+        r.s0_lamina
+            .map(|v| format!("{v:.3}"))
+            .unwrap_or_else(|| "unloaded".into())
+    );
+    for n in &r.notes {
+        let _ = writeln!(s, "{n}.");
+    }
     s
 }

@@ -163,7 +163,12 @@ class RollerQuasiStaticResult:
         Everything, as ``raceway quasi-static --bearing NAME --json`` prints it:
         ``solution`` (``q``, ``rollers_force``, ``k``, ``iterations``, ``rollers``), the ISO
         281/76 ratings ``cr``, ``c0r``, ``p``, ``p0``, ``l10_mrev``, and ``max_pressure``,
-        ``max_edge_pressure`` (Pa).
+        ``max_edge_pressure`` (Pa); ISO/TS 16281's reference rating life from the lamina
+        loads ``lamina_life`` (``l10r_mrev``, ``inner_mrev``, ``outer_mrev``, ``p_ref``,
+        ``options``, ``ratings``) and ``lamina_life_without_edge_factor``, the lamina static
+        safety ``s0_lamina`` = (4000 MPa / max_pressure)², and ``notes`` (what is
+        UNSOURCED). Each roller row carries ``lamina_load`` (outer contact) and
+        ``lamina_load_inner`` (inner contact), N.
     """
 
     rollers: pd.DataFrame

@@ -191,7 +191,10 @@ class RollerQuasiStaticResult:
     """Everything, as ``raceway quasi-static --bearing NAME --json`` prints it: ``solution``
     (``q``, ``rollers_force``, ``k``, ``iterations``, ``rollers``), the ISO 281/76 ratings
     ``cr``, ``c0r``, ``p``, ``p0``, ``l10_mrev`` and ``max_pressure``, ``max_edge_pressure``
-    (Pa)."""
+    (Pa); ISO/TS 16281's lamina life ``lamina_life`` (``l10r_mrev``, ``inner_mrev``,
+    ``outer_mrev``, ``p_ref``, ``options``, ``ratings``) and
+    ``lamina_life_without_edge_factor``, ``s0_lamina`` = (4000 MPa / max_pressure)² and
+    ``notes`` (what is UNSOURCED); each roller row also ``lamina_load_inner`` (N)."""
 
 DutyLike = Union[str, "os.PathLike[str]", Sequence[Sequence[float]]]
 """A load spectrum: the path of a file (one row per line ``fr_n, fa_n, speed_rpm,

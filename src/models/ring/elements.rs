@@ -11,7 +11,7 @@
 //! `w` at the element meets the moment `-c L²/12 w` ([`ElementLaw::tilt_damping_arm2`]).
 //!
 //! Defects and waviness on a cylindrical roller bearing act per lamina
-//! ([`super::roller_effects`], docs/physics.md §R10): a roller with an offset on some lamina
+//! ([`super::roller_effects`], docs/physics.md §R12): a roller with an offset on some lamina
 //! runs [`CylindricalRollerLaw::react_offsets`], every other roller the plain law, so a scene
 //! whose effects add nothing (a defect of zero depth, say) runs the healthy arithmetic bit for
 //! bit. Not modelled here yet: the other effects (spacing, film, wear, thermal) and any effect

@@ -1,4 +1,4 @@
-//! Defects and waviness on a cylindrical roller bearing, per lamina (docs/physics.md §R10).
+//! Defects and waviness on a cylindrical roller bearing, per lamina (docs/physics.md §R12).
 //!
 //! The effects a ball sees as one offset of its approach (`crate::models::effects`, docs/physics.md
 //! §5.3–5.4) act on a roller lamina by lamina:
