@@ -78,6 +78,12 @@ pub fn execute_until(
         false
     };
     let jobs = exec.jobs.max(1).min(todo.len().max(1));
+    std::fs::create_dir_all(dir.join("rows")).map_err(|e| {
+        Error::Io(format!(
+            "cannot create `{}`: {e}",
+            dir.join("rows").display()
+        ))
+    })?;
     std::thread::scope(|s| {
         for _ in 0..jobs {
             s.spawn(|| {
@@ -98,7 +104,7 @@ pub fn execute_until(
                         failed.fetch_add(1, Ordering::Relaxed);
                     }
                     let bytes = serde_json::to_vec(&row).expect("a row serialises");
-                    if let Err(e) = write_atomic(&row_path(dir, i), &bytes) {
+                    if let Err(e) = write_row(&row_path(dir, i), &bytes) {
                         if let Ok(mut slot) = first_error.lock() {
                             slot.get_or_insert(e);
                         }

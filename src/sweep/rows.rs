@@ -97,6 +97,22 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
     crate::fsutil::write_atomic(path, bytes).map_err(io)
 }
 
+/// Write one row file: its bytes to a temporary name in `rows/`, then a rename, without
+/// the sync [`write_atomic`] makes. A killed process leaves the whole file or none (the
+/// rename is atomic and the page cache outlives the process); after a power loss a row not
+/// yet on disk may be missing or empty, and [`read_rows`] skips what does not parse, so
+/// that point runs again on resume. The sync cost more than a quasi-static point's physics
+/// (and grew with the disk's write-back queue). `dir/rows` must exist.
+pub(super) fn write_row(path: &Path, bytes: &[u8]) -> Result<()> {
+    let io = |e: std::io::Error| Error::Io(format!("cannot write `{}`: {e}", path.display()));
+    let tmp = crate::fsutil::temporary_path(path);
+    let done = std::fs::write(&tmp, bytes).and_then(|()| std::fs::rename(&tmp, path));
+    if done.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    done.map_err(io)
+}
+
 pub(super) fn row_path(dir: &Path, index: usize) -> PathBuf {
     dir.join("rows").join(format!("{index:08}.json"))
 }

@@ -423,8 +423,16 @@ pub fn defaults() -> BTreeMap<String, Default_> {
 }
 
 /// The required fields, by normalised parent table (`""`: the scene; `bearing`: a bearing
-/// table without preset).
-pub(super) fn required() -> BTreeMap<String, Vec<String>> {
+/// table without preset). Derived once per process (a function of the compiled types
+/// alone): the check asks for it at every table it visits, and deriving it serialises and
+/// re-parses the minimal scene field by field (it was 55 % of a quasi-static sweep point).
+pub(super) fn required() -> &'static BTreeMap<String, Vec<String>> {
+    static REQUIRED: std::sync::OnceLock<BTreeMap<String, Vec<String>>> =
+        std::sync::OnceLock::new();
+    REQUIRED.get_or_init(derive_required)
+}
+
+fn derive_required() -> BTreeMap<String, Vec<String>> {
     let mut out: BTreeMap<String, Vec<String>> = BTreeMap::new();
     for (p, d) in defaults() {
         if matches!(d, Default_::Required | Default_::RequiredWithoutPreset) {

@@ -8,7 +8,7 @@
 //! ellipticity equation. Swapping in the contact module's own fast table means changing
 //! [`KcTable::new`] and [`KcTable::eval`] only.
 
-use crate::contact::{Curvature, PointContact, Race};
+use crate::contact::{ContactTable, Curvature, PointContact, Race};
 use crate::geometry::Bearing;
 
 /// Number of grid intervals over `c in [0, 1]`.
@@ -76,10 +76,90 @@ impl KcTable {
     }
 }
 
+/// The contact tables of one bearing: `Kc` (inner, outer) and the reports' fine tables.
+#[derive(Clone)]
+pub(crate) struct Tables {
+    pub kc: (KcTable, KcTable),
+    pub report: (ContactTable, ContactTable),
+}
+
+/// The contact tables of `bearing`, built once per process for each distinct
+/// `(D, dm, f_i, f_o, E'_i, E'_o)` (the only inputs of the tables, compared bit for bit, so a
+/// table from the memo is the table a fresh build gives): a sweep of one bearing over speed
+/// and displacement builds them once instead of at every point (they were 70 % of a
+/// quasi-static point's instructions). The last 8 bearings are kept.
+pub(crate) fn contact_tables(bearing: &Bearing) -> Tables {
+    type Key = [u64; 6];
+    static MEMO: std::sync::Mutex<Vec<(Key, Tables)>> = std::sync::Mutex::new(Vec::new());
+    let key: Key = [
+        bearing.d,
+        bearing.dm,
+        bearing.fi(),
+        bearing.fo(),
+        bearing.e_eff_inner(),
+        bearing.e_eff_outer(),
+    ]
+    .map(f64::to_bits);
+    if let Ok(memo) = MEMO.lock() {
+        if let Some((_, t)) = memo.iter().find(|(k, _)| *k == key) {
+            return t.clone();
+        }
+    }
+    let t = Tables {
+        kc: (
+            KcTable::new(bearing, Race::Inner),
+            KcTable::new(bearing, Race::Outer),
+        ),
+        report: (
+            ContactTable::fine(bearing, Race::Inner),
+            ContactTable::fine(bearing, Race::Outer),
+        ),
+    };
+    if let Ok(mut memo) = MEMO.lock() {
+        if memo.len() >= 8 {
+            memo.remove(0);
+        }
+        memo.push((key, t.clone()));
+    }
+    t
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::geometry::preset;
+
+    /// The memo hands out the tables a fresh build gives, bit for bit, and never another
+    /// bearing's: the 6205 and the 6012 (other D, dm, f) and the 6205 again after them.
+    #[test]
+    fn memoised_tables_are_the_fresh_tables_of_that_bearing() {
+        let bits = |t: &KcTable| -> Vec<u64> {
+            (0..=200)
+                .map(|k| t.eval(k as f64 / 200.0).0.to_bits())
+                .collect()
+        };
+        for name in ["6205", "6012", "6205", "7008ce"] {
+            let b = preset(name).unwrap().build().unwrap();
+            let m = contact_tables(&b);
+            let again = contact_tables(&b);
+            for race in [Race::Inner, Race::Outer] {
+                let (got, got2) = match race {
+                    Race::Inner => (&m.kc.0, &again.kc.0),
+                    Race::Outer => (&m.kc.1, &again.kc.1),
+                };
+                let fresh = KcTable::new(&b, race);
+                assert_eq!(bits(got), bits(&fresh), "{name} {race:?}");
+                assert_eq!(bits(got2), bits(&fresh), "{name} {race:?} from the memo");
+            }
+            assert_eq!(m.report.0, ContactTable::fine(&b, Race::Inner), "{name}");
+            assert_eq!(m.report.1, ContactTable::fine(&b, Race::Outer), "{name}");
+        }
+        let (a, b) = (
+            contact_tables(&preset("6205").unwrap().build().unwrap()),
+            contact_tables(&preset("6012").unwrap().build().unwrap()),
+        );
+        assert_ne!(bits(&a.kc.0), bits(&b.kc.0));
+    }
 
     #[test]
     fn table_matches_the_exact_constant_between_nodes() {

@@ -55,13 +55,13 @@ pub mod rollers;
 
 pub use ball::BallState;
 
-use crate::contact::{ContactTable, Race};
+use crate::contact::ContactTable;
 use crate::error::{Error, Result};
 use crate::geometry::Bearing;
 use crate::seam::element::{self, ElementAt, ElementReaction};
 use crate::solver::newton;
 use ball::{Eval, Geo};
-use kc::KcTable;
+use kc::contact_tables;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 
@@ -275,6 +275,7 @@ impl QuasiStatic {
             RaceControl::None => (1.0, 1.0),
         };
         let ri = bearing.inner_groove_centre_radius();
+        let tables = contact_tables(bearing);
         let geo = Geo {
             d: bearing.d,
             dm: bearing.dm,
@@ -293,8 +294,8 @@ impl QuasiStatic {
             lam_o,
             mu: opts.gyro_traction,
             control: opts.race_control,
-            kc_i: KcTable::new(bearing, Race::Inner),
-            kc_o: KcTable::new(bearing, Race::Outer),
+            kc_i: tables.kc.0,
+            kc_o: tables.kc.1,
             tol: opts.ball_tolerance,
             max_iter: opts.max_iterations,
         };
@@ -306,10 +307,7 @@ impl QuasiStatic {
             a_ref: [a1, a2],
             ri,
             t: [1.0, 1.0, 1.0, ri, ri],
-            report_tables: (
-                ContactTable::fine(bearing, Race::Inner),
-                ContactTable::fine(bearing, Race::Outer),
-            ),
+            report_tables: tables.report,
         })
     }
 
