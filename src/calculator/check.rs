@@ -1,5 +1,5 @@
 //! One bearing's design check beside a quasi-static solution: the oil's viscosity and κ,
-//! Palmgren's friction moment and power loss, the subsurface stresses below the most loaded
+//! Palmgren's and SKF's friction moments and power losses, the moment held tilts carry, the subsurface stresses below the most loaded
 //! contacts, and the operating clearance when fits or temperatures are given.
 
 use super::clearance::{operating_clearance, with_clearance, ClearanceInputs, OperatingClearance};
