@@ -259,7 +259,7 @@ impl DragInputs {
     /// From `VM,H_MM` as typed, naming `field`.
     pub fn parse(text: &str, field: &str) -> Result<DragInputs> {
         let v = numbers(text, 2, field, "VM,H_MM, e.g. 0.0003,10")?;
-        if !(v[0] > 0.0 && v[0] < 1.0) || !(v[1] >= 0.0 && v[1] <= 10_000.0) {
+        if !(v[0] > 0.0 && v[0] < 1.0 && v[1] >= 0.0 && v[1] <= 10_000.0) {
             return Err(Error::invalid(
                 field,
                 text,
