@@ -500,8 +500,12 @@ pub fn raceway_ratings(b: &Bearing) -> (f64, f64) {
 /// reference life from the per-ball loads, static safety, peak pressure, warnings.
 pub fn assess(b: &Bearing, sol: &Solution, inputs: &LifeInputs) -> Result<Assessment> {
     let r = load_ratings(b)?;
-    let fr = sol.load[0].hypot(sol.load[1]);
-    let fa = sol.load[2].abs();
+    // The forces the bearing carries: the external load plus what the support adds on
+    // held coordinates (zero when nothing is held). ISO 281's P has no moment term: a
+    // reaction moment on held tilts enters the per-ball life below, not P.
+    let carried = |i: usize| sol.load[i] + sol.reaction[i];
+    let fr = carried(0).hypot(carried(1));
+    let fa = carried(2).abs();
     let (x, y, e) = dynamic_factors(b, &r, fr, fa);
     let p = x * fr + y * fa;
     let (x0, y0) = static_factors(b);

@@ -100,7 +100,7 @@ fn fed_back_clearance_is_the_bearing_with_that_clearance() {
         shaft_interference_um: Some(10.0),
         ..Default::default()
     };
-    fitted.calc = CalcInputs::from_options(&o, 3000.0, "--oil-vi").unwrap();
+    fitted.calc = CalcInputs::from_options(&o, 3000.0, "--oil-vi", "--skf-").unwrap();
     let op = operating_clearance(&b, fitted.calc.clearance.as_ref().unwrap()).unwrap();
     let direct = mk(with_clearance(&b, op.operating).unwrap());
     let (a, _) = fitted.solve().unwrap();
@@ -169,4 +169,107 @@ fn thermal_speeds_from_the_oil() {
         .as_str()
         .unwrap()
         .contains("q_r"));
+}
+
+/// SKF's four-term model beside Palmgren's: both rise with viscosity; without seals or drag
+/// the total is rolling + sliding; seals add their constant term; the per-series constants
+/// are labelled as not confirmed.
+#[test]
+fn skf_friction_beside_palmgren() {
+    let thin = qs_json(&["--oil", "VG32", "--skf-lubrication", "oil-jet"]);
+    let thick = qs_json(&["--oil", "VG100", "--skf-lubrication", "oil-jet"]);
+    let skf = |v: &serde_json::Value, f: &str| v["calculator"]["skf_friction"][f].as_f64().unwrap();
+    assert!(skf(&thick, "total") > skf(&thin, "total"));
+    assert!(
+        (skf(&thin, "total") - skf(&thin, "rolling") - skf(&thin, "sliding")).abs()
+            < 1e-15 * skf(&thin, "total").max(1.0)
+    );
+    assert!(thin["calculator"]["skf_friction"]["seals"].is_null());
+    assert_eq!(thin["calculator"]["skf_friction"]["series"], "62");
+    assert!(thin["calculator"]["skf_friction"]["unconfirmed"]
+        .as_str()
+        .unwrap()
+        .contains("not checked"));
+    let sealed = qs_json(&[
+        "--oil",
+        "VG32",
+        "--skf-lubrication",
+        "oil-jet",
+        "--skf-seal",
+        "0.02,2.25,2,30",
+    ]);
+    let seal = skf(&sealed, "seals");
+    assert!((seal * 1e3 - (0.02 * 30f64.powf(2.25) + 2.0)).abs() < 1e-9);
+    assert!((skf(&sealed, "total") - skf(&thin, "total") - seal).abs() < 1e-12);
+    // At rest the SKF model is not defined: no SKF line, the reason instead.
+    let rest = {
+        let out = Command::new(env!("CARGO_BIN_EXE_raceway"))
+            .args([
+                "quasi-static",
+                "--bearing",
+                "6205",
+                "--fy",
+                "2000",
+                "--oil",
+                "VG32",
+                "--json",
+            ])
+            .output()
+            .unwrap();
+        serde_json::from_slice::<serde_json::Value>(&out.stdout).unwrap()
+    };
+    assert!(rest["calculator"]["skf_friction"].is_null());
+    assert!(rest["calculator"]["skf_note"]
+        .as_str()
+        .unwrap()
+        .contains("skf.speed_rpm"));
+    assert!(stderr_of(&["--oil", "VG32", "--skf-seal", "1,2"]).contains("--skf-seal"));
+    assert!(
+        stderr_of(&["--oil", "VG32", "--skf-lubrication", "mist"]).contains("--skf-lubrication")
+    );
+    assert!(
+        stderr_of(&["--skf-lubrication", "grease", "--skf-drag", "0.0003,10"])
+            .contains("--skf-drag")
+    );
+}
+
+/// A held displacement: ISO 281's P is formed from the force the bearing carries (the load
+/// plus the reaction), not the load alone. Held tilts: the moment is reported beside L10
+/// (which ignores it) and L10r (which includes it).
+#[test]
+fn held_coordinates_and_the_equivalent_load() {
+    let v = qs_json(&["--hold", "y_um=5"]);
+    let carried =
+        v["solution"]["load"][1].as_f64().unwrap() + v["solution"]["reaction"][1].as_f64().unwrap();
+    let fr = v["rating"]["radial_load"].as_f64().unwrap();
+    assert!((fr - carried.abs()).abs() < 1e-9, "{fr} {carried}");
+    assert!(
+        fr < 1000.0,
+        "a 5 µm hold leaves less than the 2000 N load: {fr}"
+    );
+    assert!(v["calculator"]["held_moment"].is_null());
+    let out = Command::new(env!("CARGO_BIN_EXE_raceway"))
+        .args([
+            "quasi-static",
+            "--bearing",
+            "7205B",
+            "--fy",
+            "1000",
+            "--fz",
+            "2000",
+            "--speed-rpm",
+            "3000",
+            "--hold",
+            "rx_mrad=0,ry_mrad=0",
+            "--json",
+        ])
+        .output()
+        .unwrap();
+    let t: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let h = &t["calculator"]["held_moment"];
+    let r = &t["solution"]["reaction"];
+    let m = r[3].as_f64().unwrap().hypot(r[4].as_f64().unwrap());
+    assert!(m > 1.0 && (h["moment"].as_f64().unwrap() - m).abs() < 1e-12);
+    assert_eq!(h["l10_mrev"], t["rating"]["l10_mrev"]);
+    assert_eq!(h["l10r_mrev"], t["rating"]["l10r_mrev"]);
 }

@@ -626,9 +626,17 @@ fn run(
     }
 }
 
+/// Numbers as `a,b,c` (each as Rust prints it back exactly).
+fn join_numbers(v: &[f64]) -> String {
+    v.iter()
+        .map(|x| format!("{x:?}"))
+        .collect::<Vec<_>>()
+        .join(",")
+}
+
 /// `raceway quasi-static --json` as text, plus (ball columns with units, their values).
 #[pyfunction]
-#[pyo3(signature = (bearing, speed_rpm, load, race_control, kappa, contamination, oil=None, oil_vi=None, oil_temp_c=None, f0=None, shaft_interference_um=None, housing_interference_um=None, inner_ring_temp_c=None, outer_ring_temp_c=None, hold=None, ambient_temp_c=None, duty=None))]
+#[pyo3(signature = (bearing, speed_rpm, load, race_control, kappa, contamination, oil=None, oil_vi=None, oil_temp_c=None, f0=None, shaft_interference_um=None, housing_interference_um=None, inner_ring_temp_c=None, outer_ring_temp_c=None, hold=None, ambient_temp_c=None, duty=None, skf_lubrication=None, skf_seal=None, skf_drag=None, skf_constants=None))]
 #[allow(clippy::type_complexity, clippy::too_many_arguments)]
 fn quasi_static(
     py: Python<'_>,
@@ -649,6 +657,10 @@ fn quasi_static(
     hold: Option<std::collections::BTreeMap<String, f64>>,
     ambient_temp_c: Option<f64>,
     duty: Option<String>,
+    skf_lubrication: Option<String>,
+    skf_seal: Option<Vec<f64>>,
+    skf_drag: Option<Vec<f64>>,
+    skf_constants: Option<Vec<f64>>,
 ) -> PyResult<(String, Vec<String>, Vec<Vec<f64>>)> {
     // A roller designation: the roller equilibrium and its report, the one
     // `raceway quasi-static --bearing NU206 --json` prints (same function, same shape).
@@ -672,6 +684,10 @@ fn quasi_static(
             ("hold", hold.is_some()),
             ("ambient_temp_c", ambient_temp_c.is_some()),
             ("duty", duty.is_some()),
+            ("skf_lubrication", skf_lubrication.is_some()),
+            ("skf_seal", skf_seal.is_some()),
+            ("skf_drag", skf_drag.is_some()),
+            ("skf_constants", skf_constants.is_some()),
         ];
         if let Some((name, _)) = given.iter().find(|(_, g)| *g) {
             return Err(to_py(
@@ -704,6 +720,11 @@ fn quasi_static(
         inner_ring_temp_c,
         outer_ring_temp_c,
         ambient_temp_c,
+        // One parser for the command line and Python: the numbers as `a,b,c`.
+        skf_lubrication,
+        skf_seal: skf_seal.map(|v| join_numbers(&v)),
+        skf_drag: skf_drag.map(|v| join_numbers(&v)),
+        skf_constants: skf_constants.map(|v| join_numbers(&v)),
     };
     compute(py, || {
         let scene = raceway::Scene::default_scene();
@@ -732,8 +753,9 @@ fn quasi_static(
             contamination,
             &reports::PYTHON_NAMES,
         )?;
-        problem.calc =
-            raceway::calculator::check::CalcInputs::from_options(&options, speed_rpm, "oil_vi")?;
+        problem.calc = raceway::calculator::check::CalcInputs::from_options(
+            &options, speed_rpm, "oil_vi", "skf_",
+        )?;
         if let Some(text) = &duty {
             // The spectrum's text (the package reads a file or writes a list's rows).
             problem.calc.duty = Some(raceway::calculator::duty::parse_spectrum(text, "duty")?);

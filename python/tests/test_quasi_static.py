@@ -96,3 +96,17 @@ def test_held_tilts_take_a_moment_and_match_the_command_line(cli):
     with pytest.raises(raceway.Error) as e:
         raceway.quasi_static("7205B", fy=1000, hold={"tilt": 0})
     assert e.value.field == "hold"
+
+
+def test_skf_friction_keywords_match_the_command_line(cli):
+    py = raceway.quasi_static("6205", 3000.0, fy=2000, oil="VG68", skf_lubrication="oil-bath",
+                              skf_drag=(0.0003, 10), skf_seal=(0.02, 2.25, 2, 30))
+    doc = json.loads(cli("quasi-static", "--bearing", "6205", "--speed-rpm", "3000", "--fy",
+                         "2000", "--oil", "VG68", "--skf-drag", "0.0003,10", "--skf-seal",
+                         "0.02,2.25,2,30", "--json"))
+    skf = py.data["calculator"]["skf_friction"]
+    assert skf == doc["calculator"]["skf_friction"]
+    assert skf["drag"] > 0 and skf["seals"] > 0
+    with pytest.raises(raceway.Error) as e:
+        raceway.quasi_static("6205", 3000.0, fy=2000, oil="VG68", skf_seal=(1, 2))
+    assert e.value.field == "skf_seal"

@@ -1,11 +1,15 @@
 //! One bearing's design check beside a quasi-static solution: the oil's viscosity and κ,
-//! Palmgren's friction moment and power loss, the subsurface stresses below the most loaded
+//! Palmgren's and SKF's friction moments and power losses, the moment held tilts carry, the subsurface stresses below the most loaded
 //! contacts, and the operating clearance when fits or temperatures are given.
 
 use super::clearance::{operating_clearance, with_clearance, ClearanceInputs, OperatingClearance};
 use super::duty::{spectrum_life, DutyLife, SpectrumRow};
 use super::friction::{palmgren, FrictionInputs, Palmgren, PalmgrenType};
 use super::lubricant::{lubrication, Lubrication, Oil};
+use super::skf_friction::{
+    series_of, skf_friction, DragInputs, SealConstants, SkfFriction, SkfInputs, SkfKind,
+    SkfLubrication, SkfSeries,
+};
 use super::subsurface::{subsurface, Subsurface};
 use super::thermal_speed::{thermal_speeds, ThermalInputs, ThermalSpeed};
 use crate::error::Result;
@@ -33,6 +37,15 @@ pub struct CalcInputs {
     /// Ambient temperature of the thermally safe speed's heat balance, °C (default 20,
     /// ISO 15312's reference ambient).
     pub ambient_c: f64,
+    /// Lubrication method of the SKF model (default: oil bath).
+    pub skf_lubrication: SkfLubrication,
+    /// Seal constants of the SKF model (`None`: open bearing).
+    pub skf_seal: Option<SealConstants>,
+    /// Oil-bath drag inputs of the SKF model (`None`: no drag term).
+    pub skf_drag: Option<DragInputs>,
+    /// Geometry constants typed by the user (`None`: the built-in series table); the kind is
+    /// the bearing's.
+    pub skf_constants: Option<SkfSeries>,
 }
 
 impl Default for CalcInputs {
@@ -45,6 +58,10 @@ impl Default for CalcInputs {
             duty: None,
             contamination: None,
             ambient_c: super::thermal_speed::T_AMBIENT_REF_C,
+            skf_lubrication: SkfLubrication::OilBath,
+            skf_seal: None,
+            skf_drag: None,
+            skf_constants: None,
         }
     }
 }
@@ -71,13 +88,52 @@ pub struct CalcOptions {
     pub outer_ring_temp_c: Option<f64>,
     /// Ambient temperature of the thermally safe speed, °C (default 20).
     pub ambient_temp_c: Option<f64>,
+    /// SKF model lubrication method: `oil-bath` (default), `oil-jet`, `oil-air`, `grease`.
+    pub skf_lubrication: Option<String>,
+    /// SKF model seal constants `KS1,BETA,KS2,DS_MM` (both seals).
+    pub skf_seal: Option<String>,
+    /// SKF model oil-bath drag `VM,H_MM` (drag loss factor from SKF's diagram, oil level).
+    pub skf_drag: Option<String>,
+    /// SKF model geometry constants `R1,R2,R3,S1,S2,S3` for a series not in the table.
+    pub skf_constants: Option<String>,
 }
 
 impl CalcInputs {
     /// From the typed options at a shaft speed; `oil_vi` without `oil` is refused, naming
-    /// `vi_name`.
-    pub fn from_options(o: &CalcOptions, speed_rpm: f64, vi_name: &str) -> Result<CalcInputs> {
+    /// `vi_name`; the SKF options are named with `prefix` (`--skf-` on the command line,
+    /// `skf_` in Python).
+    pub fn from_options(
+        o: &CalcOptions,
+        speed_rpm: f64,
+        vi_name: &str,
+        prefix: &str,
+    ) -> Result<CalcInputs> {
         let mut c = CalcInputs::default();
+        let sep = if prefix.ends_with('-') { "-" } else { "_" };
+        let name = |f: &str| format!("{prefix}{}", f.replace('_', sep));
+        if let Some(l) = &o.skf_lubrication {
+            c.skf_lubrication = SkfLubrication::parse(l, &name("lubrication"))?;
+        }
+        if let Some(t) = &o.skf_seal {
+            c.skf_seal = Some(SealConstants::parse(t, &name("seal"))?);
+        }
+        if let Some(t) = &o.skf_drag {
+            if c.skf_lubrication != SkfLubrication::OilBath {
+                return Err(crate::Error::invalid(
+                    name("drag"),
+                    t,
+                    "given with an oil bath only (the lubrication is not oil-bath)",
+                ));
+            }
+            c.skf_drag = Some(DragInputs::parse(t, &name("drag"))?);
+        }
+        if let Some(t) = &o.skf_constants {
+            c.skf_constants = Some(SkfSeries::given(
+                t,
+                SkfKind::DeepGroove,
+                &name("constants"),
+            )?);
+        }
         if let Some(name) = &o.oil {
             c.oil = Some(Oil::by_name(name, o.oil_vi)?);
         } else if let Some(vi) = o.oil_vi {
@@ -138,8 +194,8 @@ pub struct DesignCheck {
     pub oil: Option<Oil>,
     /// Its viscosity, ν1 and κ at the operating temperature.
     pub lubrication: Option<Lubrication>,
-    /// Which friction model: `palmgren` (ISO/TR 14179-2's); the SKF four-term model is not
-    /// implemented.
+    /// Which model the `friction` field holds: `palmgren` (ISO/TR 14179-2's); the SKF
+    /// four-term model is `skf_friction`.
     pub friction_model: &'static str,
     /// Palmgren's moment (N m) and power loss (W), when the oil and the ratings are known.
     pub friction: Option<Palmgren>,
@@ -155,6 +211,28 @@ pub struct DesignCheck {
     /// ISO 15312's thermal reference speed and the thermally safe speed at the oil's
     /// temperature (with the oil, the ratings and the bearing's envelope).
     pub thermal_speed: Option<ThermalSpeed>,
+    /// The SKF four-term model (rolling, sliding, seals, drag), when the oil, the ratings,
+    /// the bearing's envelope and its series' constants are known and the bearing turns.
+    pub skf_friction: Option<SkfFriction>,
+    /// Why there is no SKF friction (`None` when there is).
+    pub skf_note: Option<String>,
+    /// The moment the support holds on held tilts, and the lives with and without it.
+    pub held_moment: Option<HeldMoment>,
+}
+
+/// The reaction moment on held tilts: ISO 281's equivalent load has no moment term, so its
+/// `L10` does not see it; the per-ball life `L10r` (ISO/TS 16281's form, from the element
+/// loads the moment changes) does.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct HeldMoment {
+    /// Magnitude of the moment the bearing carries `|M_load + M_reaction|`, N m.
+    pub moment: f64,
+    /// The reaction moment on the held tilts `(Mx, My)`, N m.
+    pub reaction: [f64; 2],
+    /// ISO 281's `L10` (no moment), millions of revolutions.
+    pub l10_mrev: Option<f64>,
+    /// The per-ball `L10r` (with the moment), millions of revolutions.
+    pub l10r_mrev: Option<f64>,
 }
 
 /// The check of `b` at the solution `sol` (its ISO assessment, when there is one).
@@ -262,6 +340,16 @@ pub fn design_check(
         }
         _ => None,
     };
+    let (skf, skf_note) = skf_check(b, sol, speed_rpm, rating, lub.as_ref(), x);
+    let held_moment = (sol.held[3] || sol.held[4]).then(|| {
+        let m = [sol.load[3] + sol.reaction[3], sol.load[4] + sol.reaction[4]];
+        HeldMoment {
+            moment: m[0].hypot(m[1]),
+            reaction: [sol.reaction[3], sol.reaction[4]],
+            l10_mrev: rating.and_then(|a| a.l10_mrev),
+            l10r_mrev: rating.and_then(|a| a.l10r_mrev),
+        }
+    });
     Ok(DesignCheck {
         oil: x.oil.clone(),
         lubrication: lub,
@@ -272,7 +360,68 @@ pub fn design_check(
         equilibrium_clearance,
         duty,
         thermal_speed,
+        skf_friction: skf,
+        skf_note,
+        held_moment,
     })
+}
+
+/// The SKF model at the solution, or why not.
+fn skf_check(
+    b: &Bearing,
+    sol: &Solution,
+    speed_rpm: f64,
+    rating: Option<&Assessment>,
+    lub: Option<&Lubrication>,
+    x: &CalcInputs,
+) -> (Option<SkfFriction>, Option<String>) {
+    let (l, a) = match (lub, rating) {
+        (Some(l), Some(a)) => (l, a),
+        _ => return (None, Some("needs the oil and the ISO ratings".into())),
+    };
+    if !(b.bore > 0.0 && b.outer_diameter > b.bore) {
+        return (
+            None,
+            Some("needs the bearing's bore and outside diameter".into()),
+        );
+    }
+    let kind = match b.kind {
+        BearingKind::DeepGroove => SkfKind::DeepGroove,
+        BearingKind::AngularContact => SkfKind::AngularContact,
+    };
+    let series = match (&x.skf_constants, series_of(&b.name)) {
+        (Some(c), _) => SkfSeries { kind, ..*c },
+        (None, Some(s)) if kind == s.kind => *s,
+        _ => {
+            return (
+                None,
+                Some(format!(
+                    "no geometry constants for {} (built in: deep-groove 60, 62, 63; give --skf-constants R1,R2,R3,S1,S2,S3 from the maker's table)",
+                    b.name
+                )),
+            )
+        }
+    };
+    let r = skf_friction(
+        &series,
+        &SkfInputs {
+            bore: b.bore,
+            outer_diameter: b.outer_diameter,
+            speed_rpm,
+            nu: l.nu,
+            fr: a.radial_load,
+            fa: a.axial_load,
+            c0: a.ratings.c0,
+            lubrication: x.skf_lubrication,
+            seal: x.skf_seal,
+            drag: x.skf_drag,
+            tilt: sol.q[3].hypot(sol.q[4]),
+        },
+    );
+    match r {
+        Ok(f) => (Some(f), None),
+        Err(e) => (None, Some(e.to_string())),
+    }
 }
 
 /// The check as text lines for `raceway quasi-static` (units at the edge).
@@ -316,6 +465,48 @@ pub fn text(c: &DesignCheck) -> String {
             );
         }
         None => s += "  friction (Palmgren):            needs the oil and the ISO ratings\n",
+    }
+    match (&c.skf_friction, &c.skf_note) {
+        (Some(f), _) => {
+            let opt = |m: Option<f64>, none: &str| match m {
+                Some(v) => format!("{:.2}", v * 1e3),
+                None => none.to_string(),
+            };
+            let _ = writeln!(
+                s,
+                "  friction (SKF four-term):       M {:.2} N mm = rolling {:.2} + sliding {:.2} + seals {} + drag {}; power loss {:.2} W",
+                f.total * 1e3,
+                f.rolling * 1e3,
+                f.sliding * 1e3,
+                opt(f.seals, "- (open)"),
+                opt(f.drag, "- (not given)"),
+                f.power
+            );
+            let _ = writeln!(
+                s,
+                "  SKF factors:                    series {}, {}: phi_ish {:.3}, phi_rs {:.3}, mu_sl {:.4}; UNCONFIRMED: {}",
+                f.series, f.lubrication, f.phi_ish, f.phi_rs, f.mu_sl, f.unconfirmed
+            );
+            for w in &f.warnings {
+                let _ = writeln!(s, "  SKF model warning:              {w}");
+            }
+        }
+        (None, Some(why)) => {
+            let _ = writeln!(s, "  friction (SKF four-term):       not computed: {why}");
+        }
+        (None, None) => {}
+    }
+    if let Some(h) = &c.held_moment {
+        let life = |l: Option<f64>| l.map_or("-".to_string(), |v| format!("{v:.1}"));
+        let _ = writeln!(
+            s,
+            "  held tilt:                      the bearing carries M {:.2} N m (reaction Mx {:.2}, My {:.2} N m); ISO 281's P has no moment term, so L10 {} Mrev ignores it; the per-ball L10r {} Mrev includes it",
+            h.moment,
+            h.reaction[0],
+            h.reaction[1],
+            life(h.l10_mrev),
+            life(h.l10r_mrev)
+        );
     }
     if let Some(st) = &c.subsurface {
         for (name, q) in [("inner", &st.inner), ("outer", &st.outer)] {

@@ -17,9 +17,7 @@
 //! 0.7 .. 2 for grease or oil mist, 2 oil bath, 4 oil jet or vertical shaft, per the sources'
 //! table); it is an input.
 //!
-//! The SKF four-term model (rolling, sliding, seals, drag; SKF General Catalogue 6000 EN, 2008,
-//! "Friction") is not implemented: its geometry constants per bearing series could not be
-//! sourced here.
+//! The SKF four-term model (rolling, sliding, seals, drag) is [`super::skf_friction`].
 
 use crate::error::{Error, Result};
 

@@ -7,6 +7,7 @@ pub mod clearance;
 pub mod duty;
 pub mod friction;
 pub mod lubricant;
+pub mod skf_friction;
 pub mod subsurface;
 pub mod thermal_speed;
 pub mod vi_table;

@@ -27,6 +27,10 @@
 //!   `A_r = 50 000 mm²` and `0.016 (A_r / 50 000)^-0.34` above, as recalled from ISO 15312
 //!   and not checked against its text ([`Q_R_UNSOURCED`]); the output says so.
 //!
+//! Searched for a text that gives `q_r(A_r)`, `f0r` or `f1r` (ISO 15312 and DIN 732 themselves,
+//! and SKF's, Schaeffler's and NSK's restatements of the thermal speed rating): none was found,
+//! so both stay labelled.
+//!
 //! **Thermally safe operating speed** (the principle of DIN 732:2010): the same balance at
 //! the user's load, oil viscosity and temperatures, with the seats' heat transfer of the
 //! reference (`q_r A_r / 50 K`) scaled by the user's temperature rise; no heat carried by an

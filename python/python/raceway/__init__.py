@@ -262,6 +262,10 @@ def quasi_static(
     hold: Optional[dict[str, float]] = None,
     ambient_temp_c: Optional[float] = None,
     duty: Any = None,
+    skf_lubrication: Optional[str] = None,
+    skf_seal: Optional[Sequence[float]] = None,
+    skf_drag: Optional[Sequence[float]] = None,
+    skf_constants: Optional[Sequence[float]] = None,
 ) -> Union[QuasiStaticResult, RollerQuasiStaticResult]:
     """The Jones–Harris quasi-static equilibrium under a load on the inner ring.
 
@@ -318,6 +322,12 @@ def quasi_static(
         ``(fr_n, fa_n, speed_rpm, time_share)`` rows. The ISO 281 life under the duty cycle
         is ``result.data["calculator"]["duty"]`` (with ``oil`` and ``contamination``, each
         row's a_ISO).
+    skf_lubrication, skf_seal, skf_drag, skf_constants : optional
+        The SKF four-term friction model (``data["calculator"]["skf_friction"]``, beside
+        Palmgren's, with ``oil``), as ``raceway quasi-static --skf-*``: the lubrication
+        method (``"oil-bath"`` default, ``"oil-jet"``, ``"oil-air"``, ``"grease"``); seal
+        constants ``(KS1, BETA, KS2, DS_MM)``; oil-bath drag ``(VM, H_MM)``; geometry
+        constants ``(R1, R2, R3, S1, S2, S3)`` for a series not built in (60, 62, 63).
 
     Returns
     -------
@@ -360,6 +370,10 @@ def quasi_static(
         None if hold is None else {str(k): float(v) for k, v in hold.items()},
         ambient_temp_c,
         _duty_text(duty),
+        skf_lubrication,
+        None if skf_seal is None else [float(v) for v in skf_seal],
+        None if skf_drag is None else [float(v) for v in skf_drag],
+        None if skf_constants is None else [float(v) for v in skf_constants],
     )
     data = json.loads(text)
     if data.get("element") == "roller":

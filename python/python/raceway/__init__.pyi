@@ -223,6 +223,10 @@ def quasi_static(
     hold: Optional[dict[str, float]] = None,
     ambient_temp_c: Optional[float] = None,
     duty: Optional[DutyLike] = None,
+    skf_lubrication: Optional[str] = None,
+    skf_seal: Optional[Sequence[float]] = None,
+    skf_drag: Optional[Sequence[float]] = None,
+    skf_constants: Optional[Sequence[float]] = None,
 ) -> Union[QuasiStaticResult, RollerQuasiStaticResult]:
     """The Jones–Harris quasi-static equilibrium under an external load on the inner ring
     (the outer ring fixed), as ``raceway quasi-static`` solves it.
@@ -245,6 +249,14 @@ def quasi_static(
     ``ry_mrad``), the reaction on each in ``result.data["solution"]["reaction"]``.
     ``duty``: a load spectrum (``raceway quasi-static --duty FILE``), its ISO 281 life in
     ``result.data["calculator"]["duty"]``.
+    The SKF four-term friction model is ``data["calculator"]["skf_friction"]`` (N m, W:
+    ``rolling``, ``sliding``, ``seals``, ``drag``, ``total``, ``power``, the factors, and
+    what is ``unconfirmed``; ``skf_note`` says why it is missing): ``skf_lubrication``
+    (``"oil-bath"`` default, ``"oil-jet"``, ``"oil-air"``, ``"grease"``), ``skf_seal``
+    ``(KS1, BETA, KS2, DS_MM)``, ``skf_drag`` ``(VM, H_MM)``, ``skf_constants``
+    ``(R1, R2, R3, S1, S2, S3)`` for a series not built in (deep-groove 60, 62, 63).
+    With held tilts, ``data["calculator"]["held_moment"]`` is the moment the bearing carries
+    (ISO 281's ``L10`` ignores it; the per-ball ``L10r`` includes it).
     A roller designation (``"NU206"``, ``"30206"``) gives a :class:`RollerQuasiStaticResult`
     (``raceway quasi-static --bearing NU206 --json``); the ball-only options are refused.
     """

@@ -154,6 +154,22 @@ struct QsArgs {
     /// bearing is at --oil-temp-c).
     #[arg(long, allow_hyphen_values = true)]
     ambient_temp_c: Option<f64>,
+    /// SKF friction model: lubrication method, oil-bath (default), oil-jet, oil-air or grease
+    /// (sets the starvation constant K_rs; drag only in an oil bath).
+    #[arg(long)]
+    skf_lubrication: Option<String>,
+    /// SKF friction model: seal constants of a bearing sealed on both sides,
+    /// `KS1,BETA,KS2,DS_MM` from the maker's table (M_seal = KS1 ds^BETA + KS2, N mm).
+    #[arg(long)]
+    skf_seal: Option<String>,
+    /// SKF friction model: oil-bath drag, `VM,H_MM` (the drag loss factor read from SKF's
+    /// diagram at the oil level H, and H in mm).
+    #[arg(long)]
+    skf_drag: Option<String>,
+    /// SKF friction model: geometry constants `R1,R2,R3,S1,S2,S3` from the maker's table, for
+    /// a series not built in (built in: deep-groove 60, 62, 63).
+    #[arg(long)]
+    skf_constants: Option<String>,
     /// Load spectrum file, one row per line `fr_n, fa_n, speed_rpm, time_share`: ISO 281 life
     /// under the duty cycle (with --oil and --contamination, each row's a_ISO).
     #[arg(long)]
@@ -257,8 +273,12 @@ fn calc_inputs(a: &QsArgs, speed_rpm: f64) -> Result<raceway::calculator::check:
         inner_ring_temp_c: a.inner_ring_temp_c,
         outer_ring_temp_c: a.outer_ring_temp_c,
         ambient_temp_c: a.ambient_temp_c,
+        skf_lubrication: a.skf_lubrication.clone(),
+        skf_seal: a.skf_seal.clone(),
+        skf_drag: a.skf_drag.clone(),
+        skf_constants: a.skf_constants.clone(),
     };
-    let mut c = CalcInputs::from_options(&o, speed_rpm, "--oil-vi")?;
+    let mut c = CalcInputs::from_options(&o, speed_rpm, "--oil-vi", "--skf-")?;
     if let Some(path) = &a.duty {
         let text = std::fs::read_to_string(path).map_err(|e| raceway::Error::Parse {
             what: format!("--duty {}", path.display()),
@@ -293,6 +313,10 @@ fn quasi_static(a: QsArgs) -> Result<String> {
             ("--ambient-temp-c", a.ambient_temp_c.is_some()),
             ("--duty", a.duty.is_some()),
             ("--hold", a.hold.is_some()),
+            ("--skf-lubrication", a.skf_lubrication.is_some()),
+            ("--skf-seal", a.skf_seal.is_some()),
+            ("--skf-drag", a.skf_drag.is_some()),
+            ("--skf-constants", a.skf_constants.is_some()),
         ];
         if let Some((flag, _)) = given.iter().find(|(_, g)| *g) {
             return Err(raceway::Error::invalid(
