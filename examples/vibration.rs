@@ -122,6 +122,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         Verdict::BelowFloor => "-".to_string(),
         Verdict::OffLine => format!("off ({:.2})", p.found),
         Verdict::Unresolved { .. } => "unresolved".to_string(),
+        Verdict::AboveNyquist { .. } => "above Nyquist".to_string(),
     };
     for (a, b) in find_peaks(&spec, &marks, tol)
         .iter()

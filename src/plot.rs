@@ -80,9 +80,35 @@ fn range(vals: impl Iterator<Item = f64>, log: bool) -> (f64, f64) {
     }
 }
 
+/// Tick label of an axis spanning `span`: on a linear axis, rounding noise near zero
+/// (below 1e-9 of the span) reads 0; on a log axis a small value is a decade, not noise.
+/// Ticks on a narrow span far from zero (-300 N varying by 1e-4 N) carry the decimals that
+/// tell them apart: one more than the tenth of the span needs.
+fn axis_tick(v: f64, span: f64, log: bool) -> String {
+    let v = if !log && v.abs() < 1e-9 * span {
+        0.0
+    } else {
+        v
+    };
+    if log || v == 0.0 || !(span > 0.0 && span.is_finite()) {
+        return tick(v, log);
+    }
+    let decimals = (1.0 - (0.1 * span).log10().floor()).clamp(0.0, 12.0) as usize;
+    if decimals <= 4 || v.abs() < 1e-3 || v.abs() >= 1e5 {
+        return tick(v, log);
+    }
+    let s = format!("{v:.decimals$}");
+    s.trim_end_matches('0').trim_end_matches('.').to_string()
+}
+
 /// Tick label: powers of ten on log axes (`1e-6`), plain short numbers otherwise.
 fn tick(v: f64, log: bool) -> String {
     if log {
+        // A log axis has no tick at or below zero (plotters may still ask for one at its
+        // lower end): none drawn rather than a misleading "0.0e0".
+        if !(v > 0.0 && v.is_finite()) {
+            return String::new();
+        }
         let e = v.log10();
         if (e - e.round()).abs() < 1e-6 {
             format!("1e{}", e.round() as i32)
@@ -393,6 +419,64 @@ pub fn stack_pair_dpi(
     crate::fsutil::write_atomic(&path.with_extension("svg"), svg).map_err(io)
 }
 
+/// A title in lines that fit the width of `area` (40 px to spare: the size estimate runs
+/// a few per cent short): one line at 20 px (times `s`), or smaller down to 14 px; longer,
+/// two lines, split after the scene's part (`"name (title):"`, else at the space nearest
+/// the middle), each fitted alike down to 11 px. Returns the lines and the font size.
+fn title_lines<DB: DrawingBackend>(area: &Area<DB>, title: &str, s: f64) -> (Vec<String>, f64) {
+    let w = area.dim_in_pixel().0 as f64 - 40.0 * s;
+    let width = |t: &str| {
+        area.estimate_text_size(t, &("sans-serif", 20.0 * s).into())
+            .map(|(w, _)| w as f64)
+            .unwrap_or(0.0)
+    };
+    let fit = |t: &str| 20.0 * s * (w / width(t).max(1.0)).min(1.0);
+    let one = fit(title);
+    if one >= 14.0 * s {
+        return (vec![title.to_string()], one);
+    }
+    let mid = title.len() / 2;
+    let cut = title.find("): ").map(|i| i + 2).or_else(|| {
+        title
+            .char_indices()
+            .filter(|(_, c)| *c == ' ')
+            .map(|(i, _)| i)
+            .min_by_key(|i| i.abs_diff(mid))
+    });
+    let Some(cut) = cut else {
+        return (vec![title.to_string()], one.max(11.0 * s));
+    };
+    let (a, b) = title.split_at(cut);
+    let (a, b) = (a.trim_end(), b.trim_start());
+    let size = fit(a).min(fit(b)).clamp(11.0 * s, 14.4 * s);
+    (vec![a.to_string(), b.to_string()], size)
+}
+
+/// Draw `lines` centred in the top of `area` from `top` px down; returns the height used.
+fn draw_title<DB: DrawingBackend>(
+    area: &Area<DB>,
+    lines: &[String],
+    size: f64,
+    top: f64,
+) -> Result<f64> {
+    let w = area.dim_in_pixel().0 as i32;
+    let style: TextStyle<'_> = ("sans-serif", size).into();
+    for (k, l) in lines.iter().enumerate() {
+        let tw = area
+            .estimate_text_size(l, &style)
+            .map(|(w, _)| w as i32)
+            .unwrap_or(0);
+        let y = top + k as f64 * 1.25 * size;
+        area.draw(&Text::new(
+            l.as_str(),
+            ((w - tw) / 2, y as i32),
+            style.clone(),
+        ))
+        .map_err(io)?;
+    }
+    Ok(lines.len() as f64 * 1.25 * size)
+}
+
 fn draw_stack<DB: DrawingBackend>(
     root: &Area<DB>,
     s: f64,
@@ -400,17 +484,11 @@ fn draw_stack<DB: DrawingBackend>(
     panels: &[(Axes<'_>, Vec<Series<'_>>)],
 ) -> Result<()> {
     root.fill(&WHITE).map_err(io)?;
-    // 20 px, smaller when a long title (scene, bearing, operating point, window) would
-    // not fit the width.
-    let w = root.dim_in_pixel().0 as f64;
-    let tw = root
-        .estimate_text_size(title, &("sans-serif", 20.0 * s).into())
-        .map(|(w, _)| w as f64)
-        .unwrap_or(0.0);
-    let size = 20.0 * s * ((w - 16.0 * s) / tw.max(1.0)).min(1.0);
-    let body = root
-        .titled(title, ("sans-serif", size.max(11.0 * s)))
-        .map_err(io)?;
+    // 20 px, smaller (or two lines) when a long title (scene, bearing, operating point,
+    // window) would not fit the width; the panels below the 44 px it has.
+    let (lines, size) = title_lines(root, title, s);
+    draw_title(root, &lines, size, 6.0 * s)?;
+    let (_, body) = root.split_vertically((44.0 * s) as i32);
     for (area, (axes, series)) in body
         .split_evenly((panels.len().max(1), 1))
         .iter()
@@ -533,27 +611,34 @@ fn draw_area<DB: DrawingBackend>(
         };
         // The title drawn here (not as the chart's caption) so that the rows of marker
         // labels go between it and the plot.
-        let title_h = if axes.title.is_empty() { 0 } else { ipx(30.0) };
-        if title_h > 0 {
-            let w = area.dim_in_pixel().0 as i32;
-            let width = |size: f64| {
-                area.estimate_text_size(axes.title, &("sans-serif", size).into())
-                    .map(|(w, _)| w as i32)
-                    .unwrap_or(0)
-            };
-            // 20 px, smaller when a long title (scene, bearing, operating point) would
-            // not fit the width.
-            let fit = px(20.0) * ((w - ipx(16.0)) as f64 / width(px(20.0)).max(1) as f64).min(1.0);
-            let style: TextStyle<'_> = ("sans-serif", fit.max(px(11.0))).into();
-            let tw = width(fit.max(px(11.0)));
-            area.draw(&Text::new(axes.title, ((w - tw) / 2, ipx(8.0)), style))
-                .map_err(io)?;
-        }
+        // 20 px, smaller (or two lines) when a long title (scene, bearing, operating
+        // point) would not fit the width.
+        let title_h = if axes.title.is_empty() {
+            0
+        } else {
+            let (lines, size) = title_lines(area, axes.title, s);
+            let used = draw_title(area, &lines, size, px(8.0))?;
+            ipx(30.0).max((used + px(6.0)) as i32)
+        };
+        // Room for the widest y tick label (many decimals on a narrow span far from 0,
+        // "-300.000015") beside the axis description.
+        let tick_w = [y0, 0.5 * (y0 + y1h), y1h]
+            .iter()
+            .map(|&v| {
+                area.estimate_text_size(
+                    &axis_tick(v, y1h - y0, axes.log_y),
+                    &("sans-serif", px(16.0)).into(),
+                )
+                .map(|(w, _)| w as i32)
+                .unwrap_or(0)
+            })
+            .max()
+            .unwrap_or(0);
         let mut b = ChartBuilder::on(area);
         b.margin(ipx(12.0))
             .margin_top(ipx(12.0) + title_h + label_row * rows_reserved as i32)
             .x_label_area_size(ipx(48.0))
-            .y_label_area_size(ipx(86.0));
+            .y_label_area_size(ipx(86.0).max(tick_w + ipx(36.0)));
         let base = area.get_base_pixel();
         let rel = |p: (i32, i32)| ((p.0 - base.0) as f64, (p.1 - base.1) as f64);
         // What the pass found: the legend's place (if any labels) and the label rows.
@@ -562,18 +647,8 @@ fn draw_area<DB: DrawingBackend>(
         macro_rules! draw {
             ($chart:expr) => {{
                 let mut chart = $chart;
-                let fx = |v: &f64| {
-                    tick(
-                        if v.abs() < 1e-9 * (x1 - x0) { 0.0 } else { *v },
-                        axes.log_x,
-                    )
-                };
-                let fy = |v: &f64| {
-                    tick(
-                        if v.abs() < 1e-9 * (y1h - y0) { 0.0 } else { *v },
-                        axes.log_y,
-                    )
-                };
+                let fx = |v: &f64| axis_tick(*v, x1 - x0, axes.log_x);
+                let fy = |v: &f64| axis_tick(*v, y1h - y0, axes.log_y);
                 chart
                     .configure_mesh()
                     .x_desc(axes.x_label)
@@ -779,6 +854,51 @@ fn draw_legend<DB: DrawingBackend>(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A title too long for one line at 14 px on a 1000 px figure (the scene, its title
+    /// and a spectrum's description with a speed sweep: 220 characters) is drawn in two
+    /// lines split after the scene's part, each within the width at the size chosen; a
+    /// short one stays one line at 20 px.
+    #[test]
+    fn long_titles_wrap_after_the_scene() {
+        register_font();
+        let mut buf = vec![0u8; 1000 * 100 * 3];
+        let root = BitMapBackend::with_buffer(&mut buf, (1000, 100)).into_drawing_area();
+        let long = "7004-startup (7004 start-up from rest to 30 000 rpm in 50 ms, Fa 2000 N, \
+                    Fr 400 N, full dynamics): spectrum of force.y, t >= 0.025 s (Hann, bins \
+                    39.84 Hz; shaft 14940 to 29940 rpm over it, marks at the final speed)";
+        let (lines, size) = title_lines(&root, long, 1.0);
+        assert_eq!(lines.len(), 2, "{lines:?}");
+        assert!(lines[0].ends_with("dynamics):") && lines[1].starts_with("spectrum"));
+        assert!((11.0..=14.4).contains(&size), "{size}");
+        for l in &lines {
+            let (w, _) = root
+                .estimate_text_size(l, &("sans-serif", size).into())
+                .unwrap();
+            assert!(w <= 960, "{l}: {w} px");
+        }
+        let (short, size) = title_lines(&root, "sine: amplitude", 1.0);
+        assert_eq!((short.len(), size), (1, 20.0));
+    }
+
+    /// A decade far below a log axis's top keeps its label (it read "0.0e0" when snapped
+    /// as rounding noise: 1e-7 on an axis up to 300), while a linear axis's noise near 0
+    /// still reads 0; a log axis labels nothing at or below zero.
+    #[test]
+    fn log_ticks_are_decades_not_noise() {
+        assert_eq!(axis_tick(1e-7, 300.0, true), "1e-7");
+        assert_eq!(axis_tick(3e-9, 300.0, true), "3.0e-9");
+        assert_eq!(axis_tick(1e-12, 1.0, false), "0");
+        assert_eq!(axis_tick(0.0, 1.0, true), "");
+        // Ticks 2e-5 apart on -300 N read apart; plain axes as before.
+        assert_eq!(axis_tick(-300.00002, 1e-4, false), "-300.00002");
+        assert_ne!(
+            axis_tick(-300.00002, 1e-4, false),
+            axis_tick(-300.00004, 1e-4, false)
+        );
+        assert_eq!(axis_tick(0.05, 0.2, false), "0.05");
+        assert_eq!(axis_tick(4450.8, 2.0, false), "4450.8");
+    }
 
     fn lcg(seed: &mut u64) -> f64 {
         *seed = seed

@@ -326,6 +326,12 @@ pub enum Verdict {
         /// Record length needed, s.
         needs_s: f64,
     },
+    /// The line (with its tolerance) lies above the spectrum's top frequency, the Nyquist
+    /// frequency of the sampled signal: no record length shows it, a finer sampling does.
+    AboveNyquist {
+        /// The spectrum's top frequency, Hz.
+        nyquist_hz: f64,
+    },
 }
 
 /// A mark and the peak found nearest to it.
@@ -392,6 +398,9 @@ impl FoundPeak {
                 needs_s * record_scale
             ),
             Verdict::Unresolved { .. } => "not resolved (coincides with another line)".into(),
+            Verdict::AboveNyquist { nyquist_hz } => format!(
+                "not resolved: above the sampling's Nyquist frequency {nyquist_hz:.2} Hz (a finer output step shows it)"
+            ),
         }
     }
 }
@@ -441,7 +450,10 @@ pub fn find_peaks(s: &Spectrum, marks: &[Mark], rel: f64) -> Vec<FoundPeak> {
                 .filter(|o| !std::ptr::eq(*o, m))
                 .map(|o| (o.freq - m.freq).abs())
                 .fold(m.freq.abs(), f64::min);
-            let verdict = if gap < RESOLVE_BINS * df || df <= 0.0 {
+            let top = s.freq.last().copied().unwrap_or(0.0);
+            let verdict = if df > 0.0 && m.freq + tol > top {
+                Verdict::AboveNyquist { nyquist_hz: top }
+            } else if gap < RESOLVE_BINS * df || df <= 0.0 {
                 // Bins of a record T' are 1/T' wide: RESOLVE_BINS of them fit in the gap
                 // from T' = RESOLVE_BINS / gap.
                 Verdict::Unresolved {
@@ -754,6 +766,35 @@ mod tests {
                 freq: *f,
             })
             .collect()
+    }
+
+    /// A line above the Nyquist frequency is reported as such (no record length shows
+    /// it), not as unresolved for want of duration: a 685 Hz line sampled at 1 kHz (the
+    /// 7008CE's BPFO in a scene with a 1 ms output step) aliases to 315 Hz, and its mark
+    /// at 685 Hz is above the 500 Hz top of the spectrum, while a 315 Hz mark finds the
+    /// alias (the sampling, not the analysis, decides what is there).
+    #[test]
+    fn a_line_above_nyquist_is_named_so() {
+        let fs = 1000.0;
+        let x: Vec<f64> = (0..2000)
+            .map(|i| (2.0 * PI * 685.0 * i as f64 / fs).sin())
+            .collect();
+        let s = amplitude_spectrum(&x, fs, Window::Hann);
+        let ps = find_peaks(
+            &s,
+            &marks(&[("BPFO", 685.0), ("alias", 315.0)]),
+            LINE_TOLERANCE,
+        );
+        assert_eq!(
+            ps[0].verdict,
+            Verdict::AboveNyquist { nyquist_hz: 500.0 },
+            "{:?}",
+            ps[0]
+        );
+        assert!(ps[0]
+            .verdict_text(1.0)
+            .contains("Nyquist frequency 500.00 Hz"));
+        assert_eq!(ps[1].verdict, Verdict::Found, "{:?}", ps[1]);
     }
 
     /// The found/not-found rule: a line 0.5 in noise of unit variance (about 22 times the

@@ -126,6 +126,7 @@ fn key_label(k: &str) -> String {
                 ("_pa", "Pa"),
                 ("_mm", "mm"),
                 ("_um", "µm"),
+                ("_mm2_s", "mm²/s"),
                 ("_s", "s"),
                 ("_w", "W"),
                 ("_nm", "N m"),

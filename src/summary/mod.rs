@@ -147,9 +147,20 @@ impl<'a> Ctx<'a> {
         let dt = scene.run.duration_s / (n - 1).max(1) as f64;
         let spec = amplitude_spectrum(sig, 1.0 / dt, Window::Hann);
         let marks = characteristic_marks(&kin, shaft_hz, 3, 1);
+        // Inner-race waviness of orders Z ± 1 shows as side bands BPFI ± fs
+        // (docs/physics.md §5.4: orders pZ ± m give p BPFI ± m fs): the table carries them.
+        let z = comp.bearing().z as i64;
+        let inner_sidebands = scene
+            .effects
+            .waviness
+            .iter()
+            .any(|w| w.race == Element::Inner && (w.order as i64 - z).abs() == 1);
         let main: Vec<_> = marks
             .iter()
-            .filter(|m| MAIN.contains(&m.label.as_str()))
+            .filter(|m| {
+                MAIN.contains(&m.label.as_str())
+                    || (inner_sidebands && ["1xBPFI+1fs", "1xBPFI-1fs"].contains(&m.label.as_str()))
+            })
             .cloned()
             .collect();
         let found = find_peaks(&spec, &main, LINE_TOLERANCE);
@@ -343,12 +354,110 @@ fn effect_lines(c: &Ctx, s: &mut Summary) {
             mean_h * 1e6,
             last("film.min_thickness") * 1e6
         ));
-        s.set(
-            "film",
-            serde_json::json!({"smallest_min_thickness_um": lo * 1e6, "mean_min_thickness_um": mean_h * 1e6,
-                "final_min_thickness_um": last("film.min_thickness") * 1e6}),
-        );
+        let mut film = serde_json::json!({"smallest_min_thickness_um": lo * 1e6, "mean_min_thickness_um": mean_h * 1e6,
+            "final_min_thickness_um": last("film.min_thickness") * 1e6});
+        if let Some(l) = lubricant(c.scene) {
+            film_parameter_lines(c, s, &l, lo, mean_h, &mut film);
+        }
+        s.set("film", film);
     }
+    thermal_lines(c, s);
+}
+
+/// The scene's lubricant when it has an EHL film.
+fn lubricant(scene: &Scene) -> Option<crate::lubrication::Lubricant> {
+    let spec = scene.effects.lubrication.as_ref()?;
+    (spec.film == crate::models::effects::FilmKind::Ehl)
+        .then(|| spec.lubricant().ok())
+        .flatten()
+}
+
+/// The film parameter `Lambda = h_min / sigma` (film over the composite rms roughness of
+/// ball and race; docs/physics.md §6) at the smallest and the mean minimum film of the
+/// second half, and ISO 281's viscosity ratio `kappa = nu / nu1` of the lubricant at its
+/// inlet viscosity (`nu = eta / rho`; `nu1` at the bearing's mean diameter and the final
+/// speed, [`crate::calculator::lubricant::nu1`]).
+fn film_parameter_lines(
+    c: &Ctx,
+    s: &mut Summary,
+    l: &crate::lubrication::Lubricant,
+    smallest: f64,
+    mean: f64,
+    film: &mut serde_json::Value,
+) {
+    let b = c.comp.bearing();
+    let rpm = c.last("shaft.omega").abs() * 60.0 / std::f64::consts::TAU;
+    let nu = l.viscosity / l.density;
+    let nu1 =
+        crate::calculator::lubricant::nu1(crate::calculator::lubricant::mean_diameter(b), rpm);
+    let kappa = nu1.map(|v| nu / v);
+    let sigma = l.roughness;
+    let lambda = |h: f64| (sigma > 0.0).then(|| h / sigma);
+    let text = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.3}"));
+    s.line(format!(
+        "lubrication: film parameter Lambda = h_min/sigma {} at the smallest film, {} at the mean (composite roughness sigma {:.3} µm); \
+         ISO 281 viscosity ratio kappa = nu/nu1 {} (nu {:.2} mm²/s at the inlet viscosity, nu1 {} mm²/s at {rpm:.0} rpm)",
+        text(lambda(smallest)),
+        text(lambda(mean)),
+        sigma * 1e6,
+        text(kappa),
+        nu * 1e6,
+        text(nu1.map(|v| v * 1e6)),
+    ));
+    if let Some(o) = film.as_object_mut() {
+        o.insert("roughness_um".into(), (sigma * 1e6).into());
+        o.insert(
+            "smallest_film_parameter".into(),
+            serde_json::json!(lambda(smallest)),
+        );
+        o.insert(
+            "mean_film_parameter".into(),
+            serde_json::json!(lambda(mean)),
+        );
+        o.insert("kinematic_viscosity_mm2_s".into(), (nu * 1e6).into());
+        o.insert("nu1_mm2_s".into(), serde_json::json!(nu1.map(|v| v * 1e6)));
+        o.insert("iso_kappa".into(), serde_json::json!(kappa));
+    }
+}
+
+/// The thermal effect's state at the end of the run (ring level): the temperatures of the
+/// four nodes (ambient plus their rises) and the operating diametral clearance (the
+/// bearing's, changed by the ring and ball growth; docs/physics.md §8).
+fn thermal_lines(c: &Ctx, s: &mut Summary) {
+    let Some(spec) = &c.scene.effects.thermal else {
+        return;
+    };
+    if c.scene.model.level.name() != "ring" {
+        return;
+    }
+    let b = c.comp.bearing();
+    let Ok(layout) = crate::models::ring::level::SlowLayout::of(&c.scene.effects, b) else {
+        return;
+    };
+    let aux = &c.comp.state().aux;
+    let Some(th) = layout.thermal(aux) else {
+        return;
+    };
+    let t = |k: usize| spec.ambient_c + th[k];
+    let change = th[8];
+    s.line(format!(
+        "temperatures at the end: inner race {:.2} °C, outer race {:.2} °C, balls {:.2} °C, oil {:.2} °C (ambient {:.2} °C); \
+         operating diametral clearance {:.3} µm (Pd {:.3} µm, thermal growth {:+.3} µm)",
+        t(0),
+        t(1),
+        t(2),
+        t(3),
+        spec.ambient_c,
+        (b.pd + change) * 1e6,
+        b.pd * 1e6,
+        change * 1e6
+    ));
+    s.set(
+        "thermal",
+        serde_json::json!({"inner_race_c": t(0), "outer_race_c": t(1), "balls_c": t(2), "oil_c": t(3),
+            "ambient_c": spec.ambient_c, "clearance_change_um": change * 1e6,
+            "operating_clearance_um": (b.pd + change) * 1e6}),
+    );
 }
 
 fn cage_lines(c: &Ctx, s: &mut Summary) {
@@ -435,6 +544,7 @@ fn line_table(s: &mut Summary, found: &[FoundPeak], scale: f64) -> serde_json::V
                     Verdict::BelowFloor => ("below floor", None),
                     Verdict::OffLine => ("off line", None),
                     Verdict::Unresolved { needs_s } => ("not resolved", finite(needs_s * scale)),
+                    Verdict::AboveNyquist { .. } => ("above nyquist", None),
                 };
                 serde_json::json!({"label": p.label, "expected_hz": p.expected,
                     "found_hz": if p.is_found() { finite(p.found) } else { None },

@@ -452,7 +452,10 @@ fn write_plots(out: &Path, c: &Ctx, look: &Look) -> (Vec<String>, Vec<String>) {
     let panels = time_panels(t, f.iter().map(|(l, _, y)| (*l, y.as_slice())), 0);
     let made = plot_stack(
         &out.join("force.png"),
-        &headed(c, "force of the bearing on the shaft"),
+        &headed(
+            c,
+            &format!("force of the bearing on the shaft{}", undersampled(c)),
+        ),
         &panels,
     );
     keep("force.png", made, &mut written, &mut skipped);
@@ -565,6 +568,25 @@ fn write_plots(out: &Path, c: &Ctx, look: &Look) -> (Vec<String>, Vec<String>) {
     (written, skipped)
 }
 
+/// A note for a history whose output step is too coarse for the ball passes: `" (output
+/// every 1 ms: ball passes at 685.5 Hz, above its Nyquist 500.0 Hz, alias)"`; empty
+/// otherwise.
+fn undersampled(c: &Ctx) -> String {
+    let Some(bpfo) = c.marks.iter().find(|m| m.label == "1xBPFO").map(|m| m.freq) else {
+        return String::new();
+    };
+    let dt = c.scene.run.duration_s / c.run.rows.saturating_sub(1).max(1) as f64;
+    let nyquist = 0.5 / dt;
+    if bpfo > nyquist {
+        format!(
+            " (output every {:.3} ms: ball passes at {bpfo:.1} Hz, above its Nyquist {nyquist:.1} Hz, alias)",
+            1e3 * dt
+        )
+    } else {
+        String::new()
+    }
+}
+
 /// Highest harmonic marked on a spectrum plot.
 const TOP_HARMONIC: usize = 5;
 
@@ -658,20 +680,30 @@ fn zoom_source<'a>(c: &'a Ctx, t0: f64) -> &'a raceway::runner::Series {
     }
 }
 
+/// Rows per ball pass below which a zoom is not drawn: the output step does not resolve
+/// a pass (a line through a handful of samples would pass for its shape).
+const ZOOM_MIN_ROWS_PER_PASS: f64 = 8.0;
+
 fn zoom_window(c: &Ctx) -> Option<(f64, f64, String)> {
     let bpfo = c.marks.iter().find(|m| m.label == "1xBPFO")?.freq;
     let (&ts, &te) = (c.series.t.first()?, c.series.t.last()?);
     let w = ZOOM_PASSES / bpfo;
-    (bpfo.is_finite() && bpfo > 0.0 && 4.0 * w <= te - ts).then(|| {
-        (
-            te - w,
-            te,
-            format!(
-                "last {ZOOM_PASSES} ball passes ({ZOOM_PASSES}/BPFO = {:.1} ms)",
-                1e3 * w
-            ),
-        )
-    })
+    let rows_per_pass = (c.run.rows.saturating_sub(1)) as f64 / (te - ts).max(1e-300) / bpfo;
+    (bpfo.is_finite()
+        && bpfo > 0.0
+        && 4.0 * w <= te - ts
+        && rows_per_pass >= ZOOM_MIN_ROWS_PER_PASS)
+        .then(|| {
+            (
+                te - w,
+                te,
+                format!(
+                    "last {ZOOM_PASSES} {} passes ({ZOOM_PASSES}/BPFO = {:.1} ms)",
+                    c.comp.bearing().element(),
+                    1e3 * w
+                ),
+            )
+        })
 }
 
 fn spectrum_plot(
@@ -711,8 +743,12 @@ fn spectrum_plot(
         Some((_, _, f)) if envelope => f,
         _ => &c.found,
     };
+    // Lines past the drawn range (above the Nyquist frequency, or the plot's cut) are left
+    // unmarked: a mark there points at nothing drawn (the summary says why).
+    let top = sf.last().copied().unwrap_or(0.0);
     let mut mk: Vec<Marker> = lines
         .iter()
+        .filter(|p| p.expected <= top)
         .map(|p| Marker {
             x: if p.is_found() { p.found } else { p.expected },
             label: format!(
@@ -722,10 +758,15 @@ fn spectrum_plot(
             ),
         })
         .collect();
-    mk.extend(present_harmonics(spec, lines).into_iter().map(|p| Marker {
-        x: p.found,
-        label: p.label,
-    }));
+    mk.extend(
+        present_harmonics(spec, lines)
+            .into_iter()
+            .filter(|p| p.found <= top)
+            .map(|p| Marker {
+                x: p.found,
+                label: p.label,
+            }),
+    );
     let (ylab, of) = match n {
         0 => (
             // The signal's own unit (N for a force): no conversion.
@@ -741,12 +782,25 @@ fn spectrum_plot(
             ),
         ),
     };
+    // A speed that changes over the analysed part smears every line: say so, and at
+    // which speed the marks stand.
+    let rpm = |w: f64| w * 60.0 / std::f64::consts::TAU;
+    let w = &c.col("shaft.omega")[c.start.min(c.col("shaft.omega").len())..];
+    let sweep = match (w.first(), w.last()) {
+        (Some(&a), Some(&b)) if (b - a).abs() > 0.01 * a.abs().max(b.abs()) => format!(
+            "; shaft {:.0} to {:.0} rpm over it, marks at the final speed",
+            rpm(a),
+            rpm(b)
+        ),
+        _ => String::new(),
+    };
     let title = headed(
         c,
         &format!(
-            "{what} of {of}, t >= {:.3} s (Hann, bins {:.2} Hz)",
+            "{what} of {of}, t >= {:.3} s (Hann, bins {:.2} Hz{sweep}){}",
             c.series.t.get(c.start).copied().unwrap_or(0.0),
-            spec.resolution()
+            spec.resolution(),
+            undersampled(c)
         ),
     );
     plot_pair_dpi(
@@ -823,7 +877,7 @@ fn ball_loads_plot(out: &Path, dpi: u32, c: &Ctx) -> Result<()> {
         dpi,
         &Axes {
             title: &headed(c, &title),
-            x_label: "azimuth (deg)",
+            x_label: "ball azimuth ψ from +x toward +y (deg; 270 is -y)",
             y_label: "contact load (N)",
             ..Axes::default()
         },
@@ -846,7 +900,8 @@ fn ball_loads_plot(out: &Path, dpi: u32, c: &Ctx) -> Result<()> {
 }
 
 /// The full level's cage plots: the cage-centre orbit in units of the guide clearance
-/// (with the clearance circle) and the speed histories (shaft, cage, kinematic cage).
+/// (with the clearance circle) and the speed histories (shaft; cage and kinematic cage;
+/// their difference).
 fn write_cage_plots(out: &Path, dpi: u32, series: &Run, who: &str) -> Result<()> {
     let col = |n: &str| series.column(n).unwrap_or(&[]).to_vec();
     let t = &series.t;
@@ -895,6 +950,7 @@ fn write_cage_plots(out: &Path, dpi: u32, series: &Run, who: &str) -> Result<()>
         .zip(&ratio)
         .map(|(c, r)| if *r != 0.0 { c / r } else { 0.0 })
         .collect();
+    let lead: Vec<f64> = cage.iter().zip(&kin).map(|(c, k)| c - k).collect();
     // The cage on its own axis: against the shaft's scale its slip would not show.
     let line = |label, y| Series {
         label,
@@ -916,11 +972,20 @@ fn write_cage_plots(out: &Path, dpi: u32, series: &Run, who: &str) -> Result<()>
             ),
             (
                 Axes {
-                    x_label: "t (s)",
                     y_label: "cage speed (rpm)",
                     ..Axes::default()
                 },
                 vec![line("cage", &cage), line("cage, kinematic", &kin)],
+            ),
+            // The slip in rpm: on the speed's scale (0 to 30 000 rpm in a run-up) the two
+            // cage lines above overlap.
+            (
+                Axes {
+                    x_label: "t (s)",
+                    y_label: "cage - kinematic (rpm)",
+                    ..Axes::default()
+                },
+                vec![line("", &lead)],
             ),
         ],
     )
