@@ -73,6 +73,15 @@ crate::declare_fields!(SetFile {
 });
 
 impl SetFile {
+    /// How many rows these keys give (rows by hand, a pair, or one row).
+    pub fn row_count(&self) -> usize {
+        match (self.row.len(), &self.arrangement) {
+            (0, Some(_)) => 2,
+            (0, None) => 1,
+            (n, _) => n,
+        }
+    }
+
     /// The preload these keys give; `f(key)` names a key in a refusal.
     pub fn preload(&self, f: impl Fn(&str) -> String) -> Result<Preload> {
         Ok(
