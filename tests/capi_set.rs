@@ -81,7 +81,10 @@ const FORCE: [u32; 5] = [
 fn a_db_pair_through_the_c_abi() {
     let c = Inst::new(PAIR);
     c.motion([0.0; 5], 0.0);
-    let (f0, f1) = (c.get(RACEWAY_VR_ROW_0_FORCE_Z), c.get(RACEWAY_VR_ROW_1_FORCE_Z));
+    let (f0, f1) = (
+        c.get(RACEWAY_VR_ROW_0_FORCE_Z),
+        c.get(RACEWAY_VR_ROW_1_FORCE_Z),
+    );
     assert!((f0 + f1).abs() < 1e-9 * 300.0, "{f0} {f1}");
     assert!((f1 - 300.0).abs() < 1e-6 * 300.0, "{f1}");
     assert!(c.get(RACEWAY_VR_FORCE_Z).abs() < 1e-9 * 300.0);

@@ -55,7 +55,10 @@ fn a_preloaded_pair_balances_at_rest_and_its_wrench_is_its_rows_carried_to_the_r
     let a1 = get(&mut c, "row.1.contact_angle");
     assert!((a0 - a1).abs() < 1e-9, "{a0} {a1}");
     // 7008CE: 15 degrees nominal, a little more under the preload.
-    assert!((15f64.to_radians()..20f64.to_radians()).contains(&a0), "{a0}");
+    assert!(
+        (15f64.to_radians()..20f64.to_radians()).contains(&a0),
+        "{a0}"
+    );
 
     let q = [2e-6, -5e-6, 4e-6, 1e-4, -2e-4];
     let mut c = pair_at(|s| s, q, 1256.6);
@@ -82,14 +85,21 @@ fn a_preloaded_pair_balances_at_rest_and_its_wrench_is_its_rows_carried_to_the_r
         .enumerate()
     {
         let v = get(&mut c, n);
-        assert!((v - sum[k]).abs() <= 1e-9 * (1.0 + v.abs()), "{n}: {v} vs {}", sum[k]);
+        assert!(
+            (v - sum[k]).abs() <= 1e-9 * (1.0 + v.abs()),
+            "{n}: {v} vs {}",
+            sum[k]
+        );
     }
     // Life: the rows' system life, shorter than the shorter row's.
     let (l0, l1) = (row(&mut c, 0, "life.L10"), row(&mut c, 1, "life.L10"));
     let l = get(&mut c, "life.L10");
     let e = 10.0 / 9.0;
     let expect = (l0.powf(-e) + l1.powf(-e)).powf(-1.0 / e);
-    assert!((l - expect).abs() < 1e-9 * expect && l < l0.min(l1), "{l} {l0} {l1}");
+    assert!(
+        (l - expect).abs() < 1e-9 * expect && l < l0.min(l1),
+        "{l} {l0} {l1}"
+    );
 }
 
 /// K at the reference point is the set module's (the same rows and preload, its balls at
@@ -142,7 +152,11 @@ fn a_spring_preloaded_pair_keeps_its_preload() {
     }))
     .unwrap();
     let e = s.evaluate(&[0.0, 0.0, 5e-6, 0.0, 0.0], 0.0).unwrap();
-    assert!((e.force[2] - fz).abs() < 0.01 * fz.abs().max(1.0), "{} vs {fz}", e.force[2]);
+    assert!(
+        (e.force[2] - fz).abs() < 0.01 * fz.abs().max(1.0),
+        "{} vs {fz}",
+        e.force[2]
+    );
 }
 
 /// The ring level runs the set too (rows on the 5-DOF ring of massless balls) and agrees
@@ -156,7 +170,10 @@ fn the_ring_level_and_load_driven_sets() {
     let mut s = pair_at(|s| s, q, 0.0);
     for n in ["force.y", "force.z", "moment.x"] {
         let (a, b) = (get(&mut r, n), get(&mut s, n));
-        assert!((a - b).abs() < 0.02 * b.abs().max(10.0), "{n}: ring {a}, qs {b}");
+        assert!(
+            (a - b).abs() < 0.02 * b.abs().max(10.0),
+            "{n}: ring {a}, qs {b}"
+        );
     }
     let load = PAIR
         .replace("causality = \"motion\"", "causality = \"load\"")
@@ -189,7 +206,10 @@ fn bad_set_scenes_are_refused_by_field() {
     let e = refused(&|s| s.replace("level = \"quasi_static\"", "level = \"ring\""));
     assert!(e.contains("model.ring_dof") && e.contains("5"), "{e}");
     let e = refused(&|s| s.replace("level = \"quasi_static\"", "level = \"skidding\""));
-    assert!(e.contains("model.level") && e.contains("quasi_static or ring"), "{e}");
+    assert!(
+        e.contains("model.level") && e.contains("quasi_static or ring"),
+        "{e}"
+    );
     let e = refused(&|s| s.replace("spacer_mm = 0", "spacer_mm = -1"));
     assert!(e.contains("set.spacer_mm"), "{e}");
     let rows = |a: f64, b: f64| {
@@ -204,7 +224,10 @@ fn bad_set_scenes_are_refused_by_field() {
         }
     };
     let e = refused(&rows(0.0, 10.0));
-    assert!(e.contains("set.row[1].position_mm") && e.contains("overlap"), "{e}");
+    assert!(
+        e.contains("set.row[1].position_mm") && e.contains("overlap"),
+        "{e}"
+    );
     let nu = |s: String| {
         rows(-10.0, 10.0)(s)
             .replace("\"7008CE\", position_mm", "\"NU206\", position_mm")
@@ -215,8 +238,11 @@ fn bad_set_scenes_are_refused_by_field() {
     let e = refused(&|s| s.replace("preload_n = 300", "preload_n = 300\npreload_offset_um = 5"));
     assert!(e.contains("set.preload_n"), "{e}");
     let e = refused(&|s| {
-        s.replace("[model]", "[effects]\nball_spacing = { scatter = 0.1 }\n[model]")
-            .replace("level = \"quasi_static\"", "level = \"ring\"\nring_dof = 5")
+        s.replace(
+            "[model]",
+            "[effects]\nball_spacing = { scatter = 0.1 }\n[model]",
+        )
+        .replace("level = \"quasi_static\"", "level = \"ring\"\nring_dof = 5")
     });
     assert!(e.contains("effects") && e.contains("set"), "{e}");
 }

@@ -20,8 +20,14 @@ fn set_cells_are_finite_or_clean_errors() {
     assert!(page.contains("heavy preload") && !page.contains("FAILED"));
     // The lift-off cell lifts the row facing -z off; the heavy cell's rows carry 3 kN.
     let get = |c: &mut Component, n: &str| c.get_real(by_name(n).unwrap().vr).unwrap();
-    let cell = |name: &str| sets::cells().into_iter().find(|c| c.name.starts_with(name)).unwrap();
-    let mut c = Component::from_text(&cell("lift-off under thrust (60 µm axial), qs").scene(1e-6)).unwrap();
+    let cell = |name: &str| {
+        sets::cells()
+            .into_iter()
+            .find(|c| c.name.starts_with(name))
+            .unwrap()
+    };
+    let mut c =
+        Component::from_text(&cell("lift-off under thrust (60 µm axial), qs").scene(1e-6)).unwrap();
     c.do_step(0.0, 1e-4).unwrap();
     assert_eq!(get(&mut c, "row.1.lift_off"), 1.0);
     assert_eq!(get(&mut c, "row.0.lift_off"), 0.0);
@@ -34,4 +40,3 @@ fn set_cells_are_finite_or_clean_errors() {
     assert!((f0 + f1 + 500.0).abs() < 0.05 * 500.0, "{f0} {f1}");
     assert!(f1 > 2000.0 && -f0 > 2000.0, "{f0} {f1}");
 }
-

@@ -312,7 +312,8 @@ impl Component {
             // smallest row's, its life the rows' system life, its warnings the rows' sum.
             let (mut s0, mut warn) = (f64::INFINITY, 0.0);
             let mut lives = [(None, 0.0); super::variables::ROWS];
-            for (i, (row, (b, rating))) in self.level.rows().iter().zip(&self.set_rows).enumerate() {
+            for (i, (row, (b, rating))) in self.level.rows().iter().zip(&self.set_rows).enumerate()
+            {
                 let [s, l, w] = rating.outputs(b, &row.local, row.max_pressure, row.loaded);
                 s0 = s0.min(s);
                 warn += w;

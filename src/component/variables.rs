@@ -472,7 +472,8 @@ macro_rules! row_vars {
 /// zeros otherwise). Row `i` is the `i`-th row of the set (a pair: the row at `-z`
 /// first). Life and safety of the whole set are `life.L10` (the rows' system life) and
 /// `safety.S0` (the smallest row's).
-pub const ROW_VARS: [[Variable; ROW_OUTPUTS]; ROWS] = [row_vars!(0), row_vars!(1), row_vars!(2), row_vars!(3)];
+pub const ROW_VARS: [[Variable; ROW_OUTPUTS]; ROWS] =
+    [row_vars!(0), row_vars!(1), row_vars!(2), row_vars!(3)];
 
 /// Every variable, in a stable order: scalars, then K row by row, then C, then the
 /// per-row outputs of a set.

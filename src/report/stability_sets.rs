@@ -195,10 +195,14 @@ pub fn markdown(res: &[(SetCell, Outcome)], t_end: f64) -> String {
     );
     for (c, o) in res {
         let (what, diff, p) = match o {
-            Outcome::Converged { diff, max_pressure } => {
-                ("converged", format!("{diff:.1e}"), format!("{:.2}", max_pressure * 1e-9))
-            }
-            Outcome::Statistical { diff, max_pressure, .. } => (
+            Outcome::Converged { diff, max_pressure } => (
+                "converged",
+                format!("{diff:.1e}"),
+                format!("{:.2}", max_pressure * 1e-9),
+            ),
+            Outcome::Statistical {
+                diff, max_pressure, ..
+            } => (
                 "statistical",
                 format!("{diff:.1e}"),
                 format!("{:.2}", max_pressure * 1e-9),

@@ -197,7 +197,14 @@ impl SetLevel {
     }
 
     /// The sliding rows' thrust `sum P_r` at spring shift `u` (rates into the scratch).
-    fn spring_thrust(&mut self, t: f64, m: &Motion, x: &[f64], aux: &mut [f64], u: f64) -> Result<f64> {
+    fn spring_thrust(
+        &mut self,
+        t: f64,
+        m: &Motion,
+        x: &[f64],
+        aux: &mut [f64],
+        u: f64,
+    ) -> Result<f64> {
         let mut p = 0.0;
         for r in self.rows.iter_mut().filter(|r| r.floating) {
             let mr = r.motion(m, u);
@@ -282,11 +289,8 @@ impl LevelModel for SetLevel {
         aux.fill(0.0);
         for r in &mut self.rows {
             let mr = r.motion(m, 0.0);
-            r.level.init(
-                &mr,
-                &mut x[r.x0..r.x0 + r.nx],
-                &mut aux[r.a0..r.a0 + r.na],
-            )?;
+            r.level
+                .init(&mr, &mut x[r.x0..r.x0 + r.nx], &mut aux[r.a0..r.a0 + r.na])?;
         }
         Ok(())
     }
