@@ -118,11 +118,11 @@ pub(super) fn full_scene(bearing: BearingRef, traction: TractionLaw) -> Scene {
     }
 }
 
-/// Full scenes of a bearing set, one per form of `[set]` (a pair preset with a spring, rows
-/// by hand with an offset, one row by orientation): a set takes no effects and runs on the
+/// Full scenes of a bearing set, one per form of `[set]` (a pair preset with a spring, one
+/// with an offset, rows by hand, one row by orientation): a set takes no effects and runs on the
 /// 5-DOF ring.
 fn set_scenes() -> Vec<Scene> {
-    use crate::models::set::{RowFile, SetFile};
+    use crate::models::set::{Arrangement, RowFile, SetFile};
     let with = |set: SetFile| {
         let mut s = full_scene(BearingRef::Preset("7008CE".into()), TractionLaw::default());
         s.model.ring_dof = 5;
@@ -137,14 +137,19 @@ fn set_scenes() -> Vec<Scene> {
     };
     vec![
         with(SetFile {
-            arrangement: Some("db".into()),
+            arrangement: Some(Arrangement::Db),
             spacer_mm: 1.0,
             preload_n: Some(200.0),
             spring_n_per_um: Some(20.0),
             ..Default::default()
         }),
         with(SetFile {
+            arrangement: Some(Arrangement::Df),
             preload_offset_um: Some(5.0),
+            ..Default::default()
+        }),
+        // No preload: either orientation of either row is a set.
+        with(SetFile {
             row: vec![row(-7.5, 1), row(7.5, -1)],
             ..Default::default()
         }),

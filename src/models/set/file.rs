@@ -36,7 +36,7 @@ pub struct SetFile {
     /// A pair of identical rows of the bearing: `db`, `df`, `dt`, `trb_direct`,
     /// `trb_indirect`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub arrangement: Option<String>,
+    pub arrangement: Option<Arrangement>,
     /// Gap between the pair's side faces, mm.
     #[serde(default)]
     pub spacer_mm: f64,
@@ -175,8 +175,7 @@ impl SetFile {
                         "absent: the arrangement gives each row's orientation",
                     ));
                 }
-                let arr = Arrangement::parse(a, &f("arrangement"))?;
-                SetSpec::pair(b, arr, self.spacer_mm * 1e-3, preload).map_err(rename)
+                SetSpec::pair(b, *a, self.spacer_mm * 1e-3, preload).map_err(rename)
             }
             None => {
                 if self.spacer_mm != 0.0 {
