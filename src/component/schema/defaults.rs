@@ -243,6 +243,8 @@ pub(super) fn walk_value(v: &toml::Value, norm: &str, out: &mut BTreeMap<String,
                 walk_value(c, &format!("{norm}[]"), out);
             }
         }
+        // An empty list of tables (the effects of a set's scene, all off) names no field.
+        toml::Value::Array(a) if a.is_empty() && norm.starts_with("effects.") => {}
         leaf => {
             out.entry(norm.to_string()).or_insert_with(|| leaf.clone());
         }
