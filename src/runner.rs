@@ -525,9 +525,17 @@ pub fn recorded(scene: &Scene, record: Record) -> Vec<&'static variables::Variab
         .chain(&variables::DAMPING)
         .flatten()
         .filter(|_| record.stiffness_damping);
+    // A set's rows: the outputs of as many rows as it has.
+    let rows = scene.set.as_ref().map_or(0, |s| s.row_count());
+    let per_row = variables::ROW_VARS
+        .iter()
+        .take(rows)
+        .flatten()
+        .filter(|v| v.is_set(causality, sets));
     variables::SCALARS
         .iter()
         .filter(|v| v.is_input(causality) || v.is_set(causality, sets))
+        .chain(per_row)
         .chain(matrices)
         .collect()
 }

@@ -212,7 +212,20 @@ impl Component {
             wx: vec![0.0; 5 * n_level],
             wm: vec![0.0; 50],
         };
+        let set_rows = scene
+            .set_spec(&bearing)?
+            .map(|spec| {
+                spec.rows
+                    .into_iter()
+                    .map(|r| {
+                        let rating = crate::ratings::RatingOutputs::of(&r.bearing);
+                        (r.bearing, rating)
+                    })
+                    .collect()
+            })
+            .unwrap_or_default();
         let mut c = Component {
+            set_rows,
             limits: limits::Limits::of(&bearing),
             rating: crate::ratings::RatingOutputs::of(&bearing),
             stages: super::Stages::default(),

@@ -126,6 +126,9 @@ pub fn outputs_set(scene: &Scene) -> Sets {
             .with(on(e.wear.is_some(), Sets::WEAR))
             .with(on(e.thermal.is_some(), Sets::FRICTION));
     }
+    if scene.set.is_some() {
+        sets = sets.with(Sets::SET_ROWS);
+    }
     sets
 }
 
@@ -260,6 +263,10 @@ impl Level {
                     takers.join(" or ")
                 ),
             ));
+        }
+        if let Some(spec) = scene.set_spec(b)? {
+            // A set: every row built by this level's own constructor for its bearing.
+            return crate::models::set::level::build(&scene.level_args(b), &spec, entry.build);
         }
         (entry.build)(&scene.level_args(b))
     }

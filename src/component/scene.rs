@@ -13,6 +13,8 @@ use crate::geometry::{presets, roller_catalogue, Bearing, BearingSpec};
 pub use crate::models::full::spec::FullSpec;
 pub use crate::models::linear::spec::OperatingPoint;
 pub use crate::models::quasi_static::RaceControl;
+use crate::models::set::SetSpec;
+pub use crate::models::set::{RowFile, SetFile};
 pub use crate::models::skidding::spec::SkiddingSpec;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -346,7 +348,15 @@ pub struct Scene {
     /// Stand-alone run settings.
     #[serde(default)]
     pub run: RunSpec,
+    /// A bearing set: several rows of bearings on the shaft as one component (absent: the
+    /// one bearing).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub set: Option<SetFile>,
 }
+
+/// Most rows a set may have: the variable table declares the per-row outputs of this many
+/// (`row.0.*` .. `row.3.*`).
+pub const MAX_SET_ROWS: usize = super::variables::ROWS;
 
 crate::declare_fields!(Scene {
     title => text("free title"),
@@ -356,6 +366,7 @@ crate::declare_fields!(Scene {
     inputs => table(),
     effects => table(),
     run => table(),
+    set => table(),
 });
 
 impl Scene {
@@ -474,6 +485,60 @@ impl Scene {
         }
     }
 
+    /// The scene's bearing set (`[set]`, rows defaulting to the scene's bearing `b`),
+    /// checked against the level: `None` for one bearing.
+    pub fn set_spec(&self, b: &Bearing) -> Result<Option<SetSpec>> {
+        let Some(f) = &self.set else {
+            return Ok(None);
+        };
+        super::fields::check("set", SetFile::FIELDS, f)?;
+        for (i, r) in f.row.iter().enumerate() {
+            super::fields::check(&format!("set.row[{i}]"), RowFile::FIELDS, r)?;
+        }
+        let m = &self.model;
+        let supported = "a set runs at level quasi_static, or ring with ring_dof = 5";
+        if m.level != Level::QuasiStatic && m.level != Level::Ring {
+            return Err(Error::invalid(
+                "model.level",
+                format!("{} with a [set]", m.level),
+                format!("quasi_static or ring ({supported}: the set's rows are quasi-static contacts; the skidding and full levels carry one bearing's balls and cage)"),
+            ));
+        }
+        if m.level == Level::Ring && m.ring_dof != 5 {
+            return Err(Error::invalid(
+                "model.ring_dof",
+                format!("{} with a [set]", m.ring_dof),
+                format!("5 ({supported}: the rows of a set are preloaded axially and hold the shaft's tilt, which the 2-DOF ring does not have)"),
+            ));
+        }
+        if !self.effects.is_off() {
+            return Err(Error::invalid(
+                "effects",
+                "on with a [set]",
+                "off: defects, waviness, films, wear and the thermal network belong to one bearing; a set runs without them",
+            ));
+        }
+        let spec = f.spec("set", Some(b), None)?;
+        if spec.rows.len() > MAX_SET_ROWS {
+            return Err(Error::invalid(
+                "set.row",
+                format!("{} rows", spec.rows.len()),
+                format!("at most {MAX_SET_ROWS} rows (the variable table declares the per-row outputs of {MAX_SET_ROWS})"),
+            ));
+        }
+        for (i, r) in spec.rows.iter().enumerate() {
+            m.level.accepts(r.bearing.element()).map_err(|e| match e {
+                Error::Invalid { value, allowed, .. } => Error::Invalid {
+                    field: format!("set.row[{i}].bearing"),
+                    value,
+                    allowed,
+                },
+                e => e,
+            })?;
+        }
+        Ok(Some(spec))
+    }
+
     /// Validate everything; each refusal names the field, the value and the allowed range.
     pub fn validate(&self) -> Result<Bearing> {
         use super::fields::check;
@@ -513,6 +578,7 @@ impl Scene {
         let m = &self.model;
         check("model", ModelSpec::FIELDS, m)?;
         m.level.check(self, &b)?;
+        self.set_spec(&b)?;
         // The full level's options are checked whatever the level (cheap, and a bad value
         // is named even in a scene that does not use it yet).
         m.full.params(&b, m.race_control)?;

@@ -6,7 +6,7 @@ use super::level::{LevelOutputs, Point};
 use super::system::{all_finite, e_time, Budget, Sink, Sys};
 use super::{
     Component, InputRule, State, I_C, I_CAGE, I_CAGE_OMEGA, I_DIAG, I_FORCE, I_K, I_LOAD, I_Q,
-    I_RATING, I_TORQUE, I_V, T_MAX,
+    I_RATING, I_ROWS, I_TORQUE, I_V, T_MAX,
 };
 use crate::error::{Error, Result};
 use crate::solver::SolverError;
@@ -300,12 +300,35 @@ impl Component {
             out.guide_force,
         ];
         o[I_CAGE..I_CAGE + 6].copy_from_slice(&cage);
-        o[I_RATING..I_RATING + 3].copy_from_slice(&self.rating.outputs(
-            &self.bearing,
-            &out.wrench,
-            out.max_pressure,
-            out.balls_loaded,
-        ));
+        if self.set_rows.is_empty() {
+            o[I_RATING..I_RATING + 3].copy_from_slice(&self.rating.outputs(
+                &self.bearing,
+                &out.wrench,
+                out.max_pressure,
+                out.balls_loaded,
+            ));
+        } else {
+            // A set: each row rated on its own load; the set's static safety is the
+            // smallest row's, its life the rows' system life, its warnings the rows' sum.
+            let (mut s0, mut warn) = (f64::INFINITY, 0.0);
+            let mut lives = [(None, 0.0); super::variables::ROWS];
+            for (i, (row, (b, rating))) in self.level.rows().iter().zip(&self.set_rows).enumerate()
+            {
+                let [s, l, w] = rating.outputs(b, &row.local, row.max_pressure, row.loaded);
+                s0 = s0.min(s);
+                warn += w;
+                let slope = crate::models::set::weibull_slope(b.element());
+                lives[i] = ((l < crate::ratings::L10_UNLOADED).then_some(l), slope);
+                let at = I_ROWS + super::variables::ROW_OUTPUTS * i;
+                o[at..at + 5].copy_from_slice(&row.force);
+                o[at + 5] = row.contact_angle;
+                o[at + 6] = f64::from(u8::from(row.loaded == 0.0));
+                o[at + 7] = l;
+            }
+            let life = crate::models::set::system_life(&lives[..self.set_rows.len()])
+                .unwrap_or(crate::ratings::L10_UNLOADED);
+            o[I_RATING..I_RATING + 3].copy_from_slice(&[s0, life, warn]);
+        }
         for r in 0..5 {
             o[I_K + 5 * r..I_K + 5 * r + 5].copy_from_slice(&out.k[r]);
             o[I_C + 5 * r..I_C + 5 * r + 5].copy_from_slice(&out.c[r]);

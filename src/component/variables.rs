@@ -82,6 +82,8 @@ impl Sets {
     pub const FILM: Sets = Sets(16);
     /// Race wear (`wear.max_depth`): the wear effect.
     pub const WEAR: Sets = Sets(32);
+    /// Per-row outputs of a bearing set (`row.<i>.*`): scenes with a `[set]`.
+    pub const SET_ROWS: Sets = Sets(64);
 
     /// Both groups.
     pub const fn with(self, other: Sets) -> Sets {
@@ -444,16 +446,47 @@ pub const STIFFNESS: [[Variable; 5]; 5] = matrix_vars!("K", VR_K0, k_unit, "stif
 /// `C.<i>.<j>`: damping `-dF_i/dv_j` at the current state.
 pub const DAMPING: [[Variable; 5]; 5] = matrix_vars!("C", VR_C0, c_unit, "damping -dF_i/dv_j");
 
-/// Every variable, in a stable order: scalars, then K row by row, then C.
+/// Value reference of `row.<i>.<k-th output>`: `400 + 10 i + k`.
+pub const VR_ROW0: u32 = 400;
+/// Outputs per row of a set.
+pub const ROW_OUTPUTS: usize = 8;
+/// Rows of a set with declared outputs (`crate::component::scene::MAX_SET_ROWS`).
+pub const ROWS: usize = 4;
+
+macro_rules! row_vars {
+    ($i:literal) => {
+        [
+            v(concat!("row.", $i, ".force.x"), VR_ROW0 + 10 * $i, "N", Output, "set row: force of the row on the shaft at the row, x").only(Sets::SET_ROWS),
+            v(concat!("row.", $i, ".force.y"), VR_ROW0 + 10 * $i + 1, "N", Output, "set row: force of the row on the shaft at the row, y").only(Sets::SET_ROWS),
+            v(concat!("row.", $i, ".force.z"), VR_ROW0 + 10 * $i + 2, "N", Output, "set row: force of the row on the shaft at the row, z (axial)").only(Sets::SET_ROWS),
+            v(concat!("row.", $i, ".moment.x"), VR_ROW0 + 10 * $i + 3, "N.m", Output, "set row: moment of the row on the shaft about x at the row").only(Sets::SET_ROWS),
+            v(concat!("row.", $i, ".moment.y"), VR_ROW0 + 10 * $i + 4, "N.m", Output, "set row: moment of the row on the shaft about y at the row").only(Sets::SET_ROWS),
+            v(concat!("row.", $i, ".contact_angle"), VR_ROW0 + 10 * $i + 5, "rad", Output, "set row: load-weighted mean inner contact angle of the loaded balls (quasi-static ball equilibrium at the row's displacement; roller rows: nominal; 0 when lifted off)").only(Sets::SET_ROWS),
+            count(concat!("row.", $i, ".lift_off"), VR_ROW0 + 10 * $i + 6, Output, "set row: 1 when no element of the row is loaded, else 0").only(Sets::SET_ROWS),
+            v(concat!("row.", $i, ".life.L10"), VR_ROW0 + 10 * $i + 7, "1", Output, "set row: basic rating life (ISO 281) of the row's own load, millions of revolutions; 1e12 when unloaded").only(Sets::SET_ROWS),
+        ]
+    };
+}
+
+/// `row.<i>.*`: the per-row outputs of a bearing set (set only by scenes with a `[set]`;
+/// zeros otherwise). Row `i` is the `i`-th row of the set (a pair: the row at `-z`
+/// first). Life and safety of the whole set are `life.L10` (the rows' system life) and
+/// `safety.S0` (the smallest row's).
+pub const ROW_VARS: [[Variable; ROW_OUTPUTS]; ROWS] =
+    [row_vars!(0), row_vars!(1), row_vars!(2), row_vars!(3)];
+
+/// Every variable, in a stable order: scalars, then K row by row, then C, then the
+/// per-row outputs of a set.
 pub fn all() -> impl Iterator<Item = &'static Variable> {
     SCALARS
         .iter()
         .chain(STIFFNESS.iter().flatten())
         .chain(DAMPING.iter().flatten())
+        .chain(ROW_VARS.iter().flatten())
 }
 
 /// One past the largest value reference.
-const VR_END: usize = VR_C0 as usize + 25;
+const VR_END: usize = VR_ROW0 as usize + 10 * ROWS;
 
 /// The position in [`all`] of each value reference (`u16::MAX`: none), built at compile
 /// time: a value reference at or beyond [`VR_END`] or given twice fails the build. The hot
@@ -481,6 +514,13 @@ const fn slots() -> [u16; VR_END] {
         t[vc] = (SCALARS.len() + 25 + k) as u16;
         k += 1;
     }
+    let mut k = 0;
+    while k < ROWS * ROW_OUTPUTS {
+        let vr = ROW_VARS[k / ROW_OUTPUTS][k % ROW_OUTPUTS].vr as usize;
+        assert!(t[vr] == u16::MAX, "value reference used twice");
+        t[vr] = (SCALARS.len() + 50 + k) as u16;
+        k += 1;
+    }
     t
 }
 
@@ -499,7 +539,8 @@ fn at(i: usize) -> &'static Variable {
     match i {
         _ if i < n => &SCALARS[i],
         _ if i < n + 25 => &STIFFNESS[(i - n) / 5][(i - n) % 5],
-        _ => &DAMPING[(i - n - 25) / 5][(i - n - 25) % 5],
+        _ if i < n + 50 => &DAMPING[(i - n - 25) / 5][(i - n - 25) % 5],
+        _ => &ROW_VARS[(i - n - 50) / ROW_OUTPUTS][(i - n - 50) % ROW_OUTPUTS],
     }
 }
 
@@ -538,7 +579,7 @@ mod tests {
                 assert_ne!(a.name, b.name);
             }
         }
-        assert_eq!(all.len(), SCALARS.len() + 50);
+        assert_eq!(all.len(), SCALARS.len() + 50 + ROWS * ROW_OUTPUTS);
         assert_eq!(by_name("K.rx.y").unwrap().vr, VR_K0 + 16);
         assert_eq!(by_name("C.x.ry").unwrap().unit, "N.s/rad");
     }

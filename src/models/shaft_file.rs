@@ -24,7 +24,7 @@
 //! ```
 
 use crate::error::{Error, Result};
-use crate::models::set::{bearing_by_name, Arrangement, Preload, PreloadClass, Row, SetSpec};
+use crate::models::set::{bearing_by_name, Preload, PreloadClass, SetFile};
 use crate::models::shaft::{Location, Shaft, ShaftLoad};
 use crate::units::rpm_to_rad_s;
 use serde::Deserialize;
@@ -37,7 +37,7 @@ struct ShaftFile {
     #[serde(default)]
     load: Vec<LoadFile>,
     #[serde(default)]
-    location: Vec<LocationFile>,
+    location: Vec<toml::Table>,
 }
 
 #[derive(Deserialize, Debug)]
@@ -50,130 +50,74 @@ struct LoadFile {
     moment_nm: [f64; 2],
 }
 
+/// The keys of a location beyond the set's ([`SetFile`]).
 #[derive(Deserialize, Debug)]
 #[serde(deny_unknown_fields)]
-struct RowFile {
-    bearing: String,
-    position_mm: f64,
-    orientation: i32,
-}
-
-#[derive(Deserialize, Debug)]
-#[serde(deny_unknown_fields)]
-struct LocationFile {
+struct LocationKeys {
     name: Option<String>,
     position_mm: f64,
     bearing: Option<String>,
-    arrangement: Option<String>,
-    #[serde(default)]
-    spacer_mm: f64,
-    orientation: Option<i32>,
-    preload_n: Option<f64>,
-    preload_offset_um: Option<f64>,
-    spring_n_per_um: Option<f64>,
     preload_class: Option<String>,
-    #[serde(default)]
-    row: Vec<RowFile>,
 }
 
-fn location(i: usize, l: &LocationFile) -> Result<Location> {
+fn location(i: usize, table: &toml::Table) -> Result<Location> {
     let f = |s: &str| format!("location[{i}].{s}");
-    let preload = match (
-        l.preload_n,
-        l.preload_offset_um,
-        l.spring_n_per_um,
-        l.preload_class.as_deref(),
-    ) {
-        (None, None, None, None) => Preload::None,
-        (Some(p), None, None, None) => Preload::Force(p),
-        (None, Some(d), None, None) => Preload::Offset(d * 1e-6),
-        (Some(p), None, Some(k), None) => Preload::Spring {
-            stiffness: k * 1e6,
-            force: p,
-        },
-        (None, None, None, Some(c)) => Preload::Class(match c {
-            "light" => PreloadClass::Light,
-            "medium" => PreloadClass::Medium,
-            "heavy" => PreloadClass::Heavy,
-            _ => {
+    let parse = |e: toml::de::Error| Error::Parse {
+        what: format!("shaft file, location[{i}]"),
+        message: e.to_string(),
+    };
+    // The location's own keys, then the set's (one struct for the scene's `[set]` and this).
+    let (mut own, mut set) = (toml::Table::new(), toml::Table::new());
+    for (k, v) in table {
+        if ["name", "position_mm", "bearing", "preload_class"].contains(&k.as_str()) {
+            own.insert(k.clone(), v.clone());
+        } else {
+            set.insert(k.clone(), v.clone());
+        }
+    }
+    let l: LocationKeys = own.try_into().map_err(parse)?;
+    let keys: SetFile = set.try_into().map_err(parse)?;
+    let class = match l.preload_class.as_deref() {
+        None => None,
+        Some(c) => {
+            if keys.preload_n.is_some() || keys.preload_offset_um.is_some() {
                 return Err(Error::invalid(
                     f("preload_class"),
-                    c,
-                    "light, medium or heavy",
-                ))
+                    "preload_class with preload_n or preload_offset_um",
+                    "one preload: preload_n, preload_offset_um or preload_class",
+                ));
             }
-        }),
-        _ => {
-            return Err(Error::invalid(
-                f("preload_n"),
-                "a combination of preload keys",
-                "one of: preload_n (rigid, by force); preload_offset_um (rigid, by offset); \
-                 preload_n with spring_n_per_um (constant force); preload_class",
-            ))
+            Some(Preload::Class(match c {
+                "light" => PreloadClass::Light,
+                "medium" => PreloadClass::Medium,
+                "heavy" => PreloadClass::Heavy,
+                _ => {
+                    return Err(Error::invalid(
+                        f("preload_class"),
+                        c,
+                        "light, medium or heavy",
+                    ))
+                }
+            }))
         }
     };
-    let rename = |e: Error| match e {
-        Error::Invalid {
-            field,
-            value,
-            allowed,
-        } => Error::Invalid {
-            field: f(field.trim_start_matches("set.")),
-            value,
-            allowed,
-        },
-        e => e,
-    };
-    let set = if !l.row.is_empty() {
-        if l.bearing.is_some() || l.arrangement.is_some() {
-            return Err(Error::invalid(
-                f("row"),
-                "rows with bearing/arrangement",
-                "either [[location.row]] tables or bearing (with arrangement), not both",
-            ));
+    if !keys.row.is_empty() && l.bearing.is_some() {
+        return Err(Error::invalid(
+            f("row"),
+            "rows with bearing",
+            "either [[location.row]] tables or bearing (with arrangement), not both",
+        ));
+    }
+    let b = match (&l.bearing, keys.row.is_empty()) {
+        (Some(name), _) => Some(bearing_by_name(name, &f("bearing"))?),
+        (None, true) => {
+            return Err(Error::invalid(f("bearing"), "missing", "a bearing name"));
         }
-        let rows = l
-            .row
-            .iter()
-            .enumerate()
-            .map(|(j, r)| {
-                Ok(Row {
-                    bearing: bearing_by_name(&r.bearing, &f(&format!("row[{j}].bearing")))?,
-                    position: r.position_mm * 1e-3,
-                    orientation: r.orientation,
-                })
-            })
-            .collect::<Result<Vec<_>>>()?;
-        let s = SetSpec { rows, preload };
-        s.validate().map_err(rename)?;
-        s
-    } else {
-        let name = l
-            .bearing
-            .as_deref()
-            .ok_or_else(|| Error::invalid(f("bearing"), "missing", "a bearing name"))?;
-        let b = bearing_by_name(name, &f("bearing"))?;
-        match &l.arrangement {
-            Some(a) => {
-                let arr = Arrangement::parse(a, &f("arrangement"))?;
-                SetSpec::pair(&b, arr, l.spacer_mm * 1e-3, preload).map_err(rename)?
-            }
-            None => {
-                let s = SetSpec {
-                    rows: vec![Row {
-                        bearing: b,
-                        position: 0.0,
-                        orientation: l.orientation.unwrap_or(1),
-                    }],
-                    preload,
-                };
-                s.validate().map_err(rename)?;
-                s
-            }
-        }
+        (None, false) => None,
     };
+    let set = keys.spec(&format!("location[{i}]"), b.as_ref(), class)?;
     Ok(Location {
-        name: l.name.clone().unwrap_or_else(|| format!("{i}")),
+        name: l.name.unwrap_or_else(|| format!("{i}")),
         position: l.position_mm * 1e-3,
         set,
     })

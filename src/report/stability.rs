@@ -14,6 +14,11 @@ use crate::geometry::preset;
 use std::fmt::Write as _;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
+// --- Bearing sets: their cells in a block of their own.
+#[path = "stability_sets.rs"]
+pub mod sets;
+// --- end of the sets' block.
+
 /// Input values by variable name.
 type Inputs = Vec<(&'static str, f64)>;
 
@@ -1187,9 +1192,11 @@ pub fn campaign(long: bool, dir: &std::path::Path, verbose: bool) -> Result<Vec<
     } else {
         "cargo run --release -- bench --stability --out docs"
     };
+    // Bearing sets (their own block, `sets`): the page gets their section.
+    let set_res = sets::run(t_base, verbose);
     super::write_file(
         &dir.join("stability.md"),
-        &markdown(&res, t_base, cmd, &times),
+        &(markdown(&res, t_base, cmd, &times) + &sets::markdown(&set_res, t_base)),
     )?;
     Ok(res)
 }

@@ -95,6 +95,24 @@ pub struct LevelOutputs {
     pub guide_force: f64,
 }
 
+/// What an assembly of rows (a bearing set, [`crate::models::set::level`]) reports of one
+/// row at its last [`LevelModel::outputs`] (SI).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct RowOutputs {
+    /// Forces and moments of the row on the shaft at the row's centre, in the shaft's
+    /// frame `(Fx, Fy, Fz, Mx, My)`.
+    pub force: [f64; 5],
+    /// The same in the row's own frame (mirrored for a row facing `-z`): what the row's
+    /// ratings read.
+    pub local: [f64; 5],
+    /// Load-weighted mean inner contact angle of the row's loaded elements, rad.
+    pub contact_angle: f64,
+    /// Elements in contact.
+    pub loaded: f64,
+    /// Largest contact pressure, Pa.
+    pub max_pressure: f64,
+}
+
 /// One model level.
 pub trait LevelModel: Send + std::fmt::Debug {
     /// Number of continuous states the level integrates (cage angle, ball states, ...).
@@ -113,6 +131,11 @@ pub trait LevelModel: Send + std::fmt::Debug {
     /// N)` per ball, when it resolves the balls itself; `None` (default) otherwise.
     fn ball_loads(&self) -> Option<Vec<(f64, f64, f64)>> {
         None
+    }
+    /// Per-row outputs of an assembly of rows at its last [`LevelModel::outputs`]; empty
+    /// (the default) for one bearing, which pays nothing for them.
+    fn rows(&self) -> &[RowOutputs] {
+        &[]
     }
     /// Which ring coordinates the level resolves (load-driven integrates only these).
     fn ring_dofs(&self) -> &'static [usize] {

@@ -116,7 +116,50 @@ pub(super) fn full_scene(bearing: BearingRef, traction: TractionLaw) -> Scene {
             }),
         },
         run: RunSpec::default(),
+        set: None,
     }
+}
+
+/// Full scenes of a bearing set, one per form of `[set]` (a pair preset with a spring, one
+/// with an offset, rows by hand, one row by orientation): a set takes no effects and runs on the
+/// 5-DOF ring.
+fn set_scenes() -> Vec<Scene> {
+    use crate::models::set::{Arrangement, RowFile, SetFile};
+    let with = |set: SetFile| {
+        let mut s = full_scene(BearingRef::Preset("7008CE".into()), TractionLaw::default());
+        s.model.ring_dof = 5;
+        s.effects = Effects::default();
+        s.set = Some(set);
+        s
+    };
+    let row = |z: f64, o: i32| RowFile {
+        bearing: "7008CE".into(),
+        position_mm: z,
+        orientation: o,
+    };
+    vec![
+        with(SetFile {
+            arrangement: Some(Arrangement::Db),
+            spacer_mm: 1.0,
+            preload_n: Some(200.0),
+            spring_n_per_um: Some(20.0),
+            ..Default::default()
+        }),
+        with(SetFile {
+            arrangement: Some(Arrangement::Df),
+            preload_offset_um: Some(5.0),
+            ..Default::default()
+        }),
+        // No preload: either orientation of either row is a set.
+        with(SetFile {
+            row: vec![row(-7.5, 1), row(7.5, -1)],
+            ..Default::default()
+        }),
+        with(SetFile {
+            orientation: Some(-1),
+            ..Default::default()
+        }),
+    ]
 }
 
 pub(super) fn bearing_table(spec: &BearingSpec, preset: Option<&str>) -> toml::Table {
@@ -212,6 +255,9 @@ pub fn full_scenes() -> Vec<Scene> {
             s
         },
     ]
+    .into_iter()
+    .chain(set_scenes())
+    .collect()
 }
 
 pub(super) fn walk_value(v: &toml::Value, norm: &str, out: &mut BTreeMap<String, toml::Value>) {
@@ -226,6 +272,8 @@ pub(super) fn walk_value(v: &toml::Value, norm: &str, out: &mut BTreeMap<String,
                 walk_value(c, &format!("{norm}[]"), out);
             }
         }
+        // An empty list of tables (the effects of a set's scene, all off) names no field.
+        toml::Value::Array(a) if a.is_empty() && norm.starts_with("effects.") => {}
         leaf => {
             out.entry(norm.to_string()).or_insert_with(|| leaf.clone());
         }

@@ -91,6 +91,8 @@ pub const MOUNTS: &[(&str, &[FieldDecl])] = &[
     ("effects.wear", WearSpec::FIELDS),
     ("effects.thermal", ThermalSpec::FIELDS),
     ("run", RunSpec::FIELDS),
+    ("set", crate::models::set::SetFile::FIELDS),
+    ("set.row[]", crate::models::set::RowFile::FIELDS),
 ];
 
 /// Every documented field: the mounted rows ([`MOUNTS`]) with their full paths. Iterate

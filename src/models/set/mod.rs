@@ -44,12 +44,15 @@
 //! - **catalogue class** ([`Preload::Class`]): refused unless the maker's value for the
 //!   bearing is known (none is in the project's data today).
 
+mod file;
+pub mod level;
 mod life;
 mod row;
 mod solve;
 #[cfg(test)]
 mod tests;
 
+pub use file::{RowFile, SetFile};
 pub use life::{system_life, weibull_slope};
 pub use row::RowReport;
 pub(crate) use solve::newton5 as newton5_shared;
@@ -201,19 +204,19 @@ impl SetSpec {
     /// some row carrying axial load, and a preload that can be applied.
     pub fn validate(&self) -> Result<()> {
         if self.rows.is_empty() {
-            return Err(Error::invalid("set.rows", "none", "at least one row"));
+            return Err(Error::invalid("set.row", "none", "at least one row"));
         }
         for (i, r) in self.rows.iter().enumerate() {
             if !r.position.is_finite() {
                 return Err(Error::invalid(
-                    format!("set.rows[{i}].position_mm"),
+                    format!("set.row[{i}].position_mm"),
                     r.position * 1e3,
                     "a finite number",
                 ));
             }
             if r.orientation != 1 && r.orientation != -1 {
                 return Err(Error::invalid(
-                    format!("set.rows[{i}].orientation"),
+                    format!("set.row[{i}].orientation"),
                     r.orientation,
                     "+1 (carries shaft thrust toward +z) or -1 (toward -z)",
                 ));
@@ -226,7 +229,7 @@ impl SetSpec {
                 let need = 0.5 * (a.bearing.width + b.bearing.width);
                 if gap < need * (1.0 - 1e-9) {
                     return Err(Error::invalid(
-                        format!("set.rows[{j}].position_mm"),
+                        format!("set.row[{j}].position_mm"),
                         format!("{:.3} mm", b.position * 1e3),
                         format!(
                             "a position that does not overlap row {i} (at {:.3} mm): their \
@@ -242,7 +245,7 @@ impl SetSpec {
         }
         if !self.rows.iter().any(|r| carries_axial(&r.bearing)) {
             return Err(Error::invalid(
-                "set.rows",
+                "set.row",
                 "no row carries axial load",
                 "at least one row with axial support (a ball bearing, a tapered roller bearing \
                  or an NJ/NUP with spherical roller ends; NU and N rows float axially)",
@@ -266,25 +269,25 @@ impl SetSpec {
             Preload::Offset(d) => {
                 if !d.is_finite() {
                     return Err(Error::invalid(
-                        "set.preload.offset_um",
+                        "set.preload_offset_um",
                         d * 1e6,
                         "a finite number",
                     ));
                 }
             }
-            Preload::Force(f) => pos("set.preload.force_n", f, "N", 1.0)?,
+            Preload::Force(f) => pos("set.preload_n", f, "N", 1.0)?,
             Preload::Spring { stiffness, force } => {
-                pos("set.preload.spring_n_per_um", stiffness, "N/µm", 1e-6)?;
-                pos("set.preload.force_n", force, "N", 1.0)?;
+                pos("set.spring_n_per_um", stiffness, "N/µm", 1e-6)?;
+                pos("set.preload_n", force, "N", 1.0)?;
             }
             Preload::Class(c) => {
                 return Err(Error::invalid(
-                    "set.preload.class",
+                    "set.preload_class",
                     format!("{c:?}").to_lowercase(),
                     format!(
                         "a preload the project has values for: no maker's preload classes are \
-                         known for {} (give the preload as a force, set.preload.force_n, or an \
-                         offset, set.preload.offset_um, from the maker's catalogue)",
+                         known for {} (give the preload as a force, set.preload_n, or an \
+                         offset, set.preload_offset_um, from the maker's catalogue)",
                         self.rows[0].bearing.name
                     ),
                 ));
@@ -292,7 +295,11 @@ impl SetSpec {
         }
         if !matches!(self.preload, Preload::None) && !both {
             return Err(Error::invalid(
-                "set.preload",
+                if matches!(self.preload, Preload::Offset(_)) {
+                    "set.preload_offset_um"
+                } else {
+                    "set.preload_n"
+                },
                 "a preload on rows that all face one way",
                 "no preload (a tandem set is preloaded against another location), or rows \
                  facing both ways (orientation +1 and -1)",

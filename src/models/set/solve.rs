@@ -254,7 +254,7 @@ impl Set {
                         Ok((p, dp))
                     },
                     f,
-                    "set.preload.force_n",
+                    "set.preload_n",
                     limit,
                 )?;
                 for &i in &group {
@@ -272,6 +272,17 @@ impl Set {
         let (rows0, _) = set.eval_rows(&[0.0; 5], 0.0, false)?;
         set.scale = 1.0 + rows0.iter().map(|e| e.f_loc[2].abs()).sum::<f64>();
         Ok(set)
+    }
+
+    /// Each row's preload offset added to its own axial displacement (m) and whether its
+    /// outer ring slides on the preload spring, in row order.
+    pub fn row_offsets(&self) -> Vec<(f64, bool)> {
+        self.rows.iter().map(|r| (r.offset, r.floating)).collect()
+    }
+
+    /// The preload spring `(stiffness N/m, force N)`, if the set has one.
+    pub fn spring(&self) -> Option<(f64, f64)> {
+        self.spring
     }
 
     /// Number of rows.

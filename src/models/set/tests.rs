@@ -188,7 +188,7 @@ fn bad_sets_are_refused_by_field() {
     };
     let e = overlap.validate().unwrap_err().to_string();
     assert!(
-        e.contains("set.rows[1].position_mm") && e.contains("overlap"),
+        e.contains("set.row[1].position_mm") && e.contains("overlap"),
         "{e}"
     );
     let nu = bearing_by_name("NU206", "b").unwrap();
@@ -208,7 +208,7 @@ fn bad_sets_are_refused_by_field() {
         preload: Preload::None,
     };
     let e = rollers.validate().unwrap_err().to_string();
-    assert!(e.contains("set.rows") && e.contains("axial"), "{e}");
+    assert!(e.contains("set.row") && e.contains("axial"), "{e}");
     let e = SetSpec::pair(
         &b,
         Arrangement::Db,
@@ -218,7 +218,7 @@ fn bad_sets_are_refused_by_field() {
     .unwrap_err()
     .to_string();
     assert!(
-        e.contains("set.preload.class") && e.contains("force_n"),
+        e.contains("set.preload_class") && e.contains("preload_n"),
         "{e}"
     );
     let e = SetSpec::pair(&b, Arrangement::Dt, 0.0, Preload::Force(100.0))
@@ -228,12 +228,12 @@ fn bad_sets_are_refused_by_field() {
     let e = SetSpec::pair(&b, Arrangement::Db, 0.0, Preload::Force(-1.0))
         .unwrap_err()
         .to_string();
-    assert!(e.contains("set.preload.force_n"), "{e}");
+    assert!(e.contains("set.preload_n"), "{e}");
     let mut bad = overlap.clone();
     bad.rows[1].position = 20e-3;
     bad.rows[1].orientation = 0;
     let e = bad.validate().unwrap_err().to_string();
-    assert!(e.contains("set.rows[1].orientation"), "{e}");
+    assert!(e.contains("set.row[1].orientation"), "{e}");
 }
 
 /// The system life: equal slopes in closed form, mixed slopes at `sum (L/L_i)^e_i = 1`;
