@@ -167,9 +167,15 @@ fn scene_catalogues_list_every_scene() {
         let mut listed: Vec<String> = text
             .lines()
             .filter_map(|l| l.strip_prefix("| `"))
-            .filter_map(|l| l.split('`').next())
-            .filter(|n| n.ends_with(".toml") && !n.contains('/'))
-            .map(String::from)
+            // Every name in the row's first cell (a row may list several scenes).
+            .flat_map(|l| {
+                let cell = l.split(" |").next().unwrap_or("");
+                cell.split('`')
+                    .step_by(2)
+                    .filter(|n| n.ends_with(".toml") && !n.contains('/'))
+                    .map(String::from)
+                    .collect::<Vec<_>>()
+            })
             .collect();
         listed.sort();
         listed.dedup();
