@@ -551,7 +551,7 @@ fn envelope(md: &mut String, out: &Path, quick: bool) {
     let scene = raceway::Scene::from_text(text).expect("scene");
     let h = scene.run.step_s;
     let t_end = if quick { 0.2 } else { scene.run.duration_s };
-    let omega = scene.inputs.initial["shaft.omega"];
+    let omega = scene.inputs.initial_value("shaft.omega");
     for name in [
         "load.x",
         "load.y",
@@ -561,7 +561,7 @@ fn envelope(md: &mut String, out: &Path, quick: bool) {
         "shaft.omega",
     ] {
         let vr = variables::by_name(name).expect("variable").vr;
-        let v = scene.inputs.initial.get(name).copied().unwrap_or(0.0);
+        let v = scene.inputs.initial_value(name);
         c.set_real(vr, v).expect("input");
     }
     let fy = variables::by_name("force.y").expect("force.y").vr;
