@@ -654,8 +654,9 @@ RacewayStatus raceway_variable_type(uint32_t vr, RacewayType *ty);
 
 /*
  Create an instance from scene text (TOML or JSON, NUL-terminated UTF-8). Returns NULL
- when the scene is refused, with the message (naming the field, value and allowed
- range) copied into `error` (at most `error_len` bytes including the terminating NUL;
+ when the scene is refused, with the message (every problem of the scene as `raceway
+ scene --check` gives it: `line:column`, the field, the allowed range, "did you mean")
+ copied into `error` (at most `error_len` bytes including the terminating NUL;
  `error` may be NULL). Every input starts at the scene's initial value
  (`[inputs] initial`, absent: 0) and holds it until it is set.
 

@@ -234,10 +234,10 @@ fn bits(v: &[f64]) -> Vec<u64> {
 #[test]
 fn bad_scenes_are_refused_with_a_message_naming_the_cause() {
     let cases: [(&[u8], &[&str]); 6] = [
-        (b"bearing = ", &["cannot parse scene"]),
+        (b"bearing = ", &["1:11: TOML syntax"]),
         (
             b"bearing = \"6205\"\nspeed = 3\n",
-            &["unknown field", "speed"],
+            &["2:1: `speed`: unknown key `speed`"],
         ),
         (
             b"bearing = \"6205\"\n[solver]\nrtol = 5.0\n",
