@@ -158,11 +158,11 @@ def test_toolbox_container_runs_the_fmu_in_fmpy(version, tmp_path):
 def test_unset_inputs_hold_the_start_values_the_model_description_gives(host, version):
     """One rule for unset inputs: an input the host never sets holds the scene's initial
     value, and the model description's `start` is that value (default scene: shaft 10 µm
-    down at 183.26 rad/s; the load-driven FMU keeps only the speed, its loads start at 0)."""
+    down at 1750 rpm; the load-driven FMU keeps only the speed, its loads start at 0)."""
     h = host(version)
     inputs = [v for v in h.md.modelVariables if v.causality == "input"]
     starts = {v.name: float(v.start) for v in inputs}
-    assert starts["shaft.omega"] == pytest.approx(183.259571, rel=1e-12)
+    assert starts["shaft.omega"] == pytest.approx(1750 * np.pi / 30, rel=1e-15)
     if version in VERSIONS:
         assert starts["shaft.y"] == -10e-6
     assert sum(1 for s in starts.values() if s != 0.0) == (2 if version in VERSIONS else 1)
