@@ -16,7 +16,8 @@ causality = "load"
 attached_mass_kg = 1.0
 MODEL_EXTRA
 [inputs]
-initial = { "load.x" = 0.0, "load.y" = -1000.0, "load.z" = 0.0, "load.mx" = 0.0, "load.my" = 0.0, "shaft.omega" = 183.259571 }
+speed_rpm = 1750.0
+initial = { "load.x" = 0.0, "load.y" = -1000.0, "load.z" = 0.0, "load.mx" = 0.0, "load.my" = 0.0 }
 EXTRA
 "#;
 

@@ -92,11 +92,10 @@ const OUTPUTS: [&str; 8] = [
 /// A motion-driven scene: the inner ring held at `(0, y0, z0)` with a synchronous orbit
 /// of 1 µm added by the host.
 fn motion_scene(level: &str, bearing: &str, dof: u32, y0: f64, z0: f64, rpm: f64) -> String {
-    let omega = rpm * std::f64::consts::PI / 30.0;
     format!(
         "title = \"speed bench: {level} motion-driven\"\nbearing = {bearing}\n\n[model]\n\
          level = \"{level}\"\ncausality = \"motion\"\nring_dof = {dof}\n\n[inputs]\n\
-         rule = \"velocity\"\ninitial = {{ \"shaft.y\" = {y0:e}, \"shaft.z\" = {z0:e}, \"shaft.omega\" = {omega} }}\n"
+         rule = \"velocity\"\nspeed_rpm = {rpm:?}\ninitial = {{ \"shaft.y\" = {y0:e}, \"shaft.z\" = {z0:e} }}\n"
     )
 }
 
@@ -132,7 +131,7 @@ fn capi_loop(scene: &str, h: f64, warm: usize, n: usize, reps: usize) -> Loop {
         panic!("raceway_create: {}", m.to_string_lossy());
     }
     let s = Scene::from_text(scene).expect("scene");
-    let init = |n: &str| s.inputs.initial.get(n).copied().unwrap_or(0.0);
+    let init = |n: &str| s.inputs.initial_value(n);
     let (x0, y0) = (init("shaft.x"), init("shaft.y"));
     let omega = init("shaft.omega");
     let a = 1e-6;
@@ -203,7 +202,7 @@ const SCENE_FORCE_ERROR: f64 = 1e-4;
 
 fn rust_loop(scene: &Scene, h: f64, t_end: f64) -> (f64, Samples, f64) {
     let mut c = Component::new(scene.clone()).expect("scene");
-    let init = |n: &str| scene.inputs.initial.get(n).copied().unwrap_or(0.0);
+    let init = |n: &str| scene.inputs.initial_value(n);
     let omega = init("shaft.omega");
     let f_rot = scene.run.rotating_load_n;
     let (lx, ly) = (vr("load.x"), vr("load.y"));

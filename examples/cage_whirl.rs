@@ -154,7 +154,7 @@ fn simulate(scene: &Scene) -> Result<Record, Box<dyn std::error::Error>> {
     let na = model.n_aux();
     let mut dx = vec![0.0; model.n_states()];
     let mut c = Component::new(scene.clone())?;
-    let init = |n: &str| scene.inputs.initial.get(n).copied().unwrap_or(0.0);
+    let init = |n: &str| scene.inputs.initial_value(n);
     let ramp = raceway::units::rpm_to_rad_s(scene.run.speed_ramp_rpm_per_s);
     let omega0 = init("shaft.omega");
     let names = [

@@ -679,7 +679,7 @@ fn shaft_y(text: &str, t_end: f64, settle: f64) -> (Vec<f64>, f64, f64) {
     let mut c = Component::from_text(text).expect("scene");
     let scene = raceway::Scene::from_text(text).expect("scene");
     let h = scene.run.step_s;
-    let omega = scene.inputs.initial["shaft.omega"];
+    let omega = scene.inputs.initial_value("shaft.omega");
     let vy = variables::by_name("shaft.y").expect("shaft.y").vr;
     let n = (t_end / h).round() as usize;
     let skip = ((settle / h) as usize).min(n / 2);

@@ -42,7 +42,7 @@ fn run(
 fn wear_case(label: &str, scene: &Scene) -> Result<(), Box<dyn std::error::Error>> {
     let layout = SlowLayout::of(&scene.effects, &scene.validate()?)?;
     let w = scene.effects.wear.clone().expect("wear on");
-    let omega = scene.inputs.initial["shaft.omega"];
+    let omega = scene.inputs.initial_value("shaft.omega");
     let rev_s = std::f64::consts::TAU / omega;
     let duration = (w.cycles as f64 * w.window_revs + 0.5) * rev_s;
     let h = scene.run.step_s;
@@ -184,7 +184,7 @@ fn thermal_study() -> Result<(), Box<dyn std::error::Error>> {
     for n in (6000..=20000).step_by(2000) {
         let mut s = base.clone();
         let omega = n as f64 * std::f64::consts::TAU / 60.0;
-        s.inputs.initial.insert("shaft.omega".into(), omega);
+        s.inputs.set_initial("shaft.omega", omega);
         let mut c = run(&s, s.run.duration_s, s.run.step_s, |_| {})?;
         let st = c.get_state();
         let th = layout.thermal(&st.aux).expect("thermal on");

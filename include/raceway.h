@@ -674,7 +674,7 @@ typedef enum {
    */
   RACEWAY_STATUS_NULL_POINTER = 3,
   /*
-   A call not allowed now (inputs never set, time running backwards, writing an
+   A call not allowed now (time running backwards, writing an
    output, a state of another scene).
    */
   RACEWAY_STATUS_CALL_ORDER = 4,
@@ -814,9 +814,11 @@ RacewayStatus raceway_variable_type(uint32_t vr, RacewayType *ty);
 
 /*
  Create an instance from scene text (TOML or JSON, NUL-terminated UTF-8). Returns NULL
- when the scene is refused, with the message (naming the field, value and allowed
- range) copied into `error` (at most `error_len` bytes including the terminating NUL;
- `error` may be NULL).
+ when the scene is refused, with the message (every problem of the scene as `raceway
+ scene --check` gives it: `line:column`, the field, the allowed range, "did you mean")
+ copied into `error` (at most `error_len` bytes including the terminating NUL;
+ `error` may be NULL). Every input starts at the scene's initial value
+ (`[inputs] initial`, absent: 0) and holds it until it is set.
 
  # Safety
  `scene` is NULL or NUL-terminated; `error` is NULL or valid for `error_len` bytes.

@@ -400,7 +400,7 @@ fn vr(name: &str) -> u32 {
 /// with the rotating load.
 fn set_inputs(c: &mut Component, scene: &Scene, t: f64) -> Result<()> {
     let r = &scene.run;
-    let init = |name: &str| scene.inputs.initial.get(name).copied().unwrap_or(0.0);
+    let init = |name: &str| scene.inputs.initial_value(name);
     let omega0 = init("shaft.omega");
     let ramp = rpm_to_rad_s(r.speed_ramp_rpm_per_s);
     // Shaft angle at time t under the ramp.
@@ -654,7 +654,7 @@ mod tests {
     #[test]
     fn prescribed_orbit_is_followed_and_resisted() {
         let scene = Scene::from_text(
-            "bearing = \"6205\"\n[model]\nlevel = \"ring\"\n[inputs]\ninitial = { \"shaft.omega\" = 100.0 }\n[run]\nduration_s = 0.02\nstep_s = 1e-4\norbit_um = 12.0\n",
+            "bearing = \"6205\"\n[model]\nlevel = \"ring\"\n[inputs]\nspeed_rpm = 954.9296586\ninitial = { }\n[run]\nduration_s = 0.02\nstep_s = 1e-4\norbit_um = 12.0\n",
         )
         .unwrap();
         let (s, _) = run(&scene, &mut |_| {}).unwrap();
@@ -701,7 +701,7 @@ mod tests {
     #[test]
     fn streamed_csv_and_digest_equal_the_whole_series() {
         let scene = Scene::from_text(
-            "bearing = \"6205\"\n[model]\nlevel = \"ring\"\n[inputs]\ninitial = { \"shaft.omega\" = 100.0 }\n[run]\nduration_s = 0.0101\nstep_s = 1e-4\norbit_um = 12.0\n",
+            "bearing = \"6205\"\n[model]\nlevel = \"ring\"\n[inputs]\nspeed_rpm = 954.9296586\ninitial = { }\n[run]\nduration_s = 0.0101\nstep_s = 1e-4\norbit_um = 12.0\n",
         )
         .unwrap();
         let mut whole = Series::default();

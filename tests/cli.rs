@@ -127,14 +127,14 @@ fn quasi_static_json_matches_the_library() {
 }
 
 /// With no flags the program solves the embedded default scene's operating point, with the
-/// speed taken from `inputs.initial["shaft.omega"]`.
+/// speed taken from `inputs.speed_rpm`.
 #[test]
 fn quasi_static_without_flags_solves_the_default_scene() {
     let v = json(&["quasi-static", "--json"]);
     let scene = Scene::default_scene();
     let b = scene.build_bearing().unwrap();
     let op = &scene.model.operating_point;
-    let w = scene.inputs.initial["shaft.omega"];
+    let w = scene.inputs.initial_value("shaft.omega");
     let load = [op.fx, op.fy, op.fz, op.mx, op.my];
     let s = QuasiStatic::new(&b, Options::default())
         .unwrap()
@@ -652,7 +652,7 @@ fn a_plot_that_cannot_be_made_is_skipped_with_a_warning() {
     std::fs::write(
         &scene,
         "bearing = \"NU206\"\n[model]\nlevel = \"ring\"\ncausality = \"load\"\n\
-         [inputs.initial]\n\"load.y\" = -4e3\n\"shaft.omega\" = 183.0\n\
+         [inputs]\nspeed_rpm = 1747.5\n[inputs.initial]\n\"load.y\" = -4e3\n\
          [run]\nduration_s = 0.01\nstep_s = 1e-4\n",
     )
     .unwrap();

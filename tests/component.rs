@@ -13,9 +13,9 @@ bearing = "6205"
 level = "ring"
 contact_damping = 200.0
 [inputs]
+speed_rpm = 1750.0040922612443
 initial = { "shaft.x" = 0.0, "shaft.y" = -8e-6, "shaft.z" = 0.0, "shaft.rx" = 0.0, "shaft.ry" = 0.0,
-            "shaft.vx" = 0.0, "shaft.vy" = 0.0, "shaft.vz" = 0.0, "shaft.wx" = 0.0, "shaft.wy" = 0.0,
-            "shaft.omega" = 183.26 }
+            "shaft.vx" = 0.0, "shaft.vy" = 0.0, "shaft.vz" = 0.0, "shaft.wx" = 0.0, "shaft.wy" = 0.0 }
 "#;
 
 const RING_LOAD: &str = r#"
@@ -26,7 +26,8 @@ causality = "load"
 contact_damping = 3000.0
 attached_mass_kg = 1.0
 [inputs]
-initial = { "load.x" = 0.0, "load.y" = -1000.0, "load.z" = 0.0, "load.mx" = 0.0, "load.my" = 0.0, "shaft.omega" = 183.26 }
+speed_rpm = 1750.0
+initial = { "load.x" = 0.0, "load.y" = -1000.0, "load.z" = 0.0, "load.mx" = 0.0, "load.my" = 0.0 }
 "#;
 
 fn vr(name: &str) -> u32 {
@@ -148,10 +149,12 @@ fn bad_calls_are_refused_and_the_component_stays_usable() {
 }
 
 #[test]
-fn do_step_before_inputs_names_the_missing_inputs() {
+fn do_step_before_inputs_holds_the_scenes_values() {
+    // Nothing in the scene, nothing set: every input holds 0 and the ring steps.
     let mut c = Component::from_text("bearing = \"6205\"\n[model]\nlevel = \"ring\"\n").unwrap();
-    let e = c.do_step(0.0, 1e-3).unwrap_err().to_string();
-    assert!(e.contains("shaft.x") && e.contains("shaft.omega"), "{e}");
+    c.do_step(0.0, 1e-3).unwrap();
+    assert_eq!(c.get_real(vr("shaft.omega")).unwrap(), 0.0);
+    assert_eq!(c.get_real(vr("shaft.x")).unwrap(), 0.0);
 }
 
 #[test]
@@ -255,7 +258,7 @@ fn effects_on_a_level_that_ignores_them_are_refused() {
 fn quasi_static_contact_damping_settles_a_released_ring() {
     let scene = |c: f64| {
         format!(
-            "bearing = {{ preset = \"6205\", clearance_um = 10.0 }}\n[model]\nlevel = \"quasi_static\"\ncausality = \"load\"\nstart = \"rest\"\nattached_mass_kg = 1.0\ncontact_damping = {c}\n[inputs]\ninitial = {{ \"load.x\" = 0.0, \"load.y\" = -1000.0, \"load.z\" = 0.0, \"load.mx\" = 0.0, \"load.my\" = 0.0, \"shaft.omega\" = 183.26 }}\n"
+            "bearing = {{ preset = \"6205\", clearance_um = 10.0 }}\n[model]\nlevel = \"quasi_static\"\ncausality = \"load\"\nstart = \"rest\"\nattached_mass_kg = 1.0\ncontact_damping = {c}\n[inputs]\nspeed_rpm = 1750.0\ninitial = {{ \"load.x\" = 0.0, \"load.y\" = -1000.0, \"load.z\" = 0.0, \"load.mx\" = 0.0, \"load.my\" = 0.0 }}\n"
         )
     };
     let spread = |c: f64| {
@@ -334,4 +337,31 @@ fn rating_outputs_follow_iso_281_and_76() {
         }
         assert_eq!(g(&mut c, "warnings.active"), warned, "y = {y}, p = {p}");
     }
+}
+
+#[path = "common/cli_rows.rs"]
+mod cli_rows;
+
+/// One rule for unset inputs: a component of the default scene that is never given an
+/// input holds the scene's initial values (shaft 10 µm down at 1750 rpm, the rest 0), so
+/// its force at t = 0 and after one step equals the first two rows of `raceway run`.
+#[test]
+fn unset_inputs_hold_the_scenes_initial_values_as_the_cli_does() {
+    let cli = cli_rows::default_scene_first_rows();
+    let mut c = Component::from_text(raceway::component::scene::DEFAULT_SCENE).unwrap();
+    let force = |c: &mut Component| [vr("force.x"), vr("force.y")].map(|v| c.get_real(v).unwrap());
+    assert_eq!(c.get_real(vr("shaft.y")).unwrap(), -10e-6);
+    assert_eq!(c.get_real(vr("shaft.x")).unwrap(), 0.0);
+    let at0 = force(&mut c);
+    c.do_step(0.0, 1e-4).unwrap();
+    let at1 = force(&mut c);
+    for (got, want) in [at0, at1].iter().zip(&cli) {
+        for (g, w) in got.iter().zip(want) {
+            assert!(
+                (g - w).abs() <= 1e-9 * cli[0][1].abs(),
+                "{got:?} vs the CLI's {want:?}"
+            );
+        }
+    }
+    assert!(cli[0][1] > 500.0, "the default scene is loaded: {cli:?}");
 }

@@ -83,7 +83,7 @@ fn host_step(c: *mut RacewayComponent, k: usize, h: f64) -> f64 {
 /// Allocations in 195 steps of the C loop (after 5 warm-up steps).
 fn allocations_in_the_c_loop() -> usize {
     let scene = CString::new(
-        "bearing = \"6205\"\n[model]\nlevel = \"ring\"\n[inputs]\ninitial = { \"shaft.x\" = 0.0, \"shaft.y\" = -8e-6, \"shaft.z\" = 0.0, \"shaft.rx\" = 0.0, \"shaft.ry\" = 0.0, \"shaft.vx\" = 0.0, \"shaft.vy\" = 0.0, \"shaft.vz\" = 0.0, \"shaft.wx\" = 0.0, \"shaft.wy\" = 0.0, \"shaft.omega\" = 183.26 }\n",
+        "bearing = \"6205\"\n[model]\nlevel = \"ring\"\n[inputs]\nspeed_rpm = 1750.004092\ninitial = { \"shaft.x\" = 0.0, \"shaft.y\" = -8e-6, \"shaft.z\" = 0.0, \"shaft.rx\" = 0.0, \"shaft.ry\" = 0.0, \"shaft.vx\" = 0.0, \"shaft.vy\" = 0.0, \"shaft.vz\" = 0.0, \"shaft.wx\" = 0.0, \"shaft.wy\" = 0.0 }\n",
     )
     .unwrap();
     let mut err = [0; 256];
@@ -131,20 +131,20 @@ fn do_step_and_the_c_loop_do_not_allocate() {
         "heap allocations in 195 steps of the C loop"
     );
     for scene in [
-        "bearing = \"6205\"\n[model]\nlevel = \"ring\"\n[inputs]\ninitial = { \"shaft.x\" = 0.0, \"shaft.y\" = -8e-6, \"shaft.z\" = 0.0, \"shaft.rx\" = 0.0, \"shaft.ry\" = 0.0, \"shaft.vx\" = 0.0, \"shaft.vy\" = 1e-4, \"shaft.vz\" = 0.0, \"shaft.wx\" = 0.0, \"shaft.wy\" = 0.0, \"shaft.omega\" = 183.26 }\n",
-        "bearing = \"7008ce\"\n[model]\nlevel = \"quasi_static\"\n[inputs]\ninitial = { \"shaft.x\" = 0.0, \"shaft.y\" = -3e-6, \"shaft.z\" = 10e-6, \"shaft.rx\" = 0.0, \"shaft.ry\" = 0.0, \"shaft.vx\" = 0.0, \"shaft.vy\" = 0.0, \"shaft.vz\" = 0.0, \"shaft.wx\" = 0.0, \"shaft.wy\" = 0.0, \"shaft.omega\" = 2000.0 }\n",
-        "bearing = \"6205\"\n[model]\nlevel = \"quasi_static\"\ncausality = \"load\"\n[inputs]\ninitial = { \"load.x\" = 0.0, \"load.y\" = -500.0, \"load.z\" = 0.0, \"load.mx\" = 0.0, \"load.my\" = 0.0, \"shaft.omega\" = 183.26 }\n",
-        "bearing = \"6205\"\n[model]\nlevel = \"linear\"\ncausality = \"load\"\ncontact_damping = 100.0\n[inputs]\ninitial = { \"load.x\" = 0.0, \"load.y\" = -900.0, \"load.z\" = 0.0, \"load.mx\" = 0.0, \"load.my\" = 0.0, \"shaft.omega\" = 183.26 }\n",
-        "bearing = \"7008ce\"\n[model]\nlevel = \"ring\"\nring_dof = 5\ncausality = \"load\"\ncontact_damping = 500.0\n[inputs]\ninitial = { \"load.x\" = 0.0, \"load.y\" = -300.0, \"load.z\" = 200.0, \"load.mx\" = 0.0, \"load.my\" = 0.0, \"shaft.omega\" = 600.0 }\n",
+        "bearing = \"6205\"\n[model]\nlevel = \"ring\"\n[inputs]\nspeed_rpm = 1750.004092\ninitial = { \"shaft.x\" = 0.0, \"shaft.y\" = -8e-6, \"shaft.z\" = 0.0, \"shaft.rx\" = 0.0, \"shaft.ry\" = 0.0, \"shaft.vx\" = 0.0, \"shaft.vy\" = 1e-4, \"shaft.vz\" = 0.0, \"shaft.wx\" = 0.0, \"shaft.wy\" = 0.0 }\n",
+        "bearing = \"7008ce\"\n[model]\nlevel = \"quasi_static\"\n[inputs]\nspeed_rpm = 19098.59317\ninitial = { \"shaft.x\" = 0.0, \"shaft.y\" = -3e-6, \"shaft.z\" = 10e-6, \"shaft.rx\" = 0.0, \"shaft.ry\" = 0.0, \"shaft.vx\" = 0.0, \"shaft.vy\" = 0.0, \"shaft.vz\" = 0.0, \"shaft.wx\" = 0.0, \"shaft.wy\" = 0.0 }\n",
+        "bearing = \"6205\"\n[model]\nlevel = \"quasi_static\"\ncausality = \"load\"\n[inputs]\nspeed_rpm = 1750.004092\ninitial = { \"load.x\" = 0.0, \"load.y\" = -500.0, \"load.z\" = 0.0, \"load.mx\" = 0.0, \"load.my\" = 0.0 }\n",
+        "bearing = \"6205\"\n[model]\nlevel = \"linear\"\ncausality = \"load\"\ncontact_damping = 100.0\n[inputs]\nspeed_rpm = 1750.004092\ninitial = { \"load.x\" = 0.0, \"load.y\" = -900.0, \"load.z\" = 0.0, \"load.mx\" = 0.0, \"load.my\" = 0.0 }\n",
+        "bearing = \"7008ce\"\n[model]\nlevel = \"ring\"\nring_dof = 5\ncausality = \"load\"\ncontact_damping = 500.0\n[inputs]\nspeed_rpm = 5729.577951\ninitial = { \"load.x\" = 0.0, \"load.y\" = -300.0, \"load.z\" = 200.0, \"load.mx\" = 0.0, \"load.my\" = 0.0 }\n",
         // RODAS4 on a load-driven 2-DOF ring: the reduced second-order solve (analytic
         // Jacobian), and with waviness its dense fallback (differenced Jacobian).
-        "bearing = \"6205\"\n[model]\nlevel = \"ring\"\ncausality = \"load\"\ncontact_damping = 3000.0\n[solver]\nmethod = \"rosenbrock\"\n[inputs]\ninitial = { \"load.x\" = 0.0, \"load.y\" = -1000.0, \"load.z\" = 0.0, \"load.mx\" = 0.0, \"load.my\" = 0.0, \"shaft.omega\" = 183.26 }\n",
-        "bearing = \"6205\"\n[model]\nlevel = \"ring\"\ncausality = \"load\"\ncontact_damping = 3000.0\n[solver]\nmethod = \"rosenbrock\"\n[inputs]\ninitial = { \"load.x\" = 0.0, \"load.y\" = -1000.0, \"load.z\" = 0.0, \"load.mx\" = 0.0, \"load.my\" = 0.0, \"shaft.omega\" = 183.26 }\n[effects]\nwaviness = [{ race = \"outer\", order = 12, amplitude_um = 0.3, phase_deg = 0.0 }]\n",
+        "bearing = \"6205\"\n[model]\nlevel = \"ring\"\ncausality = \"load\"\ncontact_damping = 3000.0\n[solver]\nmethod = \"rosenbrock\"\n[inputs]\nspeed_rpm = 1750.004092\ninitial = { \"load.x\" = 0.0, \"load.y\" = -1000.0, \"load.z\" = 0.0, \"load.mx\" = 0.0, \"load.my\" = 0.0 }\n",
+        "bearing = \"6205\"\n[model]\nlevel = \"ring\"\ncausality = \"load\"\ncontact_damping = 3000.0\n[solver]\nmethod = \"rosenbrock\"\n[inputs]\nspeed_rpm = 1750.004092\ninitial = { \"load.x\" = 0.0, \"load.y\" = -1000.0, \"load.z\" = 0.0, \"load.mx\" = 0.0, \"load.my\" = 0.0 }\n[effects]\nwaviness = [{ race = \"outer\", order = 12, amplitude_um = 0.3, phase_deg = 0.0 }]\n",
         // Cylindrical roller bearing NU206 (14 rollers x 30 laminae): the speed bench's
         // motion-driven 2-DOF ring, and a load-driven tilted 5-DOF ring with contact damping.
-        "bearing = \"NU206\"\n[model]\nlevel = \"ring\"\nring_dof = 2\n[inputs]\ninitial = { \"shaft.x\" = 0.0, \"shaft.y\" = -30e-6, \"shaft.z\" = 0.0, \"shaft.rx\" = 0.0, \"shaft.ry\" = 0.0, \"shaft.vx\" = 0.0, \"shaft.vy\" = 1e-4, \"shaft.vz\" = 0.0, \"shaft.wx\" = 0.0, \"shaft.wy\" = 0.0, \"shaft.omega\" = 157.08 }\n",
-        "bearing = \"NU206\"\n[model]\nlevel = \"ring\"\nring_dof = 5\ncausality = \"load\"\ncontact_damping = 200.0\nattached_mass_kg = 1.0\n[inputs]\ninitial = { \"load.x\" = 0.0, \"load.y\" = -4000.0, \"load.z\" = 0.0, \"load.mx\" = 20.0, \"load.my\" = 0.0, \"shaft.omega\" = 157.08 }\n",
-        "bearing = \"7004\"\n[model]\nlevel = \"full\"\n[inputs]\ninitial = { \"shaft.x\" = 0.0, \"shaft.y\" = -2.96568e-6, \"shaft.z\" = 4.364864e-5, \"shaft.rx\" = 0.0, \"shaft.ry\" = 0.0, \"shaft.vx\" = 0.0, \"shaft.vy\" = 0.0, \"shaft.vz\" = 0.0, \"shaft.wx\" = 0.0, \"shaft.wy\" = 0.0, \"shaft.omega\" = 3141.59 }\n",
+        "bearing = \"NU206\"\n[model]\nlevel = \"ring\"\nring_dof = 2\n[inputs]\nspeed_rpm = 1500.003508\ninitial = { \"shaft.x\" = 0.0, \"shaft.y\" = -30e-6, \"shaft.z\" = 0.0, \"shaft.rx\" = 0.0, \"shaft.ry\" = 0.0, \"shaft.vx\" = 0.0, \"shaft.vy\" = 1e-4, \"shaft.vz\" = 0.0, \"shaft.wx\" = 0.0, \"shaft.wy\" = 0.0 }\n",
+        "bearing = \"NU206\"\n[model]\nlevel = \"ring\"\nring_dof = 5\ncausality = \"load\"\ncontact_damping = 200.0\nattached_mass_kg = 1.0\n[inputs]\nspeed_rpm = 1500.003508\ninitial = { \"load.x\" = 0.0, \"load.y\" = -4000.0, \"load.z\" = 0.0, \"load.mx\" = 20.0, \"load.my\" = 0.0 }\n",
+        "bearing = \"7004\"\n[model]\nlevel = \"full\"\n[inputs]\nspeed_rpm = 29999.97466\ninitial = { \"shaft.x\" = 0.0, \"shaft.y\" = -2.96568e-6, \"shaft.z\" = 4.364864e-5, \"shaft.rx\" = 0.0, \"shaft.ry\" = 0.0, \"shaft.vx\" = 0.0, \"shaft.vy\" = 0.0, \"shaft.vz\" = 0.0, \"shaft.wx\" = 0.0, \"shaft.wy\" = 0.0 }\n",
     ] {
         assert_eq!(allocations_in_steps(scene, 1e-4), 0, "{scene}");
     }

@@ -81,8 +81,6 @@ fn rust_api_outputs_at_t0_are_those_of_the_first_step() {
     for level in ["linear", "quasi_static"] {
         let mut c = Component::from_text(&scene(level)).unwrap();
         let fy = variables::by_name("force.y").unwrap().vr;
-        let err = c.get_real(fy).unwrap_err().to_string();
-        assert!(err.contains("shaft.omega"), "{err}");
         for (vr, x) in inputs() {
             c.set_real(vr, x).unwrap();
         }
@@ -148,9 +146,6 @@ fn c_read(c: &Inst) -> Vec<f64> {
 fn c_abi_outputs_at_t0_are_those_of_the_first_step() {
     for level in ["linear", "quasi_static"] {
         let c = c_create(&scene(level));
-        let mut v = 0.0;
-        let st = unsafe { raceway_get_real(c.0, RACEWAY_VR_FORCE_Y, &mut v) };
-        assert_ne!(st, RacewayStatus::Ok, "an output before the inputs are set");
         let (vrs, xs): (Vec<u32>, Vec<f64>) = inputs().into_iter().unzip();
         let st = unsafe { raceway_set_reals(c.0, vrs.as_ptr(), xs.as_ptr(), vrs.len()) };
         assert_eq!(st, RacewayStatus::Ok);

@@ -29,11 +29,11 @@ use std::ptr::{null, null_mut};
 
 const SCENES: [&str; 3] = [
     // Motion-driven ring (cheap steps).
-    "bearing = \"6205\"\n[model]\nlevel = \"ring\"\n[inputs]\ninitial = { \"shaft.y\" = -8e-6, \"shaft.omega\" = 183.26 }\n",
+    "bearing = \"6205\"\n[model]\nlevel = \"ring\"\n[inputs]\nspeed_rpm = 1750.004092\ninitial = { \"shaft.y\" = -8e-6 }\n",
     // The default scene (quasi-static).
     raceway::component::scene::DEFAULT_SCENE,
     // Load-driven linear.
-    "bearing = \"6205\"\n[model]\nlevel = \"linear\"\ncausality = \"load\"\nattached_mass_kg = 2.0\noperating_point = { speed_rpm = 1750.0, fy = -1000.0 }\n[inputs]\ninitial = { \"load.y\" = -1000.0, \"shaft.omega\" = 183.26 }\n",
+    "bearing = \"6205\"\n[model]\nlevel = \"linear\"\ncausality = \"load\"\nattached_mass_kg = 2.0\noperating_point = { speed_rpm = 1750.0, fy = -1000.0 }\n[inputs]\nspeed_rpm = 1750.004092\ninitial = { \"load.y\" = -1000.0 }\n",
 ];
 
 /// Which instance handle a call gets.

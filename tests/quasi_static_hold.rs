@@ -143,7 +143,7 @@ fn a_scene_static_start_holds_and_reports_the_same_reaction() {
     let text = |hold: &str, level: &str| {
         format!(
             "bearing = \"7205B\"\n[model]\nlevel = \"{level}\"\ncausality = \"load\"\n{hold}\n\
-             [inputs]\nrule = \"hold\"\ninitial = {{ \"load.y\" = 1000.0, \"load.z\" = 2000.0, \"shaft.omega\" = 0.0 }}\n"
+             [inputs]\nrule = \"hold\"\nspeed_rpm = 0.0\ninitial = {{ \"load.y\" = 1000.0, \"load.z\" = 2000.0 }}\n"
         )
     };
     let hold = "[model.start_hold]\nrx_mrad = 0.0\nry_mrad = 0.0";

@@ -18,9 +18,9 @@ bearing = {bearing}
 [model]
 level = "{level}"
 [inputs]
+speed_rpm = 954.9296586
 initial = {{ "shaft.x" = 0.0, "shaft.y" = -20e-6, "shaft.z" = 0.0, "shaft.rx" = 0.0, "shaft.ry" = 0.0,
-            "shaft.vx" = 0.0, "shaft.vy" = 0.0, "shaft.vz" = 0.0, "shaft.wx" = 0.0, "shaft.wy" = 0.0,
-            "shaft.omega" = 100.0 }}
+            "shaft.vx" = 0.0, "shaft.vy" = 0.0, "shaft.vz" = 0.0, "shaft.wx" = 0.0, "shaft.wy" = 0.0 }}
 "#
     )
 }
@@ -153,7 +153,7 @@ fn the_ring_level_carries_rollers_through_the_same_law() {
     // At rest both levels run the same law; at speed the quasi-static level's rollers carry
     // their centrifugal force (docs/physics.md §R9), which unloads the inner contacts at the
     // same displacement, while the ring level's rollers stay massless.
-    let at_rest = |t: String| t.replace("\"shaft.omega\" = 100.0", "\"shaft.omega\" = 0.0");
+    let at_rest = |t: String| t.replace("speed_rpm = 954.9296586", "speed_rpm = 0.0");
     let qs = force(&at_rest(scene("quasi_static", "\"NU206\"")));
     for dof in [2, 5] {
         let text =
@@ -179,7 +179,8 @@ causality = "load"
 contact_damping = 3000.0
 attached_mass_kg = 1.0
 [inputs]
-initial = { "load.x" = 0.0, "load.y" = -3000.0, "load.z" = 0.0, "load.mx" = 0.0, "load.my" = 0.0, "shaft.omega" = 100.0 }
+speed_rpm = 954.9296586
+initial = { "load.x" = 0.0, "load.y" = -3000.0, "load.z" = 0.0, "load.mx" = 0.0, "load.my" = 0.0 }
 "#;
     let mut c = Component::from_text(load).unwrap();
     let h = 1e-4;

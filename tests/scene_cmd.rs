@@ -81,7 +81,7 @@ fn missing_field_wrong_type_and_unknown_names_are_reported() {
     assert!(find("bearing.materials.ball").message.contains("si3n4"));
     assert!(find("inputs.initial.shaft.omgea")
         .message
-        .contains("did you mean `shaft.omega`"));
+        .contains("did you mean `speed_rpm`?"));
     let missing = find("effects.waviness[0].order");
     assert!(missing.message.contains("missing required field `order`"));
     assert_eq!(missing.line_col.map(|l| l.0), Some(5));
@@ -242,7 +242,7 @@ fn set(v: &mut toml::Value, path: &str, x: toml::Value) {
     let mut cur = v;
     let segs: Vec<String> = if let Some(rest) = path.strip_prefix("inputs.initial.") {
         assert_eq!(rest, "<variable>");
-        vec!["inputs".into(), "initial".into(), "shaft.omega".into()]
+        vec!["inputs".into(), "initial".into(), "shaft.y".into()]
     } else {
         path.replace("<body>", "ball")
             .split('.')
@@ -277,7 +277,7 @@ fn get<'a>(v: &'a toml::Value, path: &str) -> Option<&'a toml::Value> {
     let mut cur = v;
     let path = path.replace("<body>", "ball");
     let segs: Vec<&str> = if path.starts_with("inputs.initial.") {
-        vec!["inputs", "initial", "shaft.omega"]
+        vec!["inputs", "initial", "shaft.y"]
     } else {
         path.split('.').collect()
     };
@@ -341,7 +341,7 @@ fn table_ranges_and_spellings_agree_with_the_library() {
             .path
             .replace("[]", "[0]")
             .replace("<body>", "ball")
-            .replace("<variable>", "shaft.omega");
+            .replace("<variable>", "shaft.y");
         match f.kind {
             Kind::Float | Kind::Int => {
                 let mut outside = Vec::new();
@@ -581,4 +581,40 @@ fn a_json_null_is_refused_by_every_face_naming_the_field() {
     let ok = text.replace(r#", "roughness_um": null"#, "");
     let built = raceway::component::Component::from_text(&ok);
     assert!(built.is_ok(), "{:?}", built.err());
+}
+
+/// The speed is given in rpm (`[inputs] speed_rpm`); the old spelling in rad/s,
+/// `inputs.initial."shaft.omega"`, is refused at its line:column with the new spelling and
+/// the value it holds in rpm, by `scene --check` and by `run`.
+#[test]
+fn the_old_speed_spelling_is_refused_naming_the_new_one() {
+    let text = "bearing = \"6205\"\n[inputs]\ninitial = { \"shaft.y\" = -10e-6, \"shaft.omega\" = 183.259571 }\n";
+    let problems = raceway::component::schema::check(text);
+    assert_eq!(problems.len(), 1, "{problems:#?}");
+    let p = &problems[0];
+    assert_eq!(p.path, "inputs.initial.shaft.omega");
+    let at = place(text, "\"shaft.omega\"");
+    let (l, c) = p.line_col.unwrap();
+    assert_eq!(format!("{l}:{c}"), at, "{p}");
+    assert!(p.message.contains("did you mean `speed_rpm`?"), "{p}");
+    assert!(p.message.contains("`speed_rpm = 1750`"), "{p}");
+    let f = write_tmp("old-speed.toml", text);
+    for args in [vec!["scene", "--check"], vec!["run", "-q"]] {
+        let out = raceway(&[args.as_slice(), &[f.to_str().unwrap()]].concat());
+        assert!(!out.status.success());
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(
+            err.contains(&format!(":{at}:")) && err.contains("speed_rpm = 1750"),
+            "{err}"
+        );
+    }
+    // The new spelling: the same component input, in rad/s inside.
+    let new =
+        "bearing = \"6205\"\n[inputs]\nspeed_rpm = 1750\ninitial = { \"shaft.y\" = -10e-6 }\n";
+    assert!(raceway::component::schema::check(new).is_empty());
+    let mut c = raceway::Component::from_text(new).unwrap();
+    let w = raceway::component::variables::by_name("shaft.omega")
+        .unwrap()
+        .vr;
+    assert!((c.get_real(w).unwrap() - 1750.0 * std::f64::consts::PI / 30.0).abs() < 1e-12);
 }

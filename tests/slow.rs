@@ -13,7 +13,6 @@ fn vr(name: &str) -> u32 {
 
 /// 6012 held at `y_um` (downward) turning at `rpm`, with `effects` (TOML lines).
 fn scene(y_um: f64, rpm: f64, damping: f64, effects: &str) -> Scene {
-    let omega = rpm * std::f64::consts::TAU / 60.0;
     let text = format!(
         r#"
 bearing = "6012"
@@ -23,9 +22,9 @@ contact_damping = {damping}
 [solver]
 max_substep_s = 1e-4
 [inputs]
+speed_rpm = {rpm:?}
 initial = {{ "shaft.x" = 0.0, "shaft.y" = {y}, "shaft.z" = 0.0, "shaft.rx" = 0.0, "shaft.ry" = 0.0,
-            "shaft.vx" = 0.0, "shaft.vy" = 0.0, "shaft.vz" = 0.0, "shaft.wx" = 0.0, "shaft.wy" = 0.0,
-            "shaft.omega" = {omega} }}
+            "shaft.vx" = 0.0, "shaft.vy" = 0.0, "shaft.vz" = 0.0, "shaft.wx" = 0.0, "shaft.wy" = 0.0 }}
 [effects]
 {effects}
 "#,

@@ -14,9 +14,9 @@ bearing = "6205"
 level = "ring"
 contact_damping = 200.0
 [inputs]
+speed_rpm = 1750.004092
 initial = { "shaft.x" = 0.0, "shaft.y" = -8e-6, "shaft.z" = 0.0, "shaft.rx" = 0.0, "shaft.ry" = 0.0,
-            "shaft.vx" = 0.0, "shaft.vy" = 0.0, "shaft.vz" = 0.0, "shaft.wx" = 0.0, "shaft.wy" = 0.0,
-            "shaft.omega" = 183.26 }
+            "shaft.vx" = 0.0, "shaft.vy" = 0.0, "shaft.vz" = 0.0, "shaft.wx" = 0.0, "shaft.wy" = 0.0 }
 "#;
 
 fn vr(name: &str) -> u32 {

@@ -30,7 +30,7 @@ fn quick_sweep(dir: &Path) -> PathBuf {
 key = "run.duration_s"
 values = [0.001]
 [[axis]]
-key = 'inputs.initial."shaft.omega"'
+key = "inputs.speed_rpm"
 values = [100.0, 200.0, 300.0]
 [[axis]]
 key = "run.step_s"
@@ -197,7 +197,7 @@ fn grid_size_and_order() {
     let sw = parse(
         r#"scene = "default.toml"
 [[axis]]
-key = 'inputs.initial."shaft.omega"'
+key = "inputs.speed_rpm"
 values = [10.0, 20.0, 30.0]
 [[axis]]
 key = "run.duration_s"
@@ -234,7 +234,7 @@ values = ["6205", "6206"]
     // The point's values are in its scene.
     let scene = sw.scene(1).unwrap();
     assert_eq!(scene.run.duration_s, 0.01);
-    assert_eq!(scene.inputs.initial["shaft.omega"], 10.0);
+    assert_eq!(scene.inputs.speed_rpm, 10.0);
 }
 
 #[test]
@@ -254,7 +254,7 @@ key = 'inputs.initial."shaft.x"'
 min = 0.0
 max = 4e-6
 [[axis]]
-key = 'inputs.initial."shaft.omega"'
+key = "inputs.speed_rpm"
 values = [1.0, 2.0]
 "#
         )

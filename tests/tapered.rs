@@ -18,9 +18,9 @@ bearing = {bearing}
 level = "{level}"
 {dof}
 [inputs]
+speed_rpm = 954.9296586
 initial = {{ "shaft.x" = 0.0, "shaft.y" = {y:e}, "shaft.z" = {z:e}, "shaft.rx" = 0.0, "shaft.ry" = 0.0,
-            "shaft.vx" = 0.0, "shaft.vy" = 0.0, "shaft.vz" = 0.0, "shaft.wx" = 0.0, "shaft.wy" = 0.0,
-            "shaft.omega" = 100.0 }}
+            "shaft.vx" = 0.0, "shaft.vy" = 0.0, "shaft.vz" = 0.0, "shaft.wx" = 0.0, "shaft.wy" = 0.0 }}
 "#,
         dof = if level == "ring" { "ring_dof = 5" } else { "" }
     )
@@ -102,7 +102,8 @@ attached_mass_kg = 1.0
 contact_damping = 2000.0
 [inputs]
 rule = "hold"
-initial = { "load.x" = 0.0, "load.y" = -4000.0, "load.z" = 3000.0, "load.mx" = 0.0, "load.my" = 0.0, "shaft.omega" = 100.0 }
+speed_rpm = 954.9296586
+initial = { "load.x" = 0.0, "load.y" = -4000.0, "load.z" = 3000.0, "load.mx" = 0.0, "load.my" = 0.0 }
 "#;
     let mut c = Component::from_text(text).unwrap();
     let mut t = 0.0;

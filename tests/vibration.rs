@@ -43,7 +43,8 @@ contact_damping = 1000.0
 attached_mass_kg = 1.0
 [inputs]
 rule = "hold"
-initial = {{ "load.x" = 0.0, "load.y" = -1000.0, "load.z" = 0.0, "load.mx" = 0.0, "load.my" = 0.0, "shaft.omega" = {OMEGA} }}
+speed_rpm = 1750.0
+initial = {{ "load.x" = 0.0, "load.y" = -1000.0, "load.z" = 0.0, "load.mx" = 0.0, "load.my" = 0.0 }}
 [effects]
 {effects}
 "#

@@ -85,7 +85,6 @@ const SHAFT_MASS_KG: f64 = 7800.0 * std::f64::consts::PI * 0.025 * 0.025 * 0.120
 /// 0.01 m/s regularising speed; full level, `ball_contacts` dynamic or the default; RODAS4
 /// at the 7004 scenes' rtol 1e-5.
 pub fn scene(rpm: f64, dynamic: bool) -> String {
-    let omega = rpm * std::f64::consts::PI / 30.0;
     format!(
         "title = \"Exudyn ball-bearing test geometry at {rpm} rpm, 200 N axial, full level\"\n\
          [bearing]\nname = \"exudyn-6010\"\nkind = \"deep_groove\"\nball_diameter_mm = 8.73\n\
@@ -95,8 +94,8 @@ pub fn scene(rpm: f64, dynamic: bool) -> String {
          attached_mass_kg = {SHAFT_MASS_KG}\n\n[model.full]\nball_contacts = \"{}\"\n\
          traction = {{ law = \"coulomb\", mu_max = 0.2, v_s = 0.01 }}\n\n\
          [solver]\nmethod = \"rosenbrock\"\nrtol = 1e-5\natol_m = 1e-9\n\n\
-         [inputs]\nrule = \"velocity\"\n\
-         initial = {{ \"load.x\" = 0.0, \"load.y\" = {}, \"load.z\" = 200.0, \"load.mx\" = 0.0, \"load.my\" = 0.0, \"shaft.omega\" = {omega} }}\n\n\
+         [inputs]\nrule = \"velocity\"\nspeed_rpm = {rpm}\n\
+         initial = {{ \"load.x\" = 0.0, \"load.y\" = {}, \"load.z\" = 200.0, \"load.mx\" = 0.0, \"load.my\" = 0.0 }}\n\n\
          [run]\nduration_s = 0.05\nstep_s = 1e-4\n",
         if dynamic { "dynamic" } else { "quasi_static" },
         -9.81 * SHAFT_MASS_KG

@@ -5,9 +5,5 @@
 /// The scene text.
 pub fn scene() -> String {
     let text = include_str!("../../examples/scenes/7008ce-runup.toml");
-    let omega = 6000.0 * std::f64::consts::PI / 30.0;
-    text.replace(
-        "\"shaft.omega\" = 0.0",
-        &format!("\"shaft.omega\" = {omega}"),
-    )
+    text.replace("speed_rpm = 0.0", "speed_rpm = 6000.0")
 }

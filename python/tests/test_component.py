@@ -12,9 +12,10 @@ bearing = "6205"
 [model]
 level = "ring"
 [inputs]
+speed_rpm = 1750.0
 initial = { "shaft.x" = 0.0, "shaft.y" = -10e-6, "shaft.z" = 0.0, "shaft.rx" = 0.0,
             "shaft.ry" = 0.0, "shaft.vx" = 0.0, "shaft.vy" = 0.0, "shaft.vz" = 0.0,
-            "shaft.wx" = 0.0, "shaft.wy" = 0.0, "shaft.omega" = 183.26 }
+            "shaft.wx" = 0.0, "shaft.wy" = 0.0 }
 """
 
 H = 1e-4
@@ -32,8 +33,9 @@ def test_scene_as_text_path_and_dict_give_the_same_bearing(tmp_path):
     path.write_text(SCENE)
     initial = {n: 0.0 for n in ("shaft.x", "shaft.z", "shaft.rx", "shaft.ry", "shaft.vx")}
     initial.update({n: 0.0 for n in ("shaft.vy", "shaft.vz", "shaft.wx", "shaft.wy")})
-    initial.update({"shaft.y": -10e-6, "shaft.omega": 183.26})
-    as_dict = {"bearing": "6205", "model": {"level": "ring"}, "inputs": {"initial": initial}}
+    initial.update({"shaft.y": -10e-6})
+    as_dict = {"bearing": "6205", "model": {"level": "ring"},
+               "inputs": {"speed_rpm": 1750.0, "initial": initial}}
     outs = [stepped(raceway.Component(s), 3) for s in (SCENE, path, str(path), as_dict)]
     for o in outs[1:]:
         assert o == outs[0]
@@ -143,3 +145,22 @@ def test_misuse_raises_raceway_error_naming_the_argument():
         with pytest.raises(raceway.Error) as e:
             raceway.Component(scene)
         assert "nests deeper than 16 levels" in e.value.message
+
+
+def test_unset_inputs_hold_the_scenes_initial_values_as_the_cli_does(tmp_path, cli):
+    """One rule for unset inputs: the default scene's component, never given an input,
+    holds the scene's initial values, so its force at t = 0 and after one step equals the
+    first two rows of `raceway run`."""
+    import csv
+
+    cli("run", "-q", "--duration", "0.0002", "--out", str(tmp_path))
+    with open(tmp_path / "series.csv") as f:
+        rows = list(csv.DictReader(f))[:2]
+    want = [(float(r["force.x [N]"]), float(r["force.y [N]"])) for r in rows]
+    c = raceway.Component()
+    assert c.get("shaft.y") == -10e-6 and c.get("shaft.x") == 0.0
+    got = [(c.get("force.x"), c.get("force.y"))]
+    c.do_step(0.0, 1e-4)
+    got.append((c.get("force.x"), c.get("force.y")))
+    for g, w in zip(got, want):
+        assert g == pytest.approx(w, abs=1e-9 * abs(want[0][1]))

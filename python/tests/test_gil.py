@@ -12,7 +12,7 @@ def scene(duration):
         "bearing": "6205",
         "model": {"level": "ring"},
         "run": {"duration_s": duration},
-        "inputs": {"initial": {"shaft.y": -10e-6, "shaft.omega": 183.26}},
+        "inputs": {"speed_rpm": 1750.0, "initial": {"shaft.y": -10e-6}},
     }
 
 

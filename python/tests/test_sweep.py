@@ -35,7 +35,7 @@ def test_points_rows_and_pickling(root, cli_table):
     assert sw.columns == [c for c in cli_table.columns[1:5]]
     p = sw.point(5)
     assert list(p) == sw.columns
-    assert p['inputs.initial.shaft.omega_rad/s'] == cli_table.loc[5, 'inputs.initial.shaft.omega_rad/s']
+    assert p['inputs.speed_rpm'] == cli_table.loc[5, 'inputs.speed_rpm']
     # A pickled sweep carries its base scene: the same points anywhere.
     again = pickle.loads(pickle.dumps(sw))
     assert len(again) == 18 and again.scene_text(7) == sw.scene_text(7)

@@ -48,7 +48,7 @@ pub enum RacewayStatus {
     InvalidArgument = 2,
     /// A required pointer was NULL.
     NullPointer = 3,
-    /// A call not allowed now (inputs never set, time running backwards, writing an
+    /// A call not allowed now (time running backwards, writing an
     /// output, a state of another scene).
     CallOrder = 4,
     /// The internal integration failed; the state is unchanged.
@@ -447,9 +447,11 @@ pub unsafe extern "C" fn raceway_variable_type(vr: u32, ty: *mut RacewayType) ->
 // Instances
 
 /// Create an instance from scene text (TOML or JSON, NUL-terminated UTF-8). Returns NULL
-/// when the scene is refused, with the message (naming the field, value and allowed
-/// range) copied into `error` (at most `error_len` bytes including the terminating NUL;
-/// `error` may be NULL).
+/// when the scene is refused, with the message (every problem of the scene as `raceway
+/// scene --check` gives it: `line:column`, the field, the allowed range, "did you mean")
+/// copied into `error` (at most `error_len` bytes including the terminating NUL;
+/// `error` may be NULL). Every input starts at the scene's initial value
+/// (`[inputs] initial`, absent: 0) and holds it until it is set.
 ///
 /// # Safety
 /// `scene` is NULL or NUL-terminated; `error` is NULL or valid for `error_len` bytes.
@@ -471,7 +473,10 @@ pub unsafe extern "C" fn raceway_create(
                 e.valid_up_to()
             )
         })?;
-        Component::from_text(text).map_err(|e| format!("raceway_create: {e}"))
+        Component::from_text(text).map_err(|e| {
+            let why = crate::component::schema::scene_error_text(text, &e);
+            format!("raceway_create: scene: {why}")
+        })
     }));
     let message = match made {
         Ok(Ok(component)) => {

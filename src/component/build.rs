@@ -7,8 +7,8 @@ use super::static_start::static_start;
 use super::system::{JacWork, RingBody, Work};
 use super::variables::SCALARS;
 use super::{
-    fingerprint, index_of, limits, n_variables, scene, variables, Causality, Component, Scene,
-    State, AUX_COMPONENT, I_LOAD,
+    fingerprint, limits, n_variables, scene, Causality, Component, Scene, State, AUX_COMPONENT,
+    I_LOAD,
 };
 use crate::error::Result;
 use crate::geometry::Bearing;
@@ -142,11 +142,13 @@ impl Component {
             outputs_stale: true,
             ..State::default()
         };
-        for (name, value) in &scene.inputs.initial {
-            let v = variables::by_name(name).expect("validated");
-            let i = index_of(v.vr).expect("in table");
-            state.inputs[i] = *value;
-            state.inputs_set |= 1 << i;
+        // Every input of this causality starts at the scene's initial value (absent: 0)
+        // and counts as set: an input a host never sets holds it.
+        for (i, v) in SCALARS.iter().enumerate() {
+            if v.is_input(causality) {
+                state.inputs[i] = scene.inputs.initial_value(v.name);
+                state.inputs_set |= 1 << i;
+            }
         }
         let motion = motion_at(
             &state,
@@ -232,11 +234,6 @@ impl Component {
             budget_gap: 1,
             state_shared: false.into(),
             start_held,
-            required_inputs: SCALARS
-                .iter()
-                .enumerate()
-                .filter(|(_, v)| v.is_input(causality))
-                .fold(0, |m, (i, _)| m | 1 << i),
             jwork,
             scene,
             bearing,
@@ -250,9 +247,7 @@ impl Component {
             integrator,
             opts,
         };
-        if c.missing_inputs().is_empty() {
-            c.refresh_outputs()?;
-        }
+        c.refresh_outputs()?;
         Ok(c)
     }
 }

@@ -97,30 +97,6 @@ impl Component {
         Ok(i)
     }
 
-    pub(super) fn missing_inputs(&self) -> Vec<&'static str> {
-        SCALARS
-            .iter()
-            .enumerate()
-            .filter(|(i, v)| v.is_input(self.causality()) && self.state.inputs_set & (1 << i) == 0)
-            .map(|(_, v)| v.name)
-            .collect()
-    }
-
-    /// Refuse `call` while some input of this causality was never set (names them).
-    pub(super) fn require_inputs(&self, call: &'static str) -> Result<()> {
-        if self.state.inputs_set & self.required_inputs == self.required_inputs {
-            return Ok(());
-        }
-        let missing = self.missing_inputs();
-        if missing.is_empty() {
-            return Ok(());
-        }
-        Err(Error::CallOrder {
-            call,
-            reason: format!("inputs never set: {}", missing.join(", ")),
-        })
-    }
-
     /// Refuse a step whose inputs, moved along the scene's rule to the step end `h`, leave
     /// their plausibility limits (a velocity or derivative that carries a position off).
     pub(super) fn check_inputs_at(&self, h: f64) -> Result<()> {

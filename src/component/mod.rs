@@ -117,9 +117,6 @@ pub struct Component {
     /// Evaluations before a step's CPU budget first reads the clock: the last step's
     /// estimate (a clock read is a system call, 0.2–0.4 µs).
     budget_gap: u32,
-    /// Bits (as in `State::inputs_set`) of the inputs of this causality: every step checks
-    /// that they were all set.
-    required_inputs: u64,
     /// A state was taken or set since the last step: the next step's W-method starts with
     /// a fresh Jacobian, not the one the last step ended with, so that a state continues
     /// bit for bit wherever it is restored ([`OdeSystem::carries_jacobian`]).
@@ -194,8 +191,8 @@ impl Component {
 
     /// Get an input or output by value reference. Outputs always belong to the current
     /// inputs and state: those of the last step, or, when an input or the state was set
-    /// since, evaluated now (see [`Component::ensure_outputs`]); an output read while an
-    /// input was never set is refused naming it.
+    /// since, evaluated now (see [`Component::ensure_outputs`]). An input never set holds
+    /// the scene's initial value ([`scene::InputSpec::initial_value`]).
     pub fn get_real(&mut self, vr: u32) -> Result<f64> {
         let v = variables::by_vr(vr)
             .ok_or_else(|| Error::invalid("value reference", vr, "a variable of the table"))?;

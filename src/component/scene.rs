@@ -177,23 +177,61 @@ crate::declare_fields!(SolverSpec {
 pub struct InputSpec {
     /// How inputs move inside a step.
     pub rule: InputRule,
-    /// Values at the start, by variable name (e.g. `"shaft.omega" = 183.26`).
+    /// Shaft speed at the start, rpm: the input `shaft.omega` (rad/s inside).
+    pub speed_rpm: f64,
+    /// Values at the start, by variable name (e.g. `"shaft.y" = -10e-6`), SI; the speed
+    /// is [`InputSpec::speed_rpm`].
     pub initial: BTreeMap<String, f64>,
 }
 
+/// The input variable a scene gives in rpm (`inputs.speed_rpm`), never in
+/// `inputs.initial`.
+pub const SPEED_VARIABLE: &str = "shaft.omega";
+
 crate::declare_fields!(InputSpec {
     rule: InputRule::default() => choice(&["hold", "velocity", "derivatives"], "how inputs move inside a step"),
+    speed_rpm: 0.0 => number("rpm", ANY, "shaft speed at the start (the input shaft.omega, rad/s inside)")
+        .note("within the bearing's burst speed (plausibility limits)"),
     initial: BTreeMap::new() => table(),
 });
 
 impl InputSpec {
+    /// The value input `name` holds until a host sets it: the one rule for unset inputs on
+    /// every face (Rust, C, Python, FMI, CLI). It is the scene's initial value (its
+    /// operating point): the `initial` entry, else 0.
+    pub fn initial_value(&self, name: &str) -> f64 {
+        if name == SPEED_VARIABLE {
+            return crate::units::rpm_to_rad_s(self.speed_rpm);
+        }
+        self.initial.get(name).copied().unwrap_or(0.0)
+    }
+
+    /// Make `value` (SI) the initial value of input `name`: `speed_rpm` for the shaft
+    /// speed, the `initial` entry otherwise.
+    pub fn set_initial(&mut self, name: &str, value: f64) {
+        if name == SPEED_VARIABLE {
+            self.speed_rpm = crate::units::rad_s_to_rpm(value);
+        } else {
+            self.initial.insert(name.to_string(), value);
+        }
+    }
+
+    /// The refusal of the old spelling `inputs.initial."shaft.omega"` (rad/s), naming the
+    /// new one with the value it holds in rpm.
+    pub fn old_speed_message(rad_s: f64) -> String {
+        format!(
+            "the shaft speed is given in rpm now: `speed_rpm = {}` in [inputs] (this entry, in rad/s, is no longer read)",
+            (crate::units::rad_s_to_rpm(rad_s) * 1e4).round() / 1e4
+        )
+    }
+
     /// The one row of `inputs.initial`, a table keyed by input variable.
     pub const INITIAL: &'static [super::fields::FieldDecl] = &[number(
         "SI unit of the variable",
         ANY,
-        "input value at the start, by variable name (e.g. \"shaft.omega\" in rad/s)",
+        "input value at the start, by variable name (e.g. \"shaft.y\" in m)",
     )
-    .note("only inputs of the scene's causality; absent: 0; within the bearing's plausibility limits (below)")
+    .note("only inputs of the scene's causality, the speed excepted (inputs.speed_rpm); absent: 0; within the bearing's plausibility limits (below)")
     .named("<variable>")];
 }
 
@@ -206,7 +244,7 @@ pub struct RunSpec {
     pub duration_s: f64,
     /// Communication (output) step, s.
     pub step_s: f64,
-    /// Shaft speed ramp, rpm/s, added to the initial `shaft.omega` (start from rest: initial
+    /// Shaft speed ramp, rpm/s, added to `inputs.speed_rpm` (start from rest: initial
     /// speed 0 and a ramp).
     pub speed_ramp_rpm_per_s: f64,
     /// Motion-driven: radius of a circular shaft orbit added to the initial displacement, µm.
@@ -222,7 +260,7 @@ crate::declare_fields!(RunSpec {
         .note("at most 1e7 steps of step_s"),
     step_s: 1e-4 => number("s", gt(0.0), "communication (output) step")
         .note("<= duration_s, at most 1e7 steps"),
-    speed_ramp_rpm_per_s: 0.0 => number("rpm/s", ANY, "shaft speed ramp added to the initial shaft.omega")
+    speed_ramp_rpm_per_s: 0.0 => number("rpm/s", ANY, "shaft speed ramp added to inputs.speed_rpm")
         .note("the speed at the end of the run within the burst speed (plausibility limits)"),
     orbit_um: 0.0 => number("µm", ANY, "motion-driven: radius of a circular shaft orbit")
         .note("within the radial displacement limit (plausibility limits)"),
@@ -375,12 +413,7 @@ impl Scene {
     fn check_run_limits(&self, lim: &super::limits::Limits) -> Result<()> {
         let r = &self.run;
         let rpm = std::f64::consts::PI / 30.0;
-        let w0 = self
-            .inputs
-            .initial
-            .get("shaft.omega")
-            .copied()
-            .unwrap_or(0.0);
+        let w0 = self.inputs.initial_value(SPEED_VARIABLE);
         let w_end = w0 + r.speed_ramp_rpm_per_s * rpm * r.duration_s;
         if !(w_end.is_finite() && w_end.abs() <= lim.omega) {
             let most = (lim.omega - w0.abs()).max(0.0) / (rpm * r.duration_s);
@@ -599,7 +632,16 @@ impl Scene {
         ] {
             lim.check(&format!("model.operating_point.{f} (SI)"), name, v)?;
         }
+        let speed = self.inputs.initial_value(SPEED_VARIABLE);
+        lim.check("inputs.speed_rpm (SI)", SPEED_VARIABLE, speed)?;
         for (name, value) in &self.inputs.initial {
+            if name == SPEED_VARIABLE {
+                return Err(Error::invalid(
+                    format!("inputs.initial.{name}"),
+                    value,
+                    InputSpec::old_speed_message(*value),
+                ));
+            }
             let var = variables::by_name(name).ok_or_else(|| Error::Unknown {
                 what: "input variable",
                 name: name.clone(),

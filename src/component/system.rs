@@ -600,11 +600,8 @@ mod tests {
 
     /// The shipped run-up scene (skidding, load-driven, RODAS4) at 6000 rpm.
     fn runup_scene() -> Scene {
-        let omega = 6000.0 * std::f64::consts::PI / 30.0;
-        let text = include_str!("../../examples/scenes/7008ce-runup.toml").replace(
-            "\"shaft.omega\" = 0.0",
-            &format!("\"shaft.omega\" = {omega}"),
-        );
+        let text = include_str!("../../examples/scenes/7008ce-runup.toml")
+            .replace("speed_rpm = 0.0", "speed_rpm = 6000.0");
         Scene::from_text(&text).unwrap()
     }
 

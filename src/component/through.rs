@@ -119,7 +119,6 @@ impl Component {
             return Err(Error::invalid("h", h, "a finite step > 0"));
         }
         self.check_step_call(CALL, t, span)?;
-        self.require_inputs(CALL)?;
         let rule = self.scene.inputs.rule;
         let continuing = self.work.fsal_matches(&self.state, self.n_level_aux, rule);
         if !continuing {

@@ -454,8 +454,37 @@ fn preamble(c: Causality, fmi3: bool) -> String {
     x
 }
 
-/// FMI 2.0 co-simulation `modelDescription.xml` of the variant of causality `c`.
+/// The `start` of each input of the FMU of causality `c` carrying `scene` as
+/// `resources/scene.toml` (`None`: none, the default scene), in [`inputs`] order: the
+/// scene's initial value, which the FMU holds until the host sets the input
+/// ([`crate::component::scene::InputSpec::initial_value`]). The error names the scene's
+/// problem.
+pub fn input_starts(c: Causality, scene: Option<&str>) -> Result<Vec<f64>, String> {
+    let resource = scene.map(|t| Ok(t.to_string()));
+    super::params::input_starts(&super::params::unset(), resource.as_ref(), c)
+}
+
+/// ` min=… max=… start=…` of input `v` with start value `start`.
+fn input_attrs(v: &Variable, start: f64) -> String {
+    format!("{} start=\"{}\"", range_attr(v.name), num(start))
+}
+
+/// FMI 2.0 co-simulation `modelDescription.xml` of the variant of causality `c` without a
+/// scene of its own (the inputs' start values are the default scene's).
 pub fn fmi2(c: Causality) -> String {
+    fmi2_with(c, None).expect("the default scene builds")
+}
+
+/// FMI 3.0 co-simulation `modelDescription.xml` of the variant of causality `c` without a
+/// scene of its own (the inputs' start values are the default scene's).
+pub fn fmi3(c: Causality) -> String {
+    fmi3_with(c, None).expect("the default scene builds")
+}
+
+/// FMI 2.0 co-simulation `modelDescription.xml` of the variant of causality `c` carrying
+/// `scene` (its inputs' `start` from [`input_starts`]).
+pub fn fmi2_with(c: Causality, scene: Option<&str>) -> Result<String, String> {
+    let starts = input_starts(c, scene)?;
     let mut x = preamble(c, false);
     // 1-based indices, needed by <ModelStructure>
     let mut index = 0usize;
@@ -469,7 +498,7 @@ pub fn fmi2(c: Causality) -> String {
         let input = v.is_input(c);
         let (caus, init, start) = if input {
             input_idx.push((index, v.vr));
-            ("input", "", format!("{} start=\"0\"", range_attr(v.name)))
+            ("input", "", input_attrs(v, starts[input_idx.len() - 1]))
         } else {
             outputs.push((index, v));
             ("output", " initial=\"calculated\"", String::new())
@@ -545,11 +574,14 @@ pub fn fmi2(c: Causality) -> String {
         );
     }
     x.push_str("    </InitialUnknowns>\n  </ModelStructure>\n</fmiModelDescription>\n");
-    x
+    Ok(x)
 }
 
-/// FMI 3.0 co-simulation `modelDescription.xml` of the variant of causality `c`.
-pub fn fmi3(c: Causality) -> String {
+/// FMI 3.0 co-simulation `modelDescription.xml` of the variant of causality `c` carrying
+/// `scene` (its inputs' `start` from [`input_starts`]).
+pub fn fmi3_with(c: Causality, scene: Option<&str>) -> Result<String, String> {
+    let starts = input_starts(c, scene)?;
+    let mut starts_iter = starts.iter();
     let mut x = preamble(c, true);
     let _ = writeln!(
         x,
@@ -559,7 +591,8 @@ pub fn fmi3(c: Causality) -> String {
     for v in io_variables(c) {
         let input = v.is_input(c);
         let (caus, extra) = if input {
-            ("input", format!("{} start=\"0\"", range_attr(v.name)))
+            let start = *starts_iter.next().expect("one start per input");
+            ("input", input_attrs(v, start))
         } else {
             ("output", " initial=\"calculated\"".to_string())
         };
@@ -625,7 +658,7 @@ pub fn fmi3(c: Causality) -> String {
         );
     }
     x.push_str("  </ModelStructure>\n</fmiModelDescription>\n");
-    x
+    Ok(x)
 }
 
 /// The platforms the FMUs carry binaries for (FMI 2 folder, FMI 3 tuple). Other targets

@@ -113,13 +113,14 @@ pub(crate) fn scene(
     initial: &[(&str, f64)],
 ) -> Result<(Scene, &'static str), String> {
     let (mut scene, source) = if let Some(text) = string(values, "scene") {
-        let s = Scene::from_text(text).map_err(|e| format!("parameter `scene`: {e}"))?;
+        let s = Scene::from_text(text).map_err(|e| scene_error("parameter `scene`", text, &e))?;
         (s, "the `scene` parameter")
     } else if let Some(r) = resource_scene {
         let text = r
             .as_ref()
             .map_err(|e| format!("resources/scene.toml: {e}"))?;
-        let s = Scene::from_text(text).map_err(|e| format!("resources/scene.toml: {e}"))?;
+        let s =
+            Scene::from_text(text).map_err(|e| scene_error("resources/scene.toml", text, &e))?;
         (s, "resources/scene.toml")
     } else {
         (Scene::default_scene(), "the default scene")
@@ -143,7 +144,7 @@ pub(crate) fn scene(
         (Causality::Motion, Causality::Motion) => {}
     }
     for &(name, value) in initial {
-        scene.inputs.initial.insert(name.to_string(), value);
+        scene.inputs.set_initial(name, value);
     }
     if let Some(name) = string(values, "bearing") {
         crate::geometry::preset(name).map_err(|e| format!("parameter `bearing`: {e}"))?;
@@ -196,20 +197,57 @@ pub(crate) fn scene(
     Ok((scene, source))
 }
 
+/// The value each input of the FMU of causality `causality` holds until the host sets it,
+/// in the order of [`md::inputs`](super::model_description::inputs): the scene's initial
+/// value ([`crate::component::scene::InputSpec::initial_value`]) of the scene the
+/// parameters make. The model description's `start` attributes are these numbers for the
+/// scene the FMU carries.
+pub(crate) fn input_starts(
+    values: &ParamValues,
+    resource_scene: Option<&Result<String, String>>,
+    causality: Causality,
+) -> Result<Vec<f64>, String> {
+    let (scene, _) = scene(values, None, resource_scene, causality, &[])?;
+    Ok(super::model_description::inputs(causality)
+        .map(|v| scene.inputs.initial_value(v.name))
+        .collect())
+}
+
+/// A scene text that failed with `e`: every problem with its `line:column` and "did you
+/// mean", as `raceway scene --check` gives them.
+fn scene_error(source: &str, text: &str, e: &crate::Error) -> String {
+    format!(
+        "{source}: {}",
+        crate::component::schema::scene_error_text(text, e)
+    )
+}
+
 /// Build the component of a [`scene`] and where its text came from (`values`: the
-/// parameters it was made with). The error names the cause.
+/// parameters it was made with; `resource_scene`: the FMU's own scene, as for [`scene`]).
+/// The error names the cause; a scene text the host's parameters left as it was is checked
+/// as `raceway scene --check` does (every problem, with its `line:column`).
 pub(crate) fn component(
     values: &ParamValues,
+    resource_scene: Option<&Result<String, String>>,
     (scene, source): (Scene, &'static str),
 ) -> Result<(Component, &'static str), String> {
     let c = Component::new(scene).map_err(|e| {
         let set: Vec<&str> = PARAMETERS
             .iter()
             .zip(values)
-            .filter(|(_, v)| v.is_some())
+            .filter(|(p, v)| v.is_some() && p.name != "scene")
             .map(|(p, _)| p.name)
             .collect();
-        if set.is_empty() {
+        let text = match source {
+            "the `scene` parameter" => string(values, "scene"),
+            "resources/scene.toml" => resource_scene
+                .and_then(|r| r.as_ref().ok())
+                .map(String::as_str),
+            _ => None,
+        };
+        if let (true, Some(text)) = (set.is_empty(), text) {
+            scene_error(source, text, &e)
+        } else if set.is_empty() {
             format!("{source}: {e}")
         } else {
             format!("{source} with parameters {}: {e}", set.join(", "))

@@ -384,3 +384,30 @@ fn a_start_time_no_step_could_leave_is_refused_at_set_up_by_name() {
     a.do_step(-5e8, 0.2).map_err(|(_, f)| f.msg).unwrap();
     assert!((a.time - (-5e8 + 0.2)).abs() < 1e-6);
 }
+
+/// A bad scene through the FMU (the `scene` parameter or resources/scene.toml) is reported
+/// as `raceway scene --check` reports it: every problem with its line:column and the
+/// nearest known name, the parse problems and the library's own refusals alike.
+#[test]
+fn scene_errors_carry_line_column_and_suggestions() {
+    let s = |t: &str| ParamValue::Str(t.to_string());
+    let sc = |v: &params::ParamValues, res| params::scene(v, None, res, M, &[]);
+    let typo = "bearing = \"6205\"\n[model]\nlevl = \"ring\"\n[solver]\nrtol = 0.5\n";
+    let e = sc(&values(&[("scene", s(typo))]), None).unwrap_err();
+    assert!(e.starts_with("parameter `scene`: 2 problem(s)"), "{e}");
+    assert!(
+        e.contains("3:1: `model.levl`: unknown key `levl`; did you mean `level`?"),
+        "{e}"
+    );
+    assert!(e.contains("5:8: `solver.rtol`"), "{e}");
+    let resource = Ok(typo.to_string());
+    let e = sc(&params::unset(), Some(&resource)).unwrap_err();
+    assert!(e.starts_with("resources/scene.toml: 2 problem(s)"), "{e}");
+    // A scene that parses but that the library refuses: located by its field path.
+    let old = "bearing = \"6205\"\n[inputs]\ninitial = { \"shaft.omega\" = 183.26 }\n";
+    let v = values(&[("scene", s(old))]);
+    let scene = sc(&v, None).unwrap();
+    let e = params::component(&v, None, scene).map(|_| ()).unwrap_err();
+    assert!(e.contains("3:13: `inputs.initial.shaft.omega`"), "{e}");
+    assert!(e.contains("did you mean `speed_rpm`?"), "{e}");
+}

@@ -798,8 +798,19 @@ pub fn square_equilibrium(
 
 /// `scene` (ending in its `[inputs]` table) with the inputs `v` as its initial values.
 fn with_initial(scene: &str, v: &[(&str, f64)]) -> String {
-    let initial: Vec<String> = v.iter().map(|(n, x)| format!("\"{n}\" = {x:e}")).collect();
-    format!("{scene}initial = {{ {} }}\n", initial.join(", "))
+    // The speed goes in rpm as `speed_rpm`, the other inputs into `initial`.
+    let speed = crate::component::scene::SPEED_VARIABLE;
+    let rpm: String = v
+        .iter()
+        .filter(|(n, _)| *n == speed)
+        .map(|(_, x)| format!("speed_rpm = {:e}\n", crate::units::rad_s_to_rpm(*x)))
+        .collect();
+    let initial: Vec<String> = v
+        .iter()
+        .filter(|(n, _)| *n != speed)
+        .map(|(n, x)| format!("\"{n}\" = {x:e}"))
+        .collect();
+    format!("{scene}{rpm}initial = {{ {} }}\n", initial.join(", "))
 }
 
 /// The message of a caught panic.

@@ -80,9 +80,9 @@ impl Case {
 
 /// A case's scene: `head` (title, bearing, level, ring DOFs), then what every case shares
 /// (a load-driven inner ring of 1 kg released from rest, contact damping 3000 N s/m), then
-/// the initial inputs.
+/// the shaft speed (rpm) and the initial inputs.
 macro_rules! released {
-    ($head:literal, $initial:literal) => {
+    ($head:literal, $speed_rpm:literal, $initial:literal) => {
         concat!(
             $head,
             r#"causality = "load"
@@ -90,7 +90,9 @@ start = "rest"
 contact_damping = 3000.0
 attached_mass_kg = 1.0
 [inputs]
-initial = "#,
+speed_rpm = "#,
+            $speed_rpm,
+            "\ninitial = ",
             $initial,
             "\n"
         )
@@ -105,7 +107,8 @@ bearing = { preset = "6205", clearance_um = 10.0 }
 level = "LEVEL"
 ring_dof = 2
 "#,
-    r#"{ "load.x" = 0.0, "load.y" = -1000.0, "load.z" = 0.0, "load.mx" = 0.0, "load.my" = 0.0, "shaft.omega" = 183.259571 }"#
+    "1750.0",
+    r#"{ "load.x" = 0.0, "load.y" = -1000.0, "load.z" = 0.0, "load.mx" = 0.0, "load.my" = 0.0 }"#
 );
 
 const RING5_7008: &str = released!(
@@ -116,7 +119,8 @@ bearing = "7008ce"
 level = "LEVEL"
 ring_dof = 5
 "#,
-    r#"{ "load.x" = 0.0, "load.y" = -1000.0, "load.z" = 500.0, "load.mx" = 0.0, "load.my" = 0.0, "shaft.omega" = 628.318531 }"#
+    "6000.0",
+    r#"{ "load.x" = 0.0, "load.y" = -1000.0, "load.z" = 500.0, "load.mx" = 0.0, "load.my" = 0.0 }"#
 );
 
 /// The cases: load-driven inner rings released from the centre under load (they fall
@@ -216,7 +220,8 @@ pocket_friction = 0.05
 drag_coefficient = 15.0
 drag_density = 10.0
 [inputs]
-initial = { "load.x" = 0.0, "load.y" = -100.0, "load.z" = 300.0, "load.mx" = 0.0, "load.my" = 0.0, "shaft.omega" = 628.318531 }
+speed_rpm = 6000.0
+initial = { "load.x" = 0.0, "load.y" = -100.0, "load.z" = 300.0, "load.mx" = 0.0, "load.my" = 0.0 }
 "#;
 
 /// Settings of a study.
@@ -571,7 +576,7 @@ pub fn peer_parameters(case: &Case) -> Result<String> {
         crate::models::ring::RingDof::Two,
         scene.model.contact_damping,
     );
-    let omega = scene.inputs.initial["shaft.omega"];
+    let omega = scene.inputs.initial_value("shaft.omega");
     let v = serde_json::json!({
         "case": case.name,
         "z": b.z,

@@ -16,8 +16,8 @@
 //! seed = 1
 //!
 //! [[axis]]
-//! key = 'inputs.initial."shaft.omega"'   # a scene field by its dotted TOML key
-//! values = [100.0, 200.0]                # a list ...
+//! key = "inputs.speed_rpm"              # a scene field by its dotted TOML key
+//! values = [1000.0, 2000.0]              # a list ...
 //! [[axis]]
 //! key = "run.duration_s"
 //! start = 0.01                            # ... a range: start, stop and num (both ends

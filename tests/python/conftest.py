@@ -217,3 +217,25 @@ def host(unzipped):
 def copy_fmu_dir(src, dst):
     shutil.copytree(src, dst)
     return dst
+
+
+@pytest.fixture(scope="session")
+def cli_first_rows(tmp_path_factory):
+    """(force.x, force.y) of the default scene's first two rows of `raceway run` (t = 0 and
+    t = 1e-4 s); the program is RACEWAY_BIN, else target/debug or target/release."""
+    import csv
+    import subprocess
+
+    target = ROOT / os.environ.get("CARGO_TARGET_DIR", "target")
+    candidates = [os.environ.get("RACEWAY_BIN")] + [
+        str(target / p / "raceway") for p in ("debug", "release")
+    ]
+    exe = next((c for c in candidates if c and os.path.exists(c)), None)
+    if exe is None:
+        pytest.fail("no raceway binary: run `cargo build` or set RACEWAY_BIN")
+    out = tmp_path_factory.mktemp("first-rows")
+    subprocess.run([exe, "run", "-q", "--duration", "0.0002", "--out", str(out)], check=True)
+    with open(out / "series.csv") as f:
+        rows = list(csv.DictReader(f))
+    assert [float(r["t [s]"]) for r in rows[:2]] == [0.0, 1e-4]
+    return [(float(r["force.x [N]"]), float(r["force.y [N]"])) for r in rows[:2]]

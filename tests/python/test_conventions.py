@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 from fmpy.fmi1 import FMICallException
 
-from conftest import ROOT, VERSIONS, fmu_path
+from conftest import LOAD_VERSIONS, ROOT, VERSIONS, fmu_path
 
 # quasi-static level (the default scene), motion held inside a step, shaft 10 µm down
 START = {"input_rule": "hold", "shaft.x": 2e-6, "shaft.y": -10e-6, "shaft.omega": 183.26}
@@ -152,3 +152,33 @@ def test_toolbox_container_runs_the_fmu_in_fmpy(version, tmp_path):
     assert run.returncode == 0, run.stdout + run.stderr
     fy = np.array([float(x) for x in run.stdout.strip().splitlines()[-1].split()])
     assert fy.size == 21 and np.all(np.isfinite(fy)) and fy[-1] > 100.0, run.stdout
+
+
+@pytest.mark.parametrize("version", VERSIONS + LOAD_VERSIONS)
+def test_unset_inputs_hold_the_start_values_the_model_description_gives(host, version):
+    """One rule for unset inputs: an input the host never sets holds the scene's initial
+    value, and the model description's `start` is that value (default scene: shaft 10 µm
+    down at 1750 rpm; the load-driven FMU keeps only the speed, its loads start at 0)."""
+    h = host(version)
+    inputs = [v for v in h.md.modelVariables if v.causality == "input"]
+    starts = {v.name: float(v.start) for v in inputs}
+    assert starts["shaft.omega"] == pytest.approx(1750 * np.pi / 30, rel=1e-15)
+    if version in VERSIONS:
+        assert starts["shaft.y"] == -10e-6
+    assert sum(1 for s in starts.values() if s != 0.0) == (2 if version in VERSIONS else 1)
+    h.init()
+    assert h.get(list(starts)) == list(starts.values())
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+def test_nothing_set_gives_the_force_of_the_clis_first_rows(host, version, cli_first_rows):
+    """The default scene stepped without setting anything: its force at t = 0 and after one
+    step of 1e-4 s equals `raceway run`'s first two rows."""
+    h = host(version).init()
+    got = [tuple(h.get(["force.x", "force.y"]))]
+    h.step(0.0, 1e-4)
+    got.append(tuple(h.get(["force.x", "force.y"])))
+    scale = abs(cli_first_rows[0][1])
+    assert scale > 500.0
+    for g, w in zip(got, cli_first_rows):
+        assert g == pytest.approx(w, abs=1e-9 * scale)

@@ -560,10 +560,10 @@ def test_scene_from_resources_in_a_folder_needing_percent_encoding(unzipped, ver
     d = copy_fmu_dir(unzipped[version], tmp_path / "a folder with spaces %20 and ü" / "fmu")
     (d / "resources").mkdir()
     (d / "resources" / "scene.toml").write_text(
-        'bearing = "6205"\n[inputs]\ninitial = { "shaft.x" = 7e-6, "shaft.omega" = 100.0 }\n'
+        'bearing = "6205"\n[inputs]\nspeed_rpm = 1000\ninitial = { "shaft.x" = 7e-6 }\n'
     )
     h = Host(version, d).instantiate().init()
-    assert h.get(["shaft.x", "shaft.omega", "shaft.y"]) == [7e-6, 100.0, 0.0]
+    assert h.get(["shaft.x", "shaft.omega", "shaft.y"]) == [7e-6, 1000 * math.pi / 30, 0.0]
     h.free()
     # the scene parameter wins over the resource
     h = Host(version, d).instantiate().init(start_values={"scene": 'bearing = "6205"\n'})
@@ -654,3 +654,16 @@ def test_percent_signs_reach_the_logger_verbatim(host, version):
     with pytest.raises(FMICallException):
         h.init(start_values={"bearing": "x%s%d%n%%y"})
     assert "`x%s%d%n%%y`" in h.log_text()
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+def test_a_bad_scene_is_logged_with_line_column_and_suggestions(host, version):
+    """The log callback carries `raceway scene --check`'s problems: line:column, the field
+    and the nearest known name, every problem at once."""
+    h = host(version)
+    with pytest.raises(FMICallException):
+        h.init(start_values={"scene": 'bearing = "6205"\n[model]\nlevl = "ring"\n[solver]\nrtol = 0.5\n'})
+    text = h.log_text()
+    assert "2 problem(s)" in text, text
+    assert "3:1: `model.levl`: unknown key `levl`; did you mean `level`?" in text, text
+    assert "5:8: `solver.rtol`" in text, text

@@ -33,7 +33,6 @@ from __future__ import annotations
 
 import csv
 import itertools
-import math
 from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
@@ -58,7 +57,7 @@ def scene(location: str, width_mm: float, rpm: float, duration: float) -> dict:
         # The shipped spall scene's settings: a force error of at most 1e-4 against rtol
         # 1e-9, by the error control alone (no sub-step cap; docs/speed.md).
         "solver": {"rtol": 1e-7, "atol_m": 1e-11},
-        "inputs": {"rule": "hold", "initial": {"load.y": -LOAD_N, "shaft.omega": rpm * math.pi / 30.0}},
+        "inputs": {"rule": "hold", "speed_rpm": rpm, "initial": {"load.y": -LOAD_N}},
         "run": {"duration_s": duration, "step_s": STEP_S},
     }
     if location != "none":

@@ -43,7 +43,8 @@ def damping(load_n: float, rpm: float) -> np.ndarray:
         "model": {"level": "ring", "causality": "load", "ring_dof": 2},
         "inputs": {
             "rule": "hold",
-            "initial": {"load.y": -load_n, "shaft.omega": rpm / RPM_PER_RAD_S},
+            "speed_rpm": rpm,
+            "initial": {"load.y": -load_n},
         },
         "effects": {"lubrication": {"film": "ehl", "lubricant": "study2"}},
         "run": {"duration_s": duration, "step_s": duration / 400},

@@ -162,7 +162,17 @@ fn run() -> Result<(), String> {
             std::fs::remove_dir_all(&stage).map_err(|e| format!("{}: {e}", stage.display()))?;
         }
         for c in md::VARIANTS {
-            for (version, xml) in [("fmi2", md::fmi2(c)), ("fmi3", md::fmi3(c))] {
+            // the scene goes into the FMUs of its own causality, whose inputs' start values
+            // are its initial values
+            let own = scene_text
+                .as_ref()
+                .filter(|(_, sc)| *sc == c)
+                .map(|(t, _)| t.as_str());
+            let xmls = [
+                ("fmi2", md::fmi2_with(c, own)?),
+                ("fmi3", md::fmi3_with(c, own)?),
+            ];
+            for (version, xml) in xmls {
                 let name = md::archive_name(c, version);
                 let root = stage.join(name.trim_end_matches(".fmu"));
                 write(&root.join("modelDescription.xml"), xml.as_bytes())?;
@@ -183,8 +193,7 @@ fn run() -> Result<(), String> {
                 for (name, text) in LICENSE_FILES {
                     write(&docs.join("licenses").join(name), text.as_bytes())?;
                 }
-                // the scene goes into the FMUs of its own causality
-                if let Some((t, _)) = scene_text.as_ref().filter(|(_, sc)| *sc == c) {
+                if let Some(t) = own {
                     write(&root.join("resources").join("scene.toml"), t.as_bytes())?;
                 }
                 let fmu = out.join(&name);

@@ -9,7 +9,7 @@
 //!   quasi-static equilibrium under an external load on the inner ring. With none of
 //!   `--bearing`, `--speed-rpm`, `--fx` .. `--my` it solves the embedded default scene's
 //!   operating point (its bearing, `model.operating_point`, and the speed from
-//!   `inputs.initial["shaft.omega"]` when set, else `model.operating_point.speed_rpm`).
+//!   `inputs.speed_rpm` when not 0, else `model.operating_point.speed_rpm`).
 //!   Otherwise values not given are zero and the bearing defaults to the scene's. The race
 //!   control defaults to the scene's `model.race_control`. The answer carries the ISO
 //!   ratings, lives, static safety and warnings (`raceway::ratings`); `--kappa` and
@@ -36,7 +36,6 @@ use clap::{Args, Parser, Subcommand, ValueEnum};
 use raceway::component::scene::{RaceControl, Scene};
 use raceway::summary::reports::{self, QsProblem};
 use raceway::summary::rollers;
-use raceway::units::rad_s_to_rpm;
 use raceway::Result;
 use std::process::ExitCode;
 
@@ -230,9 +229,10 @@ fn problem(a: &QsArgs) -> Result<QsProblem> {
     let from_scene = a.bearing.is_none() && given.iter().all(Option::is_none);
     let op = &scene.model.operating_point;
     let (speed0, load0) = if from_scene {
-        let speed = match scene.inputs.initial.get("shaft.omega") {
-            Some(w) => rad_s_to_rpm(*w),
-            None => op.speed_rpm,
+        let speed = if scene.inputs.speed_rpm != 0.0 {
+            scene.inputs.speed_rpm
+        } else {
+            op.speed_rpm
         };
         (speed, [op.fx, op.fy, op.fz, op.mx, op.my])
     } else {

@@ -220,11 +220,32 @@ impl Checker<'_> {
             };
             let cnorm = normalise_child(norm, key);
             self.places.push((cpath.clone(), kofs.or(*vofs)));
+            if norm == "inputs.initial" && key == crate::component::scene::SPEED_VARIABLE {
+                let rad_s = match node {
+                    Node::Float(x) => Some(*x),
+                    Node::Int(i) => Some(*i as f64),
+                    _ => None,
+                };
+                let message = match rad_s {
+                    Some(w) => format!(
+                        "`{key}` (rad/s) is not read here; did you mean `speed_rpm`? {}",
+                        InputSpec::old_speed_message(w)
+                    ),
+                    None => format!("`{key}` is not read here; did you mean `speed_rpm`? give the shaft speed in rpm: `speed_rpm = N` in [inputs]"),
+                };
+                self.report(&cpath, *kofs, message);
+                continue;
+            }
             if norm == "inputs.initial" && !input_names().iter().any(|n| n == key) {
                 let list = input_names();
-                let hint = nearest(key, list.iter().map(String::as_str))
-                    .map(|n| format!(" (did you mean `{n}`?)"))
-                    .unwrap_or_default();
+                let hint = match nearest(key, list.iter().map(String::as_str)) {
+                    Some(crate::component::scene::SPEED_VARIABLE) => {
+                        " (did you mean `speed_rpm`? the shaft speed is given in rpm in [inputs])"
+                            .to_string()
+                    }
+                    Some(n) => format!(" (did you mean `{n}`?)"),
+                    None => String::new(),
+                };
                 self.report(
                     &cpath,
                     *kofs,
@@ -509,6 +530,30 @@ pub fn check(text: &str) -> Vec<Problem> {
     c.problems
 }
 
+/// Every problem at once, one per line, as `raceway scene --check` prints them:
+/// `N problem(s)` and each with its `line:column` (TOML), path and the nearest known name.
+pub fn problems_text(problems: &[Problem]) -> String {
+    let mut s = format!("{} problem(s)", problems.len());
+    for p in problems {
+        s.push('\n');
+        s.push_str(&p.to_string());
+    }
+    s
+}
+
+/// The message of a scene text that failed to make a component with `e`, for the faces
+/// that take scene text (the C ABI, the FMUs): [`check`]'s problems with their
+/// `line:column` and "did you mean" ([`problems_text`]), as `raceway scene --check` gives
+/// them; `e` itself when the checker finds nothing (a problem it does not locate).
+pub fn scene_error_text(text: &str, e: &crate::Error) -> String {
+    let problems = check(text);
+    if problems.is_empty() {
+        e.to_string()
+    } else {
+        problems_text(&problems)
+    }
+}
+
 /// The one validation path of a scene file, shared by `raceway run` and `raceway scene
 /// --check`: the text is checked exactly as [`check`] does (every problem at once); then
 /// the command-line `overrides` (`(field path, value)`, e.g. `("run.duration_s", 0.1)`)
@@ -586,8 +631,8 @@ pub(super) fn line_col_in(message: &str) -> Option<(usize, usize)> {
     Some((l.trim().parse().ok()?, c.parse().ok()?))
 }
 
-/// Input variables of either causality ([`crate::component::variables::SCALARS`]): the
-/// keys `inputs.initial` takes.
+/// Input variables of either causality ([`crate::component::variables::SCALARS`]), the
+/// speed included (refused with its own message): the keys `inputs.initial` takes.
 fn input_names() -> Vec<String> {
     use crate::component::variables;
     variables::SCALARS

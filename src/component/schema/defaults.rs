@@ -50,7 +50,7 @@ pub(super) fn full_bearing(materials: MaterialsSpec) -> BearingSpec {
 /// `Some` here, or `table_matches_schema` names its row.
 pub(super) fn full_scene(bearing: BearingRef, traction: TractionLaw) -> Scene {
     let mut initial = BTreeMap::new();
-    initial.insert("shaft.omega".to_string(), 100.0);
+    initial.insert("shaft.y".to_string(), -1e-6);
     Scene {
         title: "full".into(),
         bearing,
@@ -75,6 +75,7 @@ pub(super) fn full_scene(bearing: BearingRef, traction: TractionLaw) -> Scene {
         },
         solver: SolverSpec::default(),
         inputs: InputSpec {
+            speed_rpm: 100.0,
             rule: Default::default(),
             initial,
         },

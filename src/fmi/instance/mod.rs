@@ -551,12 +551,12 @@ impl Instance {
             self.causality,
             &initial,
         )?;
-        let (mut c, source) = params::component(values, scene)?;
+        let (mut c, source) = params::component(values, self.resource_scene.as_ref(), scene)?;
         for (i, v) in md::inputs(self.causality).enumerate() {
+            // An input never set holds the scene's initial value, as the component
+            // starts it (and as the model description's start says).
             if set(i) {
                 c.set_real(v.vr, inputs[i]).map_err(|e| e.to_string())?;
-            } else if !c.scene().inputs.initial.contains_key(v.name) {
-                c.set_real(v.vr, 0.0).map_err(|e| e.to_string())?;
             }
         }
         for &(vr, order, value) in derivatives {

@@ -150,7 +150,16 @@ impl Instance {
             Some(Var::Time) => Ok(self.time),
             Some(Var::Input(i)) => match &mut self.component {
                 Some(c) => Ok(c.get_real(vr)?),
-                None => Ok(self.inputs[i]),
+                None if self.inputs_set & (1 << i) != 0 => Ok(self.inputs[i]),
+                // Never set: the scene's initial value, the model description's start.
+                None => {
+                    let starts = params::input_starts(
+                        &self.params,
+                        self.resource_scene.as_ref(),
+                        self.causality,
+                    )?;
+                    Ok(starts[i])
+                }
             },
             Some(Var::Output(VarType::Real)) => Ok(self.component()?.get_real(vr)?),
             Some(Var::Param(i)) if PARAMETERS[i].ty == ParamType::Real => {
