@@ -45,12 +45,14 @@
 //!   bearing is known (none is in the project's data today).
 
 mod life;
+pub mod preload;
 mod row;
 mod solve;
 #[cfg(test)]
 mod tests;
 
 pub use life::{system_life, weibull_slope};
+pub use preload::RingTemperatures;
 pub use row::RowReport;
 pub(crate) use solve::newton5 as newton5_shared;
 pub use solve::{Set, SetEval, SetSolution};

@@ -6,7 +6,9 @@
 
 use super::life::{system_life, weibull_slope};
 use super::row::{RowEval, RowModel, RowReport};
+use super::preload::RingTemperatures;
 use super::{Preload, SetSpec};
+use crate::geometry::Bearing;
 use crate::error::{Error, Result};
 use crate::geometry::element::Element;
 use crate::models::quasi_static::Solution;
@@ -25,6 +27,10 @@ pub struct Set {
     arm: f64,
     /// Force scale (the preload), N.
     scale: f64,
+    /// Each row's bearing and preload offset as assembled (reference temperature).
+    assembled: Vec<(Bearing, f64)>,
+    /// The rings' temperatures the rows are built for.
+    temperatures: RingTemperatures,
 }
 
 /// The set's answer at one shaft position.
@@ -262,16 +268,47 @@ impl Set {
                 }
             }
         }
+        let assembled = rows.iter().map(|r| (r.bearing.clone(), r.offset)).collect();
         let mut set = Set {
             rows,
             spring,
             u: 0.0,
             arm,
             scale: 1.0,
+            assembled,
+            temperatures: RingTemperatures::default(),
         };
         let (rows0, _) = set.eval_rows(&[0.0; 5], 0.0, false)?;
         set.scale = 1.0 + rows0.iter().map(|e| e.f_loc[2].abs()).sum::<f64>();
         Ok(set)
+    }
+
+    /// Run the rows at ring temperatures `t` (module docs of [`super::preload`]): each ball
+    /// row's clearance and free contact angle follow the rings' radial growth while its
+    /// rings keep their assembled axial positions, so a rigid preload changes and a spring
+    /// preload slides. The reference temperatures restore the set as assembled. A refused
+    /// call changes nothing.
+    pub fn set_ring_temperatures(&mut self, t: RingTemperatures) -> Result<()> {
+        t.validate()?;
+        if t == self.temperatures {
+            return Ok(());
+        }
+        let mut rows = Vec::with_capacity(self.rows.len());
+        for (i, (r, (b0, off0))) in self.rows.iter().zip(&self.assembled).enumerate() {
+            let (b, d_off) = super::preload::row_at(b0, &t, i)?;
+            let mut m = RowModel::new(&b, r.z, r.o as i32)?;
+            m.offset = off0 + d_off;
+            m.floating = r.floating;
+            rows.push(m);
+        }
+        self.rows = rows;
+        self.temperatures = t;
+        Ok(())
+    }
+
+    /// The rings' temperatures the set runs at.
+    pub fn ring_temperatures(&self) -> RingTemperatures {
+        self.temperatures
     }
 
     /// Number of rows.
