@@ -5,14 +5,12 @@
 //! speeds, into out/sets/).
 
 use raceway::calculator::clearance::REFERENCE_C;
-use raceway::models::set::{
-    bearing_by_name, Arrangement, Preload, RingTemperatures, Set, SetSpec,
-};
-use raceway::plot::{plot, Axes, Series};
-use std::path::Path;
+use raceway::models::set::{bearing_by_name, Arrangement, Preload, RingTemperatures, Set, SetSpec};
 use raceway::models::shaft_file;
+use raceway::plot::{plot, Axes, Series};
 use raceway::units::rpm_to_rad_s;
 use std::fmt::Write;
+use std::path::Path;
 
 fn main() -> raceway::Result<()> {
     let quick = std::env::args().any(|a| a == "--quick");
@@ -90,7 +88,10 @@ fn main() -> raceway::Result<()> {
     // Curves: (label, speeds, preload, axial stiffness, tilt stiffness).
     let mut curves: Vec<(String, Vec<f64>, Vec<f64>, Vec<f64>, Vec<f64>)> = Vec::new();
     for pf in [100.0, 300.0] {
-        for (label, t) in [("isothermal", RingTemperatures::default()), ("inner +10 K", hot)] {
+        for (label, t) in [
+            ("isothermal", RingTemperatures::default()),
+            ("inner +10 K", hot),
+        ] {
             let mut rigid = Set::new(&SetSpec::pair(
                 &b,
                 Arrangement::Db,

@@ -17,6 +17,9 @@
 //! orientation = 1           # single row only: +1 carries thrust toward +z, -1 toward -z
 //! preload_n = 300           # rigid preload set by force; or preload_offset_um = ..;
 //! spring_n_per_um = 0.5     #   with preload_n: a constant-force spring; or preload_class
+//! floating = false          # true: carries no axial load (outer rings slide, or an NU)
+//! inner_ring_c = 20         # ring temperatures, °C (default 20, the set as assembled):
+//! outer_ring_c = 20         #   ball rows' clearance and rigid preload follow them
 //! [[location.row]]          # ... or rows given one by one (then no bearing/arrangement)
 //! bearing = "7008CE"
 //! position_mm = -7.5
@@ -24,7 +27,9 @@
 //! ```
 
 use crate::error::{Error, Result};
-use crate::models::set::{bearing_by_name, Arrangement, Preload, PreloadClass, Row, SetSpec};
+use crate::models::set::{
+    bearing_by_name, Arrangement, Preload, PreloadClass, RingTemperatures, Row, SetSpec,
+};
 use crate::models::shaft::{Location, Shaft, ShaftLoad};
 use crate::units::rpm_to_rad_s;
 use serde::Deserialize;
@@ -74,6 +79,10 @@ struct LocationFile {
     preload_class: Option<String>,
     #[serde(default)]
     row: Vec<RowFile>,
+    #[serde(default)]
+    floating: bool,
+    inner_ring_c: Option<f64>,
+    outer_ring_c: Option<f64>,
 }
 
 fn location(i: usize, l: &LocationFile) -> Result<Location> {
@@ -145,7 +154,7 @@ fn location(i: usize, l: &LocationFile) -> Result<Location> {
             })
             .collect::<Result<Vec<_>>>()?;
         let s = SetSpec { rows, preload };
-        s.validate().map_err(rename)?;
+        s.validate_rows(!l.floating).map_err(rename)?;
         s
     } else {
         let name = l
@@ -167,15 +176,39 @@ fn location(i: usize, l: &LocationFile) -> Result<Location> {
                     }],
                     preload,
                 };
-                s.validate().map_err(rename)?;
+                s.validate_rows(!l.floating).map_err(rename)?;
                 s
             }
         }
     };
+    let reference = RingTemperatures::default();
+    let temperatures = RingTemperatures {
+        inner_c: l.inner_ring_c.unwrap_or(reference.inner_c),
+        outer_c: l.outer_ring_c.unwrap_or(reference.outer_c),
+        ball_c: None,
+    };
+    temperatures.validate().map_err(|e| match e {
+        Error::Invalid {
+            field,
+            value,
+            allowed,
+        } => Error::Invalid {
+            field: f(if field.ends_with("inner_c") {
+                "inner_ring_c"
+            } else {
+                "outer_ring_c"
+            }),
+            value,
+            allowed,
+        },
+        e => e,
+    })?;
     Ok(Location {
         name: l.name.clone().unwrap_or_else(|| format!("{i}")),
         position: l.position_mm * 1e-3,
         set,
+        floating: l.floating,
+        temperatures,
     })
 }
 

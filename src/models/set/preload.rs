@@ -69,7 +69,10 @@ impl RingTemperatures {
         for (f, v) in [
             ("set.temperatures.inner_c", self.inner_c),
             ("set.temperatures.outer_c", self.outer_c),
-            ("set.temperatures.ball_c", self.ball_c.unwrap_or(REFERENCE_C)),
+            (
+                "set.temperatures.ball_c",
+                self.ball_c.unwrap_or(REFERENCE_C),
+            ),
         ] {
             if !(v.is_finite() && (-273.15..=1000.0).contains(&v)) {
                 return Err(Error::invalid(f, v, "a temperature in [-273.15, 1000] °C"));

@@ -5,12 +5,12 @@
 #![allow(clippy::needless_range_loop)] // the index loops read as the matrix formulas
 
 use super::life::{system_life, weibull_slope};
-use super::row::{RowEval, RowModel, RowReport};
 use super::preload::RingTemperatures;
+use super::row::{RowEval, RowModel, RowReport};
 use super::{Preload, SetSpec};
-use crate::geometry::Bearing;
 use crate::error::{Error, Result};
 use crate::geometry::element::Element;
+use crate::geometry::Bearing;
 use crate::models::quasi_static::Solution;
 use crate::ratings::{self, LifeInputs};
 use serde::Serialize;
@@ -215,7 +215,17 @@ pub(crate) fn newton5(
 impl Set {
     /// Build the rows and set the preload (module docs of [`super`]).
     pub fn new(spec: &SetSpec) -> Result<Set> {
-        spec.validate()?;
+        Set::build(spec, true)
+    }
+
+    /// A set that needs no axial support: its place on a shaft floats axially (the shaft
+    /// holds its axial force at zero, [`crate::models::shaft`]).
+    pub fn new_floating(spec: &SetSpec) -> Result<Set> {
+        Set::build(spec, false)
+    }
+
+    fn build(spec: &SetSpec, axial: bool) -> Result<Set> {
+        spec.validate_rows(axial)?;
         let mut rows = spec
             .rows
             .iter()
@@ -583,7 +593,12 @@ fn row_report(r: &RowModel, e: &RowEval, omega: f64, speed_rpm: f64) -> Result<R
         radial_load: fr,
         axial_load: fa,
         element_loads: e.loads.iter().map(|l| l[0]).collect(),
-        contact_angles: e.balls.iter().map(|x| [x.alpha_i, x.alpha_o]).collect(),
+        contact_angles: match &b.element {
+            Element::Ball(_) => e.balls.iter().map(|x| [x.alpha_i, x.alpha_o]).collect(),
+            // Line contacts along the raceways: the cone's and the cup's angles (0 for a
+            // cylindrical row), the rollers' own small tilt left out.
+            Element::Roller(rb) => vec![[rb.alpha_cone, rb.alpha]; e.loads.len()],
+        },
         loaded_elements: loaded,
         lifted_off: loaded == 0,
         axial_stiffness: e.k_loc[2][2],
