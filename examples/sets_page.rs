@@ -215,7 +215,14 @@ fn main() -> raceway::Result<()> {
     }
     let _ = writeln!(
         o,
-        "\nSystem life of every row together (Lundberg–Palmgren, physics §S1): {} h.",
+        "\nSystem life of every row together (Lundberg–Palmgren, physics §S1): {} h.\n\n\
+         ## A flexible rotor: ROSS on two raceway locations\n\n\
+         A rigid shaft is what `raceway shaft` solves; a flexible one stays with the rotor \
+         codes. `examples/python/ross_two_locations.py` couples a ROSS rotor (beam elements, \
+         a disk) in the time domain to a 7008CE DB pair (300 N rigid preload; two single-row \
+         components at the rows' positions, the rear row mirrored) and a 6008, each a \
+         `raceway.Component` stepped with the shaft's nodal displacements, and checks that the \
+         shaft settles at the static solution with the bearings' linearised stiffness.",
         hours(sol.life_mrev)
     );
     let page = out.join("sets.md");
