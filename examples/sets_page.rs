@@ -86,7 +86,8 @@ fn main() -> raceway::Result<()> {
         ref_c = REFERENCE_C,
     );
     // Curves: (label, speeds, preload, axial stiffness, tilt stiffness).
-    let mut curves: Vec<(String, Vec<f64>, Vec<f64>, Vec<f64>, Vec<f64>)> = Vec::new();
+    type Curve = (String, Vec<f64>, Vec<f64>, Vec<f64>, Vec<f64>);
+    let mut curves: Vec<Curve> = Vec::new();
     for pf in [100.0, 300.0] {
         for (label, t) in [
             ("isothermal", RingTemperatures::default()),

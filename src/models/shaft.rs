@@ -415,9 +415,9 @@ fn condense_axial(k: &mut [[f64; 5]; 5]) {
             }
         }
     }
-    for i in 0..5 {
-        k[i][2] = 0.0;
-        k[2][i] = 0.0;
+    k[2] = [0.0; 5];
+    for r in k.iter_mut() {
+        r[2] = 0.0;
     }
 }
 
