@@ -1,15 +1,21 @@
 //! Writes docs/sets.md: DB, DF and DT stiffness at equal row load, a 7008CE DB pair's
-//! preload against speed (rigid and spring), and the spindle example of `raceway shaft`.
+//! preload against speed and ring temperature (rigid and spring), and the spindle example of `raceway shaft`.
 //!
-//! `cargo run --example sets_page` (`--quick`: three speeds, print only).
+//! `cargo run --example sets_page` (docs/sets.md and docs/sets-*.png; `--quick`: three
+//! speeds, into out/sets/).
 
-use raceway::models::set::{bearing_by_name, Arrangement, Preload, Set, SetSpec};
+use raceway::calculator::clearance::REFERENCE_C;
+use raceway::models::set::{bearing_by_name, Arrangement, Preload, RingTemperatures, Set, SetSpec};
 use raceway::models::shaft_file;
+use raceway::plot::{plot, Axes, Series};
 use raceway::units::rpm_to_rad_s;
 use std::fmt::Write;
+use std::path::Path;
 
 fn main() -> raceway::Result<()> {
     let quick = std::env::args().any(|a| a == "--quick");
+    let out = Path::new(if quick { "out/sets" } else { "docs" });
+    std::fs::create_dir_all(out).map_err(|e| raceway::Error::Io(e.to_string()))?;
     let b = bearing_by_name("7008CE", "bearing")?;
     let f = 300.0;
     let mut o = String::new();
@@ -55,53 +61,122 @@ fn main() -> raceway::Result<()> {
         (0..=6).map(|i| 5_000.0 * i as f64).collect()
     };
     let spring = 0.5e6;
+    let dt = 10.0;
+    let hot = RingTemperatures::inner_warmer(dt);
     let _ = writeln!(
         o,
-        "\n## Preload against speed, 7008CE DB pair\n\n\
-         Two preloads set at standstill: 100 N and 300 N, standing in for a light and a medium \
-         class (the makers' class values for this bearing are not in the project's data, so \
-         these are forces chosen here, not catalogue values). Rigid: the rows clamped at their \
-         standstill offsets; spring: the same force from a {:.1} N/µm spring on the rear row's \
-         outer ring. No external load; centrifugal force and gyroscopic moment of the balls \
-         only (no ring expansion or thermal growth yet). Contact angles of the first ball of \
-         the row facing +z.\n\n\
-         | preload at rest N | speed rpm | rigid: preload N | inner / outer contact angle deg | axial N/µm | tilt N m/mrad | spring: preload N | axial N/µm |\n\
-         |---|---|---|---|---|---|---|---|",
-        spring * 1e-6
+        "\n## Preload against speed and temperature, 7008CE DB pair\n\n\
+         Two preloads set at standstill and {ref_c:.0} °C: 100 N and 300 N, standing in for a \
+         light and a medium class (the makers' class values for this bearing are not in the \
+         project's data, so these are forces chosen here, not catalogue values). Rigid: the \
+         rows clamped at their assembled offsets; spring: the same force from a {:.1} N/µm \
+         spring on the rear row's outer ring. No external load. Speed acts through the balls' \
+         centrifugal force and gyroscopic moment (physics §4); temperature through the rings' \
+         radial growth (physics §S1): beside the isothermal rows, the inner rings **{dt:.0} K \
+         warmer** than the outer rings ({:.0} °C inner, {ref_c:.0} °C outer, balls at the mean). \
+         These temperatures are assumed, the same at every speed: the project's thermal \
+         network (physics §8) runs inside the ring level for one row and is not coupled to a \
+         set, so it does not give them here. Left out: the inner ring's centrifugal growth, \
+         the shaft's and housing's axial growth between the rows and the fits. Contact angles \
+         of the first ball of the row facing +z.\n\n\
+         | preload at rest N | speed rpm | rings | rigid: preload N | inner / outer contact angle deg | axial N/µm | tilt N m/mrad | spring: preload N | axial N/µm |\n\
+         |---|---|---|---|---|---|---|---|---|",
+        spring * 1e-6,
+        hot.inner_c,
+        ref_c = REFERENCE_C,
     );
+    // Curves: (label, speeds, preload, axial stiffness, tilt stiffness).
+    type Curve = (String, Vec<f64>, Vec<f64>, Vec<f64>, Vec<f64>);
+    let mut curves: Vec<Curve> = Vec::new();
     for pf in [100.0, 300.0] {
-        let mut rigid = Set::new(&SetSpec::pair(
-            &b,
-            Arrangement::Db,
-            0.0,
-            Preload::Force(pf),
-        )?)?;
-        let mut spr = Set::new(&SetSpec::pair(
-            &b,
-            Arrangement::Db,
-            0.0,
-            Preload::Spring {
-                stiffness: spring,
-                force: pf,
-            },
-        )?)?;
-        for &rpm in &speeds {
-            let w = rpm_to_rad_s(rpm);
-            let r = rigid.solve(&[0.0; 5], w)?;
-            let s = spr.solve(&[0.0; 5], w)?;
-            let a = r.rows[0].contact_angles[0];
-            let _ = writeln!(
-                o,
-                "| {pf:.0} | {rpm:.0} | {:.1} | {:.2} / {:.2} | {:.1} | {:.2} | {:.1} | {:.1} |",
-                r.rows[0].axial_load,
-                a[0].to_degrees(),
-                a[1].to_degrees(),
-                r.stiffness[2][2] * 1e-6,
-                r.stiffness[3][3] * 1e-3,
-                s.rows[0].axial_load,
-                s.stiffness[2][2] * 1e-6
+        for (label, t) in [
+            ("isothermal", RingTemperatures::default()),
+            ("inner +10 K", hot),
+        ] {
+            let mut rigid = Set::new(&SetSpec::pair(
+                &b,
+                Arrangement::Db,
+                0.0,
+                Preload::Force(pf),
+            )?)?;
+            let mut spr = Set::new(&SetSpec::pair(
+                &b,
+                Arrangement::Db,
+                0.0,
+                Preload::Spring {
+                    stiffness: spring,
+                    force: pf,
+                },
+            )?)?;
+            rigid.set_ring_temperatures(t)?;
+            spr.set_ring_temperatures(t)?;
+            let mut c = (
+                format!("rigid {pf:.0} N, {label}"),
+                Vec::new(),
+                Vec::new(),
+                Vec::new(),
+                Vec::new(),
             );
+            for &rpm in &speeds {
+                let w = rpm_to_rad_s(rpm);
+                let r = rigid.solve(&[0.0; 5], w)?;
+                let s = spr.solve(&[0.0; 5], w)?;
+                let a = r.rows[0].contact_angles[0];
+                let _ = writeln!(
+                    o,
+                    "| {pf:.0} | {rpm:.0} | {label} | {:.1} | {:.2} / {:.2} | {:.1} | {:.2} | {:.1} | {:.1} |",
+                    r.rows[0].axial_load,
+                    a[0].to_degrees(),
+                    a[1].to_degrees(),
+                    r.stiffness[2][2] * 1e-6,
+                    r.stiffness[3][3] * 1e-3,
+                    s.rows[0].axial_load,
+                    s.stiffness[2][2] * 1e-6
+                );
+                c.1.push(rpm);
+                c.2.push(r.rows[0].axial_load);
+                c.3.push(r.stiffness[2][2] * 1e-6);
+                c.4.push(r.stiffness[3][3] * 1e-3);
+            }
+            curves.push(c);
         }
+    }
+    for (name, what, unit, pick) in [
+        ("preload", "preload of each row", "N", 2usize),
+        ("axial", "axial stiffness", "N/µm", 3),
+        ("tilt", "tilt stiffness", "N m/mrad", 4),
+    ] {
+        let series: Vec<Series> = curves
+            .iter()
+            .map(|c| Series {
+                label: &c.0,
+                x: &c.1,
+                y: match pick {
+                    2 => &c.2,
+                    3 => &c.3,
+                    _ => &c.4,
+                },
+                points: false,
+            })
+            .collect();
+        let title = format!(
+            "7008CE DB pair, rigid preload: {what} against speed, isothermal and inner ring {dt:.0} K warmer"
+        );
+        let y_label = format!("{what} ({unit})");
+        plot(
+            &out.join(format!("sets-{name}-speed.png")),
+            &Axes {
+                title: &title,
+                x_label: "shaft speed (rpm)",
+                y_label: &y_label,
+                log_x: false,
+                log_y: false,
+                equal: false,
+            },
+            &series,
+            &[],
+        )?;
+        let _ = write!(o, "\n![{what} against speed](sets-{name}-speed.png)\n");
     }
     let shaft = shaft_file::read(std::path::Path::new("examples/shafts/spindle.toml"))?;
     let sol = shaft.solve()?;
@@ -141,14 +216,18 @@ fn main() -> raceway::Result<()> {
     }
     let _ = writeln!(
         o,
-        "\nSystem life of every row together (Lundberg–Palmgren, physics §S1): {} h.",
+        "\nSystem life of every row together (Lundberg–Palmgren, physics §S1): {} h.\n\n\
+         ## A flexible rotor: ROSS on two raceway locations\n\n\
+         A rigid shaft is what `raceway shaft` solves; a flexible one stays with the rotor \
+         codes. `examples/python/ross_two_locations.py` couples a ROSS rotor (beam elements, \
+         a disk) in the time domain to a 7008CE DB pair (300 N rigid preload; two single-row \
+         components at the rows' positions, the rear row mirrored) and a 6008, each a \
+         `raceway.Component` stepped with the shaft's nodal displacements, and checks that the \
+         shaft settles at the static solution with the bearings' linearised stiffness.",
         hours(sol.life_mrev)
     );
-    if quick {
-        print!("{o}");
-    } else {
-        std::fs::write("docs/sets.md", &o).map_err(|e| raceway::Error::Io(e.to_string()))?;
-        println!("wrote docs/sets.md");
-    }
+    let page = out.join("sets.md");
+    std::fs::write(&page, &o).map_err(|e| raceway::Error::Io(e.to_string()))?;
+    println!("wrote {}", page.display());
     Ok(())
 }

@@ -1,5 +1,6 @@
-//! `raceway shaft`: the spindle example solves, its JSON balances the load, and a shaft on
-//! one single-row bearing is refused as statically undetermined.
+//! `raceway shaft`: the spindle example solves, its JSON balances the load, the gear shaft's
+//! floating NU location carries no thrust, and a shaft on one single-row bearing is refused
+//! as statically undetermined.
 
 use std::process::Command;
 
@@ -68,4 +69,25 @@ fn one_single_row_bearing_is_refused() {
     let e = String::from_utf8_lossy(&out.stderr);
     assert!(e.contains("location[0].spacer_mm"), "{e}");
     std::fs::remove_dir_all(&dir).ok();
+}
+
+/// The gear shaft: the floating NU206 carries no axial load, the locating 6206 all of it,
+/// and the rollers' contact angle (0) is in the JSON.
+#[test]
+fn gear_shaft_floating_location_carries_no_thrust() {
+    let out = raceway(&["shaft", "examples/shafts/gear-shaft.toml", "--json"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let locs = v["locations"].as_array().unwrap();
+    let fz = |i: usize| locs[i]["set"]["force"][2].as_f64().unwrap();
+    assert!(locs[1]["floating"].as_bool().unwrap());
+    assert!(fz(1).abs() < 1e-6 * 600.0, "{}", fz(1));
+    assert!((fz(0) + 600.0).abs() < 1e-6 * 600.0, "{}", fz(0));
+    let angles = &locs[1]["set"]["rows"][0]["contact_angles"];
+    assert_eq!(angles.as_array().unwrap().len(), 14);
+    assert_eq!(angles[0][0].as_f64(), Some(0.0));
 }

@@ -551,7 +551,7 @@ impl Scene {
                 "off: defects, waviness, films, wear and the thermal network belong to one bearing; a set runs without them",
             ));
         }
-        let spec = f.spec("set", Some(b), None)?;
+        let spec = f.spec("set", Some(b), None, true)?;
         if spec.rows.len() > MAX_SET_ROWS {
             return Err(Error::invalid(
                 "set.row",

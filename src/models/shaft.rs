@@ -11,7 +11,7 @@
 //! `sum_L A_L^T F_L(A_L q) + load = 0`, by damped Newton with the exact stiffness.
 
 use crate::error::{Error, Result};
-use crate::models::set::{Set, SetSolution, SetSpec};
+use crate::models::set::{RingTemperatures, Set, SetSolution, SetSpec};
 use serde::Serialize;
 
 /// One bearing location.
@@ -23,6 +23,12 @@ pub struct Location {
     pub position: f64,
     /// The set (one row for a single bearing).
     pub set: SetSpec,
+    /// The location floats axially (its outer rings slide in the housing, or a
+    /// cylindrical roller row without flanges): it carries no axial load, the set finding
+    /// its own axial position where its thrust vanishes.
+    pub floating: bool,
+    /// The rings' temperatures ([`RingTemperatures`]; the reference: as assembled).
+    pub temperatures: RingTemperatures,
 }
 
 /// A load on the shaft.
@@ -58,6 +64,8 @@ pub struct LocationResult {
     pub set: SetSolution,
     /// Every row of the location has lifted off.
     pub lifted_off: bool,
+    /// The location floats axially (carries no axial load).
+    pub floating: bool,
 }
 
 /// The shaft's equilibrium.
@@ -183,15 +191,20 @@ impl Shaft {
             ));
         }
         if !self.locations.iter().any(|l| {
-            l.set
-                .rows
-                .iter()
-                .any(|r| crate::models::set::carries_axial(&r.bearing))
+            !l.floating
+                && l.set
+                    .rows
+                    .iter()
+                    .any(|r| crate::models::set::carries_axial(&r.bearing))
         }) {
+            let floats = self.locations.iter().filter(|l| l.floating).count();
             return Err(Error::invalid(
                 "location",
-                "no location carries axial load",
-                "a statically determined shaft: at least one location with axial support (a ball, tapered roller or flanged NJ/NUP bearing)",
+                format!(
+                    "no location carries axial load ({floats} of {} floating)",
+                    self.locations.len()
+                ),
+                "a statically determined shaft: at least one location, not floating, with axial support (a ball, tapered roller or flanged NJ/NUP bearing)",
             ));
         }
         Ok(())
@@ -203,9 +216,18 @@ impl Shaft {
         let mut sets = self
             .locations
             .iter()
+            .map(|l| {
+                let mut s = if l.floating {
+                    Set::new_floating(&l.set)?
+                } else {
+                    Set::new(&l.set)?
+                };
+                s.set_ring_temperatures(l.temperatures)?;
+                Ok(s)
+            })
             .enumerate()
-            .map(|(i, l)| {
-                Set::new(&l.set).map_err(|e| match e {
+            .map(|(i, s): (usize, Result<Set>)| {
+                s.map_err(|e| match e {
                     Error::Invalid {
                         field,
                         value,
@@ -233,11 +255,27 @@ impl Shaft {
             .fold(f64::INFINITY, f64::min);
         let scale: f64 = sets.iter().map(|s| s.force_scale()).sum();
         let omega = self.omega;
-        let eval = |q: &[f64; 5], sets: &mut [Set]| -> Result<([f64; 5], [[f64; 5]; 5])> {
+        let floating: Vec<bool> = self.locations.iter().map(|l| l.floating).collect();
+        // The floating locations' own axial positions (warm starts), m.
+        let mut float_z = vec![0.0; self.locations.len()];
+        // Forces and stiffness at the origin, and each location's own position.
+        type Eval = ([f64; 5], [[f64; 5]; 5], Vec<[f64; 5]>);
+        let mut eval = |q: &[f64; 5], sets: &mut [Set]| -> Result<Eval> {
             let mut f = [0.0; 5];
             let mut k = [[0.0; 5]; 5];
-            for (s, &z) in sets.iter_mut().zip(&zs) {
-                let e = s.evaluate(&at(z, q), omega)?;
+            let mut local = Vec::with_capacity(sets.len());
+            for (i, (s, &z)) in sets.iter_mut().zip(&zs).enumerate() {
+                let mut ql = at(z, q);
+                let mut e = if floating[i] {
+                    float_axially(s, &mut ql, &mut float_z[i], omega)?
+                } else {
+                    s.evaluate(&ql, omega)?
+                };
+                if floating[i] {
+                    condense_axial(&mut e.stiffness);
+                    e.force[2] = 0.0;
+                }
+                local.push(ql);
                 let g = back(z, &e.force);
                 let kk = back_k(z, &e.stiffness);
                 for i in 0..5 {
@@ -247,10 +285,10 @@ impl Shaft {
                     }
                 }
             }
-            Ok((f, k))
+            Ok((f, k, local))
         };
         let solved = super::set::newton5_shared(
-            |q| eval(q, &mut sets),
+            |q| eval(q, &mut sets).map(|(f, k, _)| (f, k)),
             &load,
             [0.0; 5],
             arm,
@@ -262,7 +300,7 @@ impl Shaft {
             Ok(q) => q,
             Err(e @ Error::NotConverged { .. }) => {
                 // Name the direction the bearings leave free, if that is why.
-                let (_, k) = eval(&[0.0; 5], &mut sets)?;
+                let (_, k, _) = eval(&[0.0; 5], &mut sets)?;
                 if let Some(d) = free_direction(&k, arm) {
                     return Err(undetermined(d));
                 }
@@ -270,15 +308,15 @@ impl Shaft {
             }
             Err(e) => return Err(e),
         };
-        let (_, k) = eval(&q, &mut sets)?;
+        let (_, k, local) = eval(&q, &mut sets)?;
         if let Some(d) = free_direction(&k, arm) {
             return Err(undetermined(d));
         }
         let mut locations = Vec::new();
         let mut warnings = Vec::new();
         let mut lives = Vec::new();
-        for ((s, l), &z) in sets.iter_mut().zip(&self.locations).zip(&zs) {
-            let sol = s.report(&at(z, &q), omega)?;
+        for ((s, l), ql) in sets.iter_mut().zip(&self.locations).zip(&local) {
+            let sol = s.report(ql, omega)?;
             let lifted = sol.rows.iter().all(|r| r.lifted_off);
             if lifted {
                 warnings.push(format!(
@@ -298,6 +336,7 @@ impl Shaft {
                 position: l.position,
                 set: sol,
                 lifted_off: lifted,
+                floating: l.floating,
             });
         }
         Ok(ShaftSolution {
@@ -309,6 +348,76 @@ impl Shaft {
             life_mrev: crate::models::set::system_life(&lives),
             warnings,
         })
+    }
+}
+
+/// Evaluate a floating location at the shaft's position `ql` (its own axial position
+/// replaced by the one where its thrust vanishes, found by Newton from the warm start `w`
+/// with the exact `K_zz`, halved back when the geometry refuses a trial). `ql[2]` and `w`
+/// are set to that position.
+fn float_axially(
+    s: &mut Set,
+    ql: &mut [f64; 5],
+    w: &mut f64,
+    omega: f64,
+) -> Result<crate::models::set::SetEval> {
+    let tol = 1e-10 * s.force_scale();
+    let mut last_good: Option<f64> = None;
+    let mut trial = *w;
+    for _ in 0..100 {
+        ql[2] = trial;
+        match s.evaluate(ql, omega) {
+            Ok(e) => {
+                let (fz, kzz) = (e.force[2], e.stiffness[2][2]);
+                if fz.abs() <= tol || kzz <= 0.0 {
+                    // No axial force, or none the location can give (an NU row, a ball row
+                    // inside its axial play): it sits where it is.
+                    *w = trial;
+                    if fz.abs() > tol {
+                        return Err(Error::NotConverged {
+                            what: "floating location's axial position",
+                            iterations: 0,
+                            residual: fz,
+                        });
+                    }
+                    return Ok(e);
+                }
+                last_good = Some(trial);
+                // F_z(w + dw) = F_z - K_zz dw = 0.
+                trial += fz / kzz;
+            }
+            Err(Error::Invalid { .. }) => match last_good {
+                Some(g) => trial = 0.5 * (trial + g),
+                None => trial *= 0.5,
+            },
+            Err(e) => return Err(e),
+        }
+    }
+    Err(Error::NotConverged {
+        what: "floating location's axial position",
+        iterations: 100,
+        residual: f64::NAN,
+    })
+}
+
+/// Condense the axial coordinate out of a location's stiffness (its axial force held at
+/// zero): `K' = K - K e_z e_z^T K / K_zz`, which leaves row and column `z` zero.
+fn condense_axial(k: &mut [[f64; 5]; 5]) {
+    let kzz = k[2][2];
+    if kzz > 0.0 {
+        let (col, row): ([f64; 5], [f64; 5]) = (
+            std::array::from_fn(|i| k[i][2]),
+            std::array::from_fn(|j| k[2][j]),
+        );
+        for i in 0..5 {
+            for j in 0..5 {
+                k[i][j] -= col[i] * row[j] / kzz;
+            }
+        }
+    }
+    k[2] = [0.0; 5];
+    for r in k.iter_mut() {
+        r[2] = 0.0;
     }
 }
 
@@ -355,6 +464,7 @@ fn undetermined(dof: usize) -> Error {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geometry::element::Element;
     use crate::models::set::{bearing_by_name, Preload, Row};
 
     fn single(name: &str, z: f64) -> Location {
@@ -369,6 +479,8 @@ mod tests {
                 }],
                 preload: Preload::None,
             },
+            floating: false,
+            temperatures: RingTemperatures::default(),
         }
     }
 
@@ -446,6 +558,8 @@ mod tests {
                 }],
                 preload: Preload::None,
             },
+            floating: false,
+            temperatures: RingTemperatures::default(),
         };
         let shaft = Shaft {
             locations: vec![trb("A", 0.0, 1), trb("B", 0.2, -1)],
@@ -461,6 +575,16 @@ mod tests {
         assert!((a[2] + b[2] + 2000.0).abs() < 1e-6 * 2000.0, "{a:?} {b:?}");
         assert!(b[2] > 100.0 && -a[2] > 2000.0 + 100.0, "{a:?} {b:?}");
         assert!((a[1] + b[1] - 6000.0).abs() < 1e-6 * 6000.0, "{a:?} {b:?}");
+        // A tapered row reports its cone's and cup's angles as its contact angles.
+        let Element::Roller(rb) = &bearing_by_name("30206", "b").unwrap().element else {
+            panic!("30206 is a roller bearing")
+        };
+        let r = &s.locations[0].set.rows[0];
+        assert!(rb.alpha > rb.alpha_cone && rb.alpha_cone > 0.0);
+        assert!(r
+            .contact_angles
+            .iter()
+            .all(|x| *x == [rb.alpha_cone, rb.alpha]));
         // Each row's peak pressure against its static safety: C0r is the load of 4 000 MPa
         // and a line contact's pressure goes as the square root of its load, so the peak
         // lies near 4 000 MPa / sqrt(S0) (within the load zone's shape, a factor 2 here).
@@ -473,5 +597,90 @@ mod tests {
                 r.peak_pressure
             );
         }
+    }
+
+    fn at_z(name: &str, bearing: &str, z: f64, floating: bool) -> Location {
+        let mut l = single(name, z);
+        l.set.rows[0].bearing = bearing_by_name(bearing, "b").unwrap();
+        l.floating = floating;
+        l
+    }
+
+    /// A fixed and a floating deep-groove bearing: the fixed one takes all the thrust, the
+    /// floating one none (its axial force is zero to the solve's tolerance), the radial
+    /// load still splits by statics; with the thrust alone the floating location lifts off
+    /// (inside its clearance) and says so; a floating NU location reports its rollers'
+    /// contact angle, 0.
+    #[test]
+    fn a_floating_location_carries_no_thrust() {
+        let load = |fy: f64, fz: f64| ShaftLoad {
+            position: 0.1,
+            force: [0.0, fy, fz],
+            moment: [0.0, 0.0],
+        };
+        let shaft = Shaft {
+            locations: vec![at_z("A", "6206", 0.0, false), at_z("B", "6206", 0.2, true)],
+            loads: vec![load(-2000.0, 500.0)],
+            omega: 0.0,
+        };
+        let s = shaft.solve().unwrap();
+        let (a, b) = (&s.locations[0].set.force, &s.locations[1].set.force);
+        assert!(b[2].abs() < 1e-6 * 500.0, "{b:?}");
+        assert!((a[2] + 500.0).abs() < 1e-6 * 500.0, "{a:?}");
+        assert!((a[1] + b[1] - 2000.0).abs() < 1e-6 * 2000.0, "{a:?} {b:?}");
+        // The lever rule with the fixed row's own moment (its balls all loaded by the
+        // thrust give it a tilt stiffness): Fy_B 0.2 m = 200 N m + Mx_A + Mx_B.
+        let lever = (2000.0 * 0.1 + a[3] + b[3]) / 0.2;
+        assert!((b[1] - lever).abs() < 1e-6 * 2000.0, "{a:?} {b:?}");
+        assert!(
+            a[3] > 1.0 && (b[1] / 1000.0 - 1.0).abs() < 0.05,
+            "{a:?} {b:?}"
+        );
+        assert!(
+            s.locations[1].floating && s.warnings.is_empty(),
+            "{:?}",
+            s.warnings
+        );
+        let shaft = Shaft {
+            loads: vec![load(0.0, 500.0)],
+            ..shaft
+        };
+        let s = shaft.solve().unwrap();
+        assert!(
+            s.locations[1].lifted_off,
+            "{:?}",
+            s.locations[1].set.rows[0]
+        );
+        assert_eq!(
+            s.warnings,
+            vec!["location B lifts off: none of its rows carries load"]
+        );
+        let shaft = Shaft {
+            locations: vec![at_z("A", "6206", 0.0, false), at_z("B", "NU206", 0.2, true)],
+            loads: vec![load(-2000.0, 500.0)],
+            omega: 0.0,
+        };
+        let s = shaft.solve().unwrap();
+        let r = &s.locations[1].set.rows[0];
+        assert!(r.loaded_elements > 0 && r.contact_angles.iter().all(|a| *a == [0.0, 0.0]));
+    }
+
+    /// Every location floating: no axial support, refused naming it before any solve.
+    #[test]
+    fn all_floating_is_statically_undetermined() {
+        let shaft = Shaft {
+            locations: vec![at_z("A", "6206", 0.0, true), at_z("B", "6206", 0.2, true)],
+            loads: vec![ShaftLoad {
+                position: 0.1,
+                force: [0.0, -1000.0, 0.0],
+                moment: [0.0, 0.0],
+            }],
+            omega: 0.0,
+        };
+        let e = shaft.solve().unwrap_err().to_string();
+        assert!(
+            e.contains("statically determined") && e.contains("2 of 2 floating"),
+            "{e}"
+        );
     }
 }

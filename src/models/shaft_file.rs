@@ -17,6 +17,9 @@
 //! orientation = 1           # single row only: +1 carries thrust toward +z, -1 toward -z
 //! preload_n = 300           # rigid preload set by force; or preload_offset_um = ..;
 //! spring_n_per_um = 0.5     #   with preload_n: a constant-force spring; or preload_class
+//! floating = false          # true: carries no axial load (outer rings slide, or an NU)
+//! inner_ring_c = 20         # ring temperatures, °C (default 20, the set as assembled):
+//! outer_ring_c = 20         #   ball rows' clearance and rigid preload follow them
 //! [[location.row]]          # ... or rows given one by one (then no bearing/arrangement)
 //! bearing = "7008CE"
 //! position_mm = -7.5
@@ -24,7 +27,7 @@
 //! ```
 
 use crate::error::{Error, Result};
-use crate::models::set::{bearing_by_name, Preload, PreloadClass, SetFile};
+use crate::models::set::{bearing_by_name, Preload, PreloadClass, RingTemperatures, SetFile};
 use crate::models::shaft::{Location, Shaft, ShaftLoad};
 use crate::units::rpm_to_rad_s;
 use serde::Deserialize;
@@ -58,6 +61,10 @@ struct LocationKeys {
     position_mm: f64,
     bearing: Option<String>,
     preload_class: Option<String>,
+    #[serde(default)]
+    floating: bool,
+    inner_ring_c: Option<f64>,
+    outer_ring_c: Option<f64>,
 }
 
 fn location(i: usize, table: &toml::Table) -> Result<Location> {
@@ -69,7 +76,17 @@ fn location(i: usize, table: &toml::Table) -> Result<Location> {
     // The location's own keys, then the set's (one struct for the scene's `[set]` and this).
     let (mut own, mut set) = (toml::Table::new(), toml::Table::new());
     for (k, v) in table {
-        if ["name", "position_mm", "bearing", "preload_class"].contains(&k.as_str()) {
+        if [
+            "name",
+            "position_mm",
+            "bearing",
+            "preload_class",
+            "floating",
+            "inner_ring_c",
+            "outer_ring_c",
+        ]
+        .contains(&k.as_str())
+        {
             own.insert(k.clone(), v.clone());
         } else {
             set.insert(k.clone(), v.clone());
@@ -115,11 +132,35 @@ fn location(i: usize, table: &toml::Table) -> Result<Location> {
         }
         (None, false) => None,
     };
-    let set = keys.spec(&format!("location[{i}]"), b.as_ref(), class)?;
+    let set = keys.spec(&format!("location[{i}]"), b.as_ref(), class, !l.floating)?;
+    let reference = RingTemperatures::default();
+    let temperatures = RingTemperatures {
+        inner_c: l.inner_ring_c.unwrap_or(reference.inner_c),
+        outer_c: l.outer_ring_c.unwrap_or(reference.outer_c),
+        ball_c: None,
+    };
+    temperatures.validate().map_err(|e| match e {
+        Error::Invalid {
+            field,
+            value,
+            allowed,
+        } => Error::Invalid {
+            field: f(if field.ends_with("inner_c") {
+                "inner_ring_c"
+            } else {
+                "outer_ring_c"
+            }),
+            value,
+            allowed,
+        },
+        e => e,
+    })?;
     Ok(Location {
         name: l.name.unwrap_or_else(|| format!("{i}")),
         position: l.position_mm * 1e-3,
         set,
+        floating: l.floating,
+        temperatures,
     })
 }
 

@@ -63,9 +63,10 @@ pub fn text(s: &ShaftSolution) -> String {
         let f = loc.set.force;
         let _ = writeln!(
             o,
-            "location {} at {:.1} mm: reaction on the shaft Fx {:.1} N  Fy {:.1} N  Fz {:.1} N  Mx {:.3} N m  My {:.3} N m;  life {}",
+            "location {} at {:.1} mm{}: reaction on the shaft Fx {:.1} N  Fy {:.1} N  Fz {:.1} N  Mx {:.3} N m  My {:.3} N m;  life {}",
             loc.name,
             loc.position * 1e3,
+            if loc.floating { " (floating axially)" } else { "" },
             f[0],
             f[1],
             f[2],

@@ -114,12 +114,15 @@ impl SetFile {
 
     /// The set: rows from `row`, else a pair of `bearing` in `arrangement`, else one row of
     /// `bearing`. `preload` overrides the keys' preload (the shaft file's catalogue class);
-    /// `prefix` is what a refusal names the keys under (`set`, `location[0]`).
+    /// `prefix` is what a refusal names the keys under (`set`, `location[0]`);
+    /// `axial_support`: some row must carry thrust (false for a shaft file's floating
+    /// location, which carries none).
     pub fn spec(
         &self,
         prefix: &str,
         bearing: Option<&Bearing>,
         preload: Option<Preload>,
+        axial_support: bool,
     ) -> Result<SetSpec> {
         let f = |s: &str| format!("{prefix}.{s}");
         let preload = match preload {
@@ -162,7 +165,7 @@ impl SetFile {
                 })
                 .collect::<Result<Vec<_>>>()?;
             let s = SetSpec { rows, preload };
-            s.validate().map_err(rename)?;
+            s.validate_rows(axial_support).map_err(rename)?;
             return Ok(s);
         }
         let b = bearing.ok_or_else(|| Error::invalid(f("bearing"), "missing", "a bearing name"))?;
@@ -193,7 +196,7 @@ impl SetFile {
                     }],
                     preload,
                 };
-                s.validate().map_err(rename)?;
+                s.validate_rows(axial_support).map_err(rename)?;
                 Ok(s)
             }
         }

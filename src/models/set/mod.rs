@@ -47,6 +47,7 @@
 mod file;
 pub mod level;
 mod life;
+pub mod preload;
 mod row;
 mod solve;
 #[cfg(test)]
@@ -54,6 +55,7 @@ mod tests;
 
 pub use file::{RowFile, SetFile};
 pub use life::{system_life, weibull_slope};
+pub use preload::RingTemperatures;
 pub use row::RowReport;
 pub(crate) use solve::newton5 as newton5_shared;
 pub use solve::{Set, SetEval, SetSolution};
@@ -203,6 +205,12 @@ impl SetSpec {
     /// rows not overlapping in space (centres at least half the sum of their widths apart),
     /// some row carrying axial load, and a preload that can be applied.
     pub fn validate(&self) -> Result<()> {
+        self.validate_rows(true)
+    }
+
+    /// [`SetSpec::validate`], the axial support asked for only when `axial` (a set on a
+    /// shaft location that floats axially carries no axial load and needs none).
+    pub fn validate_rows(&self, axial: bool) -> Result<()> {
         if self.rows.is_empty() {
             return Err(Error::invalid("set.row", "none", "at least one row"));
         }
@@ -243,12 +251,13 @@ impl SetSpec {
                 }
             }
         }
-        if !self.rows.iter().any(|r| carries_axial(&r.bearing)) {
+        if axial && !self.rows.iter().any(|r| carries_axial(&r.bearing)) {
             return Err(Error::invalid(
                 "set.row",
                 "no row carries axial load",
                 "at least one row with axial support (a ball bearing, a tapered roller bearing \
-                 or an NJ/NUP with spherical roller ends; NU and N rows float axially)",
+                 or an NJ/NUP with spherical roller ends; NU and N rows float axially: on a \
+                 shaft, mark such a location floating)",
             ));
         }
         let both = self.rows.iter().any(|r| r.orientation == 1)

@@ -200,7 +200,8 @@ pub struct RowReport {
     pub axial_load: f64,
     /// Per-element inner contact loads, N.
     pub element_loads: Vec<f64>,
-    /// Per-ball inner and outer contact angles, rad (empty for roller rows).
+    /// Per-element inner and outer contact angles, rad: a ball's from its equilibrium; a
+    /// roller's the cone's and cup's raceway angles (0 for a cylindrical row).
     pub contact_angles: Vec<[f64; 2]>,
     /// Elements with a positive inner contact load.
     pub loaded_elements: usize,

@@ -5,10 +5,12 @@
 #![allow(clippy::needless_range_loop)] // the index loops read as the matrix formulas
 
 use super::life::{system_life, weibull_slope};
+use super::preload::RingTemperatures;
 use super::row::{RowEval, RowModel, RowReport};
 use super::{Preload, SetSpec};
 use crate::error::{Error, Result};
 use crate::geometry::element::Element;
+use crate::geometry::Bearing;
 use crate::models::quasi_static::Solution;
 use crate::ratings::{self, LifeInputs};
 use serde::Serialize;
@@ -25,6 +27,10 @@ pub struct Set {
     arm: f64,
     /// Force scale (the preload), N.
     scale: f64,
+    /// Each row's bearing and preload offset as assembled (reference temperature).
+    assembled: Vec<(Bearing, f64)>,
+    /// The rings' temperatures the rows are built for.
+    temperatures: RingTemperatures,
 }
 
 /// The set's answer at one shaft position.
@@ -209,7 +215,17 @@ pub(crate) fn newton5(
 impl Set {
     /// Build the rows and set the preload (module docs of [`super`]).
     pub fn new(spec: &SetSpec) -> Result<Set> {
-        spec.validate()?;
+        Set::build(spec, true)
+    }
+
+    /// A set that needs no axial support: its place on a shaft floats axially (the shaft
+    /// holds its axial force at zero, [`crate::models::shaft`]).
+    pub fn new_floating(spec: &SetSpec) -> Result<Set> {
+        Set::build(spec, false)
+    }
+
+    fn build(spec: &SetSpec, axial: bool) -> Result<Set> {
+        spec.validate_rows(axial)?;
         let mut rows = spec
             .rows
             .iter()
@@ -262,12 +278,15 @@ impl Set {
                 }
             }
         }
+        let assembled = rows.iter().map(|r| (r.bearing.clone(), r.offset)).collect();
         let mut set = Set {
             rows,
             spring,
             u: 0.0,
             arm,
             scale: 1.0,
+            assembled,
+            temperatures: RingTemperatures::default(),
         };
         let (rows0, _) = set.eval_rows(&[0.0; 5], 0.0, false)?;
         set.scale = 1.0 + rows0.iter().map(|e| e.f_loc[2].abs()).sum::<f64>();
@@ -283,6 +302,34 @@ impl Set {
     /// The preload spring `(stiffness N/m, force N)`, if the set has one.
     pub fn spring(&self) -> Option<(f64, f64)> {
         self.spring
+    }
+
+    /// Run the rows at ring temperatures `t` (module docs of [`super::preload`]): each ball
+    /// row's clearance and free contact angle follow the rings' radial growth while its
+    /// rings keep their assembled axial positions, so a rigid preload changes and a spring
+    /// preload slides. The reference temperatures restore the set as assembled. A refused
+    /// call changes nothing.
+    pub fn set_ring_temperatures(&mut self, t: RingTemperatures) -> Result<()> {
+        t.validate()?;
+        if t == self.temperatures {
+            return Ok(());
+        }
+        let mut rows = Vec::with_capacity(self.rows.len());
+        for (i, (r, (b0, off0))) in self.rows.iter().zip(&self.assembled).enumerate() {
+            let (b, d_off) = super::preload::row_at(b0, &t, i)?;
+            let mut m = RowModel::new(&b, r.z, r.o as i32)?;
+            m.offset = off0 + d_off;
+            m.floating = r.floating;
+            rows.push(m);
+        }
+        self.rows = rows;
+        self.temperatures = t;
+        Ok(())
+    }
+
+    /// The rings' temperatures the set runs at.
+    pub fn ring_temperatures(&self) -> RingTemperatures {
+        self.temperatures
     }
 
     /// Number of rows.
@@ -557,7 +604,12 @@ fn row_report(r: &RowModel, e: &RowEval, omega: f64, speed_rpm: f64) -> Result<R
         radial_load: fr,
         axial_load: fa,
         element_loads: e.loads.iter().map(|l| l[0]).collect(),
-        contact_angles: e.balls.iter().map(|x| [x.alpha_i, x.alpha_o]).collect(),
+        contact_angles: match &b.element {
+            Element::Ball(_) => e.balls.iter().map(|x| [x.alpha_i, x.alpha_o]).collect(),
+            // Line contacts along the raceways: the cone's and the cup's angles (0 for a
+            // cylindrical row), the rollers' own small tilt left out.
+            Element::Roller(rb) => vec![[rb.alpha_cone, rb.alpha]; e.loads.len()],
+        },
         loaded_elements: loaded,
         lifted_off: loaded == 0,
         axial_stiffness: e.k_loc[2][2],

@@ -270,3 +270,109 @@ fn loaded_pair_life_is_below_each_rows() {
         assert!((sol.force[i] + [1000.0, 0.0, 500.0, 0.0, 0.0][i]).abs() < 1e-6 * scale);
     }
 }
+
+/// Ring temperatures (physics §S1): a warmer inner ring closes the rows' clearance, so a
+/// rigid preload rises (more for a larger difference, the rows still equal and opposite),
+/// while a spring preload's rows slide and its force changes only by the spring's stiffness
+/// times the slide (exactly: `F = F_s + k_s u`), far less than the rigid one's.
+#[test]
+fn warmer_inner_ring_raises_a_rigid_preload_not_a_spring_one() {
+    let at = |preload: Preload, dt: f64| {
+        let mut s = pair(Arrangement::Db, preload);
+        s.set_ring_temperatures(RingTemperatures::inner_warmer(dt))
+            .unwrap();
+        s.solve(&[0.0; 5], 0.0).unwrap()
+    };
+    let cold = at(Preload::Force(300.0), 0.0);
+    let warm = at(Preload::Force(300.0), 5.0);
+    let hot = at(Preload::Force(300.0), 10.0);
+    assert!(rel(cold.rows[0].axial_load, 300.0) < 1e-9);
+    assert!(
+        warm.rows[0].axial_load > 300.0 * 1.05 && hot.rows[0].axial_load > warm.rows[0].axial_load,
+        "{} {}",
+        warm.rows[0].axial_load,
+        hot.rows[0].axial_load
+    );
+    assert!(rel(hot.rows[1].axial_load, hot.rows[0].axial_load) < 1e-8);
+    // The axial stiffness rises with the preload.
+    assert!(hot.stiffness[2][2] > cold.stiffness[2][2]);
+    let (ks, fs) = (0.5e6, 300.0);
+    let spring = Preload::Spring {
+        stiffness: ks,
+        force: fs,
+    };
+    let s0 = at(spring, 0.0);
+    let s1 = at(spring, 10.0);
+    let d_spring = s1.rows[0].axial_load - s0.rows[0].axial_load;
+    let d_rigid = hot.rows[0].axial_load - cold.rows[0].axial_load;
+    let want = ks * (s1.spring_shift - s0.spring_shift);
+    assert!(
+        (d_spring - want).abs() < 1e-6 * fs,
+        "{d_spring} against k_s du = {want}"
+    );
+    assert!(d_spring.abs() < 0.05 * d_rigid, "{d_spring} {d_rigid}");
+}
+
+/// The reference temperatures leave the set bit-identical to the set as assembled, given
+/// explicitly or after a warm excursion; a roller row refuses a temperature and a refused
+/// call changes nothing.
+#[test]
+fn reference_temperatures_change_nothing() {
+    let base = pair(Arrangement::Db, Preload::Force(300.0))
+        .solve(&[50.0, -200.0, 100.0, 0.0, 0.0], rpm_to_rad_s(12_000.0))
+        .unwrap();
+    let mut s = pair(Arrangement::Db, Preload::Force(300.0));
+    s.set_ring_temperatures(RingTemperatures {
+        inner_c: 20.0,
+        outer_c: 20.0,
+        ball_c: Some(20.0),
+    })
+    .unwrap();
+    let same = s
+        .solve(&[50.0, -200.0, 100.0, 0.0, 0.0], rpm_to_rad_s(12_000.0))
+        .unwrap();
+    assert_eq!(format!("{base:?}"), format!("{same:?}"));
+    let mut s = pair(Arrangement::Db, Preload::Force(300.0));
+    s.set_ring_temperatures(RingTemperatures::inner_warmer(10.0))
+        .unwrap();
+    s.set_ring_temperatures(RingTemperatures::default())
+        .unwrap();
+    let back = s
+        .solve(&[50.0, -200.0, 100.0, 0.0, 0.0], rpm_to_rad_s(12_000.0))
+        .unwrap();
+    for i in 0..5 {
+        assert!((back.q[i] - base.q[i]).abs() <= 1e-12 * base.q[i].abs().max(1e-9));
+    }
+    let nu = bearing_by_name("NJ206", "b").unwrap();
+    let ball = b7008();
+    let spec = SetSpec {
+        rows: vec![
+            Row {
+                bearing: ball.clone(),
+                position: -0.05,
+                orientation: 1,
+            },
+            Row {
+                bearing: nu,
+                position: 0.05,
+                orientation: 1,
+            },
+        ],
+        preload: Preload::None,
+    };
+    let mut s = Set::new(&spec).unwrap();
+    let e = s
+        .set_ring_temperatures(RingTemperatures::inner_warmer(5.0))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("set.temperatures") && e.contains("row 1"), "{e}");
+    assert!(s.ring_temperatures().is_reference());
+    let e = s
+        .set_ring_temperatures(RingTemperatures {
+            inner_c: f64::NAN,
+            ..Default::default()
+        })
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("set.temperatures.inner_c"), "{e}");
+}
