@@ -106,7 +106,9 @@ impl State {
             self.input_derivatives.clone_from(&o.input_derivatives);
         }
         // A step's outputs (`Component::compute_outputs`, on every successful step) write
-        // every slot from `N_INPUT_SLOTS` on: only the slots below are carried over.
+        // every slot from `N_INPUT_SLOTS` on but the per-row slots of rows the level does
+        // not have, which are zero in both buffers from the build and never written: only
+        // the slots below `N_INPUT_SLOTS` are carried over.
         if !all_inputs && self.outputs.len() == o.outputs.len() && o.outputs.len() >= ni {
             self.outputs[..ni].copy_from_slice(&o.outputs[..ni]);
         } else {
