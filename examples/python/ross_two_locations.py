@@ -6,11 +6,12 @@ components (``raceway.Component``, quasi-static level, motion-driven), not ROSS 
 elements: at the front a 7008CE pair back to back (DB) with a rigid preload, at the rear a
 single 6008 deep-groove bearing. Gravity acts along -y.
 
-**The DB pair is two single-row components** at the pair's two row positions, the row facing
--z mirrored by hand (its axial and tilt inputs and outputs change sign, physics §S1), because
-a set scene that runs as one component is not on this branch. ``front_location()`` builds it;
-replacing the pair by one set scene is the one line marked there (``Single(set_scene)``):
-every location answers the same ``step(q, v)`` with its wrench and 5x5 stiffness at its node.
+**The DB pair is one component**: a set scene (`[set] arrangement = "db"`, physics §S1) whose
+rows sit at their own axial positions and whose wrench and 5x5 stiffness come out at the
+pair's reference point, the node. ``front_location(..., as_set=False)`` builds the same pair
+from two single-row components instead, the row facing -z mirrored by hand (its axial and tilt
+inputs and outputs change sign); the check below holds for both. Every location answers the
+same ``step(q, v)`` with its wrench and 5x5 stiffness at its node.
 
 Coupling per macro step h (Jacobi, as examples/python/rotor_two_bearings.py): each location
 gets the shaft's 5 nodal displacements (x, y, z, rx, ry) at its node from the rotor's state and
@@ -115,13 +116,35 @@ class Rows:
         self.q_hat = q.copy()
 
 
-def front_location(folder: pathlib.Path, omega: float, preload_n: float) -> Rows | Single:
-    """The front DB pair of 7008CE (width 15 mm, rows abutting), rigid preload `preload_n`."""
+SET_SCENE = """title = "7008CE DB pair, rigid preload {preload} N, quasi-static (ROSS example)"
+bearing = "7008CE"
+
+[set]
+arrangement = "db"
+spacer_mm = 0
+preload_n = {preload}
+
+[model]
+level = "quasi_static"
+causality = "motion"
+
+[inputs]
+rule = "hold"
+"""
+
+
+def front_location(folder: pathlib.Path, omega: float, preload_n: float,
+                   as_set: bool = True) -> Rows | Single:
+    """The front DB pair of 7008CE (width 15 mm, rows abutting), rigid preload `preload_n`:
+    one set component (`as_set`), or two single-row components at the rows' positions."""
+    if as_set:
+        p = folder / "7008ce-db.toml"
+        p.write_text(SET_SCENE.format(preload=preload_n))
+        return Single(str(p), omega)
     width = 0.015
     # The rigid offset: each row's own axial displacement carrying the preload at standstill.
     offset = float(raceway.quasi_static("7008ce", fz=preload_n).displacement[2])
     path = scene(folder, "7008ce")
-    # One set scene instead: return Single(set_scene_path, omega)   <- the one-line change
     return Rows([Single(path, omega, -width / 2, +1.0, offset),
                  Single(path, omega, +width / 2, -1.0, offset)])
 

@@ -466,24 +466,25 @@ impl Scene {
         crate::nesting::check(text).map_err(|e| parse(e.to_string()))?;
         // The untyped tree first: a list where a table belongs is named as such before
         // serde reads it by position or names a Rust type.
-        let tree = if json {
+        let mut tree = if json {
             serde_json::from_str::<serde_json::Value>(text).map_err(|e| parse(e.to_string()))?
         } else {
             let table = toml::from_str::<toml::Table>(text).map_err(|e| parse(e.to_string()))?;
             serde_json::to_value(table).map_err(|e| parse(e.to_string()))?
         };
-        if let Some(path) = super::schema::null_at(&tree) {
-            return Err(parse(format!(
-                "`{path}`: found null, which is not a value (leave the field out for its default)"
-            )));
-        }
         if let Some((path, expected)) = super::schema::list_for_table(&tree) {
             return Err(parse(format!(
                 "`{path}` is a list; expected {expected} (`[{path}]` with its fields, or `{path} = {{ ... }}`)"
             )));
         }
         if json {
-            serde_json::from_str(text).map_err(|e| parse(e.to_string()))
+            // A null key is an absent key (`schema::strip_nulls`): read the stripped tree
+            // when there was one (its errors carry no line), else the text (with lines).
+            if super::schema::strip_nulls(&mut tree) {
+                serde_json::from_value(tree).map_err(|e| parse(e.to_string()))
+            } else {
+                serde_json::from_str(text).map_err(|e| parse(e.to_string()))
+            }
         } else {
             toml::from_str(text).map_err(|e| parse(e.to_string()))
         }

@@ -473,8 +473,8 @@ mod tests {
                         // The per-row slots of rows a level does not have (all four for a
                         // single bearing) are never written: they keep their zero from
                         // the build (pay only for what you use).
-                        let rows = super::super::variables::ROWS
-                            * super::super::variables::ROW_OUTPUTS;
+                        let rows =
+                            super::super::variables::ROWS * super::super::variables::ROW_OUTPUTS;
                         b.scratch.outputs[I_ROWS..I_ROWS + rows].fill(0.0);
                     }
                     b.do_step(t, 1e-4).unwrap();

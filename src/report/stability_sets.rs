@@ -116,12 +116,18 @@ impl SetCell {
                 None => initial.push((n, v)),
             }
         }
+        // The speed is a scene field in rpm (`[inputs] speed_rpm`), the rest initial values.
+        let rpm = initial
+            .iter()
+            .find(|(n, _)| *n == "shaft.omega")
+            .map_or(0.0, |(_, w)| w * 30.0 / std::f64::consts::PI);
         let initial: Vec<String> = initial
             .iter()
+            .filter(|(n, _)| *n != "shaft.omega")
             .map(|(n, x)| format!("\"{n}\" = {x:e}"))
             .collect();
         format!(
-            "bearing = \"7008CE\"\n{}{}[solver]\nrtol = {rtol:e}\n[inputs]\nrule = \"hold\"\ninitial = {{ {} }}\n",
+            "bearing = \"7008CE\"\n{}{}[solver]\nrtol = {rtol:e}\n[inputs]\nrule = \"hold\"\nspeed_rpm = {rpm:?}\ninitial = {{ {} }}\n",
             self.lines,
             self.lines_model(),
             initial.join(", ")

@@ -114,8 +114,11 @@ pub(super) fn from_json(v: &serde_json::Value) -> Node {
         }
         J::String(s) => Node::Str(s.clone()),
         J::Array(a) => Node::Array(a.iter().map(|x| (None, from_json(x))).collect()),
+        // A key whose value is null is absent (as serde reads an optional field, and as
+        // `Scene::from_text` reads the tree: `schema::strip_nulls`).
         J::Object(o) => Node::Table(
             o.iter()
+                .filter(|(_, x)| !x.is_null())
                 .map(|(k, x)| (k.clone(), None, None, from_json(x)))
                 .collect(),
         ),

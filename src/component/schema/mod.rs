@@ -172,30 +172,33 @@ fn normalise_child(parent_norm: &str, key: &str) -> String {
     }
 }
 
-/// The path of the first JSON `null` in a scene tree, if any. JSON has `null` where TOML has
-/// nothing: serde would read it as an absent optional field (its default) while `scene
-/// --check` refuses it, so every face refuses it, naming the field (the tree's depth is
-/// bounded by [`crate::nesting`] before this runs).
-pub fn null_at(v: &serde_json::Value) -> Option<String> {
-    fn walk(v: &serde_json::Value, path: &str) -> Option<String> {
-        let join = |k: &str| {
-            if path.is_empty() {
-                k.to_string()
-            } else {
-                format!("{path}.{k}")
+/// Remove every key whose value is JSON `null` from a scene tree, at any depth; returns
+/// whether one was removed. A null key is an absent key on every face: serde reads a null
+/// optional field as absent but refuses a null where a value is required, while the check
+/// walks the tree; removing the keys first makes both read the same tree (a null inside a
+/// list stays, and is refused by both). What a serialised `Scene` writes for an unset
+/// optional field (`null`) so reads back as unset. The tree's depth is bounded by
+/// [`crate::nesting`] before this runs.
+pub fn strip_nulls(v: &mut serde_json::Value) -> bool {
+    match v {
+        serde_json::Value::Object(m) => {
+            let before = m.len();
+            m.retain(|_, x| !x.is_null());
+            let mut removed = m.len() != before;
+            for x in m.values_mut() {
+                removed |= strip_nulls(x);
             }
-        };
-        match v {
-            serde_json::Value::Null => Some(path.to_string()),
-            serde_json::Value::Array(items) => items
-                .iter()
-                .enumerate()
-                .find_map(|(i, x)| walk(x, &format!("{path}[{i}]"))),
-            serde_json::Value::Object(m) => m.iter().find_map(|(k, x)| walk(x, &join(k))),
-            _ => None,
+            removed
         }
+        serde_json::Value::Array(items) => {
+            let mut removed = false;
+            for x in items {
+                removed |= strip_nulls(x);
+            }
+            removed
+        }
+        _ => false,
     }
-    walk(v, "")
 }
 
 /// The first place in a parsed scene where a list stands for a table (serde would read
