@@ -583,7 +583,11 @@ pub fn load(text: &str, overrides: &[(&str, f64)]) -> std::result::Result<Scene,
     let doc: std::result::Result<toml::Table, String> = if text.trim_start().starts_with('{') {
         serde_json::from_str::<serde_json::Value>(text)
             .map_err(|e| e.to_string())
-            .and_then(|v| toml::Table::try_from(v).map_err(|e| e.to_string()))
+            .and_then(|mut v| {
+                // A null key is an absent key (TOML has no null).
+                super::strip_nulls(&mut v);
+                toml::Table::try_from(v).map_err(|e| e.to_string())
+            })
     } else {
         toml::from_str(text).map_err(|e| e.to_string())
     };
