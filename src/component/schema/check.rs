@@ -549,11 +549,20 @@ pub fn problems_text(problems: &[Problem]) -> String {
 /// `line:column` and "did you mean" ([`problems_text`]), as `raceway scene --check` gives
 /// them; `e` itself when the checker finds nothing (a problem it does not locate).
 pub fn scene_error_text(text: &str, e: &crate::Error) -> String {
-    let problems = check(text);
-    if problems.is_empty() {
-        e.to_string()
-    } else {
-        problems_text(&problems)
+    // The checker parses the text again, with spans: on the host's thread, whose stack may be
+    // as small as the one docs/robustness.md promises, a deeply nested text would overflow
+    // it. So it runs on a thread of its own (only on a refusal); if that thread cannot be
+    // made or fails, the refusal's own message stands.
+    let owned = text.to_owned();
+    let problems = std::thread::Builder::new()
+        .name("raceway-scene-check".into())
+        .stack_size(4 << 20)
+        .spawn(move || check(&owned))
+        .ok()
+        .and_then(|h| h.join().ok());
+    match problems {
+        Some(p) if !p.is_empty() => problems_text(&p),
+        _ => e.to_string(),
     }
 }
 
