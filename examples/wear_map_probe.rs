@@ -46,10 +46,7 @@ fn main() -> Res<()> {
     scene.model.skidding.drag_coefficient =
         arg(&args, "--drag", scene.model.skidding.drag_coefficient);
     let rpm = arg(&args, "--rpm", 2000.0);
-    scene
-        .inputs
-        .initial
-        .insert("shaft.omega".into(), rpm * TAU / 60.0);
+    scene.inputs.set_initial("shaft.omega", rpm * TAU / 60.0);
     let rtol = scene.solver.rtol;
     let wear = OuterRaceWear::study2(None, AsperityReading::default());
     let mut c = Component::new(scene)?;
