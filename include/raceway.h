@@ -493,164 +493,164 @@
 #define RACEWAY_VR_C_RY_RY 324
 
 /*
- `row.0.force.x` (N): set row: force of the row on the shaft at the row, x.
+ `row0.force.x` (N): set row: force of the row on the shaft at the row, x.
  */
-#define RACEWAY_VR_ROW_0_FORCE_X 400
+#define RACEWAY_VR_ROW0_FORCE_X 400
 
 /*
- `row.0.force.y` (N): set row: force of the row on the shaft at the row, y.
+ `row0.force.y` (N): set row: force of the row on the shaft at the row, y.
  */
-#define RACEWAY_VR_ROW_0_FORCE_Y 401
+#define RACEWAY_VR_ROW0_FORCE_Y 401
 
 /*
- `row.0.force.z` (N): set row: force of the row on the shaft at the row, z (axial).
+ `row0.force.z` (N): set row: force of the row on the shaft at the row, z (axial).
  */
-#define RACEWAY_VR_ROW_0_FORCE_Z 402
+#define RACEWAY_VR_ROW0_FORCE_Z 402
 
 /*
- `row.0.moment.x` (N.m): set row: moment of the row on the shaft about x at the row.
+ `row0.moment.x` (N.m): set row: moment of the row on the shaft about x at the row.
  */
-#define RACEWAY_VR_ROW_0_MOMENT_X 403
+#define RACEWAY_VR_ROW0_MOMENT_X 403
 
 /*
- `row.0.moment.y` (N.m): set row: moment of the row on the shaft about y at the row.
+ `row0.moment.y` (N.m): set row: moment of the row on the shaft about y at the row.
  */
-#define RACEWAY_VR_ROW_0_MOMENT_Y 404
+#define RACEWAY_VR_ROW0_MOMENT_Y 404
 
 /*
- `row.0.contact_angle` (rad): set row: load-weighted mean inner contact angle of the loaded balls (quasi-static ball equilibrium at the row's displacement; roller rows: nominal; 0 when lifted off).
+ `row0.contact_angle` (rad): set row: load-weighted mean inner contact angle of the loaded balls (quasi-static ball equilibrium at the row's displacement; roller rows: nominal; 0 when lifted off).
  */
-#define RACEWAY_VR_ROW_0_CONTACT_ANGLE 405
+#define RACEWAY_VR_ROW0_CONTACT_ANGLE 405
 
 /*
- `row.0.lift_off` (integer; `raceway_get_integer`, or exact in `raceway_get_real`): set row: 1 when no element of the row is loaded, else 0.
+ `row0.lift_off` (integer; `raceway_get_integer`, or exact in `raceway_get_real`): set row: 1 when no element of the row is loaded, else 0.
  */
-#define RACEWAY_VR_ROW_0_LIFT_OFF 406
+#define RACEWAY_VR_ROW0_LIFT_OFF 406
 
 /*
- `row.0.life.L10` (1): set row: basic rating life (ISO 281) of the row's own load, millions of revolutions; 1e12 when unloaded.
+ `row0.life.L10` (1): set row: basic rating life (ISO 281) of the row's own load, millions of revolutions; 1e12 when unloaded.
  */
-#define RACEWAY_VR_ROW_0_LIFE_L10 407
+#define RACEWAY_VR_ROW0_LIFE_L10 407
 
 /*
- `row.1.force.x` (N): set row: force of the row on the shaft at the row, x.
+ `row1.force.x` (N): set row: force of the row on the shaft at the row, x.
  */
-#define RACEWAY_VR_ROW_1_FORCE_X 410
+#define RACEWAY_VR_ROW1_FORCE_X 410
 
 /*
- `row.1.force.y` (N): set row: force of the row on the shaft at the row, y.
+ `row1.force.y` (N): set row: force of the row on the shaft at the row, y.
  */
-#define RACEWAY_VR_ROW_1_FORCE_Y 411
+#define RACEWAY_VR_ROW1_FORCE_Y 411
 
 /*
- `row.1.force.z` (N): set row: force of the row on the shaft at the row, z (axial).
+ `row1.force.z` (N): set row: force of the row on the shaft at the row, z (axial).
  */
-#define RACEWAY_VR_ROW_1_FORCE_Z 412
+#define RACEWAY_VR_ROW1_FORCE_Z 412
 
 /*
- `row.1.moment.x` (N.m): set row: moment of the row on the shaft about x at the row.
+ `row1.moment.x` (N.m): set row: moment of the row on the shaft about x at the row.
  */
-#define RACEWAY_VR_ROW_1_MOMENT_X 413
+#define RACEWAY_VR_ROW1_MOMENT_X 413
 
 /*
- `row.1.moment.y` (N.m): set row: moment of the row on the shaft about y at the row.
+ `row1.moment.y` (N.m): set row: moment of the row on the shaft about y at the row.
  */
-#define RACEWAY_VR_ROW_1_MOMENT_Y 414
+#define RACEWAY_VR_ROW1_MOMENT_Y 414
 
 /*
- `row.1.contact_angle` (rad): set row: load-weighted mean inner contact angle of the loaded balls (quasi-static ball equilibrium at the row's displacement; roller rows: nominal; 0 when lifted off).
+ `row1.contact_angle` (rad): set row: load-weighted mean inner contact angle of the loaded balls (quasi-static ball equilibrium at the row's displacement; roller rows: nominal; 0 when lifted off).
  */
-#define RACEWAY_VR_ROW_1_CONTACT_ANGLE 415
+#define RACEWAY_VR_ROW1_CONTACT_ANGLE 415
 
 /*
- `row.1.lift_off` (integer; `raceway_get_integer`, or exact in `raceway_get_real`): set row: 1 when no element of the row is loaded, else 0.
+ `row1.lift_off` (integer; `raceway_get_integer`, or exact in `raceway_get_real`): set row: 1 when no element of the row is loaded, else 0.
  */
-#define RACEWAY_VR_ROW_1_LIFT_OFF 416
+#define RACEWAY_VR_ROW1_LIFT_OFF 416
 
 /*
- `row.1.life.L10` (1): set row: basic rating life (ISO 281) of the row's own load, millions of revolutions; 1e12 when unloaded.
+ `row1.life.L10` (1): set row: basic rating life (ISO 281) of the row's own load, millions of revolutions; 1e12 when unloaded.
  */
-#define RACEWAY_VR_ROW_1_LIFE_L10 417
+#define RACEWAY_VR_ROW1_LIFE_L10 417
 
 /*
- `row.2.force.x` (N): set row: force of the row on the shaft at the row, x.
+ `row2.force.x` (N): set row: force of the row on the shaft at the row, x.
  */
-#define RACEWAY_VR_ROW_2_FORCE_X 420
+#define RACEWAY_VR_ROW2_FORCE_X 420
 
 /*
- `row.2.force.y` (N): set row: force of the row on the shaft at the row, y.
+ `row2.force.y` (N): set row: force of the row on the shaft at the row, y.
  */
-#define RACEWAY_VR_ROW_2_FORCE_Y 421
+#define RACEWAY_VR_ROW2_FORCE_Y 421
 
 /*
- `row.2.force.z` (N): set row: force of the row on the shaft at the row, z (axial).
+ `row2.force.z` (N): set row: force of the row on the shaft at the row, z (axial).
  */
-#define RACEWAY_VR_ROW_2_FORCE_Z 422
+#define RACEWAY_VR_ROW2_FORCE_Z 422
 
 /*
- `row.2.moment.x` (N.m): set row: moment of the row on the shaft about x at the row.
+ `row2.moment.x` (N.m): set row: moment of the row on the shaft about x at the row.
  */
-#define RACEWAY_VR_ROW_2_MOMENT_X 423
+#define RACEWAY_VR_ROW2_MOMENT_X 423
 
 /*
- `row.2.moment.y` (N.m): set row: moment of the row on the shaft about y at the row.
+ `row2.moment.y` (N.m): set row: moment of the row on the shaft about y at the row.
  */
-#define RACEWAY_VR_ROW_2_MOMENT_Y 424
+#define RACEWAY_VR_ROW2_MOMENT_Y 424
 
 /*
- `row.2.contact_angle` (rad): set row: load-weighted mean inner contact angle of the loaded balls (quasi-static ball equilibrium at the row's displacement; roller rows: nominal; 0 when lifted off).
+ `row2.contact_angle` (rad): set row: load-weighted mean inner contact angle of the loaded balls (quasi-static ball equilibrium at the row's displacement; roller rows: nominal; 0 when lifted off).
  */
-#define RACEWAY_VR_ROW_2_CONTACT_ANGLE 425
+#define RACEWAY_VR_ROW2_CONTACT_ANGLE 425
 
 /*
- `row.2.lift_off` (integer; `raceway_get_integer`, or exact in `raceway_get_real`): set row: 1 when no element of the row is loaded, else 0.
+ `row2.lift_off` (integer; `raceway_get_integer`, or exact in `raceway_get_real`): set row: 1 when no element of the row is loaded, else 0.
  */
-#define RACEWAY_VR_ROW_2_LIFT_OFF 426
+#define RACEWAY_VR_ROW2_LIFT_OFF 426
 
 /*
- `row.2.life.L10` (1): set row: basic rating life (ISO 281) of the row's own load, millions of revolutions; 1e12 when unloaded.
+ `row2.life.L10` (1): set row: basic rating life (ISO 281) of the row's own load, millions of revolutions; 1e12 when unloaded.
  */
-#define RACEWAY_VR_ROW_2_LIFE_L10 427
+#define RACEWAY_VR_ROW2_LIFE_L10 427
 
 /*
- `row.3.force.x` (N): set row: force of the row on the shaft at the row, x.
+ `row3.force.x` (N): set row: force of the row on the shaft at the row, x.
  */
-#define RACEWAY_VR_ROW_3_FORCE_X 430
+#define RACEWAY_VR_ROW3_FORCE_X 430
 
 /*
- `row.3.force.y` (N): set row: force of the row on the shaft at the row, y.
+ `row3.force.y` (N): set row: force of the row on the shaft at the row, y.
  */
-#define RACEWAY_VR_ROW_3_FORCE_Y 431
+#define RACEWAY_VR_ROW3_FORCE_Y 431
 
 /*
- `row.3.force.z` (N): set row: force of the row on the shaft at the row, z (axial).
+ `row3.force.z` (N): set row: force of the row on the shaft at the row, z (axial).
  */
-#define RACEWAY_VR_ROW_3_FORCE_Z 432
+#define RACEWAY_VR_ROW3_FORCE_Z 432
 
 /*
- `row.3.moment.x` (N.m): set row: moment of the row on the shaft about x at the row.
+ `row3.moment.x` (N.m): set row: moment of the row on the shaft about x at the row.
  */
-#define RACEWAY_VR_ROW_3_MOMENT_X 433
+#define RACEWAY_VR_ROW3_MOMENT_X 433
 
 /*
- `row.3.moment.y` (N.m): set row: moment of the row on the shaft about y at the row.
+ `row3.moment.y` (N.m): set row: moment of the row on the shaft about y at the row.
  */
-#define RACEWAY_VR_ROW_3_MOMENT_Y 434
+#define RACEWAY_VR_ROW3_MOMENT_Y 434
 
 /*
- `row.3.contact_angle` (rad): set row: load-weighted mean inner contact angle of the loaded balls (quasi-static ball equilibrium at the row's displacement; roller rows: nominal; 0 when lifted off).
+ `row3.contact_angle` (rad): set row: load-weighted mean inner contact angle of the loaded balls (quasi-static ball equilibrium at the row's displacement; roller rows: nominal; 0 when lifted off).
  */
-#define RACEWAY_VR_ROW_3_CONTACT_ANGLE 435
+#define RACEWAY_VR_ROW3_CONTACT_ANGLE 435
 
 /*
- `row.3.lift_off` (integer; `raceway_get_integer`, or exact in `raceway_get_real`): set row: 1 when no element of the row is loaded, else 0.
+ `row3.lift_off` (integer; `raceway_get_integer`, or exact in `raceway_get_real`): set row: 1 when no element of the row is loaded, else 0.
  */
-#define RACEWAY_VR_ROW_3_LIFT_OFF 436
+#define RACEWAY_VR_ROW3_LIFT_OFF 436
 
 /*
- `row.3.life.L10` (1): set row: basic rating life (ISO 281) of the row's own load, millions of revolutions; 1e12 when unloaded.
+ `row3.life.L10` (1): set row: basic rating life (ISO 281) of the row's own load, millions of revolutions; 1e12 when unloaded.
  */
-#define RACEWAY_VR_ROW_3_LIFE_L10 437
+#define RACEWAY_VR_ROW3_LIFE_L10 437
 
 /*
  Result of every call.

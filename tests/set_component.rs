@@ -46,13 +46,13 @@ fn spec(preload: Preload) -> SetSpec {
 #[test]
 fn a_preloaded_pair_balances_at_rest_and_its_wrench_is_its_rows_carried_to_the_reference() {
     let mut c = pair_at(|s| s, [0.0; 5], 0.0);
-    let (f0, f1) = (get(&mut c, "row.0.force.z"), get(&mut c, "row.1.force.z"));
+    let (f0, f1) = (get(&mut c, "row0.force.z"), get(&mut c, "row1.force.z"));
     assert!((f0 + 300.0).abs() < 1e-6 * 300.0, "{f0}");
     assert!((f1 - 300.0).abs() < 1e-6 * 300.0, "{f1}");
     assert!(get(&mut c, "force.z").abs() < 1e-9 * 300.0);
-    assert_eq!(get(&mut c, "row.0.lift_off"), 0.0);
-    let a0 = get(&mut c, "row.0.contact_angle");
-    let a1 = get(&mut c, "row.1.contact_angle");
+    assert_eq!(get(&mut c, "row0.lift_off"), 0.0);
+    let a0 = get(&mut c, "row0.contact_angle");
+    let a1 = get(&mut c, "row1.contact_angle");
     assert!((a0 - a1).abs() < 1e-9, "{a0} {a1}");
     // 7008CE: 15 degrees nominal, a little more under the preload.
     assert!(
@@ -64,7 +64,7 @@ fn a_preloaded_pair_balances_at_rest_and_its_wrench_is_its_rows_carried_to_the_r
     let mut c = pair_at(|s| s, q, 1256.6);
     let s = spec(Preload::Force(300.0));
     let z: Vec<f64> = s.rows.iter().map(|r| r.position).collect();
-    let row = |c: &mut Component, i: usize, k: &str| get(c, &format!("row.{i}.{k}"));
+    let row = |c: &mut Component, i: usize, k: &str| get(c, &format!("row{i}.{k}"));
     let mut sum = [0.0; 5];
     for (i, &zr) in z.iter().enumerate() {
         let f = [
@@ -134,10 +134,10 @@ fn the_pairs_stiffness_is_the_set_modules() {
 fn a_spring_preloaded_pair_keeps_its_preload() {
     let spring = |s: String| s.replace("preload_n = 300", "preload_n = 300\nspring_n_per_um = 1");
     let mut c = pair_at(spring, [0.0; 5], 0.0);
-    let f1 = get(&mut c, "row.1.force.z");
+    let f1 = get(&mut c, "row1.force.z");
     assert!((f1 - 300.0).abs() < 1e-6 * 300.0, "{f1}");
     let mut c = pair_at(spring, [0.0, 0.0, 5e-6, 0.0, 0.0], 0.0);
-    let (f0, f1) = (get(&mut c, "row.0.force.z"), get(&mut c, "row.1.force.z"));
+    let (f0, f1) = (get(&mut c, "row0.force.z"), get(&mut c, "row1.force.z"));
     // The spring moves 5 µm at most: 5 N.
     assert!((f1 - 300.0).abs() < 5.5, "{f1}");
     let fz = get(&mut c, "force.z");

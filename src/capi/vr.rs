@@ -274,98 +274,98 @@ pub const RACEWAY_VR_C_RY_RX: u32 = 323;
 /// `C.ry.ry` (N.m.s/rad): damping -dF_i/dv_j.
 pub const RACEWAY_VR_C_RY_RY: u32 = 324;
 
-/// `row.0.force.x` (N): set row: force of the row on the shaft at the row, x.
-pub const RACEWAY_VR_ROW_0_FORCE_X: u32 = 400;
+/// `row0.force.x` (N): set row: force of the row on the shaft at the row, x.
+pub const RACEWAY_VR_ROW0_FORCE_X: u32 = 400;
 
-/// `row.0.force.y` (N): set row: force of the row on the shaft at the row, y.
-pub const RACEWAY_VR_ROW_0_FORCE_Y: u32 = 401;
+/// `row0.force.y` (N): set row: force of the row on the shaft at the row, y.
+pub const RACEWAY_VR_ROW0_FORCE_Y: u32 = 401;
 
-/// `row.0.force.z` (N): set row: force of the row on the shaft at the row, z (axial).
-pub const RACEWAY_VR_ROW_0_FORCE_Z: u32 = 402;
+/// `row0.force.z` (N): set row: force of the row on the shaft at the row, z (axial).
+pub const RACEWAY_VR_ROW0_FORCE_Z: u32 = 402;
 
-/// `row.0.moment.x` (N.m): set row: moment of the row on the shaft about x at the row.
-pub const RACEWAY_VR_ROW_0_MOMENT_X: u32 = 403;
+/// `row0.moment.x` (N.m): set row: moment of the row on the shaft about x at the row.
+pub const RACEWAY_VR_ROW0_MOMENT_X: u32 = 403;
 
-/// `row.0.moment.y` (N.m): set row: moment of the row on the shaft about y at the row.
-pub const RACEWAY_VR_ROW_0_MOMENT_Y: u32 = 404;
+/// `row0.moment.y` (N.m): set row: moment of the row on the shaft about y at the row.
+pub const RACEWAY_VR_ROW0_MOMENT_Y: u32 = 404;
 
-/// `row.0.contact_angle` (rad): set row: load-weighted mean inner contact angle of the loaded balls (quasi-static ball equilibrium at the row's displacement; roller rows: nominal; 0 when lifted off).
-pub const RACEWAY_VR_ROW_0_CONTACT_ANGLE: u32 = 405;
+/// `row0.contact_angle` (rad): set row: load-weighted mean inner contact angle of the loaded balls (quasi-static ball equilibrium at the row's displacement; roller rows: nominal; 0 when lifted off).
+pub const RACEWAY_VR_ROW0_CONTACT_ANGLE: u32 = 405;
 
-/// `row.0.lift_off` (integer; `raceway_get_integer`, or exact in `raceway_get_real`): set row: 1 when no element of the row is loaded, else 0.
-pub const RACEWAY_VR_ROW_0_LIFT_OFF: u32 = 406;
+/// `row0.lift_off` (integer; `raceway_get_integer`, or exact in `raceway_get_real`): set row: 1 when no element of the row is loaded, else 0.
+pub const RACEWAY_VR_ROW0_LIFT_OFF: u32 = 406;
 
-/// `row.0.life.L10` (1): set row: basic rating life (ISO 281) of the row's own load, millions of revolutions; 1e12 when unloaded.
-pub const RACEWAY_VR_ROW_0_LIFE_L10: u32 = 407;
+/// `row0.life.L10` (1): set row: basic rating life (ISO 281) of the row's own load, millions of revolutions; 1e12 when unloaded.
+pub const RACEWAY_VR_ROW0_LIFE_L10: u32 = 407;
 
-/// `row.1.force.x` (N): set row: force of the row on the shaft at the row, x.
-pub const RACEWAY_VR_ROW_1_FORCE_X: u32 = 410;
+/// `row1.force.x` (N): set row: force of the row on the shaft at the row, x.
+pub const RACEWAY_VR_ROW1_FORCE_X: u32 = 410;
 
-/// `row.1.force.y` (N): set row: force of the row on the shaft at the row, y.
-pub const RACEWAY_VR_ROW_1_FORCE_Y: u32 = 411;
+/// `row1.force.y` (N): set row: force of the row on the shaft at the row, y.
+pub const RACEWAY_VR_ROW1_FORCE_Y: u32 = 411;
 
-/// `row.1.force.z` (N): set row: force of the row on the shaft at the row, z (axial).
-pub const RACEWAY_VR_ROW_1_FORCE_Z: u32 = 412;
+/// `row1.force.z` (N): set row: force of the row on the shaft at the row, z (axial).
+pub const RACEWAY_VR_ROW1_FORCE_Z: u32 = 412;
 
-/// `row.1.moment.x` (N.m): set row: moment of the row on the shaft about x at the row.
-pub const RACEWAY_VR_ROW_1_MOMENT_X: u32 = 413;
+/// `row1.moment.x` (N.m): set row: moment of the row on the shaft about x at the row.
+pub const RACEWAY_VR_ROW1_MOMENT_X: u32 = 413;
 
-/// `row.1.moment.y` (N.m): set row: moment of the row on the shaft about y at the row.
-pub const RACEWAY_VR_ROW_1_MOMENT_Y: u32 = 414;
+/// `row1.moment.y` (N.m): set row: moment of the row on the shaft about y at the row.
+pub const RACEWAY_VR_ROW1_MOMENT_Y: u32 = 414;
 
-/// `row.1.contact_angle` (rad): set row: load-weighted mean inner contact angle of the loaded balls (quasi-static ball equilibrium at the row's displacement; roller rows: nominal; 0 when lifted off).
-pub const RACEWAY_VR_ROW_1_CONTACT_ANGLE: u32 = 415;
+/// `row1.contact_angle` (rad): set row: load-weighted mean inner contact angle of the loaded balls (quasi-static ball equilibrium at the row's displacement; roller rows: nominal; 0 when lifted off).
+pub const RACEWAY_VR_ROW1_CONTACT_ANGLE: u32 = 415;
 
-/// `row.1.lift_off` (integer; `raceway_get_integer`, or exact in `raceway_get_real`): set row: 1 when no element of the row is loaded, else 0.
-pub const RACEWAY_VR_ROW_1_LIFT_OFF: u32 = 416;
+/// `row1.lift_off` (integer; `raceway_get_integer`, or exact in `raceway_get_real`): set row: 1 when no element of the row is loaded, else 0.
+pub const RACEWAY_VR_ROW1_LIFT_OFF: u32 = 416;
 
-/// `row.1.life.L10` (1): set row: basic rating life (ISO 281) of the row's own load, millions of revolutions; 1e12 when unloaded.
-pub const RACEWAY_VR_ROW_1_LIFE_L10: u32 = 417;
+/// `row1.life.L10` (1): set row: basic rating life (ISO 281) of the row's own load, millions of revolutions; 1e12 when unloaded.
+pub const RACEWAY_VR_ROW1_LIFE_L10: u32 = 417;
 
-/// `row.2.force.x` (N): set row: force of the row on the shaft at the row, x.
-pub const RACEWAY_VR_ROW_2_FORCE_X: u32 = 420;
+/// `row2.force.x` (N): set row: force of the row on the shaft at the row, x.
+pub const RACEWAY_VR_ROW2_FORCE_X: u32 = 420;
 
-/// `row.2.force.y` (N): set row: force of the row on the shaft at the row, y.
-pub const RACEWAY_VR_ROW_2_FORCE_Y: u32 = 421;
+/// `row2.force.y` (N): set row: force of the row on the shaft at the row, y.
+pub const RACEWAY_VR_ROW2_FORCE_Y: u32 = 421;
 
-/// `row.2.force.z` (N): set row: force of the row on the shaft at the row, z (axial).
-pub const RACEWAY_VR_ROW_2_FORCE_Z: u32 = 422;
+/// `row2.force.z` (N): set row: force of the row on the shaft at the row, z (axial).
+pub const RACEWAY_VR_ROW2_FORCE_Z: u32 = 422;
 
-/// `row.2.moment.x` (N.m): set row: moment of the row on the shaft about x at the row.
-pub const RACEWAY_VR_ROW_2_MOMENT_X: u32 = 423;
+/// `row2.moment.x` (N.m): set row: moment of the row on the shaft about x at the row.
+pub const RACEWAY_VR_ROW2_MOMENT_X: u32 = 423;
 
-/// `row.2.moment.y` (N.m): set row: moment of the row on the shaft about y at the row.
-pub const RACEWAY_VR_ROW_2_MOMENT_Y: u32 = 424;
+/// `row2.moment.y` (N.m): set row: moment of the row on the shaft about y at the row.
+pub const RACEWAY_VR_ROW2_MOMENT_Y: u32 = 424;
 
-/// `row.2.contact_angle` (rad): set row: load-weighted mean inner contact angle of the loaded balls (quasi-static ball equilibrium at the row's displacement; roller rows: nominal; 0 when lifted off).
-pub const RACEWAY_VR_ROW_2_CONTACT_ANGLE: u32 = 425;
+/// `row2.contact_angle` (rad): set row: load-weighted mean inner contact angle of the loaded balls (quasi-static ball equilibrium at the row's displacement; roller rows: nominal; 0 when lifted off).
+pub const RACEWAY_VR_ROW2_CONTACT_ANGLE: u32 = 425;
 
-/// `row.2.lift_off` (integer; `raceway_get_integer`, or exact in `raceway_get_real`): set row: 1 when no element of the row is loaded, else 0.
-pub const RACEWAY_VR_ROW_2_LIFT_OFF: u32 = 426;
+/// `row2.lift_off` (integer; `raceway_get_integer`, or exact in `raceway_get_real`): set row: 1 when no element of the row is loaded, else 0.
+pub const RACEWAY_VR_ROW2_LIFT_OFF: u32 = 426;
 
-/// `row.2.life.L10` (1): set row: basic rating life (ISO 281) of the row's own load, millions of revolutions; 1e12 when unloaded.
-pub const RACEWAY_VR_ROW_2_LIFE_L10: u32 = 427;
+/// `row2.life.L10` (1): set row: basic rating life (ISO 281) of the row's own load, millions of revolutions; 1e12 when unloaded.
+pub const RACEWAY_VR_ROW2_LIFE_L10: u32 = 427;
 
-/// `row.3.force.x` (N): set row: force of the row on the shaft at the row, x.
-pub const RACEWAY_VR_ROW_3_FORCE_X: u32 = 430;
+/// `row3.force.x` (N): set row: force of the row on the shaft at the row, x.
+pub const RACEWAY_VR_ROW3_FORCE_X: u32 = 430;
 
-/// `row.3.force.y` (N): set row: force of the row on the shaft at the row, y.
-pub const RACEWAY_VR_ROW_3_FORCE_Y: u32 = 431;
+/// `row3.force.y` (N): set row: force of the row on the shaft at the row, y.
+pub const RACEWAY_VR_ROW3_FORCE_Y: u32 = 431;
 
-/// `row.3.force.z` (N): set row: force of the row on the shaft at the row, z (axial).
-pub const RACEWAY_VR_ROW_3_FORCE_Z: u32 = 432;
+/// `row3.force.z` (N): set row: force of the row on the shaft at the row, z (axial).
+pub const RACEWAY_VR_ROW3_FORCE_Z: u32 = 432;
 
-/// `row.3.moment.x` (N.m): set row: moment of the row on the shaft about x at the row.
-pub const RACEWAY_VR_ROW_3_MOMENT_X: u32 = 433;
+/// `row3.moment.x` (N.m): set row: moment of the row on the shaft about x at the row.
+pub const RACEWAY_VR_ROW3_MOMENT_X: u32 = 433;
 
-/// `row.3.moment.y` (N.m): set row: moment of the row on the shaft about y at the row.
-pub const RACEWAY_VR_ROW_3_MOMENT_Y: u32 = 434;
+/// `row3.moment.y` (N.m): set row: moment of the row on the shaft about y at the row.
+pub const RACEWAY_VR_ROW3_MOMENT_Y: u32 = 434;
 
-/// `row.3.contact_angle` (rad): set row: load-weighted mean inner contact angle of the loaded balls (quasi-static ball equilibrium at the row's displacement; roller rows: nominal; 0 when lifted off).
-pub const RACEWAY_VR_ROW_3_CONTACT_ANGLE: u32 = 435;
+/// `row3.contact_angle` (rad): set row: load-weighted mean inner contact angle of the loaded balls (quasi-static ball equilibrium at the row's displacement; roller rows: nominal; 0 when lifted off).
+pub const RACEWAY_VR_ROW3_CONTACT_ANGLE: u32 = 435;
 
-/// `row.3.lift_off` (integer; `raceway_get_integer`, or exact in `raceway_get_real`): set row: 1 when no element of the row is loaded, else 0.
-pub const RACEWAY_VR_ROW_3_LIFT_OFF: u32 = 436;
+/// `row3.lift_off` (integer; `raceway_get_integer`, or exact in `raceway_get_real`): set row: 1 when no element of the row is loaded, else 0.
+pub const RACEWAY_VR_ROW3_LIFT_OFF: u32 = 436;
 
-/// `row.3.life.L10` (1): set row: basic rating life (ISO 281) of the row's own load, millions of revolutions; 1e12 when unloaded.
-pub const RACEWAY_VR_ROW_3_LIFE_L10: u32 = 437;
+/// `row3.life.L10` (1): set row: basic rating life (ISO 281) of the row's own load, millions of revolutions; 1e12 when unloaded.
+pub const RACEWAY_VR_ROW3_LIFE_L10: u32 = 437;

@@ -69,7 +69,7 @@ const I_CAGE: usize = 30; // cage.x, cage.y, cage.speed, cage.speed_ratio, pocke
 const I_RATING: usize = 36; // safety.S0, life.L10, warnings.active
 const I_K: usize = 39;
 const I_C: usize = 64;
-const I_ROWS: usize = 89; // row.0.force.x .. row.3.life.L10
+const I_ROWS: usize = 89; // row0.force.x .. row3.life.L10
 
 /// Component-owned memory slots after the level's `aux`: the integrator's next step size,
 /// then the inputs' offset (from the step start) the stored outputs belong to.
@@ -435,10 +435,10 @@ mod tests {
         assert_eq!(at(I_RATING + 2), "warnings.active");
         assert_eq!(at(I_K), "K.x.x");
         assert_eq!(at(I_C + 24), "C.ry.ry");
-        assert_eq!(at(I_ROWS), "row.0.force.x");
+        assert_eq!(at(I_ROWS), "row0.force.x");
         assert_eq!(
             at(I_ROWS + variables::ROWS * variables::ROW_OUTPUTS - 1),
-            "row.3.life.L10"
+            "row3.life.L10"
         );
         assert_eq!(variables::by_vr(variables::VR_K0).unwrap().name, "K.x.x");
         assert_eq!(variables::by_vr(variables::VR_C0).unwrap().name, "C.x.x");

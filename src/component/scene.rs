@@ -393,7 +393,7 @@ pub struct Scene {
 }
 
 /// Most rows a set may have: the variable table declares the per-row outputs of this many
-/// (`row.0.*` .. `row.3.*`).
+/// (`row0.*` .. `row3.*`).
 pub const MAX_SET_ROWS: usize = super::variables::ROWS;
 
 crate::declare_fields!(Scene {

@@ -82,7 +82,7 @@ impl Sets {
     pub const FILM: Sets = Sets(16);
     /// Race wear (`wear.max_depth`): the wear effect.
     pub const WEAR: Sets = Sets(32);
-    /// Per-row outputs of a bearing set (`row.<i>.*`): scenes with a `[set]`.
+    /// Per-row outputs of a bearing set (`row<i>.*`): scenes with a `[set]`.
     pub const SET_ROWS: Sets = Sets(64);
 
     /// Both groups.
@@ -446,7 +446,7 @@ pub const STIFFNESS: [[Variable; 5]; 5] = matrix_vars!("K", VR_K0, k_unit, "stif
 /// `C.<i>.<j>`: damping `-dF_i/dv_j` at the current state.
 pub const DAMPING: [[Variable; 5]; 5] = matrix_vars!("C", VR_C0, c_unit, "damping -dF_i/dv_j");
 
-/// Value reference of `row.<i>.<k-th output>`: `400 + 10 i + k`.
+/// Value reference of `row<i>.<k-th output>`: `400 + 10 i + k`.
 pub const VR_ROW0: u32 = 400;
 /// Outputs per row of a set.
 pub const ROW_OUTPUTS: usize = 8;
@@ -456,19 +456,19 @@ pub const ROWS: usize = 4;
 macro_rules! row_vars {
     ($i:literal) => {
         [
-            v(concat!("row.", $i, ".force.x"), VR_ROW0 + 10 * $i, "N", Output, "set row: force of the row on the shaft at the row, x").only(Sets::SET_ROWS),
-            v(concat!("row.", $i, ".force.y"), VR_ROW0 + 10 * $i + 1, "N", Output, "set row: force of the row on the shaft at the row, y").only(Sets::SET_ROWS),
-            v(concat!("row.", $i, ".force.z"), VR_ROW0 + 10 * $i + 2, "N", Output, "set row: force of the row on the shaft at the row, z (axial)").only(Sets::SET_ROWS),
-            v(concat!("row.", $i, ".moment.x"), VR_ROW0 + 10 * $i + 3, "N.m", Output, "set row: moment of the row on the shaft about x at the row").only(Sets::SET_ROWS),
-            v(concat!("row.", $i, ".moment.y"), VR_ROW0 + 10 * $i + 4, "N.m", Output, "set row: moment of the row on the shaft about y at the row").only(Sets::SET_ROWS),
-            v(concat!("row.", $i, ".contact_angle"), VR_ROW0 + 10 * $i + 5, "rad", Output, "set row: load-weighted mean inner contact angle of the loaded balls (quasi-static ball equilibrium at the row's displacement; roller rows: nominal; 0 when lifted off)").only(Sets::SET_ROWS),
-            count(concat!("row.", $i, ".lift_off"), VR_ROW0 + 10 * $i + 6, Output, "set row: 1 when no element of the row is loaded, else 0").only(Sets::SET_ROWS),
-            v(concat!("row.", $i, ".life.L10"), VR_ROW0 + 10 * $i + 7, "1", Output, "set row: basic rating life (ISO 281) of the row's own load, millions of revolutions; 1e12 when unloaded").only(Sets::SET_ROWS),
+            v(concat!("row", $i, ".force.x"), VR_ROW0 + 10 * $i, "N", Output, "set row: force of the row on the shaft at the row, x").only(Sets::SET_ROWS),
+            v(concat!("row", $i, ".force.y"), VR_ROW0 + 10 * $i + 1, "N", Output, "set row: force of the row on the shaft at the row, y").only(Sets::SET_ROWS),
+            v(concat!("row", $i, ".force.z"), VR_ROW0 + 10 * $i + 2, "N", Output, "set row: force of the row on the shaft at the row, z (axial)").only(Sets::SET_ROWS),
+            v(concat!("row", $i, ".moment.x"), VR_ROW0 + 10 * $i + 3, "N.m", Output, "set row: moment of the row on the shaft about x at the row").only(Sets::SET_ROWS),
+            v(concat!("row", $i, ".moment.y"), VR_ROW0 + 10 * $i + 4, "N.m", Output, "set row: moment of the row on the shaft about y at the row").only(Sets::SET_ROWS),
+            v(concat!("row", $i, ".contact_angle"), VR_ROW0 + 10 * $i + 5, "rad", Output, "set row: load-weighted mean inner contact angle of the loaded balls (quasi-static ball equilibrium at the row's displacement; roller rows: nominal; 0 when lifted off)").only(Sets::SET_ROWS),
+            count(concat!("row", $i, ".lift_off"), VR_ROW0 + 10 * $i + 6, Output, "set row: 1 when no element of the row is loaded, else 0").only(Sets::SET_ROWS),
+            v(concat!("row", $i, ".life.L10"), VR_ROW0 + 10 * $i + 7, "1", Output, "set row: basic rating life (ISO 281) of the row's own load, millions of revolutions; 1e12 when unloaded").only(Sets::SET_ROWS),
         ]
     };
 }
 
-/// `row.<i>.*`: the per-row outputs of a bearing set (set only by scenes with a `[set]`;
+/// `row<i>.*`: the per-row outputs of a bearing set (set only by scenes with a `[set]`;
 /// zeros otherwise). Row `i` is the `i`-th row of the set (a pair: the row at `-z`
 /// first). Life and safety of the whole set are `life.L10` (the rows' system life) and
 /// `safety.S0` (the smallest row's).
