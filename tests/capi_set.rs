@@ -49,18 +49,18 @@ impl Inst {
 
 const ROW_FORCES: [[u32; 5]; 2] = [
     [
-        RACEWAY_VR_ROW_0_FORCE_X,
-        RACEWAY_VR_ROW_0_FORCE_Y,
-        RACEWAY_VR_ROW_0_FORCE_Z,
-        RACEWAY_VR_ROW_0_MOMENT_X,
-        RACEWAY_VR_ROW_0_MOMENT_Y,
+        RACEWAY_VR_ROW0_FORCE_X,
+        RACEWAY_VR_ROW0_FORCE_Y,
+        RACEWAY_VR_ROW0_FORCE_Z,
+        RACEWAY_VR_ROW0_MOMENT_X,
+        RACEWAY_VR_ROW0_MOMENT_Y,
     ],
     [
-        RACEWAY_VR_ROW_1_FORCE_X,
-        RACEWAY_VR_ROW_1_FORCE_Y,
-        RACEWAY_VR_ROW_1_FORCE_Z,
-        RACEWAY_VR_ROW_1_MOMENT_X,
-        RACEWAY_VR_ROW_1_MOMENT_Y,
+        RACEWAY_VR_ROW1_FORCE_X,
+        RACEWAY_VR_ROW1_FORCE_Y,
+        RACEWAY_VR_ROW1_FORCE_Z,
+        RACEWAY_VR_ROW1_MOMENT_X,
+        RACEWAY_VR_ROW1_MOMENT_Y,
     ],
 ];
 
@@ -82,15 +82,15 @@ fn a_db_pair_through_the_c_abi() {
     let c = Inst::new(PAIR);
     c.motion([0.0; 5], 0.0);
     let (f0, f1) = (
-        c.get(RACEWAY_VR_ROW_0_FORCE_Z),
-        c.get(RACEWAY_VR_ROW_1_FORCE_Z),
+        c.get(RACEWAY_VR_ROW0_FORCE_Z),
+        c.get(RACEWAY_VR_ROW1_FORCE_Z),
     );
     assert!((f0 + f1).abs() < 1e-9 * 300.0, "{f0} {f1}");
     assert!((f1 - 300.0).abs() < 1e-6 * 300.0, "{f1}");
     assert!(c.get(RACEWAY_VR_FORCE_Z).abs() < 1e-9 * 300.0);
     let mut lift = 7;
     assert_eq!(
-        unsafe { raceway_get_integer(c.0, RACEWAY_VR_ROW_0_LIFT_OFF, &mut lift) },
+        unsafe { raceway_get_integer(c.0, RACEWAY_VR_ROW0_LIFT_OFF, &mut lift) },
         RacewayStatus::Ok
     );
     assert_eq!(lift, 0);
