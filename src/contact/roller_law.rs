@@ -316,28 +316,15 @@ mod tests {
         assert!(f[0] < 0.0, "the rollers push the shaft back: {f:?}");
         // The rollers resist a rotation of the ring.
         assert!(k[3][3] > 0.0 && k[4][4] > 0.0, "{k:?}");
-        for col in [0, 1, 3, 4] {
-            let h = if col < 3 { 1e-10 } else { 1e-8 };
-            let (mut qp, mut qm) = (q, q);
-            qp[col] += h;
-            qm[col] -= h;
-            let (fp, fm) = (sum(&l, &psi, &qp, None), sum(&l, &psi, &qm, None));
-            for row in [0, 1, 3, 4] {
-                let fd = -(fp[row] - fm[row]) / (2.0 * h);
-                let scale = k[0][0].abs() * if row > 2 || col > 2 { 1e-4 } else { 1.0 };
-                assert!(
-                    (k[row][col] - fd).abs() < 1e-5 * scale,
-                    "K[{row}][{col}] {} vs {fd}",
-                    k[row][col]
-                );
-            }
-        }
-        for i in 0..5 {
-            for j in 0..5 {
-                let scale = (k[i][i].abs() * k[j][j].abs()).sqrt().max(1.0);
-                assert!((k[i][j] - k[j][i]).abs() < 1e-9 * scale, "K[{i}][{j}]");
-            }
-        }
+        crate::contact::test_util::assert_k_matches_differences(
+            &k,
+            q,
+            &[0, 1, 3, 4],
+            |x| sum(&l, &psi, x, None),
+            k[0][0].abs(),
+            1e-4,
+            1e-9,
+        );
         // No axial stiffness: the law carries no axial load (NU).
         assert_eq!(k[2][2], 0.0);
     }
@@ -533,28 +520,15 @@ mod tests {
             f[0] < 0.0 && f[0] > f0[0],
             "less load reaches the shaft: {f:?} {f0:?}"
         );
-        for col in [0, 1, 3, 4] {
-            let h = if col < 3 { 1e-10 } else { 1e-8 };
-            let (mut qp, mut qm) = (q, q);
-            qp[col] += h;
-            qm[col] -= h;
-            let (fp, fm) = (sum_w(&qp, omega, None), sum_w(&qm, omega, None));
-            for row in [0, 1, 3, 4] {
-                let fd = -(fp[row] - fm[row]) / (2.0 * h);
-                let scale = k[0][0].abs() * if row > 2 || col > 2 { 1e-4 } else { 1.0 };
-                assert!(
-                    (k[row][col] - fd).abs() < 1e-5 * scale,
-                    "K[{row}][{col}] {} vs {fd}",
-                    k[row][col]
-                );
-            }
-        }
-        for i in 0..5 {
-            for j in 0..5 {
-                let scale = (k[i][i].abs() * k[j][j].abs()).sqrt().max(1.0);
-                assert!((k[i][j] - k[j][i]).abs() < 1e-9 * scale, "K[{i}][{j}]");
-            }
-        }
+        crate::contact::test_util::assert_k_matches_differences(
+            &k,
+            q,
+            &[0, 1, 3, 4],
+            |x| sum_w(x, omega, None),
+            k[0][0].abs(),
+            1e-4,
+            1e-9,
+        );
         let fast = rpm(20_000.0);
         for q in [
             [0.0; 5],

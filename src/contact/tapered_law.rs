@@ -423,28 +423,15 @@ mod tests {
             f[2] < 0.0 && f[0] < 0.0,
             "the rollers push the shaft back: {f:?}"
         );
-        for col in 0..5 {
-            let h = if col < 3 { 1e-10 } else { 1e-8 };
-            let (mut qp, mut qm) = (q, q);
-            qp[col] += h;
-            qm[col] -= h;
-            let (fp, fm) = (sum(&l, &psi, &qp, None), sum(&l, &psi, &qm, None));
-            for row in 0..5 {
-                let fd = -(fp[row] - fm[row]) / (2.0 * h);
-                let scale = k[2][2].abs() * if row > 2 || col > 2 { 1e-3 } else { 1.0 };
-                assert!(
-                    (k[row][col] - fd).abs() < 1e-5 * scale,
-                    "K[{row}][{col}] {} vs {fd}",
-                    k[row][col]
-                );
-            }
-        }
-        for i in 0..5 {
-            for j in 0..5 {
-                let scale = (k[i][i].abs() * k[j][j].abs()).sqrt().max(1.0);
-                assert!((k[i][j] - k[j][i]).abs() < 1e-9 * scale, "K[{i}][{j}]");
-            }
-        }
+        crate::contact::test_util::assert_k_matches_differences(
+            &k,
+            q,
+            &[0, 1, 2, 3, 4],
+            |x| sum(&l, &psi, x, None),
+            k[2][2].abs(),
+            1e-3,
+            1e-9,
+        );
     }
 
     /// A pure axial displacement loads every roller alike: the axial force is `Z Q sin(alpha)`
@@ -627,27 +614,14 @@ mod tests {
         let q = [15e-6, -10e-6, 20e-6, 3e-4, -2e-4];
         let mut k = [[0.0; 5]; 5];
         f(&q, Some(&mut k));
-        for col in 0..5 {
-            let h = if col < 3 { 1e-10 } else { 1e-8 };
-            let (mut qp, mut qm) = (q, q);
-            qp[col] += h;
-            qm[col] -= h;
-            let (fp, fm) = (f(&qp, None), f(&qm, None));
-            for row in 0..5 {
-                let fd = -(fp[row] - fm[row]) / (2.0 * h);
-                let scale = k[2][2].abs() * if row > 2 || col > 2 { 1e-3 } else { 1.0 };
-                assert!(
-                    (k[row][col] - fd).abs() < 1e-5 * scale,
-                    "K[{row}][{col}] {} vs {fd}",
-                    k[row][col]
-                );
-            }
-        }
-        for i in 0..5 {
-            for j in 0..5 {
-                let scale = (k[i][i].abs() * k[j][j].abs()).sqrt().max(1.0);
-                assert!((k[i][j] - k[j][i]).abs() < 1e-8 * scale, "K[{i}][{j}]");
-            }
-        }
+        crate::contact::test_util::assert_k_matches_differences(
+            &k,
+            q,
+            &[0, 1, 2, 3, 4],
+            |x| f(x, None),
+            k[2][2].abs(),
+            1e-3,
+            1e-8,
+        );
     }
 }
