@@ -346,6 +346,22 @@ const TWO_NINTHS: [f64; 9] = {
     t
 };
 
+/// `2^q 2^(r/9)` for every biased exponent `E` of a positive normal `d` (`E - 1023 = 9 q +
+/// r`, `r = 0..8`; index `E`, 0 unused): [`ninth_root`]'s exponent factor in one load. Each
+/// entry is `TWO_NINTHS[r]` scaled by a power of two (exact), so the root's bits are those of
+/// forming `2^q` and `2^(r/9)` apart.
+const EXPONENT_ROOT: [f64; 2047] = {
+    let mut t = [0.0; 2047];
+    let mut e = 1;
+    while e < 2047 {
+        let e3 = e as u64 + 3;
+        let (n, r) = (e3 / 9, e3 % 9);
+        t[e] = f64::from_bits((n + 909) << 52) * TWO_NINTHS[r as usize];
+        e += 1;
+    }
+    t
+};
+
 /// Binomial coefficients of `(1 + t)^(1/9)`, `a_n = C(1/9, n)`, `n = 0..6`.
 const BINOMIAL: [f64; 7] = {
     let mut a = [0.0; 7];
@@ -376,11 +392,11 @@ fn ninth_root(d: f64) -> f64 {
     let a = &BINOMIAL;
     let poly = a[0] + t * (a[1] + t * (a[2] + t * (a[3] + t * (a[4] + t * (a[5] + t * a[6])))));
     // The biased exponent E (1..=2046, d > 0 and normal): E - 1023 = 9 (n - 114) + r with
-    // E + 3 = 9 n + r, so 2^q has the biased exponent n - 114 + 1023.
-    let e3 = (bits >> 52) + 3;
-    let (n, r) = (e3 / 9, e3 % 9);
-    let two_q = f64::from_bits((n + 909) << 52);
-    two_q * (TWO_NINTHS[r as usize] * ci9) * poly
+    // E + 3 = 9 n + r, so 2^q has the biased exponent n - 114 + 1023; `EXPONENT_ROOT[E]` is
+    // `2^q 2^(r/9)`. `(2^q 2^(r/9)) c` and `2^q (2^(r/9) c)` round alike (a power of two
+    // scales exactly in the normal range, and the roots of normal numbers stay far inside
+    // it).
+    EXPONENT_ROOT[(bits >> 52) as usize] * ci9 * poly
 }
 
 /// `tan(psi)`, with an aligned roller's (`psi = ±0`) without the call: `tan(±0) = ±0`.
@@ -450,6 +466,11 @@ pub struct Laminae {
     /// `(max |x_k|, min 2P(x_k))`: a lamina's approach is at most `delta + max|x| |tan psi|
     /// - min 2P`, so at or below zero no lamina is loaded (the early exit of `eval`).
     reach: (f64, f64),
+    /// The aligned roller's pairs (`eval_aligned`): true when every pair `k`, `ns - 1 - k`
+    /// is mirrored with equal drops and the drops do not grow toward the centre
+    /// (`drop2[k] >= drop2[k + 1]` over the first half: every [`Profile`]), so the pairs
+    /// loaded at an approach are a run ending at the centre; false: checked pair by pair.
+    sorted_pairs: bool,
 }
 
 impl Laminae {
@@ -489,11 +510,15 @@ impl Laminae {
             x.iter().fold(0.0f64, |m, v| m.max(v.abs())),
             drop2.iter().fold(f64::INFINITY, |m, &v| m.min(v)),
         );
+        let half = ns / 2;
+        let mirrored = (0..half).all(|k| drop2[k] == drop2[ns - 1 - k] && x[k] == -x[ns - 1 - k]);
+        let monotone = (1..half).all(|k| drop2[k - 1] >= drop2[k]);
         Ok(Laminae {
             lwe: g.lwe,
             x,
             drop2,
             reach,
+            sorted_pairs: mirrored && monotone,
             cs: roller_constant(g.lwe, g.e_prime) / ns as f64,
         })
     }
@@ -688,13 +713,24 @@ impl Laminae {
         };
         let ns = self.len();
         let (x, d2) = (&self.x[..ns], &self.drop2[..ns]);
-        for k in 0..ns / 2 {
-            let m = ns - 1 - k;
-            if d2[k] == d2[m] && x[k] == -x[m] {
+        if self.sorted_pairs {
+            // Mirrored pairs whose drops fall toward the centre: the unloaded pairs
+            // (`delta <= drop`) come first; skip them by bisection and sum the loaded ones in
+            // the same order as the loop below (the same bits).
+            let half = &d2[..ns / 2];
+            let first = half.partition_point(|&d| delta - d <= 0.0);
+            for k in first..ns / 2 {
                 one(&mut r, x[k], delta - d2[k], 2);
-            } else {
-                one(&mut r, x[k], delta - d2[k], 1);
-                one(&mut r, x[m], delta - d2[m], 1);
+            }
+        } else {
+            for k in 0..ns / 2 {
+                let m = ns - 1 - k;
+                if d2[k] == d2[m] && x[k] == -x[m] {
+                    one(&mut r, x[k], delta - d2[k], 2);
+                } else {
+                    one(&mut r, x[k], delta - d2[k], 1);
+                    one(&mut r, x[m], delta - d2[m], 1);
+                }
             }
         }
         if ns % 2 == 1 {
@@ -786,6 +822,30 @@ mod tests {
             assert_eq!(ninth_root(x), x.powf(1.0 / 9.0));
         }
         assert!(ninth_root(f64::NAN).is_nan());
+    }
+
+    /// The exponent table gives the bits of forming `2^q` and `2^(r/9)` apart (the root as
+    /// it was before the table), over every normal exponent and a spread of mantissas.
+    #[test]
+    fn exponent_table_keeps_the_roots_bits() {
+        let apart = |d: f64| {
+            let bits = d.to_bits();
+            let m = f64::from_bits((bits & 0x000f_ffff_ffff_ffff) | 0x3ff0_0000_0000_0000);
+            let (c, ci9, inv_c) = CELL_ROOT[((bits >> 46) & (CELLS as u64 - 1)) as usize];
+            let t = (m - c) * inv_c;
+            let a = &BINOMIAL;
+            let poly =
+                a[0] + t * (a[1] + t * (a[2] + t * (a[3] + t * (a[4] + t * (a[5] + t * a[6])))));
+            let e3 = (bits >> 52) + 3;
+            let (n, r) = (e3 / 9, e3 % 9);
+            f64::from_bits((n + 909) << 52) * (TWO_NINTHS[r as usize] * ci9) * poly
+        };
+        for e in 1..2047u64 {
+            for k in 0..16u64 {
+                let d = f64::from_bits((e << 52) | (k * 0x0001_1111_1111_1111 % (1 << 52)));
+                assert_eq!(ninth_root(d).to_bits(), apart(d).to_bits(), "{d:e}");
+            }
+        }
     }
 
     #[test]

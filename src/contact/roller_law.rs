@@ -195,6 +195,29 @@ impl ElementLaw for CylindricalRollerLaw {
 }
 
 impl CylindricalRollerLaw {
+    /// [`ElementLaw::react`] of a massless roller ([`CylindricalRollerLaw::massless`]) at any
+    /// speed, bit for bit, without the trait's dispatch and `Result` (the ring level's rollers
+    /// call it for every element at every evaluation).
+    #[inline]
+    pub fn react_massless(&self, u: ElementDisplacement, want: Want) -> ElementReaction {
+        debug_assert!(self.fc_per_omega2 == 0.0, "massless rollers only");
+        let approach = u.radial - self.half_pd;
+        let t = tan0(u.tilt);
+        let r = self.laminae.evaluate_tan(approach, t);
+        if r.loaded == 0 && self.flange.is_none() {
+            // No lamina in contact (most of a ring's rollers): `reaction`'s answer for the
+            // zero load, written out (the same bits: `-0.0` is `-r.force`; the zeros of `df`
+            // and of the report are `reaction`'s up to their signs, which no sum sees).
+            return ElementReaction {
+                f: [0.0, -0.0, 0.0],
+                approach,
+                ..Default::default()
+            };
+        }
+        // Massless: the report's centrifugal force is zero at any speed, as at rest.
+        self.reaction(r, u, t, approach, 0.0, want)
+    }
+
     /// The reaction of a massless roller (the ring level's, [`CylindricalRollerLaw::massless`])
     /// whose laminae's approaches are moved by `offsets` (m, one per lamina: a race's
     /// waviness adds, a defect's depth loss subtracts; docs/physics.md §R12), with the lamina
@@ -340,6 +363,44 @@ mod tests {
         q[4] = 5e-4;
         let m1 = sum(&l, &psi, &q, None)[4];
         assert!(m1 < m0, "My {m0} -> {m1}: the rollers resist ry");
+    }
+
+    /// The ring level's direct call is the trait's answer, to the bit (forces, report; the
+    /// stiffness by value, its zeros' signs aside): loaded and unloaded rollers, tilted and
+    /// aligned, at rest and at speed (massless: speed changes nothing).
+    #[test]
+    fn react_massless_is_react_bit_for_bit() {
+        let (l, _) = law("NU206");
+        let l = l.massless();
+        let want = Want {
+            stiffness: true,
+            report: true,
+        };
+        let at = ElementAt {
+            index: 0,
+            psi: 0.0,
+            sc: (0.0, 1.0),
+            q: &[0.0; 5],
+        };
+        for radial in [-30e-6, 0.0, 10e-6, 16.25e-6, 20e-6, 40e-6, 80e-6] {
+            for tilt in [0.0, -0.0, 1e-4, -3e-4, 2e-3] {
+                for omega in [0.0, 300.0] {
+                    let u = ElementDisplacement {
+                        axial: 1e-6,
+                        radial,
+                        tilt,
+                    };
+                    let a = l.react(at, u, omega, &mut [], want).unwrap();
+                    let b = l.react_massless(u, want);
+                    let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                    assert_eq!(bits(&a.f), bits(&b.f), "{radial} {tilt}");
+                    assert_eq!(bits(&a.load), bits(&b.load));
+                    assert_eq!(bits(&a.pressure), bits(&b.pressure));
+                    assert_eq!(a.approach.to_bits(), b.approach.to_bits());
+                    assert_eq!(a.df, b.df);
+                }
+            }
+        }
     }
 
     #[test]

@@ -210,10 +210,11 @@ fn sum(
         f[4] -= m * c;
         // An unloaded element adds nothing to K (skipped: most of a ring's elements).
         if let Some(k) = stiffness.as_deref_mut().filter(|_| r.df != [[0.0; 3]; 3]) {
-            // K = -J^T df J with J the rows of d(axial, radial, tilt)/dq.
-            let ja = [0.0, 0.0, 1.0, arm * s, -arm * c];
-            let jr = [c, s, 0.0, 0.0, 0.0];
-            let jt = [0.0, 0.0, 0.0, s, -c];
+            // K = -J^T df J with J the rows of d(axial, radial, tilt)/dq:
+            // ja = [0, 0, 1, arm s, -arm c], jr = [c, s, 0, 0, 0], jt = [0, 0, 0, s, -c]. The
+            // products with their structural zeros are left out: each is a signed zero, and
+            // a signed zero added to a sum or taken from an entry of `k` (never -0: it starts
+            // at +0, and x - x rounds to +0) changes no bit of finite entries.
             let [da, dr, dm] = r.df;
             let rows = [
                 [dr[0] * c, dr[1] * c, dr[2] * c],
@@ -222,10 +223,14 @@ fn sum(
                 [dm[0] * s, dm[1] * s, dm[2] * s],
                 [-dm[0] * c, -dm[1] * c, -dm[2] * c],
             ];
+            let (as_, ac) = (arm * s, -arm * c);
             for (i, r) in rows.iter().enumerate() {
-                for jj in 0..5 {
-                    k[i][jj] -= r[0] * ja[jj] + r[1] * jr[jj] + r[2] * jt[jj];
-                }
+                let ki = &mut k[i];
+                ki[0] -= r[1] * c;
+                ki[1] -= r[1] * s;
+                ki[2] -= r[0];
+                ki[3] -= r[0] * as_ + r[2] * s;
+                ki[4] -= r[0] * ac + r[2] * -c;
             }
         }
     }

@@ -45,6 +45,9 @@ pub struct LawRingLevel {
     base: Vec<(f64, f64)>,
     /// Defects and waviness (None: none, nothing evaluated).
     profiled: Option<Profiled>,
+    /// The massless cylindrical roller law itself when `law` is one
+    /// ([`LawRingLevel::massless_cylindrical`]): called directly, not through the trait.
+    cylindrical: Option<CylindricalRollerLaw>,
 }
 
 /// A roller bearing's per-lamina effects: the massless cylindrical law that takes offsets, the
@@ -98,7 +101,21 @@ impl LawRingLevel {
             sc: vec![(0.0, 1.0); a.bearing.z],
             base: even_base(a.bearing.z),
             profiled,
+            cylindrical: None,
         })
+    }
+
+    /// The same level told that its law is the massless cylindrical roller law of `a`'s
+    /// bearing (the ring level's, `contact::roller_law(r, false)`): it calls
+    /// [`CylindricalRollerLaw::react_massless`] directly, the same arithmetic without the
+    /// dispatch. Other bearings are left as they are.
+    pub fn massless_cylindrical(mut self, a: &LevelArgs) -> Result<Self> {
+        if let Element::Roller(r) = &a.bearing.element {
+            if !r.kind.is_tapered() {
+                self.cylindrical = Some(CylindricalRollerLaw::new(r)?.massless());
+            }
+        }
+        Ok(self)
     }
 
     /// Wrench on the shaft at `p` (and with `kc` the stiffness and damping matrices).
@@ -118,6 +135,7 @@ impl LawRingLevel {
         // The shaft has turned by the cage angle over the cage ratio (both start at 0).
         let theta_s = x[0] / self.cage_ratio;
         let mut profiled = self.profiled.as_mut();
+        let cylindrical = self.cylindrical.as_ref();
         let (law, c0, jac) = (&self.law, self.damping, kc.is_some());
         let arm2 = if self.dof == RingDof::Five {
             law.tilt_damping_arm2()
@@ -136,9 +154,10 @@ impl LawRingLevel {
                     let any = pf.fx.offsets(j, at.psi, theta_s, &mut pf.offsets);
                     any.then_some(&*pf)
                 });
-                let mut r = match pf {
-                    Some(pf) => pf.law.react_offsets(u, &pf.offsets, want, None),
-                    None => law.react(at, u, m.omega, &mut [], want)?,
+                let mut r = match (pf, cylindrical) {
+                    (Some(pf), _) => pf.law.react_offsets(u, &pf.offsets, want, None),
+                    (None, Some(cl)) => cl.react_massless(u, want),
+                    (None, None) => law.react(at, u, m.omega, &mut [], want)?,
                 };
                 if r.f[1] < 0.0 {
                     report.0 += 1;

@@ -547,7 +547,9 @@ pub fn build(a: &LevelArgs) -> Result<Box<dyn LevelModel>> {
             ..Default::default()
         };
         let law = crate::models::quasi_static::level::element_law(a, opts, false)?;
-        return Ok(Box::new(super::elements::LawRingLevel::new(a, law, dof)?));
+        return Ok(Box::new(
+            super::elements::LawRingLevel::new(a, law, dof)?.massless_cylindrical(a)?,
+        ));
     }
     Ok(Box::new(RingLevel::with_effects(
         a.bearing,
