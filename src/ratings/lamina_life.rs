@@ -189,16 +189,121 @@ pub fn life_from(
         si += (qi / r.qk_ci).powf(4.5);
         se += (qe / r.qk_ce).powf(4.5);
     }
+    Ok(combine(c, si, se, o, r))
+}
+
+/// The life from the laminae's summed raceway terms `si = Σ_k (q_ei,k/q_ci,k)^(9/2)` and
+/// `se` (module docs).
+fn combine(c: f64, si: f64, se: f64, o: LaminaLifeOptions, r: LaminaRatings) -> LaminaLife {
     let life = |s: f64| (s > 0.0).then(|| s.powf(-8.0 / 9.0));
     let l = life(si + se);
-    Ok(LaminaLife {
+    LaminaLife {
         l10r_mrev: l,
         inner_mrev: life(si),
         outer_mrev: life(se),
         p_ref: l.map_or(0.0, |l| c / l.powf(0.3)),
         options: o,
         ratings: r,
-    })
+    }
+}
+
+/// The lamina loads of a run's states (the ring level's, over a recorded window) gathered
+/// for ISO/TS 16281's treatment of a varying load: the raceways' equivalent lamina loads are
+/// their power means over every roller and every state, `q_ei,k = (Σ_s Σ_j (f_k
+/// q_i,sjk)^4 / (Z n))^(1/4)` on the rotating inner raceway and `q_ee,k = (Σ_s Σ_j (f_k
+/// q_e,sjk)^(9/2) / (Z n))^(2/9)` on the stationary outer one (`n` states, equally spaced
+/// in time: each state stands for an equal share of the revolutions). A lamina track of the
+/// inner raceway meets the rollers at every azimuth the run visits, a point of the outer one
+/// the rollers that pass it, so the mean over the window replaces the one state's mean over
+/// the `Z` rollers; with one state, or with every state alike, it is [`lamina_life`]'s
+/// (to rounding: the edge factor multiplies the sums, `f^4 Σ q^4`, not each load).
+/// Gathering allocates nothing after [`LaminaWindow::new`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct LaminaWindow {
+    z: usize,
+    states: usize,
+    /// `Σ_s Σ_j q_i^4` per lamina.
+    inner4: Vec<f64>,
+    /// `Σ_s Σ_j q_e^(9/2)` per lamina.
+    outer45: Vec<f64>,
+}
+
+impl LaminaWindow {
+    /// An empty window for `z` rollers of `ns` laminae.
+    pub fn new(z: usize, ns: usize) -> LaminaWindow {
+        LaminaWindow {
+            z,
+            states: 0,
+            inner4: vec![0.0; ns],
+            outer45: vec![0.0; ns],
+        }
+    }
+
+    /// Laminae per roller.
+    pub fn laminae(&self) -> usize {
+        self.inner4.len()
+    }
+
+    /// Rollers.
+    pub fn rollers(&self) -> usize {
+        self.z
+    }
+
+    /// States gathered.
+    pub fn states(&self) -> usize {
+        self.states
+    }
+
+    /// Adds one roller's inner and outer lamina loads (N, one per lamina) of the current
+    /// state; call [`LaminaWindow::end_state`] after the `Z` rollers of a state.
+    pub fn add_roller(&mut self, inner: &[f64], outer: &[f64]) {
+        debug_assert_eq!(inner.len(), self.laminae());
+        debug_assert_eq!(outer.len(), self.laminae());
+        for ((s, &q), (t, &p)) in self
+            .inner4
+            .iter_mut()
+            .zip(inner)
+            .zip(self.outer45.iter_mut().zip(outer))
+        {
+            let q = q.max(0.0);
+            *s += (q * q) * (q * q);
+            *t += p.max(0.0).powf(4.5);
+        }
+    }
+
+    /// Closes the state whose `Z` rollers were added.
+    pub fn end_state(&mut self) {
+        self.states += 1;
+    }
+
+    /// `L10r` of bearing `b` over the states gathered (struct docs); refused when nothing was
+    /// gathered or the window's shape is not the bearing's.
+    pub fn life(&self, b: &RollerBearing, o: LaminaLifeOptions) -> Result<LaminaLife> {
+        let ns = self.laminae();
+        if self.states == 0 || ns == 0 || self.z != b.z {
+            return Err(Error::invalid(
+                "lamina loads",
+                format!("{} states of {} rollers", self.states, self.z),
+                format!("at least one state of the bearing's {} rollers", b.z),
+            ));
+        }
+        let c = roller_ratings(b)?.cr;
+        let r = lamina_ratings(c, self.z, b.alpha, b.gamma(), ns, o);
+        let n = (self.z * self.states) as f64;
+        let (mut si, mut se) = (0.0, 0.0);
+        for k in 0..ns {
+            let f = if o.edge_factor {
+                edge_factor(k, ns)
+            } else {
+                1.0
+            };
+            let qi = f * (self.inner4[k] / n).powf(0.25);
+            let qe = f * (self.outer45[k] / n).powf(2.0 / 9.0);
+            si += (qi / r.qk_ci).powf(4.5);
+            se += (qe / r.qk_ce).powf(4.5);
+        }
+        Ok(combine(c, si, se, o, r))
+    }
 }
 
 /// Static safety of the most loaded lamina against ISO 76's 4 000 MPa for its peak line-Hertz

@@ -29,6 +29,7 @@ pub fn summary_of(ctx: &Ctx) -> Summary {
     cage_lines(ctx, &mut sm);
     frequency_lines(ctx, &mut sm);
     rating_lines(ctx, &mut sm);
+    rollers::ring_lamina_life_lines(ctx, &mut sm);
     sm
 }
 
@@ -58,9 +59,24 @@ pub fn signal_of(scene: &Scene) -> (&'static str, &'static str) {
 
 /// The run's digest the summary reads, to be fed the run's rows
 /// ([`crate::runner::run_into`]): the spectrum's signal and the cage speed (whirl index)
-/// kept at full rate over the second half, the cage orbit's peak.
+/// kept at full rate over the second half (and, for a cylindrical roller bearing on the ring
+/// level, the ring's displacement and the cage speed for its lamina life), the cage orbit's
+/// peak.
 pub fn digest_for(scene: &Scene) -> Digest {
-    Digest::new(&[signal_of(scene).0, "cage.speed"], &[("cage.x", "cage.y")])
+    let mut analysed = vec![signal_of(scene).0, "cage.speed"];
+    // A cylindrical roller bearing on the ring level: its lamina life over the window
+    // (`rollers::ring_lamina_life`) replays the ring's displacement and the cage.
+    if scene
+        .build_bearing()
+        .is_ok_and(|b| rollers::has_ring_lamina_life(scene, &b))
+    {
+        for n in rollers::RING_LAMINA_COLUMNS {
+            if !analysed.contains(&n) {
+                analysed.push(n);
+            }
+        }
+    }
+    Digest::new(&analysed, &[("cage.x", "cage.y")])
 }
 
 /// The summary: text lines and the same facts as JSON. A section is a function

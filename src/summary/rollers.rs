@@ -247,3 +247,107 @@ pub fn text(r: &RollerQsReport) -> String {
     }
     s
 }
+
+/// The columns a roller scene on the ring level keeps at full rate over the analysed window
+/// for its lamina life ([`ring_lamina_life`]): the ring's displacement and the cage speed.
+pub const RING_LAMINA_COLUMNS: [&str; 6] = [
+    "shaft.x",
+    "shaft.y",
+    "shaft.z",
+    "shaft.rx",
+    "shaft.ry",
+    "cage.omega",
+];
+
+/// Whether a run of `scene` on `bearing` gets the ring-level lamina life: a cylindrical
+/// roller bearing on the ring level.
+pub fn has_ring_lamina_life(scene: &crate::component::Scene, b: &crate::geometry::Bearing) -> bool {
+    scene.model.level == crate::component::Level::Ring
+        && matches!(&b.element, crate::geometry::element::Element::Roller(r) if !r.kind.is_tapered())
+}
+
+/// ISO/TS 16281 lamina life of a ring-level roller run over its analysed window (the
+/// second half, as the spectra): every recorded state's lamina loads, as the ring level
+/// evaluated them (`models::ring::roller_loads`), gathered by `ratings::lamina_life::
+/// LaminaWindow` (power means over the rollers and the states; docs/physics.md §R10). The
+/// cage angle of each state is the run's final one (the level's state) less the trapezoid
+/// integral of the recorded cage speed back to it (exact for a speed constant or linear in
+/// time). Returns the life with and without the edge-stress factor and the number of states.
+pub fn ring_lamina_life(
+    scene: &crate::component::Scene,
+    run: &crate::runner::Digest,
+    comp: &crate::Component,
+) -> Result<(LaminaLife, LaminaLife, usize)> {
+    use crate::geometry::element::Element;
+    let b = comp.bearing();
+    let Element::Roller(rb) = &b.element else {
+        return Err(Error::invalid("bearing.kind", "ball", "a roller bearing"));
+    };
+    let mut probe = crate::models::ring::roller_loads::RingLaminae::new(b, &scene.effects)?;
+    let cols = RING_LAMINA_COLUMNS.map(|n| run.second_half(n));
+    let n = cols.iter().map(|c| c.len()).max().unwrap_or(0);
+    let omega_c = cols[5];
+    if n == 0 || omega_c.len() != n {
+        return Err(Error::invalid(
+            "run",
+            "no recorded window",
+            "a run with recorded rows (shaft displacement and cage speed)",
+        ));
+    }
+    let rows = run.rows.max(2);
+    let dt = scene.run.duration_s / (rows - 1) as f64;
+    let at = |c: &[f64], i: usize| c.get(i).copied().unwrap_or(0.0);
+    let mut window = probe.window();
+    let mut angle = comp.state().x.first().copied().unwrap_or(0.0);
+    for i in (0..n).rev() {
+        let q = [0, 1, 2, 3, 4].map(|k| at(cols[k], i));
+        probe.add_state(&q, angle, &mut window);
+        if i > 0 {
+            angle -= 0.5 * dt * (omega_c[i] + omega_c[i - 1]);
+        }
+    }
+    let life = window.life(rb, LaminaLifeOptions::default())?;
+    let plain = window.life(
+        rb,
+        LaminaLifeOptions {
+            edge_factor: false,
+            ..LaminaLifeOptions::default()
+        },
+    )?;
+    Ok((life, plain, n))
+}
+
+/// The summary's lines of [`ring_lamina_life`] (nothing for another bearing or level).
+pub fn ring_lamina_life_lines(c: &super::Ctx, s: &mut super::Summary) {
+    if !has_ring_lamina_life(c.scene, c.comp.bearing()) {
+        return;
+    }
+    let mrev = |v: Option<f64>| {
+        v.map(|v| format!("{v:.4e}"))
+            .unwrap_or_else(|| "infinite".into())
+    };
+    match ring_lamina_life(c.scene, c.run, c.comp) {
+        Ok((life, plain, n)) => {
+            s.line(format!(
+                "ISO/TS 16281 lamina life over the analysed window ({n} states, the rollers' lamina loads as the ring level evaluated them, inner ring rotating): \
+                 L10r {} million revolutions with the edge-stress factor (inner race {}, outer race {}), {} without it; P_ref {:.1} N",
+                mrev(life.l10r_mrev),
+                mrev(life.inner_mrev),
+                mrev(life.outer_mrev),
+                mrev(plain.l10r_mrev),
+                life.p_ref
+            ));
+            s.line(format!("{EDGE_FACTOR_NOTE}."));
+            s.set(
+                "lamina_life",
+                serde_json::json!({
+                    "states": n,
+                    "with_edge_factor": life,
+                    "without_edge_factor": plain,
+                    "notes": [EDGE_FACTOR_NOTE],
+                }),
+            );
+        }
+        Err(e) => s.line(format!("lamina life: not available ({e})")),
+    }
+}

@@ -31,6 +31,7 @@
 pub mod elements;
 pub mod level;
 pub mod roller_effects;
+pub mod roller_loads;
 #[cfg(test)]
 mod tests;
 

@@ -1,0 +1,98 @@
+//! ISO/TS 16281 lamina life at the ring level (docs/physics.md §R10): the run's summary gathers
+//! every recorded state's lamina loads over the analysed window (`summary::rollers::
+//! ring_lamina_life`), and a steady run agrees with the quasi-static table at the same
+//! displacement.
+
+use raceway::component::Scene;
+use raceway::runner::{run_into, Record, Series, Tee};
+use raceway::summary::rollers::{report, ring_lamina_life};
+use raceway::summary::{digest_for, summarize};
+
+/// NU206 on the 2-DOF ring level, motion-driven, the shaft held `y0` (m) off centre at
+/// `rpm`, `steps` steps of 0.1 ms.
+fn scene(y0: f64, rpm: f64, steps: usize) -> Scene {
+    Scene::from_text(&format!(
+        "title = \"NU206 steady\"\nbearing = \"NU206\"\n\n[model]\nlevel = \"ring\"\ncausality = \"motion\"\nring_dof = 2\n\n\
+         [inputs]\nrule = \"velocity\"\nspeed_rpm = {rpm:?}\ninitial = {{ \"shaft.y\" = {y0:e} }}\n\n\
+         [run]\nduration_s = {:e}\nstep_s = 1e-4\n",
+        steps as f64 * 1e-4
+    ))
+    .unwrap()
+}
+
+/// The run's lamina life (with and without the edge factor), the window's states and the
+/// force on the shaft at the end.
+fn run(s: &Scene) -> (f64, f64, usize, [f64; 5], serde_json::Value) {
+    let mut series = Series::default();
+    let mut digest = digest_for(s);
+    let comp = run_into(
+        s,
+        Record::default(),
+        false,
+        &mut |_| {},
+        &mut || false,
+        &mut Tee(&mut series, &mut digest),
+    )
+    .unwrap();
+    let (life, plain, n) = ring_lamina_life(s, &digest, &comp).unwrap();
+    let force = ["force.x", "force.y", "force.z", "moment.x", "moment.y"].map(|n| digest.last(n));
+    let sm = summarize(s, "steady", &digest, &comp, 0.0);
+    assert!(sm.text.contains("ISO/TS 16281 lamina life over the analysed window"), "{}", sm.text);
+    assert!(sm.text.contains("UNSOURCED"), "{}", sm.text);
+    (
+        life.l10r_mrev.unwrap(),
+        plain.l10r_mrev.unwrap(),
+        n,
+        force,
+        sm.json["lamina_life"].clone(),
+    )
+}
+
+/// A steady run (shaft held 30 µm down, not turning: every state is the same state, the
+/// rollers at the quasi-static table's azimuths `2 pi j/Z`) has the table's lamina life at
+/// the same displacement: the table solved for the run's force lands on the run's
+/// displacement, and its life (power means over the Z rollers of one state) equals the
+/// window's (over the rollers of every state) to rounding, with and without the edge factor.
+#[test]
+fn a_steady_run_has_the_quasi_static_tables_lamina_life() {
+    let y0 = -30e-6;
+    let s = scene(y0, 0.0, 20);
+    let (life, plain, n, force, json) = run(&s);
+    assert_eq!(n, 11, "the second half of 21 rows");
+    assert_eq!(json["states"], 11);
+    let b = raceway::geometry::roller_catalogue::lookup("NU206")
+        .unwrap()
+        .build()
+        .unwrap();
+    let load = force.map(|f| -f);
+    let names = (["fx", "fy", "fz", "mx", "my"], "speed");
+    let qs = report(&b, 0.0, load, names).unwrap();
+    let q = qs.solution.q;
+    assert!(
+        (q[1] / y0 - 1.0).abs() < 1e-9 && q[0].abs() < 1e-12,
+        "the table's displacement {q:?}"
+    );
+    let t = qs.lamina_life.l10r_mrev.unwrap();
+    let tp = qs.lamina_life_without_edge_factor.l10r_mrev.unwrap();
+    assert!((life / t - 1.0).abs() < 1e-8, "ring {life} table {t}");
+    assert!((plain / tp - 1.0).abs() < 1e-8, "ring {plain} table {tp}");
+    // The edge factor shortens the life of these profiled rollers only a little (their end
+    // laminae are relieved): a check that the two are not the same figure.
+    assert!(life < plain, "{life} {plain}");
+}
+
+/// Turning, the rollers visit every azimuth over the window: the life over many roller
+/// passes differs from the one state's (rollers at `2 pi j/Z` only) by the spread of the
+/// load zone's sampling, a little; a heavier displacement shortens it as the lamina loads'
+/// power law says (`q ∝ delta^(10/9)`, life `∝ q^-4` and more for the laminae that close).
+#[test]
+fn a_turning_run_averages_the_rollers_over_the_window() {
+    let (still, ..) = run(&scene(-30e-6, 0.0, 20));
+    // 1500 rpm: a roller passes an azimuth every 1/BPFO = 7 ms; 400 steps analyse 20 ms.
+    let (turning, _, n, ..) = run(&scene(-30e-6, 1500.0, 400));
+    assert_eq!(n, 201);
+    let rel = turning / still - 1.0;
+    assert!(rel.abs() < 0.05 && rel != 0.0, "turning {turning} still {still}");
+    let (heavier, ..) = run(&scene(-40e-6, 1500.0, 400));
+    assert!(heavier < turning * (30.0f64 / 40.0).powf(40.0 / 9.0), "{heavier} {turning}");
+}
