@@ -135,7 +135,8 @@ fn a_defect_over_half_the_laminae_unloads_only_those_laminae() {
 
 /// Bad input is refused by the component naming the field and a range that can be met: a
 /// defect wider than the roller's effective length (9.6 mm for the NU206), one reaching past
-/// the roller's end, the axial fields on a ball bearing, and a defect on a tapered bearing.
+/// the roller's end, the axial fields on a ball bearing, and a roller defect on a tapered
+/// bearing.
 #[test]
 fn a_defect_wider_than_the_roller_is_refused_naming_the_field() {
     let err = |text: &str| Component::from_text(text).unwrap_err().to_string();
@@ -156,11 +157,13 @@ fn a_defect_wider_than_the_roller_is_refused_naming_the_field() {
     let ball = SCENE.replace("bearing = \"NU206\"", "bearing = \"6205\"");
     let e = err(&ball);
     assert!(e.contains("effects.defects[0].axial_width_mm"), "{e}");
-    let tapered = scene(r#"defects = [{ race = "outer", width_mm = 1.0, depth_um = 20.0 }]"#)
+    // A tapered bearing takes cup and cone defects (tests/tapered_defects.rs), not a
+    // roller's own.
+    let tapered = scene(r#"defects = [{ race = "ball", width_mm = 1.0, depth_um = 20.0 }]"#)
         .replace("bearing = \"NU206\"", "bearing = \"30206\"");
     let e = err(&tapered);
     assert!(
-        e.contains("effects.defects") && e.contains("tapered"),
+        e.contains("effects.defects[0].race") && e.contains("tapered"),
         "{e}"
     );
     let e = err(&scene("defects = []\nball_spacing = { scatter = 0.5 }"));

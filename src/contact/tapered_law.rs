@@ -323,6 +323,51 @@ impl ElementLaw for TaperedRollerLaw {
         } else {
             self.laminae.evaluate(delta, tau.atan())
         };
+        Ok(self.reaction(r, delta, tau, omega, fast, want))
+    }
+}
+
+impl TaperedRollerLaw {
+    /// Each lamina's position along the raceway generatrix from the roller's mid-point, m,
+    /// positive toward `+z` (the small end, the apex's side): `-x_k cos(beta)` (`x_k` runs
+    /// toward the large end, module docs). A defect's axial extent is measured there
+    /// (docs/physics.md §R12).
+    pub fn generatrix_positions(&self) -> Vec<f64> {
+        self.laminae.x.iter().map(|x| -x * self.cos_beta).collect()
+    }
+
+    /// The reaction of a massless roller ([`TaperedRollerLaw::massless`], the ring level's)
+    /// whose laminae's cup-normal approaches are moved by `offsets` (m, one per lamina: a
+    /// cup or cone defect's depth loss subtracts; docs/physics.md §R12), with the cup lamina
+    /// loads into `loads` when given. Each lamina's load is [`ElementLaw::react`]'s bit for
+    /// bit where its offset is zero (the same approach, the same root); the roller's sums
+    /// agree to rounding.
+    pub fn react_offsets(
+        &self,
+        u: ElementDisplacement,
+        offsets: &[f64],
+        want: Want,
+        loads: Option<&mut [f64]>,
+    ) -> ElementReaction {
+        debug_assert!(!self.at_speed(1.0), "massless rollers only");
+        let (delta, tau) = self.lamina_inputs(u);
+        // The tangent `react` evaluates at (`evaluate(delta, atan tau)`), to the bit.
+        let t = crate::contact::lamina::tan0(tau.atan());
+        let r = self.laminae.evaluate_offsets(delta, t, offsets, loads);
+        self.reaction(r, delta, tau, 0.0, false, want)
+    }
+
+    /// The element's reaction from the cup laminae's `r` at the cup-normal approach `delta`
+    /// and `tau = tan(psi)` (module docs); `fast`: at speed (`omega`).
+    fn reaction(
+        &self,
+        r: RollerLoad,
+        delta: f64,
+        tau: f64,
+        omega: f64,
+        fast: bool,
+        want: Want,
+    ) -> ElementReaction {
         let (q, m) = (r.force, r.moment);
         let mut out = ElementReaction {
             f: [
@@ -379,7 +424,7 @@ impl ElementLaw for TaperedRollerLaw {
                 line_hertz(r.max_lamina / w, self.r_outer, self.e_outer).1,
             ];
         }
-        Ok(out)
+        out
     }
 }
 

@@ -10,23 +10,27 @@
 //! With 5 DOF the damping spreads evenly along a roller's contact line, so the tilt rate
 //! `w` at the element meets the moment `-c L²/12 w` ([`ElementLaw::tilt_damping_arm2`]).
 //!
-//! Defects and waviness on a cylindrical roller bearing act per lamina
-//! ([`super::roller_effects`], docs/physics.md §R12): a roller with an offset on some lamina
-//! runs [`CylindricalRollerLaw::react_offsets`], every other roller the plain law, so a scene
-//! whose effects add nothing (a defect of zero depth, say) runs the healthy arithmetic bit for
-//! bit. Not modelled here yet: the other effects (spacing, film, wear, thermal) and any effect
-//! on a tapered bearing, refused by name; damping of the axial motion (cylindrical rollers
-//! carry no axial load).
+//! Defects and waviness on a cylindrical roller bearing, and cup and cone defects on a tapered
+//! one, act per lamina ([`super::roller_effects`], docs/physics.md §R12): a roller with an
+//! offset on some lamina runs [`CylindricalRollerLaw::react_offsets`] (or
+//! [`TaperedRollerLaw::react_offsets`]), every other roller the plain law, so a scene whose
+//! effects add nothing (a defect of zero depth, say) runs the healthy arithmetic bit for bit.
+//! Not modelled here yet: the other effects (spacing, film, wear, thermal; waviness and roller
+//! defects on a tapered bearing), refused by name; damping of the axial motion (cylindrical
+//! rollers carry no axial load).
 
 use super::roller_effects::RollerEffects;
 use super::{RingDof, DAMPING_RAMP};
 use crate::contact::roller_law::CylindricalRollerLaw;
+use crate::contact::tapered_law::TaperedRollerLaw;
 use crate::error::{Error, Result};
 use crate::geometry::element::Element;
 use crate::geometry::kinematics::nominal_cage_speed as cage_speed;
 use crate::models::effects::Effects;
 use crate::models::LevelArgs;
-use crate::seam::element::{assemble_sc, even_base, place_evenly_sc, ElementLaw, Want};
+use crate::seam::element::{
+    assemble_sc, even_base, place_evenly_sc, ElementDisplacement, ElementLaw, ElementReaction, Want,
+};
 use crate::seam::{LevelModel, LevelOutputs, Point};
 
 /// The stiffness and damping matrices an evaluation fills.
@@ -50,13 +54,29 @@ pub struct LawRingLevel {
     cylindrical: Option<CylindricalRollerLaw>,
 }
 
-/// A roller bearing's per-lamina effects: the massless cylindrical law that takes offsets, the
-/// compiled effects and one roller's offsets (set up once: an evaluation allocates nothing).
+/// A roller bearing's per-lamina effects: the massless law that takes offsets, the compiled
+/// effects and one roller's offsets (set up once: an evaluation allocates nothing).
 #[derive(Debug)]
 struct Profiled {
-    law: CylindricalRollerLaw,
+    law: OffsetLaw,
     fx: RollerEffects,
     offsets: Vec<f64>,
+}
+
+/// The massless roller law of a bearing with per-lamina effects.
+#[derive(Debug)]
+enum OffsetLaw {
+    Cylindrical(CylindricalRollerLaw),
+    Tapered(TaperedRollerLaw),
+}
+
+impl OffsetLaw {
+    fn react_offsets(&self, u: ElementDisplacement, offsets: &[f64], want: Want) -> ElementReaction {
+        match self {
+            OffsetLaw::Cylindrical(l) => l.react_offsets(u, offsets, want, None),
+            OffsetLaw::Tapered(l) => l.react_offsets(u, offsets, want, None),
+        }
+    }
 }
 
 impl LawRingLevel {
@@ -67,20 +87,20 @@ impl LawRingLevel {
         let profiled = if *a.effects == Effects::default() {
             None
         } else if let Element::Roller(r) = &a.bearing.element {
-            let fx;
-            let law = if r.kind.is_tapered() {
-                // Refused by name (a tapered bearing takes no effect yet).
-                fx = RollerEffects::new(a.effects, a.bearing, &[])?;
-                None
+            // Lamina positions along +z: a tapered roller's along the raceway generatrix.
+            let (law, x) = if r.kind.is_tapered() {
+                let law = TaperedRollerLaw::new(r)?.massless();
+                let x = law.generatrix_positions();
+                (OffsetLaw::Tapered(law), x)
             } else {
                 let law = CylindricalRollerLaw::new(r)?.massless();
-                fx = RollerEffects::new(a.effects, a.bearing, &law.laminae().x)?;
-                Some(law)
+                let x = law.laminae().x.clone();
+                (OffsetLaw::Cylindrical(law), x)
             };
-            law.map(|law| Profiled {
-                offsets: vec![0.0; law.laminae().len()],
+            Some(Profiled {
+                fx: RollerEffects::new(a.effects, a.bearing, &x)?,
+                offsets: vec![0.0; x.len()],
                 law,
-                fx,
             })
         } else {
             return Err(Error::invalid(
@@ -155,7 +175,7 @@ impl LawRingLevel {
                     any.then_some(&*pf)
                 });
                 let mut r = match (pf, cylindrical) {
-                    (Some(pf), _) => pf.law.react_offsets(u, &pf.offsets, want, None),
+                    (Some(pf), _) => pf.law.react_offsets(u, &pf.offsets, want),
                     (None, Some(cl)) => cl.react_massless(u, want),
                     (None, None) => law.react(at, u, m.omega, &mut [], want)?,
                 };

@@ -16,13 +16,21 @@
 //!   axial position) moves every lamina's approach by the same amount; a roller's waviness (its
 //!   diameter deviation `w(phi) + w(phi + pi)`, met at both races) likewise.
 //!
+//! On a tapered roller bearing a cup (outer) or cone (inner) defect acts the same way on the
+//! laminae's approach along the cup normal (`contact::tapered_law`): its axial extent is
+//! measured along the raceway generatrix from the roller's mid-point, positive toward `+z`
+//! (the small end), where lamina `k` sits at `-x_k cos(beta)`; the caller passes those
+//! positions. Its depth, normal to its own raceway, is taken along the cup normal: the cone's
+//! normal is `2 beta` (a few degrees) from it, the law's own approximation.
+//!
 //! Ball-spacing scatter, lubrication, wear and thermal effects are not built for rollers and
-//! are refused by name ([`RollerEffects::new`]); so are effects on a tapered roller bearing.
+//! are refused by name ([`RollerEffects::new`]); so are waviness and roller defects on a
+//! tapered roller bearing.
 
 use crate::error::{Error, Result};
 use crate::geometry::Bearing;
 use crate::models::defects::{Defect, DefectSite};
-use crate::models::effects::{axial_extent, Effects, FilmKind, RingEffects};
+use crate::models::effects::{axial_extent, Effects, Element, FilmKind, RingEffects};
 use crate::models::waviness::Harmonic;
 
 /// A roller bearing's defects and waviness, compiled for its laminae (module docs).
@@ -39,9 +47,10 @@ pub struct RollerEffects {
 
 impl RollerEffects {
     /// Compile the scene's effects `e` for roller bearing `b` whose laminae have their centres
-    /// at `x` (m from the roller's mid-plane, along `+z`). Refuses, naming the field, what the
-    /// ring level does not model on rollers (spacing scatter, lubrication, wear, thermal; any
-    /// effect on a tapered bearing) and a defect wider than the roller's effective length or
+    /// at `x` (m from the roller's mid-plane, along `+z`; a tapered roller's along the
+    /// raceway generatrix, module docs). Refuses, naming the field, what the ring level does
+    /// not model on rollers (spacing scatter, lubrication, wear, thermal; waviness and roller
+    /// defects on a tapered bearing) and a defect wider than the roller's effective length or
     /// reaching past it.
     pub fn new(e: &Effects, b: &Bearing, x: &[f64]) -> Result<RollerEffects> {
         let refuse = |field: &str, what: &str| {
@@ -67,17 +76,21 @@ impl RollerEffects {
             return refuse("thermal", "given");
         }
         if let crate::geometry::element::Element::Roller(r) = &b.element {
-            if r.kind.is_tapered() && !(e.defects.is_empty() && e.waviness.is_empty()) {
-                let field = if e.defects.is_empty() {
-                    "waviness"
-                } else {
-                    "defects"
-                };
-                return Err(Error::invalid(
-                    format!("effects.{field}"),
-                    "given on a tapered roller bearing",
-                    "absent: per-lamina defects and waviness are built for cylindrical roller bearings (nu, n, nj, nup) only",
-                ));
+            if r.kind.is_tapered() {
+                if !e.waviness.is_empty() {
+                    return Err(Error::invalid(
+                        "effects.waviness",
+                        "given on a tapered roller bearing",
+                        "absent: waviness is built per lamina for cylindrical roller bearings (nu, n, nj, nup); a tapered one takes cup and cone defects",
+                    ));
+                }
+                if let Some(i) = e.defects.iter().position(|d| d.race == Element::Ball) {
+                    return Err(Error::invalid(
+                        format!("effects.defects[{i}].race"),
+                        "a roller defect on a tapered roller bearing",
+                        "outer (the cup) or inner (the cone): a tapered roller's own defects are not built",
+                    ));
+                }
             }
         }
         let fx = RingEffects::new(e, b)?;
