@@ -37,7 +37,12 @@ fn run(s: &Scene) -> (f64, f64, usize, [f64; 5], serde_json::Value) {
     let (life, plain, n) = ring_lamina_life(s, &digest, &comp).unwrap();
     let force = ["force.x", "force.y", "force.z", "moment.x", "moment.y"].map(|n| digest.last(n));
     let sm = summarize(s, "steady", &digest, &comp, 0.0);
-    assert!(sm.text.contains("ISO/TS 16281 lamina life over the analysed window"), "{}", sm.text);
+    assert!(
+        sm.text
+            .contains("ISO/TS 16281 lamina life over the analysed window"),
+        "{}",
+        sm.text
+    );
     assert!(sm.text.contains("UNSOURCED"), "{}", sm.text);
     (
         life.l10r_mrev.unwrap(),
@@ -92,7 +97,13 @@ fn a_turning_run_averages_the_rollers_over_the_window() {
     let (turning, _, n, ..) = run(&scene(-30e-6, 1500.0, 400));
     assert_eq!(n, 201);
     let rel = turning / still - 1.0;
-    assert!(rel.abs() < 0.05 && rel != 0.0, "turning {turning} still {still}");
+    assert!(
+        rel.abs() < 0.05 && rel != 0.0,
+        "turning {turning} still {still}"
+    );
     let (heavier, ..) = run(&scene(-40e-6, 1500.0, 400));
-    assert!(heavier < turning * (30.0f64 / 40.0).powf(40.0 / 9.0), "{heavier} {turning}");
+    assert!(
+        heavier < turning * (30.0f64 / 40.0).powf(40.0 / 9.0),
+        "{heavier} {turning}"
+    );
 }

@@ -71,7 +71,12 @@ enum OffsetLaw {
 }
 
 impl OffsetLaw {
-    fn react_offsets(&self, u: ElementDisplacement, offsets: &[f64], want: Want) -> ElementReaction {
+    fn react_offsets(
+        &self,
+        u: ElementDisplacement,
+        offsets: &[f64],
+        want: Want,
+    ) -> ElementReaction {
         match self {
             OffsetLaw::Cylindrical(l) => l.react_offsets(u, offsets, want, None),
             OffsetLaw::Tapered(l) => l.react_offsets(u, offsets, want, None),

@@ -32,16 +32,15 @@ impl RingLaminae {
     /// The rollers of `b` with the scene's `effects` (refused as the ring level refuses
     /// them); a ball or tapered roller bearing is refused naming `bearing.kind`.
     pub fn new(b: &Bearing, effects: &Effects) -> Result<RingLaminae> {
-        let r = match &b.element {
-            Element::Roller(r) if !r.kind.is_tapered() => r,
-            _ => {
-                return Err(Error::invalid(
+        let r =
+            match &b.element {
+                Element::Roller(r) if !r.kind.is_tapered() => r,
+                _ => return Err(Error::invalid(
                     "bearing.kind",
                     b.element().name(),
                     "a cylindrical roller bearing (nu, n, nj, nup): the ring level's lamina loads",
-                ))
-            }
-        };
+                )),
+            };
         let law = CylindricalRollerLaw::new(r)?.massless();
         let ns = law.laminae().len();
         let fx = if *effects == Effects::default() {
