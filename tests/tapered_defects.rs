@@ -96,7 +96,11 @@ fn a_cup_defect_over_half_the_generatrix_unloads_only_those_laminae() {
     ))
     .unwrap();
     let fx = RollerEffects::new(&e, &b, &s).unwrap();
-    assert_eq!(fx.span(0), (0, half), "the cup pit toward +z: the small end's laminae");
+    assert_eq!(
+        fx.span(0),
+        (0, half),
+        "the cup pit toward +z: the small end's laminae"
+    );
     assert_eq!(fx.span(1), (half, ns), "the cone pit toward -z");
     let mut off = vec![0.0; ns];
     // Roller 3 on the cup pit's centre; the shaft turned so the cone pit is elsewhere (the
@@ -131,7 +135,10 @@ fn a_cup_defect_over_half_the_generatrix_unloads_only_those_laminae() {
             relieved += usize::from(with[k] < healthy[k]);
         }
     }
-    assert!(relieved >= half - 3, "{relieved} of {half} spanned laminae relieved");
+    assert!(
+        relieved >= half - 3,
+        "{relieved} of {half} spanned laminae relieved"
+    );
     let lost: f64 = (0..half).map(|k| healthy[k] - with[k]).sum();
     assert!(lost > 0.05 * q0, "{lost} of {q0} N");
     // The force on the shaft is the cup load along the cup normal: its radial part.
@@ -169,4 +176,41 @@ fn tapered_defect_refusals_name_the_field() {
     assert!(e.contains("effects.defects[0].race"), "{e}");
     let e = err(r#"waviness = [{ race = "outer", order = 3, amplitude_um = 1.0 }]"#);
     assert!(e.contains("effects.waviness"), "{e}");
+}
+
+/// The shipped scene `30206-cup-defect.toml` (cup spall over the +z half of the generatrix,
+/// 0.8 s at 1500 rpm): the envelope spectrum of the force finds BPFO = 143.63 Hz and its
+/// second and third harmonics within their tolerances.
+#[test]
+fn the_shipped_cup_defect_scene_finds_bpfo_in_the_envelope() {
+    use raceway::runner::{run_into, Record, Series, Tee};
+    let text = include_str!("../examples/scenes/30206-cup-defect.toml");
+    let s = raceway::component::Scene::from_text(text).unwrap();
+    let mut series = Series::default();
+    let mut digest = raceway::summary::digest_for(&s);
+    let comp = run_into(
+        &s,
+        Record::default(),
+        false,
+        &mut |_| {},
+        &mut || false,
+        &mut Tee(&mut series, &mut digest),
+    )
+    .unwrap();
+    let sm = raceway::summary::summarize(&s, "30206-cup-defect", &digest, &comp, 0.0);
+    let env = sm.json["envelope_frequencies"].as_array().unwrap();
+    for want in ["1xBPFO", "2xBPFO", "3xBPFO"] {
+        let line = env.iter().find(|l| l["label"] == want).unwrap();
+        let (f, e, tol) = (
+            line["found_hz"].as_f64().unwrap_or(f64::NAN),
+            line["expected_hz"].as_f64().unwrap(),
+            line["tolerance_hz"].as_f64().unwrap(),
+        );
+        assert!((f - e).abs() <= tol, "{want}: {line}");
+    }
+    let bpfo = env.iter().find(|l| l["label"] == "1xBPFO").unwrap();
+    assert!(
+        (bpfo["expected_hz"].as_f64().unwrap() - 143.6285).abs() < 1e-3,
+        "{bpfo}"
+    );
 }
