@@ -250,4 +250,8 @@ pub struct RowReport {
     pub s0: Option<f64>,
     /// Peak contact pressure, Pa (ball rows; 0 for roller rows).
     pub peak_pressure: f64,
+    /// Every ball's equilibrium (ball rows; empty for roller rows), as the single
+    /// bearing's quasi-static report has them.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub balls: Vec<BallResult>,
 }
