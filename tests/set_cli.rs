@@ -38,11 +38,11 @@ fn a_rigid_db_pair_at_no_load_balances_its_rows_and_sums_their_axial_stiffness()
     let fz = |i: usize| rows[i]["force"][2].as_f64().unwrap();
     // Equal and opposite on the shaft, each the 300 N preload.
     assert!((fz(0) + fz(1)).abs() < 1e-6 * 300.0, "{} {}", fz(0), fz(1));
-    for i in 0..2 {
-        let a = rows[i]["axial_load"].as_f64().unwrap();
+    for (i, r) in rows.iter().enumerate() {
+        let a = r["axial_load"].as_f64().unwrap();
         assert!((a - 300.0).abs() < 1e-3 * 300.0, "row {i}: {a}");
-        assert_eq!(rows[i]["lifted_off"], false);
-        assert_eq!(rows[i]["balls"].as_array().unwrap().len(), 16);
+        assert_eq!(r["lifted_off"], false);
+        assert_eq!(r["balls"].as_array().unwrap().len(), 16);
     }
     // No net force at the reference point.
     for k in 0..5 {

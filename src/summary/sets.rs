@@ -282,10 +282,10 @@ mod tests {
             fz(0),
             fz(1)
         );
-        for i in 0..2 {
+        for (i, r) in rows.iter().enumerate() {
             // Rigid preload by force: each row carries the 300 N at rest.
             assert!((thrust(i) - 300.0).abs() < 1e-6 * 300.0, "{}", thrust(i));
-            assert_eq!(rows[i]["lift_off_fraction"].as_f64().unwrap(), 0.0);
+            assert_eq!(r["lift_off_fraction"].as_f64().unwrap(), 0.0);
         }
         // Each row's life: ISO 281 of its own 300 N thrust (RatingOutputs, independently).
         let b = comp.bearing();
