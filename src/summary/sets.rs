@@ -144,7 +144,16 @@ pub(super) fn rating_lines(c: &Ctx, s: &mut Summary) -> bool {
             ),
             r.angle_deg,
             100.0 * r.lifted_fraction,
-            opt(r.l10, |v| format!("{v:.4e}"), "unloaded"),
+            // No finite life: beyond the outputs' cap (1e12) while loaded, else unloaded.
+            opt(
+                r.l10,
+                |v| format!("{v:.4e}"),
+                if r.radial > 0.0 || r.thrust > 0.0 {
+                    "> 1e12"
+                } else {
+                    "unloaded"
+                }
+            ),
             opt(hours(r.l10, omega), |v| format!("{v:.4e}"), "-"),
             opt(r.s0, |v| format!("{v:.3}"), "unloaded"),
         ));
