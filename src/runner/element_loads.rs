@@ -133,7 +133,8 @@ fn last_revolution(scene: &Scene) -> (f64, bool) {
     let ramp = rpm_to_rad_s(scene.run.speed_ramp_rpm_per_s);
     let angle = |t: f64| omega0 * t + 0.5 * ramp * t * t;
     let turned = |t: f64| (angle(end) - angle(t)).abs();
-    if !(turned(0.0) > TAU) {
+    let total = turned(0.0);
+    if total.is_nan() || total <= TAU {
         return (0.0, false);
     }
     // The turned angle falls from above a turn at 0 to 0 at the end (monotonic while the
