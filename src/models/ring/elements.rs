@@ -26,7 +26,9 @@ use crate::geometry::element::Element;
 use crate::geometry::kinematics::nominal_cage_speed as cage_speed;
 use crate::models::effects::Effects;
 use crate::models::LevelArgs;
-use crate::seam::element::{assemble_sc, even_base, place_evenly_sc, ElementLaw, Want};
+use crate::seam::element::{
+    assemble_sc, even_base, place_evenly_sc, ElementLaw, ElementLoad, ElementReaction, Want,
+};
 use crate::seam::{LevelModel, LevelOutputs, Point};
 
 /// The stiffness and damping matrices an evaluation fills.
@@ -45,6 +47,9 @@ pub struct LawRingLevel {
     base: Vec<(f64, f64)>,
     /// Defects and waviness (None: none, nothing evaluated).
     profiled: Option<Profiled>,
+    /// The elements' loads of the last outputs, when asked to keep them
+    /// ([`LevelModel::keep_element_loads`]; `None`: nothing stored).
+    loads: Option<Vec<ElementLoad>>,
 }
 
 /// A roller bearing's per-lamina effects: the massless cylindrical law that takes offsets, the
@@ -98,15 +103,18 @@ impl LawRingLevel {
             sc: vec![(0.0, 1.0); a.bearing.z],
             base: even_base(a.bearing.z),
             profiled,
+            loads: None,
         })
     }
 
-    /// Wrench on the shaft at `p` (and with `kc` the stiffness and damping matrices).
+    /// Wrench on the shaft at `p` (and with `kc` the stiffness and damping matrices, the
+    /// report of each element to `element(j, psi, reaction)`).
     fn evaluate(
         &mut self,
         p: Point<'_>,
         mut kc: Option<Matrices<'_>>,
         report: &mut (usize, f64, f64),
+        mut element: impl FnMut(usize, f64, &ElementReaction),
     ) -> Result<[f64; 5]> {
         let Point { m, x, .. } = p;
         place_evenly_sc(&mut self.psi, &mut self.sc, &self.base, x[0]);
@@ -145,6 +153,7 @@ impl LawRingLevel {
                     report.1 = report.1.max(r.load[0]).max(r.load[1]);
                     report.2 = report.2.max(r.pressure[0]).max(r.pressure[1]);
                 }
+                element(j, at.psi, &r);
                 if c0 > 0.0 && r.f[1] < 0.0 && r.approach > 0.0 {
                     let (s, c) = at.sc;
                     let (q, v) = (&m.q, &m.v);
@@ -217,15 +226,39 @@ impl LevelModel for LawRingLevel {
     fn rhs(&mut self, p: Point<'_>, dx: &mut [f64], wrench: Option<&mut [f64; 5]>) -> Result<()> {
         dx[0] = self.cage_ratio * p.m.omega;
         if let Some(w) = wrench {
-            *w = self.evaluate(p, None, &mut (0, 0.0, 0.0))?;
+            *w = self.evaluate(p, None, &mut (0, 0.0, 0.0), |_, _, _| {})?;
         }
         Ok(())
+    }
+    fn keep_element_loads(&mut self) -> bool {
+        self.loads = Some(vec![ElementLoad::default(); self.psi.len()]);
+        true
+    }
+    fn element_loads(&self, out: &mut Vec<ElementLoad>) -> bool {
+        out.clear();
+        out.extend(self.loads.iter().flatten());
+        self.loads.is_some()
     }
     fn outputs(&mut self, p: Point<'_>, out: &mut LevelOutputs) -> Result<()> {
         let omega = p.m.omega;
         let (mut k, mut c) = ([[0.0; 5]; 5], [[0.0; 5]; 5]);
         let mut report = (0, 0.0, 0.0);
-        let wrench = self.evaluate(p, Some((&mut k, &mut c)), &mut report)?;
+        let kc = Some((&mut k, &mut c));
+        // A roller's loads are its laminae's sums ([`ElementReaction::load`]).
+        let wrench = match self.loads.take() {
+            None => self.evaluate(p, kc, &mut report, |_, _, _| {}),
+            Some(mut loads) => {
+                let w = self.evaluate(p, kc, &mut report, |j, psi, r| {
+                    loads[j] = ElementLoad {
+                        psi,
+                        inner: r.load[0],
+                        outer: r.load[1],
+                    }
+                });
+                self.loads = Some(loads);
+                w
+            }
+        }?;
         *out = LevelOutputs {
             wrench,
             k,
