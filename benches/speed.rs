@@ -311,7 +311,7 @@ fn skidding_run(method: Method, rtol: f64, cap: f64, t_end: f64) -> (f64, Sample
     }
     let h = scene.run.step_s;
     assert_eq!(h, 1e-4, "the row's communication step");
-    let init = |n: &str| scene.inputs.initial.get(n).copied().unwrap_or(0.0);
+    let init = |n: &str| scene.inputs.initial_value(n);
     let mut c = Component::new(scene.clone()).expect("scene");
     for name in [
         "load.x",
