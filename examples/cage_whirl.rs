@@ -42,6 +42,12 @@ use std::f64::consts::PI;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
+#[path = "cage_whirl/energy.rs"]
+mod energy;
+#[cfg(feature = "plot")]
+use energy::energy_plot;
+use energy::{balance, balance_section, Balance};
+
 /// One guidance and clearance reading.
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct Config {
@@ -135,7 +141,33 @@ struct Record {
     pockets: Vec<Vec<f64>>,
     /// Powers on the cage at each sample: pocket, pocket whirl, guide, guide whirl, drag, W.
     powers: Vec<[f64; 5]>,
+    /// Kinetic energy of the cage at each sample, from its states: of the centre's motion
+    /// (`mc |v|² / 2`, the whirl) and in all (with the spin and tilt rates), J.
+    ke: Vec<[f64; 2]>,
     cpu: f64,
+}
+
+/// Kinetic energy of the free cage from its state block `[x, y, z, bx, by, theta, vx, vy,
+/// vz, bx', by', w_c]` (scaled by the model's length `l` and time `t0`): the centre's
+/// `mc |v|² / 2` and the total with `ip w² / 2 + it (bx'² + by'²) / 2`, J (the energy whose
+/// rate is the power of the cage's forces and moments in the level's equations,
+/// docs/physics.md §5.5).
+fn cage_energy(b: &raceway::geometry::Bearing, x: &[f64], l: f64, t0: f64) -> [f64; 2] {
+    let (cri, cro, cw) = (
+        0.5 * b.cage.inner_diameter,
+        0.5 * b.cage.outer_diameter,
+        b.cage.width,
+    );
+    let (mc, ip) = (b.cage.mass, b.cage.inertia);
+    let it = mc * ((cri * cri + cro * cro) / 4.0 + cw * cw / 12.0);
+    let v = l / t0;
+    let v2 = (x[6] * v).powi(2) + (x[7] * v).powi(2) + (x[8] * v).powi(2);
+    let whirl = 0.5 * mc * v2;
+    let (bx, by, w) = (x[9] / t0, x[10] / t0, x[11] / t0);
+    [
+        whirl,
+        whirl + 0.5 * ip * w * w + 0.5 * it * (bx * bx + by * by),
+    ]
 }
 
 fn var(name: &str) -> u32 {
@@ -180,7 +212,7 @@ fn simulate(scene: &Scene) -> Result<Record, Box<dyn std::error::Error>> {
         pockets: vec![Vec::with_capacity(n + 1); b.z],
         ..Record::default()
     };
-    let (_, t0) = model.scales();
+    let (l, t0) = model.scales();
     // The cage block of the free cage: `[x, y, z, bx, by, theta, vx, vy, vz, bx', by', w_c T0]`.
     let cage_w = |x: &[f64]| x[11] / t0;
     let cpu0 = raceway::report::thread_cpu_s();
@@ -213,6 +245,7 @@ fn simulate(scene: &Scene) -> Result<Record, Box<dyn std::error::Error>> {
             tot.guide_power_whirl,
             tot.cage_drag_power,
         ]);
+        r.ke.push(cage_energy(&b, &st.x, l, t0));
     }
     r.cpu = raceway::report::thread_cpu_s() - cpu0;
     Ok(r)
@@ -235,6 +268,8 @@ struct Row {
     /// Energies per cage revolution over the last window (pocket, pocket whirl, guide,
     /// guide whirl, drag), J.
     energy: [f64; 5],
+    /// The energy balance per cage revolution over the last window (time integrals).
+    balance: Balance,
     cpu_per_rev: f64,
     /// Orbit over the last window, guide clearances.
     ox: Vec<f64>,
@@ -317,8 +352,10 @@ fn run_one(rpm: f64, cfg: Config, o: &Opts) -> Result<Row, Box<dyn std::error::E
                 .collect::<Vec<_>>(),
         ) / f_cage;
     }
+    let balance = balance(&r, last.clone(), span * f_cage);
     Ok(Row {
         rpm,
+        balance,
         sigmas,
         orbit_max,
         orbit_mean,
@@ -811,6 +848,9 @@ fn write_docs(
     md += &std::fs::read_to_string(here.join("cage_whirl_tail.md"))?;
     if !oils.is_empty() {
         md += &oil_section(o, all, oils)?;
+        md += &balance_section(o, all, oils)?;
+        #[cfg(feature = "plot")]
+        energy_plot(&dir, o, all, oils)?;
     }
     std::fs::write(dir.join("cage-whirl.md"), md)?;
     Ok(())
