@@ -21,7 +21,8 @@
 //! traction and 0.003 Pa s; docs/physics.md §5.2, §6.2), `--constant-4109` (with it: the
 //! 4109 constant set instead of the power laws), `--with-oil` (with `--write-docs`: the page
 //! gains a part that repeats every configuration on MIL-L-7808 at 100 and 60 °C with the 4109
-//! fit, with a computed verdict on the trend; three times the CPU).
+//! fit, with a computed verdict on the trend; three times the CPU), `--rtol R` (the solver's
+//! relative tolerance instead of the scenes' 1e-5: the check of the energy balance's rest).
 //!
 //! Per run: sigma = std(|v|)/mean(|v|) of the level's `cage.speed` (3-D cage-centre speed)
 //! over each of `N` equal windows of the run (the last is the settled value, the change
@@ -98,6 +99,8 @@ struct Opts {
     oil_temp_c: Option<f64>,
     /// With `oil_temp_c`: the 4109 constant set instead of the power laws.
     constant_4109: bool,
+    /// The solver's relative tolerance instead of the scenes' (`--rtol`).
+    rtol: Option<f64>,
     /// With `--write-docs`: add the page's part on study [0]'s oil (every configuration at
     /// [`OIL_TEMPS_C`]).
     with_oil: bool,
@@ -299,6 +302,9 @@ fn scene_for(rpm: f64, cfg: Config, o: &Opts) -> Result<Scene, Box<dyn std::erro
     s.run.step_s = o.step;
     s.model.full.guidance = Some(cfg.guidance);
     s.model.full.cage_unbalance_um = o.unbalance_um;
+    if let Some(r) = o.rtol {
+        s.solver.rtol = r;
+    }
     apply_oil(&mut s, o)?;
     if cfg.diametral {
         let mut spec = preset("7004")?;
@@ -400,9 +406,13 @@ fn study(cfg: Config, o: &Opts) -> Result<Tables, Box<dyn std::error::Error>> {
     for &rpm in &o.speeds {
         let r = run_one(rpm, cfg, o)?;
         eprintln!(
-            "  {rpm:.0} rpm: {:.1} ms of thread CPU per shaft rev (load average {})",
+            "  {rpm:.0} rpm: {:.1} ms of thread CPU per shaft rev (load average {}); per cage rev: net work {:.3e} mJ, its kinetic energy's change {:.3e} mJ (whirl {:.3e}, {:.3e})",
             r.cpu_per_rev * 1e3,
-            raceway::report::load_average()
+            raceway::report::load_average(),
+            r.balance.net() * 1e3,
+            r.balance.dke * 1e3,
+            r.balance.whirl_net() * 1e3,
+            r.balance.dke_whirl * 1e3
         );
         writeln!(
             main,
@@ -530,6 +540,7 @@ fn parse() -> Result<(Opts, bool, bool), Box<dyn std::error::Error>> {
         config: None,
         oil_temp_c: None,
         constant_4109: false,
+        rtol: None,
         with_oil: false,
     };
     let (mut quick, mut docs) = (false, false);
@@ -550,6 +561,7 @@ fn parse() -> Result<(Opts, bool, bool), Box<dyn std::error::Error>> {
             "--startup-ms" => o.startup_ms = val()?,
             "--oil-temp-c" => o.oil_temp_c = Some(val()?),
             "--constant-4109" => o.constant_4109 = true,
+            "--rtol" => o.rtol = Some(val()?),
             "--with-oil" => o.with_oil = true,
             "--config" => {
                 i += 1;
