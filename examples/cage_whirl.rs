@@ -21,7 +21,8 @@
 //! traction and 0.003 Pa s; docs/physics.md §5.2, §6.2), `--constant-4109` (with it: the
 //! 4109 constant set instead of the power laws), `--with-oil` (with `--write-docs`: the page
 //! gains a part that repeats every configuration on MIL-L-7808 at 100 and 60 °C with the 4109
-//! fit, with a computed verdict on the trend; three times the CPU).
+//! fit, with a computed verdict on the trend; three times the CPU), `--rtol R` (the solver's
+//! relative tolerance instead of the scenes' 1e-5: the check of the energy balance's rest).
 //!
 //! Per run: sigma = std(|v|)/mean(|v|) of the level's `cage.speed` (3-D cage-centre speed)
 //! over each of `N` equal windows of the run (the last is the settled value, the change
@@ -41,6 +42,12 @@ use raceway::Scene;
 use std::f64::consts::PI;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
+
+#[path = "cage_whirl/energy.rs"]
+mod energy;
+#[cfg(feature = "plot")]
+use energy::energy_plot;
+use energy::{balance, balance_section, Balance};
 
 /// One guidance and clearance reading.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -92,6 +99,8 @@ struct Opts {
     oil_temp_c: Option<f64>,
     /// With `oil_temp_c`: the 4109 constant set instead of the power laws.
     constant_4109: bool,
+    /// The solver's relative tolerance instead of the scenes' (`--rtol`).
+    rtol: Option<f64>,
     /// With `--write-docs`: add the page's part on study [0]'s oil (every configuration at
     /// [`OIL_TEMPS_C`]).
     with_oil: bool,
@@ -135,7 +144,33 @@ struct Record {
     pockets: Vec<Vec<f64>>,
     /// Powers on the cage at each sample: pocket, pocket whirl, guide, guide whirl, drag, W.
     powers: Vec<[f64; 5]>,
+    /// Kinetic energy of the cage at each sample, from its states: of the centre's motion
+    /// (`mc |v|² / 2`, the whirl) and in all (with the spin and tilt rates), J.
+    ke: Vec<[f64; 2]>,
     cpu: f64,
+}
+
+/// Kinetic energy of the free cage from its state block `[x, y, z, bx, by, theta, vx, vy,
+/// vz, bx', by', w_c]` (scaled by the model's length `l` and time `t0`): the centre's
+/// `mc |v|² / 2` and the total with `ip w² / 2 + it (bx'² + by'²) / 2`, J (the energy whose
+/// rate is the power of the cage's forces and moments in the level's equations,
+/// docs/physics.md §5.5).
+fn cage_energy(b: &raceway::geometry::Bearing, x: &[f64], l: f64, t0: f64) -> [f64; 2] {
+    let (cri, cro, cw) = (
+        0.5 * b.cage.inner_diameter,
+        0.5 * b.cage.outer_diameter,
+        b.cage.width,
+    );
+    let (mc, ip) = (b.cage.mass, b.cage.inertia);
+    let it = mc * ((cri * cri + cro * cro) / 4.0 + cw * cw / 12.0);
+    let v = l / t0;
+    let v2 = (x[6] * v).powi(2) + (x[7] * v).powi(2) + (x[8] * v).powi(2);
+    let whirl = 0.5 * mc * v2;
+    let (bx, by, w) = (x[9] / t0, x[10] / t0, x[11] / t0);
+    [
+        whirl,
+        whirl + 0.5 * ip * w * w + 0.5 * it * (bx * bx + by * by),
+    ]
 }
 
 fn var(name: &str) -> u32 {
@@ -180,7 +215,7 @@ fn simulate(scene: &Scene) -> Result<Record, Box<dyn std::error::Error>> {
         pockets: vec![Vec::with_capacity(n + 1); b.z],
         ..Record::default()
     };
-    let (_, t0) = model.scales();
+    let (l, t0) = model.scales();
     // The cage block of the free cage: `[x, y, z, bx, by, theta, vx, vy, vz, bx', by', w_c T0]`.
     let cage_w = |x: &[f64]| x[11] / t0;
     let cpu0 = raceway::report::thread_cpu_s();
@@ -213,6 +248,7 @@ fn simulate(scene: &Scene) -> Result<Record, Box<dyn std::error::Error>> {
             tot.guide_power_whirl,
             tot.cage_drag_power,
         ]);
+        r.ke.push(cage_energy(&b, &st.x, l, t0));
     }
     r.cpu = raceway::report::thread_cpu_s() - cpu0;
     Ok(r)
@@ -235,6 +271,8 @@ struct Row {
     /// Energies per cage revolution over the last window (pocket, pocket whirl, guide,
     /// guide whirl, drag), J.
     energy: [f64; 5],
+    /// The energy balance per cage revolution over the last window (time integrals).
+    balance: Balance,
     cpu_per_rev: f64,
     /// Orbit over the last window, guide clearances.
     ox: Vec<f64>,
@@ -264,6 +302,9 @@ fn scene_for(rpm: f64, cfg: Config, o: &Opts) -> Result<Scene, Box<dyn std::erro
     s.run.step_s = o.step;
     s.model.full.guidance = Some(cfg.guidance);
     s.model.full.cage_unbalance_um = o.unbalance_um;
+    if let Some(r) = o.rtol {
+        s.solver.rtol = r;
+    }
     apply_oil(&mut s, o)?;
     if cfg.diametral {
         let mut spec = preset("7004")?;
@@ -317,8 +358,10 @@ fn run_one(rpm: f64, cfg: Config, o: &Opts) -> Result<Row, Box<dyn std::error::E
                 .collect::<Vec<_>>(),
         ) / f_cage;
     }
+    let balance = balance(&r, last.clone(), span * f_cage);
     Ok(Row {
         rpm,
+        balance,
         sigmas,
         orbit_max,
         orbit_mean,
@@ -363,9 +406,13 @@ fn study(cfg: Config, o: &Opts) -> Result<Tables, Box<dyn std::error::Error>> {
     for &rpm in &o.speeds {
         let r = run_one(rpm, cfg, o)?;
         eprintln!(
-            "  {rpm:.0} rpm: {:.1} ms of thread CPU per shaft rev (load average {})",
+            "  {rpm:.0} rpm: {:.1} ms of thread CPU per shaft rev (load average {}); per cage rev: net work {:.3e} mJ, its kinetic energy's change {:.3e} mJ (whirl {:.3e}, {:.3e})",
             r.cpu_per_rev * 1e3,
-            raceway::report::load_average()
+            raceway::report::load_average(),
+            r.balance.net() * 1e3,
+            r.balance.dke * 1e3,
+            r.balance.whirl_net() * 1e3,
+            r.balance.dke_whirl * 1e3
         );
         writeln!(
             main,
@@ -493,6 +540,7 @@ fn parse() -> Result<(Opts, bool, bool), Box<dyn std::error::Error>> {
         config: None,
         oil_temp_c: None,
         constant_4109: false,
+        rtol: None,
         with_oil: false,
     };
     let (mut quick, mut docs) = (false, false);
@@ -513,6 +561,7 @@ fn parse() -> Result<(Opts, bool, bool), Box<dyn std::error::Error>> {
             "--startup-ms" => o.startup_ms = val()?,
             "--oil-temp-c" => o.oil_temp_c = Some(val()?),
             "--constant-4109" => o.constant_4109 = true,
+            "--rtol" => o.rtol = Some(val()?),
             "--with-oil" => o.with_oil = true,
             "--config" => {
                 i += 1;
@@ -811,6 +860,9 @@ fn write_docs(
     md += &std::fs::read_to_string(here.join("cage_whirl_tail.md"))?;
     if !oils.is_empty() {
         md += &oil_section(o, all, oils)?;
+        md += &balance_section(o, all, oils)?;
+        #[cfg(feature = "plot")]
+        energy_plot(&dir, o, all, oils)?;
     }
     std::fs::write(dir.join("cage-whirl.md"), md)?;
     Ok(())

@@ -313,14 +313,44 @@ pub fn plot_dpi(
     series: &[Series<'_>],
     markers: &[Marker],
 ) -> Result<()> {
+    png(path, dpi, PLOT_PX, |root, s| {
+        draw_area(root, s, axes, series, markers)
+    })
+}
+
+/// A drawing of `px` pixels at 100 dpi into a PNG at `path` at `dpi` (in [`DPI_RANGE`]):
+/// `draw(root, s)` draws every length times `s = dpi / 100`. Under a temporary name, then
+/// renamed: never half-written.
+fn png(
+    path: &Path,
+    dpi: u32,
+    px: (u32, u32),
+    draw: impl FnOnce(&Area<BitMapBackend<'_>>, f64) -> Result<()>,
+) -> Result<()> {
     let s = dpi_scale(dpi)?;
     register_font();
-    // Under a temporary name, then renamed: never half-written.
     crate::fsutil::write_atomic_with(path, |tmp| {
-        let root = BitMapBackend::new(tmp, scaled(PLOT_PX, s)).into_drawing_area();
-        draw_area(&root, s, axes, series, markers)?;
+        let root = BitMapBackend::new(tmp, scaled(px, s)).into_drawing_area();
+        draw(&root, s)?;
         root.present().map_err(io)
     })
+}
+
+/// A drawing of `px` pixels as SVG text (`draw(root)` at scale 1).
+fn svg(px: (u32, u32), draw: impl FnOnce(&Area<SVGBackend<'_>>) -> Result<()>) -> Result<String> {
+    register_font();
+    let mut buf = String::new();
+    {
+        let root = SVGBackend::with_string(&mut buf, px).into_drawing_area();
+        draw(&root)?;
+        root.present().map_err(io)?;
+    }
+    Ok(buf)
+}
+
+/// `svg` beside the PNG at `path` (`path` with the extension `svg`).
+fn svg_beside(path: &Path, svg: String) -> Result<()> {
+    crate::fsutil::write_atomic(&path.with_extension("svg"), svg).map_err(io)
 }
 
 /// Size of a [`plot`], pixels.
@@ -329,14 +359,7 @@ const PLOT_PX: (u32, u32) = (1000, 625);
 /// The drawing of [`plot`] as SVG text (text as `<text>` elements in the reader's
 /// sans-serif font).
 pub fn plot_svg(axes: &Axes<'_>, series: &[Series<'_>], markers: &[Marker]) -> Result<String> {
-    register_font();
-    let mut buf = String::new();
-    {
-        let root = SVGBackend::with_string(&mut buf, PLOT_PX).into_drawing_area();
-        draw_area(&root, 1.0, axes, series, markers)?;
-        root.present().map_err(io)?;
-    }
-    Ok(buf)
+    svg(PLOT_PX, |root| draw_area(root, 1.0, axes, series, markers))
 }
 
 /// [`plot`] into the PNG at `path` and [`plot_svg`] beside it (`path` with the extension
@@ -359,8 +382,7 @@ pub fn plot_pair_dpi(
     markers: &[Marker],
 ) -> Result<()> {
     plot_dpi(path, dpi, axes, series, markers)?;
-    let svg = plot_svg(axes, series, markers)?;
-    crate::fsutil::write_atomic(&path.with_extension("svg"), svg).map_err(io)
+    svg_beside(path, plot_svg(axes, series, markers)?)
 }
 
 /// Panels stacked vertically in one PNG (1000 x 300 px per panel) under one `title`, each
@@ -376,12 +398,8 @@ pub fn plot_stack_dpi(
     title: &str,
     panels: &[(Axes<'_>, Vec<Series<'_>>)],
 ) -> Result<()> {
-    let s = dpi_scale(dpi)?;
-    register_font();
-    crate::fsutil::write_atomic_with(path, |tmp| {
-        let root = BitMapBackend::new(tmp, scaled(stack_px(panels.len()), s)).into_drawing_area();
-        draw_stack(&root, s, title, panels)?;
-        root.present().map_err(io)
+    png(path, dpi, stack_px(panels.len()), |root, s| {
+        draw_stack(root, s, title, panels)
     })
 }
 
@@ -392,14 +410,9 @@ fn stack_px(n: usize) -> (u32, u32) {
 
 /// The drawing of [`plot_stack`] as SVG text.
 pub fn stack_svg(title: &str, panels: &[(Axes<'_>, Vec<Series<'_>>)]) -> Result<String> {
-    register_font();
-    let mut buf = String::new();
-    {
-        let root = SVGBackend::with_string(&mut buf, stack_px(panels.len())).into_drawing_area();
-        draw_stack(&root, 1.0, title, panels)?;
-        root.present().map_err(io)?;
-    }
-    Ok(buf)
+    svg(stack_px(panels.len()), |root| {
+        draw_stack(root, 1.0, title, panels)
+    })
 }
 
 /// [`plot_stack`] into the PNG at `path` and [`stack_svg`] beside it.
@@ -415,8 +428,7 @@ pub fn stack_pair_dpi(
     panels: &[(Axes<'_>, Vec<Series<'_>>)],
 ) -> Result<()> {
     plot_stack_dpi(path, dpi, title, panels)?;
-    let svg = stack_svg(title, panels)?;
-    crate::fsutil::write_atomic(&path.with_extension("svg"), svg).map_err(io)
+    svg_beside(path, stack_svg(title, panels)?)
 }
 
 /// A title in lines that fit the width of `area` (40 px to spare: the size estimate runs

@@ -2,6 +2,10 @@
 //! prescribed shaft motion (motion-driven) or loads (load-driven), every output recorded.
 //! What `raceway run` does; usable from Rust too.
 
+mod element_loads;
+
+pub use element_loads::{Envelope, LoadRecord, BIN_DEG};
+
 use crate::component::{variables, Causality, Component, Scene};
 use crate::error::Result;
 use crate::units::rpm_to_rad_s;
@@ -565,6 +569,37 @@ pub fn run_into(
     stop: &mut dyn FnMut() -> bool,
     sink: &mut dyn Sink,
 ) -> Result<Component> {
+    run_inner(scene, record, through, progress, stop, sink, None)
+}
+
+/// [`run_into`], recording the rolling elements' contact loads into `loads` too (made by
+/// [`LoadRecord::for_scene`]): the component keeps them
+/// ([`Component::keep_element_loads`]) and they are read at the communication points of
+/// the record's window. What `raceway run` asks for its ball-load plot; a run without it
+/// (the Python run, a sweep) keeps and reads nothing. A level that does not resolve its
+/// elements, or a run straight through (`through`: no communication points of its own),
+/// leaves `loads` unavailable.
+pub fn run_into_with_loads(
+    scene: &Scene,
+    record: Record,
+    through: bool,
+    progress: &mut dyn FnMut(f64),
+    stop: &mut dyn FnMut() -> bool,
+    sink: &mut dyn Sink,
+    loads: &mut LoadRecord,
+) -> Result<Component> {
+    run_inner(scene, record, through, progress, stop, sink, Some(loads))
+}
+
+fn run_inner(
+    scene: &Scene,
+    record: Record,
+    through: bool,
+    progress: &mut dyn FnMut(f64),
+    stop: &mut dyn FnMut() -> bool,
+    sink: &mut dyn Sink,
+    mut loads: Option<&mut LoadRecord>,
+) -> Result<Component> {
     if through {
         let r = &scene.run;
         let moving = match scene.model.causality {
@@ -582,6 +617,9 @@ pub fn run_into(
         }
     }
     let mut c = prepare(scene)?;
+    if through || !loads.as_mut().is_some_and(|_| c.keep_element_loads()) {
+        loads = None;
+    }
     let r = &scene.run;
     let n = (r.duration_s / r.step_s).round().max(1.0) as usize;
     let h = r.duration_s / n as f64;
@@ -616,6 +654,9 @@ pub fn run_into(
         set_inputs(&mut c, scene, t)?;
         c.do_step(t, h)?;
         record(&mut c, sink, (i + 1) as f64 * h)?;
+        if let Some(l) = loads.as_deref_mut() {
+            l.take_from(&c, (i + 1) as f64 * h);
+        }
         if i % every == 0 {
             progress((i + 1) as f64 / n as f64);
         }
@@ -630,23 +671,27 @@ mod tests {
 
     /// The skidding level's own ball loads: their inner-contact vector sum carries the
     /// 500 N radial load of study \[2\]'s 6012 (small contact angles under a radial load, so
-    /// within 5 %) pointing down like the load; the quasi-static level has none of its own.
+    /// within 5 %) pointing down like the load; the quasi-static level keeps none unless
+    /// asked.
     #[test]
     fn skidding_ball_loads_carry_the_load() {
         let text = include_str!("../examples/scenes/6012-skidding.toml");
         let mut scene = Scene::from_text(text).unwrap();
         scene.run.duration_s = 0.02;
         let (_, c) = run(&scene, &mut |_| {}).unwrap();
-        let loads = c
-            .ball_loads()
-            .expect("the skidding level resolves its balls");
+        let mut loads = Vec::new();
+        assert!(
+            c.element_loads(&mut loads),
+            "the skidding level resolves its balls"
+        );
         assert_eq!(loads.len(), c.bearing().z);
-        let (sx, sy) = loads.iter().fold((0.0, 0.0), |(x, y), (psi, qi, _)| {
-            (x + qi * psi.cos(), y + qi * psi.sin())
+        let (sx, sy) = loads.iter().fold((0.0, 0.0), |(x, y), l| {
+            (x + l.inner * l.psi.cos(), y + l.inner * l.psi.sin())
         });
         assert!((sy + 500.0).abs() < 25.0 && sx.abs() < 25.0, "{sx} {sy}");
-        let qs = Component::new(Scene::default_scene()).unwrap();
-        assert!(qs.ball_loads().is_none());
+        let mut qs = Component::new(Scene::default_scene()).unwrap();
+        assert!(!qs.element_loads(&mut loads) && loads.is_empty());
+        assert!(qs.keep_element_loads());
     }
 
     /// A motion-driven ring run with a synchronous orbit: the recorded inputs follow the

@@ -2,7 +2,9 @@
 //! every level, and the C coupling loop a host runs (issue #17): `raceway_set_reals`,
 //! `raceway_do_step`, `raceway_get_reals`, `raceway_get_real` and `raceway_last_error`
 //! after a clean call, at 10 kHz on the ring level reading 8 outputs each step; a roller
-//! bearing's ring level (laminae) among the levels.
+//! bearing's ring level (laminae) among the levels; a bearing set (the shipped 7008CE DB
+//! pair: its rows' levels, per-row outputs, ratings and system life) rigid and with a
+//! constant-force spring, at the quasi-static and the 5-DOF ring level.
 
 use raceway::capi::*;
 use raceway::component::Component;
@@ -147,5 +149,20 @@ fn do_step_and_the_c_loop_do_not_allocate() {
         "bearing = \"7004\"\n[model]\nlevel = \"full\"\n[inputs]\nspeed_rpm = 29999.97466\ninitial = { \"shaft.x\" = 0.0, \"shaft.y\" = -2.96568e-6, \"shaft.z\" = 4.364864e-5, \"shaft.rx\" = 0.0, \"shaft.ry\" = 0.0, \"shaft.vx\" = 0.0, \"shaft.vy\" = 0.0, \"shaft.vz\" = 0.0, \"shaft.wx\" = 0.0, \"shaft.wy\" = 0.0 }\n",
     ] {
         assert_eq!(allocations_in_steps(scene, 1e-4), 0, "{scene}");
+    }
+    let pair = include_str!("../examples/scenes/7008ce-db-pair.toml");
+    let spring = pair.replace("preload_n = 300", "preload_n = 300\nspring_n_per_um = 1");
+    let ring = pair
+        .replace(
+            "level = \"quasi_static\"\ncausality = \"motion\"",
+            "level = \"ring\"\nring_dof = 5\ncausality = \"load\"\ncontact_damping = 500.0",
+        )
+        .replace(
+            "initial = { \"shaft.y\" = -5e-6, \"shaft.z\" = 5e-6 }",
+            "initial = { \"load.y\" = -300.0, \"load.z\" = 100.0 }",
+        );
+    assert!(ring.contains("level = \"ring\"") && ring.contains("load.y"));
+    for scene in [pair.to_string(), spring, ring] {
+        assert_eq!(allocations_in_steps(&scene, 1e-4), 0, "{scene}");
     }
 }

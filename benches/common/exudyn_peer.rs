@@ -113,7 +113,7 @@ fn vr(n: &str) -> u32 {
 pub fn raceway_run(scene: &Scene, t_end: f64) -> Result<(f64, Samples), String> {
     let h = 1e-4;
     let mut c = Component::new(scene.clone()).map_err(|e| e.to_string())?;
-    let init = |n: &str| scene.inputs.initial.get(n).copied().unwrap_or(0.0);
+    let init = |n: &str| scene.inputs.initial_value(n);
     for name in [
         "load.x",
         "load.y",

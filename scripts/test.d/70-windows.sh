@@ -1,19 +1,22 @@
 #!/usr/bin/env bash
-# Windows x86_64 (docs/windows.md): cross-builds raceway.dll and the FMUs' Windows binary on
-# Linux and runs them under Wine: the C example (scripts/build-windows --test) and an FMU
-# co-simulation (tests/windows/fmu_host.c, built for Windows and for Linux) of the FMI 2 and
-# FMI 3 motion-driven FMUs, whose outputs must equal the Linux FMUs' to 1e-9 relative. Also
-# checks that every FMU carries both platforms' binaries and its licence texts.
+# Windows x86_64 (docs/windows.md): cross-builds raceway.dll on Linux and runs it under Wine.
 #
-# Opt-in: runs only with RACEWAY_WINDOWS=1. On a machine without the toolchain it installs
-# about 2 GB of packages and makes two release builds of the library for the Windows target,
-# well over ten minutes on two cores (measured in docs/windows.md).
+# By default (CI's short check): the C ABI as a Windows DLL with the dev profile and the C
+# example (examples/c/rotor.c) linked against it, run under Wine; its numbers must equal the
+# Linux build's (target/debug, which `cargo test` built) to 1e-9 relative. Cold: the
+# packages (mingw-w64, wine64) and one dev-profile cross build of the library (about 3.5 min
+# of CPU, docs/windows.md).
+#
+# With RACEWAY_WINDOWS=1 (the full check, opt-in: about 25 min of release builds cold):
+# also the release DLL, the four FMUs with both platforms' binaries and their licence texts,
+# and an FMU co-simulation (tests/windows/fmu_host.c, built for Windows and for Linux) of
+# each, whose outputs must equal the Linux FMUs' to 1e-9 relative.
+#
+# If rustup cannot fetch the Windows standard library (a machine whose network does not
+# reach rustup's server), the step says so as "blocked" with rustup's message and passes:
+# the route is documented in docs/windows.md and nothing else depends on it.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
-if [ "${RACEWAY_WINDOWS:-0}" != 1 ]; then
-  echo "70-windows: skipped (set RACEWAY_WINDOWS=1 to cross-build for Windows and test under Wine)"
-  exit 0
-fi
 target="$(pwd)/${CARGO_TARGET_DIR:-target}"
 work="$target/windows-test"
 fail() { echo "70-windows: $*" >&2; exit 1; }
@@ -32,8 +35,20 @@ need() {
 need x86_64-w64-mingw32-gcc gcc-mingw-w64-x86-64
 need /usr/lib/wine/wine64 wine64
 need unzip unzip
-rustup target list --installed | grep -qx x86_64-pc-windows-gnu ||
-  rustup target add x86_64-pc-windows-gnu
+if ! rustup target list --installed | grep -qx x86_64-pc-windows-gnu; then
+  if ! msg=$(rustup target add x86_64-pc-windows-gnu 2>&1); then
+    echo "70-windows: blocked: rustup cannot fetch the Windows standard library here:"
+    echo "$msg" | tail -3 | sed 's/^/  /'
+    exit 0
+  fi
+fi
+
+if [ "${RACEWAY_WINDOWS:-0}" != 1 ]; then
+  # The short check: the dev-profile DLL and the C example under Wine against Linux.
+  scripts/build-windows --dev --test
+  echo "70-windows: short check passed (RACEWAY_WINDOWS=1 adds the release build and the FMUs)"
+  exit 0
+fi
 
 # 1. The C library and example under Wine against the Linux build.
 scripts/build-windows --test

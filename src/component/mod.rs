@@ -148,11 +148,21 @@ impl Component {
     pub fn limits(&self) -> &limits::Limits {
         &self.limits
     }
-    /// The level's own ball loads at its last evaluation, `(azimuth rad, inner N, outer
-    /// N)` per ball, for the levels that resolve the balls themselves (skidding); `None`
-    /// for the others.
-    pub fn ball_loads(&self) -> Option<Vec<(f64, f64, f64)>> {
-        self.level.ball_loads()
+    /// Keep the rolling elements' contact loads of every later output evaluation for
+    /// [`Component::element_loads`] (what `raceway run` asks for its ball-load plot);
+    /// `false` when the level does not resolve its elements one by one (the linear level,
+    /// a bearing set). A component never asked stores nothing for them.
+    pub fn keep_element_loads(&mut self) -> bool {
+        self.level.keep_element_loads()
+    }
+    /// The rolling elements' contact loads at the last output evaluation (after a step: at
+    /// its end), one per element ([`ElementLoad`](crate::seam::element::ElementLoad):
+    /// azimuth from `+x` toward `+y`, inner and outer load), into `out` (cleared first;
+    /// its allocation reused); read-only. `false`, with `out` empty, when the level has
+    /// none: not resolved, or not kept ([`Component::keep_element_loads`]; the full and
+    /// skidding levels have them always).
+    pub fn element_loads(&self, out: &mut Vec<crate::seam::element::ElementLoad>) -> bool {
+        self.level.element_loads(out)
     }
     /// The skidding level (its per-ball contacts and outer-race wear profile, for
     /// `crate::wear_cycles`); `None` for the other levels. Changing the profile makes the

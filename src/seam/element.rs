@@ -83,6 +83,20 @@ pub struct ElementReaction {
     pub approach: f64,
 }
 
+/// One rolling element's contact loads as a level reports them
+/// ([`crate::seam::LevelModel::element_loads`]): where it is and what its two contacts carry.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ElementLoad {
+    /// Azimuth, rad, in the seam's frame (module docs): from `+x` toward `+y`, so `3 pi / 2`
+    /// is `-y`; at a positive shaft speed the elements travel toward increasing azimuth.
+    /// As the level has it (not reduced to one turn).
+    pub psi: f64,
+    /// Inner contact load, N (a roller's: the sum over its laminae, [`ElementReaction::load`]).
+    pub inner: f64,
+    /// Outer contact load, N (the inner one plus what the element's inertia adds).
+    pub outer: f64,
+}
+
 /// The contact law of one kind of rolling element.
 pub trait ElementLaw: std::fmt::Debug + Send {
     /// The element kind's name, as scenes spell it (`ball`, `roller`).

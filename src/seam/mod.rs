@@ -127,10 +127,21 @@ pub trait LevelModel: Send + std::fmt::Debug {
     fn as_any_mut(&mut self) -> Option<&mut dyn std::any::Any> {
         None
     }
-    /// The level's own ball loads at its last evaluation, `(azimuth rad, inner N, outer
-    /// N)` per ball, when it resolves the balls itself; `None` (default) otherwise.
-    fn ball_loads(&self) -> Option<Vec<(f64, f64, f64)>> {
-        None
+    /// Keep the rolling elements' contact loads of every later [`LevelModel::outputs`] for
+    /// [`LevelModel::element_loads`]; `false` (the default) when the level does not resolve
+    /// its elements one by one. Called before a run, never in a step: a level allocates
+    /// what it keeps here, and a level never asked computes and stores nothing for it.
+    fn keep_element_loads(&mut self) -> bool {
+        false
+    }
+    /// The rolling elements' contact loads at the last [`LevelModel::outputs`], one per
+    /// element in element order, into `out` (cleared first; its allocation reused):
+    /// read-only, nothing evaluated. `false`, with `out` empty, when the level has none:
+    /// it does not resolve its elements, or it keeps them only when asked
+    /// ([`LevelModel::keep_element_loads`]) and was not. The default: none.
+    fn element_loads(&self, out: &mut Vec<element::ElementLoad>) -> bool {
+        out.clear();
+        false
     }
     /// Per-row outputs of an assembly of rows at its last [`LevelModel::outputs`]; empty
     /// (the default) for one bearing, which pays nothing for them.

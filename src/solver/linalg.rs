@@ -28,6 +28,14 @@ pub trait LinearSolver: Send {
 /// `Err(k)`: the pivot in column `k` is zero or not finite (singular).
 #[inline]
 pub fn lu_factor(a: &mut [f64], n: usize, piv: &mut [usize]) -> Result<(), usize> {
+    lu_factor_sized(a, Dynamic(n), piv)
+}
+
+/// [`lu_factor`] with the size `bs` (a compile-time constant for [`Fixed`], so that a
+/// block's loops unroll; the same arithmetic in the same order either way).
+#[inline(always)]
+fn lu_factor_sized<B: BlockSize>(a: &mut [f64], bs: B, piv: &mut [usize]) -> Result<(), usize> {
+    let n = bs.get();
     debug_assert!(a.len() >= n * n && piv.len() >= n);
     for k in 0..n {
         // pivot search in column k
@@ -350,22 +358,29 @@ pub struct BlockArrowhead {
     /// Scratch: one block's LU and pivots.
     lu: Vec<f64>,
     dpiv: Vec<usize>,
-    /// `G_i = D_i⁻¹ B_i`, `nb` column-major `s × m` matrices.
+    /// `G_i = D_i⁻¹ B_i`, `nb` column-major `s × m_g` matrices: only its columns in
+    /// [`Self::g_cols`] (the others are zero).
     g: Vec<f64>,
-    /// `C_i`, `nb` column-major `m × s` matrices.
+    /// `C_i`, `nb` column-major `m_c × s` matrices: only its rows in [`Self::c_rows`]
+    /// (the others are zero).
     c: Vec<f64>,
     /// LU of the Schur complement, column-major `m × m`.
     schur: Vec<f64>,
     spiv: Vec<usize>,
-    /// The border columns `j` where some `G_i` is not zero (ascending): the others are
-    /// skipped in the back substitution (`x_i = z_i − G_i x_b`; the skidding level's balls
-    /// do not see the ring's velocities), which subtracts the same products but for
-    /// zeros. Set by each factorisation.
+    /// The border columns `j` where some block's `B_i` is not zero (ascending): `G_i`'s
+    /// other columns are zero, so they are neither stored, nor subtracted in the Schur
+    /// complement `S = E − Σ C_i G_i`, nor in the back substitution `x_i = z_i − G_i x_b`
+    /// (the skidding level's balls do not see the ring's velocities). Set by each
+    /// factorisation from the Jacobian's pattern.
     g_cols: Vec<usize>,
     /// The border rows `r` where some `C_i` is not zero (ascending), likewise in the
-    /// forward elimination (`b_b − Σ C_i z_i`; the cage angle's and the ring positions'
-    /// rates do not depend on the balls).
+    /// Schur complement and the forward elimination (`b_b − Σ C_i z_i`; the cage angle's and
+    /// the ring positions' rates do not depend on the balls).
     c_rows: Vec<usize>,
+    /// Scratch: the border entries in [`Self::c_rows`] (solve) or the Schur complement's
+    /// entries in those rows and the columns of [`Self::g_cols`] (factor), gathered so
+    /// that the blocks' updates run over contiguous memory.
+    border: Vec<f64>,
 }
 
 impl BlockArrowhead {
@@ -384,6 +399,7 @@ impl BlockArrowhead {
             spiv: vec![0; m],
             g_cols: Vec::with_capacity(m),
             c_rows: Vec::with_capacity(m),
+            border: vec![0.0; m * m],
         }
     }
 
@@ -460,11 +476,38 @@ impl BlockArrowhead {
         debug_assert_eq!(jac.shape(), (nb0 + m, nb0 + m));
         // column-major storage: entry (i, j) at j * nn + i
         let (ja, nn) = (jac.as_slice(), nb0 + m);
+        // The border's pattern: rows with some C entry, columns with some B entry (each a
+        // contiguous run of J's storage).
+        self.c_rows.clear();
+        self.g_cols.clear();
+        for r in 0..m {
+            if (0..nb0).any(|k| ja[k * nn + nb0 + r] != 0.0) {
+                self.c_rows.push(r);
+            }
+        }
+        for j in 0..m {
+            if ja[(nb0 + j) * nn..(nb0 + j) * nn + nb0]
+                .iter()
+                .any(|v| *v != 0.0)
+            {
+                self.g_cols.push(j);
+            }
+        }
+        let (mc, mg) = (self.c_rows.len(), self.g_cols.len());
         // E into the Schur storage
         for j in 0..m {
             for i in 0..m {
                 let v = -ja[(nb0 + j) * nn + nb0 + i];
                 self.schur[j * m + i] = if i == j { v + sigma } else { v };
+            }
+        }
+        // The part of S the blocks update (rows `c_rows`, columns `g_cols`), gathered
+        // (column-major `m_c × m_g`); each entry gets the same subtractions in the same
+        // order as in place.
+        let sc = &mut self.border[..mc * mg];
+        for (jj, &j) in self.g_cols.iter().enumerate() {
+            for (ii, &i) in self.c_rows.iter().enumerate() {
+                sc[jj * mc + ii] = self.schur[j * m + i];
             }
         }
         for b in 0..nb {
@@ -477,7 +520,7 @@ impl BlockArrowhead {
                 }
             }
             let piv = &mut self.dpiv[..s];
-            if lu_factor(lu, s, piv).is_err() {
+            if lu_factor_sized(lu, bs, piv).is_err() {
                 return false;
             }
             // D_b⁻¹, column by column from the identity.
@@ -491,10 +534,10 @@ impl BlockArrowhead {
             if !d.iter().all(|v| v.is_finite()) {
                 return false;
             }
-            // G_b = D_b⁻¹ B_b, column by column
-            let g = &mut self.g[b * s * m..(b + 1) * s * m];
-            for j in 0..m {
-                let col = &mut g[j * s..(j + 1) * s];
+            // G_b = D_b⁻¹ B_b, column by column (its non-zero columns)
+            let g = &mut self.g[b * s * mg..(b + 1) * s * mg];
+            for (jj, &j) in self.g_cols.iter().enumerate() {
+                let col = &mut g[jj * s..(jj + 1) * s];
                 col.fill(0.0);
                 for k in 0..s {
                     let bkj = -ja[(nb0 + j) * nn + o + k];
@@ -505,40 +548,30 @@ impl BlockArrowhead {
                     }
                 }
             }
-            // C_b and S -= C_b G_b
-            let c = &mut self.c[b * m * s..(b + 1) * m * s];
+            // C_b (its non-zero rows) and S -= C_b G_b (on the gathered part of S)
+            let c = &mut self.c[b * mc * s..(b + 1) * mc * s];
             for j in 0..s {
-                for i in 0..m {
-                    c[j * m + i] = -ja[(o + j) * nn + nb0 + i];
+                for (ii, &i) in self.c_rows.iter().enumerate() {
+                    c[j * mc + ii] = -ja[(o + j) * nn + nb0 + i];
                 }
             }
-            for j in 0..m {
+            for jj in 0..mg {
+                let sj = &mut sc[jj * mc..(jj + 1) * mc];
                 for k in 0..s {
-                    let gkj = g[j * s + k];
+                    let gkj = g[jj * s + k];
                     if gkj != 0.0 {
-                        let ck = &c[k * m..(k + 1) * m];
-                        for (sv, cv) in self.schur[j * m..(j + 1) * m].iter_mut().zip(ck) {
+                        let ck = &c[k * mc..(k + 1) * mc];
+                        for (sv, cv) in sj.iter_mut().zip(ck) {
                             *sv -= cv * gkj;
                         }
                     }
                 }
             }
         }
-        self.g_cols.clear();
-        for j in 0..m {
-            let nonzero = (0..nb).any(|b| {
-                let g = &self.g[b * s * m..(b + 1) * s * m];
-                g[j * s..(j + 1) * s].iter().any(|v| *v != 0.0)
-            });
-            if nonzero {
-                self.g_cols.push(j);
-            }
-        }
-        self.c_rows.clear();
-        for r in 0..m {
-            let nonzero = (0..nb * s).any(|bk| self.c[bk * m + r] != 0.0);
-            if nonzero {
-                self.c_rows.push(r);
+        // The updated part of S back in place.
+        for (jj, &j) in self.g_cols.iter().enumerate() {
+            for (ii, &i) in self.c_rows.iter().enumerate() {
+                self.schur[j * m + i] = sc[jj * mc + ii];
             }
         }
         lu_factor(&mut self.schur, m, &mut self.spiv).is_ok()
@@ -547,8 +580,15 @@ impl BlockArrowhead {
     #[inline(always)]
     fn solve_blocks<B: BlockSize>(&mut self, bs: B, x: &mut [f64]) {
         let (nb, s, m) = (self.nb, bs.get(), self.m);
+        let (mc, mg) = (self.c_rows.len(), self.g_cols.len());
         let nb0 = nb * s;
         let (xb, xr) = x.split_at_mut(nb0);
+        // The border entries the blocks update, gathered (the same subtractions in the
+        // same order as in place).
+        let xc = &mut self.border[..mc];
+        for (v, &r) in xc.iter_mut().zip(&self.c_rows) {
+            *v = xr[r];
+        }
         for b in 0..nb {
             let z = &mut xb[b * s..(b + 1) * s];
             let d = &self.d[b * s * s..(b + 1) * s * s];
@@ -561,22 +601,28 @@ impl BlockArrowhead {
                     *zi += dv * rk;
                 }
             }
-            let c = &self.c[b * m * s..(b + 1) * m * s];
+            let c = &self.c[b * mc * s..(b + 1) * mc * s];
             for (k, zk) in z.iter().enumerate() {
-                let ck = &c[k * m..(k + 1) * m];
-                for &r in &self.c_rows {
-                    xr[r] -= ck[r] * zk;
+                let ck = &c[k * mc..(k + 1) * mc];
+                for (v, cv) in xc.iter_mut().zip(ck) {
+                    *v -= cv * zk;
                 }
             }
         }
+        for (v, &r) in xc.iter().zip(&self.c_rows) {
+            xr[r] = *v;
+        }
         lu_solve(&self.schur, m, &self.spiv, xr);
+        // x_b at the columns the blocks see, gathered.
+        let xg = &mut self.border[..mg];
+        for (v, &j) in xg.iter_mut().zip(&self.g_cols) {
+            *v = xr[j];
+        }
         for b in 0..nb {
             let z = &mut xb[b * s..(b + 1) * s];
-            let g = &self.g[b * s * m..(b + 1) * s * m];
-            // A column of zeros would subtract zeros: the same values.
-            for &j in &self.g_cols {
-                let xj = xr[j];
-                for (zi, gv) in z.iter_mut().zip(&g[j * s..(j + 1) * s]) {
+            let g = &self.g[b * s * mg..(b + 1) * s * mg];
+            for (jj, &xj) in xg.iter().enumerate() {
+                for (zi, gv) in z.iter_mut().zip(&g[jj * s..(jj + 1) * s]) {
                     *zi -= gv * xj;
                 }
             }

@@ -57,7 +57,7 @@ pub fn esc(s: &str) -> String {
 }
 
 /// A number for a table: four significant digits, plain between 1e-3 and 1e6.
-fn num(v: f64) -> String {
+pub(super) fn num(v: f64) -> String {
     if !v.is_finite() {
         return "–".into();
     }
@@ -160,7 +160,7 @@ fn kv_table<'a>(rows: impl Iterator<Item = (&'a String, &'a Value)>) -> String {
 
 /// The summary's sections: heading and the JSON keys (or key prefixes ending in `*`) it
 /// shows. Keys no section claims go to "Other results", so nothing computed is left out.
-const SECTIONS: [(&str, &[&str]); 9] = [
+const SECTIONS: [(&str, &[&str]); 10] = [
     (
         "Run",
         &["scene", "level", "duration_s", "cpu_s", "load_average"],
@@ -184,6 +184,7 @@ const SECTIONS: [(&str, &[&str]); 9] = [
         ],
     ),
     ("Ratings, life and safety", &["rating"]),
+    ("Bearing set: rows rated on their own loads", &["set"]),
 ];
 
 /// Keys shown in their own section (the lines and warnings).
@@ -286,6 +287,7 @@ pub fn report_html(c: &Ctx, sm: &Summary, figures: &[Figure], prov: &Provenance)
         let _ = write!(h, "<h3>{}</h3>", esc(head));
         // A section of one object shows the object's fields.
         match rows.as_slice() {
+            [(k, v)] if k.as_str() == "set" => h += &super::sets::html_table(v),
             [(_, Value::Object(m))] => h += &kv_table(m.iter()),
             _ => h += &kv_table(rows.into_iter()),
         }

@@ -9,6 +9,7 @@
 pub mod html;
 pub mod reports;
 pub mod rollers;
+mod sets;
 
 use crate::analysis::{
     amplitude_spectrum, characteristic_marks, envelope_spectrum, find_peaks, whirl_index,
@@ -512,6 +513,9 @@ fn cage_lines(c: &Ctx, s: &mut Summary) {
 /// ISO ratings, life, static safety and warnings at the run's mean load over the second
 /// half (crate::ratings).
 fn rating_lines(c: &Ctx, s: &mut Summary) {
+    if sets::rating_lines(c, s) {
+        return;
+    }
     let load = ["force.x", "force.y", "force.z", "moment.x", "moment.y"]
         .map(|n| -c.run.mean_second_half(n));
     let omega = c.last("shaft.omega");

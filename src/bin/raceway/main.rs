@@ -16,6 +16,9 @@
 //!   `--contamination` add ISO 281's `a_ISO`. `--hold rx_mrad=0,ry_mrad=0` holds ring
 //!   coordinates at a value and reports the reaction on each.
 //!
+//!   `raceway quasi-static --scene SET.toml [--speed-rpm N] [--fx ..] .. [--json]`: a scene's
+//!   bearing set under a load on the shaft at its reference point (`set_qs.rs`).
+//!
 //! - `raceway shaft SHAFT.toml [--json]`: a rigid shaft on bearing locations (single
 //!   bearings or sets such as a preloaded DB pair) under loads at axial positions: its
 //!   5-DOF equilibrium, each location's loads, lives and static safety, the system
@@ -29,6 +32,7 @@ mod bench;
 mod report;
 mod run;
 mod scene_cmd;
+mod set_qs;
 mod shaft_cmd;
 mod sweep_cmd;
 
@@ -96,6 +100,11 @@ struct QsArgs {
     /// Bearing: a preset name (see `raceway bearings`) or a TOML bearing file.
     #[arg(long)]
     bearing: Option<String>,
+    /// A scene with a bearing set (`[set]`): the set's equilibrium under the load on the
+    /// shaft at its reference point (speed: the scene's unless --speed-rpm); the wrench,
+    /// displacement and 5x5 K there and one table per row.
+    #[arg(long, conflicts_with = "bearing")]
+    scene: Option<std::path::PathBuf>,
     /// Shaft speed, rpm (>= 0; the outer ring is fixed).
     #[arg(long, allow_hyphen_values = true)]
     speed_rpm: Option<f64>,
@@ -293,6 +302,52 @@ fn calc_inputs(a: &QsArgs, speed_rpm: f64) -> Result<raceway::calculator::check:
 }
 
 fn quasi_static(a: QsArgs) -> Result<String> {
+    if let Some(path) = &a.scene {
+        // The one bearing's options have no meaning for a set: refused by name.
+        let given = [
+            ("--race-control", a.race_control.is_some()),
+            ("--kappa", a.kappa.is_some()),
+            ("--contamination", a.contamination.is_some()),
+            ("--oil", a.oil.is_some()),
+            ("--oil-vi", a.oil_vi.is_some()),
+            ("--oil-temp-c", a.oil_temp_c.is_some()),
+            ("--f0", a.f0.is_some()),
+            ("--shaft-interference-um", a.shaft_interference_um.is_some()),
+            (
+                "--housing-interference-um",
+                a.housing_interference_um.is_some(),
+            ),
+            ("--inner-ring-temp-c", a.inner_ring_temp_c.is_some()),
+            ("--outer-ring-temp-c", a.outer_ring_temp_c.is_some()),
+            ("--ambient-temp-c", a.ambient_temp_c.is_some()),
+            ("--duty", a.duty.is_some()),
+            ("--hold", a.hold.is_some()),
+            ("--skf-lubrication", a.skf_lubrication.is_some()),
+            ("--skf-seal", a.skf_seal.is_some()),
+            ("--skf-drag", a.skf_drag.is_some()),
+            ("--skf-constants", a.skf_constants.is_some()),
+        ];
+        if let Some((flag, _)) = given.iter().find(|(_, g)| *g) {
+            return Err(raceway::Error::invalid(
+                *flag,
+                "given",
+                "left out with --scene (a set's quasi-static report has the loads, contact \
+                 angles, stiffness, lives and static safety of its rows only)",
+            ));
+        }
+        let n = &reports::CLI_NAMES;
+        let r = set_qs::report(
+            path,
+            a.speed_rpm,
+            [a.fx, a.fy, a.fz, a.mx, a.my],
+            (n.load, n.speed_rpm),
+        )?;
+        return if a.json {
+            report::json(&r)
+        } else {
+            Ok(set_qs::text(&r))
+        };
+    }
     if let Some(b) = a.bearing.as_deref().and_then(rollers::roller_bearing) {
         // The ball bearings' options have no meaning here: refused by name, not ignored.
         let given = [

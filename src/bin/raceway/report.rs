@@ -197,15 +197,36 @@ pub fn quasi_static_text(
         k[4][4] * 1e-3
     );
     let _ = writeln!(s);
+    ball_table(&mut s, &sol.balls);
     let _ = writeln!(
         s,
+        "\nForces and moments act on the shaft (the reaction to the load); moments about the bearing centre. \
+         a: contact semi-axis across the rolling direction, b: along it; d: approach (negative: gap)."
+    );
+    let _ = writeln!(s);
+    match rating {
+        Ok(a) => s += &a.text(),
+        Err(e) => s += &format!("ISO ratings and life: not available ({e})\n"),
+    }
+    let _ = writeln!(s);
+    match p.design_check(sol, rating) {
+        Ok(c) => s += &raceway::calculator::check::text(&c),
+        Err(e) => s += &format!("Design check: not available ({e})\n"),
+    }
+    s
+}
+
+/// The per-ball table of a quasi-static equilibrium (one bearing's, or one row's of a set).
+pub fn ball_table(s: &mut String, balls: &[raceway::models::quasi_static::BallResult]) {
+    let _ = writeln!(
+        *s,
         "{:>3} {:>7} {:>9} {:>9} {:>7} {:>7} {:>8} {:>8} {:>6} {:>6} {:>6} {:>6} {:>6} {:>6} {:>8} {:>8} {:>9} {:>10} {:>6} {:>6}",
         "j", "psi deg", "Qi N", "Qo N", "ai deg", "ao deg", "di µm", "do µm", "pi GPa", "po GPa",
         "ai mm", "bi mm", "ao mm", "bo mm", "Fc N", "Mg N m", "cage rpm", "spin rpm", "s/r i", "s/r o"
     );
-    for (j, r) in sol.balls.iter().enumerate() {
+    for (j, r) in balls.iter().enumerate() {
         let _ = writeln!(
-            s,
+            *s,
             "{:>3} {:>7.2} {:>9.2} {:>9.2} {:>7.3} {:>7.3} {:>8.3} {:>8.3} {:>6.3} {:>6.3} {:>6.3} {:>6.3} {:>6.3} {:>6.3} {:>8.2} {:>8.4} {:>9.1} {:>10.1} {:>6.3} {:>6.3}",
             j,
             r.psi.to_degrees(),
@@ -229,22 +250,6 @@ pub fn quasi_static_text(
             r.spin_roll_o
         );
     }
-    let _ = writeln!(
-        s,
-        "\nForces and moments act on the shaft (the reaction to the load); moments about the bearing centre. \
-         a: contact semi-axis across the rolling direction, b: along it; d: approach (negative: gap)."
-    );
-    let _ = writeln!(s);
-    match rating {
-        Ok(a) => s += &a.text(),
-        Err(e) => s += &format!("ISO ratings and life: not available ({e})\n"),
-    }
-    let _ = writeln!(s);
-    match p.design_check(sol, rating) {
-        Ok(c) => s += &raceway::calculator::check::text(&c),
-        Err(e) => s += &format!("Design check: not available ({e})\n"),
-    }
-    s
 }
 
 /// `raceway bearings NAME` for a roller designation: the roller file's data, the derived

@@ -4,6 +4,7 @@
 use raceway::analysis::{find_peaks, FoundPeak, Mark, Spectrum, LINE_TOLERANCE};
 use raceway::component::scene::DEFAULT_SCENE;
 use raceway::component::{schema, Causality, Scene};
+use raceway::geometry::element::ElementKind;
 use raceway::models::quasi_static::{azimuths, BallResult, BallState, Options, QuasiStatic};
 use raceway::plot::{plot_pair_dpi, stack_pair_dpi, Axes, Marker, Series, DPI_RANGE};
 use raceway::runner::{self, Record, Series as Run};
@@ -277,7 +278,9 @@ fn write_run(
     // run's digest stays in memory, bounded whatever the duration (docs/reliability.md).
     let mut csv = runner::CsvSink::create(&out.join("series.csv"))?;
     let mut digest = raceway::summary::digest_for(scene);
-    let comp = runner::run_into(
+    // The elements' loads of the run itself, for the ball-load plot.
+    let mut loads = runner::LoadRecord::for_scene(scene);
+    let comp = runner::run_into_with_loads(
         scene,
         Record {
             stiffness_damping: a.kc,
@@ -286,6 +289,7 @@ fn write_run(
         &mut progress,
         &mut || STOP.load(std::sync::atomic::Ordering::Relaxed),
         &mut runner::Tee(&mut csv, &mut digest),
+        &mut loads,
     )?;
     csv.finish()?;
     if bar_on {
@@ -304,7 +308,7 @@ fn write_run(
     )
     .map_err(|e| io(&sj, e))?;
 
-    let (pngs, skipped) = write_plots(&out, &ctx, look);
+    let (pngs, skipped) = write_plots(&out, &ctx, look, &loads);
     for w in &skipped {
         eprintln!("warning: {w}");
     }
@@ -387,7 +391,12 @@ fn keep(name: &str, made: Result<()>, written: &mut Vec<String>, skipped: &mut V
 /// Write the plots; returns the file names written and, for each plot that could not be
 /// made, a warning naming it and why. A plot is an optional product: it never fails a run
 /// whose integration finished and whose series and summaries are written.
-fn write_plots(out: &Path, c: &Ctx, look: &Look) -> (Vec<String>, Vec<String>) {
+fn write_plots(
+    out: &Path,
+    c: &Ctx,
+    look: &Look,
+    loads: &runner::LoadRecord,
+) -> (Vec<String>, Vec<String>) {
     let plot = |p: &Path, axes: &Axes<'_>, series: &[Series<'_>], markers: &[Marker]| {
         plot_pair_dpi(p, look.dpi, axes, series, markers)
     };
@@ -506,7 +515,7 @@ fn write_plots(out: &Path, c: &Ctx, look: &Look) -> (Vec<String>, Vec<String>) {
     }
     keep(
         "ball-loads.png",
-        ball_loads_plot(out, look.dpi, c),
+        ball_loads_plot(out, look.dpi, c, loads),
         &mut written,
         &mut skipped,
     );
@@ -825,60 +834,203 @@ fn spectrum_plot(
     Ok(())
 }
 
-/// Ball loads around the circumference at the end of the run: the level's own loads when
-/// it resolves the balls (skidding, full), else the Jones–Harris equilibrium at the final motion
-/// and speed with the balls at their reference azimuths (the quasi-static, ring and linear
-/// levels' ball model).
-fn ball_loads_plot(out: &Path, dpi: u32, c: &Ctx) -> Result<()> {
+/// The elements' loads around the circumference: the run's own when the level resolves its
+/// elements ([`runner::LoadRecord`]: the loads at the last step, and their largest and
+/// smallest per degree of azimuth over the last shaft revolution), else (the linear level,
+/// a set, a run straight through) the Jones–Harris equilibrium at the final motion and
+/// speed with the balls at their reference azimuths, titled as that recomputation.
+fn ball_loads_plot(out: &Path, dpi: u32, c: &Ctx, loads: &runner::LoadRecord) -> Result<()> {
+    let b = c.comp.bearing();
+    let element = b.element();
+    let level = c.scene.model.level.name();
+    // The elements travel with the cage, the way the shaft turns.
+    let omega = c.col("shaft.omega").last().copied().unwrap_or(0.0);
+    let x_label = format!(
+        "azimuth ψ from +x toward +y (deg; 270 = -y){}",
+        if omega > 0.0 {
+            "; elements travel toward +ψ"
+        } else if omega < 0.0 {
+            "; elements travel toward -ψ"
+        } else {
+            ""
+        }
+    );
+    let x_label = x_label.as_str();
+    let y_label = if element == ElementKind::Ball {
+        "ball contact load (N)".to_string()
+    } else {
+        format!("{element} contact load, sum over its laminae (N)")
+    };
+    if !loads.available {
+        return recomputed_loads_plot(out, dpi, c, x_label, &y_label);
+    }
+    let deg = |psi: f64| psi.to_degrees().rem_euclid(360.0);
+    let mut last: Vec<(f64, f64, f64)> = loads
+        .last
+        .iter()
+        .map(|l| (deg(l.psi), l.inner, l.outer))
+        .collect();
+    last.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let x: Vec<f64> = last.iter().map(|v| v.0).collect();
+    let qi: Vec<f64> = last.iter().map(|v| v.1).collect();
+    let qo: Vec<f64> = last.iter().map(|v| v.2).collect();
+    // Massless elements (ring levels) carry the same load at both contacts: one set of
+    // points. The outer contact's envelope is drawn apart from the inner one's only where
+    // they would not draw as one line (2 % of the loads' span apart: an element's inertia
+    // at speed).
+    let one = loads.last.iter().all(|l| l.inner == l.outer);
+    let extreme = |v: &[f64], f: fn(f64, f64) -> f64| v.iter().copied().fold(f64::NAN, f);
+    let span = extreme(&loads.outer.max, f64::max).max(extreme(&loads.inner.max, f64::max))
+        - extreme(&loads.outer.min, f64::min).min(extreme(&loads.inner.min, f64::min));
+    let apart = loads
+        .inner
+        .max
+        .iter()
+        .zip(&loads.outer.max)
+        .chain(loads.inner.min.iter().zip(&loads.outer.min))
+        .any(|(a, b)| (a - b).abs() > 0.02 * span);
+    // The envelope at the centres of the bins an element passed through.
+    let env = |v: &[f64]| -> (Vec<f64>, Vec<f64>) {
+        v.iter()
+            .enumerate()
+            .filter(|(_, q)| q.is_finite())
+            .map(|(k, q)| (runner::LoadRecord::bin_centre_deg(k), *q))
+            .unzip()
+    };
+    let (ix, imax) = env(&loads.inner.max);
+    let (_, imin) = env(&loads.inner.min);
+    let (ox, omax) = env(&loads.outer.max);
+    let (_, omin) = env(&loads.outer.min);
+    let (w0, w1) = loads.window;
+    let window = if loads.last_revolution {
+        "the last shaft revolution"
+    } else {
+        "the whole run"
+    };
+    // The quasi-static level's own loads are its elements' Jones–Harris equilibria.
+    let what = if level == "quasi_static" && element == ElementKind::Ball {
+        " (each ball's Jones–Harris equilibrium)"
+    } else {
+        ""
+    };
+    let title = headed(
+        c,
+        &format!(
+            "{element} loads of the {level} level{what}; max/min per {}° over {window} \
+             (t = {w0:.3} to {w1:.3} s)",
+            runner::BIN_DEG
+        ),
+    );
+    let line = |label, x, y| Series {
+        label,
+        x,
+        y,
+        points: false,
+    };
+    let dots = |label, x, y| Series {
+        label,
+        x,
+        y,
+        points: true,
+    };
+    let at = format!("at t = {:.4} s", loads.t_last);
+    let (l_i, l_o) = (format!("inner {at}"), format!("outer {at}"));
+    let l_one = format!("each {element} {at}");
+    let mut series: Vec<Series<'_>> = if apart {
+        vec![
+            line("inner, max", &ix, &imax),
+            line("inner, min", &ix, &imin),
+            line("outer, max", &ox, &omax),
+            line("outer, min", &ox, &omin),
+        ]
+    } else {
+        let (hi, lo) = if one {
+            ("max", "min")
+        } else {
+            ("max (inner contact)", "min (inner contact)")
+        };
+        vec![line(hi, &ix, &imax), line(lo, &ix, &imin)]
+    };
+    if one {
+        series.push(dots(&l_one, &x, &qi));
+    } else {
+        series.push(dots(&l_i, &x, &qi));
+        series.push(dots(&l_o, &x, &qo));
+    }
+    plot_pair_dpi(
+        &out.join("ball-loads.png"),
+        dpi,
+        &Axes {
+            title: &title,
+            x_label,
+            y_label: &y_label,
+            ..Axes::default()
+        },
+        &series,
+        &[],
+    )
+}
+
+/// The ball-load plot of a run that kept no element loads: the Jones–Harris equilibrium at
+/// the final motion and speed, balls at their reference azimuths (ball bearings only).
+fn recomputed_loads_plot(
+    out: &Path,
+    dpi: u32,
+    c: &Ctx,
+    x_label: &str,
+    y_label: &str,
+) -> Result<()> {
+    if c.scene.set.is_some() {
+        // One row's solve at the shaft's motion would leave out the set's mounting (the
+        // rows' offsets and preload): not the run's loads, so not drawn.
+        return Err(Error::invalid(
+            "set",
+            "a bearing set",
+            "none for this plot: the set level keeps no element loads, and one row solved \
+             alone at the shaft's motion would leave out the set's mounting (the rows' \
+             offsets and preload)",
+        ));
+    }
     let b = c.comp.bearing();
     b.groove("the ball-load plot (a Jones–Harris solve)")?;
     let level = c.scene.model.level.name();
-    let (deg, qi, qo, title) = if let Some(l) = c.comp.ball_loads() {
-        let mut l: Vec<(f64, f64, f64)> = l
-            .into_iter()
-            .map(|(p, i, o)| (p.to_degrees().rem_euclid(360.0), i, o))
-            .collect();
-        l.sort_by(|a, b| a.0.total_cmp(&b.0));
-        (
-            l.iter().map(|v| v.0).collect::<Vec<_>>(),
-            l.iter().map(|v| v.1).collect::<Vec<_>>(),
-            l.iter().map(|v| v.2).collect::<Vec<_>>(),
-            format!("ball loads of the {level} model at the end of the run"),
-        )
+    let q: [f64; 5] = std::array::from_fn(|k| {
+        c.col(["shaft.x", "shaft.y", "shaft.z", "shaft.rx", "shaft.ry"][k])
+            .last()
+            .copied()
+            .unwrap_or(0.0)
+    });
+    let omega = c.col("shaft.omega").last().copied().unwrap_or(0.0);
+    let qs = QuasiStatic::new(
+        b,
+        Options {
+            race_control: c.scene.model.race_control,
+            ..Options::default()
+        },
+    )?;
+    let psi = azimuths(b.z, 0.0);
+    let mut st = vec![BallState::default(); b.z];
+    let mut res = vec![BallResult::default(); b.z];
+    qs.evaluate(&q, omega, &psi, &mut st, None, Some(&mut res))?;
+    let why = if level == "linear" {
+        format!("the {level} level keeps no ball loads")
     } else {
-        let q: [f64; 5] = std::array::from_fn(|k| {
-            c.col(["shaft.x", "shaft.y", "shaft.z", "shaft.rx", "shaft.ry"][k])
-                .last()
-                .copied()
-                .unwrap_or(0.0)
-        });
-        let omega = c.col("shaft.omega").last().copied().unwrap_or(0.0);
-        let qs = QuasiStatic::new(
-            b,
-            Options {
-                race_control: c.scene.model.race_control,
-                ..Options::default()
-            },
-        )?;
-        let psi = azimuths(b.z, 0.0);
-        let mut st = vec![BallState::default(); b.z];
-        let mut res = vec![BallResult::default(); b.z];
-        qs.evaluate(&q, omega, &psi, &mut st, None, Some(&mut res))?;
-        let title = "ball loads around the circumference (Jones–Harris, final motion)".to_string();
-        (
-            psi.iter().map(|p| p.to_degrees()).collect(),
-            res.iter().map(|r| r.q_i).collect(),
-            res.iter().map(|r| r.q_o).collect(),
-            title,
-        )
+        "a run straight through keeps no ball loads".to_string()
     };
+    let title = format!(
+        "ball loads recomputed (Jones–Harris at the final motion, balls at their reference \
+         azimuths; {why})"
+    );
+    let deg: Vec<f64> = psi.iter().map(|p| p.to_degrees()).collect();
+    let qi: Vec<f64> = res.iter().map(|r| r.q_i).collect();
+    let qo: Vec<f64> = res.iter().map(|r| r.q_o).collect();
     plot_pair_dpi(
         &out.join("ball-loads.png"),
         dpi,
         &Axes {
             title: &headed(c, &title),
-            x_label: "ball azimuth ψ from +x toward +y (deg; 270 is -y)",
-            y_label: "contact load (N)",
+            x_label,
+            y_label,
             ..Axes::default()
         },
         &[

@@ -17,6 +17,7 @@ use crate::geometry::kinematics::nominal_cage_speed as cage_speed;
 use crate::geometry::Bearing;
 use crate::models::full::{FullModel, FullParams, Totals};
 use crate::models::LevelArgs;
+use crate::seam::element::ElementLoad;
 use crate::seam::{Jacobians, LevelModel, LevelOutputs, Motion, Point};
 
 /// The level.
@@ -85,16 +86,20 @@ pub fn build(a: &LevelArgs) -> Result<Box<dyn LevelModel>> {
 }
 
 impl LevelModel for FullLevel {
+    /// Its balls are its own state: nothing more to keep.
+    fn keep_element_loads(&mut self) -> bool {
+        true
+    }
     /// The model's own per-ball loads at its last evaluation (the current state's: the
     /// outputs evaluate it last, after their perturbed evaluations).
-    fn ball_loads(&self) -> Option<Vec<(f64, f64, f64)>> {
-        Some(
-            self.model
-                .balls
-                .iter()
-                .map(|b| (b.psi, b.q_i, b.q_o))
-                .collect(),
-        )
+    fn element_loads(&self, out: &mut Vec<ElementLoad>) -> bool {
+        out.clear();
+        out.extend(self.model.balls.iter().map(|b| ElementLoad {
+            psi: b.psi,
+            inner: b.q_i,
+            outer: b.q_o,
+        }));
+        true
     }
     fn n_states(&self) -> usize {
         self.model.n_states()

@@ -18,7 +18,9 @@ use crate::models::quasi_static::{Options, QuasiStatic};
 use crate::models::ring::elements::LawRingLevel;
 use crate::models::ring::{RingAt, RingDof, RingEval, RingModel};
 use crate::models::LevelArgs;
-use crate::seam::element::{assemble, place_evenly, ElementLaw, Want};
+use crate::seam::element::{
+    assemble, place_evenly, ElementLaw, ElementLoad, ElementReaction, Want,
+};
 use crate::seam::{LevelModel, LevelOutputs, Motion, Point};
 
 /// The element kinds this level takes: those [`element_law`] has a law for (the level
@@ -49,6 +51,9 @@ pub struct QuasiStaticLevel {
     /// Contact damping: the ring model with and without damping (their difference is the
     /// damping force); `None` when the scene has none.
     damping: Option<(RingModel, RingModel, RingEval, RingEval)>,
+    /// The elements' loads of the last outputs, when asked to keep them
+    /// ([`LevelModel::keep_element_loads`]; `None`: nothing stored).
+    loads: Option<Vec<ElementLoad>>,
 }
 
 impl QuasiStaticLevel {
@@ -72,6 +77,7 @@ impl QuasiStaticLevel {
                     RingEval::default(),
                 )
             }),
+            loads: None,
         })
     }
 
@@ -158,7 +164,42 @@ impl LevelModel for QuasiStaticLevel {
         }
         Ok(())
     }
+    fn keep_element_loads(&mut self) -> bool {
+        self.loads = Some(vec![ElementLoad::default(); self.psi.len()]);
+        true
+    }
+    fn element_loads(&self, out: &mut Vec<ElementLoad>) -> bool {
+        out.clear();
+        out.extend(self.loads.iter().flatten());
+        self.loads.is_some()
+    }
     fn outputs(&mut self, p: Point<'_>, out: &mut LevelOutputs) -> Result<()> {
+        match self.loads.take() {
+            None => self.outputs_with(p, out, |_, _, _| {}),
+            Some(mut loads) => {
+                let r = self.outputs_with(p, out, |j, psi, r| {
+                    loads[j] = ElementLoad {
+                        psi,
+                        inner: r.load[0],
+                        outer: r.load[1],
+                    }
+                });
+                self.loads = Some(loads);
+                r
+            }
+        }
+    }
+}
+
+impl QuasiStaticLevel {
+    /// [`LevelModel::outputs`], handing each element's reaction (with its report) to
+    /// `element(j, psi, reaction)`.
+    fn outputs_with(
+        &mut self,
+        p: Point<'_>,
+        out: &mut LevelOutputs,
+        mut element: impl FnMut(usize, f64, &ElementReaction),
+    ) -> Result<()> {
         let Point { m, x, aux, .. } = p;
         place_evenly(&mut self.psi, x[0]);
         let mut k = [[0.0; 5]; 5];
@@ -184,6 +225,7 @@ impl LevelModel for QuasiStaticLevel {
                 }
                 max_load = max_load.max(r.load[0]).max(r.load[1]);
                 max_p = max_p.max(r.pressure[0]).max(r.pressure[1]);
+                element(j, at.psi, &r);
                 Ok(r)
             },
         )?;

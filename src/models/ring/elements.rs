@@ -29,7 +29,8 @@ use crate::geometry::kinematics::nominal_cage_speed as cage_speed;
 use crate::models::effects::Effects;
 use crate::models::LevelArgs;
 use crate::seam::element::{
-    assemble_sc, even_base, place_evenly_sc, ElementDisplacement, ElementLaw, ElementReaction, Want,
+    assemble_sc, even_base, place_evenly_sc, ElementDisplacement, ElementLaw, ElementLoad,
+    ElementReaction, Want,
 };
 use crate::seam::{LevelModel, LevelOutputs, Point};
 
@@ -52,6 +53,9 @@ pub struct LawRingLevel {
     /// The massless cylindrical roller law itself when `law` is one
     /// ([`LawRingLevel::massless_cylindrical`]): called directly, not through the trait.
     cylindrical: Option<CylindricalRollerLaw>,
+    /// The elements' loads of the last outputs, when asked to keep them
+    /// ([`LevelModel::keep_element_loads`]; `None`: nothing stored).
+    loads: Option<Vec<ElementLoad>>,
 }
 
 /// A roller bearing's per-lamina effects: the massless law that takes offsets, the compiled
@@ -127,6 +131,7 @@ impl LawRingLevel {
             base: even_base(a.bearing.z),
             profiled,
             cylindrical: None,
+            loads: None,
         })
     }
 
@@ -143,12 +148,14 @@ impl LawRingLevel {
         Ok(self)
     }
 
-    /// Wrench on the shaft at `p` (and with `kc` the stiffness and damping matrices).
+    /// Wrench on the shaft at `p` (and with `kc` the stiffness and damping matrices, the
+    /// report of each element to `element(j, psi, reaction)`).
     fn evaluate(
         &mut self,
         p: Point<'_>,
         mut kc: Option<Matrices<'_>>,
         report: &mut (usize, f64, f64),
+        mut element: impl FnMut(usize, f64, &ElementReaction),
     ) -> Result<[f64; 5]> {
         let Point { m, x, .. } = p;
         place_evenly_sc(&mut self.psi, &mut self.sc, &self.base, x[0]);
@@ -189,6 +196,7 @@ impl LawRingLevel {
                     report.1 = report.1.max(r.load[0]).max(r.load[1]);
                     report.2 = report.2.max(r.pressure[0]).max(r.pressure[1]);
                 }
+                element(j, at.psi, &r);
                 if c0 > 0.0 && r.f[1] < 0.0 && r.approach > 0.0 {
                     let (s, c) = at.sc;
                     let (q, v) = (&m.q, &m.v);
@@ -261,15 +269,39 @@ impl LevelModel for LawRingLevel {
     fn rhs(&mut self, p: Point<'_>, dx: &mut [f64], wrench: Option<&mut [f64; 5]>) -> Result<()> {
         dx[0] = self.cage_ratio * p.m.omega;
         if let Some(w) = wrench {
-            *w = self.evaluate(p, None, &mut (0, 0.0, 0.0))?;
+            *w = self.evaluate(p, None, &mut (0, 0.0, 0.0), |_, _, _| {})?;
         }
         Ok(())
+    }
+    fn keep_element_loads(&mut self) -> bool {
+        self.loads = Some(vec![ElementLoad::default(); self.psi.len()]);
+        true
+    }
+    fn element_loads(&self, out: &mut Vec<ElementLoad>) -> bool {
+        out.clear();
+        out.extend(self.loads.iter().flatten());
+        self.loads.is_some()
     }
     fn outputs(&mut self, p: Point<'_>, out: &mut LevelOutputs) -> Result<()> {
         let omega = p.m.omega;
         let (mut k, mut c) = ([[0.0; 5]; 5], [[0.0; 5]; 5]);
         let mut report = (0, 0.0, 0.0);
-        let wrench = self.evaluate(p, Some((&mut k, &mut c)), &mut report)?;
+        let kc = Some((&mut k, &mut c));
+        // A roller's loads are its laminae's sums ([`ElementReaction::load`]).
+        let wrench = match self.loads.take() {
+            None => self.evaluate(p, kc, &mut report, |_, _, _| {}),
+            Some(mut loads) => {
+                let w = self.evaluate(p, kc, &mut report, |j, psi, r| {
+                    loads[j] = ElementLoad {
+                        psi,
+                        inner: r.load[0],
+                        outer: r.load[1],
+                    }
+                });
+                self.loads = Some(loads);
+                w
+            }
+        }?;
         *out = LevelOutputs {
             wrench,
             k,

@@ -35,6 +35,7 @@ use crate::models::thermal::{ContactSums, ThermalModel, ThermalParams};
 use crate::models::waviness::WavySite;
 use crate::models::wear::{self, FactorsAt, FilmDefect, WearLaw};
 use crate::models::LevelArgs;
+use crate::seam::element::ElementLoad;
 use crate::seam::{wrenches_by_rhs, Jacobians, LevelModel, LevelOutputs, Motion, Point, Points};
 use std::cell::Cell;
 
@@ -297,6 +298,9 @@ pub struct RingLevel {
     /// `eval` holds the matrices too ([`LevelModel::rhs_at_end`]), evaluated at the point
     /// of this key ([`RingLevel::point_key`]); `None` once another evaluation overwrote it.
     kept: Option<[u64; 13]>,
+    /// The balls' loads of the last outputs, when asked to keep them
+    /// ([`LevelModel::keep_element_loads`]; `None`: nothing stored).
+    loads: Option<Vec<ElementLoad>>,
 }
 
 impl RingLevel {
@@ -311,6 +315,7 @@ impl RingLevel {
             shaft_angle: false,
             slow: None,
             kept: None,
+            loads: None,
         }
     }
 
@@ -560,6 +565,15 @@ pub fn build(a: &LevelArgs) -> Result<Box<dyn LevelModel>> {
 }
 
 impl LevelModel for RingLevel {
+    fn keep_element_loads(&mut self) -> bool {
+        self.loads = Some(vec![ElementLoad::default(); self.model.z()]);
+        true
+    }
+    fn element_loads(&self, out: &mut Vec<ElementLoad>) -> bool {
+        out.clear();
+        out.extend(self.loads.iter().flatten());
+        self.loads.is_some()
+    }
     fn n_states(&self) -> usize {
         1 + self.shaft_angle as usize + self.slow.as_ref().map_or(0, Slow::n_states)
     }
@@ -723,15 +737,39 @@ impl LevelModel for RingLevel {
         let mut sums = ContactSums::default();
         let omega = m.omega;
         // Kept from the integration's last stage at this very point (no slow effects: no
-        // per-ball sums wanted): the same bits without evaluating again.
-        let kept = self.slow.is_none() && self.kept == Some(self.point_key(m, x));
+        // per-ball sums wanted, no ball loads kept): the same bits without evaluating again.
+        let kept =
+            self.slow.is_none() && self.loads.is_none() && self.kept == Some(self.point_key(m, x));
         if !kept {
             self.kept = None;
-            self.evaluate(LevelAt { t, m, x, aux, wc }, true, |slow, _j, _psi, q| {
+            let at = LevelAt { t, m, x, aux, wc };
+            let thermal = |slow: Option<&Slow>, q: f64, sums: &mut ContactSums| {
                 if let Some(th) = slow.and_then(|s| s.thermal.as_ref()) {
-                    th.model.add_ball(omega, q, &mut sums);
+                    th.model.add_ball(omega, q, sums);
                 }
-            });
+            };
+            match self.loads.take() {
+                None => self.evaluate(at, true, |slow, _j, _psi, q| thermal(slow, q, &mut sums)),
+                Some(mut loads) => {
+                    // Every ball at its place, unloaded unless the evaluation loads it (a
+                    // massless ball carries the same load at both contacts).
+                    for (j, l) in loads.iter_mut().enumerate() {
+                        *l = ElementLoad {
+                            psi: self.model.azimuth(x[0], j),
+                            ..ElementLoad::default()
+                        };
+                    }
+                    self.evaluate(at, true, |slow, j, psi, q| {
+                        thermal(slow, q, &mut sums);
+                        loads[j] = ElementLoad {
+                            psi,
+                            inner: q,
+                            outer: q,
+                        };
+                    });
+                    self.loads = Some(loads);
+                }
+            }
         }
         let e = &self.eval;
         *out = LevelOutputs {

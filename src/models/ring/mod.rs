@@ -230,6 +230,21 @@ impl RingModel {
         self
     }
 
+    /// Number of balls.
+    pub fn z(&self) -> usize {
+        self.z
+    }
+
+    /// Ball `j`'s azimuth at cage angle `theta_c`, rad: the `psi` [`RingModel::eval_with`]
+    /// hands to `per_ball`, with the same arithmetic.
+    pub fn azimuth(&self, theta_c: f64, j: usize) -> f64 {
+        let psi = theta_c + 2.0 * PI / self.z as f64 * j as f64;
+        match self.spacing.get(j) {
+            Some(o) => psi + o,
+            None => psi,
+        }
+    }
+
     /// Series load–deflection constant `K_n`, N/m^1.5.
     pub fn kn(&self) -> f64 {
         self.kn

@@ -363,19 +363,7 @@ impl LevelModel for SetLevel {
             let w = lo.wrench;
             let angle = match &mut r.qs {
                 Some(qs) if lo.balls_loaded > 0.0 => {
-                    let e = qs.eval_local(mr.q, m.omega, true)?;
-                    let (mut s, mut wsum) = (0.0, 0.0);
-                    for ball in &e.balls {
-                        if ball.q_i > 0.0 {
-                            s += ball.q_i * ball.alpha_i;
-                            wsum += ball.q_i;
-                        }
-                    }
-                    if wsum > 0.0 {
-                        s / wsum
-                    } else {
-                        0.0
-                    }
+                    qs.mean_inner_angle(mr.q, m.omega)?.unwrap_or(0.0)
                 }
                 Some(_) => 0.0,
                 None => r.nominal_angle,

@@ -18,25 +18,25 @@ pub fn weibull_slope(kind: ElementKind) -> f64 {
 /// The system `L10` from the rows' `(L10, slope)` (any unit of life); a row without a life
 /// (unloaded: `None`, or infinite) does not fail. `None` when no row has a finite life.
 pub fn system_life(lives: &[(Option<f64>, f64)]) -> Option<f64> {
-    let finite: Vec<(f64, f64)> = lives
-        .iter()
-        .filter_map(|(l, e)| l.filter(|l| l.is_finite() && *l > 0.0).map(|l| (l, *e)))
-        .collect();
-    if finite.is_empty() {
-        return None;
-    }
-    let e0 = finite[0].1;
-    if finite.iter().all(|(_, e)| *e == e0) {
-        let s: f64 = finite.iter().map(|(l, _)| l.powf(-e0)).sum();
+    // The rows that can fail, read in place (no allocation: a component's output step
+    // calls this at every step).
+    let finite = || {
+        lives
+            .iter()
+            .filter_map(|(l, e)| l.filter(|l| l.is_finite() && *l > 0.0).map(|l| (l, *e)))
+    };
+    let (_, e0) = finite().next()?;
+    if finite().all(|(_, e)| e == e0) {
+        let s: f64 = finite().map(|(l, _)| l.powf(-e0)).sum();
         return Some(s.powf(-1.0 / e0));
     }
     // Mixed slopes: g(L) = sum (L/L_i)^e_i - 1 increases in L; the root lies between
     // min L_i n^(-1/e_min) and min L_i. Bisection in log L.
-    let lmin = finite.iter().map(|f| f.0).fold(f64::INFINITY, f64::min);
-    let emin = finite.iter().map(|f| f.1).fold(f64::INFINITY, f64::min);
-    let g = |l: f64| finite.iter().map(|(li, e)| (l / li).powf(*e)).sum::<f64>() - 1.0;
+    let lmin = finite().map(|f| f.0).fold(f64::INFINITY, f64::min);
+    let emin = finite().map(|f| f.1).fold(f64::INFINITY, f64::min);
+    let g = |l: f64| finite().map(|(li, e)| (l / li).powf(e)).sum::<f64>() - 1.0;
     let (mut lo, mut hi) = (
-        (lmin * (finite.len() as f64).powf(-1.0 / emin)).ln(),
+        (lmin * (finite().count() as f64).powf(-1.0 / emin)).ln(),
         lmin.ln(),
     );
     for _ in 0..200 {

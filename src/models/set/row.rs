@@ -31,6 +31,10 @@ pub(crate) struct RowModel {
     pub floating: bool,
     psi: Vec<f64>,
     law: Law,
+    /// Scratch of [`RowModel::mean_inner_angle`] (ball rows): trial warm starts and the
+    /// per-ball results, sized once so that a level's output step does not allocate.
+    trial: Vec<BallState>,
+    balls: Vec<BallResult>,
 }
 
 fn build_law(b: &Bearing) -> Result<Law> {
@@ -75,6 +79,8 @@ impl RowModel {
             floating: false,
             psi: azimuths(bearing.z, 0.0),
             law: build_law(bearing)?,
+            trial: vec![BallState::default(); bearing.z],
+            balls: vec![BallResult::default(); bearing.z],
         })
     }
 
@@ -172,6 +178,32 @@ impl RowModel {
         Ok(e)
     }
 
+    /// The load-weighted mean inner contact angle of the loaded balls (rad; 0 when none is
+    /// loaded) at the row's own displacement `q_loc`, and whether any is: the ball
+    /// equilibrium without the stiffness, in the row's scratch (no allocation). `None`
+    /// for a row of other elements. The warm starts are updated only on success.
+    pub fn mean_inner_angle(&mut self, q_loc: [f64; 5], omega: f64) -> Result<Option<f64>> {
+        let Law::Ball(m, st) = &mut self.law else {
+            return Ok(None);
+        };
+        self.trial.copy_from_slice(st);
+        m.evaluate(
+            &q_loc,
+            omega,
+            &self.psi,
+            &mut self.trial,
+            None,
+            Some(&mut self.balls[..]),
+        )?;
+        st.copy_from_slice(&self.trial);
+        let (mut s, mut w) = (0.0, 0.0);
+        for b in self.balls.iter().filter(|b| b.q_i > 0.0) {
+            s += b.q_i * b.alpha_i;
+            w += b.q_i;
+        }
+        Ok(Some(if w > 0.0 { s / w } else { 0.0 }))
+    }
+
     /// The row's thrust (axial force on its outer ring toward its loading direction) at
     /// its own axial displacement `a` with nothing else moved, and `dP/da`, at speed `omega`.
     pub fn thrust(&mut self, a: f64, omega: f64) -> Result<(f64, f64)> {
@@ -218,4 +250,8 @@ pub struct RowReport {
     pub s0: Option<f64>,
     /// Peak contact pressure, Pa (ball rows; 0 for roller rows).
     pub peak_pressure: f64,
+    /// Every ball's equilibrium (ball rows; empty for roller rows), as the single
+    /// bearing's quasi-static report has them.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub balls: Vec<BallResult>,
 }

@@ -617,5 +617,6 @@ fn row_report(r: &RowModel, e: &RowEval, omega: f64, speed_rpm: f64) -> Result<R
         weibull_slope: weibull_slope(b.element()),
         s0: if loaded == 0 { None } else { s0 },
         peak_pressure: peak,
+        balls: e.balls.clone(),
     })
 }

@@ -11,6 +11,7 @@ use crate::error::{Error, Result};
 use crate::geometry::Bearing;
 use crate::models::skidding::{BallState, SkidTotals, SkiddingModel, SkiddingParams, BALL0};
 use crate::models::LevelArgs;
+use crate::seam::element::ElementLoad;
 use crate::seam::{Jacobians, LevelModel, LevelOutputs, Motion, Point};
 
 /// Skidding level.
@@ -113,14 +114,20 @@ impl LevelModel for SkiddingLevel {
     fn as_any_mut(&mut self) -> Option<&mut dyn std::any::Any> {
         Some(self)
     }
-    fn ball_loads(&self) -> Option<Vec<(f64, f64, f64)>> {
-        Some(
-            self.model
-                .balls
-                .iter()
-                .map(|b| (b.psi, b.q_i, b.q_o))
-                .collect(),
-        )
+    /// Its balls are its own state: nothing more to keep.
+    fn keep_element_loads(&mut self) -> bool {
+        true
+    }
+    /// The model's own per-ball loads at its last evaluation (the current state's: the
+    /// outputs evaluate it last, after their perturbed evaluations).
+    fn element_loads(&self, out: &mut Vec<ElementLoad>) -> bool {
+        out.clear();
+        out.extend(self.model.balls.iter().map(|b| ElementLoad {
+            psi: b.psi,
+            inner: b.q_i,
+            outer: b.q_o,
+        }));
+        true
     }
     fn n_states(&self) -> usize {
         self.model.n_states()
