@@ -4,7 +4,9 @@
 use super::level::Motion;
 use super::system::RingBody;
 use super::variables::SCALARS;
-use super::{index_of, variables, Causality, Component, InputRule, State, I_OMEGA, I_Q, I_V};
+use super::{
+    index_of, variables, Causality, Component, InputRule, State, I_OMEGA, I_Q, I_V, N_INPUT_SLOTS,
+};
 use crate::error::{Error, Result};
 
 impl Component {
@@ -101,12 +103,13 @@ impl Component {
     /// their plausibility limits (a velocity or derivative that carries a position off).
     pub(super) fn check_inputs_at(&self, h: f64) -> Result<()> {
         let c = self.causality();
-        for (i, v) in SCALARS.iter().enumerate() {
+        // Every input of either causality sits below N_INPUT_SLOTS (slots_match_the_table).
+        for (i, v) in SCALARS[..N_INPUT_SLOTS].iter().enumerate() {
             if !v.is_input(c) {
                 continue;
             }
             let u = input_at(&self.state, i, h, self.scene.inputs.rule);
-            if self.limits.allows(v.name, u) {
+            if self.limits.allows_slot(i, u) {
                 continue;
             }
             self.limits

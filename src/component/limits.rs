@@ -149,6 +149,31 @@ impl Limits {
         })
     }
 
+    /// The limit of the input in table slot `i` (below `N_INPUT_SLOTS`), as
+    /// [`Limits::of_variable`] gives it for that slot's name, without comparing strings: the
+    /// step's input check asks it for every input of every step.
+    /// `slot_limits_match_the_names` checks the two against each other.
+    #[inline]
+    pub fn of_slot(&self, i: usize) -> Option<f64> {
+        use super::{I_LOAD, I_OMEGA, I_Q, I_V};
+        Some(match i {
+            _ if i == I_Q || i == I_Q + 1 => self.radial,
+            _ if i == I_Q + 2 => self.axial,
+            _ if i == I_Q + 3 || i == I_Q + 4 => self.tilt,
+            _ if (I_V..I_V + 3).contains(&i) => self.speed,
+            _ if i == I_V + 3 || i == I_V + 4 || i == I_OMEGA => self.omega,
+            _ if (I_LOAD..I_LOAD + 3).contains(&i) => self.force,
+            _ if i == I_LOAD + 3 || i == I_LOAD + 4 => self.moment,
+            _ => return None,
+        })
+    }
+
+    /// Is `value` finite and within the limit of the input in table slot `i`?
+    #[inline]
+    pub fn allows_slot(&self, i: usize, value: f64) -> bool {
+        value.is_finite() && self.of_slot(i).is_none_or(|lim| value.abs() <= lim)
+    }
+
     /// Is `value` finite and within the limit of input `name`? (No allocation: the hot
     /// path asks this and builds the message only on refusal.)
     pub fn allows(&self, name: &str, value: f64) -> bool {
@@ -263,6 +288,35 @@ mod tests {
         // The level disagreement of issue 21 (shaft.y = -1 mm) is outside for every level.
         assert!(l.check("shaft.y", "shaft.y", -1e-3).is_err());
         assert!(l.check("shaft.y", "shaft.y", -10e-6).is_ok());
+    }
+
+    #[test]
+    fn slot_limits_match_the_names() {
+        // Distinct values per kind, so a slot that reads the wrong kind is caught.
+        let l = Limits {
+            radial: 1.0,
+            axial: 2.0,
+            tilt: 3.0,
+            speed: 4.0,
+            omega: 5.0,
+            force: 6.0,
+            moment: 7.0,
+            ..limits("6205").1
+        };
+        let table = crate::component::variables::SCALARS;
+        for (i, v) in table.iter().enumerate() {
+            let by_name = l.of_variable(v.name);
+            if i < crate::component::N_INPUT_SLOTS {
+                assert_eq!(l.of_slot(i), by_name, "slot {i} ({})", v.name);
+                assert!(
+                    by_name.is_some(),
+                    "input slot {i} ({}) has no limit",
+                    v.name
+                );
+            } else {
+                assert_eq!(by_name, None, "{} past the input slots has a limit", v.name);
+            }
+        }
     }
 
     #[test]

@@ -6,10 +6,37 @@
 //! call on the same handle from another thread at the same time is refused, and a handle
 //! freed while another thread is inside a call on it is left alone.
 //!
-//! Looking a handle up takes a mutex and a hash-map probe: no heap allocation.
+//! Looking a handle up takes a mutex and a hash-map probe: no heap allocation. The map
+//! hashes the handle number with one multiplication ([`IdHasher`]): the numbers are issued
+//! here, not chosen by a caller, so the standard library's DoS-resistant SipHash buys
+//! nothing, and a host calls through a handle three times per macro step.
 
 use std::collections::HashMap;
+use std::hash::{BuildHasherDefault, Hasher};
 use std::sync::{Mutex, MutexGuard};
+
+/// Hash of a handle number: its multiple of 16 times an odd constant (Fibonacci hashing):
+/// consecutive handles differ in the low bits (the map's bucket index: the product is a
+/// bijection modulo every power of two) and in the top bits (its control byte).
+#[derive(Default)]
+pub(crate) struct IdHasher(u64);
+
+impl Hasher for IdHasher {
+    fn finish(&self) -> u64 {
+        self.0
+    }
+    fn write(&mut self, bytes: &[u8]) {
+        // Only `usize` keys are hashed here; any other key folds in byte by byte.
+        for &b in bytes {
+            self.0 = (self.0.rotate_left(8) ^ u64::from(b)).wrapping_mul(0x9E37_79B9_7F4A_7C15);
+        }
+    }
+    fn write_usize(&mut self, i: usize) {
+        self.0 = ((i as u64) >> 4).wrapping_mul(0x9E37_79B9_7F4A_7C15);
+    }
+}
+
+type IdMap<V> = HashMap<usize, V, BuildHasherDefault<IdHasher>>;
 
 /// One registered object: its box (as a raw pointer) and whether a call is using it.
 struct Entry<T> {
@@ -19,7 +46,7 @@ struct Entry<T> {
 
 struct Table<T> {
     next: usize,
-    live: Option<HashMap<usize, Entry<T>>>,
+    live: Option<IdMap<Entry<T>>>,
 }
 
 /// A table of live objects of one type, keyed by handle number.
@@ -72,7 +99,7 @@ impl<T> Registry<T> {
         t.next = t.next.wrapping_add(16);
         let ptr = Box::into_raw(obj);
         t.live
-            .get_or_insert_with(HashMap::new)
+            .get_or_insert_with(IdMap::default)
             .insert(id, Entry { ptr, busy: false });
         id
     }
@@ -115,7 +142,7 @@ impl<T> Registry<T> {
     /// Number of live objects.
     #[cfg(test)]
     pub(crate) fn len(&self) -> usize {
-        self.lock().live.as_ref().map_or(0, HashMap::len)
+        self.lock().live.as_ref().map_or(0, IdMap::len)
     }
 }
 
