@@ -235,14 +235,28 @@ pub fn calculator_lines(c: &Ctx, s: &mut Summary, friction: &mut serde_json::Val
                 text((k.total > 0.0).then(|| run_torque / k.total)),
                 k.unconfirmed
             ));
-            for w in &k.warnings {
+            // The run has no oil level: the drag term's absence is said in its own words
+            // (the calculator's warning names a `quasi-static` flag).
+            let warnings: Vec<String> = k
+                .warnings
+                .iter()
+                .map(|w| {
+                    if w.contains("--skf-drag") {
+                        "oil bath without the drag term (a run gives no oil level nor V_M)"
+                            .to_string()
+                    } else {
+                        w.clone()
+                    }
+                })
+                .collect();
+            for w in &warnings {
                 s.line(format!("    SKF: {w}"));
             }
             json!({"series": k.series, "lubrication": k.lubrication, "moment_nm": k.total,
                 "rolling_moment_nm": k.rolling, "sliding_moment_nm": k.sliding,
                 "seal_moment_nm": k.seals, "drag_moment_nm": k.drag, "power_w": k.power,
                 "run_over_calculator_power": ratio(k.power), "unconfirmed": k.unconfirmed,
-                "warnings": k.warnings})
+                "warnings": warnings})
         }
         Err(why) => {
             s.line(format!(
