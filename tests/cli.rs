@@ -403,6 +403,14 @@ fn run_summarises_what_the_effects_compute() {
     assert!(
         page.contains("<h3>Friction and power</h3>") && page.contains("<h3>Lubricant film</h3>")
     );
+    // The design calculator's friction beside the run's (tests/summary_friction.rs checks
+    // its values): in the text, the JSON and the page's friction table.
+    assert!(
+        text.contains("calculator, Palmgren (ISO/TR 14179-2): M "),
+        "{text}"
+    );
+    assert!(f(&summary["friction"]["calculator"]["palmgren"]["power_w"]) > 0.0);
+    assert!(page.contains("run over calculator power"));
     let _ = std::fs::remove_dir_all(&dir);
 }
 

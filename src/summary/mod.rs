@@ -6,6 +6,7 @@
 //! full level), the characteristic frequencies found in the spectrum of the second half of the
 //! run (and in the envelope spectrum for defect scenes), ISO ratings and life.
 
+pub mod friction;
 pub mod html;
 pub mod reports;
 pub mod rollers;
@@ -355,11 +356,10 @@ fn effect_lines(c: &Ctx, s: &mut Summary) {
             last("torque.z"),
             last("power.loss")
         ));
-        s.set(
-            "friction",
-            serde_json::json!({"mean_torque_nm": tq, "final_torque_nm": last("torque.z"),
-                "mean_power_loss_w": pw, "final_power_loss_w": last("power.loss")}),
-        );
+        let mut f = serde_json::json!({"mean_torque_nm": tq, "final_torque_nm": last("torque.z"),
+            "mean_power_loss_w": pw, "final_power_loss_w": last("power.loss")});
+        friction::calculator_lines(c, s, &mut f);
+        s.set("friction", f);
     }
     if set("film.min_thickness") {
         let h = half("film.min_thickness");
