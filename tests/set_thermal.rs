@@ -122,8 +122,8 @@ fn rigid_pair_warms_and_its_preload_rises_to_the_hand_given_temperatures_value()
     eprintln!("preload {p0:.4} -> {pf:.4} N (hand-given path {hot:.4} N, as assembled {cold:.4} N); temperatures {:?} °C", temps[0]);
     // The same path, by hand, on the ring level: the same bits.
     let (mut h, ..) = level(SCENE);
-    for i in 0..2 {
-        h.set_row_temperatures(i, formed[i]).unwrap();
+    for (i, &t) in formed.iter().enumerate() {
+        h.set_row_temperatures(i, t).unwrap();
     }
     assert_eq!(h.row_offsets(), l.row_offsets());
 }
