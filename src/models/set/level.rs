@@ -14,6 +14,17 @@
 //! the contact angle is the load-weighted mean inner contact angle of the row's balls at
 //! the row's displacement from the quasi-static ball equilibrium (the set module's row
 //! model), or the nominal angle of a roller row.
+//!
+//! With `[effects] thermal` (the only effect a set takes; level ring, 5 DOF, ball rows),
+//! each row's ring level runs the single bearing's thermal network (`crate::models::thermal`)
+//! fed by its own losses, its own growth off: its block of memory is the row's only memory
+//! ([`row_thermal_blocks`]). After the outputs of a communication point, a row whose
+//! network's inner-ring, outer-ring or ball temperature has moved more than [`REFORM_K`]
+//! since the row was formed is formed again at those temperatures by the path of
+//! temperatures given by hand ([`super::preload`]: the hot bearing's clearance and free
+//! contact angle, the preload offset moved): its ring level and its contact-angle model are
+//! rebuilt (that step allocates; the integrator's sub-steps never re-form), the network's
+//! memory kept. [`SetLevel::set_row_temperatures`] is that path by hand.
 
 #![allow(clippy::needless_range_loop)] // the index loops read as the matrix formulas
 
