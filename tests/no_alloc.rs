@@ -4,7 +4,8 @@
 //! after a clean call, at 10 kHz on the ring level reading 8 outputs each step; a roller
 //! bearing's ring level (laminae) among the levels; a bearing set (the shipped 7008CE DB
 //! pair: its rows' levels, per-row outputs, ratings and system life) rigid and with a
-//! constant-force spring, at the quasi-static and the 5-DOF ring level.
+//! constant-force spring, at the quasi-static and the 5-DOF ring level, and with the
+//! rows' thermal networks.
 
 use raceway::capi::*;
 use raceway::component::Component;
@@ -165,4 +166,28 @@ fn do_step_and_the_c_loop_do_not_allocate() {
     for scene in [pair.to_string(), spring, ring] {
         assert_eq!(allocations_in_steps(&scene, 1e-4), 0, "{scene}");
     }
+    // The pair with the thermal network (one per row): the networks alone (growth off) do
+    // not allocate; with the growth on, a row is formed again (its level rebuilt) only when
+    // its temperatures moved by more than 0.01 K since it was last formed, so once the
+    // networks have settled (0.3 s of the scene = 150 s of heating) no step allocates.
+    let thermal = include_str!("../examples/scenes/7008ce-db-pair-thermal.toml");
+    let off = thermal.replace(
+        "contact_conductance_w_k = 1.0",
+        "contact_conductance_w_k = 1.0, growth_factor = 0.0",
+    );
+    assert_ne!(off, thermal);
+    assert_eq!(allocations_in_steps(&off, 1e-4), 0, "{off}");
+    let mut c = Component::from_text(thermal).unwrap();
+    for i in 0..300 {
+        c.do_step(i as f64 * 1e-3, 1e-3).unwrap();
+    }
+    let before = thread_alloc::allocations();
+    for i in 0..47 {
+        c.do_step(0.3 + i as f64 * 1e-3, 1e-3).unwrap();
+    }
+    assert_eq!(
+        thread_alloc::allocations() - before,
+        0,
+        "the thermal pair, settled"
+    );
 }

@@ -545,11 +545,20 @@ impl Scene {
                 format!("5 ({supported}: the rows of a set are preloaded axially and hold the shaft's tilt, which the 2-DOF ring does not have)"),
             ));
         }
-        if !self.effects.is_off() {
+        let mut rest = self.effects.clone();
+        let thermal = rest.thermal.take().is_some();
+        if !rest.is_off() {
             return Err(Error::invalid(
                 "effects",
                 "on with a [set]",
-                "off: defects, waviness, films, wear and the thermal network belong to one bearing; a set runs without them",
+                "off, or the thermal network alone (at level ring: one network per row): defects, waviness, films and wear belong to one bearing; a set runs without them",
+            ));
+        }
+        if thermal && m.level != Level::Ring {
+            return Err(Error::invalid(
+                "model.level",
+                format!("{} with a [set] and [effects] thermal", m.level),
+                "ring with ring_dof = 5 (the rows' thermal networks are fed by the ring level's contact loads)",
             ));
         }
         let spec = f.spec("set", Some(b), None, true)?;

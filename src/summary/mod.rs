@@ -447,6 +447,36 @@ fn thermal_lines(c: &Ctx, s: &mut Summary) {
     if c.scene.model.level.name() != "ring" {
         return;
     }
+    if let Some(set) = &c.scene.set {
+        // A set: each row's network (its growth moves the row's preload, physics §S1).
+        let n = if !set.row.is_empty() {
+            set.row.len()
+        } else if set.arrangement.is_some() {
+            2
+        } else {
+            1
+        };
+        let aux = &c.comp.state().aux;
+        let rows = crate::models::set::level::row_thermal_blocks(aux, n);
+        let mut json = Vec::new();
+        for (i, th) in rows.iter().enumerate() {
+            let t = |k: usize| spec.ambient_c + th[k];
+            s.line(format!(
+                "row {i} temperatures at the end: inner race {:.2} °C, outer race {:.2} °C, balls {:.2} °C, oil {:.2} °C (ambient {:.2} °C)",
+                t(0),
+                t(1),
+                t(2),
+                t(3),
+                spec.ambient_c
+            ));
+            json.push(serde_json::json!({"inner_race_c": t(0), "outer_race_c": t(1), "balls_c": t(2), "oil_c": t(3)}));
+        }
+        s.set(
+            "thermal",
+            serde_json::json!({"ambient_c": spec.ambient_c, "rows": json}),
+        );
+        return;
+    }
     let b = c.comp.bearing();
     let Ok(layout) = crate::models::ring::level::SlowLayout::of(&c.scene.effects, b) else {
         return;

@@ -14,14 +14,30 @@
 //! the contact angle is the load-weighted mean inner contact angle of the row's balls at
 //! the row's displacement from the quasi-static ball equilibrium (the set module's row
 //! model), or the nominal angle of a roller row.
+//!
+//! With `[effects] thermal` (the only effect a set takes; level ring, 5 DOF, ball rows),
+//! each row's ring level runs the single bearing's thermal network (`crate::models::thermal`)
+//! fed by its own losses, its own growth off: its block of memory is the row's only memory
+//! ([`row_thermal_blocks`]). After the outputs of a communication point, a row whose
+//! network's inner-ring, outer-ring or ball temperature has moved more than [`REFORM_K`]
+//! since the row was formed is formed again at those temperatures by the path of
+//! temperatures given by hand ([`super::preload`]: the hot bearing's clearance and free
+//! contact angle, the preload offset moved): its ring level and its contact-angle model are
+//! rebuilt (that step allocates; the integrator's sub-steps never re-form), the network's
+//! memory kept. [`SetLevel::set_row_temperatures`] is that path by hand.
 
 #![allow(clippy::needless_range_loop)] // the index loops read as the matrix formulas
 
+use super::preload::{row_at, RingTemperatures};
 use super::row::RowModel;
 use super::{Set, SetSpec};
 use crate::error::{Error, Result};
 use crate::geometry::element::Element;
 use crate::geometry::Bearing;
+use crate::models::effects::Effects;
+use crate::models::ring::level::{RingLevel, SlowLayout};
+use crate::models::ring::RingDof;
+use crate::models::thermal::{BALLS, INNER, OIL, OUTER, THERMAL_SLOTS};
 use crate::models::LevelArgs;
 use crate::seam::{LevelModel, LevelOutputs, Motion, Point, RowOutputs};
 
@@ -119,6 +135,110 @@ fn add_congruent(out: &mut [[f64; 5]; 5], m: &[[f64; 5]; 5], a: &[[f64; 5]; 5]) 
     }
 }
 
+/// Kelvin a row's network may move from the temperatures its row was formed at before the
+/// set forms the row again (module docs: at most once per communication point).
+pub const REFORM_K: f64 = 0.01;
+
+/// A ball row of a set with the thermal network: its bearing and offset as assembled, where
+/// its network's block sits in its memory and the temperatures it is formed at.
+#[derive(Debug)]
+struct Formed {
+    bearing: Bearing,
+    offset: f64,
+    block: usize,
+    at: RingTemperatures,
+}
+
+/// The rows' thermal networks (module docs).
+#[derive(Debug)]
+struct Thermal {
+    /// The rows' effects: the thermal network alone, its own growth off.
+    effects: Effects,
+    damping: f64,
+    /// Ambient and initial temperature, °C.
+    ambient: f64,
+    /// The network's temperatures move the rows (`growth_factor` 1) or not (0).
+    growth: bool,
+    rows: Vec<Formed>,
+}
+
+/// The temperatures of a row's rings and balls from its network's block (rises over the
+/// ambient `ambient`, °C).
+fn network_temperatures(block: &[f64], ambient: f64) -> RingTemperatures {
+    RingTemperatures {
+        inner_c: ambient + block[INNER],
+        outer_c: ambient + block[OUTER],
+        ball_c: Some(ambient + block[BALLS]),
+    }
+}
+
+/// The largest difference of two sets of temperatures, K.
+fn moved(a: &RingTemperatures, b: &RingTemperatures) -> f64 {
+    let ball = |t: &RingTemperatures| t.ball_c.unwrap_or(0.5 * (t.inner_c + t.outer_c));
+    (a.inner_c - b.inner_c)
+        .abs()
+        .max((a.outer_c - b.outer_c).abs())
+        .max((ball(a) - ball(b)).abs())
+}
+
+/// The rows' thermal networks the scene's effects ask for: the thermal effect alone (any
+/// other effect belongs to one bearing), its own growth off in the rows (the set moves
+/// the rows by their temperatures instead).
+fn thermal_of(args: &LevelArgs) -> Result<Option<Thermal>> {
+    let Some(t) = &args.effects.thermal else {
+        return Ok(None);
+    };
+    let mut rest = args.effects.clone();
+    rest.thermal = None;
+    if !rest.is_off() {
+        return Err(Error::invalid(
+            "effects",
+            "on with a [set] beside the thermal network",
+            "the thermal network alone: defects, waviness, films and wear belong to one bearing",
+        ));
+    }
+    if t.growth_factor != 0.0 && t.growth_factor != 1.0 {
+        return Err(Error::invalid(
+            "effects.thermal.growth_factor",
+            t.growth_factor,
+            "1 (the rings' growth moves the rows' preload) or 0 (off) with a [set]",
+        ));
+    }
+    let mut own = t.clone();
+    own.growth_factor = 0.0;
+    Ok(Some(Thermal {
+        effects: Effects {
+            thermal: Some(own),
+            ..Effects::default()
+        },
+        damping: args.contact_damping,
+        ambient: t.ambient_c,
+        growth: t.growth_factor != 0.0,
+        rows: Vec::new(),
+    }))
+}
+
+/// Form row `r` at temperatures `t` (module docs): everything is built before anything
+/// changes, so a refusal leaves the row as it was.
+fn form(
+    r: &mut Slot,
+    f: &mut Formed,
+    effects: &Effects,
+    damping: f64,
+    t: RingTemperatures,
+    i: usize,
+) -> Result<()> {
+    let (hot, d_off) = row_at(&f.bearing, &t, i)?;
+    let level = RingLevel::with_effects(&hot, RingDof::Five, damping, effects)?;
+    let qs = RowModel::new(&hot, r.z, r.o as i32)?;
+    r.level = Box::new(level);
+    r.qs = Some(qs);
+    r.offset = f.offset + d_off;
+    r.nominal_angle = hot.alpha0;
+    f.at = t;
+    Ok(())
+}
+
 /// The set as a level (module docs).
 #[derive(Debug)]
 pub struct SetLevel {
@@ -136,6 +256,8 @@ pub struct SetLevel {
     /// Per-row displacement limits, for the spring's trial shifts (a quarter of the
     /// smallest ball diameter), m.
     max_du: f64,
+    /// The rows' thermal networks (`[effects] thermal`), None without.
+    thermal: Option<Thermal>,
 }
 
 /// Build the set's level: every row by `build` (the level's own constructor) for the
@@ -151,12 +273,42 @@ impl SetLevel {
         let offsets = set.row_offsets();
         let mut rows = Vec::with_capacity(spec.rows.len());
         let (mut x0, mut a0) = (0, 0);
-        for (r, &(offset, floating)) in spec.rows.iter().zip(&offsets) {
+        let mut thermal = thermal_of(args)?;
+        for (i, (r, &(offset, floating))) in spec.rows.iter().zip(&offsets).enumerate() {
             let level = build(&LevelArgs {
                 bearing: &r.bearing,
+                effects: thermal.as_ref().map_or(args.effects, |t| &t.effects),
                 ..*args
             })?;
             let (nx, na) = (level.n_states(), level.n_aux());
+            if let Some(th) = &mut thermal {
+                let field = || format!("set.row[{i}].bearing");
+                if !matches!(r.bearing.element, Element::Ball(_)) || args.ring_dof != 5 {
+                    return Err(Error::invalid(
+                        field(),
+                        &r.bearing.name,
+                        "a ball bearing at level ring with ring_dof = 5 (the thermal network \
+                         of a set runs on ball rows of the 5-DOF ring level)",
+                    ));
+                }
+                // The network's block is the row's only memory ([`row_thermal_blocks`]).
+                let block = SlowLayout::of(&th.effects, &r.bearing)?
+                    .thermal
+                    .filter(|&b| b == 0 && na == THERMAL_SLOTS)
+                    .ok_or_else(|| {
+                        Error::invalid(
+                            field(),
+                            &r.bearing.name,
+                            "a row whose level runs the thermal network (level ring)",
+                        )
+                    })?;
+                th.rows.push(Formed {
+                    bearing: r.bearing.clone(),
+                    offset,
+                    block,
+                    at: RingTemperatures::default(),
+                });
+            }
             let qs = match r.bearing.element {
                 Element::Ball(_) => Some(RowModel::new(&r.bearing, r.position, r.orientation)?),
                 Element::Roller(_) => None,
@@ -193,7 +345,72 @@ impl SetLevel {
             n_aux: a0 + usize::from(spring.is_some()),
             dx: vec![0.0; x0],
             max_du,
+            thermal,
         })
+    }
+
+    /// The temperatures of each row's network, `[inner ring, outer ring, balls, oil]` °C, in
+    /// the memory `aux` (the component state's); `None` without the thermal network.
+    pub fn row_temperatures(&self, aux: &[f64]) -> Option<Vec<[f64; 4]>> {
+        let th = self.thermal.as_ref()?;
+        Some(
+            self.rows
+                .iter()
+                .zip(&th.rows)
+                .map(|(r, f)| {
+                    let b = &aux[r.a0 + f.block..r.a0 + f.block + 4];
+                    [INNER, OUTER, BALLS, OIL].map(|k| th.ambient + b[k])
+                })
+                .collect(),
+        )
+    }
+
+    /// The temperatures each row is formed at (its clearance, free contact angle and
+    /// preload offset, [`super::preload`]); `None` without the thermal network.
+    pub fn formed_temperatures(&self) -> Option<Vec<RingTemperatures>> {
+        Some(self.thermal.as_ref()?.rows.iter().map(|f| f.at).collect())
+    }
+
+    /// Each row's preload offset now, m (the assembled one plus the rings' growth's).
+    pub fn row_offsets(&self) -> Vec<f64> {
+        self.rows.iter().map(|r| r.offset).collect()
+    }
+
+    /// Form row `i` at temperatures `t` by hand (the path the network's temperatures take,
+    /// [`super::preload`]): its bearing with the clearance the rings' growth leaves, its
+    /// level and contact-angle model rebuilt, its preload offset moved. Only a set with the
+    /// thermal network has its rows' assembled state; a refused call changes nothing.
+    pub fn set_row_temperatures(&mut self, i: usize, t: RingTemperatures) -> Result<()> {
+        t.validate()?;
+        let Some(th) = &mut self.thermal else {
+            return Err(Error::invalid(
+                "set.temperatures",
+                "given to a set without [effects] thermal",
+                "a set at level ring with [effects] thermal",
+            ));
+        };
+        let (Some(r), Some(f)) = (self.rows.get_mut(i), th.rows.get_mut(i)) else {
+            return Err(Error::invalid("set.row", i, "a row of the set"));
+        };
+        form(r, f, &th.effects, th.damping, t, i)
+    }
+
+    /// Form again every row whose network has moved more than [`REFORM_K`] from the
+    /// temperatures it is formed at (module docs).
+    fn follow_networks(&mut self, aux: &[f64]) -> Result<()> {
+        let Some(th) = &mut self.thermal else {
+            return Ok(());
+        };
+        if !th.growth {
+            return Ok(());
+        }
+        for (i, (r, f)) in self.rows.iter_mut().zip(&mut th.rows).enumerate() {
+            let t = network_temperatures(&aux[r.a0 + f.block..], th.ambient);
+            if moved(&t, &f.at) > REFORM_K {
+                form(r, f, &th.effects, th.damping, t, i)?;
+            }
+        }
+        Ok(())
     }
 
     /// The sliding rows' thrust `sum P_r` at spring shift `u` (rates into the scratch).
@@ -285,8 +502,13 @@ impl LevelModel for SetLevel {
     fn rhs_time_invariant(&self) -> bool {
         self.spring.is_none() && self.rows.iter().all(|r| r.level.rhs_time_invariant())
     }
+    fn as_any_mut(&mut self) -> Option<&mut dyn std::any::Any> {
+        Some(self)
+    }
     fn init(&mut self, m: &Motion, x: &mut [f64], aux: &mut [f64]) -> Result<()> {
         aux.fill(0.0);
+        // The networks start at the ambient: the rows run there from the start.
+        self.follow_networks(aux)?;
         for r in &mut self.rows {
             let mr = r.motion(m, 0.0);
             r.level
@@ -386,8 +608,19 @@ impl LevelModel for SetLevel {
         }
         o.film_min = if film.is_finite() { film } else { 0.0 };
         *out = o;
-        Ok(())
+        // The networks advanced in the rows' outputs: the rows follow their temperatures
+        // from the next step on.
+        self.follow_networks(aux)
     }
+}
+
+/// The thermal blocks of a set's rows in the component's memory `aux`, in row order, for a
+/// caller that holds the memory but not the level (the run's summary): with `[effects]
+/// thermal` every row's level keeps its network's block ([`THERMAL_SLOTS`] values, as
+/// [`crate::models::thermal::ThermalModel::advance`] writes them) as its only memory, so
+/// row `i`'s starts at `i THERMAL_SLOTS` ([`SetLevel::new`] refuses a row that would not).
+pub fn row_thermal_blocks(aux: &[f64], rows: usize) -> Vec<&[f64]> {
+    aux.chunks_exact(THERMAL_SLOTS).take(rows).collect()
 }
 
 /// The bearings of a set's rows, for a caller that rates them.
