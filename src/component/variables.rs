@@ -390,7 +390,7 @@ pub const SCALARS: &[Variable] = &[
     v(
         "life.L10",
         122,
-        "1",
+        "Mrev",
         Output,
         "basic rating life (C/P)^3 (ISO 281) of the bearing force, in millions of revolutions; 1e12 when unloaded, 0 where ISO 281 does not cover the bearing",
     ),
@@ -463,7 +463,7 @@ macro_rules! row_vars {
             v(concat!("row", $i, ".moment.y"), VR_ROW0 + 10 * $i + 4, "N.m", Output, "set row: moment of the row on the shaft about y at the row").only(Sets::SET_ROWS),
             v(concat!("row", $i, ".contact_angle"), VR_ROW0 + 10 * $i + 5, "rad", Output, "set row: load-weighted mean inner contact angle of the loaded balls (quasi-static ball equilibrium at the row's displacement; roller rows: nominal; 0 when lifted off)").only(Sets::SET_ROWS),
             count(concat!("row", $i, ".lift_off"), VR_ROW0 + 10 * $i + 6, Output, "set row: 1 when no element of the row is loaded, else 0").only(Sets::SET_ROWS),
-            v(concat!("row", $i, ".life.L10"), VR_ROW0 + 10 * $i + 7, "1", Output, "set row: basic rating life (ISO 281) of the row's own load, millions of revolutions; 1e12 when unloaded").only(Sets::SET_ROWS),
+            v(concat!("row", $i, ".life.L10"), VR_ROW0 + 10 * $i + 7, "Mrev", Output, "set row: basic rating life (ISO 281) of the row's own load, millions of revolutions; 1e12 when unloaded").only(Sets::SET_ROWS),
         ]
     };
 }

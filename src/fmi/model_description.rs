@@ -220,6 +220,8 @@ pub fn direct_dependencies(c: Causality, v: &Variable) -> Vec<&'static Variable>
 fn factor(f: &str) -> Option<[i32; 4]> {
     Some(match f {
         "1" => [0, 0, 0, 0],
+        // Millions of revolutions: a count, dimensionless.
+        "Mrev" => [0, 0, 0, 0],
         "kg" => [1, 0, 0, 0],
         "m" => [0, 1, 0, 0],
         "s" => [0, 0, 1, 0],
