@@ -647,8 +647,31 @@ pub const LEVEL_ITEMS: [&str; 6] = [
 /// Items of the `input_rule` parameter: `scene`, then the scene's `inputs.rule` spellings.
 pub const INPUT_RULE_ITEMS: [&str; 4] = ["scene", "hold", "velocity", "derivatives"];
 
+/// Items of the `solver` parameter: `scene`, then the scene's `solver.method` spellings.
+pub const SOLVER_ITEMS: [&str; crate::solver::methods::METHOD_NAMES.len() + 1] = {
+    let names = crate::solver::methods::METHOD_NAMES;
+    let mut items = ["scene"; crate::solver::methods::METHOD_NAMES.len() + 1];
+    let mut i = 0;
+    while i < names.len() {
+        items[i + 1] = names[i];
+        i += 1;
+    }
+    items
+};
+
+/// The scene rows the named parameters stand for: their unit, range and description are
+/// the row's.
+const CLEARANCE_UM: &super::fields::FieldDecl =
+    super::fields::find(crate::geometry::BearingSpec::FIELDS, "clearance_um");
+const SPEED_RPM: &super::fields::FieldDecl =
+    super::fields::find(super::scene::InputSpec::FIELDS, "speed_rpm");
+const SOLVER_METHOD: &super::fields::FieldDecl =
+    super::fields::find(super::scene::SolverSpec::FIELDS, "method");
+
 /// The scene fields exposed as parameters. A parameter the host never sets (or sets to
-/// its start value) leaves the field as the scene (or the preset) has it.
+/// its start value) leaves the field as the scene (or the preset) has it; the named ones
+/// (`clearance_um`, `speed_rpm`, `solver`, `rtol`) override the same field of the scene
+/// (string or resource) when the host sets them (`solver` item 0, `scene`: not set).
 pub const PARAMETERS: &[Parameter] = &[
     Parameter {
         name: "scene",
@@ -712,6 +735,33 @@ pub const PARAMETERS: &[Parameter] = &[
         start: "false",
         description: "true: the bearing takes the `clearance` parameter; false: its own clearance",
     },
+    Parameter {
+        name: "clearance_um",
+        vr: 1007,
+        ty: ParamType::Real,
+        unit: CLEARANCE_UM.unit,
+        start: "0",
+        description: CLEARANCE_UM.description,
+    },
+    Parameter {
+        name: "speed_rpm",
+        vr: 1008,
+        ty: ParamType::Real,
+        unit: SPEED_RPM.unit,
+        start: "1750",
+        description: SPEED_RPM.description,
+    },
+    Parameter {
+        name: "solver",
+        vr: 1009,
+        ty: ParamType::Enumeration {
+            type_name: "Solver",
+            items: &SOLVER_ITEMS,
+        },
+        unit: "",
+        start: "0",
+        description: SOLVER_METHOD.description,
+    },
 ];
 
 /// How people read a unit: `(SI unit, display unit, factor)` with
@@ -763,6 +813,12 @@ pub const RANGES: &[(&str, f64, f64)] = &[
     ("load.my", -1e6, 1e6),
     ("clearance", -1e-3, 1e-3),
     ("rtol", RTOL.min(), RTOL.max()),
+    (
+        "clearance_um",
+        CLEARANCE_UM.bounds.min(),
+        CLEARANCE_UM.bounds.max(),
+    ),
+    ("speed_rpm", SPEED_RPM.bounds.min(), SPEED_RPM.bounds.max()),
 ];
 
 /// The scene's `solver.rtol` range, as its row declares it.

@@ -480,9 +480,9 @@ fn walk(table: &[Key], path: &str, m: Map<String, Value>) -> Map<String, Value> 
                         }
                     }
                     (_, v) => {
-                        // Not the array the table splits (e.g. null): one key per part, null.
+                        // Not the array the table splits (e.g. null): each part gets it.
                         for (l, _) in labels {
-                            out.insert(l, if v.is_null() { Value::Null } else { v.clone() });
+                            out.insert(l, v.clone());
                         }
                     }
                 }
