@@ -805,7 +805,7 @@ pub const RANGES: &[(&str, f64, f64)] = &[
     ("shaft.vz", -100.0, 100.0),
     ("shaft.wx", -1e4, 1e4),
     ("shaft.wy", -1e4, 1e4),
-    ("shaft.omega", -2e4, 2e4),
+    ("shaft.omega", -OMEGA_MAX, OMEGA_MAX),
     ("load.x", -1e7, 1e7),
     ("load.y", -1e7, 1e7),
     ("load.z", -1e7, 1e7),
@@ -818,8 +818,14 @@ pub const RANGES: &[(&str, f64, f64)] = &[
         CLEARANCE_UM.bounds.min(),
         CLEARANCE_UM.bounds.max(),
     ),
-    ("speed_rpm", SPEED_RPM.bounds.min(), SPEED_RPM.bounds.max()),
+    // The scene row bounds the speed by the bearing's burst speed (plausibility limits),
+    // no fixed range: the parameter takes the input `shaft.omega`'s, in rpm.
+    ("speed_rpm", -OMEGA_MAX * 30.0 / PI, OMEGA_MAX * 30.0 / PI),
 ];
+
+/// Largest shaft speed an FMU accepts, rad/s (about 191 000 rpm).
+const OMEGA_MAX: f64 = 2e4;
+const PI: f64 = std::f64::consts::PI;
 
 /// The scene's `solver.rtol` range, as its row declares it.
 const RTOL: super::fields::Bounds =
