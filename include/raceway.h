@@ -233,7 +233,7 @@
 #define RACEWAY_VR_SAFETY_S0 121
 
 /*
- `life.L10` (1): basic rating life (C/P)^3 (ISO 281) of the bearing force, in millions of revolutions; 1e12 when unloaded, 0 where ISO 281 does not cover the bearing.
+ `life.L10` (Mrev): basic rating life (C/P)^3 (ISO 281) of the bearing force, in millions of revolutions; 1e12 when unloaded, 0 where ISO 281 does not cover the bearing.
  */
 #define RACEWAY_VR_LIFE_L10 122
 
@@ -528,7 +528,7 @@
 #define RACEWAY_VR_ROW0_LIFT_OFF 406
 
 /*
- `row0.life.L10` (1): set row: basic rating life (ISO 281) of the row's own load, millions of revolutions; 1e12 when unloaded.
+ `row0.life.L10` (Mrev): set row: basic rating life (ISO 281) of the row's own load, millions of revolutions; 1e12 when unloaded.
  */
 #define RACEWAY_VR_ROW0_LIFE_L10 407
 
@@ -568,7 +568,7 @@
 #define RACEWAY_VR_ROW1_LIFT_OFF 416
 
 /*
- `row1.life.L10` (1): set row: basic rating life (ISO 281) of the row's own load, millions of revolutions; 1e12 when unloaded.
+ `row1.life.L10` (Mrev): set row: basic rating life (ISO 281) of the row's own load, millions of revolutions; 1e12 when unloaded.
  */
 #define RACEWAY_VR_ROW1_LIFE_L10 417
 
@@ -608,7 +608,7 @@
 #define RACEWAY_VR_ROW2_LIFT_OFF 426
 
 /*
- `row2.life.L10` (1): set row: basic rating life (ISO 281) of the row's own load, millions of revolutions; 1e12 when unloaded.
+ `row2.life.L10` (Mrev): set row: basic rating life (ISO 281) of the row's own load, millions of revolutions; 1e12 when unloaded.
  */
 #define RACEWAY_VR_ROW2_LIFE_L10 427
 
@@ -648,7 +648,7 @@
 #define RACEWAY_VR_ROW3_LIFT_OFF 436
 
 /*
- `row3.life.L10` (1): set row: basic rating life (ISO 281) of the row's own load, millions of revolutions; 1e12 when unloaded.
+ `row3.life.L10` (Mrev): set row: basic rating life (ISO 281) of the row's own load, millions of revolutions; 1e12 when unloaded.
  */
 #define RACEWAY_VR_ROW3_LIFE_L10 437
 

@@ -66,7 +66,12 @@ impl Series {
 /// The column titles: `t [s]`, then `<name> [unit]`.
 pub fn header(names: &[&str], units: &[&str]) -> Vec<String> {
     std::iter::once("t [s]".to_string())
-        .chain(names.iter().zip(units).map(|(n, u)| format!("{n} [{u}]")))
+        .chain(
+            names
+                .iter()
+                .zip(units)
+                .map(|(n, u)| crate::units::label(n, u)),
+        )
         .collect()
 }
 

@@ -141,7 +141,7 @@ fn quasi_static_without_flags_solves_the_default_scene() {
         .solve(&load, w)
         .unwrap();
     assert_eq!(v["bearing"], b.name.as_str());
-    assert!(close(f(&v["speed_rpm"]), rad_s_to_rpm(w), 1e-12));
+    assert!(close(f(&v["speed [rpm]"]), rad_s_to_rpm(w), 1e-12));
     for i in 0..5 {
         assert!((f(&v["solution"]["q"][i]) - s.q[i]).abs() <= 1e-12 * s.q[i].abs() + 1e-18);
     }
@@ -277,7 +277,7 @@ fn run_writes_series_summary_and_plots_from_the_data() {
     assert_eq!(csv.lines().count(), 1 + 5001);
     let summary: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
-    let reported = summary["peak_force_n"][1].as_f64().unwrap();
+    let reported = summary["peak_force [N]"][1].as_f64().unwrap();
     assert!(
         (reported - peak_fy).abs() <= 1e-9 * peak_fy,
         "summary {reported} vs series {peak_fy}"
@@ -290,12 +290,12 @@ fn run_writes_series_summary_and_plots_from_the_data() {
         .unwrap()
         .clone();
     let (e, f) = (
-        bpfo["expected_hz"].as_f64().unwrap(),
-        bpfo["found_hz"].as_f64().unwrap(),
+        bpfo["expected [Hz]"].as_f64().unwrap(),
+        bpfo["found [Hz]"].as_f64().unwrap(),
     );
     assert!((e - f).abs() < 4.0, "BPFO expected {e} Hz, found {f} Hz");
     assert_eq!(bpfo["verdict"], "found");
-    assert!(bpfo["over_floor"].as_f64().unwrap() >= 4.0);
+    assert!(bpfo["over_floor [1]"].as_f64().unwrap() >= 4.0);
     let text = std::fs::read_to_string(dir.join("summary.txt")).unwrap();
     assert!(
         text.contains("d x D x B 25.000 x 52.000 x 15.000 mm") && text.contains("Dw 7.9"),
@@ -340,7 +340,7 @@ fn run_writes_series_summary_and_plots_from_the_data() {
     let table = &page[page.find("<table class=\"lines\">").unwrap()..];
     let table = &table[..table.find("</table>").unwrap()];
     assert_eq!(table.matches("<tr class=").count(), rows);
-    assert!(table.contains(&format!("{:.1}", bpfo["expected_hz"].as_f64().unwrap())));
+    assert!(table.contains(&format!("{:.1}", bpfo["expected [Hz]"].as_f64().unwrap())));
     let _ = std::fs::remove_dir_all(&dir);
 }
 
@@ -382,18 +382,22 @@ fn run_summarises_what_the_effects_compute() {
     let t = second_half_mean(col("torque.z"));
     assert!(p > 1.0, "power loss {p} W");
     assert!(close(
-        f(&summary["friction"]["mean_power_loss_w"]),
+        f(&summary["friction"]["mean_power_loss [W]"]),
         p,
         1e-12
     ));
-    assert!(close(f(&summary["friction"]["mean_torque_nm"]), t, 1e-12));
+    assert!(close(
+        f(&summary["friction"]["mean_torque [N.m]"]),
+        t,
+        1e-12
+    ));
     let h = col("film.min_thickness");
     let lo = h[h.len() / 2..]
         .iter()
         .copied()
         .fold(f64::INFINITY, f64::min);
     assert!(close(
-        f(&summary["film"]["smallest_min_thickness_um"]),
+        f(&summary["film"]["smallest_min_thickness [µm]"]),
         lo * 1e6,
         1e-12
     ));
@@ -470,11 +474,15 @@ fn quasi_static_reports_life_safety_and_warnings() {
         "--json",
     ]);
     let a = &v["rating"];
-    assert!(f(&a["pressure_limit_ratio"]) > 1.0);
-    assert!(close(f(&a["s0"]), f(&a["ratings"]["c0"]) / 19000.0, 1e-12));
+    assert!(f(&a["pressure_limit_ratio [1]"]) > 1.0);
     assert!(close(
-        f(&a["l10_mrev"]),
-        (f(&a["ratings"]["c"]) / 19000.0).powi(3),
+        f(&a["S0 [1]"]),
+        f(&a["ratings"]["C0 [N]"]) / 19000.0,
+        1e-12
+    ));
+    assert!(close(
+        f(&a["L10 [Mrev]"]),
+        (f(&a["ratings"]["C [N]"]) / 19000.0).powi(3),
         1e-12
     ));
     assert!(v["warnings"][0].as_str().unwrap().contains("4200 MPa"));
@@ -493,7 +501,7 @@ fn quasi_static_reports_life_safety_and_warnings() {
         "--json",
     ]);
     assert_eq!(v["warnings"].as_array().unwrap().len(), 0);
-    assert!(v["rating"]["l10_hours"].is_null(), "no hours at standstill");
+    assert!(v["rating"]["L10 [h]"].is_null(), "no hours at standstill");
     refused(
         &[
             "quasi-static",
@@ -1011,13 +1019,13 @@ fn shipped_scenes_find_the_lines_they_promise_at_their_default_duration() {
         for key in ["frequencies", "envelope_frequencies"] {
             for l in summary[key].as_array().into_iter().flatten() {
                 if l["verdict"] == "found" {
-                    let dev = (f(&l["found_hz"]) - f(&l["expected_hz"])).abs();
-                    assert!(dev <= f(&l["tolerance_hz"]), "{scene}: {l}");
+                    let dev = (f(&l["found [Hz]"]) - f(&l["expected [Hz]"])).abs();
+                    assert!(dev <= f(&l["tolerance [Hz]"]), "{scene}: {l}");
                 }
             }
         }
         if scene == "7008ce-skidding-24000" {
-            let slip = f(&summary["final_cage_slip"]);
+            let slip = f(&summary["final_cage_slip [1]"]);
             assert!((0.10..0.20).contains(&slip), "{scene}: cage slip {slip}");
         }
         swept.push(scene);
@@ -1205,7 +1213,7 @@ fn run_draws_the_spectrum_in_the_unit_and_the_pngs_at_the_dpi_asked_for() {
         .unwrap()
         .iter()
         .find(|f| f["label"] == "1xBPFO")
-        .unwrap()["expected_hz"]
+        .unwrap()["expected [Hz]"]
         .as_f64()
         .unwrap();
     let w = 5.0 / bpfo;
@@ -1259,7 +1267,7 @@ fn run_zooms_the_cage_slip_on_the_last_ball_passes() {
         .unwrap()
         .iter()
         .find(|f| f["label"] == "1xBPFO")
-        .unwrap()["expected_hz"]
+        .unwrap()["expected [Hz]"]
         .as_f64()
         .unwrap();
     let svg = std::fs::read_to_string(dir.join("cage-slip-zoom.svg")).unwrap();
@@ -1302,29 +1310,34 @@ fn summary_reports_film_parameter_kappa_temperatures_and_clearance() {
     let s: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
     let film = &s["film"];
-    let lambda = f(&film["smallest_min_thickness_um"]) / f(&film["roughness_um"]);
+    let lambda = f(&film["smallest_min_thickness [µm]"]) / f(&film["roughness [µm]"]);
     assert!(
-        close(f(&film["smallest_film_parameter"]), lambda, 1e-12),
+        close(f(&film["smallest_film_parameter [1]"]), lambda, 1e-12),
         "{film}"
     );
     assert!(
         close(
-            f(&film["iso_kappa"]),
-            f(&film["kinematic_viscosity_mm2_s"]) / f(&film["nu1_mm2_s"]),
+            f(&film["kappa [1]"]),
+            f(&film["kinematic_viscosity [mm2/s]"]) / f(&film["nu1 [mm2/s]"]),
             1e-12
         ),
         "{film}"
     );
     let th = &s["thermal"];
-    let ambient = f(&th["ambient_c"]);
-    for node in ["inner_race_c", "outer_race_c", "balls_c", "oil_c"] {
+    let ambient = f(&th["ambient [°C]"]);
+    for node in [
+        "inner_race [°C]",
+        "outer_race [°C]",
+        "elements [°C]",
+        "oil [°C]",
+    ] {
         assert!(f(&th[node]) > ambient, "{node}: {th}");
     }
-    let pd = f(&s["bearing"]["diametral_clearance_um"]);
-    let change = f(&th["clearance_change_um"]);
+    let pd = f(&s["bearing"]["diametral_clearance [µm]"]);
+    let change = f(&th["clearance_change [µm]"]);
     assert!(change < 0.0, "{th}");
     assert!(
-        close(f(&th["operating_clearance_um"]), pd + change, 1e-12),
+        close(f(&th["operating_clearance [µm]"]), pd + change, 1e-12),
         "{th}"
     );
     let text = std::fs::read_to_string(dir.join("summary.txt")).unwrap();
@@ -1332,6 +1345,6 @@ fn summary_reports_film_parameter_kappa_temperatures_and_clearance() {
         text.contains("film parameter Lambda") && text.contains("operating diametral clearance")
     );
     let page = std::fs::read_to_string(dir.join("report.html")).unwrap();
-    assert!(page.contains("Temperatures and clearance") && page.contains("iso kappa"));
+    assert!(page.contains("Temperatures and clearance") && page.contains("viscosity ratio kappa"));
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -161,7 +161,7 @@ fn resume_runs_only_unfinished_rows_and_failures_become_rows() {
     let peak = good
         .summary
         .iter()
-        .find(|(c, _)| c == "peak_force.y_N")
+        .find(|(c, _)| c == "peak_force.y [N]")
         .unwrap();
     assert!(
         peak.1.as_f64().unwrap() > 10.0,

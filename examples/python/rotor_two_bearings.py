@@ -213,12 +213,12 @@ def main(argv=None):
 
     w = whole_revolutions(t, rotor.omega)
     summary = {
-        "duration_s": float(t[-1]),
-        "step_s": args.step,
-        "rotor_weight_N": rotor.m * G,
-        "mean_vertical_bearing_force_N": float(np.mean(f[0][w, 1] + f[1][w, 1])),
-        "mean_horizontal_bearing_force_N": float(np.mean(f[0][w, 0] + f[1][w, 0])),
-        "max_journal_displacement_m": float(max(np.abs(sj[:, :2]).max() for sj in s)),
+        "duration [s]": float(t[-1]),
+        "step [s]": args.step,
+        "rotor_weight [N]": rotor.m * G,
+        "mean_vertical_bearing_force [N]": float(np.mean(f[0][w, 1] + f[1][w, 1])),
+        "mean_horizontal_bearing_force [N]": float(np.mean(f[0][w, 0] + f[1][w, 0])),
+        "max_journal_displacement [m]": float(max(np.abs(sj[:, :2]).max() for sj in s)),
         "all_finite": bool(all(np.all(np.isfinite(x)) for x in s + f)),
     }
     (out / "summary.json").write_text(json.dumps(summary, indent=2))

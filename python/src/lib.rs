@@ -771,8 +771,9 @@ fn quasi_static(
         }
         let (sol, rating) = problem.solve()?;
         problem.design_check(&sol, &rating)?;
-        let json = serde_json::to_string(&reports::quasi_static_report(&problem, &sol, &rating))
-            .expect("the report serialises");
+        let json =
+            serde_json::to_string(&reports::quasi_static_report(&problem, &sol, &rating).to_json())
+                .expect("the report serialises");
         let (names, columns) = reports::ball_columns(&sol);
         Ok((json, names, columns))
     })

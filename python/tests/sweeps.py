@@ -4,7 +4,7 @@ import numpy as np
 import pandas as pd
 
 SWEEP = "examples/sweeps/6205-speed-displacement.toml"  # 18 quasi-static points
-MEASUREMENTS = ["cpu_s", "load_average"]  # raceway::sweep::MEASUREMENTS: the machine's
+MEASUREMENTS = ["cpu [s]", "load_average"]  # raceway::sweep::MEASUREMENTS: the machine's
 
 
 def assert_same_table(got: pd.DataFrame, ref: pd.DataFrame) -> None:

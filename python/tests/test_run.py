@@ -9,7 +9,7 @@ import pandas as pd
 
 import raceway
 
-MEASUREMENTS = {"cpu_s", "load_average"}
+MEASUREMENTS = {"cpu [s]", "load_average"}
 
 
 def test_run_matches_the_command_line(cli, tmp_path):

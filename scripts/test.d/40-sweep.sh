@@ -15,7 +15,7 @@ rows = list(csv.reader(open(sys.argv[1], newline="")))
 assert len(rows) == 19, len(rows)
 assert len({len(r) for r in rows}) == 1, "ragged table"
 h = rows[0]
-y = [float(r[h.index("peak_force.y_N")]) for r in rows[1:]]
+y = [float(r[h.index("peak_force.y [N]")]) for r in rows[1:]]
 assert all(v > 0 for v in y) and not any(r[h.index("error")] for r in rows[1:])
 print("sweep example ok:", len(rows) - 1, "rows,", len(h), "columns")
 PY

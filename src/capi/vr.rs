@@ -118,7 +118,7 @@ pub const RACEWAY_VR_GUIDE_FORCE: u32 = 120;
 /// `safety.S0` (1): static safety factor C0/P0 (ISO 76) of the bearing force; 1e6 when unloaded, 0 where ISO 76 does not cover the bearing.
 pub const RACEWAY_VR_SAFETY_S0: u32 = 121;
 
-/// `life.L10` (1): basic rating life (C/P)^3 (ISO 281) of the bearing force, in millions of revolutions; 1e12 when unloaded, 0 where ISO 281 does not cover the bearing.
+/// `life.L10` (Mrev): basic rating life (C/P)^3 (ISO 281) of the bearing force, in millions of revolutions; 1e12 when unloaded, 0 where ISO 281 does not cover the bearing.
 pub const RACEWAY_VR_LIFE_L10: u32 = 122;
 
 /// `warnings.active` (integer; `raceway_get_integer`, or exact in `raceway_get_real`): number of active warnings: peak contact pressure beyond ISO 76's limit, fewer than two loaded balls.
@@ -295,7 +295,7 @@ pub const RACEWAY_VR_ROW0_CONTACT_ANGLE: u32 = 405;
 /// `row0.lift_off` (integer; `raceway_get_integer`, or exact in `raceway_get_real`): set row: 1 when no element of the row is loaded, else 0.
 pub const RACEWAY_VR_ROW0_LIFT_OFF: u32 = 406;
 
-/// `row0.life.L10` (1): set row: basic rating life (ISO 281) of the row's own load, millions of revolutions; 1e12 when unloaded.
+/// `row0.life.L10` (Mrev): set row: basic rating life (ISO 281) of the row's own load, millions of revolutions; 1e12 when unloaded.
 pub const RACEWAY_VR_ROW0_LIFE_L10: u32 = 407;
 
 /// `row1.force.x` (N): set row: force of the row on the shaft at the row, x.
@@ -319,7 +319,7 @@ pub const RACEWAY_VR_ROW1_CONTACT_ANGLE: u32 = 415;
 /// `row1.lift_off` (integer; `raceway_get_integer`, or exact in `raceway_get_real`): set row: 1 when no element of the row is loaded, else 0.
 pub const RACEWAY_VR_ROW1_LIFT_OFF: u32 = 416;
 
-/// `row1.life.L10` (1): set row: basic rating life (ISO 281) of the row's own load, millions of revolutions; 1e12 when unloaded.
+/// `row1.life.L10` (Mrev): set row: basic rating life (ISO 281) of the row's own load, millions of revolutions; 1e12 when unloaded.
 pub const RACEWAY_VR_ROW1_LIFE_L10: u32 = 417;
 
 /// `row2.force.x` (N): set row: force of the row on the shaft at the row, x.
@@ -343,7 +343,7 @@ pub const RACEWAY_VR_ROW2_CONTACT_ANGLE: u32 = 425;
 /// `row2.lift_off` (integer; `raceway_get_integer`, or exact in `raceway_get_real`): set row: 1 when no element of the row is loaded, else 0.
 pub const RACEWAY_VR_ROW2_LIFT_OFF: u32 = 426;
 
-/// `row2.life.L10` (1): set row: basic rating life (ISO 281) of the row's own load, millions of revolutions; 1e12 when unloaded.
+/// `row2.life.L10` (Mrev): set row: basic rating life (ISO 281) of the row's own load, millions of revolutions; 1e12 when unloaded.
 pub const RACEWAY_VR_ROW2_LIFE_L10: u32 = 427;
 
 /// `row3.force.x` (N): set row: force of the row on the shaft at the row, x.
@@ -367,5 +367,5 @@ pub const RACEWAY_VR_ROW3_CONTACT_ANGLE: u32 = 435;
 /// `row3.lift_off` (integer; `raceway_get_integer`, or exact in `raceway_get_real`): set row: 1 when no element of the row is loaded, else 0.
 pub const RACEWAY_VR_ROW3_LIFT_OFF: u32 = 436;
 
-/// `row3.life.L10` (1): set row: basic rating life (ISO 281) of the row's own load, millions of revolutions; 1e12 when unloaded.
+/// `row3.life.L10` (Mrev): set row: basic rating life (ISO 281) of the row's own load, millions of revolutions; 1e12 when unloaded.
 pub const RACEWAY_VR_ROW3_LIFE_L10: u32 = 437;

@@ -390,7 +390,7 @@ pub const SCALARS: &[Variable] = &[
     v(
         "life.L10",
         122,
-        "1",
+        "Mrev",
         Output,
         "basic rating life (C/P)^3 (ISO 281) of the bearing force, in millions of revolutions; 1e12 when unloaded, 0 where ISO 281 does not cover the bearing",
     ),
@@ -463,7 +463,7 @@ macro_rules! row_vars {
             v(concat!("row", $i, ".moment.y"), VR_ROW0 + 10 * $i + 4, "N.m", Output, "set row: moment of the row on the shaft about y at the row").only(Sets::SET_ROWS),
             v(concat!("row", $i, ".contact_angle"), VR_ROW0 + 10 * $i + 5, "rad", Output, "set row: load-weighted mean inner contact angle of the loaded balls (quasi-static ball equilibrium at the row's displacement; roller rows: nominal; 0 when lifted off)").only(Sets::SET_ROWS),
             count(concat!("row", $i, ".lift_off"), VR_ROW0 + 10 * $i + 6, Output, "set row: 1 when no element of the row is loaded, else 0").only(Sets::SET_ROWS),
-            v(concat!("row", $i, ".life.L10"), VR_ROW0 + 10 * $i + 7, "1", Output, "set row: basic rating life (ISO 281) of the row's own load, millions of revolutions; 1e12 when unloaded").only(Sets::SET_ROWS),
+            v(concat!("row", $i, ".life.L10"), VR_ROW0 + 10 * $i + 7, "Mrev", Output, "set row: basic rating life (ISO 281) of the row's own load, millions of revolutions; 1e12 when unloaded").only(Sets::SET_ROWS),
         ]
     };
 }
@@ -647,8 +647,31 @@ pub const LEVEL_ITEMS: [&str; 6] = [
 /// Items of the `input_rule` parameter: `scene`, then the scene's `inputs.rule` spellings.
 pub const INPUT_RULE_ITEMS: [&str; 4] = ["scene", "hold", "velocity", "derivatives"];
 
+/// Items of the `solver` parameter: `scene`, then the scene's `solver.method` spellings.
+pub const SOLVER_ITEMS: [&str; crate::solver::methods::METHOD_NAMES.len() + 1] = {
+    let names = crate::solver::methods::METHOD_NAMES;
+    let mut items = ["scene"; crate::solver::methods::METHOD_NAMES.len() + 1];
+    let mut i = 0;
+    while i < names.len() {
+        items[i + 1] = names[i];
+        i += 1;
+    }
+    items
+};
+
+/// The scene rows the named parameters stand for: their unit, range and description are
+/// the row's.
+const CLEARANCE_UM: &super::fields::FieldDecl =
+    super::fields::find(crate::geometry::BearingSpec::FIELDS, "clearance_um");
+const SPEED_RPM: &super::fields::FieldDecl =
+    super::fields::find(super::scene::InputSpec::FIELDS, "speed_rpm");
+const SOLVER_METHOD: &super::fields::FieldDecl =
+    super::fields::find(super::scene::SolverSpec::FIELDS, "method");
+
 /// The scene fields exposed as parameters. A parameter the host never sets (or sets to
-/// its start value) leaves the field as the scene (or the preset) has it.
+/// its start value) leaves the field as the scene (or the preset) has it; the named ones
+/// (`clearance_um`, `speed_rpm`, `solver`, `rtol`) override the same field of the scene
+/// (string or resource) when the host sets them (`solver` item 0, `scene`: not set).
 pub const PARAMETERS: &[Parameter] = &[
     Parameter {
         name: "scene",
@@ -712,6 +735,33 @@ pub const PARAMETERS: &[Parameter] = &[
         start: "false",
         description: "true: the bearing takes the `clearance` parameter; false: its own clearance",
     },
+    Parameter {
+        name: "clearance_um",
+        vr: 1007,
+        ty: ParamType::Real,
+        unit: CLEARANCE_UM.unit,
+        start: "0",
+        description: CLEARANCE_UM.description,
+    },
+    Parameter {
+        name: "speed_rpm",
+        vr: 1008,
+        ty: ParamType::Real,
+        unit: SPEED_RPM.unit,
+        start: "1750",
+        description: SPEED_RPM.description,
+    },
+    Parameter {
+        name: "solver",
+        vr: 1009,
+        ty: ParamType::Enumeration {
+            type_name: "Solver",
+            items: &SOLVER_ITEMS,
+        },
+        unit: "",
+        start: "0",
+        description: SOLVER_METHOD.description,
+    },
 ];
 
 /// How people read a unit: `(SI unit, display unit, factor)` with
@@ -755,7 +805,7 @@ pub const RANGES: &[(&str, f64, f64)] = &[
     ("shaft.vz", -100.0, 100.0),
     ("shaft.wx", -1e4, 1e4),
     ("shaft.wy", -1e4, 1e4),
-    ("shaft.omega", -2e4, 2e4),
+    ("shaft.omega", -OMEGA_MAX, OMEGA_MAX),
     ("load.x", -1e7, 1e7),
     ("load.y", -1e7, 1e7),
     ("load.z", -1e7, 1e7),
@@ -763,7 +813,19 @@ pub const RANGES: &[(&str, f64, f64)] = &[
     ("load.my", -1e6, 1e6),
     ("clearance", -1e-3, 1e-3),
     ("rtol", RTOL.min(), RTOL.max()),
+    (
+        "clearance_um",
+        CLEARANCE_UM.bounds.min(),
+        CLEARANCE_UM.bounds.max(),
+    ),
+    // The scene row bounds the speed by the bearing's burst speed (plausibility limits),
+    // no fixed range: the parameter takes the input `shaft.omega`'s, in rpm.
+    ("speed_rpm", -OMEGA_MAX * 30.0 / PI, OMEGA_MAX * 30.0 / PI),
 ];
+
+/// Largest shaft speed an FMU accepts, rad/s (about 191 000 rpm).
+const OMEGA_MAX: f64 = 2e4;
+const PI: f64 = std::f64::consts::PI;
 
 /// The scene's `solver.rtol` range, as its row declares it.
 const RTOL: super::fields::Bounds =

@@ -220,6 +220,11 @@ pub fn direct_dependencies(c: Causality, v: &Variable) -> Vec<&'static Variable>
 fn factor(f: &str) -> Option<[i32; 4]> {
     Some(match f {
         "1" => [0, 0, 0, 0],
+        // Millions of revolutions: a count, dimensionless.
+        "Mrev" => [0, 0, 0, 0],
+        // Scaled units of the named parameters ([`unit_factor`]).
+        "µm" => [0, 1, 0, 0],
+        "rpm" => [0, 0, -1, 1],
         "kg" => [1, 0, 0, 0],
         "m" => [0, 1, 0, 0],
         "s" => [0, 0, 1, 0],
@@ -229,6 +234,16 @@ fn factor(f: &str) -> Option<[i32; 4]> {
         "W" => [1, 2, -3, 0],
         _ => return None,
     })
+}
+
+/// The factor of a scaled unit to its SI base units (`value in SI = factor × value`):
+/// `µm` 1e-6 m, `rpm` pi/30 rad/s; 1 for the others (FMI `BaseUnit factor`).
+pub fn unit_factor(unit: &str) -> f64 {
+    match unit {
+        "µm" => 1e-6,
+        "rpm" => std::f64::consts::PI / 30.0,
+        _ => 1.0,
+    }
 }
 
 /// SI base-unit exponents of a unit spelling of the table (`.` multiplies, one `/`).
@@ -281,6 +296,10 @@ fn unit_definitions(x: &mut String, c: Causality) {
             if k != 0 {
                 let _ = write!(attrs, " {name}=\"{k}\"");
             }
+        }
+        let f = unit_factor(u);
+        if f != 1.0 {
+            let _ = write!(attrs, " factor=\"{f:e}\"");
         }
         let mut body = String::new();
         if !attrs.is_empty() {

@@ -8,6 +8,12 @@
 //!    - `level` -> `model.level`; `input_rule` -> `inputs.rule`;
 //!    - `clearance` (m), when `override_clearance` is true -> the bearing's `clearance_um`
 //!      (the preset or table kept, only the clearance overridden);
+//!    - `clearance_um` (µm) -> the bearing's `clearance_um`, as `clearance` does but
+//!      without `override_clearance` (after it, so it wins when both are set);
+//!    - `speed_rpm` -> `inputs.speed_rpm` (the start value of the input `shaft.omega`);
+//!      these two apply when set to a value other than their start (the default scene's
+//!      0 µm and 1750 rpm), so writing every start value changes nothing;
+//!    - `solver` -> `solver.method`;
 //!    - `rtol` -> `solver.rtol`; when `rtol` is not set, a tolerance the host gave in
 //!      `fmi2SetupExperiment` / `fmi3EnterInitializationMode` is used if it lies in the
 //!      range the solver accepts.
@@ -81,6 +87,14 @@ fn real(values: &ParamValues, name: &str) -> Option<f64> {
         Some(ParamValue::Real(x)) => Some(*x),
         _ => None,
     }
+}
+
+/// A named real parameter (`clearance_um`, `speed_rpm`) the host set to a value other than
+/// its start: its start (the default scene's value) changes nothing, so a host that writes
+/// every start value leaves a scene string's field as it is.
+fn named_real(values: &ParamValues, name: &str) -> Option<f64> {
+    let start = PARAMETERS.iter().position(|p| p.name == name).map(start)?;
+    real(values, name).filter(|&x| ParamValue::Real(x) != start)
 }
 
 /// The start value of parameter `i` as the model description gives it.
@@ -167,20 +181,22 @@ pub(crate) fn scene(
                  (negative: preload)"
             ));
         }
-        let um = toml::Value::Float(c * 1e6);
-        scene.bearing =
-            match std::mem::replace(&mut scene.bearing, BearingRef::Table(toml::Table::new())) {
-                BearingRef::Preset(name) => {
-                    let mut t = toml::Table::new();
-                    t.insert("preset".into(), toml::Value::String(name));
-                    t.insert("clearance_um".into(), um);
-                    BearingRef::Table(t)
-                }
-                BearingRef::Table(mut t) => {
-                    t.insert("clearance_um".into(), um);
-                    BearingRef::Table(t)
-                }
-            };
+        set_clearance_um(&mut scene, c * 1e6);
+    }
+    if let Some(um) = named_real(values, "clearance_um") {
+        in_range("clearance_um", um, "µm")?;
+        set_clearance_um(&mut scene, um);
+    }
+    if let Some(rpm) = named_real(values, "speed_rpm") {
+        in_range("speed_rpm", rpm, "rpm")?;
+        scene.inputs.speed_rpm = rpm;
+    }
+    if let Some(m) = item(values, "solver") {
+        scene.solver.method = parse_enum::<crate::component::scene::Method>(
+            "solver",
+            m,
+            &crate::solver::methods::METHOD_NAMES.join(", "),
+        )?;
     }
     if let Some(r) = real(values, "rtol") {
         if !r.is_finite() {
@@ -195,6 +211,38 @@ pub(crate) fn scene(
         }
     }
     Ok((scene, source))
+}
+
+/// The bearing's diametral clearance set to `um` µm: a preset becomes `{ preset, clearance_um }`
+/// (its table kept), a table gets the entry.
+fn set_clearance_um(scene: &mut Scene, um: f64) {
+    let um = toml::Value::Float(um);
+    scene.bearing =
+        match std::mem::replace(&mut scene.bearing, BearingRef::Table(toml::Table::new())) {
+            BearingRef::Preset(name) => {
+                let mut t = toml::Table::new();
+                t.insert("preset".into(), toml::Value::String(name));
+                t.insert("clearance_um".into(), um);
+                BearingRef::Table(t)
+            }
+            BearingRef::Table(mut t) => {
+                t.insert("clearance_um".into(), um);
+                BearingRef::Table(t)
+            }
+        };
+}
+
+/// A named parameter's value within its declared range (the scene row's), or the refusal
+/// naming the parameter and the range.
+fn in_range(name: &str, value: f64, unit: &str) -> Result<(), String> {
+    match variables::range(name) {
+        Some((lo, hi)) if !(lo..=hi).contains(&value) => Err(format!(
+            "parameter `{name}` = {value} {unit}: allowed [{}, {}] {unit}",
+            super::model_description::num(lo),
+            super::model_description::num(hi)
+        )),
+        _ => Ok(()),
+    }
 }
 
 /// The value each input of the FMU of causality `causality` holds until the host sets it,

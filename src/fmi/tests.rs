@@ -411,3 +411,99 @@ fn scene_errors_carry_line_column_and_suggestions() {
     assert!(e.contains("3:13: `inputs.initial.shaft.omega`"), "{e}");
     assert!(e.contains("did you mean `speed_rpm`?"), "{e}");
 }
+
+fn param_vr(name: &str) -> u32 {
+    PARAMETERS.iter().find(|p| p.name == name).unwrap().vr
+}
+
+/// force.y after initialisation of an instance prepared by `setup`, with `scene` (if any)
+/// as its `scene` parameter.
+fn force_y(scene: Option<&str>, setup: &dyn Fn(&mut Instance)) -> f64 {
+    let mut a = instance();
+    if let Some(s) = scene {
+        a.set_string(param_vr("scene"), Some(s.to_string()))
+            .unwrap();
+    }
+    setup(&mut a);
+    a.exit_initialization().unwrap();
+    a.get_real(102).unwrap()
+}
+
+/// The named parameters `clearance_um`, `speed_rpm` and `solver` act exactly as the same
+/// edit of the scene does, override the scene string's field, and carry the row's unit,
+/// range and description into both model descriptions; an out-of-range value is refused
+/// naming the parameter and the range, and changes nothing.
+#[test]
+fn named_parameters_act_as_the_same_scene_edit() {
+    use crate::component::scene::DEFAULT_SCENE;
+    let edit = |um: f64| {
+        DEFAULT_SCENE.replace(
+            "bearing = \"6205\"",
+            &format!("bearing = {{ preset = \"6205\", clearance_um = {um:?} }}"),
+        )
+    };
+    assert_ne!(edit(20.0), DEFAULT_SCENE);
+    let base = force_y(None, &|_| {});
+    let by_scene = force_y(Some(&edit(20.0)), &|_| {});
+    let by_param = force_y(None, &|a| {
+        a.set_real(param_vr("clearance_um"), 20.0).unwrap()
+    });
+    assert_eq!(
+        by_param.to_bits(),
+        by_scene.to_bits(),
+        "{by_param} vs {by_scene}"
+    );
+    assert!(
+        (by_param - base).abs() > 1.0,
+        "20 µm of clearance changes the force: {base} -> {by_param}"
+    );
+    // over the scene string: the parameter wins
+    let over = force_y(Some(&edit(5.0)), &|a| {
+        a.set_real(param_vr("clearance_um"), 20.0).unwrap()
+    });
+    assert_eq!(over.to_bits(), by_scene.to_bits());
+    // out of range: refused by name with the range, the value kept
+    let mut a = instance();
+    let e = a.set_real(param_vr("clearance_um"), 2000.0).unwrap_err();
+    assert!(
+        e.msg.contains("`clearance_um`") && e.msg.contains("[-1000, 1000]"),
+        "{}",
+        e.msg
+    );
+    a.exit_initialization().unwrap();
+    assert_eq!(a.get_real(102).unwrap().to_bits(), base.to_bits());
+    // speed_rpm and solver reach the same scene fields as the scene text
+    let sc = |v: &params::ParamValues| params::scene(v, None, None, M, &[]).unwrap().0;
+    let s = sc(&values(&[("speed_rpm", ParamValue::Real(3000.0))]));
+    assert_eq!(s.inputs.speed_rpm, 3000.0);
+    let k = crate::component::variables::SOLVER_ITEMS
+        .iter()
+        .position(|i| *i == "rosenbrock")
+        .unwrap() as i64;
+    let s = sc(&values(&[("solver", ParamValue::Int(k))]));
+    assert_eq!(s.solver.method, crate::component::scene::Method::Rosenbrock);
+    let kept = sc(&values(&[("solver", ParamValue::Int(0))]));
+    assert_eq!(
+        kept.solver.method,
+        crate::component::Scene::default_scene().solver.method
+    );
+    let e = params::scene(
+        &values(&[("speed_rpm", ParamValue::Real(1e9))]),
+        None,
+        None,
+        M,
+        &[],
+    )
+    .unwrap_err();
+    assert!(e.contains("`speed_rpm`") && e.contains("rpm"), "{e}");
+    // the model descriptions: the row's unit (a scaled unit), range and description
+    let row = crate::component::fields::find(crate::geometry::BearingSpec::FIELDS, "clearance_um");
+    for x in [md::fmi2(M), md::fmi3(M)] {
+        assert!(x.contains("name=\"clearance_um\""), "clearance_um declared");
+        assert!(x.contains(row.description));
+        assert!(x.contains("unit=\"µm\"") && x.contains("min=\"-1000\" max=\"1000\""));
+        assert!(x.contains("factor=\"1e-6\""), "µm is 1e-6 m");
+        assert!(x.contains("name=\"speed_rpm\"") && x.contains("unit=\"rpm\""));
+        assert!(x.contains("name=\"solver\"") && x.contains("\"rosenbrock\""));
+    }
+}

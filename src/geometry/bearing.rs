@@ -10,7 +10,7 @@ use super::element::{Element, ElementKind, Groove};
 use super::material::{effective_modulus, Material};
 use crate::error::{Error, Result};
 use crate::seam::fields::{
-    between, choice, gt, integer, name_or_table, number, table, text, Names, ANY,
+    between, choice, closed, gt, integer, name_or_table, number, table, text, Names,
 };
 use crate::units::{deg, mm, um};
 use serde::{Deserialize, Serialize};
@@ -203,7 +203,8 @@ crate::declare_fields!(BearingSpec {
     outer_curvature => number("-", between(0.5, false, 1.0, false), "outer groove curvature ratio f_o = r_o/D"),
     contact_angle_deg => number("deg", between(0.0, true, 80.0, true), "free contact angle alpha0")
         .note("give this or clearance_um (angular-contact)"),
-    clearance_um => number("µm", ANY, "diametral clearance Pd (negative: preload)")
+    clearance_um => number("µm", closed(-1000.0, 1000.0), "diametral clearance Pd (negative: preload)")
+        .why("1 mm either way is beyond any catalogue bearing's clearance or preload; the bearing's own range (the note) is checked as well")
         .note("deep-groove (-0.1 D, 2A) and no deeper than the preload that takes every ball to the plausibility limit at zero displacement (computed for the bearing: `raceway scene --check`); angular-contact [0, 2A), A = (f_i + f_o - 1) D"),
     bore_mm => number("mm", gt(0.0), "bore").note("< dm - D; absent: dm - 1.6 D"),
     outer_diameter_mm => number("mm", gt(0.0), "outside diameter").note("> dm + D; absent: dm + 1.6 D"),

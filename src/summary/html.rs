@@ -93,55 +93,38 @@ fn cell(v: &Value) -> String {
     }
 }
 
-/// What a summary key means, where its name alone does not say (the ratings' fields).
+/// What a summary key means, where its name alone does not say (the ratings' fields), with
+/// its unit from the label (`P [N]` → `equivalent dynamic load P (N)`; docs/columns.md).
 fn key_label(k: &str) -> String {
     let known = [
-        ("p", "equivalent dynamic load P (N)"),
-        ("p0", "equivalent static load P0 (N)"),
-        ("c", "basic dynamic load rating C (N)"),
-        ("c0", "basic static load rating C0 (N)"),
-        ("cu", "fatigue load limit Cu (N)"),
-        ("s0", "static safety factor S0"),
-        ("a_iso", "life modification factor a_ISO"),
-        ("radial_load", "radial load (N)"),
-        ("axial_load", "axial load (N)"),
-        ("peak_pressure", "peak Hertz pressure (Pa)"),
-        ("pressure_limit", "pressure limit (Pa)"),
-        ("l10_mrev", "L10 (million revolutions)"),
-        ("l10r_mrev", "L10r (million revolutions)"),
-        (
-            "raceway_lives_mrev",
-            "inner, outer raceway lives (million revolutions)",
-        ),
-        ("xye", "X, Y, e"),
+        ("P", "equivalent dynamic load P"),
+        ("P0", "equivalent static load P0"),
+        ("C", "basic dynamic load rating C"),
+        ("C0", "basic static load rating C0"),
+        ("Cu", "fatigue load limit Cu"),
+        ("S0", "static safety factor S0"),
+        ("a_ISO", "life modification factor a_ISO"),
+        ("peak_pressure", "peak Hertz pressure"),
+        ("L10", "basic rating life L10"),
+        ("L10r", "reference rating life L10r"),
+        ("L10mr", "modified reference rating life L10mr"),
+        ("life_inner", "inner raceway life"),
+        ("life_outer", "outer raceway life"),
+        ("kappa", "viscosity ratio kappa"),
     ];
-    known
+    let (name, unit) = crate::units::split_label(k);
+    let text = known
         .iter()
-        .find(|(n, _)| *n == k)
+        .find(|(n, _)| *n == name)
         .map(|(_, l)| l.to_string())
-        .unwrap_or_else(|| {
-            // The unit suffixes of the summary's keys, written out.
-            let units = [
-                ("_n", "N"),
-                ("_pa", "Pa"),
-                ("_mm", "mm"),
-                ("_um", "µm"),
-                ("_mm2_s", "mm²/s"),
-                ("_s", "s"),
-                ("_w", "W"),
-                ("_nm", "N m"),
-                ("_c", "°C"),
-                ("_rpm", "rpm"),
-                ("_hz", "Hz"),
-            ];
-            match units
-                .iter()
-                .find_map(|(s, u)| k.strip_suffix(s).map(|b| (b, u)))
-            {
-                Some((b, u)) => format!("{} ({u})", b.replace('_', " ")),
-                None => k.replace('_', " "),
-            }
-        })
+        .unwrap_or_else(|| name.replace('_', " "));
+    match unit {
+        Some("1") | None => text,
+        Some(u) => format!(
+            "{text} ({})",
+            u.replace("mm2/s", "mm²/s").replace("N.m", "N m")
+        ),
+    }
 }
 
 /// Key–value rows.
@@ -163,13 +146,18 @@ fn kv_table<'a>(rows: impl Iterator<Item = (&'a String, &'a Value)>) -> String {
 const SECTIONS: [(&str, &[&str]); 10] = [
     (
         "Run",
-        &["scene", "level", "duration_s", "cpu_s", "load_average"],
+        &["scene", "level", "duration [s]", "cpu [s]", "load_average"],
     ),
     ("Bearing", &["bearing"]),
     ("Operating point", &["operating_point"]),
     (
         "Loads and pressures",
-        &["peak_force_n", "peak_contact_load_n", "peak_pressure_pa"],
+        &[
+            "peak_force [N]",
+            "peak_contact_load [N]",
+            "peak_pressure [Pa]",
+            "start_*",
+        ],
     ),
     ("Lubricant film", &["film"]),
     ("Friction and power", &["friction"]),
@@ -179,8 +167,8 @@ const SECTIONS: [(&str, &[&str]); 10] = [
         &[
             "final_cage_slip",
             "cage_*",
-            "peak_pocket_force_n",
-            "peak_guide_force_n",
+            "peak_pocket_force [N]",
+            "peak_guide_force [N]",
         ],
     ),
     ("Ratings, life and safety", &["rating"]),

@@ -6,6 +6,7 @@
 //! full level), the characteristic frequencies found in the spectrum of the second half of the
 //! run (and in the envelope spectrum for defect scenes), ISO ratings and life.
 
+pub mod columns;
 pub mod friction;
 pub mod html;
 pub mod reports;
@@ -32,6 +33,7 @@ pub fn summary_of(ctx: &Ctx) -> Summary {
     frequency_lines(ctx, &mut sm);
     rating_lines(ctx, &mut sm);
     rollers::ring_lamina_life_lines(ctx, &mut sm);
+    sm.json = columns::relabel(columns::Doc::Run, std::mem::take(&mut sm.json));
     sm
 }
 

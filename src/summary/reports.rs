@@ -381,7 +381,21 @@ pub struct QsReport<'a> {
     pub calculator_error: Option<String>,
 }
 
-/// `raceway quasi-static --json`'s document.
+impl QsReport<'_> {
+    /// The document as JSON, its keys labelled from [`super::columns`] (docs/columns.md):
+    /// what `raceway quasi-static --json` prints and Python's `quasi_static` returns.
+    pub fn to_json(&self) -> serde_json::Value {
+        match serde_json::to_value(self) {
+            Ok(serde_json::Value::Object(m)) => serde_json::Value::Object(super::columns::relabel(
+                super::columns::Doc::QuasiStatic,
+                m,
+            )),
+            other => other.unwrap_or_default(),
+        }
+    }
+}
+
+/// `raceway quasi-static --json`'s document (write it with [`QsReport::to_json`]).
 pub fn quasi_static_report<'a>(
     p: &'a QsProblem,
     sol: &'a Solution,
@@ -427,14 +441,14 @@ pub fn ball_columns(sol: &Solution) -> (Vec<String>, Vec<Vec<f64>>) {
         ("omega_m", "rad/s", |b| b.omega_m),
         ("omega_r", "rad/s", |b| b.omega_r),
         ("beta", "rad", |b| b.beta),
-        ("spin_roll_i", "-", |b| b.spin_roll_i),
-        ("spin_roll_o", "-", |b| b.spin_roll_o),
+        ("spin_roll_i", "1", |b| b.spin_roll_i),
+        ("spin_roll_o", "1", |b| b.spin_roll_o),
     ];
     COLUMNS
         .iter()
         .map(|(n, u, get)| {
             (
-                format!("{n} [{u}]"),
+                crate::units::label(n, u),
                 sol.balls.iter().map(get).collect::<Vec<f64>>(),
             )
         })

@@ -5,33 +5,18 @@ use super::*;
 
 /// The summary columns that are measurements of the machine, not results: they differ from
 /// run to run; every other column is the same bit for bit whatever the threads or shards.
-pub const MEASUREMENTS: [&str; 2] = ["cpu_s", "load_average"];
+pub const MEASUREMENTS: [&str; 2] = ["cpu [s]", "load_average"];
 
-/// A summary key's unit suffix (`peak_force_n` → `peak_force`, `N`).
-pub(super) fn split_unit(key: &str) -> (&str, Option<&'static str>) {
-    const UNITS: [(&str, &str); 8] = [
-        ("_n", "N"),
-        ("_pa", "Pa"),
-        ("_hz", "Hz"),
-        ("_s", "s"),
-        ("_m", "m"),
-        ("_nm", "Nm"),
-        ("_rpm", "rpm"),
-        ("_h", "h"),
-    ];
-    for (suffix, unit) in UNITS {
-        if let Some(stem) = key.strip_suffix(suffix) {
-            if !stem.is_empty() {
-                return (stem, Some(unit));
-            }
-        }
-    }
-    (key, None)
+/// A summary key's name and unit (`peak_force [N]` → `peak_force`, `N`;
+/// [`crate::units::split_label`]).
+pub(super) fn split_unit(key: &str) -> (&str, Option<&str>) {
+    crate::units::split_label(key)
 }
 
 /// Flatten a summary into columns: nested keys joined by dots, the unit of a key moved to
-/// the end (`peak_force_n: [x, y, z]` → `peak_force.x_N`, ...), arrays of labelled tables
-/// by their label (`frequencies.BPFO.expected_Hz`), arrays of strings joined by `; `.
+/// the end (`peak_force [N]: [x, y, z]` → `peak_force.x [N]`, ...), arrays of labelled
+/// tables by their label (`frequencies.BPFO.expected [Hz]`), arrays of strings joined by
+/// `; ` (docs/columns.md).
 pub fn flatten(prefix: &str, v: &Json, out: &mut Vec<(String, Json)>) {
     flatten_unit(prefix, None, v, out)
 }
@@ -79,10 +64,7 @@ pub(super) fn flatten_unit(
             }
         }
         leaf => {
-            let name = match unit {
-                Some(u) => format!("{prefix}_{u}"),
-                None => prefix.to_string(),
-            };
+            let name = crate::units::label(prefix, unit.unwrap_or(""));
             out.push((name, leaf.clone()));
         }
     }

@@ -14,18 +14,20 @@ fn flattened_summary_carries_units_in_names() {
     let mut out = Vec::new();
     flatten(
         "",
-        &serde_json::json!({"peak_force_n": [1.0, 2.0, 3.0], "level": "ring",
-            "frequencies": [{"label": "BPFO", "expected_hz": 10.0, "found_hz": null}],
+        &serde_json::json!({"peak_force [N]": [1.0, 2.0, 3.0], "level": "ring",
+            "frequencies": [{"label": "BPFO", "expected [Hz]": 10.0, "found [Hz]": null}],
+            "rating": {"ratings": {"C [N]": 1.0}},
             "warnings": ["a", "b"]}),
         &mut out,
     );
     let names: Vec<&str> = out.iter().map(|(n, _)| n.as_str()).collect();
     for want in [
-        "peak_force.x_N",
-        "peak_force.z_N",
+        "peak_force.x [N]",
+        "peak_force.z [N]",
         "level",
-        "frequencies.BPFO.expected_Hz",
-        "frequencies.BPFO.found_Hz",
+        "frequencies.BPFO.expected [Hz]",
+        "frequencies.BPFO.found [Hz]",
+        "rating.ratings.C [N]",
         "warnings",
     ] {
         assert!(names.contains(&want), "{want} in {names:?}");

@@ -40,9 +40,9 @@ def test_rotor_on_two_bearing_fmus(tmp_path):
     assert s["all_finite"]
     # momentum balance over whole revolutions: the bearings carry the rotor's weight (the
     # unbalance force averages out), and nothing pushes sideways on average
-    w = s["rotor_weight_N"]
-    assert abs(s["mean_vertical_bearing_force_N"] - w) < 0.02 * w
-    assert abs(s["mean_horizontal_bearing_force_N"]) < 0.02 * w
+    w = s["rotor_weight [N]"]
+    assert abs(s["mean_vertical_bearing_force [N]"] - w) < 0.02 * w
+    assert abs(s["mean_horizontal_bearing_force [N]"]) < 0.02 * w
     assert 0.0 < s["max_journal_displacement_m"] < 1e-3
 
 

@@ -85,9 +85,9 @@ def envelope_spectrum(x: np.ndarray, fs: float, band: tuple[float, float]) -> tu
 
 def analyse(series, summary) -> dict:
     """The case's expected lines (from the library) and its envelope spectrum."""
-    lines = {f["label"]: f["expected_hz"] for f in summary["frequencies"]}
+    lines = {f["label"]: f["expected [Hz]"] for f in summary["frequencies"]}
     # The library's own envelope analysis of the same signal (raceway run's summary).
-    found = {f["label"]: f["found_hz"] for f in summary.get("envelope_frequencies", [])}
+    found = {f["label"]: f["found [Hz]"] for f in summary.get("envelope_frequencies", [])}
     y = series["shaft.y [m]"].to_numpy()
     y = y[len(y) // 2 :]
     fs = 1.0 / STEP_S
@@ -136,7 +136,7 @@ def main() -> None:
     cases += [("none", n, 0.0) for n in speeds]
     with ThreadPoolExecutor(max_workers=2) as pool:
         runs = list(pool.map(lambda c: raceway.run(scene(c[0], c[2], c[1], duration)), cases))
-    cpu = sum(s["cpu_s"] for _, s in runs)
+    cpu = sum(s["cpu [s]"] for _, s in runs)
     print(f"{len(cases)} cases of {duration:g} s: the runs' thread CPU time {cpu:.2f} s (load average {load_average()})")
 
     series_dir = args.out / "series"
@@ -144,7 +144,7 @@ def main() -> None:
     results = {}
     with open(args.out / "labels.csv", "w", newline="") as f:
         out = csv.writer(f)
-        out.writerow(["id", "location", "width_mm", "depth_um", "speed_rpm", "load_N", "shaft_Hz", "FTF_Hz", "BSF_Hz", "BPFO_Hz", "BPFI_Hz", "2BSF_Hz", "defect_line", "defect_Hz", "file"])
+        out.writerow(["id", "location", "width [mm]", "depth [µm]", "speed [rpm]", "load [N]", "shaft [Hz]", "FTF [Hz]", "BSF [Hz]", "BPFO [Hz]", "BPFI [Hz]", "2BSF [Hz]", "defect_line", "defect [Hz]", "file"])
         for i, (case, (series, summary)) in enumerate(zip(cases, runs)):
             loc, rpm, width = case
             r = analyse(series, summary)

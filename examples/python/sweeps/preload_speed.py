@@ -75,7 +75,7 @@ def main() -> None:
     grids = {k: np.array([v[i] for v in values]).reshape(shape) for i, k in enumerate(("p", "kyy", "kzz", "all"))}
     with open(args.out / "grid.csv", "w", newline="") as f:
         out = csv.writer(f)
-        out.writerow(["preload_N", "speed_rpm", "peak_pressure_Pa", "Kyy_N/m", "Kzz_N/m", "all_balls_loaded"])
+        out.writerow(["preload [N]", "speed [rpm]", "peak_pressure [Pa]", "Kyy [N/m]", "Kzz [N/m]", "all_balls_loaded"])
         for (w, n), v in zip(grid, values):
             out.writerow([w, n, *v[:3], bool(v[3])])
     plot(figure_path(args, "preload-speed"), preloads, speeds, grids)

@@ -50,7 +50,7 @@ def damping(load_n: float, rpm: float) -> np.ndarray:
         "run": {"duration_s": duration, "step_s": duration / 400},
     }
     series, summary = raceway.run(scene, kc=True)
-    bpfo = next(f["expected_hz"] for f in summary["frequencies"] if f["label"] == "1xBPFO")
+    bpfo = next(f["expected [Hz]"] for f in summary["frequencies"] if f["label"] == "1xBPFO")
     t = series["t [s]"].to_numpy()
     if bpfo > 0:
         passes = math.floor((t[-1] - t[0]) * bpfo)
@@ -153,7 +153,7 @@ def main() -> None:
     print(clock.report(f"K and C at {len(loads) * len(speeds_rpm)} points"))
     with open(args.out / "kc.csv", "w", newline="") as f:
         out = csv.writer(f)
-        out.writerow(["load_N", "speed_rpm", "Kxx_N/m", "Kxy_N/m", "Kyx_N/m", "Kyy_N/m", "Cxx_N.s/m", "Cxy_N.s/m", "Cyx_N.s/m", "Cyy_N.s/m"])
+        out.writerow(["load [N]", "speed [rpm]", "Kxx [N/m]", "Kxy [N/m]", "Kyx [N/m]", "Kyy [N/m]", "Cxx [N.s/m]", "Cxy [N.s/m]", "Cyx [N.s/m]", "Cyy [N.s/m]"])
         for w, d in table.items():
             for n, k, c in zip(speeds_rpm, d["K"], d["C"]):
                 out.writerow([w, n, *k.ravel(), *c.ravel()])

@@ -88,8 +88,9 @@ def run(scene: Any = None, duration: Optional[float] = None, *, kc: bool = False
         level and effects set, each with its SI unit; no ``wear.max_depth`` without wear,
         no cage or guide columns on levels that do not integrate the cage).
     summary : dict
-        What ``raceway run`` writes to ``summary.json``: peak loads and pressures,
-        characteristic frequencies found, ISO ratings, ``cpu_s`` (thread CPU time),
+        What ``raceway run`` writes to ``summary.json``, keys labelled ``name [unit]``
+        (``"peak_pressure [Pa]"``, ``summary["rating"]["L10 [Mrev]"]``; every key in
+        docs/columns.md): peak loads and pressures, characteristic frequencies found, ISO ratings, ``cpu [s]`` (thread CPU time),
         ``load_average``; ``scene`` is the file's stem (``"default"`` for the default).
 
     Raises

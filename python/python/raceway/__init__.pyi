@@ -143,7 +143,7 @@ def run(
     columns of ``series.csv`` (``"t [s]"``, ``"force.y [N]"``, ``"shaft.y [m]"``, ... every
     variable with its SI unit in the name); ``summary`` is the dict ``raceway run`` writes to
     ``summary.json`` (peak loads and pressures, characteristic frequencies found, ISO
-    ratings, ``cpu_s`` thread CPU time, ``load_average``; ``scene`` is the file's stem,
+    ratings, ``cpu [s]`` thread CPU time, ``load_average``; ``scene`` is the file's stem,
     ``"default"`` for the default scene, else ``"scene"``).
     """
 

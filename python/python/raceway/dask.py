@@ -48,7 +48,7 @@ def sweep(
     -------
     pandas.DataFrame
         The DataFrame ``pd.read_csv`` gives for the serial ``raceway sweep``'s
-        ``sweep.csv``, bit for bit in every column but ``cpu_s`` and ``load_average``.
+        ``sweep.csv``, bit for bit in every column but ``cpu [s]`` and ``load_average``.
 
     Raises
     ------

@@ -23,7 +23,7 @@ def sweep(
 ) -> pd.DataFrame:
     """Map the sweep's points over ``client`` (a ``distributed.Client``) and return the
     table: the same DataFrame as ``pd.read_csv`` of the serial ``raceway sweep``'s
-    ``sweep.csv``, bit for bit in every column but the machine measurements ``cpu_s`` and
+    ``sweep.csv``, bit for bit in every column but the machine measurements ``cpu [s]`` and
     ``load_average``.
 
     ``out``: also write the rows into this folder as ``raceway sweep --out`` does

@@ -74,7 +74,7 @@ pub fn quasi_static_json(
     sol: &Solution,
     rating: &std::result::Result<Assessment, String>,
 ) -> Result<String> {
-    json(&reports::quasi_static_report(p, sol, rating))
+    json(&reports::quasi_static_report(p, sol, rating).to_json())
 }
 
 /// `raceway bearings NAME`: one bearing, its data, ratings and provenance.

@@ -1,0 +1,621 @@
+//! The one table of the labels a person reads in a run's summary.json (and so in
+//! `raceway.run`'s summary dict and every summary column of a sweep) and in
+//! `raceway quasi-static --json`: for every key the code builds, the label it leaves as,
+//! `name [unit]` ([`crate::units::label`]), and what it means. The sections build their
+//! JSON with their own keys; [`relabel`] renames them here, in one place, so a unit is
+//! written once. docs/columns.md is generated from this table and the variable table
+//! (`RACEWAY_BLESS=1 cargo test --test columns`), and that test reads every key of a run,
+//! a sweep and a quasi-static solve against it.
+
+use serde_json::{Map, Value};
+
+/// One key: where the code puts it, the label it leaves as, its unit and meaning.
+#[derive(Debug, Clone, Copy)]
+pub struct Key {
+    /// The key's path in the JSON the code builds: object keys joined by `.`, `[]` for the
+    /// elements of an array of tables (`frequencies[].expected_hz`).
+    pub from: &'static str,
+    /// The name it leaves as (without the unit). Names joined by `|` split an array value
+    /// into that many keys (`X|Y|e`).
+    pub name: &'static str,
+    /// Unit symbol (`1`: dimensionless; empty: text, flags, structure); one per name when
+    /// the value is split (joined by `|`), or one for all.
+    pub unit: &'static str,
+    /// What it is.
+    pub what: &'static str,
+}
+
+const fn k(from: &'static str, name: &'static str, unit: &'static str, what: &'static str) -> Key {
+    Key {
+        from,
+        name,
+        unit,
+        what,
+    }
+}
+
+/// The ISO ratings and life (`crate::ratings::Assessment`), the same under `rating` in a
+/// run's summary and in `raceway quasi-static --json`.
+const RATING: &[Key] = &[
+    k("rating", "rating", "", "ISO 281/76 ratings, life and static safety (a run: at the mean load of its second half; null when not available)"),
+    k("rating.ratings", "ratings", "", "the bearing's load ratings"),
+    k("rating.ratings.gamma", "gamma", "1", "Dw cos(alpha) / Dpw"),
+    k("rating.ratings.fc", "fc", "1", "ISO 281 Table 2 factor fc after the conformity reduction (tabulated for C in N with Dw in mm)"),
+    k("rating.ratings.fc_reduction", "fc_reduction", "1", "conformity reduction applied to fc (1: none)"),
+    k("rating.ratings.f0", "f0", "1", "ISO 76 Table 2 factor f0"),
+    k("rating.ratings.c", "C", "N", "basic dynamic radial load rating (ISO 281)"),
+    k("rating.ratings.c0", "C0", "N", "basic static radial load rating (ISO 76)"),
+    k("rating.ratings.cu", "Cu", "N", "fatigue load limit (ISO 281 Annex B approximation)"),
+    k("rating.radial_load", "radial_load", "N", "radial load Fr on the bearing"),
+    k("rating.axial_load", "axial_load", "N", "axial load Fa on the bearing"),
+    k("rating.p", "P", "N", "dynamic equivalent load (ISO 281)"),
+    k("rating.xye", "X|Y|e", "1", "ISO 281 radial factor X, axial factor Y and limit e used for P"),
+    k("rating.p0", "P0", "N", "static equivalent load (ISO 76)"),
+    k("rating.l10_mrev", "L10", "Mrev", "basic rating life (C/P)^3 (null at zero load)"),
+    k("rating.l10_hours", "L10", "h", "basic rating life in hours at the speed (null at standstill or zero load)"),
+    k("rating.l10r_mrev", "L10r", "Mrev", "reference rating life from the per-element loads"),
+    k("rating.l10r_hours", "L10r", "h", "reference rating life in hours at the speed"),
+    k("rating.raceway_lives_mrev", "life_inner|life_outer", "Mrev", "reference rating lives of the inner and the outer raceway"),
+    k("rating.a_iso", "a_ISO", "1", "life modification factor a_ISO from kappa and eC (null when either is not given or kappa < 0.1)"),
+    k("rating.l10mr_hours", "L10mr", "h", "modified reference rating life a_ISO L10r in hours"),
+    k("rating.s0", "S0", "1", "static safety factor C0/P0 (null at zero load)"),
+    k("rating.peak_pressure", "peak_pressure", "Pa", "peak contact pressure over every element and race"),
+    k("rating.pressure_limit", "pressure_limit", "Pa", "static pressure limit used (ISO 76)"),
+    k("rating.pressure_limit_ratio", "pressure_limit_ratio", "1", "peak_pressure / pressure_limit"),
+    k("rating.loaded_balls", "loaded_balls", "1", "elements with a positive inner contact load"),
+    k("rating.warnings", "warnings", "", "the rating's warnings (structured)"),
+    k("warnings", "warnings", "", "the rating's warnings as text"),
+];
+
+/// The lines of a spectrum (`frequencies[]`, `envelope_frequencies[]`).
+macro_rules! lines {
+    ($p:literal, $what:literal) => {
+        [
+            k($p, $p, "", $what),
+            k(
+                concat!($p, "[].label"),
+                "label",
+                "",
+                "the line (fs, FTF, BSF, kxBPFO, kxBPFI, kx2BSF)",
+            ),
+            k(
+                concat!($p, "[].expected_hz"),
+                "expected",
+                "Hz",
+                "the line's frequency from the kinematics",
+            ),
+            k(
+                concat!($p, "[].found_hz"),
+                "found",
+                "Hz",
+                "the peak found on the line (null: not found)",
+            ),
+            k(
+                concat!($p, "[].tolerance_hz"),
+                "tolerance",
+                "Hz",
+                "how far from the line a peak counts as on it",
+            ),
+            k(
+                concat!($p, "[].nearest_peak_hz"),
+                "nearest_peak",
+                "Hz",
+                "the nearest peak of the spectrum",
+            ),
+            k(
+                concat!($p, "[].deviation_hz"),
+                "deviation",
+                "Hz",
+                "nearest peak minus the line",
+            ),
+            k(
+                concat!($p, "[].over_floor"),
+                "over_floor",
+                "1",
+                "the peak's amplitude over the spectrum's median floor",
+            ),
+            k(
+                concat!($p, "[].verdict"),
+                "verdict",
+                "",
+                "found, below floor, off line, not resolved, above nyquist",
+            ),
+            k(
+                concat!($p, "[].needs_duration_s"),
+                "needs_duration",
+                "s",
+                "the run duration that would resolve the line (not resolved only)",
+            ),
+        ]
+    };
+}
+
+const FREQUENCIES: [Key; 10] = lines!(
+    "frequencies",
+    "characteristic frequencies in the spectrum of the second half of the run"
+);
+const ENVELOPE: [Key; 10] = lines!(
+    "envelope_frequencies",
+    "characteristic frequencies in the envelope spectrum (defect scenes)"
+);
+
+/// The run summary's own keys (`crate::summary` sections).
+const RUN: &[Key] = &[
+    k("scene", "scene", "", "scene name (file stem)"),
+    k("level", "level", "", "model level"),
+    k("duration_s", "duration", "s", "simulated time"),
+    k(
+        "cpu_s",
+        "cpu",
+        "s",
+        "thread CPU time of the run (a measurement of the machine)",
+    ),
+    k(
+        "load_average",
+        "load_average",
+        "",
+        "the machine's load average during the run (a measurement of the machine)",
+    ),
+    k("bearing", "bearing", "", "the bearing"),
+    k("bearing.name", "name", "", "designation"),
+    k("bearing.bore_mm", "bore", "mm", "bore diameter d"),
+    k(
+        "bearing.outside_diameter_mm",
+        "outside_diameter",
+        "mm",
+        "outside diameter D",
+    ),
+    k("bearing.width_mm", "width", "mm", "width B"),
+    k("bearing.z", "Z", "1", "number of rolling elements"),
+    k(
+        "bearing.ball_diameter_mm",
+        "element_diameter",
+        "mm",
+        "rolling-element diameter Dw",
+    ),
+    k(
+        "bearing.pitch_diameter_mm",
+        "pitch_diameter",
+        "mm",
+        "pitch diameter dm",
+    ),
+    k(
+        "bearing.diametral_clearance_um",
+        "diametral_clearance",
+        "µm",
+        "diametral clearance Pd",
+    ),
+    k(
+        "peak_force_n",
+        "peak_force",
+        "N",
+        "largest |force.x|, |force.y|, |force.z| over the run (an array x, y, z)",
+    ),
+    k(
+        "peak_contact_load_n",
+        "peak_contact_load",
+        "N",
+        "largest contact.max_load over the run",
+    ),
+    k(
+        "peak_pressure_pa",
+        "peak_pressure",
+        "Pa",
+        "largest contact.max_pressure over the run",
+    ),
+    k(
+        "start_held",
+        "start_held",
+        "",
+        "model.start_hold: which of x, y, z, rx, ry the static start held",
+    ),
+    k(
+        "start_reaction",
+        "start_reaction.x|start_reaction.y|start_reaction.z|start_reaction.rx|start_reaction.ry",
+        "N|N|N|N.m|N.m",
+        "the support's reaction on each held coordinate at the static start",
+    ),
+    k(
+        "friction",
+        "friction",
+        "",
+        "friction torque and power loss (thermal effect), second half of the run",
+    ),
+    k(
+        "friction.mean_torque_nm",
+        "mean_torque",
+        "N.m",
+        "mean friction torque on the shaft",
+    ),
+    k(
+        "friction.final_torque_nm",
+        "final_torque",
+        "N.m",
+        "friction torque at the end",
+    ),
+    k(
+        "friction.mean_power_loss_w",
+        "mean_power_loss",
+        "W",
+        "mean power loss",
+    ),
+    k(
+        "friction.final_power_loss_w",
+        "final_power_loss",
+        "W",
+        "power loss at the end",
+    ),
+    k("film", "film", "", "EHL film, second half of the run"),
+    k(
+        "film.smallest_min_thickness_um",
+        "smallest_min_thickness",
+        "µm",
+        "smallest minimum film thickness over the contacts",
+    ),
+    k(
+        "film.mean_min_thickness_um",
+        "mean_min_thickness",
+        "µm",
+        "mean minimum film thickness",
+    ),
+    k(
+        "film.final_min_thickness_um",
+        "final_min_thickness",
+        "µm",
+        "minimum film thickness at the end",
+    ),
+    k(
+        "film.roughness_um",
+        "roughness",
+        "µm",
+        "composite rms roughness sigma of element and race",
+    ),
+    k(
+        "film.smallest_film_parameter",
+        "smallest_film_parameter",
+        "1",
+        "Lambda = h_min / sigma at the smallest film",
+    ),
+    k(
+        "film.mean_film_parameter",
+        "mean_film_parameter",
+        "1",
+        "Lambda at the mean film",
+    ),
+    k(
+        "film.kinematic_viscosity_mm2_s",
+        "kinematic_viscosity",
+        "mm2/s",
+        "kinematic viscosity nu at the inlet viscosity",
+    ),
+    k(
+        "film.nu1_mm2_s",
+        "nu1",
+        "mm2/s",
+        "ISO 281 rated viscosity nu1 at the final speed",
+    ),
+    k(
+        "film.iso_kappa",
+        "kappa",
+        "1",
+        "ISO 281 viscosity ratio nu / nu1",
+    ),
+    k(
+        "thermal",
+        "thermal",
+        "",
+        "thermal effect at the end of the run (ring level)",
+    ),
+    k(
+        "thermal.inner_race_c",
+        "inner_race",
+        "°C",
+        "inner race temperature",
+    ),
+    k(
+        "thermal.outer_race_c",
+        "outer_race",
+        "°C",
+        "outer race temperature",
+    ),
+    k(
+        "thermal.balls_c",
+        "elements",
+        "°C",
+        "rolling-element temperature",
+    ),
+    k("thermal.oil_c", "oil", "°C", "oil temperature"),
+    k("thermal.ambient_c", "ambient", "°C", "ambient temperature"),
+    k(
+        "thermal.clearance_change_um",
+        "clearance_change",
+        "µm",
+        "thermal change of the diametral clearance",
+    ),
+    k(
+        "thermal.operating_clearance_um",
+        "operating_clearance",
+        "µm",
+        "operating diametral clearance",
+    ),
+    k(
+        "final_cage_slip",
+        "final_cage_slip",
+        "1",
+        "cage slip at the end (null on levels that run the cage at its kinematic speed)",
+    ),
+    k(
+        "cage_whirl_sigma",
+        "cage_whirl_sigma",
+        "1",
+        "whirl index of the cage speed, second half (full level)",
+    ),
+    k(
+        "cage_orbit_max",
+        "cage_orbit_max",
+        "1",
+        "largest cage orbit in guide clearances (full level)",
+    ),
+    k(
+        "peak_pocket_force_n",
+        "peak_pocket_force",
+        "N",
+        "largest pocket force (full level)",
+    ),
+    k(
+        "peak_guide_force_n",
+        "peak_guide_force",
+        "N",
+        "largest guide-land force (full level)",
+    ),
+];
+
+/// `raceway quasi-static --json`'s own top-level keys. `solution` and `calculator` keep
+/// their field names for now (docs/columns.md says so).
+const QUASI_STATIC: &[Key] = &[
+    k("bearing", "bearing", "", "bearing designation"),
+    k("speed_rpm", "speed", "rpm", "shaft speed"),
+    k(
+        "race_control",
+        "race_control",
+        "",
+        "race control assumption",
+    ),
+    k(
+        "rating_error",
+        "rating_error",
+        "",
+        "why the ratings are not available",
+    ),
+    k(
+        "calculator_error",
+        "calculator_error",
+        "",
+        "why the design check is not available",
+    ),
+];
+
+/// Which document a key belongs to.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Doc {
+    /// summary.json of `raceway run` (and `raceway.run`'s dict, a sweep's summary columns).
+    Run,
+    /// `raceway quasi-static --json` (and Python's `quasi_static`).
+    QuasiStatic,
+}
+
+/// Every key of a document, in order.
+pub fn keys(doc: Doc) -> Vec<Key> {
+    let own: &[Key] = match doc {
+        Doc::Run => RUN,
+        Doc::QuasiStatic => QUASI_STATIC,
+    };
+    let mut v = own.to_vec();
+    v.extend_from_slice(RATING);
+    if doc == Doc::Run {
+        v.extend_from_slice(&FREQUENCIES);
+        v.extend_from_slice(&ENVELOPE);
+    }
+    v
+}
+
+/// The labels a key leaves as, with their units: one, or one per part of a split value.
+pub fn labels(key: &Key) -> Vec<(String, &'static str)> {
+    let names: Vec<&str> = key.name.split('|').collect();
+    let units: Vec<&str> = key.unit.split('|').collect();
+    names
+        .iter()
+        .enumerate()
+        .map(|(i, n)| {
+            let u = if units.len() == names.len() {
+                units[i]
+            } else {
+                units[0]
+            };
+            (crate::units::label(n, u), u)
+        })
+        .collect()
+}
+
+/// Rename the keys of a document from the table (a key not in the table stays as the code
+/// built it; the test `tests/columns.rs` finds it).
+pub fn relabel(doc: Doc, json: Map<String, Value>) -> Map<String, Value> {
+    let table = keys(doc);
+    walk(&table, "", json)
+}
+
+fn walk(table: &[Key], path: &str, m: Map<String, Value>) -> Map<String, Value> {
+    let mut out = Map::new();
+    for (key, v) in m {
+        let p = if path.is_empty() {
+            key.clone()
+        } else {
+            format!("{path}.{key}")
+        };
+        let v = match v {
+            Value::Object(o) => Value::Object(walk(table, &p, o)),
+            Value::Array(a) => Value::Array(
+                a.into_iter()
+                    .map(|x| match x {
+                        Value::Object(o) => Value::Object(walk(table, &format!("{p}[]"), o)),
+                        other => other,
+                    })
+                    .collect(),
+            ),
+            other => other,
+        };
+        match table.iter().find(|k| k.from == p) {
+            None => {
+                out.insert(key, v);
+            }
+            Some(k) => {
+                let labels = labels(k);
+                match (labels.len(), v) {
+                    (1, v) => {
+                        out.insert(labels[0].0.clone(), v);
+                    }
+                    (n, Value::Array(a)) if a.len() == n => {
+                        for ((l, _), x) in labels.into_iter().zip(a) {
+                            out.insert(l, x);
+                        }
+                    }
+                    (_, v) => {
+                        // Not the array the table splits (e.g. null): each part gets it.
+                        for (l, _) in labels {
+                            out.insert(l, v.clone());
+                        }
+                    }
+                }
+            }
+        }
+    }
+    out
+}
+
+/// docs/columns.md: every column of series.csv (the variable table), every key of a run's
+/// summary.json and of `raceway quasi-static --json`, and how a sweep names its columns.
+pub fn columns_page() -> String {
+    use std::fmt::Write as _;
+    let mut s = String::new();
+    s.push_str(
+        "# Columns and keys\n\n\
+         <!-- generated by `RACEWAY_BLESS=1 cargo test --test columns` from the variable table \
+         (src/component/variables.rs) and src/summary/columns.rs; do not edit -->\n\n\
+         One label style for every table a person reads: **`name [unit]`** (series.csv \
+         headers, the Python DataFrame's columns, summary.json keys, a sweep's columns, \
+         `raceway quasi-static --json` keys), with SI unit symbols (`1` for a dimensionless \
+         number, `Mrev` for millions of revolutions, `h` for hours, `mm`/`µm`/`°C` where the \
+         value is given so); text, flags and structure keep the bare name. A program that \
+         addresses a variable (FMI, the C header, `Component.get`/`set`) uses the bare name, \
+         with the unit in the variable table (docs/fmi.md). Why: the unit stays readable \
+         beside every number a person reads, and a variable's name stays the same on every \
+         face; `crate::units::split_label` turns a label back into name and unit.\n\n\
+         `tests/columns.rs` reads every header and key of a `raceway run`, a sweep and a \
+         quasi-static JSON solve and checks each against this page and the pattern.\n\n",
+    );
+    s.push_str(
+        "## series.csv and `raceway.run`'s DataFrame\n\n\
+         `t [s]`, then one column per output of the run's level and effects (its \
+         `[record]` selection), `name [unit]` from the variable table; with `--kc` \
+         also `K.i.j` and `C.i.j`.\n\n| column | meaning |\n|---|---|\n| `t [s]` | time |\n",
+    );
+    for v in crate::component::variables::all() {
+        let _ = writeln!(
+            s,
+            "| `{}` | {} |",
+            crate::units::label(v.name, v.unit),
+            v.description.replace('|', "\\|")
+        );
+    }
+    let table = |s: &mut String, doc: Doc| {
+        s.push_str("\n| key | meaning |\n|---|---|\n");
+        for key in keys(doc) {
+            let parent = full_parent(doc, key.from).unwrap_or_default();
+            let ls: Vec<String> = labels(&key)
+                .into_iter()
+                .map(|(l, _)| format!("`{parent}{l}`"))
+                .collect();
+            let _ = writeln!(
+                s,
+                "| {} | {} |",
+                ls.join(", "),
+                key.what.replace('|', "\\|")
+            );
+        }
+    };
+    s.push_str(
+        "\n## summary.json of `raceway run` (and `raceway.run`'s summary dict)\n\n\
+         Nested keys are shown joined by `.`; `[]` marks the tables of an array. A section \
+         appears when the run computes it (friction and thermal with the thermal effect, \
+         film with EHL, cage whirl on the full level, envelope lines for defect scenes).\n",
+    );
+    table(&mut s, Doc::Run);
+    s.push_str(
+        "\n## Sweep columns (sweep.csv, `raceway.Sweep`'s DataFrame)\n\n\
+         `index`, one column per axis named by its scene key (`inputs.speed_rpm`, \
+         `bearing.clearance_um`: scene fields carry their unit in their name), `error`, \
+         then the summary above flattened: nested keys joined by `.`, the unit moved to \
+         the end (`rating.ratings.C [N]`), an array of three numbers by `x`, `y`, `z` \
+         (`peak_force.x [N]`), an array of lines by each line's label \
+         (`frequencies.BPFO.expected [Hz]`), a list of texts joined by `; `.\n",
+    );
+    s.push_str(
+        "\n## `raceway quasi-static --json` (and Python's `quasi_static`)\n\n\
+         The top level and `rating` (the same rows as the run summary's `rating`); \
+         `solution` (SI: rad/s, N, N m, m, rad, Pa; its per-element table as \
+         `name [unit]` columns in Python's `quasi_static(...).balls`) and `calculator` keep \
+         their field names in this version.\n",
+    );
+    table(&mut s, Doc::QuasiStatic);
+    s
+}
+
+/// The labelled path of the parent of `from` (`rating.ratings.c` → `rating.ratings.`).
+fn full_parent(doc: Doc, from: &str) -> Option<String> {
+    let (p, _) = from.rsplit_once('.')?;
+    let arr = p.ends_with("[]");
+    let p = p.trim_end_matches("[]");
+    let k = keys(doc).into_iter().find(|k| k.from == p)?;
+    let up = full_parent(doc, p).unwrap_or_default();
+    Some(format!("{up}{}{}", k.name, if arr { "[]." } else { "." }))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every key of the table is unique, a number's unit is given, and a split value has a
+    /// unit per part or one for all.
+    #[test]
+    fn the_table_is_consistent() {
+        for doc in [Doc::Run, Doc::QuasiStatic] {
+            let ks = keys(doc);
+            for (i, a) in ks.iter().enumerate() {
+                assert!(
+                    ks[i + 1..].iter().all(|b| b.from != a.from),
+                    "{} twice",
+                    a.from
+                );
+                let parts = a.name.split('|').count();
+                let units = a.unit.split('|').count();
+                assert!(units == 1 || units == parts, "{}", a.from);
+            }
+        }
+    }
+
+    /// The renames the issue names: e, the raceway lives, L10 in Mrev.
+    #[test]
+    fn a_rating_leaves_with_its_labels() {
+        let j = serde_json::json!({"rating": {"xye": [1.0, 0.0, 0.19], "l10_mrev": 12.0,
+            "raceway_lives_mrev": [13.0, 101.0], "ratings": {"c": 14000.0}}, "peak_force_n": [1.0, 2.0, 3.0]});
+        let Value::Object(m) = j else { unreachable!() };
+        let out = Value::Object(relabel(Doc::Run, m));
+        assert_eq!(out["rating"]["e [1]"], 0.19);
+        assert_eq!(out["rating"]["X [1]"], 1.0);
+        assert_eq!(out["rating"]["L10 [Mrev]"], 12.0);
+        assert_eq!(out["rating"]["life_inner [Mrev]"], 13.0);
+        assert_eq!(out["rating"]["life_outer [Mrev]"], 101.0);
+        assert_eq!(out["rating"]["ratings"]["C [N]"], 14000.0);
+        assert_eq!(out["peak_force [N]"], serde_json::json!([1.0, 2.0, 3.0]));
+    }
+}
