@@ -202,15 +202,15 @@ fn the_shipped_cup_defect_scene_finds_bpfo_in_the_envelope() {
     for want in ["1xBPFO", "2xBPFO", "3xBPFO"] {
         let line = env.iter().find(|l| l["label"] == want).unwrap();
         let (f, e, tol) = (
-            line["found_hz"].as_f64().unwrap_or(f64::NAN),
-            line["expected_hz"].as_f64().unwrap(),
-            line["tolerance_hz"].as_f64().unwrap(),
+            line["found [Hz]"].as_f64().unwrap_or(f64::NAN),
+            line["expected [Hz]"].as_f64().unwrap(),
+            line["tolerance [Hz]"].as_f64().unwrap(),
         );
         assert!((f - e).abs() <= tol, "{want}: {line}");
     }
     let bpfo = env.iter().find(|l| l["label"] == "1xBPFO").unwrap();
     assert!(
-        (bpfo["expected_hz"].as_f64().unwrap() - 143.6285).abs() < 1e-3,
+        (bpfo["expected [Hz]"].as_f64().unwrap() - 143.6285).abs() < 1e-3,
         "{bpfo}"
     );
 }
