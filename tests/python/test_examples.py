@@ -43,7 +43,7 @@ def test_rotor_on_two_bearing_fmus(tmp_path):
     w = s["rotor_weight [N]"]
     assert abs(s["mean_vertical_bearing_force [N]"] - w) < 0.02 * w
     assert abs(s["mean_horizontal_bearing_force [N]"]) < 0.02 * w
-    assert 0.0 < s["max_journal_displacement_m"] < 1e-3
+    assert 0.0 < s["max_journal_displacement [m]"] < 1e-3
 
 
 def _env():

@@ -301,32 +301,38 @@ fn calc_inputs(a: &QsArgs, speed_rpm: f64) -> Result<raceway::calculator::check:
     Ok(c)
 }
 
+/// The quasi-static options that only a single ball bearing's report reads, each with
+/// whether it was given: a set scene and a roller bearing refuse them by name.
+fn ball_bearing_options(a: &QsArgs) -> [(&'static str, bool); 18] {
+    [
+        ("--race-control", a.race_control.is_some()),
+        ("--kappa", a.kappa.is_some()),
+        ("--contamination", a.contamination.is_some()),
+        ("--oil", a.oil.is_some()),
+        ("--oil-vi", a.oil_vi.is_some()),
+        ("--oil-temp-c", a.oil_temp_c.is_some()),
+        ("--f0", a.f0.is_some()),
+        ("--shaft-interference-um", a.shaft_interference_um.is_some()),
+        (
+            "--housing-interference-um",
+            a.housing_interference_um.is_some(),
+        ),
+        ("--inner-ring-temp-c", a.inner_ring_temp_c.is_some()),
+        ("--outer-ring-temp-c", a.outer_ring_temp_c.is_some()),
+        ("--ambient-temp-c", a.ambient_temp_c.is_some()),
+        ("--duty", a.duty.is_some()),
+        ("--hold", a.hold.is_some()),
+        ("--skf-lubrication", a.skf_lubrication.is_some()),
+        ("--skf-seal", a.skf_seal.is_some()),
+        ("--skf-drag", a.skf_drag.is_some()),
+        ("--skf-constants", a.skf_constants.is_some()),
+    ]
+}
+
 fn quasi_static(a: QsArgs) -> Result<String> {
     if let Some(path) = &a.scene {
         // The one bearing's options have no meaning for a set: refused by name.
-        let given = [
-            ("--race-control", a.race_control.is_some()),
-            ("--kappa", a.kappa.is_some()),
-            ("--contamination", a.contamination.is_some()),
-            ("--oil", a.oil.is_some()),
-            ("--oil-vi", a.oil_vi.is_some()),
-            ("--oil-temp-c", a.oil_temp_c.is_some()),
-            ("--f0", a.f0.is_some()),
-            ("--shaft-interference-um", a.shaft_interference_um.is_some()),
-            (
-                "--housing-interference-um",
-                a.housing_interference_um.is_some(),
-            ),
-            ("--inner-ring-temp-c", a.inner_ring_temp_c.is_some()),
-            ("--outer-ring-temp-c", a.outer_ring_temp_c.is_some()),
-            ("--ambient-temp-c", a.ambient_temp_c.is_some()),
-            ("--duty", a.duty.is_some()),
-            ("--hold", a.hold.is_some()),
-            ("--skf-lubrication", a.skf_lubrication.is_some()),
-            ("--skf-seal", a.skf_seal.is_some()),
-            ("--skf-drag", a.skf_drag.is_some()),
-            ("--skf-constants", a.skf_constants.is_some()),
-        ];
+        let given = ball_bearing_options(&a);
         if let Some((flag, _)) = given.iter().find(|(_, g)| *g) {
             return Err(raceway::Error::invalid(
                 *flag,
@@ -350,29 +356,7 @@ fn quasi_static(a: QsArgs) -> Result<String> {
     }
     if let Some(b) = a.bearing.as_deref().and_then(rollers::roller_bearing) {
         // The ball bearings' options have no meaning here: refused by name, not ignored.
-        let given = [
-            ("--race-control", a.race_control.is_some()),
-            ("--kappa", a.kappa.is_some()),
-            ("--contamination", a.contamination.is_some()),
-            ("--oil", a.oil.is_some()),
-            ("--oil-vi", a.oil_vi.is_some()),
-            ("--oil-temp-c", a.oil_temp_c.is_some()),
-            ("--f0", a.f0.is_some()),
-            ("--shaft-interference-um", a.shaft_interference_um.is_some()),
-            (
-                "--housing-interference-um",
-                a.housing_interference_um.is_some(),
-            ),
-            ("--inner-ring-temp-c", a.inner_ring_temp_c.is_some()),
-            ("--outer-ring-temp-c", a.outer_ring_temp_c.is_some()),
-            ("--ambient-temp-c", a.ambient_temp_c.is_some()),
-            ("--duty", a.duty.is_some()),
-            ("--hold", a.hold.is_some()),
-            ("--skf-lubrication", a.skf_lubrication.is_some()),
-            ("--skf-seal", a.skf_seal.is_some()),
-            ("--skf-drag", a.skf_drag.is_some()),
-            ("--skf-constants", a.skf_constants.is_some()),
-        ];
+        let given = ball_bearing_options(&a);
         if let Some((flag, _)) = given.iter().find(|(_, g)| *g) {
             return Err(raceway::Error::invalid(
                 *flag,
