@@ -413,7 +413,7 @@ fn run_summarises_what_the_effects_compute() {
         text.contains("calculator, Palmgren (ISO/TR 14179-2): M "),
         "{text}"
     );
-    assert!(f(&summary["friction"]["calculator"]["palmgren"]["power_w"]) > 0.0);
+    assert!(f(&summary["friction"]["calculator"]["palmgren"]["power [W]"]) > 0.0);
     assert!(page.contains("run over calculator power"));
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -66,13 +66,13 @@ fn check(bearing: &str, skf: bool) {
         .unwrap();
     let nu = lub.viscosity / lub.density;
     let f0 = sc.effects.thermal.as_ref().unwrap().f0;
-    assert_eq!(num(calc, &["mean_speed_rpm"]), rpm);
-    assert_eq!(num(calc, &["radial_load_n"]), a.radial_load);
-    assert_eq!(num(calc, &["axial_load_n"]), a.axial_load);
-    assert_eq!(num(calc, &["p0_n"]), a.p0);
-    assert_eq!(num(calc, &["c0_n"]), a.ratings.c0);
-    assert_eq!(num(calc, &["kinematic_viscosity_mm2_s"]), nu * 1e6);
-    assert_eq!(num(calc, &["f0"]), f0);
+    assert_eq!(num(calc, &["mean_speed [rpm]"]), rpm);
+    assert_eq!(num(calc, &["radial_load [N]"]), a.radial_load);
+    assert_eq!(num(calc, &["axial_load [N]"]), a.axial_load);
+    assert_eq!(num(calc, &["P0 [N]"]), a.p0);
+    assert_eq!(num(calc, &["C0 [N]"]), a.ratings.c0);
+    assert_eq!(num(calc, &["kinematic_viscosity [mm2/s]"]), nu * 1e6);
+    assert_eq!(num(calc, &["f0 [1]"]), f0);
 
     let kind = if bearing.starts_with('7') {
         PalmgrenType::ANGULAR_CONTACT
@@ -94,10 +94,10 @@ fn check(bearing: &str, skf: bool) {
     )
     .unwrap();
     let pj = &calc["palmgren"];
-    assert_eq!(num(pj, &["moment_nm"]), p.total);
-    assert_eq!(num(pj, &["viscous_moment_nm"]), p.m0);
-    assert_eq!(num(pj, &["load_moment_nm"]), p.m1);
-    assert_eq!(num(pj, &["power_w"]), p.power);
+    assert_eq!(num(pj, &["moment [N.m]"]), p.total);
+    assert_eq!(num(pj, &["viscous_moment [N.m]"]), p.m0);
+    assert_eq!(num(pj, &["load_moment [N.m]"]), p.m1);
+    assert_eq!(num(pj, &["power [W]"]), p.power);
     assert!(
         sm.text.contains(&format!(
             "Palmgren (ISO/TR 14179-2): M {:.4} N m = M0 {:.4} (viscous) + M1 {:.4} (load), power {:.3} W",
@@ -109,7 +109,10 @@ fn check(bearing: &str, skf: bool) {
     // The run's power over the calculator's, as printed.
     let run_power = digest.mean_second_half("power.loss");
     assert!(run_power > 0.0);
-    assert_eq!(num(pj, &["run_over_calculator_power"]), run_power / p.power);
+    assert_eq!(
+        num(pj, &["run_over_calculator_power [1]"]),
+        run_power / p.power
+    );
     // P = M ω at the mean speed.
     let w = rpm * PI / 30.0;
     assert!(
@@ -143,11 +146,14 @@ fn check(bearing: &str, skf: bool) {
         },
     )
     .unwrap();
-    assert_eq!(num(sj, &["moment_nm"]), k.total);
-    assert_eq!(num(sj, &["rolling_moment_nm"]), k.rolling);
-    assert_eq!(num(sj, &["sliding_moment_nm"]), k.sliding);
-    assert_eq!(num(sj, &["power_w"]), k.power);
-    assert_eq!(num(sj, &["run_over_calculator_power"]), run_power / k.power);
+    assert_eq!(num(sj, &["moment [N.m]"]), k.total);
+    assert_eq!(num(sj, &["rolling_moment [N.m]"]), k.rolling);
+    assert_eq!(num(sj, &["sliding_moment [N.m]"]), k.sliding);
+    assert_eq!(num(sj, &["power [W]"]), k.power);
+    assert_eq!(
+        num(sj, &["run_over_calculator_power [1]"]),
+        run_power / k.power
+    );
     assert!((k.power - k.total * w).abs() <= 1e-12 * k.power);
     assert!(
         sm.text.contains(&format!(
