@@ -222,11 +222,9 @@ pub(super) fn html_table(v: &Value) -> String {
     );
     let empty = vec![];
     for r in v["rows"].as_array().unwrap_or(&empty) {
-        let peak: Vec<String> = r["peak_force_n"]
-            .as_array()
-            .unwrap_or(&empty)
+        let peak: Vec<String> = ["x", "y", "z"]
             .iter()
-            .map(f)
+            .map(|a| f(&r[format!("peak_force.{a} [N]").as_str()]))
             .collect();
         let _ = write!(
             t,
@@ -234,26 +232,26 @@ pub(super) fn html_table(v: &Value) -> String {
              <td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
             esc(r["label"].as_str().unwrap_or("")),
             esc(r["bearing"].as_str().unwrap_or("")),
-            f(&r["position_mm"]),
+            f(&r["position [mm]"]),
             if r["orientation"].as_i64() == Some(-1) { "-z" } else { "+z" },
-            f(&r["mean_force_n"][2]),
-            f(&r["mean_radial_load_n"]),
-            f(&r["mean_thrust_n"]),
+            f(&r["mean_force.z [N]"]),
+            f(&r["mean_radial_load [N]"]),
+            f(&r["mean_thrust [N]"]),
             peak.join(", "),
-            f(&r["mean_contact_angle_deg"]),
-            f(&r["lift_off_fraction"]),
-            f(&r["l10_mrev"]),
-            f(&r["l10_hours"]),
-            f(&r["s0"]),
+            f(&r["mean_contact_angle [deg]"]),
+            f(&r["lift_off_fraction [1]"]),
+            f(&r["L10 [Mrev]"]),
+            f(&r["L10 [h]"]),
+            f(&r["S0 [1]"]),
         );
     }
     let _ = write!(
         t,
         "</table><p>System life (the rows' lives together, Lundberg–Palmgren) L10 {} million revolutions \
          = {} h; smallest S0 {}.</p>",
-        f(&v["system_l10_mrev"]),
-        f(&v["system_l10_hours"]),
-        f(&v["smallest_s0"])
+        f(&v["system_L10 [Mrev]"]),
+        f(&v["system_L10 [h]"]),
+        f(&v["smallest_S0 [1]"])
     );
     t
 }
@@ -283,8 +281,8 @@ mod tests {
         let set = &sm.json["set"];
         let rows = set["rows"].as_array().unwrap();
         assert_eq!(rows.len(), 2);
-        let fz = |i: usize| rows[i]["mean_force_n"][2].as_f64().unwrap();
-        let thrust = |i: usize| rows[i]["mean_thrust_n"].as_f64().unwrap();
+        let fz = |i: usize| rows[i]["mean_force.z [N]"].as_f64().unwrap();
+        let thrust = |i: usize| rows[i]["mean_thrust [N]"].as_f64().unwrap();
         assert!(
             (fz(0) + fz(1)).abs() < 1e-6 * fz(0).abs(),
             "{} {}",
@@ -294,17 +292,17 @@ mod tests {
         for (i, r) in rows.iter().enumerate() {
             // Rigid preload by force: each row carries the 300 N at rest.
             assert!((thrust(i) - 300.0).abs() < 1e-6 * 300.0, "{}", thrust(i));
-            assert_eq!(r["lift_off_fraction"].as_f64().unwrap(), 0.0);
+            assert_eq!(r["lift_off_fraction [1]"].as_f64().unwrap(), 0.0);
         }
         // Each row's life: ISO 281 of its own 300 N thrust (RatingOutputs, independently).
         let b = comp.bearing();
         let [_, own, _] =
             crate::ratings::RatingOutputs::of(b).outputs(b, &[0.0, 0.0, 300.0, 0.0, 0.0], 0.0, 2.0);
         let l: Vec<f64> = (0..2)
-            .map(|i| rows[i]["l10_mrev"].as_f64().unwrap())
+            .map(|i| rows[i]["L10 [Mrev]"].as_f64().unwrap())
             .collect();
         assert!((l[0] - own).abs() < 1e-9 * own && (l[1] - own).abs() < 1e-9 * own);
-        let sys = set["system_l10_mrev"].as_f64().unwrap();
+        let sys = set["system_L10 [Mrev]"].as_f64().unwrap();
         assert!(sys < l[0] && sys < l[1]);
         let want = own * 2f64.powf(-9.0 / 10.0);
         assert!((sys - want).abs() < 1e-9 * want, "{sys} vs {want}");
