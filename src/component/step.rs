@@ -199,14 +199,15 @@ impl Component {
             self.budget_gap = b.gap;
         }
         if let Err(e) = r {
-            if let Some(used) = sys.budget.and_then(|b| b.spent) {
+            if let Some((wall, cpu)) = sys.budget.and_then(|b| b.spent) {
                 return Err(Error::Budget {
                     t: t0,
                     field: "solver.max_step_cpu_s",
                     limit: format!("{} s", self.scene.solver.max_step_cpu_s),
                     used: format!(
-                        "at most {used:.3e} s of CPU time (the wall time before its first \
-                         CPU-clock check counted as CPU), reaching t = {}",
+                        "{cpu:.3e} s of thread CPU time after the step's first CPU-clock \
+                         read plus {wall:.3e} s of wall time before it (counted whole, an upper \
+                         bound of the CPU time then), reaching t = {}",
                         e_time(&e)
                     ),
                 });

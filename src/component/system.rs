@@ -41,8 +41,9 @@ pub(super) struct Budget {
     /// as many: a step of a few cheap evaluations then reads no clock but the wall clock
     /// at its start).
     pub(super) gap: u32,
-    /// CPU time used when the budget ran out (an upper bound: see the type's notes).
-    pub(super) spent: Option<f64>,
+    /// When the budget ran out: the wall time before the first CPU-clock read and the
+    /// thread's CPU time after it, s (their sum is what counted: see the type's notes).
+    pub(super) spent: Option<(f64, f64)>,
 }
 
 impl Budget {
@@ -61,14 +62,15 @@ impl Budget {
         }
     }
 
-    /// CPU time used since the start, s (see the type's notes).
-    fn used(&mut self) -> f64 {
+    /// Time used since the start, s: the wall time before the first CPU-clock read and the
+    /// thread's CPU time since (see the type's notes).
+    fn used(&mut self) -> (f64, f64) {
         match self.first {
-            Some((cpu1, wall1)) => wall1 + (thread_cpu_s() - cpu1),
+            Some((cpu1, wall1)) => (wall1, thread_cpu_s() - cpu1),
             None => {
                 let wall1 = self.wall0.elapsed().as_secs_f64();
                 self.first = Some((thread_cpu_s(), wall1));
-                wall1
+                (wall1, 0.0)
             }
         }
     }
@@ -94,9 +96,10 @@ impl Budget {
     #[cold]
     #[inline(never)]
     fn check(&mut self) -> bool {
-        let used = self.used();
+        let (wall, cpu) = self.used();
+        let used = wall + cpu;
         if used > self.limit {
-            self.spent = Some(used);
+            self.spent = Some((wall, cpu));
             return true;
         }
         // This call precedes its evaluation: `evals - 1` of them are done.
