@@ -420,6 +420,12 @@ pub fn summary(scene: &Scene) -> String {
             effects.push("EHL film".into());
         }
     }
+    if let Some(w) = &e.wear {
+        effects.push(format!("race wear ({} cycles)", w.cycles));
+    }
+    if e.thermal.is_some() {
+        effects.push("thermal network".into());
+    }
     let m = &scene.model;
     let level = if m.level == super::Level::Ring {
         format!("ring {}-DOF", m.ring_dof)
@@ -445,6 +451,28 @@ pub fn summary(scene: &Scene) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `scene --check`'s one line names every effect the scene runs, wear and the thermal
+    /// network included (they used to read "no effects" beside an EHL film or alone).
+    #[test]
+    fn summary_names_wear_and_thermal() {
+        let read = |name: &str| {
+            let path = format!("{}/examples/scenes/{name}", env!("CARGO_MANIFEST_DIR"));
+            Scene::from_text(&std::fs::read_to_string(path).unwrap()).unwrap()
+        };
+        let wear = summary(&read("6012-wear.toml"));
+        assert!(wear.contains("race wear (5 cycles)"), "{wear}");
+        assert!(!wear.contains("thermal"), "{wear}");
+        let thermal = summary(&read("7008ce-thermal.toml"));
+        assert!(thermal.contains("EHL film, thermal network"), "{thermal}");
+        let pair = summary(&read("7008ce-db-pair-thermal.toml"));
+        assert!(
+            pair.contains("thermal network") && !pair.contains("no effects"),
+            "{pair}"
+        );
+        let plain = summary(&Scene::default_scene());
+        assert!(plain.contains("no effects"), "{plain}");
+    }
 
     #[test]
     fn table_matches_schema() {
