@@ -211,6 +211,9 @@ impl Component {
             self.state.inputs[i]
         } else {
             self.ensure_outputs()?;
+            if self.state.matrices_pending && (I_K..I_C + 25).contains(&i) {
+                self.compute_matrices()?;
+            }
             self.state.outputs[i]
         })
     }
@@ -380,6 +383,9 @@ impl Component {
             }
         }
         self.ensure_outputs()?;
+        if self.state.matrices_pending {
+            self.compute_matrices()?;
+        }
         let scale = seed.iter().fold(0.0f64, |m, s| m.max(s.abs()));
         // s / scale is within [-1, 1] (and no 1/scale overflows for a subnormal scale).
         let unit = |s: f64| if scale > 0.0 { s / scale } else { 0.0 };

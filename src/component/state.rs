@@ -1,8 +1,8 @@
 //! The component's complete mutable state, and its byte form.
 //!
-//! Byte layout, format 3 (little-endian, no pointers): magic `RWST`, format version `u32`,
+//! Byte layout, format 4 (little-endian, no pointers): magic `RWST`, format version `u32`,
 //! scene fingerprint `u64`, time `f64`, flags `u64` (bit 0 started, bit 1 outputs stale,
-//! bit 2 force derivatives pending), inputs-set mask `u64`,
+//! bit 2 force derivatives pending, bit 3 stiffness and damping pending), inputs-set mask `u64`,
 //! then six vectors (`x`, `aux`, `inputs`, `input_derivatives`, `outputs`,
 //! `output_derivatives`), each its length as `u64` followed by the values; last, a
 //! checksum `u64`: FNV-1a (Fowler, Noll and Vo; IETF draft-eastlake-fnv) over every byte
@@ -20,8 +20,9 @@ use crate::error::{Error, Result};
 /// Magic bytes at the start of a serialised state.
 pub const MAGIC: &[u8; 4] = b"RWST";
 /// Format version of the serialised state (2: with checksum and value checks; 3: the
-/// force derivatives computed when read, flag bit 2 and the outputs' input offset in `aux`).
-pub const FORMAT_VERSION: u32 = 3;
+/// force derivatives computed when read, flag bit 2 and the outputs' input offset in `aux`;
+/// 4: the stiffness and damping computed when read, flag bit 3).
+pub const FORMAT_VERSION: u32 = 4;
 
 /// Everything that changes while a component runs: restoring it makes the component
 /// continue bit for bit.
@@ -42,6 +43,11 @@ pub struct State {
     /// first read computes them (at the inputs' offset kept in the last `aux` slot). Stored
     /// as bit 2 of the `started` word.
     pub derivatives_pending: bool,
+    /// Are the stiffness and damping outputs (`K`, `C`) still to be computed? A level that
+    /// can give them later ([`crate::seam::LevelModel::outputs_deferring_matrices`]) leaves
+    /// them to the first read after a step (at the inputs' offset kept in the last `aux`
+    /// slot); their slots hold zeros until then. Stored as bit 3 of the `started` word.
+    pub matrices_pending: bool,
     /// Continuous states of the model.
     pub x: Vec<f64>,
     /// Algebraic and solver memory (warm starts, next step size, ...).
@@ -93,6 +99,7 @@ impl State {
         self.started = o.started;
         self.outputs_stale = o.outputs_stale;
         self.derivatives_pending = o.derivatives_pending;
+        self.matrices_pending = o.matrices_pending;
         self.inputs_set = o.inputs_set;
         self.x.clone_from(&o.x);
         self.aux.clone_from(&o.aux);
@@ -125,6 +132,7 @@ impl State {
         self.started = sc.started;
         self.outputs_stale = sc.outputs_stale;
         self.derivatives_pending = sc.derivatives_pending;
+        self.matrices_pending = sc.matrices_pending;
         std::mem::swap(&mut self.x, &mut sc.x);
         std::mem::swap(&mut self.aux, &mut sc.aux);
         std::mem::swap(&mut self.outputs, &mut sc.outputs);
@@ -261,7 +269,8 @@ impl State {
         w.u64(
             self.started as u64
                 | (self.outputs_stale as u64) << 1
-                | (self.derivatives_pending as u64) << 2,
+                | (self.derivatives_pending as u64) << 2
+                | (self.matrices_pending as u64) << 3,
         );
         w.u64(self.inputs_set);
         w.vec(&self.x);
@@ -313,11 +322,11 @@ impl State {
         };
         let scene_fingerprint = r.u64()?;
         let t = r.f64("t")?;
-        let (started, outputs_stale, derivatives_pending) = match r.u64()? {
-            k @ 0..=7 => (k & 1 != 0, k & 2 != 0, k & 4 != 0),
+        let (started, outputs_stale, derivatives_pending, matrices_pending) = match r.u64()? {
+            k @ 0..=15 => (k & 1 != 0, k & 2 != 0, k & 4 != 0, k & 8 != 0),
             k => {
                 return Err(refused(format!(
-                    "`started` = {k}: allowed 0 to 7 (bit 0 started, bit 1 outputs stale, bit 2 derivatives pending)"
+                    "`started` = {k}: allowed 0 to 15 (bit 0 started, bit 1 outputs stale, bit 2 derivatives pending, bit 3 stiffness and damping pending)"
                 )))
             }
         };
@@ -328,6 +337,7 @@ impl State {
             started,
             outputs_stale,
             derivatives_pending,
+            matrices_pending,
             inputs_set,
             x: r.vec("x")?,
             aux: r.vec("aux")?,
@@ -354,6 +364,7 @@ mod tests {
             started: true,
             outputs_stale: true,
             derivatives_pending: true,
+            matrices_pending: true,
             x: vec![1.0, -0.0, f64::MIN_POSITIVE],
             aux: vec![3.5],
             inputs: vec![1e-6; 11],
@@ -434,14 +445,14 @@ mod tests {
         let mut other = s.clone();
         other.started = true;
         let mut b = other.to_bytes();
-        b[24] = 8; // started = 8
+        b[24] = 16; // started = 16
         let n = b.len();
         let sum = crate::component::fingerprint(&b[..n - 8]);
         b[n - 8..].copy_from_slice(&sum.to_le_bytes());
         assert!(State::from_bytes(&b)
             .unwrap_err()
             .to_string()
-            .contains("`started` = 8"));
+            .contains("`started` = 16"));
     }
 
     #[test]
@@ -450,7 +461,7 @@ mod tests {
         b[4..8].copy_from_slice(&1u32.to_le_bytes());
         let e = State::from_bytes(&b).unwrap_err().to_string();
         assert!(
-            e.contains("format version 1") && e.contains("version 3"),
+            e.contains("format version 1") && e.contains("version 4"),
             "{e}"
         );
     }

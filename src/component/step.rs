@@ -20,7 +20,7 @@ impl Component {
     pub fn refresh_outputs(&mut self) -> Result<()> {
         self.scratch.clone_from(&self.state);
         let mut sc = std::mem::take(&mut self.scratch);
-        let r = self.compute_outputs(&mut sc, 0.0);
+        let r = self.compute_outputs(&mut sc, 0.0, false);
         if r.is_ok() {
             sc.outputs_stale = false;
             std::mem::swap(&mut self.state, &mut sc);
@@ -53,7 +53,7 @@ impl Component {
         let r = self.integrate(&mut sc, h, continuing);
         super::Stages::stop(&mut self.stages.integrate, clock);
         let clock = self.stages.start();
-        let r = r.and_then(|_| self.compute_outputs(&mut sc, h));
+        let r = r.and_then(|_| self.compute_outputs(&mut sc, h, true));
         super::Stages::stop(&mut self.stages.outputs, clock);
         self.finish_step(sc, r, t, t + h)
     }
@@ -265,7 +265,11 @@ impl Component {
     }
 
     /// Fill the outputs of `sc` at `s` after its time (`sc.x` already at that time).
-    pub(super) fn compute_outputs(&mut self, sc: &mut State, s: f64) -> Result<()> {
+    /// `defer`: the stiffness and damping may be left for their first read
+    /// ([`LevelModel::outputs_deferring_matrices`], `sc.matrices_pending`).
+    ///
+    /// [`LevelModel::outputs_deferring_matrices`]: crate::seam::LevelModel::outputs_deferring_matrices
+    pub(super) fn compute_outputs(&mut self, sc: &mut State, s: f64, defer: bool) -> Result<()> {
         let nl = self.n_level;
         let rule = self.scene.inputs.rule;
         let causality = self.causality();
@@ -273,8 +277,13 @@ impl Component {
         let mut out = LevelOutputs::default();
         {
             let (aux, _) = sc.aux.split_at_mut(self.n_level_aux);
-            self.level
-                .outputs(Point::new(sc.t + s, &m, &sc.x[..nl], aux), &mut out)?;
+            let p = Point::new(sc.t + s, &m, &sc.x[..nl], aux);
+            sc.matrices_pending = if defer {
+                self.level.outputs_deferring_matrices(p, &mut out)?
+            } else {
+                self.level.outputs(p, &mut out)?;
+                false
+            };
         }
         let o = &mut sc.outputs;
         o[I_FORCE..I_FORCE + 5].copy_from_slice(&out.wrench);
@@ -347,10 +356,46 @@ impl Component {
                 reason: "non-finite output".into(),
             });
         }
-        // The force derivatives are left for the first read (three force evaluations):
-        // remember the inputs' offset they belong to.
+        // The force derivatives (and the deferred stiffness and damping) are left for the
+        // first read (three force evaluations): remember the inputs' offset they belong to.
         sc.aux[self.n_level_aux + 1] = s;
         sc.derivatives_pending = true;
+        Ok(())
+    }
+
+    /// Compute the pending stiffness and damping outputs of the current state
+    /// ([`State::matrices_pending`]) at the inputs' offset the outputs were computed at;
+    /// the level's memory is left as it was. On error nothing changes.
+    pub(super) fn compute_matrices(&mut self) -> Result<()> {
+        let nl = self.n_level;
+        let naux = self.n_level_aux;
+        let rule = self.scene.inputs.rule;
+        let causality = self.causality();
+        let sc = &mut self.state;
+        let s = sc.aux[naux + 1];
+        let m = motion_at(sc, rule, s, causality, self.ring.as_ref(), nl, &sc.x);
+        let (mut k, mut c) = ([[0.0; 5]; 5], [[0.0; 5]; 5]);
+        let w = &mut self.work;
+        w.aux_save.copy_from_slice(&sc.aux);
+        let r = {
+            let (aux, _) = sc.aux.split_at_mut(naux);
+            // The state's time is the step's end, where the outputs were computed.
+            let p = Point::new(sc.t, &m, &sc.x[..nl], aux);
+            self.level.matrices(p, &mut k, &mut c)
+        };
+        sc.aux.copy_from_slice(&w.aux_save);
+        r?;
+        if !k.iter().chain(&c).all(|row| all_finite(row)) {
+            return Err(Error::StepFailed {
+                t: sc.t,
+                reason: "non-finite stiffness or damping".into(),
+            });
+        }
+        for r in 0..5 {
+            sc.outputs[I_K + 5 * r..I_K + 5 * r + 5].copy_from_slice(&k[r]);
+            sc.outputs[I_C + 5 * r..I_C + 5 * r + 5].copy_from_slice(&c[r]);
+        }
+        sc.matrices_pending = false;
         Ok(())
     }
 

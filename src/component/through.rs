@@ -190,7 +190,7 @@ impl Component {
             }
         }
         // The last point first: the outputs `do_step(t, n h)` leaves.
-        self.compute_outputs(sc, span)?;
+        self.compute_outputs(sc, span, false)?;
         let last: Vec<f64> = slots.iter().map(|&s| value(sc, s)).collect();
         // Only forces and moments (and inputs) asked for: the level's wrench where the
         // right-hand side gives it, without the rest of the outputs (stiffness and damping
@@ -215,11 +215,11 @@ impl Component {
             let x_end = sc.x.clone();
             for k in 1..n {
                 sc.x.copy_from_slice(&sink.xs[(k - 1) * dim..k * dim]);
-                self.compute_outputs(sc, k as f64 * h)?;
+                self.compute_outputs(sc, k as f64 * h, false)?;
                 rows.extend(slots.iter().map(|&s| value(sc, s)));
             }
             sc.x.copy_from_slice(&x_end);
-            self.compute_outputs(sc, span)?;
+            self.compute_outputs(sc, span, false)?;
         }
         rows.extend(last);
         Ok(())

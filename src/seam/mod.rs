@@ -207,6 +207,31 @@ pub trait LevelModel: Send + std::fmt::Debug {
     }
     /// Everything the level reports at `p`. Must not allocate.
     fn outputs(&mut self, p: Point<'_>, out: &mut LevelOutputs) -> Result<()>;
+    /// [`LevelModel::outputs`] at the end of a step, where a level may leave the stiffness
+    /// and damping matrices out (`out.k`, `out.c` zero) when it can give them later by
+    /// [`LevelModel::matrices`] at the same point, bit for bit as `outputs` computes them:
+    /// the component then asks for them only when a host reads one. Returns whether it left
+    /// them out. Default: `outputs`, `false`.
+    fn outputs_deferring_matrices(&mut self, p: Point<'_>, out: &mut LevelOutputs) -> Result<bool> {
+        self.outputs(p, out)?;
+        Ok(false)
+    }
+    /// The stiffness and damping matrices [`LevelModel::outputs`] gives at `p` (the
+    /// states, memory and inputs those of a [`LevelModel::outputs_deferring_matrices`]
+    /// that left them out), into `k` and `c`; `p.aux` left as it was. Asked only of a
+    /// level whose `outputs_deferring_matrices` can return `true`; the default computes
+    /// every output and keeps these. Must not allocate.
+    fn matrices(
+        &mut self,
+        p: Point<'_>,
+        k: &mut [[f64; 5]; 5],
+        c: &mut [[f64; 5]; 5],
+    ) -> Result<()> {
+        let mut o = LevelOutputs::default();
+        self.outputs(p, &mut o)?;
+        (*k, *c) = (o.k, o.c);
+        Ok(())
+    }
     /// The wrench at each of `p`'s points into `out[k]` (zeros on entry), bit for bit as
     /// [`LevelModel::rhs`] gives it there, for the outputs between an integration's stops
     /// (the rates are not wanted: `dx`, of `n_states`, is scratch). Asked only of a level

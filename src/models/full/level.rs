@@ -11,6 +11,9 @@
 //! Outputs: stiffness `K = -dF/dq` and damping `C = -dF/dv` by forward differences of the
 //! wrench with the level's states held (the quasi-static ball positions re-solved: they
 //! are not states), on a scratch copy of `aux` so that the outputs never change the run.
+//! After a step they are left for the first read of one of them
+//! ([`LevelModel::outputs_deferring_matrices`]): ten wrench evaluations that a host reading
+//! forces only does not pay for.
 
 use crate::error::{Error, Result};
 use crate::geometry::kinematics::nominal_cage_speed as cage_speed;
@@ -148,12 +151,85 @@ impl LevelModel for FullLevel {
     }
     fn outputs(&mut self, p: Point<'_>, out: &mut LevelOutputs) -> Result<()> {
         let Point { m, x, aux, .. } = p;
-        // K and C by forward differences of the wrench, states held. The unperturbed
-        // evaluation gives the outputs and the per-ball results the model keeps; the
-        // perturbed ones compute the wrench alone ([`FullModel::wrench_at`]), each from the
-        // same warm starts, so the order changes no number: a displacement column re-solves
-        // the ball positions from them, a velocity column keeps the positions of the
-        // unperturbed evaluation (a velocity does not move them).
+        self.outputs_but_matrices(m, x, aux, out)?;
+        self.matrices_at(m, x, aux, &mut out.k, &mut out.c)
+    }
+    /// Everything but `K` and `C`, which [`LevelModel::matrices`] gives at the same point
+    /// with the same bits (they cost ten wrench evaluations, five of them re-solving every
+    /// ball's position: read by few hosts).
+    fn outputs_deferring_matrices(&mut self, p: Point<'_>, out: &mut LevelOutputs) -> Result<bool> {
+        let Point { m, x, aux, .. } = p;
+        self.outputs_but_matrices(m, x, aux, out)?;
+        Ok(true)
+    }
+    fn matrices(
+        &mut self,
+        p: Point<'_>,
+        k: &mut [[f64; 5]; 5],
+        c: &mut [[f64; 5]; 5],
+    ) -> Result<()> {
+        let Point { m, x, aux, .. } = p;
+        self.matrices_at(m, x, aux, k, c)
+    }
+}
+
+impl FullLevel {
+    /// The outputs at motion `m`, states `x` and memory `aux` (left as it is) but the
+    /// stiffness and damping (`out.k`, `out.c` zero): the unperturbed evaluation, on a
+    /// scratch copy of `aux`, whose per-ball results the model keeps.
+    fn outputs_but_matrices(
+        &mut self,
+        m: &Motion,
+        x: &[f64],
+        aux: &[f64],
+        out: &mut LevelOutputs,
+    ) -> Result<()> {
+        self.aux.copy_from_slice(aux);
+        let tot = self
+            .model
+            .eval(&m.q, &m.v, m.omega, x, &mut self.aux, &mut self.dx)?;
+        self.last = tot;
+        let wk = self.kin_ratio * m.omega;
+        let wc = self.model.cage_omega(x);
+        // 1 - w_c/w_k, regularised below 1 mrad/s of kinematic cage speed (as the skidding
+        // level): a bearing at rest reports 100 % slip and the output stays finite.
+        let eps = 1e-3;
+        let slip = 1.0 - wc * wk / (wk * wk + eps * eps);
+        let (cxy, cspeed) = self.model.cage_centre(x);
+        *out = LevelOutputs {
+            wrench: tot.wrench,
+            torque: tot.torque_shaft,
+            cage_omega: wc,
+            cage_slip: slip,
+            balls_loaded: tot.loaded as f64,
+            max_load: tot.max_load,
+            max_pressure: tot.max_pressure,
+            power_loss: -tot.torque_shaft * m.omega,
+            cage_xy: [cxy[0] / self.guide_clearance, cxy[1] / self.guide_clearance],
+            cage_speed: cspeed,
+            pocket_force: tot.pocket_max,
+            guide_force: tot.guide_force,
+            ..LevelOutputs::default()
+        };
+        Ok(())
+    }
+
+    /// `K` and `C` at motion `m`, states `x` and memory `aux` (left as it is) by forward
+    /// differences of the wrench, states held. The unperturbed evaluation (on a scratch
+    /// copy of `aux`; the last one's numbers when it was at this point) gives the wrench
+    /// they difference against; the perturbed ones compute the wrench alone
+    /// ([`FullModel::wrench_at`]), each from the same warm starts, so the order changes no
+    /// number: a displacement column re-solves the ball positions from them, a velocity
+    /// column keeps the positions of the unperturbed evaluation (a velocity does not move
+    /// them).
+    fn matrices_at(
+        &mut self,
+        m: &Motion,
+        x: &[f64],
+        aux: &[f64],
+        k: &mut [[f64; 5]; 5],
+        c: &mut [[f64; 5]; 5],
+    ) -> Result<()> {
         const STEPS: [f64; 10] = [1e-9, 1e-9, 1e-9, 1e-7, 1e-7, 1e-6, 1e-6, 1e-6, 1e-5, 1e-5];
         self.aux.copy_from_slice(aux);
         let tot = self
@@ -173,8 +249,6 @@ impl LevelModel for FullLevel {
                     .wrench_at(&q, &v, m.omega, x, &mut self.aux, false)?
             };
         }
-        let mut k = [[0.0; 5]; 5];
-        let mut c = [[0.0; 5]; 5];
         for (col, (h, w)) in STEPS.iter().zip(&perturbed).enumerate() {
             for r in 0..5 {
                 let d = -(w[r] - tot.wrench[r]) / h;
@@ -186,30 +260,6 @@ impl LevelModel for FullLevel {
             }
         }
         self.last = tot;
-        let wk = self.kin_ratio * m.omega;
-        let wc = self.model.cage_omega(x);
-        // 1 - w_c/w_k, regularised below 1 mrad/s of kinematic cage speed (as the skidding
-        // level): a bearing at rest reports 100 % slip and the output stays finite.
-        let eps = 1e-3;
-        let slip = 1.0 - wc * wk / (wk * wk + eps * eps);
-        let (cxy, cspeed) = self.model.cage_centre(x);
-        *out = LevelOutputs {
-            wrench: tot.wrench,
-            torque: tot.torque_shaft,
-            k,
-            c,
-            cage_omega: wc,
-            cage_slip: slip,
-            balls_loaded: tot.loaded as f64,
-            max_load: tot.max_load,
-            max_pressure: tot.max_pressure,
-            power_loss: -tot.torque_shaft * m.omega,
-            cage_xy: [cxy[0] / self.guide_clearance, cxy[1] / self.guide_clearance],
-            cage_speed: cspeed,
-            pocket_force: tot.pocket_max,
-            guide_force: tot.guide_force,
-            ..LevelOutputs::default()
-        };
         Ok(())
     }
 }
