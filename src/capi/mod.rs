@@ -707,9 +707,15 @@ pub unsafe extern "C" fn raceway_get_reals(
         with_instance(c, "raceway_get_reals", |comp| {
             let vrs = slice(vrs, n, "vrs")?;
             let out = slice_mut(values, n, "values")?;
-            // Every reference checked before `values` is written (all or nothing).
-            for (i, &vr) in vrs.iter().enumerate() {
-                comp.get_real(vr).map_err(|e| bad_vr(i, vr, e))?;
+            // Every reference checked before `values` is written (all or nothing). With the
+            // outputs current a read can fail only on an unknown reference (then `get_real`
+            // gives its message); stale, the first output read evaluates them and may fail.
+            if comp.outputs_stale() {
+                for (i, &vr) in vrs.iter().enumerate() {
+                    comp.get_real(vr).map_err(|e| bad_vr(i, vr, e))?;
+                }
+            } else if let Some(i) = vrs.iter().position(|&vr| variables::by_vr(vr).is_none()) {
+                comp.get_real(vrs[i]).map_err(|e| bad_vr(i, vrs[i], e))?;
             }
             for (i, (o, &vr)) in out.iter_mut().zip(vrs).enumerate() {
                 *o = comp.get_real(vr).map_err(|e| bad_vr(i, vr, e))?;

@@ -74,12 +74,17 @@ impl Component {
                 reason: format!("`{}` is not an input of this causality", v.name),
             });
         }
+        let i = index_of(vr).expect("in table");
         if call == "set_real" {
-            self.limits.check(v.name, v.name, value)?;
+            // By slot (no string compare; `slot_limits_match_the_names`), the message by name
+            // only on a refusal.
+            if !self.limits.allows_slot(i, value) {
+                self.limits.check(v.name, v.name, value)?;
+            }
         } else if !value.is_finite() {
             return Err(Error::invalid(v.name, value, "a finite number"));
         }
-        Ok(index_of(vr).expect("in table"))
+        Ok(i)
     }
 
     /// Set the `order`-th time derivative (1..=3) of an input at the start of the next

@@ -538,6 +538,14 @@ impl Laminae {
         self.lwe / self.len() as f64
     }
 
+    /// True when no lamina can touch at approach `delta` and `tan_psi`: every lamina's approach
+    /// is at most `delta + max|x| |tan psi| - min 2P`, and that is at or below zero (then
+    /// [`Laminae::evaluate`] answers zeros without evaluating a lamina).
+    #[inline]
+    pub(crate) fn untouched(&self, delta: f64, tan_psi: f64) -> bool {
+        delta + self.reach.0 * tan_psi.abs() - self.reach.1 <= 0.0
+    }
+
     /// Roller force, moment and derivatives at approach `delta` (m, both contacts, at
     /// mid-length) and tilt `psi` (rad). Zero (never NaN) when no lamina is in contact.
     pub fn evaluate(&self, delta: f64, psi: f64) -> RollerLoad {
@@ -560,7 +568,7 @@ impl Laminae {
         let sec2 = 1.0 + tan_psi * tan_psi;
         let mut r = RollerLoad::default();
         // No lamina can touch: nothing to evaluate (the loop would give the same zeros).
-        if loads.is_none() && delta + self.reach.0 * tan_psi.abs() - self.reach.1 <= 0.0 {
+        if loads.is_none() && self.untouched(delta, tan_psi) {
             return r;
         }
         if tan_psi == 0.0 && loads.is_none() {

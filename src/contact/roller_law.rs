@@ -218,6 +218,20 @@ impl CylindricalRollerLaw {
         self.reaction(r, u, t, approach, 0.0, want)
     }
 
+    /// The approach (m) of an aligned roller (tilt `±0`) at radial displacement `radial`, and
+    /// whether [`CylindricalRollerLaw::react_massless`] would answer the zero reaction of an
+    /// unloaded roller there without evaluating a lamina (no lamina can touch and no flange
+    /// contact): the ring level's test that skips such a roller, the same comparison on the
+    /// same numbers.
+    #[inline]
+    pub(crate) fn aligned_untouched(&self, radial: f64) -> (f64, bool) {
+        let approach = radial - self.half_pd;
+        (
+            approach,
+            self.flange.is_none() && self.laminae.untouched(approach, 0.0),
+        )
+    }
+
     /// The reaction of a massless roller (the ring level's, [`CylindricalRollerLaw::massless`])
     /// whose laminae's approaches are moved by `offsets` (m, one per lamina: a race's
     /// waviness adds, a defect's depth loss subtracts; docs/physics.md §R12), with the lamina

@@ -32,7 +32,7 @@ use crate::seam::element::{
     assemble_sc, even_base, place_evenly_sc, ElementDisplacement, ElementLaw, ElementLoad,
     ElementReaction, Want,
 };
-use crate::seam::{LevelModel, LevelOutputs, Point};
+use crate::seam::{LevelModel, LevelOutputs, Motion, Point};
 
 /// The stiffness and damping matrices an evaluation fills.
 type Matrices<'a> = (&'a mut [[f64; 5]; 5], &'a mut [[f64; 5]; 5]);
@@ -56,6 +56,9 @@ pub struct LawRingLevel {
     /// The elements' loads of the last outputs, when asked to keep them
     /// ([`LevelModel::keep_element_loads`]; `None`: nothing stored).
     loads: Option<Vec<ElementLoad>>,
+    /// Every evaluation through the general sum (the reference of
+    /// [`LawRingLevel::aligned_two`]'s test).
+    general_only: bool,
 }
 
 /// A roller bearing's per-lamina effects: the massless law that takes offsets, the compiled
@@ -132,6 +135,7 @@ impl LawRingLevel {
             profiled,
             cylindrical: None,
             loads: None,
+            general_only: false,
         })
     }
 
@@ -164,6 +168,9 @@ impl LawRingLevel {
             stiffness: kc.is_some(),
             report: kc.is_some(),
         };
+        if let Some(w) = self.aligned_two(m, &mut kc, want, report, &mut element) {
+            return Ok(w);
+        }
         // The shaft has turned by the cage angle over the cage ratio (both start at 0).
         let theta_s = x[0] / self.cage_ratio;
         let mut profiled = self.profiled.as_mut();
@@ -191,32 +198,18 @@ impl LawRingLevel {
                     (None, Some(cl)) => cl.react_massless(u, want),
                     (None, None) => law.react(at, u, m.omega, &mut [], want)?,
                 };
-                if r.f[1] < 0.0 {
-                    report.0 += 1;
-                    report.1 = report.1.max(r.load[0]).max(r.load[1]);
-                    report.2 = report.2.max(r.pressure[0]).max(r.pressure[1]);
-                }
-                element(j, at.psi, &r);
-                if c0 > 0.0 && r.f[1] < 0.0 && r.approach > 0.0 {
-                    let (s, c) = at.sc;
-                    let (q, v) = (&m.q, &m.v);
-                    let rate = v[0] * c + v[1] * s + wc * (-q[0] * s + q[1] * c);
-                    let cd = c0 * (r.approach / DAMPING_RAMP).min(1.0);
-                    r.f[1] -= cd * rate;
-                    if jac {
-                        add_outer(&mut cmat, 0, [c, s], cd);
-                    }
-                    if arm2 > 0.0 {
-                        // The tilt about the element's tangential axis, `rx s - ry c`, and its
-                        // rate as the element travels with the cage.
-                        let wt = v[3] * s - v[4] * c + wc * (q[3] * c + q[4] * s);
-                        let ct = cd * arm2;
-                        r.f[2] -= ct * wt;
-                        if jac {
-                            add_outer(&mut cmat, 3, [s, -c], ct);
-                        }
-                    }
-                }
+                let d = Damping { c0, wc, arm2, jac };
+                settle(
+                    &mut r,
+                    j,
+                    at.psi,
+                    at.sc,
+                    m,
+                    d,
+                    report,
+                    &mut element,
+                    &mut cmat,
+                );
                 Ok(r)
             },
         )?;
@@ -236,6 +229,143 @@ impl LawRingLevel {
             *c = cmat;
         }
         Ok(w)
+    }
+
+    /// [`LawRingLevel::evaluate`] of the common case it is timed on: a 2-DOF ring on massless
+    /// cylindrical rollers without effects or flange contact, the ring not tilted (`rx = ry =
+    /// 0`, so every roller is aligned) and its displacement finite. `None` in any other case
+    /// (the general sum then runs). The same numbers bit for bit as the general sum
+    /// ([`assemble_sc`] over [`CylindricalRollerLaw::react_massless`]): a roller no lamina
+    /// of which can touch ([`CylindricalRollerLaw::aligned_untouched`]) would give the zero
+    /// reaction, whose `±0` forces add no bit to the sums and which adds nothing to `K`, so it
+    /// is reported to `element` and skipped; a loaded roller's reaction is the law's own,
+    /// damped and reported as there, its radial force summed into `(Fx, Fy)` in the same order
+    /// and its radial stiffness into the 2×2 block of `K` by the same products (the other
+    /// entries, and `Fz, Mx, My`, are the zeros the 2-DOF ring keeps).
+    #[inline]
+    fn aligned_two(
+        &self,
+        m: &Motion,
+        kc: &mut Option<Matrices<'_>>,
+        want: Want,
+        report: &mut (usize, f64, f64),
+        element: &mut impl FnMut(usize, f64, &ElementReaction),
+    ) -> Option<[f64; 5]> {
+        let cl = self.cylindrical.as_ref()?;
+        let q = &m.q;
+        if self.dof != RingDof::Two
+            || self.general_only
+            || self.profiled.is_some()
+            || q[3] != 0.0
+            || q[4] != 0.0
+            || !q.iter().all(|v| v.is_finite())
+            || self.law.moment_arm() != 0.0
+        {
+            return None;
+        }
+        let d = Damping {
+            c0: self.damping,
+            wc: self.cage_ratio * m.omega,
+            arm2: 0.0,
+            jac: kc.is_some(),
+        };
+        let mut cmat = [[0.0; 5]; 5];
+        let mut k2 = [[0.0; 2]; 2];
+        let mut f = [0.0; 2];
+        for (j, (&psi, &(s, c))) in self.psi.iter().zip(&self.sc).enumerate() {
+            if !psi.is_finite() {
+                return None;
+            }
+            let (approach, untouched) = cl.aligned_untouched(q[0] * c + q[1] * s);
+            if untouched {
+                let r = ElementReaction {
+                    f: [0.0, -0.0, 0.0],
+                    approach,
+                    ..Default::default()
+                };
+                element(j, psi, &r);
+                continue;
+            }
+            let mut r = cl.react_massless(ElementDisplacement::at(q, s, c), want);
+            settle(&mut r, j, psi, (s, c), m, d, report, element, &mut cmat);
+            let fr = r.f[1];
+            f[0] += fr * c;
+            f[1] += fr * s;
+            if want.stiffness && r.df != [[0.0; 3]; 3] {
+                let dr = r.df[1][1];
+                let (rc, rs) = (dr * c, dr * s);
+                k2[0][0] -= rc * c;
+                k2[0][1] -= rc * s;
+                k2[1][0] -= rs * c;
+                k2[1][1] -= rs * s;
+            }
+        }
+        if !(f[0].is_finite() && f[1].is_finite()) {
+            // The general sum names the failure.
+            return None;
+        }
+        if let Some((k, c)) = kc {
+            **k = [[0.0; 5]; 5];
+            k[0][..2].copy_from_slice(&k2[0]);
+            k[1][..2].copy_from_slice(&k2[1]);
+            **c = cmat;
+        }
+        Some([f[0], f[1], 0.0, 0.0, 0.0])
+    }
+}
+
+/// What [`settle`] damps an element with: the contact damping `c0`, the cage speed `wc`, the
+/// tilt damping's squared arm `arm2` (0: none) and whether the damping matrix is wanted.
+#[derive(Debug, Clone, Copy)]
+struct Damping {
+    c0: f64,
+    wc: f64,
+    arm2: f64,
+    jac: bool,
+}
+
+/// One element's reaction `r` at azimuth `psi` (`(sin, cos)` = `sc`) finished as the ring
+/// level sums it: counted into `report` (loaded elements, largest load and pressure), handed
+/// to `element`, then damped along its radial line (and tilt) with the damping matrix into
+/// `cmat` (module docs).
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn settle(
+    r: &mut ElementReaction,
+    j: usize,
+    psi: f64,
+    sc: (f64, f64),
+    m: &Motion,
+    d: Damping,
+    report: &mut (usize, f64, f64),
+    element: &mut impl FnMut(usize, f64, &ElementReaction),
+    cmat: &mut [[f64; 5]; 5],
+) {
+    if r.f[1] < 0.0 {
+        report.0 += 1;
+        report.1 = report.1.max(r.load[0]).max(r.load[1]);
+        report.2 = report.2.max(r.pressure[0]).max(r.pressure[1]);
+    }
+    element(j, psi, r);
+    if d.c0 > 0.0 && r.f[1] < 0.0 && r.approach > 0.0 {
+        let (s, c) = sc;
+        let (q, v, wc) = (&m.q, &m.v, d.wc);
+        let rate = v[0] * c + v[1] * s + wc * (-q[0] * s + q[1] * c);
+        let cd = d.c0 * (r.approach / DAMPING_RAMP).min(1.0);
+        r.f[1] -= cd * rate;
+        if d.jac {
+            add_outer(cmat, 0, [c, s], cd);
+        }
+        if d.arm2 > 0.0 {
+            // The tilt about the element's tangential axis, `rx s - ry c`, and its
+            // rate as the element travels with the cage.
+            let wt = v[3] * s - v[4] * c + wc * (q[3] * c + q[4] * s);
+            let ct = cd * d.arm2;
+            r.f[2] -= ct * wt;
+            if d.jac {
+                add_outer(cmat, 3, [s, -c], ct);
+            }
+        }
     }
 }
 
@@ -313,5 +443,114 @@ impl LevelModel for LawRingLevel {
             ..LevelOutputs::default()
         };
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::component::Scene;
+
+    /// The bench's ring: NU206, 2 DOF, with contact damping (`damping` N s/m).
+    fn level(damping: f64, general: bool) -> LawRingLevel {
+        let text = format!(
+            "bearing = \"NU206\"\n[model]\nlevel = \"ring\"\ncausality = \"motion\"\n\
+             ring_dof = 2\ncontact_damping = {damping:?}\n"
+        );
+        let scene = Scene::from_text(&text).unwrap();
+        let b = scene.build_bearing().unwrap();
+        let a = scene.level_args(&b);
+        let opts = crate::models::quasi_static::Options {
+            race_control: a.race_control,
+            ..Default::default()
+        };
+        let law = crate::models::quasi_static::level::element_law(&a, opts, false).unwrap();
+        let mut l = LawRingLevel::new(&a, law, RingDof::Two)
+            .unwrap()
+            .massless_cylindrical(&a)
+            .unwrap();
+        l.general_only = general;
+        l.keep_element_loads();
+        l
+    }
+
+    fn bits(v: &[f64]) -> Vec<u64> {
+        v.iter().map(|x| x.to_bits()).collect()
+    }
+
+    #[test]
+    fn aligned_two_dof_is_the_general_sum_bit_for_bit() {
+        for damping in [0.0, 2e3] {
+            let (mut fast, mut general) = (level(damping, false), level(damping, true));
+            let mut taken = 0;
+            for (i, &(x, y)) in [
+                (0.0, -30e-6),
+                (1e-6, -31e-6),
+                (-7e-6, 12e-6),
+                (20e-6, 20e-6),
+                (0.0, 0.0),
+                (-40e-6, -3e-6),
+                (3e-7, -18.3e-6),
+            ]
+            .iter()
+            .enumerate()
+            {
+                for (theta, omega) in [(0.0, 157.0), (0.37, 157.0), (5.1 + i as f64, -80.0)] {
+                    for q3 in [0.0, -0.0, 1e-4] {
+                        let m = Motion {
+                            q: [x, y, 2e-6, q3, 0.0],
+                            v: [1e-3, -2e-3, 0.0, 0.0, 0.0],
+                            omega,
+                        };
+                        let xs = [theta];
+                        let (mut oa, mut ob) = (LevelOutputs::default(), LevelOutputs::default());
+                        fast.outputs(Point::new(0.0, &m, &xs, &mut []), &mut oa)
+                            .unwrap();
+                        general
+                            .outputs(Point::new(0.0, &m, &xs, &mut []), &mut ob)
+                            .unwrap();
+                        assert_eq!(bits(&oa.wrench), bits(&ob.wrench), "{x} {y} {theta}");
+                        assert_eq!(bits(oa.k.as_flattened()), bits(ob.k.as_flattened()));
+                        assert_eq!(bits(oa.c.as_flattened()), bits(ob.c.as_flattened()));
+                        let rep = |o: &LevelOutputs| {
+                            bits(&[o.balls_loaded, o.max_load, o.max_pressure, o.cage_omega])
+                        };
+                        assert_eq!(rep(&oa), rep(&ob));
+                        let (mut la, mut lb) = (Vec::new(), Vec::new());
+                        assert!(fast.element_loads(&mut la) && general.element_loads(&mut lb));
+                        let flat = |l: &[ElementLoad]| {
+                            bits(
+                                &l.iter()
+                                    .flat_map(|e| [e.psi, e.inner, e.outer])
+                                    .collect::<Vec<_>>(),
+                            )
+                        };
+                        assert_eq!(flat(&la), flat(&lb));
+                        let (mut wa, mut wb) = ([0.0; 5], [0.0; 5]);
+                        let mut dx = [0.0];
+                        fast.rhs(Point::new(0.0, &m, &xs, &mut []), &mut dx, Some(&mut wa))
+                            .unwrap();
+                        general
+                            .rhs(Point::new(0.0, &m, &xs, &mut []), &mut dx, Some(&mut wb))
+                            .unwrap();
+                        assert_eq!(bits(&wa), bits(&wb));
+                        if q3 == 0.0 {
+                            assert!(oa.balls_loaded > 0.0 || y > -1e-6 || damping > 0.0);
+                            taken += 1;
+                            let mut none = None;
+                            let w = fast.aligned_two(
+                                &m,
+                                &mut none,
+                                Want::default(),
+                                &mut (0, 0.0, 0.0),
+                                &mut |_, _, _| {},
+                            );
+                            assert_eq!(w.map(|w| bits(&w)), Some(bits(&wa)));
+                        }
+                    }
+                }
+            }
+            assert!(taken > 0);
+        }
     }
 }
