@@ -77,9 +77,11 @@ pub struct ElementReaction {
     pub load: [f64; 2],
     /// Inner and outer peak contact pressures, Pa (with [`Want::report`]).
     pub pressure: [f64; 2],
-    /// The element's approach along its contact line (both contacts; a roller's at its
-    /// mid-length), m; negative: a gap. What contact damping ramps in with (the ball law
-    /// fills it when the stiffness or the report is wanted).
+    /// The element's approach along its contact line (both contacts), m; negative: a gap.
+    /// What contact damping ramps in with (the ball law fills it when the stiffness or the
+    /// report is wanted). A roller's is its most compressed lamina's, at speed its inner
+    /// contact's (zero where that contact closes); with no lamina loaded the mid-length
+    /// approach capped at zero (`contact::roller_law`, `contact::tapered_law`).
     pub approach: f64,
 }
 
@@ -114,6 +116,14 @@ pub trait ElementLaw: std::fmt::Debug + Send {
     /// a point contact, whose tilt carries no damping of its own.
     fn tilt_damping_arm2(&self) -> f64 {
         0.0
+    }
+    /// For contact damping: the unit direction `g` in the element's frame `(axial, radial,
+    /// tilt)` along which its contact approach grows (`d approach = g · d(axial, radial,
+    /// tilt)`, the tilt part per radian in metres): the damper `c` acts on the approach rate
+    /// `g · v` and pushes back along `g`. `[0, 1, 0]` (the default): the radial line of a
+    /// cylindrical roller or a radial ball; a tapered roller's cup normal has an axial part.
+    fn damping_direction(&self) -> [f64; 3] {
+        [0.0, 1.0, 0.0]
     }
     /// Memory per element (warm starts), in numbers; the caller keeps it between calls.
     fn state_len(&self) -> usize;
