@@ -311,14 +311,6 @@ impl ElementLaw for TaperedRollerLaw {
         0
     }
 
-    /// The cup normal `(sin alpha_o, cos alpha_o)`: the mid-point approach is
-    /// `sin(alpha_o) axial + cos(alpha_o) radial + a tilt` (module docs); its tilt part is
-    /// left to the line's own tilt damper (`tilt_damping_arm2`), so the direction stays a
-    /// unit one in the translations.
-    fn damping_direction(&self) -> [f64; 3] {
-        [self.sin_o, self.cos_o, 0.0]
-    }
-
     fn react(
         &self,
         _at: ElementAt<'_>,

@@ -117,14 +117,6 @@ pub trait ElementLaw: std::fmt::Debug + Send {
     fn tilt_damping_arm2(&self) -> f64 {
         0.0
     }
-    /// For contact damping: the unit direction `g` in the element's frame `(axial, radial,
-    /// tilt)` along which its contact approach grows (`d approach = g · d(axial, radial,
-    /// tilt)`, the tilt part per radian in metres): the damper `c` acts on the approach rate
-    /// `g · v` and pushes back along `g`. `[0, 1, 0]` (the default): the radial line of a
-    /// cylindrical roller or a radial ball; a tapered roller's cup normal has an axial part.
-    fn damping_direction(&self) -> [f64; 3] {
-        [0.0, 1.0, 0.0]
-    }
     /// Memory per element (warm starts), in numbers; the caller keeps it between calls.
     fn state_len(&self) -> usize;
     /// The element's reaction to the displacement `u` at shaft speed `omega` (rad/s),

@@ -10,10 +10,7 @@
 //! bearing's ring level keeps its own inlined Hertz loop (`RingModel`): the same law,
 //! specialised for the speed rows of the straight-through and coupling jobs.
 //!
-//! With 5 DOF a tapered roller's damper acts along its cup normal
-//! ([`ElementLaw::damping_direction`]: the axial rate too, as its approach has an axial part;
-//! a cylindrical roller's is radial). The damping spreads evenly along a roller's contact
-//! line, so the tilt rate
+//! With 5 DOF the damping spreads evenly along a roller's contact line, so the tilt rate
 //! `w` at the element meets the moment `-c L²/12 w` ([`ElementLaw::tilt_damping_arm2`]).
 //!
 //! Defects and waviness on a cylindrical roller bearing, and cup and cone defects on a tapered
@@ -175,13 +172,11 @@ impl LawRingLevel {
         let mut profiled = self.profiled.as_mut();
         let cylindrical = self.cylindrical.as_ref();
         let (law, c0, jac) = (&self.law, self.damping, kc.is_some());
-        let (arm2, dir) = if self.dof == RingDof::Five {
-            (law.tilt_damping_arm2(), law.damping_direction())
+        let arm2 = if self.dof == RingDof::Five {
+            law.tilt_damping_arm2()
         } else {
-            (0.0, [0.0, 1.0, 0.0])
+            0.0
         };
-        // A tapered roller's cup normal: its damper sees the axial rate too.
-        let radial_only = dir[0] == 0.0;
         let mut cmat = [[0.0; 5]; 5];
         let mut w = assemble_sc(
             &m.q,
@@ -212,25 +207,9 @@ impl LawRingLevel {
                     let (q, v) = (&m.q, &m.v);
                     let rate = v[0] * c + v[1] * s + wc * (-q[0] * s + q[1] * c);
                     let cd = c0 * (r.approach / DAMPING_RAMP).min(1.0);
-                    if radial_only {
-                        r.f[1] -= cd * rate;
-                        if jac {
-                            add_outer(&mut cmat, 0, [c, s], cd);
-                        }
-                    } else {
-                        // Along the contact normal `(g_a, g_r)` in (axial, radial): the
-                        // approach rate `g_a vz + g_r rate`, the force back along it.
-                        let ar = dir[0] * v[2] + dir[1] * rate;
-                        r.f[0] -= cd * dir[0] * ar;
-                        r.f[1] -= cd * dir[1] * ar;
-                        if jac {
-                            let g = [dir[1] * c, dir[1] * s, dir[0]];
-                            for (a, ga) in g.iter().enumerate() {
-                                for (b, gb) in g.iter().enumerate() {
-                                    cmat[a][b] += cd * ga * gb;
-                                }
-                            }
-                        }
+                    r.f[1] -= cd * rate;
+                    if jac {
+                        add_outer(&mut cmat, 0, [c, s], cd);
                     }
                     if arm2 > 0.0 {
                         // The tilt about the element's tangential axis, `rx s - ry c`, and its
