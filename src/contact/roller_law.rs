@@ -55,6 +55,9 @@ pub struct CylindricalRollerLaw {
     e_outer: f64,
     /// `F_c/omega²` (kg m): the roller's centrifugal force per squared shaft speed.
     fc_per_omega2: f64,
+    /// The smallest profile drop of both contacts `min 2P(x_k)`, m: an aligned massless
+    /// roller's most compressed lamina is the one of least drop ([`Self::contact_approach`]).
+    min_drop2: f64,
     /// The flange contact: series Hertz constant (N/m^1.5), inner flange contact radius (m),
     /// both directions (NUP) or `+z` only (NJ).
     flange: Option<(f64, f64, bool)>,
@@ -79,7 +82,40 @@ impl CylindricalRollerLaw {
             e_outer: b.e_prime_outer(),
             flange: flange_contact(b)?,
             fc_per_omega2: centrifugal_per_omega2(b),
-        })
+            min_drop2: 0.0,
+        }
+        .with_min_drop())
+    }
+
+    fn with_min_drop(mut self) -> Self {
+        self.min_drop2 = self
+            .laminae
+            .drop2
+            .iter()
+            .copied()
+            .fold(f64::INFINITY, f64::min);
+        self
+    }
+
+    /// What contact damping ramps in with ([`ElementReaction::approach`]): the approach of
+    /// the roller's most compressed lamina, `(q_max/c_s)^0.9` (the lamina law inverted; at
+    /// speed `q_max` is the largest inner lamina load, so this is zero where the inner
+    /// contact closes, not where the roller starts pressing on the outer raceway), or, when
+    /// no lamina is loaded, the mid-length approach capped at zero. `aligned`: a massless
+    /// roller at zero tilt without offsets, whose most compressed lamina is the one of
+    /// least profile drop (`approach - min 2P`, no root taken). A tilted roller's edge
+    /// lamina or an inner contact closing at speed thus ramps the damping in from its own
+    /// first touch (docs/physics.md §R9), where the mid-length approach may be negative
+    /// (edge loading) or already past the ramp (the outer contact's compression by `F_c`).
+    #[inline]
+    fn contact_approach(&self, r: &RollerLoad, approach: f64, aligned: bool) -> f64 {
+        if r.loaded == 0 {
+            approach.min(0.0)
+        } else if aligned {
+            approach - self.min_drop2
+        } else {
+            (r.max_lamina / self.laminae.cs).powf(0.9)
+        }
     }
 
     /// The same law with massless rollers (no centrifugal force at any speed): the ring
@@ -179,7 +215,8 @@ impl ElementLaw for CylindricalRollerLaw {
     ) -> Result<ElementReaction> {
         let approach = u.radial - self.half_pd;
         let t = tan0(u.tilt);
-        let r = if omega == 0.0 || self.fc_per_omega2 == 0.0 {
+        let massless = omega == 0.0 || self.fc_per_omega2 == 0.0;
+        let r = if massless {
             self.laminae.evaluate_tan(approach, t)
         } else if omega.is_finite() {
             self.laminae_at(approach, t, omega, None)
@@ -190,7 +227,8 @@ impl ElementLaw for CylindricalRollerLaw {
                 "a finite shaft speed (rad/s)",
             ));
         };
-        Ok(self.reaction(r, u, t, approach, omega, want))
+        let contact = self.contact_approach(&r, approach, massless && t == 0.0);
+        Ok(self.reaction(r, u, t, contact, omega, want))
     }
 }
 
@@ -210,12 +248,13 @@ impl CylindricalRollerLaw {
             // and of the report are `reaction`'s up to their signs, which no sum sees).
             return ElementReaction {
                 f: [0.0, -0.0, 0.0],
-                approach,
+                approach: approach.min(0.0),
                 ..Default::default()
             };
         }
         // Massless: the report's centrifugal force is zero at any speed, as at rest.
-        self.reaction(r, u, t, approach, 0.0, want)
+        let contact = self.contact_approach(&r, approach, t == 0.0);
+        self.reaction(r, u, t, contact, 0.0, want)
     }
 
     /// The approach (m) of an aligned roller (tilt `±0`) at radial displacement `radial`, and
@@ -249,11 +288,13 @@ impl CylindricalRollerLaw {
         let approach = u.radial - self.half_pd;
         let t = tan0(u.tilt);
         let r = self.laminae.evaluate_offsets(approach, t, offsets, loads);
-        self.reaction(r, u, t, approach, 0.0, want)
+        let contact = self.contact_approach(&r, approach, false);
+        self.reaction(r, u, t, contact, 0.0, want)
     }
 
-    /// The element's reaction from the laminae's `r` at `u` (`t = tan(tilt)`, `approach` at
-    /// mid-length), with the flange contact and the report.
+    /// The element's reaction from the laminae's `r` at `u` (`t = tan(tilt)`, `approach` what
+    /// contact damping ramps in with, [`Self::contact_approach`]), with the flange contact
+    /// and the report.
     #[inline]
     fn reaction(
         &self,

@@ -179,8 +179,8 @@ impl TaperedRollerLaw {
     }
 
     /// The cup lamina loads at speed: at approach `delta` (cup normal) and `tan psi` `tau`,
-    /// the cup loads' force, moment and derivatives; `cup`, `cone` (length `ns`) receive the
-    /// lamina loads when given (module docs).
+    /// the cup loads' force, moment and derivatives, and the largest cone lamina load (N);
+    /// `cup`, `cone` (length `ns`) receive the lamina loads when given (module docs).
     fn pressed(
         &self,
         delta: f64,
@@ -188,11 +188,12 @@ impl TaperedRollerLaw {
         omega: f64,
         mut cup: Option<&mut [f64]>,
         mut cone: Option<&mut [f64]>,
-    ) -> RollerLoad {
+    ) -> (RollerLoad, f64) {
         let (fc, mg) = self.inertia_loads(omega);
         let (rho, kap, c1) = (self.rho_inner, self.kappa, self.c1);
         let sec2 = 1.0 + tau * tau;
         let mut r = RollerLoad::default();
+        let mut cone_max = 0.0f64;
         let l = &self.laminae;
         for k in 0..l.len() {
             let (x, d2) = (l.x[k], l.drop2[k]);
@@ -238,12 +239,14 @@ impl TaperedRollerLaw {
             if let Some(c) = cup.as_deref_mut() {
                 c[k] = t;
             }
+            let s = (rho * t - kap * h).max(0.0);
+            cone_max = cone_max.max(s);
             if let Some(c) = cone.as_deref_mut() {
-                c[k] = (rho * t - kap * h).max(0.0);
+                c[k] = s;
             }
             r.add(t, dt, x, sec2);
         }
-        r
+        (r, cone_max)
     }
 
     /// Each lamina's cup and cone loads (N) at `u` and shaft speed `omega`; returns the cup
@@ -263,7 +266,7 @@ impl TaperedRollerLaw {
             return (qo, self.rho_flange * qo);
         }
         let (d, tau) = self.lamina_inputs(u);
-        let r = self.pressed(d, tau, omega, Some(cup), Some(cone));
+        let (r, _) = self.pressed(d, tau, omega, Some(cup), Some(cone));
         let (fc, _) = self.inertia_loads(omega);
         (r.force, self.rho_flange * r.force + self.kappa_flange * fc)
     }
@@ -318,12 +321,23 @@ impl ElementLaw for TaperedRollerLaw {
     ) -> Result<ElementReaction> {
         let (delta, tau) = self.lamina_inputs(u);
         let fast = self.at_speed(omega);
-        let r = if fast {
-            self.pressed(delta, tau, omega, None, None)
+        let (r, contact) = if fast {
+            let (r, cone_max) = self.pressed(delta, tau, omega, None, None);
+            // The cone contact's own approach at its most loaded lamina (one contact's
+            // lamina law inverted): zero where the cone closes, while the cup and flange
+            // already carry the roller's inertia.
+            let c = if cone_max > 0.0 {
+                (cone_max / self.c1).powf(0.9)
+            } else {
+                delta.min(0.0)
+            };
+            (r, c)
         } else {
-            self.laminae.evaluate(delta, tau.atan())
+            let r = self.laminae.evaluate(delta, tau.atan());
+            let c = self.contact_approach(&r, delta);
+            (r, c)
         };
-        Ok(self.reaction(r, delta, tau, omega, fast, want))
+        Ok(self.reaction(r, delta, contact, tau, omega, fast, want))
     }
 }
 
@@ -354,15 +368,32 @@ impl TaperedRollerLaw {
         // The tangent `react` evaluates at (`evaluate(delta, atan tau)`), to the bit.
         let t = crate::contact::lamina::tan0(tau.atan());
         let r = self.laminae.evaluate_offsets(delta, t, offsets, loads);
-        self.reaction(r, delta, tau, 0.0, false, want)
+        let contact = self.contact_approach(&r, delta);
+        self.reaction(r, delta, contact, tau, 0.0, false, want)
+    }
+
+    /// What contact damping ramps in with ([`ElementReaction::approach`]) for a massless
+    /// roller or at rest: the cup-normal approach of the most compressed lamina,
+    /// `(q_max/c_s)^0.9` (the laminae's series law inverted), or, with no lamina loaded, the
+    /// mid-point approach capped at zero; an edge-loaded roller whose mid-point approach is
+    /// negative is damped from its first lamina's touch (docs/physics.md §R9).
+    fn contact_approach(&self, r: &RollerLoad, delta: f64) -> f64 {
+        if r.loaded == 0 {
+            delta.min(0.0)
+        } else {
+            (r.max_lamina / self.laminae.cs).powf(0.9)
+        }
     }
 
     /// The element's reaction from the cup laminae's `r` at the cup-normal approach `delta`
-    /// and `tau = tan(psi)` (module docs); `fast`: at speed (`omega`).
+    /// (`contact`: what contact damping ramps in with) and `tau = tan(psi)` (module docs);
+    /// `fast`: at speed (`omega`).
+    #[allow(clippy::too_many_arguments)]
     fn reaction(
         &self,
         r: RollerLoad,
         delta: f64,
+        contact: f64,
         tau: f64,
         omega: f64,
         fast: bool,
@@ -375,7 +406,7 @@ impl TaperedRollerLaw {
                 -self.cos_o * q,
                 -self.arm * q - self.cos_beta * m,
             ],
-            approach: delta,
+            approach: contact,
             ..Default::default()
         };
         if fast {
@@ -404,7 +435,7 @@ impl TaperedRollerLaw {
             let w = self.laminae.width();
             let ns = self.laminae.len();
             let (mut cup, mut cone) = (vec![0.0; ns], vec![0.0; ns]);
-            self.pressed(delta, tau, omega, Some(&mut cup), Some(&mut cone));
+            let _ = self.pressed(delta, tau, omega, Some(&mut cup), Some(&mut cone));
             let mx = |v: &[f64]| v.iter().copied().fold(0.0, f64::max);
             out.load = [cone.iter().sum(), q];
             out.pressure = [

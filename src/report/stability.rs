@@ -970,6 +970,14 @@ pub fn run(cells: &[Cell], t_base: f64, verbose: bool) -> Vec<(Cell, Outcome)> {
         .collect()
 }
 
+impl Cell {
+    /// The cell's label, its row's first cells on the page: `base | speed | load |
+    /// clearance | material | H | step input` (what the developer filter matches).
+    pub fn label(&self) -> String {
+        row_cells(self)
+    }
+}
+
 fn row_cells(c: &Cell) -> String {
     format!(
         "{} | {} | {} | {} | {} | {:.0e} | {}",
@@ -1110,8 +1118,27 @@ pub fn markdown(
 /// the long matrix (20 ms windows), its page written to `dir/stability.md`. Returns the
 /// results (check [`Outcome::passed`]).
 pub fn campaign(long: bool, dir: &std::path::Path, verbose: bool) -> Result<Vec<(Cell, Outcome)>> {
+    campaign_of(long, &[], dir, verbose)
+}
+
+/// Whether a cell's label ([`Cell::label`], or a set cell's `set: NAME`) is kept by the
+/// developer filter `only`: it contains one of the substrings, or `only` is empty.
+pub fn kept(label: &str, only: &[String]) -> bool {
+    only.is_empty() || only.iter().any(|s| label.contains(s.as_str()))
+}
+
+/// [`campaign`] restricted to the cells whose label contains one of the substrings of
+/// `only` (`raceway bench --stability --cell SUBSTRING`, repeatable: a developer's filter
+/// to rerun a few cells; empty: the whole campaign). The page says which cells it holds.
+pub fn campaign_of(
+    long: bool,
+    only: &[String],
+    dir: &std::path::Path,
+    verbose: bool,
+) -> Result<Vec<(Cell, Outcome)>> {
     let t_base = if long { 0.02 } else { 0.005 };
-    let cells = matrix(long);
+    let mut cells = matrix(long);
+    cells.retain(|c| kept(&c.label(), only));
     if verbose {
         println!("stability campaign: {} cells", cells.len());
     }
@@ -1119,20 +1146,27 @@ pub fn campaign(long: bool, dir: &std::path::Path, verbose: bool) -> Result<Vec<
     let mut times = Vec::new();
     for b in BASES.iter().chain(ROLLER_BASES) {
         let these: Vec<Cell> = cells.iter().filter(|c| c.base == b).copied().collect();
+        if these.is_empty() {
+            continue;
+        }
         let start = super::thread_cpu_s();
         res.extend(run(&these, t_base, verbose));
         times.push((b.name, super::thread_cpu_s() - start));
     }
-    let cmd = if long {
-        "cargo run --release -- bench --stability --long --out docs"
+    let mut cmd = if long {
+        "cargo run --release -- bench --stability --long --out docs".to_string()
     } else {
-        "cargo run --release -- bench --stability --out docs"
+        "cargo run --release -- bench --stability --out docs".to_string()
     };
+    for s in only {
+        let _ = write!(cmd, " --cell {s:?}");
+    }
     // Bearing sets (their own block, `sets`): the page gets their section.
-    let set_res = sets::run(t_base, verbose);
-    super::write_file(
-        &dir.join("stability.md"),
-        &(markdown(&res, t_base, cmd, &times) + &sets::markdown(&set_res, t_base)),
-    )?;
+    let set_res = sets::run_of(t_base, only, verbose);
+    let mut page = markdown(&res, t_base, &cmd, &times);
+    if !set_res.is_empty() {
+        page += &sets::markdown(&set_res, t_base);
+    }
+    super::write_file(&dir.join("stability.md"), &page)?;
     Ok(res)
 }

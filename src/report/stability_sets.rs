@@ -180,8 +180,15 @@ impl SetCell {
 
 /// Run every set cell over `t_end` (s).
 pub fn run(t_end: f64, verbose: bool) -> Vec<(SetCell, Outcome)> {
+    run_of(t_end, &[], verbose)
+}
+
+/// Run the set cells whose label `set: NAME` passes the developer filter `only`
+/// ([`super::kept`]) over `t_end` (s).
+pub fn run_of(t_end: f64, only: &[String], verbose: bool) -> Vec<(SetCell, Outcome)> {
     cells()
         .into_iter()
+        .filter(|c| super::kept(&format!("set: {}", c.name), only))
         .map(|c| {
             let o = c.run(t_end);
             if verbose {

@@ -77,9 +77,11 @@ pub struct ElementReaction {
     pub load: [f64; 2],
     /// Inner and outer peak contact pressures, Pa (with [`Want::report`]).
     pub pressure: [f64; 2],
-    /// The element's approach along its contact line (both contacts; a roller's at its
-    /// mid-length), m; negative: a gap. What contact damping ramps in with (the ball law
-    /// fills it when the stiffness or the report is wanted).
+    /// The element's approach along its contact line (both contacts), m; negative: a gap.
+    /// What contact damping ramps in with (the ball law fills it when the stiffness or the
+    /// report is wanted). A roller's is its most compressed lamina's, at speed its inner
+    /// contact's (zero where that contact closes); with no lamina loaded the mid-length
+    /// approach capped at zero (`contact::roller_law`, `contact::tapered_law`).
     pub approach: f64,
 }
 

@@ -7,7 +7,8 @@
 //! - `raceway bench --out DIR [--quick] [--peer]`: DIR/work-precision.{csv,md,png};
 //!   `--quick`: three tolerances, one repeat; `--peer`: also the SciPy peer
 //!   (scripts/peer-scipy) with its speed ratio at equal error.
-//! - `raceway bench --stability [--long] --out DIR`: DIR/stability.md.
+//! - `raceway bench --stability [--long] [--cell TEXT]... --out DIR`: DIR/stability.md
+//!   (`--cell`: only the cells whose label contains TEXT).
 
 use raceway::report::stability;
 use raceway::report::work_precision::{self as wp, Config};
@@ -32,6 +33,12 @@ pub struct BenchArgs {
     /// With --stability: the long matrix.
     #[arg(long)]
     pub long: bool,
+    /// With --stability: only the cells whose label (`base | speed (rpm) | load |
+    /// clearance | material | H | step input`, as on the page, or `set: NAME`) contains
+    /// this text (repeatable: any of them). A developer's filter for rerunning a few
+    /// cells; the page then holds only those.
+    #[arg(long = "cell")]
+    pub cells: Vec<String>,
     /// Recompute the cached references (target/raceway-bench, keyed by scene and version,
     /// not by the model's code: use this after changing a model).
     #[arg(long)]
@@ -46,7 +53,7 @@ pub struct BenchArgs {
 pub fn bench(a: BenchArgs) -> Result<String> {
     let out = a.out;
     if a.stability {
-        let res = stability::campaign(a.long, &out, true)?;
+        let res = stability::campaign_of(a.long, &a.cells, &out, true)?;
         let failed = res.iter().filter(|(_, o)| !o.passed()).count();
         return Ok(format!(
             "wrote {}/stability.md ({} cells, {failed} failed)\n",

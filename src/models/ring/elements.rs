@@ -3,7 +3,10 @@
 //! kinematic positions, summed by [`assemble_sc`], with contact damping `c d(delta)/dt` per
 //! loaded element along its radial line (the element's approach rate from the ring's radial
 //! motion at the element, including the element's travel with the cage), blended in over
-//! the first [`DAMPING_RAMP`] of approach as for balls (docs/physics.md §5.1). The ball
+//! the first [`DAMPING_RAMP`] of approach as for balls (docs/physics.md §5.1): the approach
+//! the law reports ([`ElementReaction::approach`]), a roller's at its most compressed lamina's
+//! contact (an edge-loaded roller is damped from its first lamina's touch; at speed from the
+//! inner contact's closing, docs/physics.md §R9). The ball
 //! bearing's ring level keeps its own inlined Hertz loop (`RingModel`): the same law,
 //! specialised for the speed rows of the straight-through and coupling jobs.
 //!
@@ -280,7 +283,7 @@ impl LawRingLevel {
             if untouched {
                 let r = ElementReaction {
                     f: [0.0, -0.0, 0.0],
-                    approach,
+                    approach: approach.min(0.0),
                     ..Default::default()
                 };
                 element(j, psi, &r);
@@ -347,7 +350,9 @@ fn settle(
         report.2 = report.2.max(r.pressure[0]).max(r.pressure[1]);
     }
     element(j, psi, r);
-    if d.c0 > 0.0 && r.f[1] < 0.0 && r.approach > 0.0 {
+    // The element's contact approach (the roller laws': its most compressed lamina's, the
+    // inner contact's at speed), positive exactly while it touches.
+    if d.c0 > 0.0 && r.approach > 0.0 {
         let (s, c) = sc;
         let (q, v, wc) = (&m.q, &m.v, d.wc);
         let rate = v[0] * c + v[1] * s + wc * (-q[0] * s + q[1] * c);
