@@ -83,8 +83,9 @@ fn fitted_amplitude(x: &[f64], fs: f64, f: f64) -> f64 {
     for c in 0..3 {
         for r in c + 1..3 {
             let m = a[r][c] / a[c][c];
-            for k in c..3 {
-                a[r][k] -= m * a[c][k];
+            let pivot = a[c];
+            for (x, p) in a[r].iter_mut().zip(pivot).skip(c) {
+                *x -= m * p;
             }
             b[r] -= m * b[c];
         }
