@@ -156,7 +156,7 @@ fn a_cup_defect_over_half_the_generatrix_unloads_only_those_laminae() {
 }
 
 /// Bad input names the field: a defect wider than the roller's effective length, one reaching
-/// past its end, waviness and a roller defect on a tapered bearing.
+/// past its end, a roller's own defect or waviness on a tapered bearing.
 #[test]
 fn tapered_defect_refusals_name_the_field() {
     let err = |fx: &str| Component::from_text(&scene(fx)).unwrap_err().to_string();
@@ -174,13 +174,19 @@ fn tapered_defect_refusals_name_the_field() {
     assert!(e.contains("effects.defects[0].axial_position_mm"), "{e}");
     let e = err(r#"defects = [{ race = "ball", width_mm = 1.0, depth_um = 20.0 }]"#);
     assert!(e.contains("effects.defects[0].race"), "{e}");
-    let e = err(r#"waviness = [{ race = "outer", order = 3, amplitude_um = 1.0 }]"#);
-    assert!(e.contains("effects.waviness"), "{e}");
+    let e = err(r#"waviness = [{ race = "ball", order = 2, amplitude_um = 1.0 }]"#);
+    assert!(e.contains("effects.waviness[0].race"), "{e}");
+    // Cup and cone waviness are built (tests/tapered_waviness.rs).
+    for race in ["outer", "inner"] {
+        let fx = format!(r#"waviness = [{{ race = "{race}", order = 3, amplitude_um = 1.0 }}]"#);
+        assert!(Component::from_text(&scene(&fx)).is_ok(), "{race}");
+    }
 }
 
 /// The shipped scene `30206-cup-defect.toml` (cup spall over the +z half of the generatrix,
 /// 0.8 s at 1500 rpm): the envelope spectrum of the force finds BPFO = 143.63 Hz and its
-/// second and third harmonics within their tolerances.
+/// second and third harmonics within their tolerances, and the summary gives the run's lamina
+/// life.
 #[test]
 fn the_shipped_cup_defect_scene_finds_bpfo_in_the_envelope() {
     use raceway::runner::{run_into, Record, Series, Tee};
@@ -208,6 +214,13 @@ fn the_shipped_cup_defect_scene_finds_bpfo_in_the_envelope() {
         );
         assert!((f - e).abs() <= tol, "{want}: {line}");
     }
+    // A tapered bearing on the ring level is rated from its run's cone and cup laminae.
+    assert!(
+        sm.text
+            .contains("ISO/TS 16281 lamina life over the analysed window"),
+        "{}",
+        sm.text
+    );
     let bpfo = env.iter().find(|l| l["label"] == "1xBPFO").unwrap();
     assert!(
         (bpfo["expected [Hz]"].as_f64().unwrap() - 143.6285).abs() < 1e-3,

@@ -136,16 +136,30 @@ pub struct LaminaLife {
     pub ratings: LaminaRatings,
 }
 
-/// `L10r` of bearing `b` (its ISO 281 `Cr`) from the inner- and outer-contact lamina loads
-/// of every roller (`inner[j][k]`, `outer[j][k]`, N), the inner ring rotating.
+/// What the lamina ratings of roller bearing `b` take from its geometry: `(Cr, alpha,
+/// gamma)`, ISO 281's basic dynamic radial load rating (N; `ratings::roller`: the roller's
+/// mean diameter `Dwe`, its effective length `Lwe`, `Z`, the nominal contact angle), that
+/// angle and `gamma = Dwe cos(alpha)/Dpw`, one pair for both raceways. A cylindrical bearing's
+/// angle is 0; a tapered bearing's is the cup's (ISO 281's nominal contact angle of a tapered
+/// roller bearing, the one that sets its `e` and `Y`): its cone's lamina loads (normal to the
+/// cone, `rho_i` times the cup's at rest) are rated against the inner raceway's rating at the
+/// same `gamma`. The cone's own angle in the inner raceway's `gamma` would lower that rating
+/// by 0.44 % for the 30206 (docs/physics.md §R10).
+pub fn rating_geometry(b: &RollerBearing) -> Result<(f64, f64, f64)> {
+    Ok((roller_ratings(b)?.cr, b.alpha, b.gamma()))
+}
+
+/// `L10r` of bearing `b` (its ISO 281 `Cr`, [`rating_geometry`]) from the inner- and
+/// outer-contact lamina loads of every roller (`inner[j][k]`, `outer[j][k]`, N; a tapered
+/// bearing's cone and cup), the inner ring rotating.
 pub fn lamina_life(
     b: &RollerBearing,
     inner: &[Vec<f64>],
     outer: &[Vec<f64>],
     o: LaminaLifeOptions,
 ) -> Result<LaminaLife> {
-    let c = roller_ratings(b)?.cr;
-    life_from(c, b.alpha, b.gamma(), inner, outer, o)
+    let (c, alpha, gamma) = rating_geometry(b)?;
+    life_from(c, alpha, gamma, inner, outer, o)
 }
 
 /// [`lamina_life`] with the rating `c` (N), `α` and `γ` given.
@@ -287,8 +301,8 @@ impl LaminaWindow {
                 format!("at least one state of the bearing's {} rollers", b.z),
             ));
         }
-        let c = roller_ratings(b)?.cr;
-        let r = lamina_ratings(c, self.z, b.alpha, b.gamma(), ns, o);
+        let (c, alpha, gamma) = rating_geometry(b)?;
+        let r = lamina_ratings(c, self.z, alpha, gamma, ns, o);
         let n = (self.z * self.states) as f64;
         let (mut si, mut se) = (0.0, 0.0);
         for k in 0..ns {
@@ -412,6 +426,35 @@ mod tests {
         let fsum: f64 = (0..30).map(|k| edge_factor(k, 30).powf(4.5)).sum::<f64>() / 30.0;
         assert!((l3 / l2 - fsum.powf(-8.0 / 9.0)).abs() < 1e-9);
         assert!(l3 < l2);
+    }
+
+    /// A tapered bearing (30206, the cup angle 14.04°) rated the same way: ISO 281's load
+    /// distribution of the normal roller loads whose radial parts `Q cos(alpha)` carry `Fr =
+    /// Cr`, equal on cone and cup, gives ISO 281's `L = 1` within the same 2 % (the rating
+    /// geometry's `cos(alpha)` and `gamma` are the ones of `Cr`); the 30206's ratings are its
+    /// own `Cr` with `alpha` the cup angle and `gamma = Dwe cos(alpha)/Dpw`.
+    #[test]
+    fn a_tapered_bearing_at_p_equal_c_gives_iso_281() {
+        let b = crate::geometry::roller_catalogue::lookup("30206")
+            .unwrap()
+            .build()
+            .unwrap();
+        let (c, alpha, gamma) = rating_geometry(&b).unwrap();
+        assert_eq!(c, roller_ratings(&b).unwrap().cr);
+        assert!(
+            (alpha.to_degrees() - 14.036).abs() < 1e-3,
+            "{}",
+            alpha.to_degrees()
+        );
+        assert!((gamma - b.dwe * alpha.cos() / b.dpw).abs() < 1e-15);
+        let plain = LaminaLifeOptions {
+            edge_factor: false,
+            remove_lambda_nu: false,
+        };
+        let q = iso_distribution(c / alpha.cos(), 3600, 30);
+        let l = life_from(c, alpha, gamma, &q, &q, plain).unwrap();
+        let l = l.l10r_mrev.unwrap();
+        assert!((l - 1.0).abs() < 0.02, "L {l}");
     }
 
     /// The edge factor: 1 at a centre lamina, symmetric, growing toward the ends, 2.33 at the

@@ -63,12 +63,12 @@ pub fn signal_of(scene: &Scene) -> (&'static str, &'static str) {
 
 /// The run's digest the summary reads, to be fed the run's rows
 /// ([`crate::runner::run_into`]): the spectrum's signal and the cage speed (whirl index)
-/// kept at full rate over the second half (and, for a cylindrical roller bearing on the ring
+/// kept at full rate over the second half (and, for a roller bearing on the ring
 /// level, the ring's displacement and the cage speed for its lamina life), the cage orbit's
 /// peak.
 pub fn digest_for(scene: &Scene) -> Digest {
     let mut analysed = vec![signal_of(scene).0, "cage.speed"];
-    // A cylindrical roller bearing on the ring level: its lamina life over the window
+    // A roller bearing on the ring level: its lamina life over the window
     // (`rollers::ring_lamina_life`) replays the ring's displacement and the cage.
     if scene
         .build_bearing()

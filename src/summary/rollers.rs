@@ -259,11 +259,11 @@ pub const RING_LAMINA_COLUMNS: [&str; 6] = [
     "cage.omega",
 ];
 
-/// Whether a run of `scene` on `bearing` gets the ring-level lamina life: a cylindrical
-/// roller bearing on the ring level.
+/// Whether a run of `scene` on `bearing` gets the ring-level lamina life: a roller bearing
+/// (cylindrical or tapered) on the ring level.
 pub fn has_ring_lamina_life(scene: &crate::component::Scene, b: &crate::geometry::Bearing) -> bool {
     scene.model.level == crate::component::Level::Ring
-        && matches!(&b.element, crate::geometry::element::Element::Roller(r) if !r.kind.is_tapered())
+        && matches!(&b.element, crate::geometry::element::Element::Roller(_))
 }
 
 /// ISO/TS 16281 lamina life of a ring-level roller run over its analysed window (the

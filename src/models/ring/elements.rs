@@ -13,13 +13,13 @@
 //! With 5 DOF the damping spreads evenly along a roller's contact line, so the tilt rate
 //! `w` at the element meets the moment `-c L²/12 w` ([`ElementLaw::tilt_damping_arm2`]).
 //!
-//! Defects and waviness on a cylindrical roller bearing, and cup and cone defects on a tapered
-//! one, act per lamina ([`super::roller_effects`], docs/physics.md §R12): a roller with an
+//! Defects and waviness on a cylindrical roller bearing, and cup and cone defects and waviness
+//! on a tapered one, act per lamina ([`super::roller_effects`], docs/physics.md §R12): a roller with an
 //! offset on some lamina runs [`CylindricalRollerLaw::react_offsets`] (or
 //! [`TaperedRollerLaw::react_offsets`]), every other roller the plain law, so a scene whose
 //! effects add nothing (a defect of zero depth, say) runs the healthy arithmetic bit for bit.
-//! Not modelled here yet: the other effects (spacing, film, wear, thermal; waviness and roller
-//! defects on a tapered bearing), refused by name; damping of the axial motion (cylindrical
+//! Not modelled here yet: the other effects (spacing, film, wear, thermal; a tapered roller's
+//! own defects and waviness), refused by name; damping of the axial motion (cylindrical
 //! rollers carry no axial load).
 
 use super::roller_effects::RollerEffects;

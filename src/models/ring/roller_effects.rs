@@ -21,11 +21,14 @@
 //! measured along the raceway generatrix from the roller's mid-point, positive toward `+z`
 //! (the small end), where lamina `k` sits at `-x_k cos(beta)`; the caller passes those
 //! positions. Its depth, normal to its own raceway, is taken along the cup normal: the cone's
-//! normal is `2 beta` (a few degrees) from it, the law's own approximation.
+//! normal is `2 beta` (a few degrees) from it, the law's own approximation. Cup and cone
+//! waviness likewise: the raceway's deviation, normal to it and the same along its
+//! generatrix, moves every lamina's approach along the cup normal by the same amount (exact
+//! for the cup, `cos(2 beta)` short of it for the cone, neglected as for the defects).
 //!
 //! Ball-spacing scatter, lubrication, wear and thermal effects are not built for rollers and
-//! are refused by name ([`RollerEffects::new`]); so are waviness and roller defects on a
-//! tapered roller bearing.
+//! are refused by name ([`RollerEffects::new`]); so are a tapered roller's own defects and
+//! waviness.
 
 use crate::error::{Error, Result};
 use crate::geometry::Bearing;
@@ -49,8 +52,8 @@ impl RollerEffects {
     /// Compile the scene's effects `e` for roller bearing `b` whose laminae have their centres
     /// at `x` (m from the roller's mid-plane, along `+z`; a tapered roller's along the
     /// raceway generatrix, module docs). Refuses, naming the field, what the ring level does
-    /// not model on rollers (spacing scatter, lubrication, wear, thermal; waviness and roller
-    /// defects on a tapered bearing) and a defect wider than the roller's effective length or
+    /// not model on rollers (spacing scatter, lubrication, wear, thermal; a roller's own
+    /// defects and waviness on a tapered bearing) and a defect wider than the roller's effective length or
     /// reaching past it.
     pub fn new(e: &Effects, b: &Bearing, x: &[f64]) -> Result<RollerEffects> {
         let refuse = |field: &str, what: &str| {
@@ -77,11 +80,11 @@ impl RollerEffects {
         }
         if let crate::geometry::element::Element::Roller(r) = &b.element {
             if r.kind.is_tapered() {
-                if !e.waviness.is_empty() {
+                if let Some(i) = e.waviness.iter().position(|w| w.race == Element::Ball) {
                     return Err(Error::invalid(
-                        "effects.waviness",
-                        "given on a tapered roller bearing",
-                        "absent: waviness is built per lamina for cylindrical roller bearings (nu, n, nj, nup); a tapered one takes cup and cone defects",
+                        format!("effects.waviness[{i}].race"),
+                        "a roller's waviness on a tapered roller bearing",
+                        "outer (the cup) or inner (the cone): a tapered roller's own waviness is not built",
                     ));
                 }
                 if let Some(i) = e.defects.iter().position(|d| d.race == Element::Ball) {
