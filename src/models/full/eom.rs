@@ -406,7 +406,7 @@ impl FullModel {
     /// With dynamic ball contacts, move each ball's centre to where it rests at the ring
     /// displacement `q` — the radial/axial balance of its race loads and its centrifugal
     /// force at its orbital speed, solved as the quasi-static ball contacts solve it
-    /// ([`Self::ball_position`], from the ball's present position) — and zero its radial
+    /// (the same position solve, from the ball's present position) — and zero its radial
     /// and axial velocity; the orbital and spin speeds are kept. The load-driven static
     /// start places the balls so at every trial displacement, which makes its equilibrium
     /// the whole bearing's, as with quasi-static ball contacts. `Ok(false)` with
