@@ -783,3 +783,51 @@ fn stiffness_and_damping_computed_when_read_keep_their_bits() {
     }
     assert!(saw_stiffness, "K.x.x of a loaded bearing");
 }
+
+/// The load-driven start with dynamic ball contacts on the geometry of Exudyn's ball-bearing
+/// test model (14 balls, 200 N axial and the shaft's weight; issue #36): at 3 000 and
+/// 30 000 rpm the static start finds the whole bearing's equilibrium — the balls placed in
+/// their quasi-static positions at every trial ring displacement, not frozen where the
+/// ring was at rest (which at 30 000 rpm, with the balls thrown outwards, left no
+/// equilibrium under the load) — so it starts at the displacement of the quasi-static ball
+/// contacts, and the shaft's wrench balances the loads there.
+#[test]
+fn dynamic_ball_contacts_start_at_the_quasi_static_equilibrium() {
+    let shaft_mass = 7800.0 * PI * 0.025 * 0.025 * 0.120;
+    let scene = |rpm: f64, contacts: &str| {
+        format!(
+            "[bearing]\nname = \"exudyn-6010\"\nkind = \"deep_groove\"\nball_diameter_mm = 8.73\n\
+             pitch_diameter_mm = 65.0\nball_count = 14\ninner_curvature = 0.625\n\
+             outer_curvature = 0.625\nclearance_um = 0.0\nbore_mm = 50.0\n\
+             outer_diameter_mm = 80.0\nwidth_mm = 16.0\n\n[model]\nlevel = \"full\"\n\
+             causality = \"load\"\nattached_mass_kg = {shaft_mass}\n\n[model.full]\n\
+             ball_contacts = \"{contacts}\"\n\
+             traction = {{ law = \"coulomb\", mu_max = 0.2, v_s = 0.01 }}\n\n\
+             [inputs]\nrule = \"velocity\"\nspeed_rpm = {rpm}\n\
+             initial = {{ \"load.x\" = 0.0, \"load.y\" = {}, \"load.z\" = 200.0, \"load.mx\" = 0.0, \"load.my\" = 0.0 }}\n\n\
+             [run]\nduration_s = 1e-3\nstep_s = 1e-4\n",
+            -9.81 * shaft_mass
+        )
+    };
+    let read = |c: &mut Component, names: &[&str]| -> Vec<f64> {
+        names.iter().map(|n| c.get_real(vr(n)).unwrap()).collect()
+    };
+    let q_names = ["shaft.x", "shaft.y", "shaft.z"];
+    for rpm in [3000.0, 30_000.0] {
+        let mut dynamic = Component::from_text(&scene(rpm, "dynamic"))
+            .unwrap_or_else(|e| panic!("{rpm} rpm, dynamic: {e}"));
+        let mut qs = Component::from_text(&scene(rpm, "quasi_static")).unwrap();
+        let (qd, qq) = (read(&mut dynamic, &q_names), read(&mut qs, &q_names));
+        println!("{rpm} rpm: dynamic {qd:?}, quasi-static {qq:?} m");
+        // The axial displacement under 200 N is micrometres: the two agree to 1e-9 m.
+        assert!(qq[2] > 1e-7, "{qq:?}");
+        for (a, b) in qd.iter().zip(&qq) {
+            assert!((a - b).abs() < 1e-9, "{rpm} rpm: {qd:?} against {qq:?}");
+        }
+        let f = read(&mut dynamic, &["force.x", "force.y", "force.z"]);
+        let load = [0.0, -9.81 * shaft_mass, 200.0];
+        for (fk, lk) in f.iter().zip(load) {
+            assert!((fk + lk).abs() < 1e-6 * 200.0, "{rpm} rpm: force {f:?}");
+        }
+    }
+}

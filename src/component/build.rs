@@ -59,10 +59,11 @@ fn make_integrator(
     // load-driven ring (its positions and velocities after the level's states, `dq/dt =
     // v`) the reduced second-order one.
     let mut linear = || -> Box<dyn crate::solver::LinearSolver> {
+        let h = level.block_head();
         match (level.blocks(), ring) {
-            (Some((nb, s)), _) if nb * s <= nl => {
-                Box::new(crate::solver::BlockArrowhead::new(nb, s, n - nb * s))
-            }
+            (Some((nb, s)), _) if h + nb * s <= nl => Box::new(
+                crate::solver::BlockArrowhead::with_head(h, nb, s, n - nb * s),
+            ),
             (None, Some(r)) => Box::new(crate::solver::SecondOrderLu::new(nl, r.dofs.len())),
             _ => Box::new(crate::solver::DenseLu::new(n)),
         }
@@ -193,6 +194,20 @@ impl Component {
             )?;
             for (k, &d) in r.dofs.iter().enumerate() {
                 state.x[n_level + k] = q[d];
+            }
+            {
+                // The level's position states at the equilibrium found (the balls where
+                // the static start had them), not where the ring was at rest.
+                let motion = motion_at(
+                    &state,
+                    scene.inputs.rule,
+                    0.0,
+                    causality,
+                    Some(r),
+                    n_level,
+                    &state.x,
+                );
+                level.follow_ring(&motion, &mut state.x[..n_level])?;
             }
             for d in (0..5).filter(|&d| start_held.0[d]) {
                 start_held.1[d] = -(wrench[d] + loads[d]);

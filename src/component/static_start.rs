@@ -11,6 +11,12 @@ use crate::error::{Error, Result};
 /// the residual when it finds no equilibrium. `q0`: the start of every coordinate (the
 /// held ones, outside `dofs`, keep it). Returns the displacement and the level's wrench
 /// there (the held coordinates' reaction is `-(wrench + loads)`).
+///
+/// A level whose position states follow the ring ([`LevelModel::follow_ring`]: balls with
+/// dynamic contacts) is evaluated with them moved to their rest at every trial
+/// displacement (in a copy of `x`), and its stiffness is then the difference of those
+/// evaluations (the balls moving with the ring, which the level's own stiffness, its
+/// states held, does not give); the caller moves the states to the answer likewise.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn static_start(
     level: &mut dyn LevelModel,
@@ -28,13 +34,21 @@ pub(super) fn static_start(
         .map(|(d, v)| if d < 3 { v.abs() } else { v.abs() / lever })
         .sum::<f64>()
         + 1.0;
+    let mut xs = x.to_vec();
+    let m0 = Motion {
+        q: q0,
+        v: [0.0; 5],
+        omega,
+    };
+    let follow = level.follow_ring(&m0, &mut xs)?;
     let mut sys = StaticSystem {
         level,
         dofs,
         loads: [0.0; 5],
         omega,
         lever,
-        x,
+        x: xs,
+        follow,
         aux,
         tol: 1e-9 * scale,
         out: LevelOutputs::default(),
@@ -232,7 +246,9 @@ struct StaticSystem<'a> {
     loads: [f64; 5],
     omega: f64,
     lever: f64,
-    x: &'a [f64],
+    /// The level's states (their positions moved with the ring when `follow`).
+    x: Vec<f64>,
+    follow: bool,
     aux: &'a mut [f64],
     tol: f64,
     out: LevelOutputs,
@@ -253,14 +269,42 @@ impl StaticSystem<'_> {
     }
 
     fn eval(&mut self, q: &[f64; 5]) -> Result<([f64; 5], [[f64; 5]; 5])> {
+        let w = self.wrench(q)?;
+        if !self.follow {
+            return Ok((w, self.out.k));
+        }
+        // The stiffness with the states following the ring: forward differences over the
+        // free coordinates (steps as the full level's outputs use for its K, but 10× the
+        // translations': the positions are solved to a relative 1e-12).
+        const STEPS: [f64; 5] = [1e-8, 1e-8, 1e-8, 1e-7, 1e-7];
+        let mut k = [[0.0; 5]; 5];
+        for &c in self.dofs {
+            let mut qc = *q;
+            qc[c] += STEPS[c];
+            let wc = self.wrench(&qc)?;
+            for r in 0..5 {
+                k[r][c] = -(wc[r] - w[r]) / STEPS[c];
+            }
+        }
+        // The level's states (and outputs) back at `q`.
+        self.wrench(q)?;
+        Ok((w, k))
+    }
+
+    /// The level's wrench at the displacement `q`, its position states moved there when
+    /// they follow the ring (the outputs, with the level's own stiffness, in `self.out`).
+    fn wrench(&mut self, q: &[f64; 5]) -> Result<[f64; 5]> {
         let m = Motion {
             q: *q,
             v: [0.0; 5],
             omega: self.omega,
         };
+        if self.follow {
+            self.level.follow_ring(&m, &mut self.x)?;
+        }
         self.level
-            .outputs(Point::new(0.0, &m, self.x, self.aux), &mut self.out)?;
-        Ok((self.out.wrench, self.out.k))
+            .outputs(Point::new(0.0, &m, &self.x, self.aux), &mut self.out)?;
+        Ok(self.out.wrench)
     }
 
     fn check(&self, wrench: &[f64; 5]) -> crate::solver::newton::Check {

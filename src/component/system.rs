@@ -477,10 +477,13 @@ impl OdeSystem for Sys<'_> {
             // every one of those entries is written below, so the entries coupling two
             // blocks (zero by the contract of `blocks`) are neither cleared nor copied:
             // about `nl²` writes fewer per Jacobian.
-            Some((nb, s)) if nb * s <= nl => {
+            Some((nb, s)) if self.level.block_head() + nb * s <= nl => {
+                // The blocks are the level's states `h .. h + nb·s`; the border, the ones
+                // before and after them ([`LevelModel::block_head`]).
+                let h = self.level.block_head();
                 let nb0 = nb * s;
                 for b in 0..nb {
-                    let o = b * s;
+                    let o = h + b * s;
                     for c in o..o + s {
                         for r in o..o + s {
                             a[c * n + r] = jx[r * nl + c];
@@ -488,13 +491,14 @@ impl OdeSystem for Sys<'_> {
                     }
                 }
                 // The level's border columns (every level row) and rows (the block columns).
-                for c in nb0..nl {
+                let border = (0..h).chain(h + nb0..nl);
+                for c in border.clone() {
                     for r in 0..nl {
                         a[c * n + r] = jx[r * nl + c];
                     }
                 }
-                for r in nb0..nl {
-                    for c in 0..nb0 {
+                for r in border {
+                    for c in h..h + nb0 {
                         a[c * n + r] = jx[r * nl + c];
                     }
                 }

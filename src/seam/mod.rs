@@ -153,11 +153,28 @@ pub trait LevelModel: Send + std::fmt::Debug {
         &[0, 1, 2, 3, 4]
     }
     /// Block structure of the level's states for a structured linear solver: `Some((nb,
-    /// s))` when the first `nb·s` states form `nb` independent blocks of `s` (no rate of
-    /// one block depends on another block's states) and the rest, with the ring's states,
-    /// form the border ([`crate::solver::BlockArrowhead`]). `None` (default): dense.
+    /// s))` when `nb·s` states (the first ones, or those after [`LevelModel::block_head`])
+    /// form `nb` independent blocks of `s` (no rate of one block depends on another
+    /// block's states) and the rest, with the ring's states, form the border ([`crate::solver::BlockArrowhead`]). `None` (default): dense.
     fn blocks(&self) -> Option<(usize, usize)> {
         None
+    }
+    /// Move the level's position states to where they rest at the ring motion `m`, the
+    /// speeds kept (the full level's balls with dynamic contacts: their radial and axial
+    /// positions in the balance of their race loads and centrifugal force). The
+    /// load-driven static start does so at every trial displacement, so that its
+    /// equilibrium is the whole bearing's, not the ring's against balls frozen where the
+    /// ring was at rest, and the run starts from the states there. `Ok(false)` (the
+    /// default): the level has no such states (or re-solves its positions itself), nothing
+    /// changed.
+    fn follow_ring(&mut self, _m: &Motion, _x: &mut [f64]) -> Result<bool> {
+        Ok(false)
+    }
+    /// With [`LevelModel::blocks`]: how many of the level's states come before the blocks
+    /// (a head, in the border with the states after the blocks; the full level's cage).
+    /// The blocks are then states `h .. h + nb·s`. Default 0: the blocks come first.
+    fn block_head(&self) -> usize {
+        0
     }
     /// Absolute tolerances of the level's states, given the scene's displacement
     /// tolerance `atol_m`: fill `atol` (length `n_states`) and return `true`, or return

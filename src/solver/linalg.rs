@@ -327,7 +327,9 @@ impl LinearSolver for SecondOrderLu {
     }
 }
 
-/// Block-arrowhead solver for states ordered `[block_1 … block_nb | border]`: each diagonal
+/// Block-arrowhead solver for states ordered `[block_1 … block_nb | border]`, or
+/// `[head | block_1 … block_nb | tail]` ([`BlockArrowhead::with_head`]; the border is then
+/// the head and the tail together, in that order): each diagonal
 /// block (`s × s`, e.g. one ball's states) couples to the other blocks only through the
 /// border (`m` states, e.g. rings and cage):
 ///
@@ -348,9 +350,13 @@ impl LinearSolver for SecondOrderLu {
 /// `σ·I − J` when `h` is small enough; a singular block is reported like a singular matrix.
 #[derive(Debug, Clone)]
 pub struct BlockArrowhead {
+    /// The border states before the blocks (the head); the other `m − h` follow them.
+    h: usize,
     nb: usize,
     s: usize,
     m: usize,
+    /// Scratch: the border's entries of a right-hand side, gathered (`m`).
+    xr: Vec<f64>,
     /// Inverses of the diagonal blocks, `nb` column-major `s × s` matrices (from their LU
     /// with partial pivoting): a block solve is then an `s × s` product, with no pivot
     /// swaps or loop set-up per block (the blocks are tiny: 3 states per ball).
@@ -386,10 +392,21 @@ pub struct BlockArrowhead {
 impl BlockArrowhead {
     /// Storage for `nb` blocks of size `s` and a border of `m` states (`n = nb·s + m`).
     pub fn new(nb: usize, s: usize, m: usize) -> Self {
+        Self::with_head(0, nb, s, m)
+    }
+
+    /// Storage for states ordered `[head | nb blocks of s | tail]`, the border (`m`
+    /// states) being the `h` head states and the `m − h` tail states (`n = nb·s + m`): the
+    /// full level's cage states come before its balls, the ring's after them. The same
+    /// arithmetic as [`Self::new`] on the states reordered `[blocks | head | tail]`.
+    pub fn with_head(h: usize, nb: usize, s: usize, m: usize) -> Self {
+        assert!(h <= m, "head {h} larger than the border {m}");
         BlockArrowhead {
+            h,
             nb,
             s,
             m,
+            xr: vec![0.0; m],
             d: vec![0.0; nb * s * s],
             lu: vec![0.0; s * s],
             dpiv: vec![0; s],
@@ -406,13 +423,13 @@ impl BlockArrowhead {
     /// Whether `jac` has the arrowhead pattern (no non-zero entry coupling two different
     /// blocks), so that the solver is exact for it.
     pub fn fits(&self, jac: &DMatrix<f64>) -> bool {
-        let n = self.nb * self.s;
+        let (h, n) = (self.h, self.nb * self.s);
         if jac.shape() != (self.dim(), self.dim()) {
             return false;
         }
         for j in 0..n {
             for i in 0..n {
-                if i / self.s != j / self.s && jac[(i, j)] != 0.0 {
+                if i / self.s != j / self.s && jac[(h + i, h + j)] != 0.0 {
                     return false;
                 }
             }
@@ -451,10 +468,11 @@ impl LinearSolver for BlockArrowhead {
     }
 
     fn factor(&mut self, sigma: f64, jac: &DMatrix<f64>) -> bool {
-        // One ball's states: 3 (5 with radial mass).
+        // One ball's states: 3 (5 with radial mass; the full level's 5 and 9).
         match self.s {
             3 => self.factor_blocks(Fixed::<3>, sigma, jac),
             5 => self.factor_blocks(Fixed::<5>, sigma, jac),
+            9 => self.factor_blocks(Fixed::<9>, sigma, jac),
             s => self.factor_blocks(Dynamic(s), sigma, jac),
         }
     }
@@ -463,6 +481,7 @@ impl LinearSolver for BlockArrowhead {
         match self.s {
             3 => self.solve_blocks(Fixed::<3>, x),
             5 => self.solve_blocks(Fixed::<5>, x),
+            9 => self.solve_blocks(Fixed::<9>, x),
             s => self.solve_blocks(Dynamic(s), x),
         }
     }
@@ -471,22 +490,24 @@ impl LinearSolver for BlockArrowhead {
 impl BlockArrowhead {
     #[inline(always)]
     fn factor_blocks<B: BlockSize>(&mut self, bs: B, sigma: f64, jac: &DMatrix<f64>) -> bool {
-        let (nb, s, m) = (self.nb, bs.get(), self.m);
-        let nb0 = nb * s; // first border index
+        let (h, nb, s, m) = (self.h, self.nb, bs.get(), self.m);
+        let nb0 = nb * s;
         debug_assert_eq!(jac.shape(), (nb0 + m, nb0 + m));
         // column-major storage: entry (i, j) at j * nn + i
         let (ja, nn) = (jac.as_slice(), nb0 + m);
+        // The state index of border state `r`: the head's first, then the tail's.
+        let bi = |r: usize| if r < h { r } else { nb0 + r };
         // The border's pattern: rows with some C entry, columns with some B entry (each a
         // contiguous run of J's storage).
         self.c_rows.clear();
         self.g_cols.clear();
         for r in 0..m {
-            if (0..nb0).any(|k| ja[k * nn + nb0 + r] != 0.0) {
+            if (h..h + nb0).any(|k| ja[k * nn + bi(r)] != 0.0) {
                 self.c_rows.push(r);
             }
         }
         for j in 0..m {
-            if ja[(nb0 + j) * nn..(nb0 + j) * nn + nb0]
+            if ja[bi(j) * nn + h..bi(j) * nn + h + nb0]
                 .iter()
                 .any(|v| *v != 0.0)
             {
@@ -497,7 +518,7 @@ impl BlockArrowhead {
         // E into the Schur storage
         for j in 0..m {
             for i in 0..m {
-                let v = -ja[(nb0 + j) * nn + nb0 + i];
+                let v = -ja[bi(j) * nn + bi(i)];
                 self.schur[j * m + i] = if i == j { v + sigma } else { v };
             }
         }
@@ -511,7 +532,7 @@ impl BlockArrowhead {
             }
         }
         for b in 0..nb {
-            let o = b * s;
+            let o = h + b * s;
             let lu = &mut self.lu[..s * s];
             for j in 0..s {
                 for i in 0..s {
@@ -540,7 +561,7 @@ impl BlockArrowhead {
                 let col = &mut g[jj * s..(jj + 1) * s];
                 col.fill(0.0);
                 for k in 0..s {
-                    let bkj = -ja[(nb0 + j) * nn + o + k];
+                    let bkj = -ja[bi(j) * nn + o + k];
                     if bkj != 0.0 {
                         for (v, dv) in col.iter_mut().zip(&d[k * s..(k + 1) * s]) {
                             *v += dv * bkj;
@@ -552,7 +573,7 @@ impl BlockArrowhead {
             let c = &mut self.c[b * mc * s..(b + 1) * mc * s];
             for j in 0..s {
                 for (ii, &i) in self.c_rows.iter().enumerate() {
-                    c[j * mc + ii] = -ja[(o + j) * nn + nb0 + i];
+                    c[j * mc + ii] = -ja[(o + j) * nn + bi(i)];
                 }
             }
             for jj in 0..mg {
@@ -579,10 +600,15 @@ impl BlockArrowhead {
 
     #[inline(always)]
     fn solve_blocks<B: BlockSize>(&mut self, bs: B, x: &mut [f64]) {
-        let (nb, s, m) = (self.nb, bs.get(), self.m);
+        let (h, nb, s, m) = (self.h, self.nb, bs.get(), self.m);
         let (mc, mg) = (self.c_rows.len(), self.g_cols.len());
         let nb0 = nb * s;
-        let (xb, xr) = x.split_at_mut(nb0);
+        // The border gathered: the head's entries, then the tail's.
+        let (head, rest) = x.split_at_mut(h);
+        let (xb, tail) = rest.split_at_mut(nb0);
+        let xr = &mut self.xr[..m];
+        xr[..h].copy_from_slice(head);
+        xr[h..].copy_from_slice(tail);
         // The border entries the blocks update, gathered (the same subtractions in the
         // same order as in place).
         let xc = &mut self.border[..mc];
@@ -627,6 +653,8 @@ impl BlockArrowhead {
                 }
             }
         }
+        head.copy_from_slice(&xr[..h]);
+        tail.copy_from_slice(&xr[h..]);
     }
 }
 
@@ -804,6 +832,59 @@ mod tests {
         assert!(!blk.fits(&j));
     }
 
+    /// States `[head | blocks | tail]` (the full level's cage, its balls of 9 states, the
+    /// ring): the same solution as the dense LU to rounding level, and bit for bit the
+    /// solution of the blocks-first solver on the states reordered `[blocks | head | tail]`
+    /// (the same arithmetic on the same numbers).
+    #[test]
+    fn block_arrowhead_with_a_head_is_the_blocks_first_solve_reordered() {
+        let (h, nb, s, m) = (4, 5, 9, 7);
+        let (nb0, n) = (nb * s, nb * s + m);
+        let mut seed = 0x5DEE_CE66_D1CE_4E5Bu64;
+        let mut j = DMatrix::zeros(n, n);
+        let in_blocks = |i: usize| i >= h && i < h + nb0;
+        for c in 0..n {
+            for r in 0..n {
+                let same_block = in_blocks(r) && in_blocks(c) && (r - h) / s == (c - h) / s;
+                if same_block || !in_blocks(r) || !in_blocks(c) {
+                    // stiff entries, as a contact over a ball mass
+                    j[(r, c)] = 1e3 * rng(&mut seed);
+                }
+            }
+        }
+        // State `i` of the reordered problem is state `perm[i]` of the original.
+        let perm: Vec<usize> = (h..h + nb0).chain(0..h).chain(h + nb0..n).collect();
+        let jp = DMatrix::from_fn(n, n, |r, c| j[(perm[r], perm[c])]);
+        let b: Vec<f64> = (0..n).map(|_| rng(&mut seed)).collect();
+        for sigma in [1e2, 3e4] {
+            let mut head = BlockArrowhead::with_head(h, nb, s, m);
+            let mut first = BlockArrowhead::new(nb, s, m);
+            let mut dense = DenseLu::new(n);
+            assert!(head.fits(&j) && first.fits(&jp));
+            assert!(head.factor(sigma, &j) && first.factor(sigma, &jp) && dense.factor(sigma, &j));
+            let (mut x, mut xd) = (b.clone(), b.clone());
+            let mut xp: Vec<f64> = perm.iter().map(|&i| b[i]).collect();
+            head.solve(&mut x);
+            first.solve(&mut xp);
+            dense.solve(&mut xd);
+            for (k, &i) in perm.iter().enumerate() {
+                assert_eq!(x[i].to_bits(), xp[k].to_bits(), "state {i}");
+            }
+            let scale = xd.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+            for i in 0..n {
+                assert!(
+                    (x[i] - xd[i]).abs() <= 1e-12 * scale,
+                    "{i}: {} {}",
+                    x[i],
+                    xd[i]
+                );
+            }
+        }
+        // a coupling between two balls breaks the pattern
+        j[(h, h + s)] = 1.0;
+        assert!(!BlockArrowhead::with_head(h, nb, s, m).fits(&j));
+    }
+
     /// Border rows with no coupling to the blocks and border columns the blocks do not
     /// see (the skidding level's cage angle and ring positions, ring velocities) are
     /// skipped in the solve, and the solution is still that of the dense LU; a border
@@ -855,11 +936,11 @@ mod tests {
         }
     }
 
-    /// The unrolled fixed-size block path (3 and 5 states per ball) gives the same bits as
+    /// The unrolled fixed-size block path (3, 5 and 9 states per ball) gives the same bits as
     /// the run-time-size path it replaces.
     #[test]
     fn fixed_block_size_is_bit_identical_to_dynamic() {
-        for s in [3usize, 5] {
+        for s in [3usize, 5, 9] {
             let (nb, m) = (7, 4);
             let n = nb * s + m;
             let mut seed = 0x2545_F491_4F6C_DD1Du64 ^ s as u64;

@@ -403,6 +403,37 @@ impl FullModel {
         lz
     }
 
+    /// With dynamic ball contacts, move each ball's centre to where it rests at the ring
+    /// displacement `q` — the radial/axial balance of its race loads and its centrifugal
+    /// force at its orbital speed, solved as the quasi-static ball contacts solve it
+    /// (the same position solve, from the ball's present position) — and zero its radial
+    /// and axial velocity; the orbital and spin speeds are kept. The load-driven static
+    /// start places the balls so at every trial displacement, which makes its equilibrium
+    /// the whole bearing's, as with quasi-static ball contacts. `Ok(false)` with
+    /// quasi-static ball contacts (their positions are not states): nothing done.
+    pub fn place_balls(&self, q: &[f64; 5], x: &mut [f64]) -> Result<bool> {
+        if self.p.ball_contacts != BallContacts::Dynamic {
+            return Ok(false);
+        }
+        let (l, t0) = (self.l, self.t0);
+        for j in 0..self.z {
+            let xb = &mut x[self.nc + self.nb * j..self.nc + self.nb * (j + 1)];
+            // [rho, z, psi, rho', z', psi', w]: the position relative to the outer groove
+            // centre as `init` sets it.
+            let w_orb = xb[5] / t0;
+            let start = [xb[1] * l - self.z_og, xb[0] * l - self.pos.r_og];
+            let a = self.groove_offset(q, xb[2]);
+            let xr = self
+                .pos
+                .solve(a, self.m * w_orb * w_orb, Some(start), POS_TOL)?;
+            xb[0] = (self.pos.r_og + xr[1]) / l;
+            xb[1] = (self.z_og + xr[0]) / l;
+            xb[3] = 0.0;
+            xb[4] = 0.0;
+        }
+        Ok(true)
+    }
+
     /// Initial states at motion `(q, omega)`: balls at the quasi-static solution
     /// (positions, orbital speeds and spin vectors of the Jones–Harris model with the
     /// scene's race control, no gyroscopic friction), cage centred at the mean orbital

@@ -110,6 +110,15 @@ impl LevelModel for FullLevel {
     fn n_aux(&self) -> usize {
         self.model.n_aux()
     }
+    fn blocks(&self) -> Option<(usize, usize)> {
+        self.model.blocks()
+    }
+    fn block_head(&self) -> usize {
+        self.model.ball0()
+    }
+    fn follow_ring(&mut self, m: &Motion, x: &mut [f64]) -> Result<bool> {
+        self.model.place_balls(&m.q, x)
+    }
     fn state_atol(&self, atol_m: f64, atol: &mut [f64]) -> bool {
         // Nondimensional states: one tolerance, a length atol_m in units of D/2 (and the
         // same number for the scaled rates and angles).

@@ -703,6 +703,16 @@ impl FullModel {
         self.nb
     }
 
+    /// The ball blocks for the block-arrowhead solve ([`crate::seam::LevelModel::blocks`]):
+    /// `(balls, states per ball)` after the cage's [`Self::ball0`] states, with dynamic
+    /// ball contacts. A ball's rates depend on its own states, the cage's and the ring's
+    /// only (the Jacobian's ball columns write the ball's block and the cage's rows), so
+    /// the blocks are independent and the cage and ring states form the border.
+    /// Quasi-static ball contacts keep the dense solve (`None`).
+    pub fn blocks(&self) -> Option<(usize, usize)> {
+        (self.p.ball_contacts == BallContacts::Dynamic).then_some((self.z, self.nb))
+    }
+
     /// Cage speed `w_c`, rad/s, from the states.
     pub fn cage_omega(&self, x: &[f64]) -> f64 {
         x[self.nc - 1] / self.t0
