@@ -16,8 +16,10 @@
 //! *BIT* 45 (2005) 761–787), a 4-stage, stiffly accurate, L-stable **W-method** of order 3
 //! with an embedded method of order 2: its order holds for any matrix in place of `J`
 //! (Hairer & Wanner II, §IV.7, "W-methods"), so `J` and the LU of `I/(hγ) − J` are kept
-//! across the steps of one call (refreshed after a rejection and every
-//! [`W_JAC_MAX_AGE`] accepted steps; the LU whenever `h` changes) and, when the system
+//! across the steps of one call (refreshed after a rejection on a `J` older than
+//! [`W_REJECT_KEEP`] accepted steps and every [`W_JAC_MAX_AGE`] accepted steps; the LU
+//! whenever `h` changes; the rest of a call under [`W_SPLIT`] steps in two equal ones) and,
+//! when the system
 //! allows it ([`OdeSystem::carries_jacobian`]), across calls that continue one another;
 //! `∂f/∂t` is taken from the system when it gives it and left out otherwise (the autonomous form's
 //! Jacobian approximated without its time column: still a W-method). The published
@@ -98,7 +100,8 @@ impl RosMethod {
 ///
 /// ROS34PW2 differs in: `J` (from the system or by the same differences) at the first
 /// step of a call (unless the call carries the last one's, [`OdeSystem::carries_jacobian`]),
-/// after a rejected step and every [`W_JAC_MAX_AGE`] accepted steps; the
+/// after a rejected step on a `J` older than [`W_REJECT_KEEP`] accepted steps and every
+/// [`W_JAC_MAX_AGE`] accepted steps; the
 /// LU only when `h` changes; `∂f/∂t` only from the system; step control with `err^(1/3)`
 /// (embedded order 2); no dense output.
 pub struct Rosenbrock {
@@ -629,6 +632,15 @@ impl Rosenbrock {
                             h_new = h;
                         }
                     }
+                    if w_method && !last {
+                        // The rest of the call in two equal steps rather than a full one
+                        // and a short last one (which costs an LU of its own and starts
+                        // the next call from a step out of scale).
+                        let rest = t1 - t_new;
+                        if rest > 1.01 * h_new && rest < W_SPLIT * h_new {
+                            h_new = 0.5 * rest;
+                        }
+                    }
                     if let Some(h_next) = lp.accepted(t_new, h_new, h_prop, last, opts) {
                         return Ok((h_next, jac_age));
                     }
@@ -638,8 +650,11 @@ impl Rosenbrock {
                 lp.reject = true;
                 lp.h = h_new;
             }
-            // Rejected. A kept J (W-method) is refreshed here; f0 still holds f(t, y).
-            if w_method && jac_age > 0 {
+            // Rejected. A J kept over more than `W_REJECT_KEEP` accepted steps (W-method)
+            // is refreshed here (f0 still holds f(t, y)); a younger one is kept: its
+            // rejection is the step size's, which the smaller step answers (the method's
+            // order holds for any J).
+            if w_method && jac_age > W_REJECT_KEEP {
                 (need_jac, need_linearise, have_f0) = (true, true, true);
             }
         }
