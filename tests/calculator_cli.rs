@@ -43,8 +43,16 @@ fn stderr_of(extra: &[&str]) -> String {
 fn oil_gives_kappa_and_friction() {
     let thin = qs_json(&["--oil", "VG32", "--contamination", "0.5"]);
     let thick = qs_json(&["--oil", "VG100", "--contamination", "0.5"]);
-    let k = |v: &serde_json::Value| v["calculator"]["lubrication"]["kappa"].as_f64().unwrap();
-    let m = |v: &serde_json::Value| v["calculator"]["friction"]["total"].as_f64().unwrap();
+    let k = |v: &serde_json::Value| {
+        v["calculator"]["lubrication"]["kappa [1]"]
+            .as_f64()
+            .unwrap()
+    };
+    let m = |v: &serde_json::Value| {
+        v["calculator"]["friction"]["moment [N.m]"]
+            .as_f64()
+            .unwrap()
+    };
     assert!(k(&thick) > k(&thin) && m(&thick) > m(&thin));
     // The kappa from the oil is the one the ISO life used (a_ISO rises with kappa).
     let a = |v: &serde_json::Value| v["rating"]["a_ISO [1]"].as_f64().unwrap();
@@ -52,7 +60,7 @@ fn oil_gives_kappa_and_friction() {
     // The subsurface stresses are always there; no oil, no friction.
     let none = qs_json(&[]);
     assert!(none["calculator"]["friction"].is_null());
-    let tau = none["calculator"]["subsurface"]["inner"]["tau_max"]
+    let tau = none["calculator"]["subsurface"]["inner"]["tau_max [Pa]"]
         .as_f64()
         .unwrap();
     let p = none["rating"]["peak_pressure [Pa]"].as_f64().unwrap();
@@ -63,16 +71,16 @@ fn oil_gives_kappa_and_friction() {
 fn fits_reduce_clearance() {
     let r = qs_json(&["--shaft-interference-um", "10"]);
     let c = &r["calculator"]["clearance"];
-    assert!(c["operating"].as_f64().unwrap() < c["unmounted"].as_f64().unwrap());
+    assert!(c["operating [m]"].as_f64().unwrap() < c["unmounted [m]"].as_f64().unwrap());
     let free = qs_json(&[]);
     assert!(free["calculator"]["clearance"].is_null());
     // The equilibrium is solved in the operating clearance: preloaded by the fit, the ring
     // moves less under the same load, and the check says which clearance it used.
-    let y = |v: &serde_json::Value| v["solution"]["q"][1].as_f64().unwrap();
+    let y = |v: &serde_json::Value| v["solution"]["displacement.y [m]"].as_f64().unwrap();
     assert!(y(&r) < 0.9 * y(&free), "{} vs {}", y(&r), y(&free));
     assert_eq!(
-        r["calculator"]["equilibrium_clearance"][0].as_f64(),
-        c["operating"].as_f64()
+        r["calculator"]["equilibrium_clearance [m]"].as_f64(),
+        c["operating [m]"].as_f64()
     );
 }
 
@@ -134,10 +142,10 @@ fn duty_cycle_from_a_spectrum_file() {
     let d = &r["calculator"]["duty"];
     // Mean load by hand: (2000³/3 + 2·4000³/3)^(1/3) = 3565.65 N; mean speed 1500 rpm.
     assert!(
-        (d["mean_load"].as_f64().unwrap() - 3565.65).abs() < 0.01,
+        (d["mean_load [N]"].as_f64().unwrap() - 3565.65).abs() < 0.01,
         "{d}"
     );
-    assert_eq!(d["mean_speed_rpm"].as_f64().unwrap(), 1500.0);
+    assert_eq!(d["mean_speed [rpm]"].as_f64().unwrap(), 1500.0);
     let bad = dir.join("bad.csv");
     std::fs::write(&bad, "2000,0,1000,0.5\n4000,0,2000,0.4\n").unwrap();
     assert!(stderr_of(&["--duty", bad.to_str().unwrap()]).contains("duty.time_share"));
@@ -151,10 +159,10 @@ fn thermal_speeds_from_the_oil() {
     let heavy = qs_json(&["--oil", "VG68", "--oil-temp-c", "60", "--fx", "2000"]);
     let t = |v: &serde_json::Value, k: &str| v["calculator"]["thermal_speed"][k].as_f64().unwrap();
     assert_eq!(
-        t(&light, "reference_speed_rpm"),
-        t(&heavy, "reference_speed_rpm")
+        t(&light, "reference_speed [rpm]"),
+        t(&heavy, "reference_speed [rpm]")
     );
-    assert!(t(&heavy, "safe_speed_rpm") < t(&light, "safe_speed_rpm"));
+    assert!(t(&heavy, "safe_speed [rpm]") < t(&light, "safe_speed [rpm]"));
     // A warmer ambient leaves less temperature rise: a lower safe speed.
     let warm = qs_json(&[
         "--oil",
@@ -164,7 +172,7 @@ fn thermal_speeds_from_the_oil() {
         "--ambient-temp-c",
         "40",
     ]);
-    assert!(t(&warm, "safe_speed_rpm") < t(&light, "safe_speed_rpm"));
+    assert!(t(&warm, "safe_speed [rpm]") < t(&light, "safe_speed [rpm]"));
     assert!(light["calculator"]["thermal_speed"]["unsourced"]
         .as_str()
         .unwrap()
@@ -179,12 +187,15 @@ fn skf_friction_beside_palmgren() {
     let thin = qs_json(&["--oil", "VG32", "--skf-lubrication", "oil-jet"]);
     let thick = qs_json(&["--oil", "VG100", "--skf-lubrication", "oil-jet"]);
     let skf = |v: &serde_json::Value, f: &str| v["calculator"]["skf_friction"][f].as_f64().unwrap();
-    assert!(skf(&thick, "total") > skf(&thin, "total"));
+    assert!(skf(&thick, "moment [N.m]") > skf(&thin, "moment [N.m]"));
     assert!(
-        (skf(&thin, "total") - skf(&thin, "rolling") - skf(&thin, "sliding")).abs()
-            < 1e-15 * skf(&thin, "total").max(1.0)
+        (skf(&thin, "moment [N.m]")
+            - skf(&thin, "rolling_moment [N.m]")
+            - skf(&thin, "sliding_moment [N.m]"))
+        .abs()
+            < 1e-15 * skf(&thin, "moment [N.m]").max(1.0)
     );
-    assert!(thin["calculator"]["skf_friction"]["seals"].is_null());
+    assert!(thin["calculator"]["skf_friction"]["seal_moment [N.m]"].is_null());
     assert_eq!(thin["calculator"]["skf_friction"]["series"], "62");
     assert!(thin["calculator"]["skf_friction"]["unconfirmed"]
         .as_str()
@@ -198,9 +209,9 @@ fn skf_friction_beside_palmgren() {
         "--skf-seal",
         "0.02,2.25,2,30",
     ]);
-    let seal = skf(&sealed, "seals");
+    let seal = skf(&sealed, "seal_moment [N.m]");
     assert!((seal * 1e3 - (0.02 * 30f64.powf(2.25) + 2.0)).abs() < 1e-9);
-    assert!((skf(&sealed, "total") - skf(&thin, "total") - seal).abs() < 1e-12);
+    assert!((skf(&sealed, "moment [N.m]") - skf(&thin, "moment [N.m]") - seal).abs() < 1e-12);
     // At rest the SKF model is not defined: no SKF line, the reason instead.
     let rest = {
         let out = Command::new(env!("CARGO_BIN_EXE_raceway"))
@@ -239,8 +250,8 @@ fn skf_friction_beside_palmgren() {
 #[test]
 fn held_coordinates_and_the_equivalent_load() {
     let v = qs_json(&["--hold", "y_um=5"]);
-    let carried =
-        v["solution"]["load"][1].as_f64().unwrap() + v["solution"]["reaction"][1].as_f64().unwrap();
+    let carried = v["solution"]["load.y [N]"].as_f64().unwrap()
+        + v["solution"]["reaction.y [N]"].as_f64().unwrap();
     let fr = v["rating"]["radial_load [N]"].as_f64().unwrap();
     assert!((fr - carried.abs()).abs() < 1e-9, "{fr} {carried}");
     assert!(
@@ -267,9 +278,12 @@ fn held_coordinates_and_the_equivalent_load() {
         .unwrap();
     let t: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     let h = &t["calculator"]["held_moment"];
-    let r = &t["solution"]["reaction"];
-    let m = r[3].as_f64().unwrap().hypot(r[4].as_f64().unwrap());
-    assert!(m > 1.0 && (h["moment"].as_f64().unwrap() - m).abs() < 1e-12);
-    assert_eq!(h["l10_mrev"], t["rating"]["L10 [Mrev]"]);
-    assert_eq!(h["l10r_mrev"], t["rating"]["L10r [Mrev]"]);
+    let r = &t["solution"];
+    let m = r["reaction.rx [N.m]"]
+        .as_f64()
+        .unwrap()
+        .hypot(r["reaction.ry [N.m]"].as_f64().unwrap());
+    assert!(m > 1.0 && (h["moment [N.m]"].as_f64().unwrap() - m).abs() < 1e-12);
+    assert_eq!(h["L10 [Mrev]"], t["rating"]["L10 [Mrev]"]);
+    assert_eq!(h["L10r [Mrev]"], t["rating"]["L10r [Mrev]"]);
 }

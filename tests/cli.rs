@@ -8,6 +8,22 @@ use raceway::models::quasi_static::{Options, QuasiStatic, RaceControl};
 use raceway::units::{rad_s_to_rpm, rpm_to_rad_s};
 use std::process::{Command, Output};
 
+/// The labels of a quasi-static solution's displacement and force (docs/columns.md).
+const DISPLACEMENT: [&str; 5] = [
+    "displacement.x [m]",
+    "displacement.y [m]",
+    "displacement.z [m]",
+    "displacement.rx [rad]",
+    "displacement.ry [rad]",
+];
+const FORCE: [&str; 5] = [
+    "force.x [N]",
+    "force.y [N]",
+    "force.z [N]",
+    "force.rx [N.m]",
+    "force.ry [N.m]",
+];
+
 fn run(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_raceway"))
         .args(args)
@@ -55,21 +71,21 @@ fn bearings_json_lists_every_preset_with_library_numbers() {
     for (row, spec) in rows.iter().zip(&all) {
         let b = spec.build().unwrap();
         assert_eq!(row["name"], b.name.as_str());
-        assert_eq!(row["ball_count"].as_u64().unwrap() as usize, b.z);
-        assert!(close(f(&row["ball_diameter_mm"]), b.d * 1e3, 1e-12));
+        assert_eq!(row["Z [1]"].as_u64().unwrap() as usize, b.z);
+        assert!(close(f(&row["ball_diameter [mm]"]), b.d * 1e3, 1e-12));
         assert!(close(
-            f(&row["groove_centre_distance_mm"]),
+            f(&row["groove_centre_distance [mm]"]),
             b.a() * 1e3,
             1e-12
         ));
-        assert!(close(f(&row["ball_mass_kg"]), b.ball_mass(), 1e-12));
-        assert!((f(&row["free_contact_angle_deg"]) - b.alpha0.to_degrees()).abs() < 1e-9);
+        assert!(close(f(&row["ball_mass [kg]"]), b.ball_mass(), 1e-12));
+        assert!((f(&row["free_contact_angle [deg]"]) - b.alpha0.to_degrees()).abs() < 1e-9);
         let kc = PointContact::new(
             Curvature::ball_race(b.d, b.dm, b.nominal_contact_angle(), b.fi(), Race::Inner),
             b.e_eff_inner(),
         )
         .kc;
-        assert!(close(f(&row["kc_inner"]), kc, 1e-12));
+        assert!(close(f(&row["Kc_inner [N/m1.5]"]), kc, 1e-12));
     }
     let text = run(&["bearings"]);
     assert!(text.status.success());
@@ -109,20 +125,20 @@ fn quasi_static_json_matches_the_library() {
     assert_eq!(v["race_control"], "none");
     let sol = &v["solution"];
     for i in 0..5 {
-        let qi = f(&sol["q"][i]);
+        let qi = f(&sol[DISPLACEMENT[i]]);
         assert!(
             (qi - s.q[i]).abs() <= 1e-12 * s.q[i].abs() + 1e-18,
             "{i}: {qi} {}",
             s.q[i]
         );
-        assert!((f(&sol["forces"][i]) + load[i]).abs() < 1e-6);
+        assert!((f(&sol[FORCE[i]]) + load[i]).abs() < 1e-6);
     }
     let balls = sol["balls"].as_array().unwrap();
     assert_eq!(balls.len(), 16);
     for (j, ball) in balls.iter().enumerate() {
-        assert!(close(f(&ball["q_i"]), s.balls[j].q_i, 1e-12));
-        assert!(close(f(&ball["alpha_o"]), s.balls[j].alpha_o, 1e-12));
-        assert!(close(f(&ball["p_o"]), s.balls[j].p_o, 1e-12));
+        assert!(close(f(&ball["q_i [N]"]), s.balls[j].q_i, 1e-12));
+        assert!(close(f(&ball["alpha_o [rad]"]), s.balls[j].alpha_o, 1e-12));
+        assert!(close(f(&ball["p_o [Pa]"]), s.balls[j].p_o, 1e-12));
     }
 }
 
@@ -143,7 +159,9 @@ fn quasi_static_without_flags_solves_the_default_scene() {
     assert_eq!(v["bearing"], b.name.as_str());
     assert!(close(f(&v["speed [rpm]"]), rad_s_to_rpm(w), 1e-12));
     for i in 0..5 {
-        assert!((f(&v["solution"]["q"][i]) - s.q[i]).abs() <= 1e-12 * s.q[i].abs() + 1e-18);
+        assert!(
+            (f(&v["solution"][DISPLACEMENT[i]]) - s.q[i]).abs() <= 1e-12 * s.q[i].abs() + 1e-18
+        );
     }
     // The text report carries the same displacement in µm.
     let out = run(&["quasi-static"]);
@@ -441,14 +459,14 @@ fn bearings_by_designation_show_ratings_and_provenance() {
     assert_eq!(v["estimated"], true);
     assert_eq!(
         (
-            f(&v["bore_mm"]),
-            f(&v["outer_diameter_mm"]),
-            f(&v["width_mm"])
+            f(&v["bore [mm]"]),
+            f(&v["outside_diameter [mm]"]),
+            f(&v["width [mm]"])
         ),
         (30.0, 62.0, 16.0)
     );
-    assert!(close(f(&v["ratings"]["c"]), r.c, 1e-12));
-    assert!(close(f(&v["ratings"]["c0"]), r.c0, 1e-12));
+    assert!(close(f(&v["ratings"]["C [N]"]), r.c, 1e-12));
+    assert!(close(f(&v["ratings"]["C0 [N]"]), r.c0, 1e-12));
     let t = String::from_utf8(run(&["bearings", "6206"]).stdout).unwrap();
     assert!(
         t.contains("ESTIMATED") && t.contains("ISO 15") && t.contains("(estimated)"),

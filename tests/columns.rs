@@ -3,9 +3,13 @@
 //!
 //! 1. docs/columns.md equals what `raceway::summary::columns::columns_page` generates from
 //!    the variable table and the summary's key table;
-//! 2. a `raceway run` (series.csv header, summary.json keys), a sweep (sweep.csv header)
-//!    and `raceway quasi-static --json` (its top level and `rating`) give only labels that
-//!    match the pattern, a number always with its unit, each listed in docs/columns.md.
+//! 2. runs (series.csv header, summary.json keys) of the default scene, a cylindrical
+//!    roller bearing on the ring level (`lamina_life`), a set (`set.rows`) and a set with
+//!    the thermal effect (`thermal.rows`), a sweep (sweep.csv header), `raceway
+//!    quasi-static --json` of a ball bearing with every design-check option, a cylindrical
+//!    and a tapered roller bearing and a set, and `raceway bearings --json` (the list, a
+//!    ball and a roller bearing) give only labels that match the pattern, a number always
+//!    with its unit, each listed in docs/columns.md.
 //!
 //! `RACEWAY_BLESS=1 cargo test --test columns` rewrites docs/columns.md.
 
@@ -107,20 +111,22 @@ fn is_number(v: &Value) -> bool {
 }
 
 /// Every key path of a JSON document, `a.b[].c [u]` (array tables as `[]`), with whether
-/// its value is a number; `skip`: top-level keys not walked.
-fn paths(v: &Value, prefix: &str, skip: &[&str], out: &mut Vec<(String, String, bool)>) {
+/// its value is a number; a list of documents (a top-level array): each one's.
+fn paths(v: &Value, prefix: &str, out: &mut Vec<(String, String, bool)>) {
+    if let (Value::Array(a), true) = (v, prefix.is_empty()) {
+        for e in a {
+            paths(e, prefix, out);
+        }
+    }
     if let Value::Object(m) = v {
         for (k, x) in m {
-            if prefix.is_empty() && skip.contains(&k.as_str()) {
-                continue;
-            }
             let p = format!("{prefix}{k}");
             out.push((p.clone(), k.clone(), is_number(x)));
             match x {
-                Value::Object(_) => paths(x, &format!("{p}."), skip, out),
+                Value::Object(_) => paths(x, &format!("{p}."), out),
                 Value::Array(a) => {
                     for e in a.iter().filter(|e| e.is_object()) {
-                        paths(e, &format!("{p}[]."), skip, out);
+                        paths(e, &format!("{p}[]."), out);
                     }
                 }
                 _ => {}
@@ -129,9 +135,9 @@ fn paths(v: &Value, prefix: &str, skip: &[&str], out: &mut Vec<(String, String, 
     }
 }
 
-fn check_json(doc: &Value, skip: &[&str], listed: &BTreeSet<String>, what: &str) -> usize {
+fn check_json(doc: &Value, listed: &BTreeSet<String>, what: &str) -> usize {
     let mut ps = Vec::new();
-    paths(doc, "", skip, &mut ps);
+    paths(doc, "", &mut ps);
     let mut bad = Vec::new();
     for (p, key, number) in &ps {
         if !well_formed(key) {
@@ -209,7 +215,7 @@ fn every_header_and_key_is_labelled_and_documented() {
     let summary: Value =
         serde_json::from_str(&std::fs::read_to_string(run.join("summary.json")).unwrap()).unwrap();
     let run_keys = section(&docs, "summary.json");
-    let n = check_json(&summary, &[], &run_keys, "summary.json");
+    let n = check_json(&summary, &run_keys, "summary.json");
     assert!(n > 40, "{n} keys");
     assert!(summary["rating"]["e [1]"].is_number(), "{summary}");
     assert!(summary["rating"]["life_inner [Mrev]"].is_number());
@@ -254,16 +260,178 @@ fn every_header_and_key_is_labelled_and_documented() {
         assert!(cols.contains(&want), "{want} not in {cols:?}");
     }
 
-    // A quasi-static JSON solve: its top level and rating (solution and calculator keep
-    // their field names in this version, docs/columns.md).
-    let qs: Value = serde_json::from_str(&raceway(&["quasi-static", "--json"])).unwrap();
-    check_json(
-        &qs,
-        &["solution", "calculator"],
-        &section(&docs, "`raceway quasi-static"),
-        "quasi-static --json",
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+/// A short run of an example scene: its summary.json, with every key checked.
+fn run_scene(d: &Path, scene: &str, keys: &BTreeSet<String>) -> Value {
+    let out = d.join(scene);
+    raceway(&[
+        "run",
+        root()
+            .join(format!("examples/scenes/{scene}.toml"))
+            .to_str()
+            .unwrap(),
+        "-q",
+        "--duration",
+        "0.004",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let summary: Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    check_json(&summary, keys, scene);
+    summary
+}
+
+/// The runs whose summaries have sections the default scene has not: a cylindrical roller
+/// bearing on the ring level (`lamina_life`), a set (`set.rows`), a set with the thermal
+/// effect (`thermal.rows`).
+#[test]
+fn the_sections_of_rollers_and_sets_are_labelled_and_documented() {
+    let docs = documented();
+    let keys = section(&docs, "summary.json");
+    let d = tmp("runs");
+    let crb = run_scene(&d, "nu206-ring2-radial", &keys);
+    let life = &crb["lamina_life"];
+    assert!(
+        life["with_edge_factor"]["L10r [Mrev]"].is_number()
+            && life["without_edge_factor"]["life_inner [Mrev]"].is_number()
+            && life["states [1]"].is_number(),
+        "{life}"
     );
+    let set = run_scene(&d, "7008ce-db-pair", &keys);
+    let row = &set["set"]["rows"][0];
+    assert!(
+        row["position [mm]"].is_number() && row["orientation [1]"].is_number(),
+        "{row}"
+    );
+    let thermal = run_scene(&d, "7008ce-db-pair-thermal", &keys);
+    let rows = &thermal["thermal"]["rows"];
+    assert_eq!(rows.as_array().map(Vec::len), Some(2), "{thermal}");
+    assert!(rows[1]["inner_race [°C]"].is_number(), "{rows}");
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+/// `raceway quasi-static --json` of a ball bearing with every option of the design check
+/// (oil, fits, ring temperatures, SKF seal and drag, a duty cycle, a held tilt), of a
+/// cylindrical and a tapered roller bearing and of a set; `raceway bearings --json` (the
+/// list), for a ball and for a roller bearing.
+#[test]
+fn quasi_static_and_bearings_keys_are_labelled_and_documented() {
+    let docs = documented();
+    let qs_keys = section(&docs, "`raceway quasi-static");
+    let d = tmp("qs");
+    let duty = d.join("duty.csv");
+    std::fs::write(&duty, "3000, 500, 3000, 0.5\n1500, 0, 1500, 0.5\n").unwrap();
+    let ball = |bearing: &str, extra: &[&str]| -> Value {
+        let mut args = vec![
+            "quasi-static",
+            "--bearing",
+            bearing,
+            "--fy",
+            "-3000",
+            "--fz",
+            "300",
+            "--speed-rpm",
+            "3000",
+            "--oil",
+            "VG68",
+            "--contamination",
+            "0.5",
+            "--shaft-interference-um",
+            "10",
+            "--housing-interference-um",
+            "5",
+            "--inner-ring-temp-c",
+            "50",
+            "--outer-ring-temp-c",
+            "40",
+            "--skf-seal",
+            "0.028,2.25,2,25",
+            "--skf-drag",
+            "0.0005,10",
+            "--duty",
+            duty.to_str().unwrap(),
+            "--json",
+        ];
+        args.extend_from_slice(extra);
+        serde_json::from_str(&raceway(&args)).unwrap()
+    };
+    let qs = ball("6205", &["--hold", "rx,ry"]);
+    let n = check_json(&qs, &qs_keys, "quasi-static 6205 --json");
+    assert!(n > 150, "{n} keys");
+    let (sol, calc) = (&qs["solution"], &qs["calculator"]);
     assert!(qs["speed [rpm]"].is_number() && qs["rating"]["P [N]"].is_number());
+    assert!(sol["displacement.y [m]"].is_number() && sol["force.rx [N.m]"].is_number());
+    assert!(sol["balls"][0]["q_i [N]"].is_number(), "{sol}");
+    for (section, key) in [
+        ("lubrication", "kappa [1]"),
+        ("friction", "moment [N.m]"),
+        ("clearance", "operating [m]"),
+        ("duty", "miner_life [h]"),
+        ("thermal_speed", "reference_speed [rpm]"),
+        ("skf_friction", "seal_moment [N.m]"),
+        ("skf_friction", "drag_moment [N.m]"),
+        ("held_moment", "L10r [Mrev]"),
+    ] {
+        assert!(
+            calc[section][key].is_number(),
+            "calculator.{section}.{key}: {calc}"
+        );
+    }
+    assert!(calc["equilibrium_clearance [m]"].is_number(), "{calc}");
+    // Without the SKF constants of its series (a 7205 is not built in): skf_note.
+    let note = ball("7205B", &[]);
+    check_json(&note, &qs_keys, "quasi-static 7205B --json");
+    // A tapered roller bearing needs an axial load to sit.
+    for (bearing, fz) in [("NU206", "0"), ("30206", "2000")] {
+        let r: Value = serde_json::from_str(&raceway(&[
+            "quasi-static",
+            "--bearing",
+            bearing,
+            "--fy",
+            "-5000",
+            "--fz",
+            fz,
+            "--speed-rpm",
+            "1500",
+            "--json",
+        ]))
+        .unwrap();
+        check_json(&r, &qs_keys, bearing);
+        assert!(
+            r["speed [rpm]"].is_number()
+                && r["L10 [Mrev]"].is_number()
+                && r["lamina_life"]["L10r [Mrev]"].is_number()
+                && r["solution"]["rollers"][0]["lamina_load_inner [N]"].is_array(),
+            "{r}"
+        );
+    }
+    let set: Value = serde_json::from_str(&raceway(&[
+        "quasi-static",
+        "--scene",
+        root()
+            .join("examples/scenes/7008ce-db-pair.toml")
+            .to_str()
+            .unwrap(),
+        "--fy",
+        "-500",
+        "--json",
+    ]))
+    .unwrap();
+    check_json(&set, &qs_keys, "quasi-static --scene");
+    assert!(set["solution"]["rows"][1]["balls"][0]["alpha_i [rad]"].is_number());
+
+    let b_keys = section(&docs, "`raceway bearings");
+    let list: Value = serde_json::from_str(&raceway(&["bearings", "--json"])).unwrap();
+    check_json(&list, &b_keys, "bearings --json");
+    assert!(list[0]["C [N]"].is_number(), "{list}");
+    for name in ["6205", "NU206", "30206"] {
+        let one: Value = serde_json::from_str(&raceway(&["bearings", name, "--json"])).unwrap();
+        check_json(&one, &b_keys, name);
+        assert!(one["ratings"]["C [N]"].is_number(), "{one}");
+    }
     let _ = std::fs::remove_dir_all(&d);
 }
 

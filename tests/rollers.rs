@@ -132,8 +132,8 @@ fn the_command_line_lists_a_roller_designation_with_its_ratings() {
     let rb = roller_catalogue::lookup("NU206").unwrap().build().unwrap();
     let r = raceway::ratings::roller::roller_ratings(&rb).unwrap();
     assert_eq!(v["element"], "roller");
-    assert_eq!(v["ratings"]["c_n"].as_f64().unwrap(), r.cr);
-    assert_eq!(v["spec"]["roller_count"].as_u64().unwrap(), rb.z as u64);
+    assert_eq!(v["ratings"]["C [N]"].as_f64().unwrap(), r.cr);
+    assert_eq!(v["spec"]["Z [1]"].as_u64().unwrap(), rb.z as u64);
 }
 
 /// The ring level carries rollers through the same contact law: at rest (no velocity, so
@@ -250,17 +250,17 @@ fn the_quasi_static_command_solves_a_roller_bearing() {
     );
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     let sol = &v["solution"];
-    let fy = sol["rollers_force"][1].as_f64().unwrap();
+    let fy = sol["force.y [N]"].as_f64().unwrap();
     assert!((fy - 8000.0).abs() < 1e-3, "{fy}");
     let rollers = sol["rollers"].as_array().unwrap();
     for r in rollers {
-        let lam = r["lamina_load"].as_array().unwrap();
+        let lam = r["lamina_load_outer [N]"].as_array().unwrap();
         assert_eq!(lam.len(), 30);
         let s: f64 = lam.iter().map(|x| x.as_f64().unwrap()).sum();
-        let q = r["load"][1].as_f64().unwrap();
+        let q = r["q_o [N]"].as_f64().unwrap();
         assert!((s - q).abs() <= 1e-9 * q.max(1.0), "{s} vs {q}");
     }
-    let k = sol["k"].as_array().unwrap();
+    let k = sol["stiffness [SI]"].as_array().unwrap();
     assert_eq!(k.len(), 5);
     assert!(k[2]
         .as_array()

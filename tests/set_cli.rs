@@ -35,32 +35,32 @@ fn a_rigid_db_pair_at_no_load_balances_its_rows_and_sums_their_axial_stiffness()
     let sol = &v["solution"];
     let rows = sol["rows"].as_array().unwrap();
     assert_eq!(rows.len(), 2);
-    let fz = |i: usize| rows[i]["force"][2].as_f64().unwrap();
+    let fz = |i: usize| rows[i]["force.z [N]"].as_f64().unwrap();
     // Equal and opposite on the shaft, each the 300 N preload.
     assert!((fz(0) + fz(1)).abs() < 1e-6 * 300.0, "{} {}", fz(0), fz(1));
     for (i, r) in rows.iter().enumerate() {
-        let a = r["axial_load"].as_f64().unwrap();
+        let a = r["axial_load [N]"].as_f64().unwrap();
         assert!((a - 300.0).abs() < 1e-3 * 300.0, "row {i}: {a}");
         assert_eq!(r["lifted_off"], false);
         assert_eq!(r["balls"].as_array().unwrap().len(), 16);
     }
     // No net force at the reference point.
-    for k in 0..5 {
-        assert!(sol["force"][k].as_f64().unwrap().abs() < 1e-6 * 300.0);
+    for k in ["x [N]", "y [N]", "z [N]", "rx [N.m]", "ry [N.m]"] {
+        assert!(sol[format!("force.{k}").as_str()].as_f64().unwrap().abs() < 1e-6 * 300.0);
     }
-    let kzz = sol["stiffness"][2][2].as_f64().unwrap();
+    let kzz = sol["stiffness [SI]"][2][2].as_f64().unwrap();
     let sum: f64 = rows
         .iter()
-        .map(|r| r["axial_stiffness"].as_f64().unwrap())
+        .map(|r| r["axial_stiffness [N/m]"].as_f64().unwrap())
         .sum();
     assert!(
         kzz > 0.0 && (kzz - sum).abs() < 0.01 * sum,
         "{kzz} vs {sum}"
     );
     // The system life is below each row's (two loaded rows).
-    let life = sol["life_mrev"].as_f64().unwrap();
+    let life = sol["system_life [Mrev]"].as_f64().unwrap();
     for r in rows {
-        assert!(life < r["life_mrev"].as_f64().unwrap());
+        assert!(life < r["life [Mrev]"].as_f64().unwrap());
     }
 
     let text = raceway(&["quasi-static", "--scene", PAIR, "--fy", "-500"]);

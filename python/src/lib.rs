@@ -704,7 +704,7 @@ fn quasi_static(
             let n = &reports::PYTHON_NAMES;
             let r = raceway::summary::rollers::report(&b?, speed_rpm, load, (n.load, n.speed_rpm))?;
             Ok((
-                serde_json::to_string(&r).expect("the report serialises"),
+                serde_json::to_string(&r.to_json()).expect("the report serialises"),
                 Vec::new(),
                 Vec::new(),
             ))
@@ -792,7 +792,7 @@ fn shaft_json(py: Python<'_>, shaft: &Bound<'_, PyAny>) -> PyResult<String> {
 /// `raceway bearings --json`.
 #[pyfunction]
 fn bearings_json(py: Python<'_>) -> PyResult<String> {
-    reports::bearing_rows()
+    reports::bearings_json()
         .map(|rows| serde_json::to_string(&rows).unwrap_or_default())
         .map_err(|e| to_py(py, e))
 }
@@ -800,7 +800,7 @@ fn bearings_json(py: Python<'_>) -> PyResult<String> {
 /// `raceway bearings NAME --json`.
 #[pyfunction]
 fn bearing_json(py: Python<'_>, name: &str) -> PyResult<String> {
-    reports::bearing_detail(name)
+    reports::bearing_json(name)
         .map(|d| serde_json::to_string(&d).unwrap_or_default())
         .map_err(|e| to_py(py, e))
 }

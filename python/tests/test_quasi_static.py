@@ -17,7 +17,7 @@ def test_k_is_the_command_lines_and_a_stiffness(cli):
     ref = cli.json("quasi-static", "--bearing", "7008ce", "--speed-rpm", "0", "--fy", "100",
                    "--fz", "300", "--json")
     # The same solver and the same JSON: equal bit for bit.
-    np.testing.assert_array_equal(q.K, np.array(ref["solution"]["stiffness"]))
+    np.testing.assert_array_equal(q.K, np.array(ref["solution"]["stiffness [SI]"]))
     assert q.data == ref
     assert q.K.shape == (5, 5)
     # At rest the contact forces derive from the Hertz potential: the translational block is
@@ -64,8 +64,12 @@ def test_bearings_are_the_command_lines(cli):
     df = raceway.bearings()
     ref = pd.DataFrame(cli.json("bearings", "--json"))
     pd.testing.assert_frame_equal(df, ref)
-    assert int(df.set_index("name").loc["7008ce", "ball_count"]) == 16
+    assert int(df.set_index("name").loc["7008ce", "Z [1]"]) == 16
     assert raceway.bearing("6206") == cli.json("bearings", "6206", "--json")
+    # A roller designation: the same document as the command line's, labelled alike.
+    nu = raceway.bearing("NU206")
+    assert nu == cli.json("bearings", "NU206", "--json")
+    assert nu["ratings"]["C [N]"] > 0 and nu["spec"]["bore [mm]"] == 30.0
 
 
 def test_design_check_from_an_oil_and_a_fit():
@@ -73,11 +77,11 @@ def test_design_check_from_an_oil_and_a_fit():
     thick = raceway.quasi_static(
         "6205", 3000.0, fy=2000.0, oil="VG100", shaft_interference_um=10.0
     )
-    k = lambda r: r.data["calculator"]["lubrication"]["kappa"]
-    m = lambda r: r.data["calculator"]["friction"]["total"]
+    k = lambda r: r.data["calculator"]["lubrication"]["kappa [1]"]
+    m = lambda r: r.data["calculator"]["friction"]["moment [N.m]"]
     assert k(thick) > k(thin) and m(thick) > m(thin)
     c = thick.data["calculator"]["clearance"]
-    assert c["operating"] < c["unmounted"]
+    assert c["operating [m]"] < c["unmounted [m]"]
     with pytest.raises(raceway.Error) as e:
         raceway.quasi_static("6205", 3000.0, oil="castor")
     assert "castor" in e.value.message
@@ -88,11 +92,13 @@ def test_held_tilts_take_a_moment_and_match_the_command_line(cli):
     held = raceway.quasi_static("7205B", fy=1000, fz=2000, hold={"rx_mrad": 0, "ry_mrad": 0})
     sol = held.data["solution"]
     assert sol["held"] == [False, False, False, True, True]
-    assert abs(sol["reaction"][3]) > 1.0
+    assert abs(sol["reaction.rx [N.m]"]) > 1.0
     assert np.hypot(*held.displacement[:2]) < 0.5 * np.hypot(*free.displacement[:2])
     doc = json.loads(cli("quasi-static", "--bearing", "7205B", "--fy", "1000", "--fz", "2000",
                          "--hold", "rx_mrad=0,ry_mrad=0", "--json"))
-    assert np.allclose(doc["solution"]["reaction"], sol["reaction"], rtol=1e-12, atol=1e-12)
+    for a, u in (("x", "N"), ("y", "N"), ("z", "N"), ("rx", "N.m"), ("ry", "N.m")):
+        key = f"reaction.{a} [{u}]"
+        assert np.isclose(doc["solution"][key], sol[key], rtol=1e-12, atol=1e-12)
     with pytest.raises(raceway.Error) as e:
         raceway.quasi_static("7205B", fy=1000, hold={"tilt": 0})
     assert e.value.field == "hold"
@@ -106,7 +112,7 @@ def test_skf_friction_keywords_match_the_command_line(cli):
                          "0.02,2.25,2,30", "--json"))
     skf = py.data["calculator"]["skf_friction"]
     assert skf == doc["calculator"]["skf_friction"]
-    assert skf["drag"] > 0 and skf["seals"] > 0
+    assert skf["drag_moment [N.m]"] > 0 and skf["seal_moment [N.m]"] > 0
     with pytest.raises(raceway.Error) as e:
         raceway.quasi_static("6205", 3000.0, fy=2000, oil="VG68", skf_seal=(1, 2))
     assert e.value.field == "skf_seal"

@@ -132,6 +132,39 @@ pub fn bearing_detail(name: &str) -> Result<BearingDetail> {
     })
 }
 
+/// `raceway bearings --json`: every preset's row, its keys labelled from
+/// [`super::columns`] (docs/columns.md).
+pub fn bearings_json() -> Result<serde_json::Value> {
+    Ok(super::columns::to_labelled_json(
+        super::columns::Doc::Bearings,
+        &bearing_rows()?,
+    ))
+}
+
+/// `raceway bearings NAME --json`: a ball bearing's [`BearingDetail`], or for a roller
+/// designation its file's data (`spec`) and ISO 281/76 ratings; keys labelled from
+/// [`super::columns`].
+pub fn bearing_json(name: &str) -> Result<serde_json::Value> {
+    let doc = super::columns::Doc::Bearings;
+    if preset(name).is_err() {
+        if let Some(spec) = crate::geometry::roller_catalogue::lookup(name) {
+            let r = crate::ratings::roller::roller_ratings(&spec.build()?)?;
+            return Ok(super::columns::to_labelled_json(
+                doc,
+                &serde_json::json!({
+                    "spec": spec,
+                    "element": "roller",
+                    "ratings": { "gamma": r.gamma, "fc": r.fc, "c_n": r.cr, "c0_n": r.c0r },
+                }),
+            ));
+        }
+    }
+    Ok(super::columns::to_labelled_json(
+        doc,
+        &bearing_detail(name)?,
+    ))
+}
+
 /// A bearing from a preset or catalogue name, or a TOML bearing file.
 pub fn load_bearing(arg: &str) -> Result<Bearing> {
     match preset(arg) {

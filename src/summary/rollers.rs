@@ -56,6 +56,15 @@ pub struct RollerQsReport {
     pub notes: Vec<&'static str>,
 }
 
+impl RollerQsReport {
+    /// The document as JSON, its keys labelled from [`super::columns`] (docs/columns.md):
+    /// what `raceway quasi-static --bearing NU206 --json` prints and Python's
+    /// `quasi_static` reads.
+    pub fn to_json(&self) -> serde_json::Value {
+        super::columns::to_labelled_json(super::columns::Doc::QuasiStatic, self)
+    }
+}
+
 /// The roller bearing of a designation, `None` when `name` is not one.
 pub fn roller_bearing(name: &str) -> Option<Result<RollerBearing>> {
     roller_catalogue::lookup(name).map(|s| s.build())

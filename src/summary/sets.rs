@@ -233,7 +233,7 @@ pub(super) fn html_table(v: &Value) -> String {
             esc(r["label"].as_str().unwrap_or("")),
             esc(r["bearing"].as_str().unwrap_or("")),
             f(&r["position [mm]"]),
-            if r["orientation"].as_i64() == Some(-1) { "-z" } else { "+z" },
+            if r["orientation [1]"].as_i64() == Some(-1) { "-z" } else { "+z" },
             f(&r["mean_force.z [N]"]),
             f(&r["mean_radial_load [N]"]),
             f(&r["mean_thrust [N]"]),

@@ -47,9 +47,12 @@ def table():
                           timeout=900)
     assert proc.returncode == 0, proc.stderr
     d = json.loads(proc.stdout)
-    assert d["element"] == "roller" and d["speed_rpm"] == 0.0
+    assert d["element"] == "roller" and d["speed [rpm]"] == 0.0
     s = d["solution"]
-    return s["q"], s["rollers_force"]
+    axes = (("x", "m", "N"), ("y", "m", "N"), ("z", "m", "N"), ("rx", "rad", "N.m"),
+            ("ry", "rad", "N.m"))
+    return ([s[f"displacement.{a} [{m}]"] for a, m, _ in axes],
+            [s[f"force.{a} [{n}]"] for a, _, n in axes])
 
 
 def close(a, b, scale, rel=1e-6):

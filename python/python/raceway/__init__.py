@@ -162,14 +162,16 @@ class RollerQuasiStaticResult:
         Forces and moments of the rollers on the shaft ``(Fx, Fy, Fz, Mx, My)`` (= -load).
     data : dict
         Everything, as ``raceway quasi-static --bearing NAME --json`` prints it:
-        ``solution`` (``q``, ``rollers_force``, ``k``, ``iterations``, ``rollers``), the ISO
-        281/76 ratings ``cr``, ``c0r``, ``p``, ``p0``, ``l10_mrev``, and ``max_pressure``,
-        ``max_edge_pressure`` (Pa); ISO/TS 16281's reference rating life from the lamina
-        loads ``lamina_life`` (``l10r_mrev``, ``inner_mrev``, ``outer_mrev``, ``p_ref``,
-        ``options``, ``ratings``) and ``lamina_life_without_edge_factor``, the lamina static
-        safety ``s0_lamina`` = (4000 MPa / max_pressure)², and ``notes`` (what is
-        UNSOURCED). Each roller row carries ``lamina_load`` (outer contact) and
-        ``lamina_load_inner`` (inner contact), N.
+        ``solution`` (``displacement.x [m]`` .. ``displacement.ry [rad]``, ``force.x [N]`` ..
+        ``force.ry [N.m]``, ``stiffness [SI]``, ``iterations [1]``, ``rollers``), the ISO
+        281/76 ratings ``C [N]``, ``C0 [N]``, ``P [N]``, ``P0 [N]``, ``L10 [Mrev]``, and
+        ``max_pressure [Pa]``, ``max_edge_pressure [Pa]``; ISO/TS 16281's reference rating
+        life from the lamina loads ``lamina_life`` (``L10r [Mrev]``, ``life_inner [Mrev]``,
+        ``life_outer [Mrev]``, ``P_ref [N]``, ``options``, ``ratings``) and
+        ``lamina_life_without_edge_factor``, the lamina static safety ``S0_lamina [1]`` =
+        (4000 MPa / max_pressure)², and ``notes`` (what is UNSOURCED). Each roller row
+        carries ``lamina_load_outer [N]`` and ``lamina_load_inner [N]``. Every key is
+        listed in docs/columns.md.
     """
 
     rollers: pd.DataFrame
@@ -181,29 +183,40 @@ class RollerQuasiStaticResult:
     data: dict
 
 
+_AXES = (("x", "m", "N"), ("y", "m", "N"), ("z", "m", "N"), ("rx", "rad", "N.m"), ("ry", "rad", "N.m"))
+
+
+def _five(sol: dict, name: str, displacement: bool) -> np.ndarray:
+    """The five keys ``name.x [m]`` .. ``name.ry [rad]`` (or N, N.m) of a solution as one
+    array (docs/columns.md)."""
+    return np.array(
+        [sol[f"{name}.{a} [{dm if displacement else fn}]"] for a, dm, fn in _AXES], dtype=float
+    )
+
+
 def _roller_result(data: dict) -> RollerQuasiStaticResult:
     sol = data["solution"]
     rows = sol["rollers"]
     col = lambda f: np.array([f(r) for r in rows], dtype=float)  # noqa: E731
     rollers = pd.DataFrame(
         {
-            "psi [rad]": col(lambda r: r["psi"]),
-            "q_i [N]": col(lambda r: r["load"][0]),
-            "q_o [N]": col(lambda r: r["load"][1]),
-            "p_i [Pa]": col(lambda r: r["pressure"][0]),
-            "p_o [Pa]": col(lambda r: r["pressure"][1]),
-            "flange [N]": col(lambda r: r["flange_load"]),
-            "edge_p [Pa]": col(lambda r: r["edge_pressure"]),
+            "psi [rad]": col(lambda r: r["psi [rad]"]),
+            "q_i [N]": col(lambda r: r["q_i [N]"]),
+            "q_o [N]": col(lambda r: r["q_o [N]"]),
+            "p_i [Pa]": col(lambda r: r["p_i [Pa]"]),
+            "p_o [Pa]": col(lambda r: r["p_o [Pa]"]),
+            "flange [N]": col(lambda r: r["flange_load [N]"]),
+            "edge_p [Pa]": col(lambda r: r["edge_pressure [Pa]"]),
         }
     )
     rollers.index.name = "roller"
     return RollerQuasiStaticResult(
         rollers=rollers,
-        lamina_load=np.array([r["lamina_load"] for r in rows], dtype=float),
-        lamina_pressure=np.array([r["lamina_pressure"] for r in rows], dtype=float),
-        K=np.array(sol["k"], dtype=float).reshape(5, 5),
-        displacement=np.array(sol["q"], dtype=float),
-        forces=np.array(sol["rollers_force"], dtype=float),
+        lamina_load=np.array([r["lamina_load_outer [N]"] for r in rows], dtype=float),
+        lamina_pressure=np.array([r["lamina_pressure [Pa]"] for r in rows], dtype=float),
+        K=np.array(sol["stiffness [SI]"], dtype=float).reshape(5, 5),
+        displacement=_five(sol, "displacement", True),
+        forces=_five(sol, "force", False),
         data=data,
     )
 
@@ -314,7 +327,7 @@ def quasi_static(
     hold : dict, optional
         Ring coordinates held at a value while the others are solved, e.g.
         ``{"rx_mrad": 0, "ry_mrad": 0}`` (keys ``x_um``, ``y_um``, ``z_um``, ``rx_mrad``,
-        ``ry_mrad``); the reaction on each is ``result.data["solution"]["reaction"]`` (SI)
+        ``ry_mrad``); the reaction on each is ``result.data["solution"]["reaction.rx [N.m]"]`` etc.
         and ``result.data["solution"]["held"]`` says which were held.
     duty : str, os.PathLike or sequence, optional
         A load spectrum, as ``raceway quasi-static --duty FILE``: the path of a file (one
@@ -384,9 +397,9 @@ def quasi_static(
     balls.index.name = "ball"
     return QuasiStaticResult(
         balls=balls,
-        K=np.array(sol["stiffness"], dtype=float).reshape(5, 5),
-        displacement=np.array(sol["q"], dtype=float),
-        forces=np.array(sol["forces"], dtype=float),
+        K=np.array(sol["stiffness [SI]"], dtype=float).reshape(5, 5),
+        displacement=_five(sol, "displacement", True),
+        forces=_five(sol, "force", False),
         data=data,
     )
 
@@ -442,8 +455,8 @@ def bearings() -> pd.DataFrame:
     Returns
     -------
     pandas.DataFrame
-        One row per preset (mm, µm, degrees, kg; ``dynamic_rating_n`` and
-        ``static_rating_n`` the ISO 281/76 ratings in N). Catalogue designations
+        One row per preset (``name [unit]`` columns in mm, µm, degrees, kg;
+        ``C [N]`` and ``C0 [N]`` the ISO 281/76 ratings; docs/columns.md). Catalogue designations
         (60/62/63, 70/72/73 C/AC/B) are reached one at a time with :func:`bearing`.
 
     Examples

@@ -189,12 +189,14 @@ class RollerQuasiStaticResult:
     """Forces and moments of the rollers on the shaft ``(Fx, Fy, Fz, Mx, My)`` (= −load)."""
     data: dict[str, Any]
     """Everything, as ``raceway quasi-static --bearing NAME --json`` prints it: ``solution``
-    (``q``, ``rollers_force``, ``k``, ``iterations``, ``rollers``), the ISO 281/76 ratings
-    ``cr``, ``c0r``, ``p``, ``p0``, ``l10_mrev`` and ``max_pressure``, ``max_edge_pressure``
-    (Pa); ISO/TS 16281's lamina life ``lamina_life`` (``l10r_mrev``, ``inner_mrev``,
-    ``outer_mrev``, ``p_ref``, ``options``, ``ratings``) and
-    ``lamina_life_without_edge_factor``, ``s0_lamina`` = (4000 MPa / max_pressure)² and
-    ``notes`` (what is UNSOURCED); each roller row also ``lamina_load_inner`` (N)."""
+    (``displacement.x [m]`` .. ``displacement.ry [rad]``, ``force.x [N]`` .. ``force.ry
+    [N.m]``, ``stiffness [SI]``, ``iterations [1]``, ``rollers``), the ISO 281/76 ratings
+    ``C [N]``, ``C0 [N]``, ``P [N]``, ``P0 [N]``, ``L10 [Mrev]`` and ``max_pressure [Pa]``,
+    ``max_edge_pressure [Pa]``; ISO/TS 16281's lamina life ``lamina_life`` (``L10r [Mrev]``,
+    ``life_inner [Mrev]``, ``life_outer [Mrev]``, ``P_ref [N]``, ``options``, ``ratings``)
+    and ``lamina_life_without_edge_factor``, ``S0_lamina [1]`` = (4000 MPa / max_pressure)²
+    and ``notes`` (what is UNSOURCED); each roller row ``lamina_load_outer [N]`` and
+    ``lamina_load_inner [N]``. Every key is listed in docs/columns.md."""
 
 DutyLike = Union[str, "os.PathLike[str]", Sequence[Sequence[float]]]
 """A load spectrum: the path of a file (one row per line ``fr_n, fa_n, speed_rpm,
@@ -246,11 +248,12 @@ def quasi_static(
     (``data["calculator"]["thermal_speed"]``, with ISO 15312's reference speed).
     ``hold``: ring coordinates held at a value while the others are solved
     (``{"rx_mrad": 0, "ry_mrad": 0}``; keys ``x_um``, ``y_um``, ``z_um``, ``rx_mrad``,
-    ``ry_mrad``), the reaction on each in ``result.data["solution"]["reaction"]``.
+    ``ry_mrad``), the reaction on each in ``result.data["solution"]["reaction.rx [N.m]"]`` etc.
     ``duty``: a load spectrum (``raceway quasi-static --duty FILE``), its ISO 281 life in
     ``result.data["calculator"]["duty"]``.
     The SKF four-term friction model is ``data["calculator"]["skf_friction"]`` (N m, W:
-    ``rolling``, ``sliding``, ``seals``, ``drag``, ``total``, ``power``, the factors, and
+    ``rolling_moment``, ``sliding_moment``, ``seal_moment``, ``drag_moment``, ``moment``,
+    ``power``, each ``name [unit]``, the factors, and
     what is ``unconfirmed``; ``skf_note`` says why it is missing): ``skf_lubrication``
     (``"oil-bath"`` default, ``"oil-jet"``, ``"oil-air"``, ``"grease"``), ``skf_seal``
     ``(KS1, BETA, KS2, DS_MM)``, ``skf_drag`` ``(VM, H_MM)``, ``skf_constants``
@@ -268,13 +271,14 @@ def shaft(shaft: Union[str, "os.PathLike[str]"]) -> dict[str, Any]:
     ``warnings``."""
 
 def bearings() -> pd.DataFrame:
-    """The bearing presets, one row each, as ``raceway bearings --json`` lists them (mm, µm,
-    degrees, kg; ``dynamic_rating_n`` and ``static_rating_n`` the ISO 281/76 ratings in N). Catalogue
+    """The bearing presets, one row each, as ``raceway bearings --json`` lists them (``name [unit]``
+    columns in mm, µm, degrees, kg; ``C [N]`` and ``C0 [N]`` the ISO 281/76 ratings; docs/columns.md). Catalogue
     designations (60/62/63, 70/72/73 C/AC/B) are reached one at a time with :func:`bearing`."""
 
 def bearing(name: str) -> dict[str, Any]:
-    """One preset or catalogue designation (``"6206"``, ``"7205b"``): its data, ISO ratings
-    and where each number comes from, as ``raceway bearings NAME --json`` prints it."""
+    """One preset or catalogue designation (``"6206"``, ``"7205b"``, a roller ``"NU206"``):
+    its data, ISO ratings and where each number comes from, as ``raceway bearings NAME
+    --json`` prints it (``name [unit]`` keys, docs/columns.md)."""
 
 class Sweep:
     """A parsed and checked sweep: a base scene and axes (docs/sweep.md).

@@ -349,7 +349,7 @@ fn quasi_static(a: QsArgs) -> Result<String> {
             (n.load, n.speed_rpm),
         )?;
         return if a.json {
-            report::json(&r)
+            report::json(&r.to_json())
         } else {
             Ok(set_qs::text(&r))
         };
@@ -369,7 +369,7 @@ fn quasi_static(a: QsArgs) -> Result<String> {
         let n = &reports::CLI_NAMES;
         let r = rollers::report(&b?, a.speed_rpm.unwrap_or(0.0), l, (n.load, n.speed_rpm))?;
         return if a.json {
-            report::json(&r)
+            report::json(&r.to_json())
         } else {
             Ok(rollers::text(&r))
         };

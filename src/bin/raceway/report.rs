@@ -24,7 +24,7 @@ pub fn bearings(as_json: bool) -> Result<String> {
         rows.push(preset_row(&spec.source, &b));
     }
     if as_json {
-        return json(&rows);
+        return json(&reports::bearings_json()?);
     }
     let mut s = String::new();
     let _ = writeln!(
@@ -89,7 +89,7 @@ pub fn bearing_detail(name: &str, as_json: bool) -> Result<String> {
     let d = reports::bearing_detail(name)?;
     let (r, estimated) = (&d.ratings, d.estimated);
     if as_json {
-        return json(&d);
+        return json(&reports::bearing_json(name)?);
     }
     let mut s = String::new();
     let kind = match b.kind {
@@ -261,11 +261,7 @@ fn roller_detail(
     let b = spec.build()?;
     let r = raceway::ratings::roller::roller_ratings(&b)?;
     if as_json {
-        return json(&serde_json::json!({
-            "spec": spec,
-            "element": "roller",
-            "ratings": { "gamma": r.gamma, "fc": r.fc, "c_n": r.cr, "c0_n": r.c0r },
-        }));
+        return json(&reports::bearing_json(&spec.name)?);
     }
     let mut s = String::new();
     let _ = writeln!(s, "{} ({:?} roller bearing)", b.name, b.kind);

@@ -28,6 +28,15 @@ pub struct SetQsReport {
     pub solution: SetSolution,
 }
 
+impl SetQsReport {
+    /// The document as JSON, its keys labelled from `raceway::summary::columns`
+    /// (docs/columns.md).
+    pub fn to_json(&self) -> serde_json::Value {
+        use raceway::summary::columns::{to_labelled_json, Doc};
+        to_labelled_json(Doc::QuasiStatic, self)
+    }
+}
+
 /// The scene of `path` (checked as `raceway run` checks it).
 pub fn read_scene(path: &Path) -> Result<Scene> {
     let file = path.display().to_string();

@@ -9,6 +9,9 @@
 
 use serde_json::{Map, Value};
 
+mod bearings;
+mod quasi_static;
+
 /// One key: where the code puts it, the label it leaves as, its unit and meaning.
 #[derive(Debug, Clone, Copy)]
 pub struct Key {
@@ -64,6 +67,15 @@ const RATING: &[Key] = &[
     k("rating.pressure_limit_ratio", "pressure_limit_ratio", "1", "peak_pressure / pressure_limit"),
     k("rating.loaded_balls", "loaded_balls", "1", "elements with a positive inner contact load"),
     k("rating.warnings", "warnings", "", "the rating's warnings (structured)"),
+    k("rating.warnings[].kind", "kind", "", "pressure_above_static_limit, ellipse_truncated, few_loaded_balls or kappa_below_one"),
+    k("rating.warnings[].pressure", "pressure", "Pa", "peak pressure (pressure_above_static_limit)"),
+    k("rating.warnings[].limit", "limit", "Pa", "the static pressure limit (pressure_above_static_limit)"),
+    k("rating.warnings[].ball", "ball", "1", "ball index"),
+    k("rating.warnings[].race", "race", "", "inner or outer"),
+    k("rating.warnings[].edge_angle", "edge_angle", "rad", "contact angle plus the ellipse's angular half-width (ellipse_truncated)"),
+    k("rating.warnings[].shoulder_angle", "shoulder_angle", "rad", "groove shoulder angle (ellipse_truncated)"),
+    k("rating.warnings[].count", "count", "1", "balls with a positive inner contact load (few_loaded_balls)"),
+    k("rating.warnings[].kappa", "kappa", "1", "viscosity ratio (kappa_below_one)"),
     k("warnings", "warnings", "", "the rating's warnings as text"),
 ];
 
@@ -252,6 +264,7 @@ const RUN: &[Key] = &[
         "the calculator's Palmgren and SKF friction at the run's second-half means, beside the run's own",
     ),
     k("friction.calculator.means", "means", "", "which means the calculator was run at"),
+    k("friction.calculator.note", "note", "", "why the calculator was not run"),
     k("friction.calculator.mean_speed_rpm", "mean_speed", "rpm", "mean |shaft speed|"),
     k("friction.calculator.radial_load_n", "radial_load", "N", "mean radial load Fr"),
     k("friction.calculator.axial_load_n", "axial_load", "N", "mean axial load Fa"),
@@ -300,7 +313,7 @@ const RUN: &[Key] = &[
     k("set.rows[].label", "label", "", "the row's output prefix (row0, row1, ...)"),
     k("set.rows[].bearing", "bearing", "", "the row's bearing"),
     k("set.rows[].position_mm", "position", "mm", "axial position from the set's reference point"),
-    k("set.rows[].orientation", "orientation", "", "+1: contact angle opens toward +z; -1: toward -z"),
+    k("set.rows[].orientation", "orientation", "1", "+1: contact angle opens toward +z; -1: toward -z"),
     k("set.rows[].mean_force_n", "mean_force.x|mean_force.y|mean_force.z", "N", "mean force the row carries"),
     k("set.rows[].mean_moment_nm", "mean_moment.x|mean_moment.y", "N.m", "mean moment the row carries"),
     k("set.rows[].peak_force_n", "peak_force.x|peak_force.y|peak_force.z", "N", "largest |force| per axis"),
@@ -408,6 +421,19 @@ const RUN: &[Key] = &[
         "µm",
         "operating diametral clearance",
     ),
+    k("thermal.rows", "rows", "", "a bearing set: each row's temperatures at the end"),
+    k("thermal.rows[].inner_race_c", "inner_race", "°C", "the row's inner race temperature"),
+    k("thermal.rows[].outer_race_c", "outer_race", "°C", "the row's outer race temperature"),
+    k("thermal.rows[].balls_c", "elements", "°C", "the row's rolling-element temperature"),
+    k("thermal.rows[].oil_c", "oil", "°C", "the row's oil temperature"),
+    k(
+        "lamina_life",
+        "lamina_life",
+        "",
+        "ISO/TS 16281 lamina life over the analysed window (a roller bearing on the ring level), inner ring rotating",
+    ),
+    k("lamina_life.states", "states", "1", "recorded states in the window"),
+    k("lamina_life.notes", "notes", "", "what in these figures is not sourced"),
     k(
         "final_cage_slip",
         "final_cage_slip",
@@ -440,49 +466,44 @@ const RUN: &[Key] = &[
     ),
 ];
 
-/// `raceway quasi-static --json`'s own top-level keys. `solution` and `calculator` keep
-/// their field names for now (docs/columns.md says so).
-const QUASI_STATIC: &[Key] = &[
-    k("bearing", "bearing", "", "bearing designation"),
-    k("speed_rpm", "speed", "rpm", "shaft speed"),
-    k(
-        "race_control",
-        "race_control",
-        "",
-        "race control assumption",
-    ),
-    k(
-        "rating_error",
-        "rating_error",
-        "",
-        "why the ratings are not available",
-    ),
-    k(
-        "calculator_error",
-        "calculator_error",
-        "",
-        "why the design check is not available",
-    ),
-];
+const LAMINA: [Key; 13] = quasi_static::lamina_life!(
+    "lamina_life.with_edge_factor",
+    "with_edge_factor",
+    "the life with the edge-stress factor"
+);
+const LAMINA_PLAIN: [Key; 13] = quasi_static::lamina_life!(
+    "lamina_life.without_edge_factor",
+    "without_edge_factor",
+    "the same without the edge-stress factor (what the factor costs)"
+);
 
 /// Which document a key belongs to.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Doc {
     /// summary.json of `raceway run` (and `raceway.run`'s dict, a sweep's summary columns).
     Run,
-    /// `raceway quasi-static --json` (and Python's `quasi_static`).
+    /// `raceway quasi-static --json` (and Python's `quasi_static`): a ball bearing, a
+    /// roller bearing (`--bearing NU206`) and a set (`--scene`).
     QuasiStatic,
+    /// `raceway bearings --json` (each entry) and `raceway bearings NAME --json` (and
+    /// Python's `bearings()`, `bearing(NAME)`).
+    Bearings,
 }
+
+/// Every document, in the page's order.
+pub const DOCS: [Doc; 3] = [Doc::Run, Doc::QuasiStatic, Doc::Bearings];
 
 /// Every key of a document, in order.
 pub fn keys(doc: Doc) -> Vec<Key> {
-    let own: &[Key] = match doc {
-        Doc::Run => RUN,
-        Doc::QuasiStatic => QUASI_STATIC,
+    let mut v = match doc {
+        Doc::Run => RUN.to_vec(),
+        Doc::QuasiStatic => quasi_static::keys(),
+        Doc::Bearings => return bearings::KEYS.to_vec(),
     };
-    let mut v = own.to_vec();
     v.extend_from_slice(RATING);
     if doc == Doc::Run {
+        v.extend_from_slice(&LAMINA);
+        v.extend_from_slice(&LAMINA_PLAIN);
         v.extend_from_slice(&FREQUENCIES);
         v.extend_from_slice(&ENVELOPE);
     }
@@ -512,6 +533,21 @@ pub fn labels(key: &Key) -> Vec<(String, &'static str)> {
 pub fn relabel(doc: Doc, json: Map<String, Value>) -> Map<String, Value> {
     let table = keys(doc);
     walk(&table, "", json)
+}
+
+/// [`relabel`] of any JSON value: an object's keys, or each object of an array (a list of
+/// documents, `raceway bearings --json`); anything else as it is.
+pub fn relabel_value(doc: Doc, json: Value) -> Value {
+    match json {
+        Value::Object(m) => Value::Object(relabel(doc, m)),
+        Value::Array(a) => Value::Array(a.into_iter().map(|x| relabel_value(doc, x)).collect()),
+        other => other,
+    }
+}
+
+/// A serialisable document as JSON with its keys labelled from the table.
+pub fn to_labelled_json<T: serde::Serialize + ?Sized>(doc: Doc, v: &T) -> Value {
+    relabel_value(doc, serde_json::to_value(v).unwrap_or_default())
 }
 
 fn walk(table: &[Key], path: &str, m: Map<String, Value>) -> Map<String, Value> {
@@ -580,8 +616,11 @@ pub fn columns_page() -> String {
          with the unit in the variable table (docs/fmi.md). Why: the unit stays readable \
          beside every number a person reads, and a variable's name stays the same on every \
          face; `crate::units::split_label` turns a label back into name and unit.\n\n\
-         `tests/columns.rs` reads every header and key of a `raceway run`, a sweep and a \
-         quasi-static JSON solve and checks each against this page and the pattern.\n\n",
+         `tests/columns.rs` reads every header and key of runs (the default scene, a \
+         cylindrical roller bearing on the ring level, a set, a set with the thermal effect), \
+         a sweep, quasi-static JSON solves (a ball bearing with the design check's options, a \
+         cylindrical and a tapered roller bearing, a set) and `raceway bearings --json` (a \
+         ball and a roller bearing) and checks each against this page and the pattern.\n\n",
     );
     s.push_str(
         "## series.csv and `raceway.run`'s DataFrame\n\n\
@@ -631,12 +670,26 @@ pub fn columns_page() -> String {
     );
     s.push_str(
         "\n## `raceway quasi-static --json` (and Python's `quasi_static`)\n\n\
-         The top level and `rating` (the same rows as the run summary's `rating`); \
-         `solution` (SI: rad/s, N, N m, m, rad, Pa; its per-element table as \
-         `name [unit]` columns in Python's `quasi_static(...).balls`) and `calculator` keep \
-         their field names in this version.\n",
+         One table for the three documents: a ball bearing (`--bearing 6205`: the top level, \
+         `solution`, `rating` as in the run summary, the design check `calculator`), a roller \
+         bearing (`--bearing NU206`, `30206`: `element` is `roller`) and a set (`--scene \
+         SET.toml`: `element` is `set`); the meaning says which a key belongs to. `solution` \
+         is in SI (rad/s, N, N.m, m, rad, Pa); five numbers of a shaft's coordinates or loads \
+         are split into `.x`, `.y`, `.z`, `.rx`, `.ry` (m or rad; N or N.m); the 5 x 5 \
+         stiffness, whose entries mix N/m, N/rad, N.m/m and N.m/rad, has the unit `SI`; \
+         `G_rr` and `G_sl` are in the units of SKF's own formula (`SKF`). Python's \
+         `quasi_static(...).balls` and `.rollers` tables have the same `name [unit]` \
+         columns.\n",
     );
     table(&mut s, Doc::QuasiStatic);
+    s.push_str(
+        "\n## `raceway bearings --json` (and Python's `bearings()`, `bearing(NAME)`)\n\n\
+         `raceway bearings --json` lists the ball-bearing presets, each entry with the keys \
+         down to `source`; `raceway bearings NAME --json` gives one ball bearing's entry with \
+         its envelope and `ratings`, or for a roller designation its file's data (`spec`) and \
+         `ratings`. Values are in the units the bearing files use (mm, µm, degrees).\n",
+    );
+    table(&mut s, Doc::Bearings);
     s
 }
 
@@ -658,7 +711,7 @@ mod tests {
     /// unit per part or one for all.
     #[test]
     fn the_table_is_consistent() {
-        for doc in [Doc::Run, Doc::QuasiStatic] {
+        for doc in DOCS {
             let ks = keys(doc);
             for (i, a) in ks.iter().enumerate() {
                 assert!(
