@@ -132,7 +132,7 @@ fn the_cli_says_what_it_held() {
     let out = run(&["--hold", "rx=0,ry=0", "--json"]);
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(v["solution"]["held"][3], true);
-    assert!(v["solution"]["reaction"][3].as_f64().unwrap().abs() > 1.0);
+    assert!(v["solution"]["reaction.rx [N.m]"].as_f64().unwrap().abs() > 1.0);
     let out = run(&["--hold", "tilt=0"]);
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("--hold"));

@@ -134,7 +134,7 @@ fn a_steady_tapered_run_has_the_quasi_static_tables_lamina_life() {
     let s = tapered(q0, 0.0, 20);
     let (life, plain, n, force, json) = run(&s);
     assert_eq!(n, 11);
-    assert_eq!(json["states"], 11);
+    assert_eq!(json["states [1]"], 11);
     let b = raceway::geometry::roller_catalogue::lookup("30206")
         .unwrap()
         .build()
