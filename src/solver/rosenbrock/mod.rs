@@ -100,7 +100,7 @@ impl RosMethod {
 ///
 /// ROS34PW2 differs in: `J` (from the system or by the same differences) at the first
 /// step of a call (unless the call carries the last one's, [`OdeSystem::carries_jacobian`]),
-/// after a rejected step on a `J` older than [`W_REJECT_KEEP`] accepted steps and every
+/// after a rejected step on a `J` older than `W_REJECT_KEEP` accepted steps and every
 /// [`W_JAC_MAX_AGE`] accepted steps; the
 /// LU only when `h` changes; `∂f/∂t` only from the system; step control with `err^(1/3)`
 /// (embedded order 2); no dense output.
