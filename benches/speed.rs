@@ -212,16 +212,17 @@ fn rust_loop(scene: &Scene, h: f64, t_end: f64) -> (f64, Samples, f64) {
         t: Vec::with_capacity(n),
         f: Vec::with_capacity(n),
     };
-    for name in [
-        "load.x",
-        "load.y",
-        "load.z",
-        "load.mx",
-        "load.my",
-        "shaft.omega",
-    ] {
-        c.set_real(vr(name), init(name)).expect("input");
+    // Every input of the scene's causality at its initial value (a motion-driven scene,
+    // e.g. a set's, takes the shaft's motion; a load-driven one the loads).
+    let causality = c.causality();
+    for v in variables::all().filter(|v| v.is_input(causality)) {
+        c.set_real(v.vr, init(v.name)).expect("input");
     }
+    let f_rot = if causality == variables::Causality::Load {
+        f_rot
+    } else {
+        0.0
+    };
     let mut out = [0.0; 8];
     let c0 = thread_cpu_s();
     for i in 0..n {
@@ -313,15 +314,11 @@ fn skidding_run(method: Method, rtol: f64, cap: f64, t_end: f64) -> (f64, Sample
     assert_eq!(h, 1e-4, "the row's communication step");
     let init = |n: &str| scene.inputs.initial_value(n);
     let mut c = Component::new(scene.clone()).expect("scene");
-    for name in [
-        "load.x",
-        "load.y",
-        "load.z",
-        "load.mx",
-        "load.my",
-        "shaft.omega",
-    ] {
-        c.set_real(vr(name), init(name)).expect("input");
+    // Every input of the scene's causality at its initial value (a motion-driven scene,
+    // e.g. a set's, takes the shaft's motion; a load-driven one the loads).
+    let causality = c.causality();
+    for v in variables::all().filter(|v| v.is_input(causality)) {
+        c.set_real(v.vr, init(v.name)).expect("input");
     }
     let n = (t_end / h).round() as usize;
     let out_vr: Vec<u32> = OUTPUTS.iter().map(|n| vr(n)).collect();
