@@ -7,7 +7,7 @@
 //!    roller bearing on the ring level (`lamina_life`), a set (`set.rows`) and a set with
 //!    the thermal effect (`thermal.rows`), a sweep (sweep.csv header), `raceway
 //!    quasi-static --json` of a ball bearing with every design-check option, a cylindrical
-//!    and a tapered roller bearing and a set, and `raceway bearings --json` (the list, a
+//!    and a tapered roller bearing and a set, `raceway shaft --json` (two shafts), and `raceway bearings --json` (the list, a
 //!    ball and a roller bearing) give only labels that match the pattern, a number always
 //!    with its unit, each listed in docs/columns.md.
 //!
@@ -431,6 +431,17 @@ fn quasi_static_and_bearings_keys_are_labelled_and_documented() {
         let one: Value = serde_json::from_str(&raceway(&["bearings", name, "--json"])).unwrap();
         check_json(&one, &b_keys, name);
         assert!(one["ratings"]["C [N]"].is_number(), "{one}");
+    }
+
+    let s_keys = section(&docs, "`raceway shaft");
+    for shaft in ["spindle", "gear-shaft"] {
+        let file = format!("examples/shafts/{shaft}.toml");
+        let v: Value = serde_json::from_str(&raceway(&["shaft", &file, "--json"])).unwrap();
+        check_json(&v, &s_keys, &file);
+        assert!(v["system_life [Mrev]"].is_number(), "{v}");
+        let row = &v["locations"][0]["set"]["rows"][0];
+        assert!(row["life [Mrev]"].is_number(), "{v}");
+        assert!(row["balls"][0]["q_i [N]"].is_number(), "{v}");
     }
     let _ = std::fs::remove_dir_all(&d);
 }

@@ -785,7 +785,11 @@ fn shaft_json(py: Python<'_>, shaft: &Bound<'_, PyAny>) -> PyResult<String> {
     let src = text_of(py, shaft, "shaft")?;
     compute(py, || {
         let sol = raceway::models::shaft_file::from_toml(&src.text)?.solve()?;
-        Ok(serde_json::to_string(&sol).expect("the solution serialises"))
+        let v = raceway::summary::columns::to_labelled_json(
+            raceway::summary::columns::Doc::Shaft,
+            &sol,
+        );
+        Ok(serde_json::to_string(&v).expect("the solution serialises"))
     })
 }
 

@@ -75,8 +75,12 @@ def test_shaft_is_the_command_lines(cli, root):
     assert raceway.shaft(str(path)) == ref
     assert raceway.shaft(path.read_text()) == ref
     # The locations' reactions balance the load at the origin.
-    total = np.sum([loc["set"]["force"] for loc in ref["locations"]], axis=0)
-    np.testing.assert_allclose(total[:3], -np.array(ref["load"][:3]), atol=1e-6)
+    axes = ("x", "y", "z")
+    total = np.sum(
+        [[loc["set"][f"force.{a} [N]"] for a in axes] for loc in ref["locations"]], axis=0
+    )
+    load = np.array([ref[f"load.{a} [N]"] for a in axes])
+    np.testing.assert_allclose(total, -load, atol=1e-6)
 
 
 def test_single_bearing_shaft_is_refused_by_field():

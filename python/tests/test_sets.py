@@ -40,7 +40,7 @@ def test_a_db_pair_component_balances_its_preload_and_has_the_set_modules_k(pair
     c.do_step(1e-4, 1e-4)
     f0, f1 = c.get("row0.force.z"), c.get("row1.force.z")
     assert f1 > 300.0 and f0 == pytest.approx(-f1, rel=1e-9)
-    k = raceway.shaft(SHAFT)["stiffness"]
+    k = raceway.shaft(SHAFT)["stiffness [SI]"]
     assert c.get("K.z.z") == pytest.approx(k[2][2], rel=0.01)
     assert c.get("K.rx.rx") == pytest.approx(k[3][3], rel=0.01)
     # A shaft pushed 60 µm toward +z loads the row at -z (orientation +1) and lifts the

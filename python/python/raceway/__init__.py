@@ -420,10 +420,12 @@ def shaft(shaft: Any) -> dict[str, Any]:
     Returns
     -------
     dict
-        What ``raceway shaft FILE --json`` prints (SI): ``omega``, ``load`` at the origin,
-        the shaft displacement ``q``, the system ``stiffness`` (5×5), ``locations`` (each
-        with its set's ``force``, ``rows`` and ``life_mrev``), the system ``life_mrev``
-        and ``warnings``.
+        What ``raceway shaft FILE --json`` prints, keys ``name [unit]`` in SI
+        (docs/columns.md): ``omega [rad/s]``, ``load.x [N]`` .. ``load.ry [N.m]`` at the
+        origin, the shaft's ``displacement.x [m]`` .. ``displacement.ry [rad]``, the
+        system ``stiffness [SI]`` (5×5), ``locations`` (each with its ``position [m]`` and
+        its set's ``force.*``, ``rows`` and ``system_life [Mrev]``), the system
+        ``system_life [Mrev]`` and ``warnings``.
 
     Raises
     ------
@@ -436,6 +438,8 @@ def shaft(shaft: Any) -> dict[str, Any]:
     >>> s = raceway.shaft("examples/shafts/spindle.toml")
     >>> [loc["name"] for loc in s["locations"]]
     ['front DB pair', 'rear']
+    >>> s["system_life [Mrev]"] > 0
+    True
     """
     if isinstance(shaft, os.PathLike):
         shaft = os.fspath(shaft)

@@ -267,8 +267,9 @@ def quasi_static(
 def shaft(shaft: Union[str, "os.PathLike[str]"]) -> dict[str, Any]:
     """A rigid shaft on bearing locations, solved as ``raceway shaft FILE --json`` solves
     it: ``shaft`` is the path of a shaft file (TOML) or its text; the result is the JSON as
-    a dict (SI): ``omega``, ``load``, ``q``, ``stiffness``, ``locations``, ``life_mrev``,
-    ``warnings``."""
+    a dict, keys ``name [unit]`` in SI (docs/columns.md): ``omega [rad/s]``, ``load.x [N]``
+    .. ``load.ry [N.m]``, ``displacement.x [m]`` .. ``displacement.ry [rad]``,
+    ``stiffness [SI]``, ``locations``, ``system_life [Mrev]``, ``warnings``."""
 
 def bearings() -> pd.DataFrame:
     """The bearing presets, one row each, as ``raceway bearings --json`` lists them (``name [unit]``

@@ -117,7 +117,8 @@ pub fn shaft(a: ShaftArgs) -> Result<String> {
     let shaft = read(&a.file)?;
     let sol = shaft.solve()?;
     if a.json {
-        serde_json::to_string_pretty(&sol)
+        use raceway::summary::columns::{to_labelled_json, Doc};
+        serde_json::to_string_pretty(&to_labelled_json(Doc::Shaft, &sol))
             .map(|s| s + "\n")
             .map_err(|e| Error::Io(e.to_string()))
     } else {

@@ -488,10 +488,12 @@ pub enum Doc {
     /// `raceway bearings --json` (each entry) and `raceway bearings NAME --json` (and
     /// Python's `bearings()`, `bearing(NAME)`).
     Bearings,
+    /// `raceway shaft --json` (and Python's `shaft`).
+    Shaft,
 }
 
 /// Every document, in the page's order.
-pub const DOCS: [Doc; 3] = [Doc::Run, Doc::QuasiStatic, Doc::Bearings];
+pub const DOCS: [Doc; 4] = [Doc::Run, Doc::QuasiStatic, Doc::Bearings, Doc::Shaft];
 
 /// Every key of a document, in order.
 pub fn keys(doc: Doc) -> Vec<Key> {
@@ -499,6 +501,7 @@ pub fn keys(doc: Doc) -> Vec<Key> {
         Doc::Run => RUN.to_vec(),
         Doc::QuasiStatic => quasi_static::keys(),
         Doc::Bearings => return bearings::KEYS.to_vec(),
+        Doc::Shaft => return quasi_static::shaft_keys(),
     };
     v.extend_from_slice(RATING);
     if doc == Doc::Run {
@@ -619,8 +622,8 @@ pub fn columns_page() -> String {
          `tests/columns.rs` reads every header and key of runs (the default scene, a \
          cylindrical roller bearing on the ring level, a set, a set with the thermal effect), \
          a sweep, quasi-static JSON solves (a ball bearing with the design check's options, a \
-         cylindrical and a tapered roller bearing, a set) and `raceway bearings --json` (a \
-         ball and a roller bearing) and checks each against this page and the pattern.\n\n",
+         cylindrical and a tapered roller bearing, a set), `raceway shaft --json` (two \
+         shafts) and `raceway bearings --json` (a ball and a roller bearing) and checks each against this page and the pattern.\n\n",
     );
     s.push_str(
         "## series.csv and `raceway.run`'s DataFrame\n\n\
@@ -690,6 +693,12 @@ pub fn columns_page() -> String {
          `ratings`. Values are in the units the bearing files use (mm, µm, degrees).\n",
     );
     table(&mut s, Doc::Bearings);
+    s.push_str(
+        "\n## `raceway shaft --json` (and Python's `shaft`)\n\n\
+         The shaft's equilibrium at its origin in SI, each location with its bearing or set \
+         under `set` (the keys of a set's `solution` above), every ball of a ball row.\n",
+    );
+    table(&mut s, Doc::Shaft);
     s
 }
 

@@ -106,7 +106,7 @@ macro_rules! balls {
 
 /// A displacement `(x, y, z, rx, ry)` split into its five keys.
 macro_rules! displacement {
-    ($from:literal, $name:literal, $what:literal) => {
+    ($from:expr, $name:literal, $what:literal) => {
         k(
             $from,
             concat!($name, ".x|", $name, ".y|", $name, ".z|", $name, ".rx|", $name, ".ry"),
@@ -118,7 +118,7 @@ macro_rules! displacement {
 
 /// Forces and moments `(Fx, Fy, Fz, Mx, My)` split into their five keys.
 macro_rules! force {
-    ($from:literal, $name:literal, $what:literal) => {
+    ($from:expr, $name:literal, $what:literal) => {
         k(
             $from,
             concat!($name, ".x|", $name, ".y|", $name, ".z|", $name, ".rx|", $name, ".ry"),
@@ -206,6 +206,35 @@ macro_rules! lamina_life {
 }
 pub(super) use lamina_life;
 
+/// A set's own keys under its solution's path `$p` (`solution` of `quasi-static --scene`,
+/// `locations[].set` of `raceway shaft`): the spring's shift, the system life and every
+/// row.
+macro_rules! set_rows {
+    ($p:literal) => {
+        [
+        k(concat!($p, ".spring_shift"), "spring_shift", "m", "the preload spring's shift (set)"),
+        k(concat!($p, ".life_mrev"), "system_life", "Mrev", "system life of the rows (set; null: no row loaded)"),
+        k(concat!($p, ".rows"), "rows", "", "one entry per row (set)"),
+        k(concat!($p, ".rows[].bearing"), "bearing", "", "the row's bearing"),
+        k(concat!($p, ".rows[].position"), "position", "m", "axial position from the reference point"),
+        k(concat!($p, ".rows[].orientation"), "orientation", "1", "+1: contact angle opens toward +z; -1: toward -z"),
+        displacement!(concat!($p, ".rows[].displacement"), "displacement", "the row's own displacement (its frame)"),
+        force!(concat!($p, ".rows[].force"), "force", "forces and moments of the row on the shaft at the row (shaft frame)"),
+        k(concat!($p, ".rows[].radial_load"), "radial_load", "N", "radial load"),
+        k(concat!($p, ".rows[].axial_load"), "axial_load", "N", "axial load toward the row's loading direction"),
+        k(concat!($p, ".rows[].element_loads"), "element_loads", "N", "per-element inner contact loads"),
+        k(concat!($p, ".rows[].contact_angles"), "contact_angles", "rad", "per-element inner and outer contact angles"),
+        k(concat!($p, ".rows[].loaded_elements"), "loaded_elements", "1", "elements with a positive inner contact load"),
+        k(concat!($p, ".rows[].lifted_off"), "lifted_off", "", "no element loaded"),
+        k(concat!($p, ".rows[].axial_stiffness"), "axial_stiffness", "N/m", "the row's axial stiffness in its own frame"),
+        k(concat!($p, ".rows[].life_mrev"), "life", "Mrev", "rating life (ball rows: ISO/TS 16281 reference life; roller rows: ISO 281 basic life; null: unloaded)"),
+        k(concat!($p, ".rows[].weibull_slope"), "weibull_slope", "1", "Weibull slope of the row's life distribution"),
+        k(concat!($p, ".rows[].s0"), "S0", "1", "static safety C0/P0 (null: unloaded)"),
+        k(concat!($p, ".rows[].peak_pressure"), "peak_pressure", "Pa", "peak contact pressure (ball rows; 0 for roller rows)"),
+        ]
+    };
+}
+
 /// The top level and `solution` of every quasi-static document.
 const OWN: &[Key] = &[
     k("bearing", "bearing", "", "bearing designation (ball, roller)"),
@@ -234,25 +263,6 @@ const OWN: &[Key] = &[
     k("solution.iterations", "iterations", "1", "Newton iterations (ball, roller)"),
     k("solution.held", "held", "", "which of (x, y, z, rx, ry) were held at a given value (ball)"),
     force!("solution.reaction", "reaction", "what the support adds on each held coordinate (ball; zero on the solved ones)"),
-    k("solution.spring_shift", "spring_shift", "m", "the preload spring's shift (set)"),
-    k("solution.life_mrev", "system_life", "Mrev", "system life of the rows (set; null: no row loaded)"),
-    k("solution.rows", "rows", "", "one entry per row (set)"),
-    k("solution.rows[].bearing", "bearing", "", "the row's bearing"),
-    k("solution.rows[].position", "position", "m", "axial position from the reference point"),
-    k("solution.rows[].orientation", "orientation", "1", "+1: contact angle opens toward +z; -1: toward -z"),
-    displacement!("solution.rows[].displacement", "displacement", "the row's own displacement (its frame)"),
-    force!("solution.rows[].force", "force", "forces and moments of the row on the shaft at the row (shaft frame)"),
-    k("solution.rows[].radial_load", "radial_load", "N", "radial load"),
-    k("solution.rows[].axial_load", "axial_load", "N", "axial load toward the row's loading direction"),
-    k("solution.rows[].element_loads", "element_loads", "N", "per-element inner contact loads"),
-    k("solution.rows[].contact_angles", "contact_angles", "rad", "per-element inner and outer contact angles"),
-    k("solution.rows[].loaded_elements", "loaded_elements", "1", "elements with a positive inner contact load"),
-    k("solution.rows[].lifted_off", "lifted_off", "", "no element loaded"),
-    k("solution.rows[].axial_stiffness", "axial_stiffness", "N/m", "the row's axial stiffness in its own frame"),
-    k("solution.rows[].life_mrev", "life", "Mrev", "rating life (ball rows: ISO/TS 16281 reference life; roller rows: ISO 281 basic life; null: unloaded)"),
-    k("solution.rows[].weibull_slope", "weibull_slope", "1", "Weibull slope of the row's life distribution"),
-    k("solution.rows[].s0", "S0", "1", "static safety C0/P0 (null: unloaded)"),
-    k("solution.rows[].peak_pressure", "peak_pressure", "Pa", "peak contact pressure (ball rows; 0 for roller rows)"),
     k("solution.rollers", "rollers", "", "every roller (roller)"),
     k("solution.rollers[].psi", "psi", "rad", "azimuth"),
     k("solution.rollers[].load", "q_i|q_o", "N", "inner and outer (cone and cup) contact loads"),
@@ -364,6 +374,9 @@ const CALCULATOR: &[Key] = &[
 ];
 
 const BALLS: [Key; 22] = balls!("solution.balls", "per-ball results (ball)");
+const SET_ROWS: [Key; NSET] = set_rows!("solution");
+/// The number of keys of [`set_rows!`].
+const NSET: usize = 19;
 const ROW_BALLS: [Key; 22] = balls!(
     "solution.rows[].balls",
     "every ball's equilibrium (ball rows)"
@@ -383,9 +396,44 @@ const LAMINA_PLAIN: [Key; 13] = lamina_life!(
 pub fn keys() -> Vec<Key> {
     let mut v = OWN.to_vec();
     v.extend_from_slice(&BALLS);
+    v.extend_from_slice(&SET_ROWS);
     v.extend_from_slice(&ROW_BALLS);
     v.extend_from_slice(&LAMINA);
     v.extend_from_slice(&LAMINA_PLAIN);
     v.extend_from_slice(CALCULATOR);
+    v
+}
+
+/// `raceway shaft --json` (and Python's `shaft`): the shaft's equilibrium, each location and
+/// its set (the same keys as a set's `solution` under `locations[].set`).
+const SHAFT: &[Key] = &[
+    k("omega", "omega", "rad/s", "shaft speed"),
+    force!("load", "load", "external load on the shaft at its origin"),
+    displacement!("q", "displacement", "shaft displacement at its origin"),
+    k("stiffness", "stiffness", "SI", "the shaft's stiffness K = -dF/dq at its origin, 5 x 5 (N/m, N/rad, N.m/m, N.m/rad by block)"),
+    k("locations", "locations", "", "one entry per bearing location"),
+    k("locations[].name", "name", "", "the location's name"),
+    k("locations[].position", "position", "m", "axial position on the shaft"),
+    k("locations[].lifted_off", "lifted_off", "", "no element of the location loaded"),
+    k("locations[].floating", "floating", "", "the location floats axially (carries no axial load)"),
+    k("locations[].set", "set", "", "the location's bearing or set at its equilibrium (SI)"),
+    k("locations[].set.omega", "omega", "rad/s", "shaft speed"),
+    displacement!("locations[].set.q", "displacement", "the set's displacement at its reference point"),
+    force!("locations[].set.force", "force", "forces and moments of the set on the shaft at its reference point"),
+    k("locations[].set.stiffness", "stiffness", "SI", "the set's stiffness at its reference point, 5 x 5"),
+    k("life_mrev", "system_life", "Mrev", "system life of every row of every location (null: none loaded)"),
+    k("warnings", "warnings", "", "what the solve warns of"),
+];
+const SHAFT_SET_ROWS: [Key; NSET] = set_rows!("locations[].set");
+const SHAFT_ROW_BALLS: [Key; 22] = balls!(
+    "locations[].set.rows[].balls",
+    "every ball's equilibrium (ball rows)"
+);
+
+/// Every key of `raceway shaft --json`.
+pub fn shaft_keys() -> Vec<Key> {
+    let mut v = SHAFT.to_vec();
+    v.extend_from_slice(&SHAFT_SET_ROWS);
+    v.extend_from_slice(&SHAFT_ROW_BALLS);
     v
 }
