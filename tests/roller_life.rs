@@ -53,6 +53,17 @@ fn run(s: &Scene) -> (f64, f64, usize, [f64; 5], serde_json::Value) {
     )
 }
 
+/// The quasi-static table of the bearing `designation` under the load that balances the
+/// force `force` a run ended with, at rest.
+fn table_for(designation: &str, force: [f64; 5]) -> raceway::summary::rollers::RollerQsReport {
+    let b = raceway::geometry::roller_catalogue::lookup(designation)
+        .unwrap()
+        .build()
+        .unwrap();
+    let names = (["fx", "fy", "fz", "mx", "my"], "speed");
+    report(&b, 0.0, force.map(|f| -f), names).unwrap()
+}
+
 /// A steady run (shaft held 30 µm down, not turning: every state is the same state, the
 /// rollers at the quasi-static table's azimuths `2 pi j/Z`) has the table's lamina life at
 /// the same displacement: the table solved for the run's force lands on the run's
@@ -65,13 +76,7 @@ fn a_steady_run_has_the_quasi_static_tables_lamina_life() {
     let (life, plain, n, force, json) = run(&s);
     assert_eq!(n, 11, "the second half of 21 rows");
     assert_eq!(json["states [1]"], 11);
-    let b = raceway::geometry::roller_catalogue::lookup("NU206")
-        .unwrap()
-        .build()
-        .unwrap();
-    let load = force.map(|f| -f);
-    let names = (["fx", "fy", "fz", "mx", "my"], "speed");
-    let qs = report(&b, 0.0, load, names).unwrap();
+    let qs = table_for("NU206", force);
     let q = qs.solution.q;
     assert!(
         (q[1] / y0 - 1.0).abs() < 1e-9 && q[0].abs() < 1e-12,
@@ -135,13 +140,7 @@ fn a_steady_tapered_run_has_the_quasi_static_tables_lamina_life() {
     let (life, plain, n, force, json) = run(&s);
     assert_eq!(n, 11);
     assert_eq!(json["states [1]"], 11);
-    let b = raceway::geometry::roller_catalogue::lookup("30206")
-        .unwrap()
-        .build()
-        .unwrap();
-    let load = force.map(|f| -f);
-    let names = (["fx", "fy", "fz", "mx", "my"], "speed");
-    let qs = report(&b, 0.0, load, names).unwrap();
+    let qs = table_for("30206", force);
     let q = qs.solution.q;
     assert!(
         (q[1] / q0[0] - 1.0).abs() < 1e-7 && (q[2] / q0[1] - 1.0).abs() < 1e-7,
@@ -150,6 +149,14 @@ fn a_steady_tapered_run_has_the_quasi_static_tables_lamina_life() {
     assert!(q[0].abs() < 1e-12 && q[3].abs() < 1e-9 && q[4].abs() < 1e-9);
     let t = qs.lamina_life.l10r_mrev.unwrap();
     let tp = qs.lamina_life_without_edge_factor.l10r_mrev.unwrap();
+    let r = &qs.lamina_life;
+    eprintln!(
+        "30206 still: L10r {life:.1} Mrev (table {t:.1}, relative gap {:.1e}), inner {:.0}, \
+         outer {:.0}, without the edge factor {plain:.0} Mrev",
+        (life / t - 1.0).abs(),
+        r.inner_mrev.unwrap(),
+        r.outer_mrev.unwrap()
+    );
     assert!((life / t - 1.0).abs() < 1e-8, "ring {life} table {t}");
     assert!((plain / tp - 1.0).abs() < 1e-8, "ring {plain} table {tp}");
     // The cone (inner, rotating) raceway is the weaker one: its rating `Q_ci` is the lower
@@ -170,11 +177,14 @@ fn a_steady_tapered_run_has_the_quasi_static_tables_lamina_life() {
 fn more_load_or_a_tilt_shortens_the_tapered_life() {
     let (base, ..) = run(&tapered([-10e-6, 20e-6, 0.0], 1500.0, 200));
     let (heavier, ..) = run(&tapered([-10e-6, 30e-6, 0.0], 1500.0, 200));
+    eprintln!("30206 at 1500 rpm: 20 µm along +z {base:.0} Mrev, 30 µm {heavier:.0} Mrev");
     assert!(heavier < 0.5 * base, "{heavier} {base}");
     let (axial, axial_plain, ..) = run(&tapered([0.0, 20e-6, 0.0], 1500.0, 200));
+    eprintln!("30206 pushed along +z alone: aligned {axial:.0} Mrev");
     let mut last = (axial, axial_plain);
     for rx in [0.2e-3, -0.2e-3, 0.4e-3] {
         let (t, tp, ..) = run(&tapered([0.0, 20e-6, rx], 1500.0, 200));
+        eprintln!("  tilt {:.1} mrad: {t:.0} Mrev", rx * 1e3);
         assert!(t < axial && tp < axial_plain, "rx {rx}: {t} {axial}");
         assert!(
             t / tp < axial / axial_plain,

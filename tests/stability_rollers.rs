@@ -97,6 +97,10 @@ fn the_damping_approach_starts_at_the_first_touch() {
         }
     }
     let v0 = (l.centrifugal_force(omega) / lam.len() as f64 / lam.cs).powf(0.9);
+    eprintln!(
+        "mid-length approach when the inner contact closes: {:.2} µm",
+        0.5 * v0 * 1e6
+    );
     assert!(0.5 * v0 > 10.0 * DAMPING_RAMP, "{v0}");
     assert!((lo - half_pd - 0.5 * v0).abs() < 1e-3 * v0, "{lo} {v0}");
     let (r, r0) = (at(hi), at(lo));

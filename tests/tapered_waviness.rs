@@ -158,6 +158,11 @@ fn a_wavy_cup_or_cone_of_order_z_rings_at_bpfo_or_bpfi() {
             "{race}: the largest line at {found:.2} Hz, expected {f:.2} Hz (bin {df} Hz), {a} N"
         );
         let got = fitted_amplitude(&x, fs, f);
+        eprintln!(
+            "{race}: line at {found:.2} Hz (expected {f:.2}), amplitude {got:.2} N, linear \
+             {want:.2} N, relative gap {:.0e}",
+            (got / want - 1.0).abs()
+        );
         assert!(
             (got / want - 1.0).abs() < 1e-3,
             "{race}: amplitude {got} N, linear {want} N"

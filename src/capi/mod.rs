@@ -707,10 +707,11 @@ pub unsafe extern "C" fn raceway_get_reals(
         with_instance(c, "raceway_get_reals", |comp| {
             let vrs = slice(vrs, n, "vrs")?;
             let out = slice_mut(values, n, "values")?;
-            // Every reference checked before `values` is written (all or nothing). With the
-            // outputs current a read can fail only on an unknown reference (then `get_real`
-            // gives its message); stale, the first output read evaluates them and may fail.
-            if comp.outputs_stale() {
+            // Every reference checked before `values` is written (all or nothing). With
+            // nothing left to compute a read can fail only on an unknown reference (then
+            // `get_real` gives its message); otherwise the first read of a stale output, or
+            // of a deferred stiffness or damping, computes it and may fail.
+            if comp.reads_may_compute() {
                 for (i, &vr) in vrs.iter().enumerate() {
                     comp.get_real(vr).map_err(|e| bad_vr(i, vr, e))?;
                 }

@@ -224,6 +224,14 @@ impl Component {
         self.state.outputs_stale
     }
 
+    /// Can an output read still have to compute something, and so fail: the outputs stale
+    /// ([`Component::outputs_stale`]) or the stiffness and damping left for their first read
+    /// ([`crate::seam::LevelModel::outputs_deferring_matrices`])? When not, a read of a known
+    /// output only copies a stored value.
+    pub fn reads_may_compute(&self) -> bool {
+        self.state.outputs_stale || self.state.matrices_pending
+    }
+
     /// Make the outputs current: evaluate them at the current time and inputs when an input
     /// or the state was set since they were computed; otherwise nothing. The outputs are
     /// computed when read, not when inputs are set, so a host that sets inputs and steps

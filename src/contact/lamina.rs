@@ -409,6 +409,13 @@ pub(crate) fn tan0(psi: f64) -> f64 {
     }
 }
 
+/// The approach (m) of one lamina carrying `q` (N) under the lamina constant `c`
+/// (N/m^(10/9)): the lamina law `q = c delta^(10/9)` inverted.
+#[inline]
+pub(crate) fn lamina_approach(q: f64, c: f64) -> f64 {
+    (q / c).powf(0.9)
+}
+
 /// Roller force, tilting moment and their derivatives from one evaluation of the laminae.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
 pub struct RollerLoad {
@@ -474,6 +481,25 @@ pub struct Laminae {
 }
 
 impl Laminae {
+    /// What contact damping ramps in with ([`crate::seam::element::ElementReaction::approach`]),
+    /// for the evaluation `r` of these laminae at the mid-length approach `delta`: the
+    /// approach of the most compressed lamina, `(q_max/c_s)^0.9` (the lamina law inverted),
+    /// or, with no lamina loaded, `delta` capped at zero. `aligned`: the roller at zero tilt
+    /// without offsets, whose most compressed lamina is the one of least profile drop
+    /// (`delta - min 2P`, no root taken). A tilted roller's edge lamina thus ramps the
+    /// damping in from its own first touch, where the mid-length approach may be negative
+    /// (docs/physics.md §R9).
+    #[inline]
+    pub(crate) fn contact_approach(&self, r: &RollerLoad, delta: f64, aligned: bool) -> f64 {
+        if r.loaded == 0 {
+            delta.min(0.0)
+        } else if aligned {
+            delta - self.reach.1
+        } else {
+            lamina_approach(r.max_lamina, self.cs)
+        }
+    }
+
     /// Slice a roller of geometry `g` with profile `profile` into `ns` laminae. Errors name
     /// `roller.laminae`, `roller.effective_length`, `roller.diameter`, `roller.e_prime` or
     /// `roller.profile.<parameter>`.

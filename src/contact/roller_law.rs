@@ -44,6 +44,19 @@ use crate::error::{Error, Result};
 use crate::geometry::roller::{FlangeRing, RollerBearing};
 use crate::seam::element::{ElementAt, ElementDisplacement, ElementLaw, ElementReaction, Want};
 
+/// A massless roller with no lamina in contact and no flange contact (most of a ring's
+/// rollers): `reaction`'s answer for the zero load, written out (the same bits: `-0.0` is
+/// `-r.force`; the zeros of `df` and of the report are `reaction`'s up to their signs,
+/// which no sum sees), at mid-length approach `approach`.
+#[inline]
+fn unloaded(approach: f64) -> ElementReaction {
+    ElementReaction {
+        f: [0.0, -0.0, 0.0],
+        approach: approach.min(0.0),
+        ..Default::default()
+    }
+}
+
 /// A cylindrical roller's line contact, by laminae (module docs).
 #[derive(Debug, Clone)]
 pub struct CylindricalRollerLaw {
@@ -55,9 +68,6 @@ pub struct CylindricalRollerLaw {
     e_outer: f64,
     /// `F_c/omega²` (kg m): the roller's centrifugal force per squared shaft speed.
     fc_per_omega2: f64,
-    /// The smallest profile drop of both contacts `min 2P(x_k)`, m: an aligned massless
-    /// roller's most compressed lamina is the one of least drop ([`Self::contact_approach`]).
-    min_drop2: f64,
     /// The flange contact: series Hertz constant (N/m^1.5), inner flange contact radius (m),
     /// both directions (NUP) or `+z` only (NJ).
     flange: Option<(f64, f64, bool)>,
@@ -82,40 +92,7 @@ impl CylindricalRollerLaw {
             e_outer: b.e_prime_outer(),
             flange: flange_contact(b)?,
             fc_per_omega2: centrifugal_per_omega2(b),
-            min_drop2: 0.0,
-        }
-        .with_min_drop())
-    }
-
-    fn with_min_drop(mut self) -> Self {
-        self.min_drop2 = self
-            .laminae
-            .drop2
-            .iter()
-            .copied()
-            .fold(f64::INFINITY, f64::min);
-        self
-    }
-
-    /// What contact damping ramps in with ([`ElementReaction::approach`]): the approach of
-    /// the roller's most compressed lamina, `(q_max/c_s)^0.9` (the lamina law inverted; at
-    /// speed `q_max` is the largest inner lamina load, so this is zero where the inner
-    /// contact closes, not where the roller starts pressing on the outer raceway), or, when
-    /// no lamina is loaded, the mid-length approach capped at zero. `aligned`: a massless
-    /// roller at zero tilt without offsets, whose most compressed lamina is the one of
-    /// least profile drop (`approach - min 2P`, no root taken). A tilted roller's edge
-    /// lamina or an inner contact closing at speed thus ramps the damping in from its own
-    /// first touch (docs/physics.md §R9), where the mid-length approach may be negative
-    /// (edge loading) or already past the ramp (the outer contact's compression by `F_c`).
-    #[inline]
-    fn contact_approach(&self, r: &RollerLoad, approach: f64, aligned: bool) -> f64 {
-        if r.loaded == 0 {
-            approach.min(0.0)
-        } else if aligned {
-            approach - self.min_drop2
-        } else {
-            (r.max_lamina / self.laminae.cs).powf(0.9)
-        }
+        })
     }
 
     /// The same law with massless rollers (no centrifugal force at any speed): the ring
@@ -227,7 +204,12 @@ impl ElementLaw for CylindricalRollerLaw {
                 "a finite shaft speed (rad/s)",
             ));
         };
-        let contact = self.contact_approach(&r, approach, massless && t == 0.0);
+        // At speed `q_max` is the largest inner lamina load: the approach is zero where the
+        // inner contact closes, not where the roller starts pressing on the outer raceway
+        // (compressed by `F_c` before, docs/physics.md §R9).
+        let contact = self
+            .laminae
+            .contact_approach(&r, approach, massless && t == 0.0);
         Ok(self.reaction(r, u, t, contact, omega, want))
     }
 }
@@ -243,32 +225,22 @@ impl CylindricalRollerLaw {
         let t = tan0(u.tilt);
         let r = self.laminae.evaluate_tan(approach, t);
         if r.loaded == 0 && self.flange.is_none() {
-            // No lamina in contact (most of a ring's rollers): `reaction`'s answer for the
-            // zero load, written out (the same bits: `-0.0` is `-r.force`; the zeros of `df`
-            // and of the report are `reaction`'s up to their signs, which no sum sees).
-            return ElementReaction {
-                f: [0.0, -0.0, 0.0],
-                approach: approach.min(0.0),
-                ..Default::default()
-            };
+            return unloaded(approach);
         }
         // Massless: the report's centrifugal force is zero at any speed, as at rest.
-        let contact = self.contact_approach(&r, approach, t == 0.0);
+        let contact = self.laminae.contact_approach(&r, approach, t == 0.0);
         self.reaction(r, u, t, contact, 0.0, want)
     }
 
-    /// The approach (m) of an aligned roller (tilt `±0`) at radial displacement `radial`, and
-    /// whether [`CylindricalRollerLaw::react_massless`] would answer the zero reaction of an
-    /// unloaded roller there without evaluating a lamina (no lamina can touch and no flange
-    /// contact): the ring level's test that skips such a roller, the same comparison on the
-    /// same numbers.
+    /// The reaction [`CylindricalRollerLaw::react_massless`] gives an aligned roller (tilt
+    /// `±0`) at radial displacement `radial` when no lamina can touch there and there is no
+    /// flange contact, found without evaluating a lamina (the same comparison on the same
+    /// numbers); `None` when a lamina may touch. The ring level's test that skips such a
+    /// roller.
     #[inline]
-    pub(crate) fn aligned_untouched(&self, radial: f64) -> (f64, bool) {
+    pub(crate) fn aligned_untouched(&self, radial: f64) -> Option<ElementReaction> {
         let approach = radial - self.half_pd;
-        (
-            approach,
-            self.flange.is_none() && self.laminae.untouched(approach, 0.0),
-        )
+        (self.flange.is_none() && self.laminae.untouched(approach, 0.0)).then(|| unloaded(approach))
     }
 
     /// The reaction of a massless roller (the ring level's, [`CylindricalRollerLaw::massless`])
@@ -288,12 +260,12 @@ impl CylindricalRollerLaw {
         let approach = u.radial - self.half_pd;
         let t = tan0(u.tilt);
         let r = self.laminae.evaluate_offsets(approach, t, offsets, loads);
-        let contact = self.contact_approach(&r, approach, false);
+        let contact = self.laminae.contact_approach(&r, approach, false);
         self.reaction(r, u, t, contact, 0.0, want)
     }
 
     /// The element's reaction from the laminae's `r` at `u` (`t = tan(tilt)`, `approach` what
-    /// contact damping ramps in with, [`Self::contact_approach`]), with the flange contact
+    /// contact damping ramps in with, [`Laminae::contact_approach`]), with the flange contact
     /// and the report.
     #[inline]
     fn reaction(

@@ -327,14 +327,14 @@ impl ElementLaw for TaperedRollerLaw {
             // lamina law inverted): zero where the cone closes, while the cup and flange
             // already carry the roller's inertia.
             let c = if cone_max > 0.0 {
-                (cone_max / self.c1).powf(0.9)
+                crate::contact::lamina::lamina_approach(cone_max, self.c1)
             } else {
                 delta.min(0.0)
             };
             (r, c)
         } else {
             let r = self.laminae.evaluate(delta, tau.atan());
-            let c = self.contact_approach(&r, delta);
+            let c = self.laminae.contact_approach(&r, delta, false);
             (r, c)
         };
         Ok(self.reaction(r, delta, contact, tau, omega, fast, want))
@@ -368,21 +368,8 @@ impl TaperedRollerLaw {
         // The tangent `react` evaluates at (`evaluate(delta, atan tau)`), to the bit.
         let t = crate::contact::lamina::tan0(tau.atan());
         let r = self.laminae.evaluate_offsets(delta, t, offsets, loads);
-        let contact = self.contact_approach(&r, delta);
+        let contact = self.laminae.contact_approach(&r, delta, false);
         self.reaction(r, delta, contact, tau, 0.0, false, want)
-    }
-
-    /// What contact damping ramps in with ([`ElementReaction::approach`]) for a massless
-    /// roller or at rest: the cup-normal approach of the most compressed lamina,
-    /// `(q_max/c_s)^0.9` (the laminae's series law inverted), or, with no lamina loaded, the
-    /// mid-point approach capped at zero; an edge-loaded roller whose mid-point approach is
-    /// negative is damped from its first lamina's touch (docs/physics.md §R9).
-    fn contact_approach(&self, r: &RollerLoad, delta: f64) -> f64 {
-        if r.loaded == 0 {
-            delta.min(0.0)
-        } else {
-            (r.max_lamina / self.laminae.cs).powf(0.9)
-        }
     }
 
     /// The element's reaction from the cup laminae's `r` at the cup-normal approach `delta`

@@ -279,13 +279,7 @@ impl LawRingLevel {
             if !psi.is_finite() {
                 return None;
             }
-            let (approach, untouched) = cl.aligned_untouched(q[0] * c + q[1] * s);
-            if untouched {
-                let r = ElementReaction {
-                    f: [0.0, -0.0, 0.0],
-                    approach: approach.min(0.0),
-                    ..Default::default()
-                };
+            if let Some(r) = cl.aligned_untouched(q[0] * c + q[1] * s) {
                 element(j, psi, &r);
                 continue;
             }
