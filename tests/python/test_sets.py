@@ -43,7 +43,7 @@ def shaft_k(tmp_path_factory):
         ["cargo", "run", "-q", "--bin", "raceway", "--", "shaft", str(path), "--json"],
         cwd=ROOT, capture_output=True, text=True, check=True,
     ).stdout
-    return json.loads(out)["stiffness"][2][2]
+    return json.loads(out)["stiffness [SI]"][2][2]
 
 
 @pytest.mark.parametrize("version", VERSIONS)
