@@ -455,6 +455,18 @@ fn set_inputs(c: &mut Component, scene: &Scene, t: f64) -> Result<()> {
     Ok(())
 }
 
+/// The `[run]` fields that move the inputs over a run (the speed ramp and, by causality,
+/// the orbit or the rotating load), with their values: all zero, the inputs stay those of
+/// the start.
+fn moving_inputs(scene: &Scene) -> [(&'static str, f64); 2] {
+    let r = &scene.run;
+    let moving = match scene.model.causality {
+        Causality::Motion => ("run.orbit_um", r.orbit_um),
+        Causality::Load => ("run.rotating_load_n", r.rotating_load_n),
+    };
+    [("run.speed_ramp_rpm_per_s", r.speed_ramp_rpm_per_s), moving]
+}
+
 /// The component of `scene` ready to run: built; the inputs the run prescribes at its end
 /// (the speed after the ramp) accepted and the outputs there computed, on a separate
 /// component so nothing of it carries over; the inputs of the start set and the outputs
@@ -476,10 +488,14 @@ pub fn prepare(scene: &Scene) -> Result<Component> {
         },
         other => other,
     };
-    let mut end = Component::new(scene.clone())?;
-    set_inputs(&mut end, scene, scene.run.duration_s)
-        .and_then(|_| end.refresh_outputs())
-        .map_err(at_end)?;
+    // Inputs held over the run are those of the start: the end's component would be the
+    // start's (building it twice was a sixth of a quasi-static sweep point).
+    if moving_inputs(scene).iter().any(|(_, v)| *v != 0.0) {
+        let mut end = Component::new(scene.clone())?;
+        set_inputs(&mut end, scene, scene.run.duration_s)
+            .and_then(|_| end.refresh_outputs())
+            .map_err(at_end)?;
+    }
     let mut c = Component::new(scene.clone())?;
     set_inputs(&mut c, scene, 0.0)?;
     c.refresh_outputs()?;
@@ -606,12 +622,7 @@ fn run_inner(
     mut loads: Option<&mut LoadRecord>,
 ) -> Result<Component> {
     if through {
-        let r = &scene.run;
-        let moving = match scene.model.causality {
-            Causality::Motion => ("run.orbit_um", r.orbit_um),
-            Causality::Load => ("run.rotating_load_n", r.rotating_load_n),
-        };
-        for (field, v) in [("run.speed_ramp_rpm_per_s", r.speed_ramp_rpm_per_s), moving] {
+        for (field, v) in moving_inputs(scene) {
             if v != 0.0 {
                 return Err(crate::Error::invalid(
                     field,
@@ -697,6 +708,46 @@ mod tests {
         let mut qs = Component::new(Scene::default_scene()).unwrap();
         assert!(!qs.element_loads(&mut loads) && loads.is_empty());
         assert!(qs.keep_element_loads());
+    }
+
+    /// `prepare` builds the run's end only when [`moving_inputs`] says its inputs move:
+    /// with every moving field zero, the inputs `set_inputs` prescribes at the end equal
+    /// those of the start bit for bit (both causalities, an orbit frequency of its own
+    /// given too), and any moving field makes some of them differ.
+    #[test]
+    fn held_inputs_are_the_same_at_the_end() {
+        let inputs = |scene: &Scene, t: f64| -> Vec<u64> {
+            let mut c = Component::new(scene.clone()).unwrap();
+            set_inputs(&mut c, scene, t).unwrap();
+            variables::SCALARS
+                .iter()
+                .filter(|v| v.is_input(scene.model.causality))
+                .map(|v| c.get_real(v.vr).unwrap().to_bits())
+                .collect()
+        };
+        let motion = Scene::default_scene();
+        let mut load = Scene::from_text(
+            "bearing = \"6205\"\n[model]\nlevel = \"ring\"\ncausality = \"load\"\n[inputs]\nspeed_rpm = 1750\ninitial = { \"load.y\" = -500.0 }\n",
+        )
+        .unwrap();
+        load.run.duration_s = 0.37;
+        let mut orbit = motion.clone();
+        orbit.run.orbit_hz = 33.0;
+        for scene in [&motion, &load, &orbit] {
+            assert!(moving_inputs(scene).iter().all(|(_, v)| *v == 0.0));
+            assert_eq!(inputs(scene, 0.0), inputs(scene, 0.37));
+            let mut ramp = scene.clone();
+            ramp.run.speed_ramp_rpm_per_s = 100.0;
+            let mut moving = scene.clone();
+            match scene.model.causality {
+                Causality::Motion => moving.run.orbit_um = 1.0,
+                Causality::Load => moving.run.rotating_load_n = 10.0,
+            }
+            for m in [ramp, moving] {
+                assert!(moving_inputs(&m).iter().any(|(_, v)| *v != 0.0));
+                assert_ne!(inputs(&m, 0.0), inputs(&m, 0.37));
+            }
+        }
     }
 
     /// A motion-driven ring run with a synchronous orbit: the recorded inputs follow the

@@ -140,6 +140,17 @@ pub(super) fn nearest<'a>(name: &str, known: impl IntoIterator<Item = &'a str>) 
         .map(|(_, k)| k)
 }
 
+/// Whether the schema has a field below the normalised path `norm` followed by `sep`
+/// (`"."` for a table's fields, `"[]."` for an array of tables'), without building the
+/// prefix for each field.
+fn has_fields_under(norm: &str, sep: &str) -> bool {
+    TABLE.iter().any(|f| {
+        f.path
+            .strip_prefix(norm)
+            .is_some_and(|rest| rest.starts_with(sep))
+    })
+}
+
 /// Known child keys of a normalised table path.
 pub(super) fn children(norm: &str) -> Vec<String> {
     let prefix = if norm.is_empty() {
@@ -213,7 +224,9 @@ impl Checker<'_> {
         norm: &str,
         at: Option<usize>,
     ) {
-        let known = children(norm);
+        // The known keys only for a hint (made for an unknown key, not for every table).
+        let known = std::cell::OnceCell::new();
+        let known = || known.get_or_init(|| children(norm));
         let has_preset = entries.iter().any(|(k, ..)| k == "preset");
         for (key, kofs, vofs, node) in entries {
             let cpath = if path.is_empty() {
@@ -259,18 +272,13 @@ impl Checker<'_> {
                 );
                 continue;
             }
-            // The two prefixes made once, not for each of the table's fields (that was a
-            // third of a quasi-static sweep point's instructions).
-            let is_known = field(&cnorm).is_some() || {
-                let (dot, arr) = (format!("{cnorm}."), format!("{cnorm}[]"));
-                TABLE
-                    .iter()
-                    .any(|f| f.path.starts_with(&dot) || f.path.starts_with(&arr))
-            };
+            let is_known = field(&cnorm).is_some()
+                || has_fields_under(&cnorm, ".")
+                || has_fields_under(&cnorm, "[]");
             if !is_known {
-                let hint = nearest(key, known.iter().map(String::as_str))
+                let hint = nearest(key, known().iter().map(String::as_str))
                     .map(|n| format!("; did you mean `{n}`?"))
-                    .unwrap_or_else(|| format!("; known here: {}", known.join(", ")));
+                    .unwrap_or_else(|| format!("; known here: {}", known().join(", ")));
                 self.report(&cpath, *kofs, format!("unknown key `{key}`{hint}"));
                 continue;
             }
@@ -309,9 +317,7 @@ impl Checker<'_> {
         match node {
             Node::Table(entries) => {
                 let table_ok = matches!(entry.map(|e| e.kind), None | Some(NameOrTable(_)))
-                    && TABLE
-                        .iter()
-                        .any(|f| f.path.starts_with(&format!("{norm}.")))
+                    && has_fields_under(norm, ".")
                     || matches!(entry.map(|e| e.kind), Some(NameOrTable(_)));
                 if table_ok {
                     self.table(entries, path, norm, at);
@@ -321,11 +327,7 @@ impl Checker<'_> {
                 return;
             }
             Node::Array(items) => {
-                if entry.is_none()
-                    && TABLE
-                        .iter()
-                        .any(|f| f.path.starts_with(&format!("{norm}[].")))
-                {
+                if entry.is_none() && has_fields_under(norm, "[].") {
                     for (i, (ofs, item)) in items.iter().enumerate() {
                         let ipath = format!("{path}[{i}]");
                         self.places.push((ipath.clone(), ofs.or(at)));
@@ -443,6 +445,12 @@ pub(super) fn expect(entry: Option<&Field>) -> String {
 /// Check a scene text (TOML, or JSON when it starts with `{`): every problem at once.
 /// An empty list means the scene builds a component.
 pub fn check(text: &str) -> Vec<Problem> {
+    check_with(text, true).0
+}
+
+/// [`check`], with the component built (`build`) or not, and the scene it parsed when it
+/// found no problem.
+fn check_with(text: &str, build: bool) -> (Vec<Problem>, Option<Scene>) {
     let json = text.trim_start().starts_with('{');
     let mut c = Checker {
         text: if json { None } else { Some(text) },
@@ -455,7 +463,7 @@ pub fn check(text: &str) -> Vec<Problem> {
             line_col: Some((e.line, e.column)),
             message: e.to_string(),
         });
-        return c.problems;
+        return (c.problems, None);
     }
     let root = if json {
         match serde_json::from_str::<serde_json::Value>(text) {
@@ -466,7 +474,7 @@ pub fn check(text: &str) -> Vec<Problem> {
                     line_col: Some((e.line(), e.column())),
                     message: format!("JSON syntax: {e}"),
                 });
-                return c.problems;
+                return (c.problems, None);
             }
         }
     } else {
@@ -477,7 +485,7 @@ pub fn check(text: &str) -> Vec<Problem> {
                 let msg = e.message().trim().to_string();
                 c.report("", at, format!("TOML syntax: {msg}"));
             }
-            return c.problems;
+            return (c.problems, None);
         }
         from_de(&toml::de::DeValue::Table(doc.into_inner()))
     };
@@ -491,16 +499,23 @@ pub fn check(text: &str) -> Vec<Problem> {
     }
     c.problems.sort_by_key(|p| p.line_col);
     if !c.problems.is_empty() {
-        return c.problems;
+        return (c.problems, None);
     }
     // Cross-field problems: the library's own checks, in the order a run meets them (the
     // component built, the run's inputs at its end and start set, the first outputs).
     let result = Scene::from_text(text).and_then(|s| {
         let b = s.validate()?;
         s.effects.validate_for(&b)?;
-        crate::runner::prepare(&s).map(|_| ())
+        if build {
+            crate::runner::prepare(&s)?;
+        }
+        Ok(s)
     });
-    if let Err(e) = result {
+    let e = match result {
+        Ok(s) => return (c.problems, Some(s)),
+        Err(e) => e,
+    };
+    {
         let field = match &e {
             crate::Error::Invalid { field, .. } => Some(field.clone()),
             crate::Error::Unknown { what, .. } if what.contains("effects.lubrication") => {
@@ -530,7 +545,7 @@ pub fn check(text: &str) -> Vec<Problem> {
                 .to_string();
         }
     }
-    c.problems
+    (c.problems, None)
 }
 
 /// Every problem at once, one per line, as `raceway scene --check` prints them:
@@ -581,12 +596,15 @@ pub fn load(text: &str, overrides: &[(&str, f64)]) -> std::result::Result<Scene,
             message,
         }]
     };
+    if overrides.is_empty() {
+        return match check_with(text, true) {
+            (_, Some(scene)) => Ok(scene),
+            (problems, None) => Err(problems),
+        };
+    }
     let problems = check(text);
     if !problems.is_empty() {
         return Err(problems);
-    }
-    if overrides.is_empty() {
-        return Scene::from_text(text).map_err(|e| whole(e.to_string()));
     }
     // The scene as a TOML table (a JSON scene is converted), the overrides written in.
     let doc: std::result::Result<toml::Table, String> = if text.trim_start().starts_with('{') {
@@ -623,18 +641,28 @@ pub fn load(text: &str, overrides: &[(&str, f64)]) -> std::result::Result<Scene,
         .join(", ");
     let text2 = toml::to_string(&doc)
         .map_err(|e| whole(format!("cannot apply the overrides ({applied}): {e}")))?;
-    let problems = check(&text2);
-    if !problems.is_empty() {
-        return Err(problems
+    match check_with(&text2, true) {
+        (_, Some(scene)) => Ok(scene),
+        (problems, None) => Err(problems
             .into_iter()
             .map(|p| Problem {
                 line_col: None,
                 message: format!("{} (with the command-line override {applied})", p.message),
                 ..p
             })
-            .collect());
+            .collect()),
     }
-    Scene::from_text(&text2).map_err(|e| whole(e.to_string()))
+}
+
+/// A scene text checked as [`check`] does, field by field and across fields, but without
+/// building the component: for a caller that builds it next and reports the build's own
+/// refusal (the sweep, whose point runs build it). Every problem [`check`] finds before
+/// the build is in the error.
+pub fn load_unbuilt(text: &str) -> std::result::Result<Scene, Vec<Problem>> {
+    match check_with(text, false) {
+        (_, Some(scene)) => Ok(scene),
+        (problems, None) => Err(problems),
+    }
 }
 
 /// `line L, column C` (TOML) or `line L column C` (JSON) in a parser's message.

@@ -534,8 +534,26 @@ pub fn labels(key: &Key) -> Vec<(String, &'static str)> {
 /// Rename the keys of a document from the table (a key not in the table stays as the code
 /// built it; the test `tests/columns.rs` finds it).
 pub fn relabel(doc: Doc, json: Map<String, Value>) -> Map<String, Value> {
-    let table = keys(doc);
-    walk(&table, "", json)
+    walk(label_map(doc), "", json)
+}
+
+/// A document's keys by path (the table's first key of a path wins, as a search in order
+/// would find it), with the labels each leaves as: made once per document kind (a sweep
+/// relabels every point's summary; searching the table and formatting the labels per key
+/// was a seventh of a quasi-static point's instructions).
+type LabelMap = std::collections::HashMap<&'static str, Vec<String>>;
+
+fn label_map(doc: Doc) -> &'static LabelMap {
+    static MAPS: [std::sync::OnceLock<LabelMap>; 4] = [const { std::sync::OnceLock::new() }; 4];
+    let i = DOCS.iter().position(|d| *d == doc).unwrap_or(0);
+    MAPS[i].get_or_init(|| {
+        let mut m = LabelMap::new();
+        for k in keys(doc) {
+            m.entry(k.from)
+                .or_insert_with(|| labels(&k).into_iter().map(|(l, _)| l).collect());
+        }
+        m
+    })
 }
 
 /// [`relabel`] of any JSON value: an object's keys, or each object of an array (a list of
@@ -553,7 +571,7 @@ pub fn to_labelled_json<T: serde::Serialize + ?Sized>(doc: Doc, v: &T) -> Value 
     relabel_value(doc, serde_json::to_value(v).unwrap_or_default())
 }
 
-fn walk(table: &[Key], path: &str, m: Map<String, Value>) -> Map<String, Value> {
+fn walk(table: &LabelMap, path: &str, m: Map<String, Value>) -> Map<String, Value> {
     let mut out = Map::new();
     for (key, v) in m {
         let p = if path.is_empty() {
@@ -573,29 +591,26 @@ fn walk(table: &[Key], path: &str, m: Map<String, Value>) -> Map<String, Value> 
             ),
             other => other,
         };
-        match table.iter().find(|k| k.from == p) {
+        match table.get(p.as_str()) {
             None => {
                 out.insert(key, v);
             }
-            Some(k) => {
-                let labels = labels(k);
-                match (labels.len(), v) {
-                    (1, v) => {
-                        out.insert(labels[0].0.clone(), v);
-                    }
-                    (n, Value::Array(a)) if a.len() == n => {
-                        for ((l, _), x) in labels.into_iter().zip(a) {
-                            out.insert(l, x);
-                        }
-                    }
-                    (_, v) => {
-                        // Not the array the table splits (e.g. null): each part gets it.
-                        for (l, _) in labels {
-                            out.insert(l, v.clone());
-                        }
+            Some(labels) => match (labels.len(), v) {
+                (1, v) => {
+                    out.insert(labels[0].clone(), v);
+                }
+                (n, Value::Array(a)) if a.len() == n => {
+                    for (l, x) in labels.iter().zip(a) {
+                        out.insert(l.clone(), x);
                     }
                 }
-            }
+                (_, v) => {
+                    // Not the array the table splits (e.g. null): each part gets it.
+                    for l in labels {
+                        out.insert(l.clone(), v.clone());
+                    }
+                }
+            },
         }
     }
     out
