@@ -1040,13 +1040,13 @@ fn main() {
                     measured: format!("{med:.0} points per CPU second (median of {} runs of {n} points)", rates.len()),
                     met: Some(med >= 2000.0),
                     note: format!(
-                        "{}the worker thread's CPU time, as `raceway sweep` prints it; was 218 (issue), about 230 measured before the sweep changes (docs/sweep.md): the schema check re-derived its required fields at every table (55 % of a point), the quasi-static contact tables were rebuilt for every point and again for its ratings (70 % after that), each row file was synced (1.7 ms of system time a point); now derived once, memoised per bearing, and renamed without a sync (a half-written row after a power loss is run again)",
+                        "{}the worker thread's CPU time, as `raceway sweep` prints it; was 218 (issue), about 230 measured before the sweep changes (docs/sweep.md): the schema check re-derived its required fields at every table (55 % of a point), the quasi-static contact tables were rebuilt for every point and again for its ratings (70 % after that), each row file was synced (1.7 ms of system time a point); now derived once, memoised per bearing, and renamed without a sync (a half-written row after a power loss is run again); then a point's check no longer built the component its run builds, a run whose inputs stay put no longer built its end too, and the summary's labels come from a map made once (5.0e9 to 3.0e9 instructions for the 1 000 points, callgrind)",
                         if med < 2000.0 {
                             format!(
                                 "{:.2}× short{}; ",
                                 2000.0 / med,
                                 if med >= 1600.0 {
-                                    " (within this machine's noise: runs of the same build gave 1 700 to 1 950 at load average 14)"
+                                    " (within this machine's noise: this build gave 1 967 to 2 382 alternated at load average 8)"
                                 } else {
                                     ""
                                 }
