@@ -14,7 +14,7 @@ impl FullModel {
     /// contacts a velocity column keeps its contacts), a cage column
     /// the pockets of every ball on the race parts kept from the evaluation at `x` (the
     /// cage reaches a ball only through its pocket), a ring column the race contacts'
-    /// tractions of every ball ([`Races::Ring`]: the inner contacts evaluated again when
+    /// tractions of every ball (the inner contacts evaluated again when
     /// `q` moved, the pockets kept where the positions are; quasi-static ball positions
     /// are solved again for a displacement column).
     /// The cage columns equal whole-evaluation differences bit for bit. `scratch` holds
