@@ -16,7 +16,8 @@
 //! `--rtol X` (the scene's, and its `atol_m` scaled with it), `--all` (read every output),
 //! `--exudyn RPM` (instead of `--scene`: the speed bench's Exudyn-geometry scene at that
 //! shaft speed, benches/common/exudyn_peer.rs, with dynamic ball contacts, or the default
-//! quasi-static ones with `--quasi-static`; use `--step 1e-4` as the bench).
+//! quasi-static ones with `--quasi-static`; use `--step 1e-4` as the bench; its tolerance
+//! is the bench row's, `--rtol` sets another).
 
 use raceway::component::{variables, Component, Scene};
 use std::io::Write;
