@@ -13,10 +13,18 @@
 //!
 //! Options: `--scene FILE`, `--window S` (simulated seconds, default 0.005), `--step S`
 //! (communication step, default 20e-6), `--method NAME` (the scene's `solver.method`),
-//! `--rtol X` (the scene's, and its `atol_m` scaled with it), `--all` (read every output).
+//! `--rtol X` (the scene's, and its `atol_m` scaled with it), `--all` (read every output),
+//! `--exudyn RPM` (instead of `--scene`: the speed bench's Exudyn-geometry scene at that
+//! shaft speed, benches/common/exudyn_peer.rs, with dynamic ball contacts, or the default
+//! quasi-static ones with `--quasi-static`; use `--step 1e-4` as the bench; its tolerance
+//! is the bench row's, `--rtol` sets another).
 
 use raceway::component::{variables, Component, Scene};
 use std::io::Write;
+
+#[allow(dead_code)]
+#[path = "../benches/common/exudyn_peer.rs"]
+mod exudyn_peer;
 
 type Res<T> = Result<T, Box<dyn std::error::Error>>;
 
@@ -32,7 +40,10 @@ fn main() -> Res<()> {
     let path = opt(&args, "--scene").unwrap_or("examples/scenes/7004-30000.toml");
     let window: f64 = opt(&args, "--window").unwrap_or("0.005").parse()?;
     let h: f64 = opt(&args, "--step").unwrap_or("20e-6").parse()?;
-    let mut text = std::fs::read_to_string(path)?;
+    let mut text = match opt(&args, "--exudyn") {
+        Some(rpm) => exudyn_peer::scene(rpm.parse()?, !args.iter().any(|a| a == "--quasi-static")),
+        None => std::fs::read_to_string(path)?,
+    };
     if let Some(m) = opt(&args, "--method") {
         text = text.replace("method = \"rosenbrock\"", &format!("method = \"{m}\""));
     }

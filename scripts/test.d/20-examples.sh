@@ -10,6 +10,7 @@ cargo run -q --example vibration -- examples/scenes/7008ce-waviness.toml 0.1 0.0
 cargo run -q --example wear_thermal -- all > /dev/null
 cargo run -q --example cage_whirl -- --quick > /dev/null
 cargo run -q --example full_probe -- --window 0.0004 > /dev/null
+cargo run -q --example full_probe -- --exudyn 3000 --step 1e-4 --window 0.0005 > /dev/null
 cargo run -q --example skid_window -- ros34pw2 0.0005 1e-5 > /dev/null
 for s in examples/scenes/*.toml; do
   name=$(basename "$s" .toml)

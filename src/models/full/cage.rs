@@ -22,11 +22,16 @@ impl FullModel {
     /// opposite on the cage) and the ball's accelerations. `sc`: `sin`, `cos` of the
     /// pocket's angle ([`Self::pocket_trig`]).
     pub(super) fn ball_cage(&self, ck: &CageKin, sc: [f64; 2], r: &BallRace) -> BallTerms {
+        let p = self.pocket(ck, sc, r);
+        self.ball_terms(r, &p)
+    }
+
+    /// The pocket walls' forces on a ball at its race part's kinematics `r` (its frame and
+    /// spin; the pocket does not see the race contacts) and the cage `ck`.
+    pub(super) fn pocket(&self, ck: &CageKin, sc: [f64; 2], r: &BallRace) -> Pocket {
         let hd = 0.5 * self.d;
         let ez = EZ;
-        let (er, et) = (r.fr.er(), r.fr.et());
-        let (bk, rb, vb, w) = (&r.bk, r.fr.rb, r.fr.vb, r.bk.w);
-        let (mut f, mut mom) = (r.f, r.mom);
+        let (rb, vb, w) = (r.fr.rb, r.fr.vb, r.bk.w);
         // Pocket.
         let [sp, cp] = sc;
         let rp = 0.5 * self.dm;
@@ -37,9 +42,7 @@ impl FullModel {
         // velocity minus the cage material's at the ball centre.
         let dd = sub(vb, ck.velocity_at(rb));
         let side = 0.5 * self.p.pocket_clearance;
-        let mut cage_f = [0.0; 3];
-        let mut cage_m = [0.0; 3];
-        let mut pocket_max: f64 = 0.0;
+        let mut out = Pocket::default();
         let dirs: &[V3] = match self.p.cage {
             CageModel::Free => &[etp, ez],
             CageModel::Ideal => &[etp],
@@ -78,17 +81,33 @@ impl FullModel {
                 nwall += 1;
             }
         }
-        for wl in &walls[..nwall] {
+        for (k, wl) in walls[..nwall].iter().enumerate() {
             let (nw, pf, vs) = (wl.nw, wl.pf, wl.vs);
             let mut fb = scale(nw, -pf.normal);
             if vs > 0.0 {
                 fb = add(fb, scale(wl.slide, -pf.friction.abs() / vs));
             }
-            f = add(f, fb);
-            mom = add(mom, cross(wl.arm, fb));
-            cage_f = sub(cage_f, fb);
-            cage_m = sub(cage_m, cross(sub(wl.rc, ck.c), fb));
-            pocket_max = pocket_max.max(pf.normal.abs());
+            out.fb[k] = fb;
+            out.mb[k] = cross(wl.arm, fb);
+            out.cage_f = sub(out.cage_f, fb);
+            out.cage_m = sub(out.cage_m, cross(sub(wl.rc, ck.c), fb));
+            out.max = out.max.max(pf.normal.abs());
+        }
+        out.walls = nwall;
+        out
+    }
+
+    /// A ball's terms from its race part `r` and its pocket's forces `p`: the ball's
+    /// accelerations (the walls' forces added to the races' one by one, in the walls'
+    /// order) and the pocket's reaction on the cage.
+    pub(super) fn ball_terms(&self, r: &BallRace, p: &Pocket) -> BallTerms {
+        let ez = EZ;
+        let (er, et) = (r.fr.er(), r.fr.et());
+        let bk = &r.bk;
+        let (mut f, mut mom) = (r.f, r.mom);
+        for k in 0..p.walls {
+            f = add(f, p.fb[k]);
+            mom = add(mom, p.mb[k]);
         }
         // Accelerations.
         let (fr, ft, fz) = (dot(f, er), dot(f, et), dot(f, ez));
@@ -103,16 +122,17 @@ impl FullModel {
         BallTerms {
             acc,
             w_dot: scale(mom, 1.0 / self.j),
-            cage_f,
-            cage_m,
+            cage_f: p.cage_f,
+            cage_m: p.cage_m,
             wrench: r.wrench,
             torque: r.torque,
             ext_mz: r.ext_mz,
             power: r.power,
             info: BallInfo {
-                pocket: pocket_max,
+                pocket: p.max,
                 ..r.info
             },
+            pocket: *p,
         }
     }
 }

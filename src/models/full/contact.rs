@@ -64,7 +64,7 @@ impl FullModel {
         let (s, c) = (fr.s, fr.c);
         let (er, et, ez) = (fr.er(), fr.et(), EZ);
         let (ci, csi) = match known {
-            Known::Kept(k) => (k.contacts[0], k.cs[0]),
+            Known::Kept(k) | Known::Contacts(k) => (k.contacts[0], k.cs[0]),
             _ => {
                 let ci = match known {
                     Known::Solved(c) => c[0],
@@ -117,7 +117,6 @@ impl FullModel {
         InnerContact {
             ci,
             qi,
-            ni2,
             ni,
             ri_,
             rci,
@@ -144,14 +143,15 @@ impl FullModel {
     ) -> BallRace {
         let hd = 0.5 * self.d;
         let fr = match known {
-            Known::Kept(k) => k.fr,
+            Known::Kept(k) | Known::Outer(k) => k.fr,
+            Known::Contacts(k) => BallFrame::with_sc(bk, k.fr.s, k.fr.c),
             _ => BallFrame::new(bk),
         };
         let (er, et, ez) = (fr.er(), fr.et(), EZ);
         let inn = self.inner_contact(m, bk, &fr, xrel, known);
-        let (qi, ni2, ni) = (inn.qi, inn.ni2, inn.ni);
+        let (qi, ni) = (inn.qi, inn.ni);
         let (co, cso) = match known {
-            Known::Kept(k) => (k.contacts[1], k.cs[1]),
+            Known::Kept(k) | Known::Contacts(k) | Known::Outer(k) => (k.contacts[1], k.cs[1]),
             _ => {
                 let co = match known {
                     Known::Solved(c) => c[1],
@@ -222,8 +222,10 @@ impl FullModel {
                 z: bk.z,
                 q_i: qi,
                 q_o: qo,
-                alpha_i: ni2[0].atan2(ni2[1]),
-                alpha_o: no2[0].atan2(no2[1]),
+                // The contact angles: set where an evaluation keeps its per-ball results
+                // ([`FullModel::balls`], from `contacts`), not in every Jacobian column.
+                alpha_i: 0.0,
+                alpha_o: 0.0,
                 slide_i: norm(dv_i),
                 slide_o: norm(dv_o),
                 pocket: 0.0,

@@ -286,7 +286,18 @@ impl FullModel {
             let sc = self.pocket_sc[j];
             let bt = match races {
                 Races::Kept => self.ball_cage(&ck, sc, &self.races[j]),
-                Races::Compute => {
+                Races::Ring { moved } if !moved || self.n_aux() == 0 => {
+                    let (kr, kt) = (&self.races[j], &self.terms[j]);
+                    let known = if moved {
+                        Known::Outer(kr)
+                    } else {
+                        Known::Kept(kr)
+                    };
+                    let r = self.ball_race(m, &kr.bk, kr.xrel, known);
+                    self.ball_terms(&r, &kt.pocket)
+                }
+                Races::Ring { .. } => {
+                    // Quasi-static positions at the moved ring: solved again.
                     let r = self.ball_race_at(j, m, xb, aux, true)?;
                     self.ball_cage(&ck, sc, &r)
                 }
@@ -294,6 +305,14 @@ impl FullModel {
                     self.races[j] = self.ball_race_at(j, m, xb, aux, true)?;
                     let bt = self.ball_cage(&ck, sc, &self.races[j]);
                     self.terms[j] = bt;
+                    // The per-ball results with their contact angles (the Jacobian's
+                    // evaluations, kept or ring columns, leave them).
+                    let [ci, co] = self.races[j].contacts;
+                    self.balls[j] = BallInfo {
+                        alpha_i: ci.n[0].atan2(ci.n[1]),
+                        alpha_o: co.n[0].atan2(co.n[1]),
+                        ..bt.info
+                    };
                     bt
                 }
             };
@@ -315,7 +334,6 @@ impl FullModel {
             tot.max_load = tot.max_load.max(bt.info.q_i).max(bt.info.q_o);
             tot.max_pressure = tot.max_pressure.max(bt.info.p_max);
             tot.pocket_max = tot.pocket_max.max(bt.info.pocket);
-            self.balls[j] = bt.info;
         }
         // Cage drag (both side faces).
         if self.p.drag > 0.0 {

@@ -10,9 +10,13 @@ impl FullModel {
     /// slices) `jm = d(rates)/d(q, v)` (`n × 10`), `wx = d(wrench)/d(states)` (`5 × n`),
     /// `wm = d(wrench)/d(q, v)` (`5 × 10`). A ball's column costs one ball evaluation (its rates, its share of the
     /// cage's and of the wrench, differenced against the ball's terms kept from the
-    /// evaluation at `x`; a spin column keeps the ball's position), a cage column
+    /// evaluation at `x`; a spin column keeps the ball's position, and with dynamic ball
+    /// contacts a velocity column keeps its contacts), a cage column
     /// the pockets of every ball on the race parts kept from the evaluation at `x` (the
-    /// cage reaches a ball only through its pocket), a ring column one right-hand side.
+    /// cage reaches a ball only through its pocket), a ring column the race contacts'
+    /// tractions of every ball (the inner contacts evaluated again when
+    /// `q` moved, the pockets kept where the positions are; quasi-static ball positions
+    /// are solved again for a displacement column).
     /// The cage columns equal whole-evaluation differences bit for bit. `scratch` holds
     /// `3 n + n_aux` values. Allocation-free.
     pub fn jacobian(
@@ -23,13 +27,16 @@ impl FullModel {
         jac: Jacobians<'_>,
         scratch: &mut [f64],
     ) -> Result<()> {
-        self.jacobian_from(m, x, aux, jac, scratch, None)
+        self.jacobian_from(m, x, aux, jac, scratch, None, true)
     }
 
     /// [`Self::jacobian`]; `kept`: the rates and totals of an evaluation with
     /// [`Races::Keep`] at this motion, these states and with `aux` as it left it (its
     /// positions are then those a solve from `aux` returns, bit for bit), which stands in
-    /// for the evaluation at `x`.
+    /// for the evaluation at `x`. `clear`: zero the entries of `jx` that couple two
+    /// balls' blocks (zero by [`Self::blocks`]; never written here), which a caller that
+    /// reads only the blocks and the border leaves as they are (`false`).
+    #[allow(clippy::too_many_arguments)]
     pub(crate) fn jacobian_from(
         &mut self,
         m: &Motion,
@@ -38,6 +45,7 @@ impl FullModel {
         jac: Jacobians<'_>,
         scratch: &mut [f64],
         kept: Option<(&[f64], &Totals)>,
+        clear: bool,
     ) -> Result<()> {
         let Jacobians { jx, jm, wx, wm } = jac;
         let n = self.n_states();
@@ -47,7 +55,11 @@ impl FullModel {
         let (col, rest) = rest.split_at_mut(n);
         let auxs = &mut rest[..na];
         let load = !jm.is_empty() && !wx.is_empty() && !wm.is_empty();
-        jx.fill(0.0);
+        // Written below: every row of the cage's and ring's columns, a ball's block and
+        // the cage's rows in the ball's columns (the rest is zero only with ball blocks).
+        if clear || self.blocks().is_none() {
+            jx.fill(0.0);
+        }
         jm.fill(0.0);
         wx.fill(0.0);
         wm.fill(0.0);
@@ -77,7 +89,7 @@ impl FullModel {
                     mp.v[c - 5] += h;
                 }
                 auxs.copy_from_slice(aux);
-                let t = self.eval_with(&mp, x, auxs, col, Races::Compute)?;
+                let t = self.eval_with(&mp, x, auxs, col, Races::Ring { moved: c < 5 })?;
                 for r in 0..n {
                     jm[r * 10 + c] = (col[r] - d0[r]) / h;
                 }
@@ -126,10 +138,18 @@ impl FullModel {
                 }
                 // The quasi-static position depends on the orbital angle and speed
                 // (states 0 and 1), not on the spin: the spin columns keep it.
-                // They keep its frame, contacts and contact states too.
-                let race = if qs && c >= 2 {
+                // They keep its frame, contacts and contact states too. A dynamic ball's
+                // velocity columns (3 to 5) keep its contacts (its position and orbital
+                // angle are held), its spin columns (6 to 8) its frame too.
+                let race = if c >= if qs { 2 } else { 3 } {
                     let (bk, xrel, _) = self.ball_kin_at(j, &m.q, &xb[..nb], auxs, false)?;
-                    self.ball_race(m, &bk, xrel, Known::Kept(&self.races[j]))
+                    let kr = &self.races[j];
+                    let known = if !qs && c < 6 {
+                        Known::Contacts(kr)
+                    } else {
+                        Known::Kept(kr)
+                    };
+                    self.ball_race(m, &bk, xrel, known)
                 } else {
                     self.ball_race_at(j, m, &xb[..nb], auxs, true)?
                 };

@@ -134,8 +134,10 @@ impl LevelModel for FullLevel {
             }
             _ => None,
         };
+        // With ball blocks the solver reads only the blocks and the border
+        // ([`LevelModel::blocks`]): the entries coupling two balls are left.
         self.model
-            .jacobian_from(m, x, aux, j, &mut self.jscratch, kept)
+            .jacobian_from(m, x, aux, j, &mut self.jscratch, kept, false)
             .is_ok()
     }
     fn init(&mut self, m: &Motion, x: &mut [f64], aux: &mut [f64]) -> Result<()> {

@@ -353,6 +353,23 @@ struct BallTerms {
     ext_mz: f64,
     power: f64,
     info: BallInfo,
+    /// The pocket's forces it was computed with.
+    pocket: Pocket,
+}
+
+/// The pocket walls' forces on one ball ([`FullModel::pocket`]).
+#[derive(Debug, Clone, Copy, Default)]
+struct Pocket {
+    /// Walls acting (2 or 4) and each one's force on the ball and its moment about the
+    /// ball centre.
+    walls: usize,
+    fb: [V3; 4],
+    mb: [V3; 4],
+    /// Force on the cage and moment about its centre.
+    cage_f: V3,
+    cage_m: V3,
+    /// Largest wall normal force, N.
+    max: f64,
 }
 
 /// The axial unit vector.
@@ -371,6 +388,10 @@ struct BallFrame {
 impl BallFrame {
     fn new(bk: &BallKin) -> Self {
         let (s, c) = bk.psi.sin_cos();
+        Self::with_sc(bk, s, c)
+    }
+    /// [`Self::new`] from `sin psi`, `cos psi`.
+    fn with_sc(bk: &BallKin, s: f64, c: f64) -> Self {
         let er = [c, s, 0.0];
         let et = [-s, c, 0.0];
         BallFrame {
@@ -403,6 +424,12 @@ enum Known<'a> {
     /// A race part kept at the same position, orbital angle and speed and groove offset:
     /// its frame, contacts and contact states (all the same numbers, bit for bit).
     Kept(&'a BallRace),
+    /// A race part kept at the same position and orbital angle and groove offset, the
+    /// velocities changed: its contacts and contact states, the frame's `sin`, `cos`.
+    Contacts(&'a BallRace),
+    /// A race part kept at the same position and orbital angle, the ring moved: its frame
+    /// and outer contact, the inner contact evaluated at the position.
+    Outer(&'a BallRace),
 }
 
 /// One pocket wall of a ball ([`FullModel::ball_cage`]): its normal, the ball's contact
@@ -422,7 +449,6 @@ struct Wall {
 struct InnerContact {
     ci: ball::Contact,
     qi: f64,
-    ni2: [f64; 2],
     ni: V3,
     ri_: V3,
     rci: V3,
@@ -460,12 +486,17 @@ struct BallRace {
 /// Where an evaluation takes the balls' race parts from.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Races {
-    /// Computed (positions solved).
-    Compute,
     /// Computed and kept in [`FullModel::races`].
     Keep,
     /// The kept ones (the ball states, `q`, `v` and `omega` are those they were kept at).
     Kept,
+    /// A ring column of the Jacobian: the ball states and the cage's those the race parts
+    /// and the terms were kept at, the shaft's motion moved (`moved`: its displacement
+    /// `q`, else only `v` or `omega`). The pockets' forces are the kept ones where the
+    /// ball positions are states or the displacement is held, and with dynamic ball
+    /// contacts the outer contacts are kept; the inner contacts are evaluated again when
+    /// `q` moved, their tractions always.
+    Ring { moved: bool },
 }
 
 /// The full model of one bearing.
@@ -499,7 +530,8 @@ pub struct FullModel {
     t0: f64,
     nc: usize,
     nb: usize,
-    /// Per-ball results of the last evaluation.
+    /// Per-ball results of the last evaluation (through [`Self::eval`], or the one at
+    /// the Jacobian's point: its perturbed evaluations leave them).
     pub balls: Vec<BallInfo>,
     /// Per-ball race parts kept by an evaluation with [`Races::Keep`], and the ball
     /// terms it computed from them (the Jacobian's ball columns difference against them).

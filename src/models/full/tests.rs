@@ -4,8 +4,17 @@ use crate::seam::{Jacobians, Motion};
 /// The 7004 at 30 000 rpm at the scene's displacement (examples/scenes/7004-30000.toml),
 /// started, with the cage off centre and slower so the pockets act.
 fn started_7004() -> (FullModel, [f64; 5], f64, Vec<f64>, Vec<f64>) {
+    started_7004_with(BallContacts::QuasiStatic)
+}
+
+/// [`started_7004`] with the ball contacts `contacts`.
+fn started_7004_with(contacts: BallContacts) -> (FullModel, [f64; 5], f64, Vec<f64>, Vec<f64>) {
     let b = crate::geometry::preset("7004").unwrap().build().unwrap();
-    let mut m = FullModel::new(&b, FullParams::for_bearing(&b)).unwrap();
+    let p = FullParams {
+        ball_contacts: contacts,
+        ..FullParams::for_bearing(&b)
+    };
+    let mut m = FullModel::new(&b, p).unwrap();
     let q = [0.0, -2.96568e-6, 4.364864e-5, 0.0, 0.0];
     let omega = 3141.592654;
     let mut x = vec![0.0; m.n_states()];
@@ -258,6 +267,76 @@ fn material_velocities_are_position_rates() {
                 (fd[i] - vel[i]).abs() < 1e-5 * norm(vel),
                 "{i}: {fd:?} vs {vel:?}"
             );
+        }
+    }
+}
+
+/// With dynamic ball contacts the Jacobian's ring columns (the inner contacts evaluated
+/// again, or only their tractions for a velocity, on the kept outer contacts and pockets)
+/// and its ball velocity and spin columns (on the kept contacts) equal whole evaluations'
+/// forward differences bit for bit: in every row for the ring columns and the wrench, in
+/// the ball's own rows for the ball columns (their cage and wrench rows difference the
+/// ball's share alone, block_jacobian_matches_whole_differences in tests/full.rs).
+#[test]
+fn dynamic_columns_on_kept_parts_equal_whole_differences_exactly() {
+    let (mut m, q, omega, mut x, aux) = started_7004_with(BallContacts::Dynamic);
+    let n = x.len();
+    let (nc, nb) = (m.ball0(), m.per_ball());
+    // Off the rest position: radial and axial ball velocities.
+    for j in 0..m.z() {
+        x[nc + nb * j + 3] = 1e-3 * (j as f64 - 5.0);
+        x[nc + nb * j + 4] = -2e-3;
+    }
+    let v = [1e-3, -2e-3, 1e-4, 1e-2, -1e-2];
+    let (mut jx, mut jm, mut wx, mut wm) = (
+        vec![0.0; n * n],
+        vec![0.0; n * 10],
+        vec![0.0; 5 * n],
+        vec![0.0; 50],
+    );
+    let mut scratch = vec![0.0; 3 * n];
+    let jac = Jacobians {
+        jx: &mut jx,
+        jm: &mut jm,
+        wx: &mut wx,
+        wm: &mut wm,
+    };
+    let motion = Motion { q, v, omega };
+    m.jacobian(&motion, &x, &aux, jac, &mut scratch).unwrap();
+    let (mut d0, mut d1) = (vec![0.0; n], vec![0.0; n]);
+    let t0 = m.eval(&q, &v, omega, &x, &mut [], &mut d0).unwrap();
+    let hs = [
+        1e-10, 1e-10, 1e-10, 1e-8, 1e-8, 1e-6, 1e-6, 1e-6, 1e-4, 1e-4,
+    ];
+    let mut nonzero = 0;
+    for (c, h) in hs.iter().enumerate() {
+        let (mut qp, mut vp) = (q, v);
+        if c < 5 {
+            qp[c] += h;
+        } else {
+            vp[c - 5] += h;
+        }
+        let t = m.eval(&qp, &vp, omega, &x, &mut [], &mut d1).unwrap();
+        for r in 0..n {
+            assert_eq!(jm[r * 10 + c], (d1[r] - d0[r]) / h, "jm row {r} col {c}");
+            nonzero += usize::from(jm[r * 10 + c] != 0.0);
+        }
+        for r in 0..5 {
+            let fd = (t.wrench[r] - t0.wrench[r]) / h;
+            assert_eq!(wm[r * 10 + c], fd, "wm row {r} col {c}");
+        }
+    }
+    assert!(nonzero > 10 * m.z(), "{nonzero}");
+    for j in 0..m.z() {
+        for c in 0..nb {
+            let col = nc + nb * j + c;
+            let mut xp = x.clone();
+            let h = 1.5e-8 * x[col].abs().max(1.0);
+            xp[col] += h;
+            m.eval(&q, &v, omega, &xp, &mut [], &mut d1).unwrap();
+            for r in nc + nb * j..nc + nb * (j + 1) {
+                assert_eq!(jx[r * n + col], (d1[r] - d0[r]) / h, "row {r} col {col}");
+            }
         }
     }
 }
