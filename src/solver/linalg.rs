@@ -624,6 +624,17 @@ impl BlockArrowhead {
             // order of the block's states; a zero `G` entry subtracts `+0` (the bits of
             // skipping it, also for a `-0` entry of S).
             for (scj, gj) in sc.chunks_exact_mut(mc.max(1)).zip(g.chunks_exact(s)) {
+                if gj.iter().all(|gv| *gv != 0.0) {
+                    // No zero to skip (the usual column): plain products.
+                    for (sv, ci) in scj.iter_mut().zip(c.chunks_exact(s)) {
+                        let mut v = *sv;
+                        for (cv, gv) in ci.iter().zip(gj) {
+                            v -= cv * gv;
+                        }
+                        *sv = v;
+                    }
+                    continue;
+                }
                 for (sv, ci) in scj.iter_mut().zip(c.chunks_exact(s)) {
                     let mut v = *sv;
                     for (cv, gv) in ci.iter().zip(gj) {
