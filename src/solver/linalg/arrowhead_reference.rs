@@ -8,7 +8,6 @@ use super::*;
 struct OldArrowhead {
     h: usize,
     nb: usize,
-    s: usize,
     m: usize,
     xr: Vec<f64>,
     d: Vec<f64>,
@@ -28,7 +27,6 @@ impl OldArrowhead {
         OldArrowhead {
             h,
             nb,
-            s,
             m,
             xr: vec![0.0; m],
             d: vec![0.0; nb * s * s],
