@@ -367,8 +367,8 @@ pub struct BlockArrowhead {
     /// `G_i = D_i⁻¹ B_i`, `nb` column-major `s × m_g` matrices: only its columns in
     /// [`Self::g_cols`] (the others are zero).
     g: Vec<f64>,
-    /// `C_i`, `nb` column-major `m_c × s` matrices: only its rows in [`Self::c_rows`]
-    /// (the others are zero).
+    /// `C_i`, `nb` row-major `m_c × s` matrices (a border row's `s` entries contiguous):
+    /// only its rows in [`Self::c_rows`] (the others are zero).
     c: Vec<f64>,
     /// LU of the Schur complement, column-major `m × m`.
     schur: Vec<f64>,
@@ -383,6 +383,13 @@ pub struct BlockArrowhead {
     /// Schur complement and the forward elimination (`b_b − Σ C_i z_i`; the cage angle's and
     /// the ring positions' rates do not depend on the balls).
     c_rows: Vec<usize>,
+    /// The state indices of [`Self::g_cols`] and of [`Self::c_rows`].
+    g_idx: Vec<usize>,
+    c_idx: Vec<usize>,
+    /// The state index of each border state (the head's first, then the tail's).
+    bidx: Vec<usize>,
+    /// Scratch: which border rows have some `C` entry.
+    flag: Vec<bool>,
     /// Scratch: the border entries in [`Self::c_rows`] (solve) or the Schur complement's
     /// entries in those rows and the columns of [`Self::g_cols`] (factor), gathered so
     /// that the blocks' updates run over contiguous memory.
@@ -416,6 +423,10 @@ impl BlockArrowhead {
             spiv: vec![0; m],
             g_cols: Vec::with_capacity(m),
             c_rows: Vec::with_capacity(m),
+            g_idx: Vec::with_capacity(m),
+            c_idx: Vec::with_capacity(m),
+            bidx: (0..m).map(|r| if r < h { r } else { nb * s + r }).collect(),
+            flag: vec![false; m],
             border: vec![0.0; m * m],
         }
     }
@@ -442,6 +453,8 @@ impl BlockArrowhead {
 /// or a run-time one ([`Dynamic`]); the arithmetic is the same either way.
 trait BlockSize: Copy {
     fn get(self) -> usize;
+    /// [`lu_solve`] of a block (the same arithmetic; the fixed size skips its dispatch).
+    fn lu_solve(self, a: &[f64], piv: &[usize], b: &mut [f64]);
 }
 
 #[derive(Clone, Copy)]
@@ -451,6 +464,14 @@ impl<const S: usize> BlockSize for Fixed<S> {
     fn get(self) -> usize {
         S
     }
+    #[inline(always)]
+    fn lu_solve(self, a: &[f64], piv: &[usize], b: &mut [f64]) {
+        if S <= 12 {
+            lu_solve_n::<S>(&a[..S * S], &piv[..S], &mut b[..S]);
+        } else {
+            lu_solve(a, S, piv, b);
+        }
+    }
 }
 
 #[derive(Clone, Copy)]
@@ -459,6 +480,10 @@ impl BlockSize for Dynamic {
     #[inline(always)]
     fn get(self) -> usize {
         self.0
+    }
+    #[inline(always)]
+    fn lu_solve(self, a: &[f64], piv: &[usize], b: &mut [f64]) {
+        lu_solve(a, self.0, piv, b);
     }
 }
 
@@ -495,50 +520,69 @@ impl BlockArrowhead {
         debug_assert_eq!(jac.shape(), (nb0 + m, nb0 + m));
         // column-major storage: entry (i, j) at j * nn + i
         let (ja, nn) = (jac.as_slice(), nb0 + m);
-        // The state index of border state `r`: the head's first, then the tail's.
-        let bi = |r: usize| if r < h { r } else { nb0 + r };
-        // The border's pattern: rows with some C entry, columns with some B entry (each a
-        // contiguous run of J's storage).
-        self.c_rows.clear();
-        self.g_cols.clear();
-        for r in 0..m {
-            if (h..h + nb0).any(|k| ja[k * nn + bi(r)] != 0.0) {
-                self.c_rows.push(r);
+        // The border's pattern: rows with some C entry (flagged column by column over the
+        // blocks' columns, whose border entries are the head's and the tail's runs),
+        // columns with some B entry (each a contiguous run of J's storage).
+        let flag = &mut self.flag[..m];
+        flag.fill(false);
+        for k in h..h + nb0 {
+            let col = &ja[k * nn..(k + 1) * nn];
+            let (fh, ft) = flag.split_at_mut(h);
+            for (f, v) in fh.iter_mut().zip(&col[..h]) {
+                *f |= *v != 0.0;
+            }
+            for (f, v) in ft.iter_mut().zip(&col[h + nb0..]) {
+                *f |= *v != 0.0;
             }
         }
-        for j in 0..m {
-            if ja[bi(j) * nn + h..bi(j) * nn + h + nb0]
-                .iter()
-                .any(|v| *v != 0.0)
-            {
+        self.c_rows.clear();
+        self.c_idx.clear();
+        for (r, &f) in flag.iter().enumerate() {
+            if f {
+                self.c_rows.push(r);
+                self.c_idx.push(self.bidx[r]);
+            }
+        }
+        self.g_cols.clear();
+        self.g_idx.clear();
+        for (j, &bj) in self.bidx.iter().enumerate() {
+            if ja[bj * nn + h..bj * nn + h + nb0].iter().any(|v| *v != 0.0) {
                 self.g_cols.push(j);
+                self.g_idx.push(bj);
             }
         }
         let (mc, mg) = (self.c_rows.len(), self.g_cols.len());
         // E into the Schur storage
-        for j in 0..m {
-            for i in 0..m {
-                let v = -ja[bi(j) * nn + bi(i)];
-                self.schur[j * m + i] = if i == j { v + sigma } else { v };
+        for (j, &bj) in self.bidx.iter().enumerate() {
+            let src = &ja[bj * nn..(bj + 1) * nn];
+            let dst = &mut self.schur[j * m..(j + 1) * m];
+            for (dv, v) in dst[..h].iter_mut().zip(&src[..h]) {
+                *dv = -v;
             }
+            for (dv, v) in dst[h..].iter_mut().zip(&src[h + nb0..]) {
+                *dv = -v;
+            }
+            dst[j] += sigma;
         }
         // The part of S the blocks update (rows `c_rows`, columns `g_cols`), gathered
         // (column-major `m_c × m_g`); each entry gets the same subtractions in the same
         // order as in place.
         let sc = &mut self.border[..mc * mg];
-        for (jj, &j) in self.g_cols.iter().enumerate() {
-            for (ii, &i) in self.c_rows.iter().enumerate() {
-                sc[jj * mc + ii] = self.schur[j * m + i];
+        for (scj, &j) in sc.chunks_exact_mut(mc.max(1)).zip(&self.g_cols) {
+            let col = &self.schur[j * m..(j + 1) * m];
+            for (v, &i) in scj.iter_mut().zip(&self.c_rows) {
+                *v = col[i];
             }
         }
         for b in 0..nb {
             let o = h + b * s;
             let lu = &mut self.lu[..s * s];
             for j in 0..s {
-                for i in 0..s {
-                    let v = -ja[(o + j) * nn + o + i];
-                    lu[j * s + i] = if i == j { v + sigma } else { v };
+                let src = &ja[(o + j) * nn + o..(o + j) * nn + o + s];
+                for (l, v) in lu[j * s..(j + 1) * s].iter_mut().zip(src) {
+                    *l = -v;
                 }
+                lu[j * s + j] += sigma;
             }
             let piv = &mut self.dpiv[..s];
             if lu_factor_sized(lu, bs, piv).is_err() {
@@ -550,49 +594,61 @@ impl BlockArrowhead {
                 let col = &mut d[j * s..(j + 1) * s];
                 col.fill(0.0);
                 col[j] = 1.0;
-                lu_solve(lu, s, piv, col);
+                bs.lu_solve(lu, piv, col);
             }
             if !d.iter().all(|v| v.is_finite()) {
                 return false;
             }
-            // G_b = D_b⁻¹ B_b, column by column (its non-zero columns)
+            // G_b = D_b⁻¹ B_b, column by column (its non-zero columns). A zero `B` entry
+            // adds products `±0` to sums that start at `+0`: the same bits as skipping it.
             let g = &mut self.g[b * s * mg..(b + 1) * s * mg];
-            for (jj, &j) in self.g_cols.iter().enumerate() {
-                let col = &mut g[jj * s..(jj + 1) * s];
+            for (col, &sj) in g.chunks_exact_mut(s).zip(&self.g_idx) {
+                let bcol = &ja[sj * nn + o..sj * nn + o + s];
                 col.fill(0.0);
-                for k in 0..s {
-                    let bkj = -ja[bi(j) * nn + o + k];
-                    if bkj != 0.0 {
-                        for (v, dv) in col.iter_mut().zip(&d[k * s..(k + 1) * s]) {
-                            *v += dv * bkj;
-                        }
+                for (k, bk) in bcol.iter().enumerate() {
+                    let bkj = -bk;
+                    for (v, dv) in col.iter_mut().zip(&d[k * s..(k + 1) * s]) {
+                        *v += dv * bkj;
                     }
                 }
             }
-            // C_b (its non-zero rows) and S -= C_b G_b (on the gathered part of S)
+            // C_b (its non-zero rows; each row's `s` entries contiguous)
             let c = &mut self.c[b * mc * s..(b + 1) * mc * s];
             for j in 0..s {
-                for (ii, &i) in self.c_rows.iter().enumerate() {
-                    c[j * mc + ii] = -ja[(o + j) * nn + bi(i)];
+                let src = &ja[(o + j) * nn..(o + j + 1) * nn];
+                for (ii, &i) in self.c_idx.iter().enumerate() {
+                    c[ii * s + j] = -src[i];
                 }
             }
-            for jj in 0..mg {
-                let sj = &mut sc[jj * mc..(jj + 1) * mc];
-                for k in 0..s {
-                    let gkj = g[jj * s + k];
-                    if gkj != 0.0 {
-                        let ck = &c[k * mc..(k + 1) * mc];
-                        for (sv, cv) in sj.iter_mut().zip(ck) {
-                            *sv -= cv * gkj;
+            // S -= C_b G_b (on the gathered part of S): each entry's subtractions in the
+            // order of the block's states; a zero `G` entry subtracts `+0` (the bits of
+            // skipping it, also for a `-0` entry of S).
+            for (scj, gj) in sc.chunks_exact_mut(mc.max(1)).zip(g.chunks_exact(s)) {
+                if gj.iter().all(|gv| *gv != 0.0) {
+                    // No zero to skip (the usual column): plain products.
+                    for (sv, ci) in scj.iter_mut().zip(c.chunks_exact(s)) {
+                        let mut v = *sv;
+                        for (cv, gv) in ci.iter().zip(gj) {
+                            v -= cv * gv;
                         }
+                        *sv = v;
                     }
+                    continue;
+                }
+                for (sv, ci) in scj.iter_mut().zip(c.chunks_exact(s)) {
+                    let mut v = *sv;
+                    for (cv, gv) in ci.iter().zip(gj) {
+                        v -= if *gv != 0.0 { cv * gv } else { 0.0 };
+                    }
+                    *sv = v;
                 }
             }
         }
         // The updated part of S back in place.
-        for (jj, &j) in self.g_cols.iter().enumerate() {
-            for (ii, &i) in self.c_rows.iter().enumerate() {
-                self.schur[j * m + i] = sc[jj * mc + ii];
+        for (scj, &j) in sc.chunks_exact(mc.max(1)).zip(&self.g_cols) {
+            let col = &mut self.schur[j * m..(j + 1) * m];
+            for (v, &i) in scj.iter().zip(&self.c_rows) {
+                col[i] = *v;
             }
         }
         lu_factor(&mut self.schur, m, &mut self.spiv).is_ok()
@@ -615,24 +671,26 @@ impl BlockArrowhead {
         for (v, &r) in xc.iter_mut().zip(&self.c_rows) {
             *v = xr[r];
         }
+        let r = &mut self.lu[..s];
         for b in 0..nb {
             let z = &mut xb[b * s..(b + 1) * s];
             let d = &self.d[b * s * s..(b + 1) * s * s];
             // z = D_b⁻¹ z
-            let r = &mut self.lu[..s];
             r.copy_from_slice(z);
             z.fill(0.0);
-            for (k, &rk) in r.iter().enumerate() {
-                for (zi, dv) in z.iter_mut().zip(&d[k * s..(k + 1) * s]) {
+            for (rk, dk) in r.iter().zip(d.chunks_exact(s)) {
+                for (zi, dv) in z.iter_mut().zip(dk) {
                     *zi += dv * rk;
                 }
             }
+            // b_border -= C_b z, each entry's terms in the order of the block's states
             let c = &self.c[b * mc * s..(b + 1) * mc * s];
-            for (k, zk) in z.iter().enumerate() {
-                let ck = &c[k * mc..(k + 1) * mc];
-                for (v, cv) in xc.iter_mut().zip(ck) {
-                    *v -= cv * zk;
+            for (v, ci) in xc.iter_mut().zip(c.chunks_exact(s)) {
+                let mut t = *v;
+                for (cv, zk) in ci.iter().zip(z.iter()) {
+                    t -= cv * zk;
                 }
+                *v = t;
             }
         }
         for (v, &r) in xc.iter().zip(&self.c_rows) {
@@ -647,8 +705,8 @@ impl BlockArrowhead {
         for b in 0..nb {
             let z = &mut xb[b * s..(b + 1) * s];
             let g = &self.g[b * s * mg..(b + 1) * s * mg];
-            for (jj, &xj) in xg.iter().enumerate() {
-                for (zi, gv) in z.iter_mut().zip(&g[jj * s..(jj + 1) * s]) {
+            for (&xj, gj) in xg.iter().zip(g.chunks_exact(s)) {
+                for (zi, gv) in z.iter_mut().zip(gj) {
                     *zi -= gv * xj;
                 }
             }
@@ -657,6 +715,9 @@ impl BlockArrowhead {
         tail.copy_from_slice(&xr[h..]);
     }
 }
+
+#[cfg(test)]
+mod arrowhead_reference;
 
 #[cfg(test)]
 mod tests {
