@@ -914,16 +914,7 @@ fn main() {
         // half of the window (the first half is the slide from the kinematic start).
         let t_sk = if quick { 0.01 } else { 0.05 };
         let (_, s_ref, _) = skidding_run(Method::Rosenbrock, 1e-9, 1e-6, t_sk);
-        let mut cells = Vec::new();
-        let mut best: Option<f64> = None;
-        let mut slip_txt = String::new();
-        for (name, m) in [
-            ("RODAS4 (as shipped)", Method::Rosenbrock),
-            ("ROS34PW2", Method::Ros34pw2),
-        ] {
-            let (cpu, s, slip) = skidding_run(m, 1e-5, 0.0, t_sk);
-            let (e_l2, _) = force_error(&s, &s_ref).unwrap_or((f64::NAN, f64::NAN));
-            let rtf = 1e-4 / cpu;
+        let slip_text = |slip: &[f64]| {
             let tail = &slip[slip.len() / 2..];
             let (lo, hi) = tail
                 .iter()
@@ -931,28 +922,54 @@ fn main() {
                     (a.min(x), b.max(x))
                 });
             let mean = tail.iter().sum::<f64>() / tail.len() as f64;
-            println!(
-                "skidding 7008CE 24000 rpm, 0.1 ms, {name} rtol 1e-5: {rtf:.3}x real time ({:.1} s CPU per simulated s), force error {e_l2:.1e}, cage slip {:.1} % ({:.1}-{:.1} %) over the second half (load average {})",
-                cpu / 1e-4,
+            format!(
+                "cage slip {:.1} % (from {:.1} to {:.1} %) over the second half of the window",
                 mean * 100.0,
                 lo * 100.0,
-                hi * 100.0,
+                hi * 100.0
+            )
+        };
+        // One setting's speed, and its force error as the worst of rtol x 0.98, 1 and 1.02:
+        // near 1e-4 the error of one tolerance moves by a factor of about 3 with changes at
+        // rounding level (the step sequence through the pocket impacts), so one sample
+        // would not say whether the setting holds 1e-4.
+        let setting = |m: Method, rtol: f64| -> (f64, f64, String) {
+            let (cpu, s, slip) = skidding_run(m, rtol, 0.0, t_sk);
+            let mut err = force_error(&s, &s_ref).map_or(f64::NAN, |e| e.0);
+            for f in [0.98, 1.02] {
+                let (_, s2, _) = skidding_run(m, rtol * f, 0.0, t_sk);
+                err = err.max(force_error(&s2, &s_ref).map_or(f64::NAN, |e| e.0));
+            }
+            (1e-4 / cpu, err, slip_text(&slip))
+        };
+        let mut cells = Vec::new();
+        let mut best: Option<f64> = None;
+        let (rtf, err, slip_txt) = setting(Method::Rosenbrock, 1e-5);
+        println!(
+            "skidding 7008CE 24000 rpm, 0.1 ms, RODAS4 rtol 1e-5: {rtf:.3}x real time, force error {err:.1e} (worst of rtol x 0.98/1/1.02), {slip_txt} (load average {})",
+            load_average()
+        );
+        cells.push(format!(
+            "RODAS4 (as shipped, rtol 1e-5): {rtf:.3}× ({:.1} s CPU per simulated s), force error {err:.1e}",
+            1.0 / rtf
+        ));
+        if err <= 1e-4 {
+            best = Some(rtf);
+        }
+        // ROS34PW2 from the shipped tolerance down until the worst error holds 1e-4.
+        for rtol in [1e-5, 7e-6, 5e-6, 2e-6] {
+            let (rtf, err, _) = setting(Method::Ros34pw2, rtol);
+            println!(
+                "skidding 7008CE 24000 rpm, 0.1 ms, ROS34PW2 rtol {rtol:.0e}: {rtf:.3}x real time, force error {err:.1e} (worst of rtol x 0.98/1/1.02) (load average {})",
                 load_average()
             );
             cells.push(format!(
-                "{name}: {rtf:.3}× ({:.1} s CPU per simulated s), force error {e_l2:.1e}",
-                cpu / 1e-4
+                "ROS34PW2 rtol {rtol:.0e}: {rtf:.3}× ({:.1} s CPU per simulated s), force error {err:.1e}",
+                1.0 / rtf
             ));
-            if e_l2 <= 1e-4 {
+            if err <= 1e-4 {
                 best = Some(best.map_or(rtf, |b: f64| b.max(rtf)));
-            }
-            if slip_txt.is_empty() {
-                slip_txt = format!(
-                    "cage slip {:.1} % (from {:.1} to {:.1} %) over the second half of the window",
-                    mean * 100.0,
-                    lo * 100.0,
-                    hi * 100.0
-                );
+                break;
             }
         }
         goals.push(Goal {
@@ -961,11 +978,11 @@ fn main() {
             measured: cells.join("; "),
             met: Some(best.is_some_and(|r| r >= 1.0)),
             note: format!(
-                "{t_sk} s from the scene's start; {slip_txt}; error against RODAS4 at rtol 1e-9 with a 1 µs sub-step cap{}",
+                "{t_sk} s from the scene's start; {slip_txt}; error against RODAS4 at rtol 1e-9 with a 1 µs sub-step cap, the worst of rtol × 0.98, 1 and 1.02 (one tolerance's error moves by a factor of about 3 with rounding-level changes){}",
                 match best {
                     None => " (no setting within 1e-4)".to_string(),
                     Some(r) if r < 1.0 => format!(
-                        "; {:.1}× short of the goal with the faster setting. Tried: ROS34PW2 (a W-method, its Jacobian carried from step to step) at the same tolerance; the early return in `contact::traction::tanh` for |x| ≥ 19 was already in; the block-arrowhead factor and solve over the border's non-zero rows and columns only, gathered (ROS34PW2: 7.7 % fewer instructions, callgrind, the same numbers bit for bit; factor and solve were 39 % of the run, 1 088 factorisations for 1 596 attempts in 0.01 s); did not pay: holding the W-method's step for a proposed growth up to 1.5× (instead of 1.2×) to keep its LU, 10 % more instructions (more attempts, no fewer factorisations)",
+                        "; {:.1}× short of the goal with the fastest setting within 1e-4. Tried: ROS34PW2 (a W-method, its Jacobian carried from step to step); the early return in `contact::traction::tanh` for |x| ≥ 19 was already in; the block-arrowhead factor and solve over the border's non-zero rows and columns only, gathered, then reordered so each border entry's updates run over one block (ROS34PW2, callgrind, the same numbers bit for bit: 752 M to 687 M instructions over 0.05 s); did not pay: holding the W-method's step for a proposed growth up to 1.5× (instead of 1.2×) to keep its LU (10 % more instructions), refreshing its Jacobian every 20 steps or through rejections (more instructions or an error over 1e-4), starting each ball's load split from a table or from its previous split (5.4 % and 3.8 % fewer instructions, but an error of 1.5e-4, or a restored state that continues differently)",
                         1.0 / r
                     ),
                     Some(_) => String::new(),
