@@ -739,9 +739,9 @@ impl Laminae {
     fn eval_aligned<const D: bool>(&self, delta: f64) -> RollerLoad {
         let (cs, dcs) = (self.cs, 10.0 / 9.0 * self.cs);
         let mut r = RollerLoad::default();
-        let one = |r: &mut RollerLoad, x: f64, d: f64, n: usize| {
+        // Lamina (pair) at `x` with approach `d` and, when `d > 0`, its root `p = d^(1/9)`.
+        let with_root = |r: &mut RollerLoad, x: f64, d: f64, n: usize, p: f64| {
             if d > 0.0 {
-                let p = ninth_root(d);
                 let q = cs * d * p;
                 if q > 0.0 {
                     let w = n as f64;
@@ -765,6 +765,8 @@ impl Laminae {
                 }
             }
         };
+        let root = |d: f64| if d > 0.0 { ninth_root(d) } else { 0.0 };
+        let one = |r: &mut RollerLoad, x: f64, d: f64, n: usize| with_root(r, x, d, n, root(d));
         let ns = self.len();
         let (x, d2) = (&self.x[..ns], &self.drop2[..ns]);
         if self.sorted_pairs {
@@ -773,7 +775,17 @@ impl Laminae {
             // the same order as the loop below (the same bits).
             let half = &d2[..ns / 2];
             let first = half.partition_point(|&d| delta - d <= 0.0);
-            for k in first..ns / 2 {
+            // Two pairs' roots at a time (independent: they overlap in the processor), summed
+            // in the same order.
+            let mut k = first;
+            while k + 1 < ns / 2 {
+                let (da, db) = (delta - d2[k], delta - d2[k + 1]);
+                let (pa, pb) = (root(da), root(db));
+                with_root(&mut r, x[k], da, 2, pa);
+                with_root(&mut r, x[k + 1], db, 2, pb);
+                k += 2;
+            }
+            if k < ns / 2 {
                 one(&mut r, x[k], delta - d2[k], 2);
             }
         } else {
