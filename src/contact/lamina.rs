@@ -442,6 +442,19 @@ pub struct RollerLoad {
 }
 
 impl RollerLoad {
+    /// [`RollerLoad::add`] without the derivatives.
+    #[inline]
+    pub(crate) fn add_force(&mut self, q: f64, x: f64) {
+        if q > 0.0 {
+            self.loaded += 1;
+            if q > self.max_lamina {
+                self.max_lamina = q;
+            }
+            self.force += q;
+            self.moment += q * x;
+        }
+    }
+
     /// Adds one lamina at `x` carrying `q` with `dq/d delta` = `dq` (`sec2 = sec² psi`, the
     /// tilt's chain factor); an unloaded lamina adds nothing.
     #[inline]
@@ -643,6 +656,29 @@ impl Laminae {
         offsets: &[f64],
         mut loads: Option<&mut [f64]>,
     ) -> RollerLoad {
+        self.eval_offsets::<true>(delta, tan_psi, offsets, loads)
+    }
+
+    /// As [`Laminae::evaluate_offsets`] without the derivatives (left at zero): the same
+    /// force, moment, loaded count, largest lamina and lamina loads, for a caller that wants
+    /// no stiffness (a right-hand side).
+    pub(crate) fn evaluate_offsets_force(
+        &self,
+        delta: f64,
+        tan_psi: f64,
+        offsets: &[f64],
+        loads: Option<&mut [f64]>,
+    ) -> RollerLoad {
+        self.eval_offsets::<false>(delta, tan_psi, offsets, loads)
+    }
+
+    fn eval_offsets<const D: bool>(
+        &self,
+        delta: f64,
+        tan_psi: f64,
+        offsets: &[f64],
+        mut loads: Option<&mut [f64]>,
+    ) -> RollerLoad {
         assert_eq!(offsets.len(), self.len(), "one offset per lamina");
         let sec2 = 1.0 + tan_psi * tan_psi;
         let mut r = RollerLoad::default();
@@ -651,14 +687,18 @@ impl Laminae {
             let d = delta - x * tan_psi - d2 + o;
             let (q, dq) = if d > 0.0 {
                 let p = ninth_root(d);
-                (cs * d * p, dcs * p)
+                (cs * d * p, if D { dcs * p } else { 0.0 })
             } else {
                 (0.0, 0.0)
             };
             if let Some(l) = loads.as_deref_mut() {
                 l[k] = q;
             }
-            r.add(q, dq, x, sec2);
+            if D {
+                r.add(q, dq, x, sec2);
+            } else {
+                r.add_force(q, x);
+            }
         }
         r
     }
@@ -980,6 +1020,27 @@ mod tests {
                 let l = Laminae::new(&g, &p, ns).unwrap();
                 for d in [-1e-6, 0.0, 3e-7, 2e-6, 1e-5, 4e-5] {
                     for t in [0.0, -0.0, 3e-4, -1e-3] {
+                        // With offsets too (a pit's loss on some laminae, waviness).
+                        let off: Vec<f64> = (0..ns)
+                            .map(|k| 1e-6 * ((k * 7) % 5) as f64 - 2e-6)
+                            .collect();
+                        let (mut la, mut lb) = (vec![0.0; ns], vec![0.0; ns]);
+                        let a = l.evaluate_offsets(d, t, &off, Some(&mut la));
+                        let b = l.evaluate_offsets_force(d, t, &off, Some(&mut lb));
+                        assert_eq!(
+                            (
+                                a.force.to_bits(),
+                                a.moment.to_bits(),
+                                a.max_lamina.to_bits()
+                            ),
+                            (
+                                b.force.to_bits(),
+                                b.moment.to_bits(),
+                                b.max_lamina.to_bits()
+                            )
+                        );
+                        assert_eq!((a.loaded, &la), (b.loaded, &lb));
+                        assert_eq!(b.dforce_ddelta, 0.0);
                         let (a, b) = (l.evaluate_tan(d, t), l.evaluate_tan_force(d, t));
                         let bits = |r: &RollerLoad| {
                             (

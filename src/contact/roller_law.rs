@@ -264,7 +264,13 @@ impl CylindricalRollerLaw {
         debug_assert!(self.fc_per_omega2 == 0.0, "massless rollers only");
         let approach = u.radial - self.half_pd;
         let t = tan0(u.tilt);
-        let r = self.laminae.evaluate_offsets(approach, t, offsets, loads);
+        // Without stiffness the laminae's derivatives are not read (`reaction`).
+        let r = if want.stiffness {
+            self.laminae.evaluate_offsets(approach, t, offsets, loads)
+        } else {
+            self.laminae
+                .evaluate_offsets_force(approach, t, offsets, loads)
+        };
         let contact = self.laminae.contact_approach(&r, approach, false);
         self.reaction(r, u, t, contact, 0.0, want)
     }
