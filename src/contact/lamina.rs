@@ -654,7 +654,7 @@ impl Laminae {
         delta: f64,
         tan_psi: f64,
         offsets: &[f64],
-        mut loads: Option<&mut [f64]>,
+        loads: Option<&mut [f64]>,
     ) -> RollerLoad {
         self.eval_offsets::<true>(delta, tan_psi, offsets, loads)
     }
