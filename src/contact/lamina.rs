@@ -382,10 +382,13 @@ const BINOMIAL: [f64; 7] = {
 /// `powf`.
 #[inline]
 fn ninth_root(d: f64) -> f64 {
-    if !(f64::MIN_POSITIVE..f64::INFINITY).contains(&d) {
+    let bits = d.to_bits();
+    // Positive, normal and finite exactly when the bits lie in [MIN_POSITIVE's, INFINITY's)
+    // (a negative number's sign bit puts it above): one unsigned comparison.
+    const MIN_NORMAL: u64 = 0x0010_0000_0000_0000;
+    if bits.wrapping_sub(MIN_NORMAL) >= 0x7ff0_0000_0000_0000 - MIN_NORMAL {
         return d.powf(1.0 / 9.0);
     }
-    let bits = d.to_bits();
     let m = f64::from_bits((bits & 0x000f_ffff_ffff_ffff) | 0x3ff0_0000_0000_0000);
     let (c, ci9, inv_c) = CELL_ROOT[((bits >> 46) & (CELLS as u64 - 1)) as usize];
     let t = (m - c) * inv_c;
@@ -439,6 +442,19 @@ pub struct RollerLoad {
 }
 
 impl RollerLoad {
+    /// [`RollerLoad::add`] without the derivatives.
+    #[inline]
+    pub(crate) fn add_force(&mut self, q: f64, x: f64) {
+        if q > 0.0 {
+            self.loaded += 1;
+            if q > self.max_lamina {
+                self.max_lamina = q;
+            }
+            self.force += q;
+            self.moment += q * x;
+        }
+    }
+
     /// Adds one lamina at `x` carrying `q` with `dq/d delta` = `dq` (`sec2 = sec² psi`, the
     /// tilt's chain factor); an unloaded lamina adds nothing.
     #[inline]
@@ -590,6 +606,17 @@ impl Laminae {
         self.eval(delta, tan0(psi), Some(loads))
     }
 
+    /// As [`Laminae::evaluate_tan`] without the derivatives (left at zero) when the roller
+    /// is aligned: its force, moment, loaded count and largest lamina are the same bits,
+    /// for a caller that wants no stiffness (a right-hand side).
+    #[inline]
+    pub(crate) fn evaluate_tan_force(&self, delta: f64, tan_psi: f64) -> RollerLoad {
+        if tan_psi == 0.0 && !self.untouched(delta, tan_psi) {
+            return self.eval_aligned::<false>(delta);
+        }
+        self.eval(delta, tan_psi, None)
+    }
+
     fn eval(&self, delta: f64, tan_psi: f64, mut loads: Option<&mut [f64]>) -> RollerLoad {
         let sec2 = 1.0 + tan_psi * tan_psi;
         let mut r = RollerLoad::default();
@@ -598,7 +625,7 @@ impl Laminae {
             return r;
         }
         if tan_psi == 0.0 && loads.is_none() {
-            return self.eval_aligned(delta);
+            return self.eval_aligned::<true>(delta);
         }
         let (cs, dcs) = (self.cs, 10.0 / 9.0 * self.cs);
         for (k, (&x, &d2)) in self.x.iter().zip(&self.drop2).enumerate() {
@@ -627,6 +654,29 @@ impl Laminae {
         delta: f64,
         tan_psi: f64,
         offsets: &[f64],
+        loads: Option<&mut [f64]>,
+    ) -> RollerLoad {
+        self.eval_offsets::<true>(delta, tan_psi, offsets, loads)
+    }
+
+    /// As [`Laminae::evaluate_offsets`] without the derivatives (left at zero): the same
+    /// force, moment, loaded count, largest lamina and lamina loads, for a caller that wants
+    /// no stiffness (a right-hand side).
+    pub(crate) fn evaluate_offsets_force(
+        &self,
+        delta: f64,
+        tan_psi: f64,
+        offsets: &[f64],
+        loads: Option<&mut [f64]>,
+    ) -> RollerLoad {
+        self.eval_offsets::<false>(delta, tan_psi, offsets, loads)
+    }
+
+    fn eval_offsets<const D: bool>(
+        &self,
+        delta: f64,
+        tan_psi: f64,
+        offsets: &[f64],
         mut loads: Option<&mut [f64]>,
     ) -> RollerLoad {
         assert_eq!(offsets.len(), self.len(), "one offset per lamina");
@@ -637,14 +687,18 @@ impl Laminae {
             let d = delta - x * tan_psi - d2 + o;
             let (q, dq) = if d > 0.0 {
                 let p = ninth_root(d);
-                (cs * d * p, dcs * p)
+                (cs * d * p, if D { dcs * p } else { 0.0 })
             } else {
                 (0.0, 0.0)
             };
             if let Some(l) = loads.as_deref_mut() {
                 l[k] = q;
             }
-            r.add(q, dq, x, sec2);
+            if D {
+                r.add(q, dq, x, sec2);
+            } else {
+                r.add_force(q, x);
+            }
         }
         r
     }
@@ -720,14 +774,15 @@ impl Laminae {
     /// at `x` and `-x` (exactly: `new` mirrors the centres) with equal profile drops (every
     /// [`Profile`] is even in `x`; checked pair by pair) carry the same load, so each such pair
     /// takes one root, and their moments and the moment's cross derivatives cancel exactly
-    /// (summed as zeros, not as rounding noise).
-    fn eval_aligned(&self, delta: f64) -> RollerLoad {
+    /// (summed as zeros, not as rounding noise). `D`: with the derivatives (without, they
+    /// stay zero and the rest is the same bits).
+    fn eval_aligned<const D: bool>(&self, delta: f64) -> RollerLoad {
         let (cs, dcs) = (self.cs, 10.0 / 9.0 * self.cs);
         let mut r = RollerLoad::default();
-        let one = |r: &mut RollerLoad, x: f64, d: f64, n: usize| {
+        // Lamina (pair) at `x` with approach `d` and, when `d > 0`, its root `p = d^(1/9)`.
+        let with_root = |r: &mut RollerLoad, x: f64, d: f64, n: usize, p: f64| {
             if d > 0.0 {
-                let p = ninth_root(d);
-                let (q, dq) = (cs * d * p, dcs * p);
+                let q = cs * d * p;
                 if q > 0.0 {
                     let w = n as f64;
                     r.loaded += n;
@@ -735,16 +790,23 @@ impl Laminae {
                         r.max_lamina = q;
                     }
                     r.force += w * q;
-                    r.dforce_ddelta += w * dq;
-                    r.dmoment_dtilt -= w * dq * x * x;
                     if n == 1 {
                         r.moment += q * x;
-                        r.dforce_dtilt -= dq * x;
-                        r.dmoment_ddelta += dq * x;
+                    }
+                    if D {
+                        let dq = dcs * p;
+                        r.dforce_ddelta += w * dq;
+                        r.dmoment_dtilt -= w * dq * x * x;
+                        if n == 1 {
+                            r.dforce_dtilt -= dq * x;
+                            r.dmoment_ddelta += dq * x;
+                        }
                     }
                 }
             }
         };
+        let root = |d: f64| if d > 0.0 { ninth_root(d) } else { 0.0 };
+        let one = |r: &mut RollerLoad, x: f64, d: f64, n: usize| with_root(r, x, d, n, root(d));
         let ns = self.len();
         let (x, d2) = (&self.x[..ns], &self.drop2[..ns]);
         if self.sorted_pairs {
@@ -753,7 +815,17 @@ impl Laminae {
             // the same order as the loop below (the same bits).
             let half = &d2[..ns / 2];
             let first = half.partition_point(|&d| delta - d <= 0.0);
-            for k in first..ns / 2 {
+            // Two pairs' roots at a time (independent: they overlap in the processor), summed
+            // in the same order.
+            let mut k = first;
+            while k + 1 < ns / 2 {
+                let (da, db) = (delta - d2[k], delta - d2[k + 1]);
+                let (pa, pb) = (root(da), root(db));
+                with_root(&mut r, x[k], da, 2, pa);
+                with_root(&mut r, x[k + 1], db, 2, pb);
+                k += 2;
+            }
+            if k < ns / 2 {
                 one(&mut r, x[k], delta - d2[k], 2);
             }
         } else {
@@ -856,6 +928,36 @@ mod tests {
             assert_eq!(ninth_root(x), x.powf(1.0 / 9.0));
         }
         assert!(ninth_root(f64::NAN).is_nan());
+        // The fallback's one comparison: every number outside the positive normal range
+        // takes powf (the same bits, or NaN), the range's own ends the series.
+        let largest_subnormal = f64::from_bits(f64::MIN_POSITIVE.to_bits() - 1);
+        for x in [
+            -0.0,
+            -1e-300,
+            -1.0,
+            -f64::MAX,
+            f64::NEG_INFINITY,
+            largest_subnormal,
+        ] {
+            let (a, b) = (ninth_root(x), x.powf(1.0 / 9.0));
+            assert!(
+                a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan()),
+                "{x:e}"
+            );
+        }
+        // (Against the ninth power: `powf(x, 1/9)` itself is off by `ln(x)` times the
+        // rounding of 1/9 there, about 20 ulp.)
+        for x in [
+            f64::MIN_POSITIVE,
+            f64::MAX,
+            f64::from_bits(f64::MAX.to_bits() - 7),
+        ] {
+            let a = ninth_root(x);
+            assert!(
+                (a.powi(9) / x - 1.0).abs() < 16.0 * f64::EPSILON,
+                "{x:e}: {a:e}"
+            );
+        }
     }
 
     /// The exponent table gives the bits of forming `2^q` and `2^(r/9)` apart (the root as
@@ -902,6 +1004,60 @@ mod tests {
                     assert!(close(a.moment, b.moment, m), "{p:?} {ns}");
                     assert!(close(a.dforce_dtilt, b.dforce_dtilt, k), "{p:?} {ns}");
                     assert!(close(a.dmoment_ddelta, b.dmoment_ddelta, k), "{p:?} {ns}");
+                }
+            }
+        }
+    }
+
+    /// The force-only evaluation a right-hand side takes is the full one's force, moment,
+    /// loaded count and largest lamina bit for bit, aligned or tilted, every profile,
+    /// paired or not (ns odd), touching or not; its derivatives are zero when aligned.
+    #[test]
+    fn force_only_evaluation_is_the_full_ones_bits() {
+        let g = geom(0.012, 0.01);
+        for p in profiles(&g) {
+            for ns in [1, 2, 30, 31] {
+                let l = Laminae::new(&g, &p, ns).unwrap();
+                for d in [-1e-6, 0.0, 3e-7, 2e-6, 1e-5, 4e-5] {
+                    for t in [0.0, -0.0, 3e-4, -1e-3] {
+                        // With offsets too (a pit's loss on some laminae, waviness).
+                        let off: Vec<f64> = (0..ns)
+                            .map(|k| 1e-6 * ((k * 7) % 5) as f64 - 2e-6)
+                            .collect();
+                        let (mut la, mut lb) = (vec![0.0; ns], vec![0.0; ns]);
+                        let a = l.evaluate_offsets(d, t, &off, Some(&mut la));
+                        let b = l.evaluate_offsets_force(d, t, &off, Some(&mut lb));
+                        assert_eq!(
+                            (
+                                a.force.to_bits(),
+                                a.moment.to_bits(),
+                                a.max_lamina.to_bits()
+                            ),
+                            (
+                                b.force.to_bits(),
+                                b.moment.to_bits(),
+                                b.max_lamina.to_bits()
+                            )
+                        );
+                        assert_eq!((a.loaded, &la), (b.loaded, &lb));
+                        assert_eq!(b.dforce_ddelta, 0.0);
+                        let (a, b) = (l.evaluate_tan(d, t), l.evaluate_tan_force(d, t));
+                        let bits = |r: &RollerLoad| {
+                            (
+                                r.force.to_bits(),
+                                r.moment.to_bits(),
+                                r.max_lamina.to_bits(),
+                            )
+                        };
+                        assert_eq!(bits(&a), bits(&b), "{p:?} {ns} {d} {t}");
+                        assert_eq!(a.loaded, b.loaded);
+                        if t == 0.0 {
+                            assert_eq!(b.dforce_ddelta, 0.0);
+                            assert!(a.dforce_ddelta > 0.0 || a.loaded == 0);
+                        } else {
+                            assert_eq!(a, b);
+                        }
+                    }
                 }
             }
         }

@@ -218,12 +218,17 @@ impl CylindricalRollerLaw {
     /// [`ElementLaw::react`] of a massless roller ([`CylindricalRollerLaw::massless`]) at any
     /// speed, bit for bit, without the trait's dispatch and `Result` (the ring level's rollers
     /// call it for every element at every evaluation).
-    #[inline]
+    #[inline(always)]
     pub fn react_massless(&self, u: ElementDisplacement, want: Want) -> ElementReaction {
         debug_assert!(self.fc_per_omega2 == 0.0, "massless rollers only");
         let approach = u.radial - self.half_pd;
         let t = tan0(u.tilt);
-        let r = self.laminae.evaluate_tan(approach, t);
+        // Without stiffness the laminae's derivatives are not read (`reaction`).
+        let r = if want.stiffness {
+            self.laminae.evaluate_tan(approach, t)
+        } else {
+            self.laminae.evaluate_tan_force(approach, t)
+        };
         if r.loaded == 0 && self.flange.is_none() {
             return unloaded(approach);
         }
@@ -259,7 +264,13 @@ impl CylindricalRollerLaw {
         debug_assert!(self.fc_per_omega2 == 0.0, "massless rollers only");
         let approach = u.radial - self.half_pd;
         let t = tan0(u.tilt);
-        let r = self.laminae.evaluate_offsets(approach, t, offsets, loads);
+        // Without stiffness the laminae's derivatives are not read (`reaction`).
+        let r = if want.stiffness {
+            self.laminae.evaluate_offsets(approach, t, offsets, loads)
+        } else {
+            self.laminae
+                .evaluate_offsets_force(approach, t, offsets, loads)
+        };
         let contact = self.laminae.contact_approach(&r, approach, false);
         self.reaction(r, u, t, contact, 0.0, want)
     }
@@ -267,7 +278,7 @@ impl CylindricalRollerLaw {
     /// The element's reaction from the laminae's `r` at `u` (`t = tan(tilt)`, `approach` what
     /// contact damping ramps in with, [`Laminae::contact_approach`]), with the flange contact
     /// and the report.
-    #[inline]
+    #[inline(always)]
     fn reaction(
         &self,
         r: RollerLoad,
@@ -425,6 +436,20 @@ mod tests {
                     assert_eq!(bits(&a.pressure), bits(&b.pressure));
                     assert_eq!(a.approach.to_bits(), b.approach.to_bits());
                     assert_eq!(a.df, b.df);
+                    // A right-hand side's call (no stiffness; with and without the report):
+                    // the laminae without their derivatives, the same forces.
+                    for report in [false, true] {
+                        let w = Want {
+                            stiffness: false,
+                            report,
+                        };
+                        let a = l.react(at, u, omega, &mut [], w).unwrap();
+                        let b = l.react_massless(u, w);
+                        assert_eq!(bits(&a.f), bits(&b.f), "{radial} {tilt}");
+                        assert_eq!(bits(&a.load), bits(&b.load));
+                        assert_eq!(bits(&a.pressure), bits(&b.pressure));
+                        assert_eq!(a.approach.to_bits(), b.approach.to_bits());
+                    }
                 }
             }
         }

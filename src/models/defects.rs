@@ -29,6 +29,10 @@ use std::f64::consts::PI;
 /// Width of the smooth minimum at the phase corners, as a fraction of `min(H, Hr)`.
 pub const SMOOTH: f64 = 0.1;
 
+/// Largest azimuth (rad) [`Defect::reaches_sc`] answers from the cosine alone (its rounding,
+/// 1e-10 rad there, stays far inside the margin).
+pub const QUICK_ANGLE: f64 = 1e6;
+
 /// Which element carries a defect.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum DefectSite {
@@ -60,6 +64,10 @@ pub struct Defect {
     pub hr: f64,
     /// Smooth-minimum width, m.
     k: f64,
+    /// `(sin, cos)` of `angle` and the cosine of the pit's half-width angle widened by a
+    /// margin (`-inf` for a pit wider than about a turn): [`Defect::reaches_sc`]'s quick test.
+    sc: (f64, f64),
+    cos_reach: f64,
 }
 
 /// Quadratic smooth minimum (C¹): equals `min(a, b)` when `|a - b| >= k`, and lies at most
@@ -135,6 +143,10 @@ impl Defect {
         r_arc: f64,
     ) -> Self {
         let hr = edge_depth(r_ball, width);
+        // The half-width's angle widened by a millionth of itself and a µrad: far more than
+        // the rounding of a (sin, cos) pair against its angle (a few 1e-16) or of an angle
+        // below [`QUICK_ANGLE`] (1e-10 rad).
+        let reach = 0.5 * width / r_arc * (1.0 + 1e-6) + 1e-6;
         Defect {
             site,
             angle,
@@ -144,6 +156,12 @@ impl Defect {
             r_arc,
             hr,
             k: SMOOTH * hr.min(depth),
+            sc: angle.sin_cos(),
+            cos_reach: if reach < 3.0 {
+                reach.cos()
+            } else {
+                f64::NEG_INFINITY
+            },
         }
     }
 
@@ -170,6 +188,42 @@ impl Defect {
     pub fn loss_at_angle(&self, a: f64) -> f64 {
         let s = self.r_arc * wrap(a);
         self.loss_at(s)
+    }
+
+    /// False when [`Defect::loss`] of ball `j` at azimuth `psi` with the shaft turned by
+    /// `theta_s` is zero whatever the spin: a race pit's contact point at or beyond the pit's
+    /// half-width (the test [`Defect::loss_at`] starts with, on the same numbers), a ball
+    /// pit on another ball. Cheaper than the loss itself: a ring's elements are mostly away
+    /// from its pits.
+    #[inline]
+    pub fn reaches(&self, j: usize, psi: f64, theta_s: f64) -> bool {
+        let a = match self.site {
+            DefectSite::Outer => psi - self.angle,
+            DefectSite::Inner => psi - theta_s - self.angle,
+            DefectSite::Ball(b) => return b == j,
+        };
+        // (A NaN reaches: its loss is left to `loss`.)
+        let s = (self.r_arc * wrap(a)).abs();
+        s < 0.5 * self.width || s.is_nan()
+    }
+
+    /// [`Defect::reaches`] given also `sc`, the `(sin, cos)` of `psi` (to a few units in the
+    /// last place): an outer-race pit's angular distance is first compared by its cosine,
+    /// `cos(psi - angle)` against that of the pit's half-width with a margin, a product and
+    /// a comparison, and `false` is answered from that only when the element is well
+    /// outside the pit (and `|psi|` below [`QUICK_ANGLE`]); the answer is `reaches`' own.
+    #[inline]
+    pub fn reaches_sc(&self, j: usize, psi: f64, sc: (f64, f64), theta_s: f64) -> bool {
+        !self.well_outside(psi, sc) && self.reaches(j, psi, theta_s)
+    }
+
+    /// [`Defect::reaches_sc`]'s quick test: an outer-race pit whose angular distance from
+    /// `psi` (`sc` its sine and cosine) has a cosine below the widened half-width's.
+    #[inline]
+    fn well_outside(&self, psi: f64, sc: (f64, f64)) -> bool {
+        self.site == DefectSite::Outer
+            && sc.1 * self.sc.1 + sc.0 * self.sc.0 < self.cos_reach
+            && psi.abs() < QUICK_ANGLE
     }
 
     /// Depth loss of ball `j` at azimuth `psi`, with the shaft turned by `theta_s` and the
@@ -234,6 +288,70 @@ mod tests {
         assert!(worst > 0.0);
         assert!(wrap(f64::NAN).is_nan());
         assert_eq!(wrap(1e15), wrap_exact(1e15));
+    }
+
+    /// Wherever `reaches` says no, the loss is an exact zero, for either race, around the
+    /// whole circumference and at the pit's edges; it says yes over the pit.
+    #[test]
+    fn a_pit_not_reached_loses_nothing() {
+        let (r, arc) = (4.25e-3, 27.25e-3);
+        let half = 0.5e-3 / arc;
+        for site in [DefectSite::Outer, DefectSite::Inner] {
+            let d = Defect::new(site, 4.7, 1.0e-3, 20e-6, r, arc);
+            let (mut yes, mut no) = (0, 0);
+            for i in 0..200_000 {
+                let psi = -20.0 + 40.0 * i as f64 / 200_000.0;
+                for theta_s in [0.0, 1.3, -250.0] {
+                    // The quick test answers as the exact one.
+                    let sc = psi.sin_cos();
+                    assert_eq!(
+                        d.reaches_sc(0, psi, sc, theta_s),
+                        d.reaches(0, psi, theta_s)
+                    );
+                    if d.reaches(0, psi, theta_s) {
+                        yes += 1;
+                    } else {
+                        no += 1;
+                        assert_eq!(d.loss(0, psi, theta_s, 0.7).to_bits(), 0, "{psi}");
+                    }
+                }
+            }
+            assert!(yes > 0 && no > yes, "{yes} {no}");
+            let centre = match site {
+                DefectSite::Inner => 4.7 + 1.3,
+                _ => 4.7,
+            };
+            for psi in [centre, centre + 0.99 * half, centre - 0.99 * half] {
+                assert!(d.reaches(3, psi, 1.3) && d.loss(3, psi, 1.3, 0.0) > 0.0);
+            }
+            for psi in [centre + half * (1.0 + 1e-9), centre - half * (1.0 + 1e-9)] {
+                assert!(!d.reaches(3, psi, 1.3));
+            }
+        }
+        // The quick test: never out where the pit reaches, out over most of the turn, for
+        // a 1 mm pit and a 1 µm one (whose half-angle, 1.8e-5 rad, is near the margin's
+        // µrad), at azimuths near zero and near 1e5 rad.
+        for width in [1.0e-3, 1.0e-6] {
+            let d = Defect::new(DefectSite::Outer, 4.7, width, 1e-7, r, arc);
+            let half = 0.5 * width / arc;
+            let mut out = 0;
+            for turn in [0.0, 15_915.0] {
+                for i in -20_000..20_000 {
+                    let psi = 4.7 + turn * 2.0 * PI + i as f64 * 1.5 * half / 20_000.0;
+                    let sc = psi.sin_cos();
+                    assert!(!d.well_outside(psi, sc) || !d.reaches(0, psi, 0.0), "{psi}");
+                    let far = psi + 0.1 + 6.0 * i as f64 / 20_000.0;
+                    out += usize::from(d.well_outside(far, far.sin_cos()));
+                }
+            }
+            assert!(out > 70_000, "{width}: {out}");
+        }
+        let b = Defect::new(DefectSite::Ball(2), 0.0, 1.0e-3, 20e-6, r, r);
+        assert!(b.reaches_sc(2, 0.3, 0.3f64.sin_cos(), 0.0));
+        assert!(!b.reaches_sc(1, 0.3, 0.3f64.sin_cos(), 0.0));
+        assert!(b.reaches(2, 0.3, 0.0) && !b.reaches(1, 0.3, 0.0));
+        assert_eq!(b.loss(1, 0.3, 0.0, 0.0), 0.0);
+        assert!(Defect::new(DefectSite::Outer, 0.0, 1e-3, 1e-5, r, arc).reaches(0, f64::NAN, 0.0));
     }
 
     #[test]

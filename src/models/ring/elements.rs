@@ -171,11 +171,11 @@ impl LawRingLevel {
             stiffness: kc.is_some(),
             report: kc.is_some(),
         };
-        if let Some(w) = self.aligned_two(m, &mut kc, want, report, &mut element) {
-            return Ok(w);
-        }
         // The shaft has turned by the cage angle over the cage ratio (both start at 0).
         let theta_s = x[0] / self.cage_ratio;
+        if let Some(w) = self.aligned_two(m, theta_s, &mut kc, want, report, &mut element) {
+            return Ok(w);
+        }
         let mut profiled = self.profiled.as_mut();
         let cylindrical = self.cylindrical.as_ref();
         let (law, c0, jac) = (&self.law, self.damping, kc.is_some());
@@ -193,7 +193,7 @@ impl LawRingLevel {
             kc.as_mut().map(|(k, _)| &mut **k),
             |j, at, u| {
                 let pf = profiled.as_deref_mut().and_then(|pf| {
-                    let any = pf.fx.offsets(j, at.psi, theta_s, &mut pf.offsets);
+                    let any = pf.fx.offsets_sc(j, at.psi, at.sc, theta_s, &mut pf.offsets);
                     any.then_some(&*pf)
                 });
                 let mut r = match (pf, cylindrical) {
@@ -201,7 +201,13 @@ impl LawRingLevel {
                     (None, Some(cl)) => cl.react_massless(u, want),
                     (None, None) => law.react(at, u, m.omega, &mut [], want)?,
                 };
-                let d = Damping { c0, wc, arm2, jac };
+                let d = Damping {
+                    c0,
+                    wc,
+                    arm2,
+                    jac,
+                    report: want.report,
+                };
                 settle(
                     &mut r,
                     j,
@@ -235,20 +241,24 @@ impl LawRingLevel {
     }
 
     /// [`LawRingLevel::evaluate`] of the common case it is timed on: a 2-DOF ring on massless
-    /// cylindrical rollers without effects or flange contact, the ring not tilted (`rx = ry =
-    /// 0`, so every roller is aligned) and its displacement finite. `None` in any other case
-    /// (the general sum then runs). The same numbers bit for bit as the general sum
-    /// ([`assemble_sc`] over [`CylindricalRollerLaw::react_massless`]): a roller no lamina
-    /// of which can touch ([`CylindricalRollerLaw::aligned_untouched`]) would give the zero
-    /// reaction, whose `±0` forces add no bit to the sums and which adds nothing to `K`, so it
-    /// is reported to `element` and skipped; a loaded roller's reaction is the law's own,
-    /// damped and reported as there, its radial force summed into `(Fx, Fy)` in the same order
-    /// and its radial stiffness into the 2×2 block of `K` by the same products (the other
-    /// entries, and `Fz, Mx, My`, are the zeros the 2-DOF ring keeps).
+    /// cylindrical rollers without flange contact (with or without defects and waviness), the
+    /// ring not tilted (`rx = ry = 0`, so every roller is aligned) and its displacement
+    /// finite; the shaft turned by `theta_s` (rad). `None` in any other case (the general sum
+    /// then runs). The same numbers bit for bit as the general sum ([`assemble_sc`] over
+    /// [`CylindricalRollerLaw::react_massless`], or [`CylindricalRollerLaw::react_offsets`]
+    /// for a roller with an offset): a roller without an offset no lamina of which can touch
+    /// ([`CylindricalRollerLaw::aligned_untouched`]) would give the zero reaction, whose `±0`
+    /// forces add no bit to the sums and which adds nothing to `K`, so it is reported to
+    /// `element` and skipped; any other roller's reaction is the law's own, damped and
+    /// reported as there, its radial force summed into `(Fx, Fy)` in the same order and its
+    /// radial stiffness into the 2×2 block of `K` by the same products (the other entries,
+    /// and `Fz, Mx, My`, among them a defective roller's moment and its cross terms, are the
+    /// zeros the 2-DOF ring keeps).
     #[inline]
     fn aligned_two(
-        &self,
+        &mut self,
         m: &Motion,
+        theta_s: f64,
         kc: &mut Option<Matrices<'_>>,
         want: Want,
         report: &mut (usize, f64, f64),
@@ -256,9 +266,17 @@ impl LawRingLevel {
     ) -> Option<[f64; 5]> {
         let cl = self.cylindrical.as_ref()?;
         let q = &m.q;
+        // Per-lamina effects through the cylindrical law that takes offsets (a cylindrical
+        // bearing's: `cylindrical` is set for those only).
+        let mut profiled = match self.profiled.as_mut() {
+            None => None,
+            Some(pf) => match &pf.law {
+                OffsetLaw::Cylindrical(l) => Some((l, &pf.fx, &mut pf.offsets)),
+                OffsetLaw::Tapered(_) => return None,
+            },
+        };
         if self.dof != RingDof::Two
             || self.general_only
-            || self.profiled.is_some()
             || q[3] != 0.0
             || q[4] != 0.0
             || !q.iter().all(|v| v.is_finite())
@@ -271,6 +289,7 @@ impl LawRingLevel {
             wc: self.cage_ratio * m.omega,
             arm2: 0.0,
             jac: kc.is_some(),
+            report: want.report,
         };
         let mut cmat = [[0.0; 5]; 5];
         let mut k2 = [[0.0; 2]; 2];
@@ -279,11 +298,20 @@ impl LawRingLevel {
             if !psi.is_finite() {
                 return None;
             }
-            if let Some(r) = cl.aligned_untouched(q[0] * c + q[1] * s) {
-                element(j, psi, &r);
-                continue;
-            }
-            let mut r = cl.react_massless(ElementDisplacement::at(q, s, c), want);
+            let offsets = profiled.as_mut().and_then(|(l, fx, o)| {
+                fx.offsets_sc(j, psi, (s, c), theta_s, o)
+                    .then_some((*l, &**o))
+            });
+            let mut r = match offsets {
+                Some((l, o)) => l.react_offsets(ElementDisplacement::at(q, s, c), o, want, None),
+                None => {
+                    if let Some(r) = cl.aligned_untouched(q[0] * c + q[1] * s) {
+                        element(j, psi, &r);
+                        continue;
+                    }
+                    cl.react_massless(ElementDisplacement::at(q, s, c), want)
+                }
+            };
             settle(&mut r, j, psi, (s, c), m, d, report, element, &mut cmat);
             let fr = r.f[1];
             f[0] += fr * c;
@@ -312,17 +340,20 @@ impl LawRingLevel {
 }
 
 /// What [`settle`] damps an element with: the contact damping `c0`, the cage speed `wc`, the
-/// tilt damping's squared arm `arm2` (0: none) and whether the damping matrix is wanted.
+/// tilt damping's squared arm `arm2` (0: none) and whether the damping matrix is wanted;
+/// and whether the report is (a right-hand side's evaluation reads none).
 #[derive(Debug, Clone, Copy)]
 struct Damping {
     c0: f64,
     wc: f64,
     arm2: f64,
     jac: bool,
+    report: bool,
 }
 
 /// One element's reaction `r` at azimuth `psi` (`(sin, cos)` = `sc`) finished as the ring
-/// level sums it: counted into `report` (loaded elements, largest load and pressure), handed
+/// level sums it: counted into `report` (loaded elements, largest load and pressure; when
+/// `d.report`), handed
 /// to `element`, then damped along its radial line (and tilt) with the damping matrix into
 /// `cmat` (module docs).
 #[allow(clippy::too_many_arguments)]
@@ -338,7 +369,7 @@ fn settle(
     element: &mut impl FnMut(usize, f64, &ElementReaction),
     cmat: &mut [[f64; 5]; 5],
 ) {
-    if r.f[1] < 0.0 {
+    if d.report && r.f[1] < 0.0 {
         report.0 += 1;
         report.1 = report.1.max(r.load[0]).max(r.load[1]);
         report.2 = report.2.max(r.pressure[0]).max(r.pressure[1]);
@@ -450,11 +481,12 @@ mod tests {
     use super::*;
     use crate::component::Scene;
 
-    /// The bench's ring: NU206, 2 DOF, with contact damping (`damping` N s/m).
-    fn level(damping: f64, general: bool) -> LawRingLevel {
+    /// The bench's ring: NU206, 2 DOF, with contact damping (`damping` N s/m) and the
+    /// `[effects]` table `effects` (TOML; empty: none).
+    fn level(damping: f64, general: bool, effects: &str) -> LawRingLevel {
         let text = format!(
             "bearing = \"NU206\"\n[model]\nlevel = \"ring\"\ncausality = \"motion\"\n\
-             ring_dof = 2\ncontact_damping = {damping:?}\n"
+             ring_dof = 2\ncontact_damping = {damping:?}\n[effects]\n{effects}\n"
         );
         let scene = Scene::from_text(&text).unwrap();
         let b = scene.build_bearing().unwrap();
@@ -477,10 +509,64 @@ mod tests {
         v.iter().map(|x| x.to_bits()).collect()
     }
 
+    /// The shipped scene's outer-race spall (`nu206-outer-defect.toml`: 20 µm deep, 1 mm
+    /// wide, over the `+z` half of the raceway at 270°) and an inner-race one over the `-z`
+    /// half.
+    const DEFECTS: &str = "defects = [\
+        { race = \"outer\", angle_deg = 270.0, width_mm = 1.0, depth_um = 20.0, axial_width_mm = 4.8, axial_position_mm = 2.4 },\
+        { race = \"inner\", angle_deg = 100.0, width_mm = 0.8, depth_um = 10.0, axial_width_mm = 3.0, axial_position_mm = -2.0 }]";
+
+    /// Race waviness on both rings.
+    const WAVES: &str =
+        "waviness = [{ race = \"outer\", order = 14, amplitude_um = 0.3, phase_deg = 0.0 },\
+        { race = \"inner\", order = 15, amplitude_um = 0.2, phase_deg = 30.0 }]";
+
     #[test]
     fn aligned_two_dof_is_the_general_sum_bit_for_bit() {
+        assert_eq!(aligned_two_matches_the_general_sum("", &[0.0, 0.37]), 0);
+    }
+
+    /// With defects (`DEFECTS`): the same, at cage angles that put a roller on the outer
+    /// spall's entry, floor and exit (the spall spans ±18 mrad of azimuth around 270°; roller
+    /// 0 sits at the cage angle) and on the inner one, so rollers with and without offsets
+    /// are summed in one evaluation; with waviness (every roller has an offset), alone and
+    /// with the defects.
+    #[test]
+    fn aligned_two_dof_with_effects_is_the_general_sum_bit_for_bit() {
+        let on = 1.5 * std::f64::consts::PI;
+        let thetas = [
+            on,
+            on - 0.015,
+            on - 0.008,
+            on + 0.004,
+            on + 0.016,
+            0.37,
+            2.1,
+        ];
+        // Rollers evaluated: 14 per evaluation, at 7 positions, 2 zero tilts, 2 dampings.
+        let per_theta = 14 * 7 * 2 * 2;
+        let z = per_theta * (thetas.len() + 1);
+        let n = aligned_two_matches_the_general_sum(DEFECTS, &thetas);
+        assert!(
+            n >= 28 * 5 && n < z / 4,
+            "{n} of {z} rollers with an offset"
+        );
+        let n = aligned_two_matches_the_general_sum(WAVES, &[0.0, 0.37]);
+        assert_eq!(n, per_theta * 3);
+        let both = format!("{DEFECTS}\n{WAVES}");
+        aligned_two_matches_the_general_sum(&both, &thetas);
+    }
+
+    /// Asserts the fast path's outputs, loads and right-hand side are the general sum's bit
+    /// for bit at several ring positions and cage angles `thetas` (and one more), both with
+    /// and without damping; returns how many rollers the fast path met with an offset.
+    fn aligned_two_matches_the_general_sum(effects: &str, thetas: &[f64]) -> usize {
+        let mut offset_rollers = 0;
         for damping in [0.0, 2e3] {
-            let (mut fast, mut general) = (level(damping, false), level(damping, true));
+            let (mut fast, mut general) = (
+                level(damping, false, effects),
+                level(damping, true, effects),
+            );
             let mut taken = 0;
             for (i, &(x, y)) in [
                 (0.0, -30e-6),
@@ -494,7 +580,8 @@ mod tests {
             .iter()
             .enumerate()
             {
-                for (theta, omega) in [(0.0, 157.0), (0.37, 157.0), (5.1 + i as f64, -80.0)] {
+                let spins = thetas.iter().map(|&t| (t, 157.0));
+                for (theta, omega) in spins.chain([(5.1 + i as f64, -80.0)]) {
                     for q3 in [0.0, -0.0, 1e-4] {
                         let m = Motion {
                             q: [x, y, 2e-6, q3, 0.0],
@@ -536,9 +623,16 @@ mod tests {
                         if q3 == 0.0 {
                             assert!(oa.balls_loaded > 0.0 || y > -1e-6 || damping > 0.0);
                             taken += 1;
+                            if let Some(pf) = fast.profiled.as_mut() {
+                                let ts = theta / fast.cage_ratio;
+                                offset_rollers += (0..fast.psi.len())
+                                    .filter(|&j| pf.fx.offsets(j, fast.psi[j], ts, &mut pf.offsets))
+                                    .count();
+                            }
                             let mut none = None;
                             let w = fast.aligned_two(
                                 &m,
+                                theta / fast.cage_ratio,
                                 &mut none,
                                 Want::default(),
                                 &mut (0, 0.0, 0.0),
@@ -551,5 +645,6 @@ mod tests {
             }
             assert!(taken > 0);
         }
+        offset_rollers
     }
 }

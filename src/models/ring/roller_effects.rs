@@ -133,20 +133,68 @@ impl RollerEffects {
     /// Each lamina's approach offset (m) of roller `j` at azimuth `psi` with the shaft turned
     /// by `theta_s` (rad) into `out` (length `ns`): the waviness's interference minus the
     /// depth loss of every defect on the laminae it spans. Returns whether any offset is
-    /// non-zero (a roller without one runs the plain law, bit for bit).
+    /// non-zero (a roller without one runs the plain law, bit for bit); `out` is written only
+    /// then (left as it was otherwise: most rollers of a ring are away from a defect, and
+    /// their callers do not read it).
+    #[inline]
     pub fn offsets(&self, j: usize, psi: f64, theta_s: f64, out: &mut [f64]) -> bool {
+        // Most rollers: no waviness and no pit in reach, nothing to evaluate (the same
+        // answer: every loss is an exact zero there).
+        if self.waviness.is_empty()
+            && !self
+                .defects
+                .iter()
+                .any(|(d, ..)| d.reaches(j, psi, theta_s))
+        {
+            return false;
+        }
+        self.offsets_at(j, psi, theta_s, out)
+    }
+
+    /// [`RollerEffects::offsets`] given also the `(sin, cos)` of `psi` (to a few units in the
+    /// last place, as `seam::element::place_evenly_sc` gives them): the same answer, a
+    /// roller well away from every outer-race pit found by a product
+    /// ([`Defect::reaches_sc`]).
+    #[inline]
+    pub fn offsets_sc(
+        &self,
+        j: usize,
+        psi: f64,
+        sc: (f64, f64),
+        theta_s: f64,
+        out: &mut [f64],
+    ) -> bool {
+        if self.waviness.is_empty()
+            && !self
+                .defects
+                .iter()
+                .any(|(d, ..)| d.reaches_sc(j, psi, sc, theta_s))
+        {
+            return false;
+        }
+        self.offsets_at(j, psi, theta_s, out)
+    }
+
+    /// [`RollerEffects::offsets`], every effect evaluated.
+    fn offsets_at(&self, j: usize, psi: f64, theta_s: f64, out: &mut [f64]) -> bool {
         debug_assert_eq!(out.len(), self.ns);
         let phi = self.spin_ratio * theta_s;
         let mut w = 0.0;
         for h in &self.waviness {
             w += h.interference(j, psi, theta_s, phi);
         }
-        out.fill(w);
         let mut any = w != 0.0;
+        if any {
+            out.fill(w);
+        }
         for (d, first, end) in &self.defects {
             let e = d.loss(j, psi, theta_s, phi);
             if e != 0.0 {
-                any = true;
+                if !any {
+                    // (`w` is a zero here, of either sign: the one a fill would have written.)
+                    out.fill(w);
+                    any = true;
+                }
                 for o in &mut out[*first..*end] {
                     *o -= e;
                 }
@@ -229,8 +277,14 @@ mod tests {
                 assert_eq!(v, 0.0, "{k}");
             }
         }
+        // Away from it: no offset, and `out` left as it was.
+        let before = o.clone();
         assert!(!f.offsets(3, 0.3, 0.7, &mut o));
-        assert!(o.iter().all(|&v| v == 0.0));
+        assert_eq!(o, before);
+        // Back on the pit, over a buffer holding another roller's offsets: the same values.
+        let mut again = vec![7.0; 30];
+        assert!(f.offsets(3, 270f64.to_radians(), 0.7, &mut again));
+        assert_eq!(again, o);
     }
 
     #[test]
