@@ -560,30 +560,42 @@ fn exudyn_section(rpms: &[f64], t_end: f64, repeats: usize, goals: &mut Vec<Goal
             (true, "raceway full, dynamic ball contacts"),
             (false, "raceway full, default"),
         ] {
-            match exudyn_peer::raceway_case(rpm, dynamic, ex.t_end_s) {
-                Ok((cpu, err)) => {
-                    let ratio = ex.cpu_s / cpu;
-                    println!(
-                        "Exudyn geometry {rpm} rpm, {label}: {cpu:.3} s CPU, force error {err:.1e}; Exudyn {:.3} s, error {ex_err:.1e}: ratio {ratio:.2} (load average {})",
-                        ex.cpu_s,
-                        load_average()
-                    );
-                    let _ = writeln!(
-                        md,
-                        "| {rpm:.0} | {label} | RODAS4 rtol {:.0e} | {cpu:.3} | {err:.1e} | {ratio:.2}× |",
-                        exudyn_peer::rtol(dynamic)
-                    );
-                    let slot = if dynamic {
-                        &mut worst_dyn
-                    } else {
-                        &mut worst_def
-                    };
-                    *slot = Some(slot.map_or(ratio, |w: f64| w.min(ratio)));
-                    if dynamic
-                        && err.partial_cmp(&ex_err) != Some(std::cmp::Ordering::Less)
-                        && err != ex_err
-                    {
-                        acc_ok = false;
+            // With dynamic contacts also the shipped scenes' rtol 1e-5, shown beside the
+            // row's setting (not used for the goal).
+            let more: &[f64] = if dynamic { &[1e-5] } else { &[] };
+            match exudyn_peer::raceway_case(rpm, dynamic, ex.t_end_s, more) {
+                Ok(runs) => {
+                    for (k, &(rtol, cpu, err)) in runs.iter().enumerate() {
+                        let ratio = ex.cpu_s / cpu;
+                        let label = if k == 0 {
+                            label.to_string()
+                        } else {
+                            format!("{label} (the shipped scenes' tolerance, not the row's)")
+                        };
+                        println!(
+                            "Exudyn geometry {rpm} rpm, {label}, rtol {rtol:.0e}: {cpu:.3} s CPU, force error {err:.1e}; Exudyn {:.3} s, error {ex_err:.1e}: ratio {ratio:.2} (load average {})",
+                            ex.cpu_s,
+                            load_average()
+                        );
+                        let _ = writeln!(
+                            md,
+                            "| {rpm:.0} | {label} | RODAS4 rtol {rtol:.0e} | {cpu:.3} | {err:.1e} | {ratio:.2}× |"
+                        );
+                        if k > 0 {
+                            continue;
+                        }
+                        let slot = if dynamic {
+                            &mut worst_dyn
+                        } else {
+                            &mut worst_def
+                        };
+                        *slot = Some(slot.map_or(ratio, |w: f64| w.min(ratio)));
+                        if dynamic
+                            && err.partial_cmp(&ex_err) != Some(std::cmp::Ordering::Less)
+                            && err != ex_err
+                        {
+                            acc_ok = false;
+                        }
                     }
                 }
                 Err(e) => {
@@ -606,7 +618,7 @@ fn exudyn_section(rpms: &[f64], t_end: f64, repeats: usize, goals: &mut Vec<Goal
         measured: format!("{} (slowest of {speeds} rpm); accuracy at least Exudyn's: {}", fmt(worst_dyn), if acc_ok { "yes" } else { "no" }),
         met: worst_dyn.map(|r| r >= 5.0 && acc_ok),
         note: format!(
-            "{}Exudyn CPU over raceway CPU on the same {t_end} s window, below; tried: the block-arrowhead solve, Jacobian columns on the kept contacts and pockets, RODAS4 at rtol 1e-4 (its error plateau: benches/common/exudyn_peer.rs)",
+            "{}Exudyn CPU over raceway CPU on the same {t_end} s window, below; tried: the block-arrowhead solve, Jacobian columns on the kept contacts and pockets, RODAS4 at rtol 1e-4 (its error plateau: benches/common/exudyn_peer.rs; the table below also gives the shipped scenes' rtol 1e-5, where the code alone is short of 5×)",
             worst_dyn.map_or(String::new(), |r| if r < 5.0 { format!("{:.1}× short; ", 5.0 / r) } else { String::new() }),
         ),
     });

@@ -169,15 +169,30 @@ pub fn raceway_run(scene: &Scene, t_end: f64) -> Result<(f64, Samples), String> 
     Ok((thread_cpu_s() - c0, s))
 }
 
-/// Raceway on the Exudyn geometry: (CPU s over `t_end`, force error against the run at
-/// [`REFERENCE_RTOL`]).
-pub fn raceway_case(rpm: f64, dynamic: bool, t_end: f64) -> Result<(f64, f64), String> {
+/// Raceway on the Exudyn geometry: for the row's tolerance ([`rtol`]) and then each of
+/// `more` (`atol_m` scaled as 1e-4 m × rtol), (rtol, CPU s over `t_end`, force error
+/// against the run at [`REFERENCE_RTOL`]), the reference run once.
+pub fn raceway_case(
+    rpm: f64,
+    dynamic: bool,
+    t_end: f64,
+    more: &[f64],
+) -> Result<Vec<(f64, f64, f64)>, String> {
     let scene = Scene::from_text(&scene(rpm, dynamic)).map_err(|e| e.to_string())?;
     let mut tight = scene.clone();
     tight.solver.rtol = REFERENCE_RTOL;
     tight.solver.atol_m = 1e-12;
     let (_, reference) = raceway_run(&tight, t_end)?;
-    let (cpu, s) = raceway_run(&scene, t_end)?;
-    let (err, _) = force_error(&s, &reference).map_err(|e| e.to_string())?;
-    Ok((cpu, err))
+    let mut out = Vec::new();
+    let settings = std::iter::once((scene.solver.rtol, scene.solver.atol_m))
+        .chain(more.iter().map(|&r| (r, r * 1e-4)));
+    for (rtol, atol) in settings {
+        let mut sc = scene.clone();
+        sc.solver.rtol = rtol;
+        sc.solver.atol_m = atol;
+        let (cpu, s) = raceway_run(&sc, t_end)?;
+        let (err, _) = force_error(&s, &reference).map_err(|e| e.to_string())?;
+        out.push((rtol, cpu, err));
+    }
+    Ok(out)
 }
