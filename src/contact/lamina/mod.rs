@@ -196,12 +196,7 @@ impl RollerLoad {
     #[inline]
     pub(crate) fn add(&mut self, q: f64, dq: f64, x: f64, sec2: f64) {
         if q > 0.0 {
-            self.loaded += 1;
-            if q > self.max_lamina {
-                self.max_lamina = q;
-            }
-            self.force += q;
-            self.moment += q * x;
+            self.add_force(q, x);
             self.dforce_ddelta += dq;
             self.dforce_dtilt -= dq * x * sec2;
             self.dmoment_ddelta += dq * x;
